@@ -1,0 +1,335 @@
+"""Arch geometry: circular voussoir arches, nominal or irregular.
+
+Conventions (METHOD section 1): centre O at the origin, x to the right, y up, SI units
+(m, kg per metre of depth).  Voussoirs are numbered 0..n-1 from the left springing, joints
+0..n; joint j lies on the radial line at polar angle ``psi_j`` and voussoir i lies between
+joints i and i+1.  Voussoir i is an annular sector of span ``alpha_i`` (rad), mean radius
+``R_i`` and thickness ``t_i``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from .errors import ArchInputError
+
+__all__ = [
+    "Arch",
+    "nominal_arch",
+    "oppenheim_arch",
+    "random_arch",
+    "OPPENHEIM",
+]
+
+#: Nominal parameters of Oppenheim's arch (1992): R [m], embrace [deg], t [m], n.
+OPPENHEIM = {"radius": 10.0, "embrace_deg": 157.5, "thickness": 1.5, "voussoirs": 7}
+
+DEFAULT_DENSITY = 2000.0  # kg/m^3; cancels from multipliers and from the equation of motion
+
+
+def _finite_array(name: str, values, *, ndim: int = 1) -> np.ndarray:
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ArchInputError(f"{name}: expected numbers, got {values!r}") from None
+    if arr.ndim != ndim:
+        raise ArchInputError(f"{name}: expected a {ndim}-d list of numbers, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ArchInputError(f"{name}: every value must be a finite number (got NaN or infinity)")
+    return arr
+
+
+def _check_scalar(name: str, value, lo: float | None = None, hi: float | None = None,
+                  lo_open: bool = True, hi_open: bool = True, allowed: str = "") -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ArchInputError(f"{name}: expected a number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise ArchInputError(f"{name}: must be a finite number, got {value!r}")
+    bad = (lo is not None and (v <= lo if lo_open else v < lo)) or (
+        hi is not None and (v >= hi if hi_open else v > hi))
+    if bad:
+        raise ArchInputError(f"{name}: {v:g} is out of range; allowed {allowed}")
+    return v
+
+
+def sector_properties(spans, radii, thicknesses) -> dict:
+    """Joint angles, contact radii and exact annular-sector properties, vectorised.
+
+    Inputs have shape (..., n); outputs: ``psi``, ``r_in``, ``r_out`` (..., n+1) for the
+    joints; ``area`` [m^2], ``centroid`` (..., n, 2) [m] and ``polar`` (..., n), the polar
+    moment of area about the centroid [m^4], for the voussoirs.
+    """
+    spans = np.asarray(spans, float)
+    radii = np.asarray(radii, float)
+    thick = np.asarray(thicknesses, float)
+    ri, ro = radii - thick / 2, radii + thick / 2
+    embrace = spans.sum(axis=-1, keepdims=True)
+    zero = np.zeros(spans.shape[:-1] + (1,))
+    psi = np.pi / 2 + embrace / 2 - np.concatenate([zero, np.cumsum(spans, axis=-1)], axis=-1)
+    r_in = np.concatenate([ri[..., :1], np.maximum(ri[..., :-1], ri[..., 1:]), ri[..., -1:]], axis=-1)
+    r_out = np.concatenate([ro[..., :1], np.minimum(ro[..., :-1], ro[..., 1:]), ro[..., -1:]], axis=-1)
+    half = spans / 2
+    area = half * (ro**2 - ri**2)
+    rg = (2.0 / 3.0) * (ro**3 - ri**3) / (ro**2 - ri**2) * np.sin(half) / half
+    mid = psi[..., :-1] - half
+    centroid = np.stack([rg * np.cos(mid), rg * np.sin(mid)], axis=-1)
+    polar = spans * (ro**4 - ri**4) / 4.0 - area * rg**2
+    return {"psi": psi, "r_in": r_in, "r_out": r_out, "area": area, "centroid": centroid,
+            "polar": polar}
+
+
+@dataclass(frozen=True, eq=False)
+class Arch:
+    """A circular voussoir arch, described voussoir by voussoir from the left springing.
+
+    spans: angular span of each voussoir [rad]; radii: mean radius [m]; thicknesses [m];
+    density [kg/m^3] (mass per metre of depth = density * area).
+    """
+
+    spans: np.ndarray
+    radii: np.ndarray
+    thicknesses: np.ndarray
+    density: float = DEFAULT_DENSITY
+    name: str = field(default="arch", compare=False)
+
+    def __post_init__(self):
+        spans = _finite_array("spans", self.spans)
+        radii = _finite_array("radii", self.radii)
+        thick = _finite_array("thicknesses", self.thicknesses)
+        n = spans.size
+        if n < 3:
+            raise ArchInputError(f"voussoirs: an arch needs at least 3 voussoirs, got {n}")
+        if radii.size != n or thick.size != n:
+            raise ArchInputError(
+                f"voussoirs: spans, radii and thicknesses must have the same length "
+                f"(got {n}, {radii.size}, {thick.size})")
+        if np.any(spans <= 0):
+            i = int(np.argmax(spans <= 0))
+            raise ArchInputError(f"span of voussoir {i}: {math.degrees(spans[i]):g} deg; allowed > 0 deg")
+        if spans.sum() >= 2 * math.pi:
+            raise ArchInputError(
+                f"spans: the voussoirs add up to {math.degrees(spans.sum()):g} deg; allowed < 360 deg")
+        if np.any(radii <= 0):
+            i = int(np.argmax(radii <= 0))
+            raise ArchInputError(f"radius of voussoir {i}: {radii[i]:g} m; allowed > 0")
+        if np.any(thick <= 0) or np.any(thick >= 2 * radii):
+            i = int(np.argmax((thick <= 0) | (thick >= 2 * radii)))
+            raise ArchInputError(
+                f"thickness of voussoir {i}: {thick[i]:g} m; allowed 0 < t < 2 R = {2 * radii[i]:g} m")
+        density = _check_scalar("density", self.density, 0.0, None, allowed="> 0 kg/m^3")
+        for arr in (spans, radii, thick):
+            arr.setflags(write=False)
+        object.__setattr__(self, "spans", spans)
+        object.__setattr__(self, "radii", radii)
+        object.__setattr__(self, "thicknesses", thick)
+        object.__setattr__(self, "density", density)
+        inner, outer = self.contact_inner, self.contact_outer
+        if np.any(outer <= inner):
+            j = int(np.argmax(outer <= inner))
+            raise ArchInputError(
+                f"joint {j}: the neighbouring voussoirs do not overlap radially "
+                f"(contact from {inner[j]:g} m to {outer[j]:g} m); allowed: overlapping radial extents")
+
+    # ------------------------------------------------------------------ basic sizes
+    @property
+    def n(self) -> int:
+        """Number of voussoirs."""
+        return int(self.spans.size)
+
+    @property
+    def embrace(self) -> float:
+        """Angle of embrace alpha [rad] (sum of the spans)."""
+        return float(self.spans.sum())
+
+    @cached_property
+    def _props(self) -> dict:
+        props = sector_properties(self.spans, self.radii, self.thicknesses)
+        for arr in props.values():
+            arr.setflags(write=False)
+        return props
+
+    @property
+    def joint_angles(self) -> np.ndarray:
+        """Polar angle psi_j of each joint j = 0..n [rad]; psi_0 is the left springing."""
+        return self._props["psi"]
+
+    @property
+    def intrados_radii(self) -> np.ndarray:
+        return self.radii - self.thicknesses / 2
+
+    @property
+    def extrados_radii(self) -> np.ndarray:
+        return self.radii + self.thicknesses / 2
+
+    @property
+    def contact_inner(self) -> np.ndarray:
+        """Radius of the intrados end of each joint's contact surface [m], joints 0..n."""
+        return self._props["r_in"]
+
+    @property
+    def contact_outer(self) -> np.ndarray:
+        """Radius of the extrados end of each joint's contact surface [m], joints 0..n."""
+        return self._props["r_out"]
+
+    def joint_point(self, joint: int, edge: str) -> np.ndarray:
+        """Coordinates [m] of the intrados or extrados end of a joint's contact surface."""
+        if edge not in ("intrados", "extrados"):
+            raise ArchInputError(f"edge: {edge!r}; allowed 'intrados' or 'extrados'")
+        if not 0 <= joint <= self.n:
+            raise ArchInputError(f"joint: {joint}; allowed 0..{self.n}")
+        r = self.contact_inner[joint] if edge == "intrados" else self.contact_outer[joint]
+        psi = self.joint_angles[joint]
+        return np.array([r * math.cos(psi), r * math.sin(psi)])
+
+    # ------------------------------------------------------------------ mass properties
+    @property
+    def areas(self) -> np.ndarray:
+        """Area of each voussoir [m^2]."""
+        return self._props["area"]
+
+    @cached_property
+    def masses(self) -> np.ndarray:
+        """Mass of each voussoir per metre of depth [kg/m]."""
+        return self.density * self.areas
+
+    @property
+    def centroids(self) -> np.ndarray:
+        """Centroid of each voussoir, shape (n, 2) [m] (exact annular sector)."""
+        return self._props["centroid"]
+
+    @cached_property
+    def inertias(self) -> np.ndarray:
+        """Polar moment of inertia of each voussoir about its centroid [kg m^2 / m]."""
+        return self.density * self._props["polar"]
+
+    @property
+    def weights(self) -> np.ndarray:
+        """Weight of each voussoir per metre of depth [N/m] with g = 9.81 m/s^2."""
+        return self.masses * 9.81
+
+    # ------------------------------------------------------------------ transformations
+    def mirrored(self) -> "Arch":
+        """The mirror image about the vertical axis through O (voussoir order reversed)."""
+        return Arch(self.spans[::-1].copy(), self.radii[::-1].copy(), self.thicknesses[::-1].copy(),
+                    self.density, name=f"{self.name} (mirrored)")
+
+    def scaled(self, factor: float) -> "Arch":
+        """The same proportions, every length multiplied by ``factor``."""
+        f = _check_scalar("factor", factor, 0.0, None, allowed="> 0")
+        return Arch(self.spans.copy(), self.radii * f, self.thicknesses * f, self.density, self.name)
+
+    def with_thickness_factor(self, factor: float) -> "Arch":
+        """Every voussoir thickness multiplied by ``factor`` (radii and spans unchanged)."""
+        return Arch(self.spans.copy(), self.radii.copy(), self.thicknesses * factor, self.density,
+                    self.name)
+
+    def is_symmetric(self, tol: float = 1e-12) -> bool:
+        m = self.mirrored()
+        return bool(np.allclose(self.spans, m.spans, atol=tol) and np.allclose(self.radii, m.radii, atol=tol)
+                    and np.allclose(self.thicknesses, m.thicknesses, atol=tol))
+
+    # ------------------------------------------------------------------ serialisation
+    def to_dict(self) -> dict:
+        """The JSON geometry format: voussoirs from the left springing, spans in degrees."""
+        return {
+            "voussoirs": [
+                {"span_deg": math.degrees(a), "radius": float(r), "thickness": float(t)}
+                for a, r, t in zip(self.spans, self.radii, self.thicknesses)
+            ],
+            "density": self.density,
+        }
+
+    @classmethod
+    def from_dict(cls, data, name: str = "arch") -> "Arch":
+        """Build an arch from the JSON geometry format (see :meth:`to_dict`)."""
+        if not isinstance(data, dict):
+            raise ArchInputError("geometry: expected a JSON object with a 'voussoirs' list")
+        vs = data.get("voussoirs")
+        if not isinstance(vs, list) or not vs:
+            raise ArchInputError("voussoirs: missing or empty; expected a list of "
+                                 "{'span_deg', 'radius', 'thickness'} objects")
+        spans, radii, thick = [], [], []
+        for i, v in enumerate(vs):
+            if not isinstance(v, dict):
+                raise ArchInputError(f"voussoirs[{i}]: expected an object with span_deg, radius, thickness")
+            for key, dest in (("span_deg", spans), ("radius", radii), ("thickness", thick)):
+                if key not in v:
+                    raise ArchInputError(f"voussoirs[{i}].{key}: missing")
+                val = v[key]
+                if isinstance(val, bool) or not isinstance(val, (int, float)):
+                    raise ArchInputError(f"voussoirs[{i}].{key}: expected a number, got {val!r}")
+                if not math.isfinite(val):
+                    raise ArchInputError(f"voussoirs[{i}].{key}: must be finite, got {val!r}")
+                dest.append(float(val))
+        density = data.get("density", DEFAULT_DENSITY)
+        if isinstance(density, bool) or not isinstance(density, (int, float)):
+            raise ArchInputError(f"density: expected a number, got {density!r}")
+        return cls(np.radians(spans), np.array(radii), np.array(thick), float(density), name=name)
+
+    def __repr__(self) -> str:
+        return (f"Arch(name={self.name!r}, n={self.n}, embrace={math.degrees(self.embrace):.4g} deg, "
+                f"R={np.round(self.radii, 4).tolist()}, t={np.round(self.thicknesses, 4).tolist()})")
+
+
+def nominal_arch(radius: float = 10.0, embrace_deg: float = 157.5, thickness: float = 1.5,
+                 voussoirs: int = 7, density: float = DEFAULT_DENSITY, name: str = "nominal") -> Arch:
+    """A regular arch: n equal voussoirs of mean radius R [m], thickness t [m], embrace [deg]."""
+    radius = _check_scalar("radius", radius, 0.0, None, allowed="> 0 m")
+    embrace_deg = _check_scalar("embrace", embrace_deg, 0.0, 360.0, allowed="0 < embrace < 360 deg")
+    thickness = _check_scalar("thickness", thickness, 0.0, 2 * radius,
+                              allowed=f"0 < t < 2 R = {2 * radius:g} m")
+    if isinstance(voussoirs, bool) or int(voussoirs) != voussoirs or voussoirs < 3:
+        raise ArchInputError(f"voussoirs: {voussoirs!r}; allowed an integer >= 3")
+    n = int(voussoirs)
+    return Arch(np.full(n, math.radians(embrace_deg) / n), np.full(n, radius), np.full(n, thickness),
+                density, name=name)
+
+
+def oppenheim_arch(density: float = DEFAULT_DENSITY) -> Arch:
+    """Oppenheim's arch: R = 10 m, embrace 157.5 deg, t = 1.5 m, 7 voussoirs."""
+    return nominal_arch(**OPPENHEIM, density=density, name="Oppenheim")
+
+
+def _check_spread(name: str, value: float, hi: float) -> float:
+    return _check_scalar(name, value, 0.0, hi, lo_open=False, hi_open=True, allowed=f"0 <= {name} < {hi:g}")
+
+
+def random_spans_thicknesses_radii(nominal: Arch, u: np.ndarray, spread_span: float,
+                                   spread_thickness: float, spread_radius: float):
+    """Map uniform draws ``u`` (shape (3, n), on [-1, 1]) to (spans, thicknesses, radii).
+
+    span_i = (alpha/n)(1 + s_a U), t_i = t (1 + s_t U), R_i = R + s_R t U (METHOD section 1),
+    then the spans rescaled to add up to the nominal embrace.  Perturbations are applied to the
+    nominal arch's own per-voussoir values, so a given arch can itself be perturbed.
+    """
+    spans = nominal.spans * (1.0 + spread_span * u[0])
+    spans = spans * (nominal.embrace / spans.sum())
+    thick = nominal.thicknesses * (1.0 + spread_thickness * u[1])
+    radii = nominal.radii + spread_radius * nominal.thicknesses * u[2]
+    return spans, thick, radii
+
+
+def random_arch(nominal: Arch | None = None, seed=None, spread_span: float = 0.1,
+                spread_thickness: float = 0.1, spread_radius: float = 0.05,
+                rng: np.random.Generator | None = None) -> Arch:
+    """An irregular arch drawn around ``nominal`` (default: Oppenheim's arch).
+
+    Each voussoir's span, thickness and radius are independent uniform perturbations
+    (widths ``spread_*``, dimensionless, see :func:`random_spans_thicknesses_radii`).
+    Reproducible from ``seed`` (an int or a numpy SeedSequence) or a given ``rng``.
+    """
+    nominal = oppenheim_arch() if nominal is None else nominal
+    s_a = _check_spread("spread_span", spread_span, 1.0)
+    s_t = _check_spread("spread_thickness", spread_thickness, 1.0)
+    s_r = _check_spread("spread_radius", spread_radius, 1.0)
+    rng = np.random.default_rng(seed) if rng is None else rng
+    u = rng.uniform(-1.0, 1.0, size=(3, nominal.n))
+    spans, thick, radii = random_spans_thicknesses_radii(nominal, u, s_a, s_t, s_r)
+    label = f"random (seed {seed})" if seed is not None else "random"
+    return Arch(spans, radii, thick, nominal.density, name=label)
