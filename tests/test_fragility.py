@@ -1,0 +1,370 @@
+"""Fragility statistics: estimators against known values and independent computations."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+from scipy.optimize import minimize
+from scipy.stats import binom, binomtest, norm
+
+from archrock.errors import ArchInputError
+from archrock.fragility import (
+    FragilityFit,
+    bootstrap_fit,
+    collapse_probability,
+    fit_ida_moments,
+    fit_stripes_mle,
+    first_collapse,
+)
+
+THETA, BETA = 0.4, 0.3
+
+
+def synthetic_stripes(theta=THETA, beta=BETA, trials=2000, levels=10, seed=1):
+    rng = np.random.default_rng(seed)
+    x = np.geomspace(0.15, 1.0, levels)
+    n = np.full(levels, trials)
+    z = rng.binomial(n, norm.cdf(np.log(x / theta) / beta))
+    return x, n, z
+
+
+# ----------------------------------------------------------------------------- FragilityFit
+
+def test_probability_and_quantile_are_inverse():
+    f = FragilityFit(theta=0.4, beta=0.3, method="mle", n_records=10)
+    assert f.probability(0.4) == pytest.approx(0.5, abs=1e-15)
+    assert f.quantile(0.5) == pytest.approx(0.4, rel=1e-15)
+    # one beta above the median is Phi(1)
+    assert f.probability(0.4 * math.exp(0.3)) == pytest.approx(norm.cdf(1.0), rel=1e-14)
+    p = np.array([0.01, 0.16, 0.5, 0.84, 0.99])
+    np.testing.assert_allclose(f.probability(f.quantile(p)), p, rtol=1e-12)
+    assert f.probability([0.0, np.inf]).tolist() == [0.0, 1.0]
+    assert f.quantile([0.0, 1.0]).tolist() == [0.0, np.inf]
+
+
+@settings(max_examples=40, deadline=None)
+@given(theta=st.floats(1e-3, 1e3), beta=st.floats(0.01, 2.0), x=st.floats(1e-4, 1e4))
+def test_quantile_inverts_probability_property(theta, beta, x):
+    f = FragilityFit(theta=theta, beta=beta, method="moments", n_records=2)
+    p = float(f.probability(x))
+    if 1e-12 < p < 1 - 1e-12:  # away from saturation the inverse is well conditioned
+        assert float(f.quantile(p)) == pytest.approx(x, rel=1e-6)
+
+
+def test_to_dict_is_json_serialisable():
+    f = FragilityFit(0.4, 0.3, "mle", 20, -3.0, (0.35, 0.45), (0.2, 0.4), 0.9, 100, 1)
+    d = f.to_dict()
+    assert d["theta"] == 0.4 and d["method"] == "mle" and d["theta_ci"] == (0.35, 0.45)
+    assert json.loads(json.dumps(d))["beta_ci"] == [0.2, 0.4]
+    with pytest.raises(Exception):
+        f.theta = 1.0  # frozen
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    (dict(theta=0.0, beta=0.3, method="mle"), "theta"),
+    (dict(theta=0.4, beta=-0.1, method="mle"), "beta"),
+    (dict(theta=0.4, beta=float("nan"), method="mle"), "beta"),
+    (dict(theta=0.4, beta=0.3, method="least_squares"), "method"),
+])
+def test_fit_rejects_bad_parameters(kwargs, field):
+    with pytest.raises(ArchInputError, match=rf"^{field}:"):
+        FragilityFit(n_records=1, **kwargs)
+
+
+def test_probability_quantile_reject_bad_arguments():
+    f = FragilityFit(0.4, 0.3, "mle", 10)
+    with pytest.raises(ArchInputError, match=r"^x:"):
+        f.probability([-0.1, 0.2])
+    with pytest.raises(ArchInputError, match=r"^x:"):
+        f.probability(np.nan)
+    with pytest.raises(ArchInputError, match=r"^p:"):
+        f.quantile(1.5)
+
+
+# ----------------------------------------------------------------------------- IDA moments
+
+def test_moments_on_hand_made_sample():
+    x = [0.2, 0.3, 0.45, 0.5, 0.8]
+    f = fit_ida_moments(x)
+    lnx = np.log(x)
+    # mean of logs and ddof=1 std computed by hand
+    m = sum(lnx) / 5
+    s = math.sqrt(sum((v - m) ** 2 for v in lnx) / 4)
+    assert f.theta == pytest.approx(math.exp(m), rel=1e-14)
+    assert f.theta == pytest.approx((0.2 * 0.3 * 0.45 * 0.5 * 0.8) ** 0.2, rel=1e-14)  # geometric mean
+    assert f.beta == pytest.approx(s, rel=1e-14)
+    assert f.method == "moments" and f.n_records == 5 and f.theta_ci is None
+    assert f.log_likelihood == pytest.approx(np.sum(norm.logpdf(lnx, m, s)), rel=1e-12)
+
+
+def test_ida_survivors_raise_by_default():
+    with pytest.raises(ArchInputError, match=r"^collapse_intensities: 1 of 4 records never collapsed"):
+        fit_ida_moments([0.3, 0.4, np.inf, 0.5])
+    with pytest.raises(ArchInputError, match=r"^collapse_intensities:"):
+        fit_ida_moments([0.3, np.nan, 0.5])
+
+
+def test_censored_mle_without_survivors_is_normal_mle():
+    x = np.array([0.2, 0.3, 0.45, 0.5, 0.8])
+    f = fit_ida_moments(x, censored="mle")
+    lnx = np.log(x)
+    assert f.method == "censored_mle"
+    assert f.theta == pytest.approx(math.exp(lnx.mean()), rel=1e-7)
+    assert f.beta == pytest.approx(lnx.std(ddof=0), rel=1e-7)
+
+
+def test_censored_mle_recovers_truth_and_matches_direct_optimisation():
+    rng = np.random.default_rng(3)
+    x = np.exp(rng.normal(math.log(0.5), 0.4, 2000))
+    x_max = 0.8
+    x[x > x_max] = np.inf  # ~12 % of the records never collapsed up to the largest scale analysed
+    f = fit_ida_moments(x, censored="mle", max_intensity=x_max)
+    assert f.theta == pytest.approx(0.5, rel=0.03)
+    assert f.beta == pytest.approx(0.4, rel=0.05)
+    # naive moments on the collapsed records alone are biased low -- the reason for censoring
+    assert math.exp(np.log(x[np.isfinite(x)]).mean()) < 0.95 * f.theta
+
+    fin = np.log(x[np.isfinite(x)])
+    ns = int(np.sum(~np.isfinite(x)))
+
+    def nll(p):
+        return -(norm.logpdf(fin, p[0], p[1]).sum() + ns * norm.logsf(math.log(x_max), p[0], p[1]))
+    ref = minimize(nll, [0.0, 1.0], method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-10})
+    assert math.log(f.theta) == pytest.approx(ref.x[0], abs=1e-6)
+    assert f.beta == pytest.approx(ref.x[1], rel=1e-6)
+    assert f.log_likelihood == pytest.approx(-ref.fun, rel=1e-9)
+
+
+def test_censored_mle_per_record_max_intensity():
+    x = [0.3, 0.4, 0.5, np.inf, 0.6, np.inf]
+    m = [1, 1, 1, 0.9, 1, 1.2]
+    f = fit_ida_moments(x, censored="mle", max_intensity=m)
+    g = fit_ida_moments(x, censored="mle", max_intensity=1.2)
+    assert f.theta < g.theta  # a survivor with a lower censoring point is weaker evidence
+
+
+@pytest.mark.parametrize("x, kwargs, field", [
+    ([0.3, -0.4, 0.5], {}, "collapse_intensities"),
+    ([0.3, 0.0, 0.5], {}, "collapse_intensities"),
+    ([0.3, -np.inf, 0.5], {}, "collapse_intensities"),
+    ([0.3], {}, "collapse_intensities"),
+    ([0.3, 0.3, 0.3], {}, "collapse_intensities"),
+    ([], {}, "collapse_intensities"),
+    ([[0.3, 0.4]], {}, "collapse_intensities"),
+    (["a", "b"], {}, "collapse_intensities"),
+    ([0.3, 0.4], dict(censored="drop"), "censored"),
+    ([0.3, 0.4, np.inf], dict(censored="mle"), "max_intensity"),
+    ([0.3, 0.4, np.inf], dict(censored="mle", max_intensity=[1, 2]), "max_intensity"),
+    ([0.3, 0.4, np.inf], dict(censored="mle", max_intensity=-1), "max_intensity"),
+    ([0.3, np.inf, np.inf], dict(censored="mle", max_intensity=1), "collapse_intensities"),
+])
+def test_ida_bad_input(x, kwargs, field):
+    with pytest.raises(ArchInputError, match=rf"^{field}:"):
+        fit_ida_moments(x, **kwargs)
+
+
+# ----------------------------------------------------------------------------- stripes MLE
+
+def test_stripes_mle_recovers_known_parameters():
+    x, n, z = synthetic_stripes()
+    f = fit_stripes_mle(x, n, z)
+    assert f.method == "mle" and f.n_records == 20000
+    assert f.theta == pytest.approx(THETA, rel=0.02)
+    assert f.beta == pytest.approx(BETA, rel=0.03)
+    # the reported log-likelihood is Baker's sum of ln binomial pmf, constants included
+    p = f.probability(x)
+    assert f.log_likelihood == pytest.approx(binom.logpmf(z, n, p).sum(), rel=1e-10)
+
+
+def test_stripes_mle_matches_independent_probit_fit():
+    # small design with all-0 and all-1 stripes; independent fit in (a, b) = (-ln theta/beta, 1/beta)
+    x = np.array([0.1, 0.2, 0.3, 0.4, 0.6, 0.9])
+    n = np.array([10, 12, 10, 8, 10, 5])
+    z = np.array([0, 1, 4, 5, 9, 5])
+    f = fit_stripes_mle(x, n, z)
+
+    def nll(ab):
+        return -binom.logpmf(z, n, norm.cdf(ab[0] + ab[1] * np.log(x))).sum()
+    ref = minimize(nll, [1.0, 1.0], method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-12})
+    assert f.beta == pytest.approx(1 / ref.x[1], rel=1e-5)
+    assert f.theta == pytest.approx(math.exp(-ref.x[0] / ref.x[1]), rel=1e-5)
+    assert f.log_likelihood == pytest.approx(-ref.fun, abs=1e-8)
+    # and it is a maximum: moving theta or beta lowers the likelihood
+    for t, b in [(1.02, 1), (0.98, 1), (1, 1.02), (1, 0.98)]:
+        p = norm.cdf(np.log(x / (f.theta * t)) / (f.beta * b))
+        assert binom.logpmf(z, n, p).sum() < f.log_likelihood
+
+
+def test_stripes_pooled_duplicate_levels_give_same_fit():
+    x, n, z = np.array([0.2, 0.3, 0.5]), np.array([10, 10, 10]), np.array([1, 5, 8])
+    f = fit_stripes_mle(x, n, z)
+    g = fit_stripes_mle([0.2, 0.3, 0.3, 0.5], [10, 4, 6, 10], [1, 2, 3, 8])
+    assert g.theta == pytest.approx(f.theta, rel=1e-7) and g.beta == pytest.approx(f.beta, rel=1e-6)
+
+
+@pytest.mark.parametrize("x, n, z, field, text", [
+    ([0.2, 0.4], [10, 10], [0, 0], "collapses", "no collapse"),
+    ([0.2, 0.4], [10, 10], [10, 10], "collapses", "every trial collapsed"),
+    ([0.3, 0.3], [10, 10], [4, 6], "intensities", "2 distinct"),
+    ([0.2, 0.3, 0.4], [10, 10, 10], [0, 4, 10], "collapses", "separated"),
+    ([0.2, 0.4], [10, 10], [0, 10], "collapses", "separated"),
+    ([0.2, 0.4], [10, 10], [7, 3], "collapses", "does not increase"),
+    ([0.2, 0.3, 0.4], [10, 10, 10], [5, 5, 5], "collapses", "does not increase"),
+    ([0.2, -0.4], [10, 10], [1, 5], "intensities", "> 0 and finite"),
+    ([0.2, np.nan], [10, 10], [1, 5], "intensities", "> 0 and finite"),
+    ([0.2, np.inf], [10, 10], [1, 5], "intensities", "> 0 and finite"),
+    ([0.2, 0.4], [10, 0], [1, 0], "trials", ">= 1"),
+    ([0.2, 0.4], [10, 9.5], [1, 5], "trials", ">= 1"),
+    ([0.2, 0.4], [10, 10], [1, 11], "collapses", "between 0 and trials"),
+    ([0.2, 0.4], [10, 10], [-1, 5], "collapses", "between 0 and trials"),
+    ([0.2, 0.4], [10, 10], [1.5, 5], "collapses", "between 0 and trials"),
+    ([0.2, 0.4, 0.5], [10, 10], [1, 5], "trials", "same length"),
+    ([], [], [], "intensities", "non-empty"),
+])
+def test_stripes_bad_or_unidentifiable_input(x, n, z, field, text):
+    with pytest.raises(ArchInputError, match=rf"^{field}:.*{text}"):
+        fit_stripes_mle(x, n, z)
+
+
+# ----------------------------------------------------------------------------- bootstrap
+
+def test_bootstrap_ida_contains_truth_and_is_reproducible():
+    rng = np.random.default_rng(1)
+    x = np.exp(rng.normal(math.log(0.5), 0.4, 40))
+    f = bootstrap_fit(fit_ida_moments, x, n_boot=300, confidence=0.9, seed=11)
+    assert f.theta_ci[0] < 0.5 < f.theta_ci[1]
+    assert f.beta_ci[0] < 0.4 < f.beta_ci[1]
+    assert f.theta_ci[0] < f.theta < f.theta_ci[1]
+    assert (f.confidence, f.n_boot, f.n_boot_failed) == (0.9, 300, 0)
+    # point estimate is the fit of the original data
+    base = fit_ida_moments(x)
+    assert (f.theta, f.beta) == (base.theta, base.beta)
+    assert bootstrap_fit(fit_ida_moments, x, n_boot=300, confidence=0.9, seed=11) == f
+    other = bootstrap_fit(fit_ida_moments, x, n_boot=300, confidence=0.9, seed=12)
+    assert other.theta_ci != f.theta_ci
+    # CI width ~ 2 * 1.645 * beta/sqrt(n) in ln theta
+    width = math.log(f.theta_ci[1] / f.theta_ci[0])
+    assert width == pytest.approx(2 * 1.645 * base.beta / math.sqrt(40), rel=0.25)
+
+
+def test_bootstrap_ida_coverage_is_near_nominal():
+    # a 90 % interval must miss the truth about 1 time in 10 over repeated samples (n = 40);
+    # the percentile bootstrap under-covers slightly at this size
+    covered = 0
+    for s in range(100):
+        x = np.exp(np.random.default_rng(100 + s).normal(math.log(0.5), 0.4, 40))
+        f = bootstrap_fit(fit_ida_moments, x, n_boot=200, confidence=0.9, seed=s)
+        covered += f.theta_ci[0] < 0.5 < f.theta_ci[1]
+    assert 78 <= covered <= 98
+
+
+def test_bootstrap_stripes_contains_truth_and_is_reproducible():
+    x, n, z = synthetic_stripes(trials=50, seed=5)
+    f = bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=100, seed=0)
+    assert f.theta_ci[0] < THETA < f.theta_ci[1]
+    assert f.beta_ci[0] < BETA < f.beta_ci[1]
+    assert f.method == "mle" and f.confidence == 0.9
+    assert bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=100, seed=0) == f
+    seq = np.random.SeedSequence(0)
+    assert bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=100, seed=seq).theta_ci == f.theta_ci
+
+
+def test_bootstrap_censored_ida_keeps_each_records_max_intensity():
+    x = [0.3, 0.35, 0.4, np.inf, 0.5, 0.55, np.inf, 0.45]
+    m = [1.0, 1.0, 1.0, 0.7, 1.0, 1.0, 0.9, 1.0]
+    f = bootstrap_fit(fit_ida_moments, x, censored="mle", max_intensity=m, n_boot=50, seed=1)
+    assert f.method == "censored_mle" and f.theta_ci[0] < f.theta < f.theta_ci[1]
+
+
+def test_bootstrap_reports_and_rejects_unidentifiable_resamples():
+    # 2 collapses in 9 analyses: some resamples are separated or have no collapse -> counted
+    f = bootstrap_fit(fit_stripes_mle, [0.2, 0.3, 0.4], [3, 3, 3], [0, 1, 1], n_boot=50, seed=0)
+    assert 0 < f.n_boot_failed < 25 and f.n_boot == 50
+    # 1 of 30 vs 2 of 30: most resamples lose the lower collapse or the trend -> refuse
+    with pytest.raises(ArchInputError, match=r"^data: \d+ of 50 bootstrap resamples"):
+        bootstrap_fit(fit_stripes_mle, [0.2, 0.3], [30, 30], [1, 2], n_boot=50, seed=0)
+
+
+@pytest.mark.parametrize("args, kwargs, field", [
+    ((np.mean, [0.1, 0.2]), {}, "fit_function"),
+    ((fit_ida_moments, [0.1, 0.2, 0.3]), dict(n_boot=1), "n_boot"),
+    ((fit_ida_moments, [0.1, 0.2, 0.3]), dict(n_boot=10.5), "n_boot"),
+    ((fit_ida_moments, [0.1, 0.2, 0.3]), dict(confidence=1.0), "confidence"),
+    ((fit_ida_moments, [0.1, 0.2, 0.3]), dict(confidence=0), "confidence"),
+    ((fit_ida_moments, [0.1, np.inf, 0.3]), {}, "collapse_intensities"),
+    ((fit_stripes_mle, [0.2, 0.4], [10, 10]), {}, "data"),
+])
+def test_bootstrap_bad_input(args, kwargs, field):
+    with pytest.raises(ArchInputError, match=rf"^{field}:"):
+        bootstrap_fit(*args, **kwargs)
+
+
+# ----------------------------------------------------------------------------- one stripe
+
+@pytest.mark.parametrize("k, n", [(0, 10), (5, 10), (10, 10), (1, 7), (37, 100)])
+@pytest.mark.parametrize("conf", [0.9, 0.95])
+def test_collapse_probability_matches_scipy(k, n, conf):
+    p, lo, hi = collapse_probability(k, n, conf)
+    ci = binomtest(k, n).proportion_ci(conf, method="wilson")
+    assert p == k / n
+    assert (lo, hi) == pytest.approx((ci.low, ci.high), abs=1e-12)
+    p, lo, hi = collapse_probability(k, n, conf, method="clopper-pearson")
+    ci = binomtest(k, n).proportion_ci(conf, method="exact")
+    assert (lo, hi) == pytest.approx((ci.low, ci.high), abs=1e-9)
+
+
+def test_collapse_probability_known_values():
+    # 0 of 10, Wilson 95 %: upper = z^2/n / (1 + z^2/n) = 0.27753...
+    z2 = norm.ppf(0.975) ** 2
+    assert collapse_probability(0, 10) == (0.0, 0.0, pytest.approx((z2 / 10) / (1 + z2 / 10), rel=1e-12))
+    # 0 of 10 exact: upper = 1 - 0.025^(1/10)
+    assert collapse_probability(0, 10, method="clopper-pearson")[2] == pytest.approx(1 - 0.025 ** 0.1, rel=1e-10)
+    p, lo, hi = collapse_probability(5, 10)
+    assert p == 0.5 and lo == pytest.approx(1 - hi, abs=1e-15)
+
+
+@pytest.mark.parametrize("args, kwargs, field", [
+    ((11, 10), {}, "collapses"),
+    ((-1, 10), {}, "collapses"),
+    ((1.5, 10), {}, "collapses"),
+    ((0, 0), {}, "trials"),
+    ((1, 10), dict(confidence=1.5), "confidence"),
+    ((1, 10), dict(method="wald"), "method"),
+])
+def test_collapse_probability_bad_input(args, kwargs, field):
+    with pytest.raises(ArchInputError, match=rf"^{field}:"):
+        collapse_probability(*args, **kwargs)
+
+
+# ----------------------------------------------------------------------------- first collapse
+
+def test_first_collapse_non_monotonic():
+    # collapse at 1.1, survives at 1.2 and 1.4, collapses again: two resurrections
+    r = first_collapse([1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6], [0, 1, 0, 1, 0, 1, 1])
+    assert r == {"first_collapse": 1.1, "survivals_above": [1.2, 1.4], "resurrections": 2}
+    # ends on a survival: still counted
+    r = first_collapse([0.5, 1.0, 1.5], [False, True, False])
+    assert r == {"first_collapse": 1.0, "survivals_above": [1.5], "resurrections": 1}
+
+
+def test_first_collapse_monotonic_and_never():
+    assert first_collapse([0.5, 1.0, 1.5], [False, True, True]) == {
+        "first_collapse": 1.0, "survivals_above": [], "resurrections": 0}
+    assert first_collapse([0.5, 1.0], [False, False]) == {
+        "first_collapse": None, "survivals_above": [], "resurrections": 0}
+
+
+@pytest.mark.parametrize("scales, collapsed, field", [
+    ([1.0, 0.9, 1.2], [0, 1, 1], "scales"),
+    ([1.0, 1.0], [0, 1], "scales"),
+    ([0.0, 1.0], [0, 1], "scales"),
+    ([], [], "scales"),
+    ([1.0, 2.0], [0, 1, 1], "collapsed"),
+    ([1.0, 2.0], [0, 2], "collapsed"),
+    ([1.0, 2.0], ["no", "yes"], "collapsed"),
+])
+def test_first_collapse_bad_input(scales, collapsed, field):
+    with pytest.raises(ArchInputError, match=rf"^{field}:"):
+        first_collapse(scales, collapsed)
