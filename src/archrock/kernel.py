@@ -1,0 +1,259 @@
+"""Fast integrator of the rocking arch: fixed-step RK4 with event location, compiled by numba.
+
+One function, :func:`simulate`, runs the whole response: rest, activation by the paper's
+eq. (1), motion in M_l or M_r, impacts at phi = 0 with a rate ratio per direction, rest again,
+collapse at the rotation limit.  The ground motion is piecewise linear (steps encoded by
+repeated times); steps never straddle a sample time, so the forcing is smooth inside a step.
+The state machine mirrors the reference integrator in :mod:`archrock.response`, which uses
+scipy's adaptive solver instead.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._jit import maybe_njit
+from .mechanism import coefficients
+
+# event kinds (column 0 of the event table)
+EV_ACTIVATION, EV_IMPACT, EV_REST, EV_COLLAPSE, EV_UNSTABLE = 1, 2, 3, 4, 5
+# status codes
+ST_REST, ST_COLLAPSED, ST_MOVING = 0, 1, 2
+
+
+@maybe_njit
+def _accel(t, i, times, accel):
+    """Ground acceleration at t inside segment i (times[i] <= t <= times[i+1])."""
+    if i >= times.size - 1:
+        return 0.0
+    t0, t1 = times[i], times[i + 1]
+    if t1 <= t0:
+        return accel[i + 1]
+    return accel[i] + (accel[i + 1] - accel[i]) * (t - t0) / (t1 - t0)
+
+
+@maybe_njit
+def _rhs(phi, w, a, geo, g):
+    M, L, F, P = coefficients(phi, geo)
+    return (P * a - F * g - L * w * w) / M
+
+
+@maybe_njit
+def _rk4(phi, w, t, h, i, times, accel, geo, g):
+    a0 = _accel(t, i, times, accel)
+    am = _accel(t + 0.5 * h, i, times, accel)
+    a1 = _accel(t + h, i, times, accel)
+    k1p, k1w = w, _rhs(phi, w, a0, geo, g)
+    k2p, k2w = w + 0.5 * h * k1w, _rhs(phi + 0.5 * h * k1p, w + 0.5 * h * k1w, am, geo, g)
+    k3p, k3w = w + 0.5 * h * k2w, _rhs(phi + 0.5 * h * k2p, w + 0.5 * h * k2w, am, geo, g)
+    k4p, k4w = w + h * k3w, _rhs(phi + h * k3p, w + h * k3w, a1, geo, g)
+    return (phi + h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p),
+            w + h / 6.0 * (k1w + 2 * k2w + 2 * k3w + k4w))
+
+
+@maybe_njit
+def _locate(phi, w, t, hmax, i, times, accel, geo, g, target, from_zero):
+    """Step size h in (0, hmax] at which the RK4 step reaches phi = target (Illinois method).
+
+    With ``from_zero`` the step starts on the target itself (just after an impact), so the
+    lower end of the bracket is first moved off zero by halving.
+    """
+    lo, hi = 0.0, hmax
+    f_lo = phi - target
+    f_hi = _rk4(phi, w, t, hi, i, times, accel, geo, g)[0] - target
+    if from_zero:
+        h = hmax
+        found = False
+        for _ in range(60):
+            h *= 0.5
+            fh = _rk4(phi, w, t, h, i, times, accel, geo, g)[0] - target
+            if (fh > 0) != (f_hi > 0):
+                lo, f_lo = h, fh
+                found = True
+                break
+            hi, f_hi = h, fh
+        if not found:
+            return 0.0
+    side = 0
+    for _ in range(100):
+        h = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        fh = _rk4(phi, w, t, h, i, times, accel, geo, g)[0] - target
+        if (fh > 0) == (f_hi > 0):
+            hi, f_hi = h, fh
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+        else:
+            lo, f_lo = h, fh
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        if abs(fh) < 1e-15 or hi - lo < 1e-13:
+            break
+    return h
+
+
+@maybe_njit
+def _fill(out, dt_out, t0, t1, phi0, w0, phi1, w1, sign, start):
+    """Write output samples with t0 <= k dt_out < t1 by cubic Hermite interpolation."""
+    k = start
+    h = t1 - t0
+    while k < out.size and k * dt_out < t1:
+        s = (k * dt_out - t0) / h if h > 0 else 0.0
+        h00 = 2 * s**3 - 3 * s**2 + 1
+        h10 = s**3 - 2 * s**2 + s
+        h01 = -2 * s**3 + 3 * s**2
+        h11 = s**3 - s**2
+        out[k] = sign * (h00 * phi0 + h10 * h * w0 + h01 * phi1 + h11 * h * w1)
+        k += 1
+    return k
+
+
+@maybe_njit
+def _fill_value(out, dt_out, t1, value, start):
+    k = start
+    while k < out.size and k * dt_out < t1:
+        out[k] = value
+        k += 1
+    return k
+
+
+@maybe_njit
+def _add_event(ev, n_ev, kind, t, mode_before, mode_after, rate_before, rate_after):
+    if n_ev < ev.shape[0]:
+        ev[n_ev, 0] = kind
+        ev[n_ev, 1] = t
+        ev[n_ev, 2] = mode_before
+        ev[n_ev, 3] = mode_after
+        ev[n_ev, 4] = rate_before
+        ev[n_ev, 5] = rate_after
+    return n_ev + 1
+
+
+@maybe_njit
+def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_rest,
+             times, accel, g, n_out, dt_out, dt, t_free, max_events):
+    """Run one response.  Modes: 0 rest, 1 M_l open, 2 M_r open.
+
+    Returns (out, events, n_events, status, t_final, peak, t_collapse, t_unstable):
+    out[k] = signed response at k dt_out (+phi in M_l, -phi in M_r, NaN after collapse);
+    events rows (kind, time, mode before, mode after, rate before, rate after);
+    status 0 at rest, 1 collapsed, 2 still moving at t_motion_end + t_free.
+    """
+    out = np.zeros(n_out)
+    ev = np.zeros((max_events, 6))
+    n_ev = 0
+    nseg = times.size - 1
+    t_motion = times[-1]
+    t_stop = t_motion + t_free
+    t = 0.0
+    i = 0  # current segment
+    mode = 0
+    phi = 0.0
+    w = 0.0
+    k_out = 0
+    peak = 0.0
+    t_collapse = -1.0
+    t_unstable = -1.0
+    status = ST_REST
+    thr_l = -k_l * g
+    thr_r = k_r * g
+    while True:
+        # keep i the segment that contains t (zero-length segments skipped)
+        while i < nseg and times[i + 1] <= t:
+            i += 1
+        if mode == 0:
+            # search the first activation instant at or after t
+            t_act = -1.0
+            new_mode = 0
+            j = i
+            while j < nseg:
+                t0 = max(t, times[j])
+                t1 = times[j + 1]
+                if t1 > t0:
+                    a0 = _accel(t0, j, times, accel)
+                    a1 = accel[j + 1]
+                    if a0 <= thr_l:
+                        t_act, new_mode = t0, 1
+                    elif a0 >= thr_r:
+                        t_act, new_mode = t0, 2
+                    elif a1 < thr_l:
+                        t_act, new_mode = t0 + (t1 - t0) * (thr_l - a0) / (a1 - a0), 1
+                    elif a1 > thr_r:
+                        t_act, new_mode = t0 + (t1 - t0) * (thr_r - a0) / (a1 - a0), 2
+                    if new_mode != 0:
+                        break
+                j += 1
+            if new_mode == 0:
+                k_out = _fill_value(out, dt_out, 1e300, 0.0, k_out)
+                status = ST_REST
+                t = max(t, t_motion)
+                break
+            k_out = _fill_value(out, dt_out, t_act, 0.0, k_out)
+            t = t_act
+            i = j
+            mode = new_mode
+            phi = 0.0
+            w = 0.0
+            n_ev = _add_event(ev, n_ev, EV_ACTIVATION, t, 0, mode, 0.0, 0.0)
+            continue
+        geo = geo_l if mode == 1 else geo_r
+        lim = lim_l if mode == 1 else lim_r
+        phu = phu_l if mode == 1 else phu_r
+        sign = 1.0 if mode == 1 else -1.0
+        if t >= t_stop:
+            status = ST_MOVING
+            break
+        h = dt
+        if i < nseg and times[i + 1] - t < h:
+            h = times[i + 1] - t
+        if h <= 1e-14:
+            t = times[i + 1]
+            continue
+        p1, w1 = _rk4(phi, w, t, h, i, times, accel, geo, g)
+        if p1 >= lim:
+            hc = _locate(phi, w, t, h, i, times, accel, geo, g, lim, False)
+            p1, w1 = _rk4(phi, w, t, hc, i, times, accel, geo, g)
+            k_out = _fill(out, dt_out, t, t + hc, phi, w, p1, w1, sign, k_out)
+            t = t + hc
+            if t_unstable < 0:
+                t_unstable = t
+            t_collapse = t
+            peak = max(peak, lim)
+            n_ev = _add_event(ev, n_ev, EV_COLLAPSE, t, mode, mode, w1, 0.0)
+            k_out = _fill_value(out, dt_out, 1e300, np.nan, k_out)
+            status = ST_COLLAPSED
+            break
+        if p1 < 0.0:
+            hc = _locate(phi, w, t, h, i, times, accel, geo, g, 0.0, phi <= 0.0)
+            p1, w1 = _rk4(phi, w, t, hc, i, times, accel, geo, g)
+            k_out = _fill(out, dt_out, t, t + hc, phi, w, 0.0, w1, sign, k_out)
+            t = t + hc
+            w_minus = w1 if w1 < 0 else 0.0
+            c = c_lr if mode == 1 else c_rl
+            w_plus = -c * w_minus
+            if w_plus < v_rest:
+                n_ev = _add_event(ev, n_ev, EV_IMPACT, t, mode, 0, w_minus, 0.0)
+                n_ev = _add_event(ev, n_ev, EV_REST, t, mode, 0, 0.0, 0.0)
+                mode = 0
+                phi = 0.0
+                w = 0.0
+            else:
+                new_mode = 2 if mode == 1 else 1
+                n_ev = _add_event(ev, n_ev, EV_IMPACT, t, mode, new_mode, w_minus, w_plus)
+                mode = new_mode
+                phi = 0.0
+                w = w_plus
+            continue
+        k_out = _fill(out, dt_out, t, t + h, phi, w, p1, w1, sign, k_out)
+        if t_unstable < 0 and p1 >= phu:
+            hu = _locate(phi, w, t, h, i, times, accel, geo, g, phu, False)
+            t_unstable = t + hu
+            n_ev = _add_event(ev, n_ev, EV_UNSTABLE, t_unstable, mode, mode, w, w)
+        t = t + h
+        phi, w = p1, w1
+        if phi > peak:
+            peak = phi
+    return out, ev, n_ev, status, t, peak, t_collapse, t_unstable

@@ -1,0 +1,359 @@
+"""Oppenheim's four-link mechanism: exact finite-rotation kinematics and the equation of motion.
+
+Once activated, the arch moves as a single-degree-of-freedom four-bar linkage: the ground,
+link 1 (voussoirs between hinges A and B, pivoting on ground hinge A), link 2 (between B and C)
+and link 3 (between C and D, pivoting on ground hinge D).  A is the hinge on the mechanism's
+leading side: for M_l the leftmost hinge, for M_r the rightmost one (METHOD section 3).
+
+The Lagrangian coordinate phi is the rotation of link AB, signed so that phi >= 0 while the
+mechanism is open.  Lagrange's equation reads
+
+    M(phi) phi'' + L(phi) phi'^2 + F(phi) g = P(phi) xg''
+
+with M = sum m |dG/dphi|^2 + I (dtheta/dphi)^2, L = M'/2, F = sum m dy_G/dphi and
+P = -sum m dx_G/dphi, all from exact first and second derivatives of the loop closure.
+The same equation holds for both mechanisms (xg'' positive toward +x).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ._jit import maybe_njit
+from .errors import ArchInputError
+from .geometry import Arch
+from .limit import EDGES, Hinge, Mechanism
+
+__all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration"]
+
+G = 9.81  # m/s^2
+
+# Layout of the flat geometry vector used by the scalar kernels (shared with the compiled
+# integrator): hinge points A, B, C, D at phi = 0; sign s (theta_1 = s phi); link masses;
+# link centroids at phi = 0; link centroidal inertias.
+_A, _B, _C, _D = 0, 2, 4, 6
+_S = 8
+_M = 9       # 9, 10, 11
+_GC = 12     # 12..17
+_I = 18      # 18, 19, 20
+GEO_SIZE = 21
+
+
+@maybe_njit
+def _cross(ax, ay, bx, by):
+    return ax * by - ay * bx
+
+
+@maybe_njit
+def configuration(phi, geo):
+    """Positions at rotation phi: returns (Bx, By, Cx, Cy, th1, th2, th3, ok).
+
+    ``ok`` is False past the four-bar's dead point (no closure of the loop).
+    """
+    ax, ay = geo[_A], geo[_A + 1]
+    b0x, b0y = geo[_B], geo[_B + 1]
+    c0x, c0y = geo[_C], geo[_C + 1]
+    dx, dy = geo[_D], geo[_D + 1]
+    th1 = geo[_S] * phi
+    c1, s1 = math.cos(th1), math.sin(th1)
+    rbx, rby = b0x - ax, b0y - ay
+    bx = ax + c1 * rbx - s1 * rby
+    by = ay + s1 * rbx + c1 * rby
+    l2sq = (c0x - b0x) ** 2 + (c0y - b0y) ** 2
+    l3sq = (c0x - dx) ** 2 + (c0y - dy) ** 2
+    ex, ey = dx - bx, dy - by
+    d = math.sqrt(ex * ex + ey * ey)
+    a = (l2sq - l3sq + d * d) / (2.0 * d)
+    h2 = l2sq - a * a
+    ok = h2 >= 0.0
+    h = math.sqrt(h2) if ok else 0.0
+    ex /= d
+    ey /= d
+    # keep the branch of the undisplaced configuration (C on the same side of line BD)
+    side = _cross(dx - b0x, dy - b0y, c0x - b0x, c0y - b0y)
+    sg = 1.0 if side >= 0.0 else -1.0
+    cx = bx + a * ex - sg * h * ey
+    cy = by + a * ey + sg * h * ex
+    u0x, u0y = c0x - b0x, c0y - b0y
+    ux, uy = cx - bx, cy - by
+    th2 = math.atan2(_cross(u0x, u0y, ux, uy), u0x * ux + u0y * uy)
+    w0x, w0y = c0x - dx, c0y - dy
+    wx, wy = cx - dx, cy - dy
+    th3 = math.atan2(_cross(w0x, w0y, wx, wy), w0x * wx + w0y * wy)
+    return bx, by, cx, cy, th1, th2, th3, ok
+
+
+@maybe_njit
+def rates(phi, geo):
+    """First and second derivatives of the link rotations with respect to phi.
+
+    Returns (th1', th2', th3', th2'', th3'', det) from the loop closure
+    th1' u1 + th2' u2 + th3' u3 = 0 (u1 = B-A, u2 = C-B, u3 = D-C) and its derivative;
+    ``det`` = u2 x u3 vanishes at the dead point.
+    """
+    bx, by, cx, cy, _, _, _, _ = configuration(phi, geo)
+    ax, ay = geo[_A], geo[_A + 1]
+    dx, dy = geo[_D], geo[_D + 1]
+    t1 = geo[_S]
+    u1x, u1y = bx - ax, by - ay
+    u2x, u2y = cx - bx, cy - by
+    u3x, u3y = dx - cx, dy - cy
+    det = _cross(u2x, u2y, u3x, u3y)
+    rx, ry = -t1 * u1x, -t1 * u1y
+    t2 = _cross(rx, ry, u3x, u3y) / det
+    t3 = _cross(u2x, u2y, rx, ry) / det
+    # sum th_k'' u_k = -sum th_k'^2 (k x u_k);  k x u = (-uy, ux)
+    qx = -(t1 * t1 * (-u1y) + t2 * t2 * (-u2y) + t3 * t3 * (-u3y))
+    qy = -(t1 * t1 * u1x + t2 * t2 * u2x + t3 * t3 * u3x)
+    t2d = _cross(qx, qy, u3x, u3y) / det
+    t3d = _cross(u2x, u2y, qx, qy) / det
+    return t1, t2, t3, t2d, t3d, det
+
+
+@maybe_njit
+def coefficients(phi, geo):
+    """(M, L, F, P) of the equation of motion at rotation phi [rad] (per metre of depth).
+
+    M [kg m^2], L [kg m^2], F [kg m], P [kg m].
+    """
+    bx, by, cx, cy, th1, th2, th3, _ = configuration(phi, geo)
+    t1, t2, t3, t2d, t3d, _ = rates(phi, geo)
+    ax, ay = geo[_A], geo[_A + 1]
+    b0x, b0y = geo[_B], geo[_B + 1]
+    dx, dy = geo[_D], geo[_D + 1]
+    m1, m2, m3 = geo[_M], geo[_M + 1], geo[_M + 2]
+    i1, i2, i3 = geo[_I], geo[_I + 1], geo[_I + 2]
+    # link centroids in the displaced configuration, relative to their reference points
+    c1, s1 = math.cos(th1), math.sin(th1)
+    px, py = geo[_GC] - ax, geo[_GC + 1] - ay
+    r1x, r1y = c1 * px - s1 * py, s1 * px + c1 * py          # G1 - A
+    c2, s2 = math.cos(th2), math.sin(th2)
+    px, py = geo[_GC + 2] - b0x, geo[_GC + 3] - b0y
+    r2x, r2y = c2 * px - s2 * py, s2 * px + c2 * py          # G2 - B
+    c3, s3 = math.cos(th3), math.sin(th3)
+    px, py = geo[_GC + 4] - dx, geo[_GC + 5] - dy
+    r3x, r3y = c3 * px - s3 * py, s3 * px + c3 * py          # G3 - D
+    ubx, uby = bx - ax, by - ay
+    # velocities per unit phi-rate: v = th' k x r
+    v1x, v1y = -t1 * r1y, t1 * r1x
+    vbx, vby = -t1 * uby, t1 * ubx
+    v2x, v2y = vbx - t2 * r2y, vby + t2 * r2x
+    v3x, v3y = -t3 * r3y, t3 * r3x
+    # accelerations at unit rate and zero phi'': a = th'' k x r - th'^2 r
+    a1x, a1y = -t1 * t1 * r1x, -t1 * t1 * r1y
+    abx, aby = -t1 * t1 * ubx, -t1 * t1 * uby
+    a2x = abx - t2d * r2y - t2 * t2 * r2x
+    a2y = aby + t2d * r2x - t2 * t2 * r2y
+    a3x = -t3d * r3y - t3 * t3 * r3x
+    a3y = t3d * r3x - t3 * t3 * r3y
+    M = (m1 * (v1x * v1x + v1y * v1y) + m2 * (v2x * v2x + v2y * v2y) + m3 * (v3x * v3x + v3y * v3y)
+         + i1 * t1 * t1 + i2 * t2 * t2 + i3 * t3 * t3)
+    L = (m1 * (v1x * a1x + v1y * a1y) + m2 * (v2x * a2x + v2y * a2y) + m3 * (v3x * a3x + v3y * a3y)
+         + i2 * t2 * t2d + i3 * t3 * t3d)
+    F = m1 * v1y + m2 * v2y + m3 * v3y
+    P = -(m1 * v1x + m2 * v2x + m3 * v3x)
+    return M, L, F, P
+
+
+@maybe_njit
+def potential(phi, geo):
+    """Gravity potential per unit g [kg m]: sum m y_G relative to phi = 0 (for energy checks)."""
+    bx, by, cx, cy, th1, th2, th3, _ = configuration(phi, geo)
+    out = 0.0
+    refs = ((geo[_A], geo[_A + 1], geo[_A + 1]), (geo[_B], geo[_B + 1], by),
+            (geo[_D], geo[_D + 1], geo[_D + 1]))
+    ths = (th1, th2, th3)
+    for k in range(3):
+        ox, oy, ref_y = refs[k]
+        px, py = geo[_GC + 2 * k] - ox, geo[_GC + 2 * k + 1] - oy
+        y = ref_y + math.sin(ths[k]) * px + math.cos(ths[k]) * py
+        out += geo[_M + k] * (y - geo[_GC + 2 * k + 1])
+    return out
+
+
+# ---------------------------------------------------------------------------- model object
+def _rigid_union(masses, centroids, inertias):
+    m = float(np.sum(masses))
+    g = np.sum(masses[:, None] * centroids, axis=0) / m
+    i = float(np.sum(inertias + masses * np.sum((centroids - g) ** 2, axis=1)))
+    return m, g, i
+
+
+def _link_rates(points, edges_sign):
+    """Angular velocities (w1, w2, w3) of the links, left to right, of the admissible velocity
+    field through hinge points ordered left to right, normalised to |w1| = 1; None if no
+    admissible field exists."""
+    (ax, ay), (bx, by), (cx, cy), (dx, dy) = points
+    u2 = (cx - bx, cy - by)
+    u3 = (dx - cx, dy - cy)
+    r = (ax - bx, ay - by)
+    det = _cross(*u2, *u3)
+    if abs(det) < 1e-12 * math.hypot(*u2) * math.hypot(*u3):
+        return None
+    w2 = _cross(*r, *u3) / det
+    w3 = _cross(*u2, *r) / det
+    q = np.array([edges_sign[0] * 1.0, edges_sign[1] * (w2 - 1.0), edges_sign[2] * (w3 - w2),
+                  edges_sign[3] * (-w3)])
+    tol = 1e-9 * np.max(np.abs(q))
+    if np.all(q > tol):
+        sigma = 1.0
+    elif np.all(q < -tol):
+        sigma = -1.0
+    else:
+        return None
+    return sigma * 1.0, sigma * w2, sigma * w3
+
+
+@dataclass(frozen=True, eq=False)
+class FourLink:
+    """One mechanism of an arch as a four-link system (or any three rigid links on four hinges).
+
+    points: hinge points A, B, C, D at phi = 0, ordered from the leading side [m];
+    link_voussoirs: voussoir indices of links 1, 2, 3 (empty for synthetic links);
+    geo: the flat parameter vector of the scalar kernels; direction: 'l' or 'r'.
+    """
+
+    direction: str
+    points: np.ndarray
+    sign: float
+    link_masses: np.ndarray
+    link_centroids: np.ndarray
+    link_inertias: np.ndarray
+    link_voussoirs: tuple = ()
+    mechanism: Mechanism | None = None
+    arch: Arch | None = field(default=None, repr=False)
+
+    @cached_property
+    def geo(self) -> np.ndarray:
+        g = np.empty(GEO_SIZE)
+        g[0:8] = np.asarray(self.points, float).ravel()
+        g[_S] = self.sign
+        g[_M:_M + 3] = self.link_masses
+        g[_GC:_GC + 6] = np.asarray(self.link_centroids, float).ravel()
+        g[_I:_I + 3] = self.link_inertias
+        g.setflags(write=False)
+        return g
+
+    # -- equation of motion
+    def coefficients(self, phi: float):
+        """(M, L, F, P) at rotation phi [rad]."""
+        return coefficients(phi, self.geo)
+
+    def static_multiplier(self) -> float:
+        """xg''/g at which phi = 0 is in equilibrium: F(0)/P(0) (= -k_l for M_l, +k_r for M_r)."""
+        _, _, F, P = coefficients(0.0, self.geo)
+        return F / P
+
+    def energy(self, phi: float, rate: float, g: float = G) -> float:
+        """Kinetic + gravity potential energy [J per m of depth] relative to rest at phi = 0."""
+        M, _, _, _ = coefficients(phi, self.geo)
+        return 0.5 * M * rate * rate + g * potential(phi, self.geo)
+
+    @cached_property
+    def phi_dead(self) -> float:
+        """First rotation [rad] at which the four-bar locks (dead point), capped at pi/2."""
+        def det(phi):
+            bx, by, cx, cy, *_, ok = configuration(phi, self.geo)
+            if not ok:
+                return -1.0
+            return rates(phi, self.geo)[5] * det0
+        det0 = math.copysign(1.0, rates(0.0, self.geo)[5])
+        grid = np.linspace(0.0, math.pi / 2, 721)
+        prev = grid[0]
+        for phi in grid[1:]:
+            if det(phi) <= 0:
+                a, b = prev, phi
+                for _ in range(60):
+                    mid = 0.5 * (a + b)
+                    if det(mid) > 0:
+                        a = mid
+                    else:
+                        b = mid
+                return a
+            prev = phi
+        return math.pi / 2
+
+    @cached_property
+    def phi_unstable(self) -> float:
+        """Rotation [rad] of the unstable static position under gravity alone (F = 0)."""
+        f = lambda phi: coefficients(phi, self.geo)[2]
+        top = self.phi_dead * (1 - 1e-9)
+        grid = np.linspace(0.0, top, 400)
+        vals = [f(p) for p in grid]
+        for i in range(1, len(grid)):
+            if vals[i - 1] > 0 >= vals[i]:
+                return float(brentq(f, grid[i - 1], grid[i], xtol=1e-14))
+        return float(top)
+
+    def default_limit(self) -> float:
+        """Rotation limit [rad] for collapse: well beyond the unstable position, before the dead
+        point (halfway to the dead point, at most 2.5 times the unstable rotation)."""
+        return min(self.phi_unstable + 0.5 * (self.phi_dead - self.phi_unstable),
+                   2.5 * self.phi_unstable)
+
+    # -- velocity field at phi = 0, voussoir by voussoir (for impacts)
+    def voussoir_field(self, n: int | None = None):
+        """Velocity of every voussoir centroid (n, 2) and its angular rate (n,) per unit
+        phi-rate at phi = 0; voussoirs outside the mechanism have zero velocity."""
+        if self.arch is None:
+            raise ArchInputError("voussoir_field: this four-link system was not built from an arch")
+        arch = self.arch
+        t1, t2, t3, *_ = rates(0.0, self.geo)
+        (ax, ay), (bx, by), _, (dx, dy) = self.points
+        v = np.zeros((arch.n, 2))
+        w = np.zeros(arch.n)
+        for k, (idx, th, ref) in enumerate(zip(self.link_voussoirs, (t1, t2, t3),
+                                                ((ax, ay), (bx, by), (dx, dy)))):
+            idx = np.asarray(idx, dtype=int)
+            r = arch.centroids[idx] - np.array(ref)
+            vel = th * np.column_stack([-r[:, 1], r[:, 0]])
+            if k == 1:  # link 2 moves with B's velocity plus its own rotation about B
+                vel = vel + t1 * np.array([-(by - ay), bx - ax])
+            v[idx] = vel
+            w[idx] = th
+        return v, w
+
+    def link_rates0(self):
+        """(th1', th2', th3') at phi = 0."""
+        return rates(0.0, self.geo)[:3]
+
+
+def four_link(arch: Arch, mechanism: Mechanism) -> FourLink:
+    """The four-link model of ``mechanism`` on ``arch`` (links are rigid unions of voussoirs)."""
+    if mechanism.direction not in ("l", "r"):
+        raise ArchInputError(f"mechanism.direction: {mechanism.direction!r}; allowed 'l' or 'r'")
+    hinges = sorted(mechanism.hinges, key=lambda h: h.joint)
+    joints = [h.joint for h in hinges]
+    if len(set(joints)) != 4 or joints[0] < 0 or joints[-1] > arch.n:
+        raise ArchInputError(f"mechanism.hinges: need 4 distinct joints in 0..{arch.n}, got {joints}")
+    pts = np.array([arch.joint_point(h.joint, h.edge) for h in hinges])
+    signs = [(-1.0 if h.edge == "intrados" else 1.0) for h in hinges]
+    w = _link_rates(pts, signs)
+    if w is None:
+        raise ArchInputError(f"mechanism.hinges: {[h.to_dict() for h in hinges]} admit no opening motion")
+    groups = [list(range(joints[0], joints[1])), list(range(joints[1], joints[2])),
+              list(range(joints[2], joints[3]))]
+    # work of unit horizontal forces toward +x decides which direction this field loads
+    if mechanism.direction == "r":
+        pts = pts[::-1]
+        groups = groups[::-1]
+        lead_rate = w[2]
+    else:
+        lead_rate = w[0]
+    sign = 1.0 if lead_rate > 0 else -1.0
+    links = [_rigid_union(arch.masses[g], arch.centroids[g], arch.inertias[g]) for g in groups]
+    fl = FourLink(mechanism.direction, pts, sign,
+                  np.array([l[0] for l in links]), np.array([l[1] for l in links]),
+                  np.array([l[2] for l in links]), tuple(tuple(g) for g in groups), mechanism, arch)
+    # the opening direction must load the mechanism's own direction (checked: eq. 1 signs)
+    k = fl.static_multiplier()
+    if (mechanism.direction == "l" and k >= 0) or (mechanism.direction == "r" and k <= 0):
+        raise ArchInputError(
+            f"mechanism: hinges {[h.to_dict() for h in hinges]} do not open under forces of "
+            f"direction {mechanism.direction!r}")
+    return fl

@@ -1,0 +1,376 @@
+"""Response of an arch to a ground motion: activation, rocking, impacts, rest or collapse.
+
+Data flow: geometry -> limit analysis (k_l, k_r, M_l, M_r) -> four-link equations -> impact law
+-> :func:`respond`.  :func:`prepare` does everything that depends on the arch alone (reuse it for
+many ground motions); :func:`respond` integrates one ground motion with either
+
+* ``integrator="fast"``: fixed-step RK4 with event location (:mod:`archrock.kernel`, compiled
+  by numba when installed), or
+* ``integrator="reference"``: scipy's adaptive DOP853 with event location at tight tolerances.
+
+Both follow the same rules (METHOD sections 3-4): the arch starts from rest when
+xg''/g <= -k_l (M_l) or xg''/g >= k_r (M_r); when phi returns to 0 the joints close (an impact)
+and the opposite mechanism opens with the rate given by the impact law; a post-impact rate below
+``v_rest`` means the arch is at rest again (no endless chattering); it collapses when phi reaches
+the rotation limit.  Integration continues after the ground motion until rest or collapse.
+The signed response is +phi while M_l is open, -phi while M_r is open and 0 at rest.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from . import kernel as K
+from .errors import ArchInputError
+from .geometry import Arch
+from .groundmotion import G, GroundMotion
+from .impact import ImpactLaw, impact_law
+from .limit import LimitResult, limit_analysis
+from .mechanism import FourLink, four_link
+
+__all__ = ["DynamicModel", "Event", "Response", "prepare", "respond"]
+
+_MODE_NAME = {0: "rest", 1: "l", 2: "r"}
+_KIND_NAME = {K.EV_ACTIVATION: "activation", K.EV_IMPACT: "impact", K.EV_REST: "rest",
+              K.EV_COLLAPSE: "collapse", K.EV_UNSTABLE: "unstable"}
+
+
+@dataclass(frozen=True, eq=False)
+class DynamicModel:
+    """Everything about an arch's dynamics that does not depend on the ground motion.
+
+    phi_limit_* [rad]: rotation limits for collapse; phi_unstable_* [rad]: unstable positions
+    (F = 0); v_rest [rad/s]: post-impact rates below it end the motion.
+    """
+
+    arch: Arch
+    limit: LimitResult
+    mech_l: FourLink
+    mech_r: FourLink
+    impact: ImpactLaw
+    phi_limit_l: float
+    phi_limit_r: float
+    v_rest: float
+
+    @property
+    def k_l(self) -> float:
+        return self.limit.k_l
+
+    @property
+    def k_r(self) -> float:
+        return self.limit.k_r
+
+    @property
+    def phi_unstable_l(self) -> float:
+        return self.mech_l.phi_unstable
+
+    @property
+    def phi_unstable_r(self) -> float:
+        return self.mech_r.phi_unstable
+
+    def mechanism(self, mode: str) -> FourLink:
+        return self.mech_l if mode == "l" else self.mech_r
+
+
+def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float | None = None,
+            literal_cv: bool = False, limit_factor: float | None = None,
+            limit: LimitResult | None = None) -> DynamicModel:
+    """Limit analysis, four-link models and impact law of ``arch``.
+
+    impact: "paper", "momentum", "fixed" (with ``cv``), a number (a fixed c_v) or an ImpactLaw.
+    limit_factor: rotation limit as a multiple of the unstable rotation (default: halfway to
+    the four-bar's dead point, at most 2.5 times the unstable rotation); must be > 1.
+    """
+    lim = limit_analysis(arch, verify=False) if limit is None else limit
+    m_l, m_r = four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
+    if isinstance(impact, ImpactLaw):
+        law = impact
+    elif isinstance(impact, (int, float)) and not isinstance(impact, bool):
+        law = impact_law(m_l, m_r, "fixed", cv=float(impact), literal=literal_cv)
+    else:
+        law = impact_law(m_l, m_r, impact, cv=cv, literal=literal_cv)
+    if limit_factor is None:
+        pl_l, pl_r = m_l.default_limit(), m_r.default_limit()
+    else:
+        if not math.isfinite(limit_factor) or limit_factor <= 1.0:
+            raise ArchInputError(f"limit factor: {limit_factor!r}; allowed > 1 (a multiple of the "
+                                 f"unstable rotation)")
+        pl_l = min(limit_factor * m_l.phi_unstable, m_l.phi_dead * (1 - 1e-6))
+        pl_r = min(limit_factor * m_r.phi_unstable, m_r.phi_dead * (1 - 1e-6))
+    # a rate whose kinetic energy could lift the arch by a nanometre-scale fraction of phi_u
+    p = math.sqrt(G * m_l.coefficients(0.0)[2] / m_l.coefficients(0.0)[0])
+    v_rest = 1e-5 * p * min(m_l.phi_unstable, m_r.phi_unstable)
+    return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
+
+
+@dataclass(frozen=True)
+class Event:
+    """A discrete event: kind in {activation, impact, rest, collapse, unstable}; time [s];
+    mechanisms before/after ('l', 'r' or 'rest'); rates [rad/s] before/after, each in its own
+    mechanism's coordinate (an impact's rate before is negative: the joints are closing)."""
+
+    kind: str
+    time: float
+    before: str
+    after: str
+    rate_before: float
+    rate_after: float
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "time": self.time, "before": self.before, "after": self.after,
+                "rate_before": self.rate_before, "rate_after": self.rate_after}
+
+
+@dataclass(frozen=True, eq=False)
+class Response:
+    """Result of :func:`respond`: what happened and how it was computed.
+
+    time, response: the signed response (+phi in M_l, -phi in M_r, 0 at rest, NaN after
+    collapse) [rad] sampled every ``dt_out`` up to ``t_end``; peak: max phi over the whole run
+    [rad]; t_collapse / t_unstable [s] (None if never); t_final [s]: when the run ended;
+    status: 'rest', 'collapsed' or 'moving' (still rocking when the free-motion cap ran out).
+    """
+
+    model: DynamicModel = field(repr=False)
+    motion: GroundMotion = field(repr=False)
+    time: np.ndarray = field(repr=False)
+    response: np.ndarray = field(repr=False)
+    events: tuple[Event, ...] = field(repr=False)
+    status: str
+    peak: float
+    t_collapse: float | None
+    t_unstable: float | None
+    t_final: float
+    integrator: str
+    settings: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def collapsed(self) -> bool:
+        return self.status == "collapsed"
+
+    @property
+    def impacts(self) -> list[float]:
+        return [e.time for e in self.events if e.kind == "impact"]
+
+    @property
+    def activated(self) -> bool:
+        return any(e.kind == "activation" for e in self.events)
+
+    def impacts_before_collapse(self) -> int:
+        return len(self.impacts) if self.collapsed else 0
+
+    def to_dict(self, samples: bool = True) -> dict:
+        d = {
+            "collapsed": self.collapsed,
+            "status": self.status,
+            "t_collapse": self.t_collapse,
+            "t_unstable": self.t_unstable,
+            "t_final": self.t_final,
+            "peak": self.peak,
+            "impacts": self.impacts,
+            "k_l": self.model.k_l,
+            "k_r": self.model.k_r,
+            "restitution": {"model": self.model.impact.model, "l_to_r": self.model.impact.l_to_r,
+                            "r_to_l": self.model.impact.r_to_l,
+                            "energy_l_to_r": self.model.impact.energy_l_to_r,
+                            "energy_r_to_l": self.model.impact.energy_r_to_l},
+            "phi_limit": {"l": self.model.phi_limit_l, "r": self.model.phi_limit_r},
+            "phi_unstable": {"l": self.model.phi_unstable_l, "r": self.model.phi_unstable_r},
+            "events": [e.to_dict() for e in self.events],
+            "integrator": self.integrator,
+            "settings": self.settings,
+        }
+        if samples:
+            d["time"] = self.time.tolist()
+            d["response"] = [None if not math.isfinite(v) else float(v) for v in self.response]
+        return d
+
+
+def _check_times(t_end, dt_out, dt, t_free):
+    for name, v in (("t_end", t_end), ("dt_out", dt_out), ("dt", dt), ("t_free", t_free)):
+        if not isinstance(v, (int, float)) or isinstance(v, bool) or not math.isfinite(v) or v <= 0:
+            raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0 s")
+    if dt_out > t_end:
+        raise ArchInputError(f"dt_out: {dt_out} s; allowed <= t_end = {t_end} s")
+
+
+def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact="paper",
+            cv: float | None = None, t_end: float = 3.0, dt_out: float = 0.005,
+            integrator: str = "fast", dt: float = 1e-3, t_free: float = 60.0,
+            rtol: float = 1e-10, atol: float = 1e-12, max_events: int = 100_000) -> Response:
+    """Response of an arch (or a prepared :class:`DynamicModel`) to ``motion``.
+
+    t_end [s]: end of the sampled output (the outcome covers the whole ground motion and the free
+    motion after it, at most ``t_free`` seconds); dt_out [s]: output sampling; dt [s]: RK4 step
+    of the fast integrator; rtol/atol: tolerances of the reference integrator.
+    """
+    model = arch_or_model if isinstance(arch_or_model, DynamicModel) else prepare(arch_or_model, impact, cv=cv)
+    if not isinstance(motion, GroundMotion):
+        raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
+    _check_times(t_end, dt_out, dt, t_free)
+    n_out = int(math.floor(t_end / dt_out + 1e-9)) + 1
+    times = np.ascontiguousarray(motion.times, dtype=float)
+    accel = np.ascontiguousarray(motion.accel, dtype=float)
+    settings = {"t_end": t_end, "dt_out": dt_out, "t_free": t_free}
+    if integrator == "fast":
+        res = K.simulate(model.mech_l.geo, model.mech_r.geo, model.k_l, model.k_r,
+                         model.impact.l_to_r, model.impact.r_to_l, model.phi_limit_l,
+                         model.phi_limit_r, model.phi_unstable_l, model.phi_unstable_r,
+                         model.v_rest, times, accel, G, n_out, dt_out, dt, t_free, max_events)
+        settings.update(dt=dt, method="RK4 fixed step with event location"
+                        + (" (numba)" if K.__dict__.get("simulate").__class__.__name__ != "function" else ""))
+    elif integrator == "reference":
+        res = _reference(model, times, accel, n_out, dt_out, t_free, rtol, atol, max_events)
+        settings.update(rtol=rtol, atol=atol, method="scipy solve_ivp DOP853 with events")
+    else:
+        raise ArchInputError(f"integrator: {integrator!r}; allowed 'fast' or 'reference'")
+    out, ev, n_ev, status, t_final, peak, t_col, t_uns = res
+    if n_ev > max_events:
+        raise ArchInputError(f"max_events: more than {max_events} events; raise max_events")
+    events = tuple(Event(_KIND_NAME[int(r[0])], float(r[1]), _MODE_NAME[int(r[2])],
+                         _MODE_NAME[int(r[3])], float(r[4]), float(r[5])) for r in ev[:n_ev])
+    return Response(model, motion, np.arange(n_out) * dt_out, out, events,
+                    {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}[int(status)],
+                    float(peak), None if t_col < 0 else float(t_col), None if t_uns < 0 else float(t_uns),
+                    float(t_final), integrator, settings)
+
+
+# ---------------------------------------------------------------------------- reference
+def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, atol, max_events):
+    """Adaptive reference integrator (scipy DOP853), same rules as :func:`kernel.simulate`."""
+    out = np.zeros(n_out)
+    ev = []
+    nseg = times.size - 1
+    t_motion = times[-1]
+    t_stop = t_motion + t_free
+    grid = np.arange(n_out) * dt_out
+    thr_l, thr_r = -model.k_l * G, model.k_r * G
+    # segments with positive length, plus the free motion after the record
+    seg_t0 = [times[j] for j in range(nseg) if times[j + 1] > times[j]]
+    seg_j = [j for j in range(nseg) if times[j + 1] > times[j]]
+
+    def a_of(t, j):
+        if j < 0:
+            return 0.0
+        return K._accel(t, j, times, accel)
+
+    def segments_from(t):
+        """(j, t_start, t_end) pieces from t on; j = -1 is the free motion after the record."""
+        for j in seg_j:
+            if times[j + 1] > t:
+                yield j, max(t, times[j]), times[j + 1]
+        yield -1, max(t, t_motion), t_stop
+
+    def first_activation(t):
+        for j, t0, t1 in segments_from(t):
+            if j < 0:
+                return None
+            a0, a1 = a_of(t0, j), accel[j + 1]
+            if a0 <= thr_l:
+                return t0, j, 1
+            if a0 >= thr_r:
+                return t0, j, 2
+            if a1 < thr_l:
+                return t0 + (t1 - t0) * (thr_l - a0) / (a1 - a0), j, 1
+            if a1 > thr_r:
+                return t0 + (t1 - t0) * (thr_r - a0) / (a1 - a0), j, 2
+        return None
+
+    def fill(t0, t1, sol_fun, sign, value=None):
+        mask = (grid >= t0) & (grid < t1)
+        if value is not None:
+            out[mask] = value
+        elif np.any(mask):
+            out[mask] = sign * sol_fun(grid[mask])[0]
+
+    t, mode, phi, w = 0.0, 0, 0.0, 0.0
+    peak, t_col, t_uns, status = 0.0, -1.0, -1.0, K.ST_REST
+    while True:
+        if mode == 0:
+            act = first_activation(t)
+            if act is None:
+                fill(t, np.inf, None, 1.0, 0.0)
+                t = max(t, t_motion)
+                status = K.ST_REST
+                break
+            t_act, _, mode = act
+            fill(t, t_act, None, 1.0, 0.0)
+            t, phi, w = t_act, 0.0, 0.0
+            ev.append((K.EV_ACTIVATION, t, 0, mode, 0.0, 0.0))
+            continue
+        fl = model.mech_l if mode == 1 else model.mech_r
+        geo = fl.geo
+        lim = model.phi_limit_l if mode == 1 else model.phi_limit_r
+        phu = model.phi_unstable_l if mode == 1 else model.phi_unstable_r
+        sign = 1.0 if mode == 1 else -1.0
+        ended = None
+        for j, t0, t1 in segments_from(t):
+            if t0 >= t_stop:
+                break
+
+            def rhs(tt, y, j=j):
+                return [y[1], K._rhs(y[0], y[1], a_of(tt, j), geo, G)]
+
+            def close(tt, y):
+                return y[0]
+            close.terminal, close.direction = True, -1
+
+            def limit_ev(tt, y):
+                return y[0] - lim
+            limit_ev.terminal, limit_ev.direction = True, 1
+
+            def unstable_ev(tt, y):
+                return y[0] - phu
+            unstable_ev.terminal, unstable_ev.direction = False, 1
+
+            sol = solve_ivp(rhs, (t0, t1), [phi, w], method="DOP853", rtol=rtol, atol=atol,
+                            events=(close, limit_ev, unstable_ev), dense_output=True,
+                            first_step=min(1e-4, (t1 - t0) / 2))
+            if t_uns < 0 and sol.t_events[2].size:
+                t_uns = float(sol.t_events[2][0])
+                ev.append((K.EV_UNSTABLE, t_uns, mode, mode, float(sol.y_events[2][0][1]),
+                           float(sol.y_events[2][0][1])))
+            peak = max(peak, float(np.max(sol.y[0])))
+            t_hit = sol.t[-1]
+            fill(t0, t_hit, sol.sol, sign)
+            if sol.status == 1 and sol.t_events[1].size:
+                t, w = float(sol.t_events[1][0]), float(sol.y_events[1][0][1])
+                ended = "collapse"
+                break
+            if sol.status == 1 and sol.t_events[0].size:
+                t, w = float(sol.t_events[0][0]), float(sol.y_events[0][0][1])
+                ended = "impact"
+                break
+            if sol.status != 0:
+                raise RuntimeError(f"reference integrator failed: {sol.message}")
+            t, phi, w = t1, float(sol.y[0, -1]), float(sol.y[1, -1])
+        if ended is None:
+            status = K.ST_MOVING
+            break
+        if ended == "collapse":
+            t_col = t
+            if t_uns < 0:
+                t_uns = t
+            peak = max(peak, lim)
+            ev.append((K.EV_COLLAPSE, t, mode, mode, w, 0.0))
+            fill(t, np.inf, None, 1.0, np.nan)
+            status = K.ST_COLLAPSED
+            break
+        w_minus = min(w, 0.0)
+        w_plus = -model.impact.ratio("l" if mode == 1 else "r") * w_minus
+        if w_plus < model.v_rest:
+            ev.append((K.EV_IMPACT, t, mode, 0, w_minus, 0.0))
+            ev.append((K.EV_REST, t, mode, 0, 0.0, 0.0))
+            mode, phi, w = 0, 0.0, 0.0
+        else:
+            new = 2 if mode == 1 else 1
+            ev.append((K.EV_IMPACT, t, mode, new, w_minus, w_plus))
+            mode, phi, w = new, 0.0, w_plus
+        if len(ev) > max_events:
+            break
+    table = np.array(ev, dtype=float).reshape(-1, 6)
+    return out, table, len(ev), status, t, peak, t_col, t_uns
