@@ -253,22 +253,22 @@ def test_bootstrap_ida_coverage_is_near_nominal():
     # a 90 % interval must miss the truth about 1 time in 10 over repeated samples (n = 40);
     # the percentile bootstrap under-covers slightly at this size
     covered = 0
-    for s in range(100):
+    for s in range(60):
         x = np.exp(np.random.default_rng(100 + s).normal(math.log(0.5), 0.4, 40))
-        f = bootstrap_fit(fit_ida_moments, x, n_boot=200, confidence=0.9, seed=s)
+        f = bootstrap_fit(fit_ida_moments, x, n_boot=100, confidence=0.9, seed=s)
         covered += f.theta_ci[0] < 0.5 < f.theta_ci[1]
-    assert 78 <= covered <= 98
+    assert 45 <= covered <= 59
 
 
 def test_bootstrap_stripes_contains_truth_and_is_reproducible():
     x, n, z = synthetic_stripes(trials=50, seed=5)
-    f = bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=100, seed=0)
+    f = bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=60, seed=0)
     assert f.theta_ci[0] < THETA < f.theta_ci[1]
     assert f.beta_ci[0] < BETA < f.beta_ci[1]
     assert f.method == "mle" and f.confidence == 0.9
-    assert bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=100, seed=0) == f
+    assert bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=60, seed=0) == f
     seq = np.random.SeedSequence(0)
-    assert bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=100, seed=seq).theta_ci == f.theta_ci
+    assert bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=60, seed=seq).theta_ci == f.theta_ci
 
 
 def test_bootstrap_censored_ida_keeps_each_records_max_intensity():
