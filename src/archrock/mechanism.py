@@ -89,14 +89,8 @@ def configuration(phi, geo):
 
 
 @maybe_njit
-def rates(phi, geo):
-    """First and second derivatives of the link rotations with respect to phi.
-
-    Returns (th1', th2', th3', th2'', th3'', det) from the loop closure
-    th1' u1 + th2' u2 + th3' u3 = 0 (u1 = B-A, u2 = C-B, u3 = D-C) and its derivative;
-    ``det`` = u2 x u3 vanishes at the dead point.
-    """
-    bx, by, cx, cy, _, _, _, _ = configuration(phi, geo)
+def _rates_at(bx, by, cx, cy, geo):
+    """Link-rotation derivatives for given positions of B and C (see :func:`rates`)."""
     ax, ay = geo[_A], geo[_A + 1]
     dx, dy = geo[_D], geo[_D + 1]
     t1 = geo[_S]
@@ -116,26 +110,46 @@ def rates(phi, geo):
 
 
 @maybe_njit
+def rates(phi, geo):
+    """First and second derivatives of the link rotations with respect to phi.
+
+    Returns (th1', th2', th3', th2'', th3'', det) from the loop closure
+    th1' u1 + th2' u2 + th3' u3 = 0 (u1 = B-A, u2 = C-B, u3 = D-C) and its derivative;
+    ``det`` = u2 x u3 vanishes at the dead point.
+    """
+    bx, by, cx, cy, _, _, _, _ = configuration(phi, geo)
+    return _rates_at(bx, by, cx, cy, geo)
+
+
+@maybe_njit
 def coefficients(phi, geo):
     """(M, L, F, P) of the equation of motion at rotation phi [rad] (per metre of depth).
 
     M [kg m^2], L [kg m^2], F [kg m], P [kg m].
     """
-    bx, by, cx, cy, th1, th2, th3, _ = configuration(phi, geo)
-    t1, t2, t3, t2d, t3d, _ = rates(phi, geo)
+    bx, by, cx, cy, th1, _, _, _ = configuration(phi, geo)
+    t1, t2, t3, t2d, t3d, _ = _rates_at(bx, by, cx, cy, geo)
     ax, ay = geo[_A], geo[_A + 1]
     b0x, b0y = geo[_B], geo[_B + 1]
+    c0x, c0y = geo[_C], geo[_C + 1]
     dx, dy = geo[_D], geo[_D + 1]
     m1, m2, m3 = geo[_M], geo[_M + 1], geo[_M + 2]
     i1, i2, i3 = geo[_I], geo[_I + 1], geo[_I + 2]
-    # link centroids in the displaced configuration, relative to their reference points
+    # link centroids in the displaced configuration, relative to their reference points;
+    # cos/sin of the link rotations come from the link vectors (cheaper than atan2 + cos/sin)
     c1, s1 = math.cos(th1), math.sin(th1)
     px, py = geo[_GC] - ax, geo[_GC + 1] - ay
     r1x, r1y = c1 * px - s1 * py, s1 * px + c1 * py          # G1 - A
-    c2, s2 = math.cos(th2), math.sin(th2)
+    u0x, u0y = c0x - b0x, c0y - b0y
+    ux, uy = cx - bx, cy - by
+    n2 = u0x * u0x + u0y * u0y
+    c2, s2 = (u0x * ux + u0y * uy) / n2, _cross(u0x, u0y, ux, uy) / n2
     px, py = geo[_GC + 2] - b0x, geo[_GC + 3] - b0y
     r2x, r2y = c2 * px - s2 * py, s2 * px + c2 * py          # G2 - B
-    c3, s3 = math.cos(th3), math.sin(th3)
+    w0x, w0y = c0x - dx, c0y - dy
+    wx, wy = cx - dx, cy - dy
+    n3 = w0x * w0x + w0y * w0y
+    c3, s3 = (w0x * wx + w0y * wy) / n3, _cross(w0x, w0y, wx, wy) / n3
     px, py = geo[_GC + 4] - dx, geo[_GC + 5] - dy
     r3x, r3y = c3 * px - s3 * py, s3 * px + c3 * py          # G3 - D
     ubx, uby = bx - ax, by - ay
@@ -263,7 +277,7 @@ class FourLink:
                 return -1.0
             return rates(phi, self.geo)[5] * det0
         det0 = math.copysign(1.0, rates(0.0, self.geo)[5])
-        grid = np.linspace(0.0, math.pi / 2, 721)
+        grid = np.linspace(0.0, math.pi / 2, 91)
         prev = grid[0]
         for phi in grid[1:]:
             if det(phi) <= 0:
@@ -283,7 +297,7 @@ class FourLink:
         """Rotation [rad] of the unstable static position under gravity alone (F = 0)."""
         f = lambda phi: coefficients(phi, self.geo)[2]
         top = self.phi_dead * (1 - 1e-9)
-        grid = np.linspace(0.0, top, 400)
+        grid = np.linspace(0.0, top, 60)
         vals = [f(p) for p in grid]
         for i in range(1, len(grid)):
             if vals[i - 1] > 0 >= vals[i]:

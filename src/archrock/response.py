@@ -200,7 +200,7 @@ def _check_times(t_end, dt_out, dt, t_free):
 
 def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact="paper",
             cv: float | None = None, t_end: float = 3.0, dt_out: float = 0.005,
-            integrator: str = "fast", dt: float = 1e-3, t_free: float = 60.0,
+            integrator: str = "fast", dt: float = 2e-3, t_free: float = 60.0,
             rtol: float = 1e-10, atol: float = 1e-12, max_events: int = 100_000) -> Response:
     """Response of an arch (or a prepared :class:`DynamicModel`) to ``motion``.
 
