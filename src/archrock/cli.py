@@ -1,0 +1,397 @@
+"""Command-line interface: ``archrock <subcommand> ...`` (argparse, stdlib only).
+
+Adding a subcommand: write ``add_<name>_parser(subparsers)`` that creates the parser with
+``subparsers.add_parser(...)``, adds its options (use :func:`add_geometry_options` for the arch
+and :func:`finite_float` / :func:`positive_float` as argparse ``type=`` to refuse NaN/inf),
+sets ``parser.set_defaults(func=run_<name>)`` and returns the parser; decorate it with
+``@subcommand("<name>")``. ``run_<name>(args) -> int`` does the work; raising
+:class:`~archrock.errors.ArchInputError` (or :class:`CLIError`) gives the one-line
+``archrock: error: ...`` message and exit status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Callable
+
+from .errors import ArchInputError
+
+__all__ = [
+    "main", "build_parser", "subcommand", "SUBCOMMANDS", "CLIError",
+    "add_geometry_options", "arch_from_args", "finite_float", "positive_float",
+    "non_negative_int", "emit_json", "GEOMETRY_DEFAULTS",
+]
+
+PROG = "archrock"
+EXIT_USAGE = 2  # bad input: same status as argparse's own errors
+_OPTIONAL_MODULES = {"matplotlib", "PIL", "pandas", "pyarrow", "tqdm", "numba", "dask", "distributed"}
+
+#: Defaults of the nominal-geometry flags: Oppenheim's arch (R [m], embrace [deg], t [m], n, kg/m^3).
+GEOMETRY_DEFAULTS = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7,
+                     "density": 2000.0}
+
+#: name -> add_<name>_parser(subparsers); filled by @subcommand, in the order shown by --help.
+SUBCOMMANDS: dict[str, Callable] = {}
+
+
+class CLIError(Exception):
+    """A command-line problem that is not an arch-input problem (e.g. conflicting options)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose errors read ``archrock: error: <message>`` (exit status 2)."""
+
+    def error(self, message):  # noqa: D401 - argparse API
+        self.print_usage(sys.stderr)
+        self.exit(EXIT_USAGE, f"{PROG}: error: {message}\n")
+
+
+def subcommand(name: str):
+    """Decorator registering ``add_<name>_parser(subparsers)`` under ``name``."""
+    def register(add_parser: Callable) -> Callable:
+        SUBCOMMANDS[name] = add_parser
+        return add_parser
+    return register
+
+
+# ---------------------------------------------------------------------------- argparse types
+def finite_float(text: str) -> float:
+    """argparse type: a finite number (NaN and infinities refused)."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(v):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
+    return v
+
+
+def positive_float(text: str) -> float:
+    """argparse type: a finite number > 0."""
+    v = finite_float(text)
+    if v <= 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is out of range; allowed > 0")
+    return v
+
+
+def non_negative_int(text: str) -> int:
+    """argparse type: an integer >= 0 (e.g. a random seed)."""
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is out of range; allowed an integer >= 0")
+    return v
+
+
+def _int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+
+
+# ---------------------------------------------------------------------------- shared options
+def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add the arch options: --radius --embrace --thickness --voussoirs --density (a nominal
+    arch; defaults: Oppenheim's arch) or --geometry FILE (a JSON geometry file)."""
+    d = GEOMETRY_DEFAULTS
+    g = parser.add_argument_group(
+        "arch geometry", "a nominal arch (defaults: Oppenheim's arch) or --geometry FILE")
+    # Defaults are None so that arch_from_args can tell given flags from defaults.
+    g.add_argument("--radius", type=finite_float, metavar="R",
+                   help=f"mean radius [m], > 0 (default {d['radius']:g})")
+    g.add_argument("--embrace", type=finite_float, metavar="DEG",
+                   help=f"angle of embrace [deg], 0 < embrace < 360 (default {d['embrace']:g})")
+    g.add_argument("--thickness", type=finite_float, metavar="T",
+                   help=f"thickness [m], 0 < t < 2 R (default {d['thickness']:g})")
+    g.add_argument("--voussoirs", type=_int, metavar="N",
+                   help=f"number of voussoirs, >= 3 (default {d['voussoirs']})")
+    g.add_argument("--density", type=finite_float, metavar="RHO",
+                   help=f"density [kg/m^3], > 0 (default {d['density']:g}; cancels from k)")
+    g.add_argument("--geometry", metavar="FILE",
+                   help="JSON geometry file (voussoirs from the left springing); "
+                        "excludes the flags above")
+    return parser
+
+
+def arch_from_args(args: argparse.Namespace):
+    """The :class:`~archrock.geometry.Arch` described by the options of
+    :func:`add_geometry_options` (raises ArchInputError / CLIError on bad input)."""
+    from .geometry import nominal_arch
+
+    flags = ("radius", "embrace", "thickness", "voussoirs", "density")
+    given = [f for f in flags if getattr(args, f, None) is not None]
+    if getattr(args, "geometry", None):
+        if given:
+            raise CLIError(f"--geometry: cannot be combined with "
+                           f"{', '.join('--' + f for f in given)}; the file holds the whole geometry")
+        from .files import read_arch
+
+        return read_arch(args.geometry)
+    vals = {f: (getattr(args, f, None) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f])
+            for f in flags}
+    is_oppenheim = not given or all(vals[f] == GEOMETRY_DEFAULTS[f] for f in flags)
+    return nominal_arch(radius=vals["radius"], embrace_deg=vals["embrace"], thickness=vals["thickness"],
+                        voussoirs=vals["voussoirs"], density=vals["density"],
+                        name="Oppenheim" if is_oppenheim else "nominal")
+
+
+def emit_json(obj, out=None) -> None:
+    """Print ``obj`` as one JSON document (strict: NaN/inf refused) on stdout."""
+    out = sys.stdout if out is None else out
+    out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
+
+
+def _write_text(path: str, text: str) -> Path:
+    p = Path(path)
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True)
+        p.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise CLIError(f"--out: cannot write {str(p)!r} ({exc.strerror or exc})") from None
+    return p
+
+
+# ---------------------------------------------------------------------------- limit
+def limit_summary(result, min_thickness=None) -> dict:
+    """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object)."""
+    d = result.to_dict()
+    d.pop("arch", None)
+    out = {
+        "arch": result.arch.name,
+        "k": result.k,
+        **d,
+        "hinge_labels": {
+            # A..D from the mechanism's leading side (A leftmost for M_l, rightmost for M_r)
+            dirn: [{"label": lab, **h.to_dict()} for lab, h in _labelled(result.mechanism(dirn))]
+            for dirn in ("l", "r")
+        },
+        "geometry": result.arch.to_dict(),
+        "units": {"k": "g (horizontal load / weight)", "span_deg": "deg", "radius": "m",
+                  "thickness": "m", "density": "kg/m^3"},
+    }
+    if min_thickness is not None:
+        out["min_thickness"] = {
+            "factor": min_thickness.factor,
+            "ratio_t_over_R": min_thickness.ratio,
+            "thicknesses": [float(t) for t in min_thickness.thicknesses],
+        }
+    return out
+
+
+def _labelled(mechanism):
+    # plots imports matplotlib only inside its drawing functions, so this stays light
+    from .plots import hinge_labels
+
+    return hinge_labels(mechanism)
+
+
+def format_limit_table(result, min_thickness=None) -> str:
+    """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check."""
+    import numpy as np
+
+    arch = result.arch
+    lines = [f"Arch: {arch.name}, {arch.n} voussoirs, embrace {math.degrees(arch.embrace):.4f} deg, "
+             f"density {arch.density:g} kg/m^3"]
+    uniform = (np.ptp(arch.spans) < 1e-12 and np.ptp(arch.radii) < 1e-12
+               and np.ptp(arch.thicknesses) < 1e-12)
+    if uniform:
+        lines.append(f"  regular: R = {arch.radii[0]:g} m, t = {arch.thicknesses[0]:g} m, "
+                     f"span = {math.degrees(arch.spans[0]):.4f} deg each")
+    else:
+        lines.append("  voussoir  span [deg]  radius [m]  thickness [m]")
+        for i, (a, r, t) in enumerate(zip(arch.spans, arch.radii, arch.thicknesses)):
+            lines.append(f"  {i:8d}  {math.degrees(a):10.4f}  {r:10.4f}  {t:13.4f}")
+    lines += ["", "Limit analysis (horizontal forces = multiplier x weight; Heyman's hypotheses)",
+              "  mechanism  k (kinematic)  k (static LP)  hinges A-D (joint edge)"]
+    for dirn in ("l", "r"):
+        mech = result.mechanism(dirn)
+        k = result.k_l if dirn == "l" else result.k_r
+        ks = result.static_k_l if dirn == "l" else result.static_k_r
+        kss = f"{ks:13.4f}" if ks is not None else f"{'-':>13}"
+        hinges = ", ".join(f"{lab}: {h.joint} {h.edge}" for lab, h in _labelled(mech))
+        lines.append(f"  M_{dirn}        {k:13.4f}  {kss}  {hinges}")
+    lines.append(f"  k = min(k_l, k_r) = {result.k:.4f}")
+    if result.discrepancy is not None:
+        verdict = "agree" if result.discrepancy < 1e-6 else "DISAGREE"
+        lines.append(f"  LP check: max |kinematic - static| = {result.discrepancy:.2e} ({verdict})")
+    if min_thickness is not None:
+        lines.append(f"  minimum thickness under self-weight: factor {min_thickness.factor:.4f} "
+                     f"of the given thicknesses, mean t/R = {min_thickness.ratio:.4f}")
+    lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
+                 "M_r: by xg''/g >= k_r, forces toward -x)")
+    return "\n".join(lines)
+
+
+@subcommand("limit")
+def add_limit_parser(subparsers):
+    p = subparsers.add_parser(
+        "limit", help="collapse multipliers k_l, k_r and mechanisms (limit analysis)",
+        description="Limit analysis under horizontal forces proportional to the weight: "
+                    "kinematic enumeration of four-hinge mechanisms, checked by a static LP.")
+    add_geometry_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    p.add_argument("--min-thickness", action="store_true",
+                   help="also compute the minimum thickness under self-weight (bisection)")
+    p.set_defaults(func=run_limit)
+    return p
+
+
+def run_limit(args) -> int:
+    from .limit import limit_analysis, minimum_thickness
+
+    arch = arch_from_args(args)
+    result = limit_analysis(arch, verify=True)
+    mt = minimum_thickness(arch) if args.min_thickness else None
+    if args.json:
+        emit_json(limit_summary(result, mt))
+    else:
+        print(format_limit_table(result, mt))
+    return 0
+
+
+# ---------------------------------------------------------------------------- random-arch
+@subcommand("random-arch")
+def add_random_arch_parser(subparsers):
+    p = subparsers.add_parser(
+        "random-arch", help="draw an irregular arch around a nominal one; write its geometry file",
+        description="span_i = (alpha/n)(1 + s_a U), t_i = t (1 + s_t U), R_i = R + s_R t U, "
+                    "U uniform on [-1, 1], spans rescaled to the nominal embrace.")
+    add_geometry_options(p)
+    p.add_argument("--seed", type=non_negative_int, default=None,
+                   help="random seed (integer >= 0); omit for a fresh draw")
+    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
+                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
+    p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
+                   help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
+    p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
+                   help="half-width of the radii as a fraction of t, 0 <= s_R < 1 (default 0.05)")
+    p.add_argument("--out", metavar="FILE", help="geometry file to write (default: stdout)")
+    p.set_defaults(func=run_random_arch)
+    return p
+
+
+def run_random_arch(args) -> int:
+    from .geometry import random_arch
+
+    nominal = arch_from_args(args)
+    arch = random_arch(nominal, seed=args.seed, spread_span=args.spread_span,
+                       spread_thickness=args.spread_thickness, spread_radius=args.spread_radius)
+    meta = {"generator": "archrock random-arch", "seed": args.seed, "nominal": nominal.name,
+            "spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
+            "spread_radius": args.spread_radius}
+    if args.out:
+        from .files import write_arch
+
+        try:
+            Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise CLIError(f"--out: cannot create the folder of {args.out!r} ({exc.strerror})") from None
+        write_arch(arch, args.out, metadata=meta)
+        print(f"wrote {args.out}", file=sys.stderr)
+    else:
+        emit_json({**arch.to_dict(), "metadata": meta})
+    return 0
+
+
+# ---------------------------------------------------------------------------- plot-limit
+@subcommand("plot-limit")
+def add_plot_limit_parser(subparsers):
+    p = subparsers.add_parser(
+        "plot-limit", help="figure of the collapse mechanism and line of thrust (paper Fig. 3)")
+    add_geometry_options(p)
+    p.add_argument("--out", metavar="FILE.png", default="limit.png",
+                   help="image to write (default limit.png)")
+    p.add_argument("--direction", choices=("l", "r", "both"), default="both",
+                   help="mechanism M_l, M_r or both panels (default both)")
+    p.add_argument("--dpi", type=positive_float, default=150, help="resolution (default 150)")
+    p.set_defaults(func=run_plot_limit)
+    return p
+
+
+def run_plot_limit(args) -> int:
+    from .limit import limit_analysis
+    from .plots import save_limit_figure
+
+    arch = arch_from_args(args)
+    result = limit_analysis(arch, verify=True)
+    dirs = ("l", "r") if args.direction == "both" else (args.direction,)
+    path = save_limit_figure(result, args.out, directions=dirs, dpi=int(args.dpi))
+    print(f"k_l = {result.k_l:.4f}, k_r = {result.k_r:.4f}; wrote {path}")
+    return 0
+
+
+# ---------------------------------------------------------------------------- paper
+@subcommand("paper")
+def add_paper_parser(subparsers):
+    p = subparsers.add_parser(
+        "paper", help="reproduce the paper's results into a folder (figures + summary.json)")
+    p.add_argument("--out", metavar="DIR", default="paper-out",
+                   help="output folder (default paper-out)")
+    p.set_defaults(func=run_paper)
+    return p
+
+
+def run_paper(args) -> int:
+    from .study import run_paper_study
+
+    run_paper_study(args.out, progress=print)
+    return 0
+
+
+# ---------------------------------------------------------------------------- main
+def _version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("archrock")
+    except Exception:  # not installed (running from a source tree)
+        return "unknown"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The top-level parser with every registered subcommand."""
+    parser = _Parser(prog=PROG, description="Seismic rocking assessment of masonry arches: "
+                                            "limit analysis, rocking dynamics, ensembles.")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    sub = parser.add_subparsers(dest="command", metavar="<command>", parser_class=_Parser)
+    sub.required = True
+    for add_parser in SUBCOMMANDS.values():
+        add_parser(sub)
+    return parser
+
+
+def main(argv=None) -> int:
+    """Run the CLI; returns the exit status (0 ok, 2 bad input, 1 missing optional dependency)."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # argparse: --help/--version (0) or a usage error (2)
+        return int(exc.code) if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_USAGE)
+    try:
+        return int(args.func(args) or 0)
+    except (ArchInputError, CLIError) as exc:
+        # one line, no traceback: the message names the field and the allowed range
+        msg = " ".join(str(exc).split())
+        print(f"{PROG}: error: {msg}", file=sys.stderr)
+        return EXIT_USAGE
+    except ImportError as exc:
+        # only a missing optional extra is a user-facing condition; anything else is a bug
+        root = (getattr(exc, "name", None) or "").split(".")[0]
+        if root not in _OPTIONAL_MODULES and "pip install" not in str(exc):
+            raise
+        print(f"{PROG}: error: {exc} (install the extras: pip install 'archrock[all]')",
+              file=sys.stderr)
+        return 1
+    except BrokenPipeError:  # e.g. `archrock limit --json | head`
+        return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

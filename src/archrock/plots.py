@@ -1,0 +1,266 @@
+"""Figures (matplotlib, imported lazily: the core modules never import this one).
+
+Organisation:
+
+* building blocks: :func:`voussoir_outline`, :func:`draw_arch`, :func:`draw_hinges`;
+* limit analysis: :func:`plot_limit` (the paper's Fig. 3 for any arch),
+  :func:`save_limit_figure` (PNG, one panel per direction);
+* saving: :func:`new_figure` and :func:`save_figure` render with the Agg canvas directly, so
+  scripts and the CLI never depend on an interactive backend.
+
+Lengths in metres, angles in radians unless a name says ``_deg``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ArchInputError
+from .geometry import Arch
+
+__all__ = [
+    "HINGE_LABELS",
+    "hinge_labels",
+    "voussoir_outline",
+    "voussoir_bounds",
+    "label_joint",
+    "draw_arch",
+    "draw_hinges",
+    "plot_limit",
+    "save_limit_figure",
+    "new_figure",
+    "save_figure",
+]
+
+HINGE_LABELS = ("A", "B", "C", "D")
+
+# Colours shared by every figure so that later figures look like Fig. 3.
+STYLE = {
+    "voussoir_face": "#e8dcc4",
+    "voussoir_edge": "#5a4a32",
+    "joint": "#2b2b2b",
+    "thrust": "#c0392b",
+    "hinge": "#1f4e9c",
+    "ground": "#777777",
+}
+
+
+def _require_matplotlib():
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise ImportError("matplotlib is required for figures: pip install 'archrock[plot]'") from None
+
+
+# ---------------------------------------------------------------------------- building blocks
+def voussoir_outline(arch: Arch, i: int, points_per_rad: float = 60.0) -> np.ndarray:
+    """Closed outline (m, 2) [m] of voussoir ``i``: extrados arc, joint i+1, intrados arc, joint i.
+
+    Uses the voussoir's own radius and thickness, so irregular arches are drawn as they are.
+    """
+    psi = arch.joint_angles
+    a0, a1 = psi[i], psi[i + 1]  # a0 > a1: joints are numbered from the left
+    m = max(4, int(math.ceil(abs(a0 - a1) * points_per_rad)))
+    t = np.linspace(a0, a1, m)
+    ri, ro = arch.intrados_radii[i], arch.extrados_radii[i]
+    outer = np.column_stack([ro * np.cos(t), ro * np.sin(t)])
+    inner = np.column_stack([ri * np.cos(t[::-1]), ri * np.sin(t[::-1])])
+    return np.vstack([outer, inner, outer[:1]])
+
+
+def draw_arch(ax, arch: Arch, *, facecolor: str | None = None, edgecolor: str | None = None,
+              alpha: float = 1.0, joints: bool = True, ground: bool = True,
+              label_joints=False, zorder: float = 1.0):
+    """Draw the voussoirs (annular sectors) and, optionally, the joint contact surfaces,
+    the springing supports and the joint numbers 0..n. Sets an equal aspect ratio.
+
+    ``label_joints``: False, True (numbers outside the extrados) or a collection of joints
+    whose numbers go inside the intrados instead (to keep clear of extrados hinge labels).
+
+    Returns the list of voussoir patches (reusable, e.g. to move them in an animation).
+    """
+    _require_matplotlib()
+    from matplotlib.patches import Polygon
+
+    face = STYLE["voussoir_face"] if facecolor is None else facecolor
+    edge = STYLE["voussoir_edge"] if edgecolor is None else edgecolor
+    patches = []
+    for i in range(arch.n):
+        poly = Polygon(voussoir_outline(arch, i), closed=True, facecolor=face, edgecolor=edge,
+                       linewidth=0.8, alpha=alpha, zorder=zorder)
+        ax.add_patch(poly)
+        patches.append(poly)
+    psi = arch.joint_angles
+    if joints:
+        # The contact surface of a joint is the overlap of its neighbours' radial extents;
+        # draw that part darker so steps between irregular voussoirs stay visible.
+        for j in range(arch.n + 1):
+            c, s = math.cos(psi[j]), math.sin(psi[j])
+            r0, r1 = arch.contact_inner[j], arch.contact_outer[j]
+            ax.plot([r0 * c, r1 * c], [r0 * s, r1 * s], color=STYLE["joint"], lw=1.4,
+                    solid_capstyle="butt", zorder=zorder + 0.1)
+    if ground:
+        for j in (0, arch.n):
+            _draw_support(ax, arch, j, zorder)
+    if label_joints:
+        inside = set(label_joints) if isinstance(label_joints, (set, frozenset, list, tuple)) else set()
+        for j in range(arch.n + 1):
+            label_joint(ax, arch, j, inside=j in inside, zorder=zorder + 0.2)
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    return patches
+
+
+def label_joint(ax, arch: Arch, j: int, inside: bool = False, zorder: float = 1.2):
+    """Write the number of joint ``j`` just outside the extrados (or inside the intrados)."""
+    psi = arch.joint_angles[j]
+    gap = 0.06 * float(np.mean(arch.radii))
+    r = arch.contact_inner[j] - gap if inside else arch.contact_outer[j] + gap
+    ax.text(r * math.cos(psi), r * math.sin(psi), str(j), ha="center", va="center",
+            fontsize=8, color="#555555", zorder=zorder)
+
+
+def _draw_support(ax, arch: Arch, j: int, zorder: float):
+    """Hatched strip under a springing joint (the ground the end voussoir rests on)."""
+    from matplotlib.patches import Polygon
+
+    psi = arch.joint_angles[j]
+    c, s = math.cos(psi), math.sin(psi)
+    r0, r1 = arch.contact_inner[j], arch.contact_outer[j]
+    p0, p1 = np.array([r0 * c, r0 * s]), np.array([r1 * c, r1 * s])
+    # outward normal of the springing face, pointing away from the arch
+    normal = np.array([-s, c]) if j == 0 else np.array([s, -c])
+    depth = 0.3 * (r1 - r0)
+    # widen the strip a little beyond the contact surface, as a support block
+    along = (p1 - p0) / np.linalg.norm(p1 - p0) * 0.15 * (r1 - r0)
+    pts = np.array([p0 - along, p1 + along, p1 + along + depth * normal, p0 - along + depth * normal])
+    ax.add_patch(Polygon(pts, closed=True, facecolor="white", edgecolor=STYLE["ground"],
+                         hatch="////", linewidth=0.6, zorder=zorder - 0.1))
+
+
+def hinge_labels(mechanism) -> list[tuple[str, object]]:
+    """(label, hinge) pairs: A..D from the mechanism's leading side (METHOD section 3):
+    for M_l, A is the leftmost hinge; for M_r, A is the rightmost."""
+    hinges = list(mechanism.hinges)
+    if mechanism.direction == "r":
+        hinges = hinges[::-1]
+    return list(zip(HINGE_LABELS, hinges))
+
+
+def draw_hinges(ax, arch: Arch, mechanism, *, color: str | None = None, labels: bool = True,
+                zorder: float = 5.0):
+    """Mark the four hinges of ``mechanism`` and label them A, B, C, D.
+
+    Labels sit on the side of the edge away from the masonry (inside the intrados, outside
+    the extrados) so they never cover the voussoirs.
+    """
+    _require_matplotlib()
+    col = STYLE["hinge"] if color is None else color
+    size = float(np.mean(arch.radii))
+    for label, h in hinge_labels(mechanism):
+        x, y = arch.joint_point(h.joint, h.edge)
+        ax.plot([x], [y], "o", ms=8, mfc="white", mec=col, mew=2.0, zorder=zorder)
+        if labels:
+            r = math.hypot(x, y)
+            out = 1.0 if h.edge == "extrados" else -1.0
+            off = 0.075 * size * out
+            ax.text(x + off * x / r, y + off * y / r, label, ha="center", va="center",
+                    fontsize=12, fontweight="bold", color=col, zorder=zorder + 0.1)
+
+
+# ---------------------------------------------------------------------------- limit analysis
+def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True,
+               label_joints: bool = True):
+    """The paper's Fig. 3 for any arch: voussoirs, joints, line of thrust at collapse and the
+    hinges A-D of mechanism M_l (``direction='l'``) or M_r (``'r'``); title with k.
+
+    ``result`` is a :class:`archrock.limit.LimitResult`. Returns the axes.
+    """
+    _require_matplotlib()
+    if direction not in ("l", "r"):
+        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(figsize=(7, 4.6))
+    arch = result.arch
+    mech = result.mechanism(direction)
+    thrust = result.thrust_l if direction == "l" else result.thrust_r
+    k = result.k_l if direction == "l" else result.k_r
+
+    # joint numbers go inside where an extrados hinge label sits outside, and vice versa
+    ext = {h.joint for h in mech.hinges if h.edge == "extrados"}
+    draw_arch(ax, arch, label_joints=ext if label_joints else False)
+    poly = thrust.polyline
+    ax.plot(poly[:, 0], poly[:, 1], "-", color=STYLE["thrust"], lw=1.6, zorder=4,
+            label="line of thrust at collapse")
+    ax.plot(thrust.points[:, 0], thrust.points[:, 1], ".", color=STYLE["thrust"], ms=4, zorder=4)
+    draw_hinges(ax, arch, mech)
+
+    size = float(np.max(arch.extrados_radii))
+    if show_loads:
+        # Direction of the horizontal forces lambda*W (toward +x for M_l, -x for M_r).
+        sgn = 1.0 if direction == "l" else -1.0
+        y0 = 0.25 * size
+        x0 = -0.18 * size * sgn
+        ax.annotate("", xy=(x0 + 0.36 * size * sgn, y0), xytext=(x0, y0),
+                    arrowprops=dict(arrowstyle="-|>", color="#444444", lw=1.5))
+        ax.text(0.0, y0 - 0.07 * size, rf"$\lambda W$, $\lambda = k_{direction}$", ha="center",
+                va="top", fontsize=9, color="#444444")
+
+    seq = ", ".join(f"{lab} = {h.joint}{'i' if h.edge == 'intrados' else 'e'}"
+                    for lab, h in hinge_labels(mech))
+    ax.set_title(f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
+                 f"hinges (joint, i = intrados / e = extrados): {seq}", fontsize=10)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.legend(loc="lower center", fontsize=8, frameon=False)
+    pad = 0.12 * size
+    ax.set_xlim(-size - pad, size + pad)
+    ymin = float(np.min(voussoir_bounds(arch)[:, 1]))
+    ax.set_ylim(min(ymin, 0.0) - 0.2 * size, size + pad)
+    ax.grid(True, lw=0.3, alpha=0.4)
+    return ax
+
+
+def voussoir_bounds(arch: Arch) -> np.ndarray:
+    """All outline points of all voussoirs, (m, 2) [m] (for axis limits)."""
+    return np.vstack([voussoir_outline(arch, i, points_per_rad=10.0) for i in range(arch.n)])
+
+
+def new_figure(nrows: int = 1, ncols: int = 1, figsize=(7.0, 4.6), **kwargs):
+    """A (figure, axes) pair on the Agg canvas, independent of pyplot's global state."""
+    _require_matplotlib()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=figsize, layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(nrows, ncols, squeeze=False, **kwargs)
+    return fig, axes
+
+
+def save_figure(fig, path: str | os.PathLike, dpi: int = 150) -> Path:
+    """Write ``fig`` to ``path`` (format from the extension); parent folders are created."""
+    p = Path(path)
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(p, dpi=dpi)
+    except OSError as exc:
+        raise ArchInputError(f"{p}: cannot write the figure ({exc.strerror or exc})") from None
+    return p
+
+
+def save_limit_figure(result, path: str | os.PathLike, directions=("l", "r"), dpi: int = 150) -> Path:
+    """Write a PNG with one :func:`plot_limit` panel per direction ('l', 'r'). Returns the path."""
+    directions = tuple(directions)
+    if not directions or any(d not in ("l", "r") for d in directions):
+        raise ArchInputError(f"directions: {directions!r}; allowed a non-empty sequence of 'l', 'r'")
+    fig, axes = new_figure(1, len(directions), figsize=(6.4 * len(directions), 4.8))
+    for ax, d in zip(axes[0], directions):
+        plot_limit(result, d, ax=ax)
+    return save_figure(fig, path, dpi=dpi)

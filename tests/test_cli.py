@@ -1,0 +1,279 @@
+"""The command line: real values from in-process runs of main(), plus one run of the installed script."""
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from archrock.cli import SUBCOMMANDS, add_geometry_options, arch_from_args, main
+from archrock.files import read_arch
+from archrock.geometry import random_arch
+from archrock.limit import limit_analysis, minimum_thickness
+
+OPPENHEIM_FLAGS = ["--radius", "10", "--embrace", "157.5", "--thickness", "1.5", "--voussoirs", "7"]
+# Fig. 3 of the paper / METHOD section 2: hinges ordered from the left springing.
+HINGES_L = [{"joint": 0, "edge": "intrados"}, {"joint": 3, "edge": "extrados"},
+            {"joint": 5, "edge": "intrados"}, {"joint": 7, "edge": "extrados"}]
+# M_r is the mirror image of M_l on a symmetric arch (joint j -> 7 - j).
+HINGES_R = [{"joint": 0, "edge": "extrados"}, {"joint": 2, "edge": "intrados"},
+            {"joint": 4, "edge": "extrados"}, {"joint": 7, "edge": "intrados"}]
+
+
+def run(capsys, *argv):
+    """main(argv) in-process; returns (exit status, stdout, stderr)."""
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def run_json(capsys, *argv):
+    code, out, err = run(capsys, *argv)
+    assert code == 0, err
+    return json.loads(out)
+
+
+# ---------------------------------------------------------------------------- limit
+def test_limit_json_oppenheim(capsys):
+    d = run_json(capsys, "limit", *OPPENHEIM_FLAGS, "--json")
+    assert round(d["k_l"], 4) == 0.3700
+    assert round(d["k_r"], 4) == 0.3700
+    assert d["mechanism_l"]["hinges"] == HINGES_L
+    assert d["mechanism_r"]["hinges"] == HINGES_R
+    assert d["mechanism_l"]["multiplier"] == d["k_l"]
+    # the static LP is an independent method: it must agree to solver precision
+    assert abs(d["static_k_l"] - d["k_l"]) < 1e-9
+    assert abs(d["static_k_r"] - d["k_r"]) < 1e-9
+    assert d["discrepancy"] < 1e-9
+    geo = d["geometry"]["voussoirs"]
+    assert len(geo) == 7
+    assert all(v == {"span_deg": pytest.approx(22.5), "radius": 10.0, "thickness": 1.5} for v in geo)
+    # labels A..D start on the mechanism's leading side: the rightmost hinge for M_r
+    assert d["hinge_labels"]["l"][0] == {"label": "A", "joint": 0, "edge": "intrados"}
+    assert d["hinge_labels"]["r"][0] == {"label": "A", "joint": 7, "edge": "intrados"}
+    assert "min_thickness" not in d
+
+
+def test_limit_defaults_are_oppenheims_arch(capsys):
+    d = run_json(capsys, "limit", "--json")
+    assert d["arch"] == "Oppenheim"
+    assert round(d["k"], 4) == 0.3700
+    assert d["mechanism_l"]["hinges"] == HINGES_L
+
+
+def test_limit_table_is_readable(capsys):
+    code, out, err = run(capsys, "limit")
+    assert code == 0 and err == ""
+    assert "M_l               0.3700         0.3700  A: 0 intrados, B: 3 extrados, C: 5 intrados, D: 7 extrados" in out
+    assert "M_r               0.3700         0.3700  A: 7 intrados, B: 4 extrados, C: 2 intrados, D: 0 extrados" in out
+    assert "LP check" in out and "(agree)" in out
+
+
+def test_limit_min_thickness_matches_the_api(capsys):
+    d = run_json(capsys, "limit", "--thickness", "1.0", "--min-thickness", "--json")
+    mt = minimum_thickness(arch_from_args(_geometry_args("--thickness", "1.0")))
+    assert d["min_thickness"]["factor"] == pytest.approx(mt.factor, rel=1e-12)
+    assert d["min_thickness"]["ratio_t_over_R"] == pytest.approx(mt.ratio, rel=1e-12)
+    # an arch that carries 0.3 g horizontally stands on well under its own thickness
+    assert 0.0 < d["min_thickness"]["factor"] < 1.0
+
+
+def test_thicker_arch_is_stronger(capsys):
+    thin = run_json(capsys, "limit", "--thickness", "1.2", "--json")["k"]
+    thick = run_json(capsys, "limit", "--thickness", "1.8", "--json")["k"]
+    assert thin < 0.3700 < thick
+
+
+# ---------------------------------------------------------------------------- random-arch
+def test_random_arch_round_trip_matches_the_python_api(capsys, tmp_path):
+    path = tmp_path / "ra.json"
+    code, out, err = run(capsys, "random-arch", "--seed", "7", "--out", str(path))
+    assert code == 0, err
+    arch = read_arch(path)
+    expected = random_arch(seed=7, spread_span=0.1, spread_thickness=0.1, spread_radius=0.05)
+    np.testing.assert_array_equal(arch.radii, expected.radii)
+    np.testing.assert_array_equal(arch.thicknesses, expected.thicknesses)
+    np.testing.assert_allclose(arch.spans, expected.spans, rtol=0, atol=1e-14)
+
+    d = run_json(capsys, "limit", "--geometry", str(path), "--json")
+    api = limit_analysis(read_arch(path))
+    assert d["k_l"] == api.k_l and d["k_r"] == api.k_r
+    assert d["mechanism_l"] == api.mechanism_l.to_dict()
+    assert d["mechanism_r"] == api.mechanism_r.to_dict()
+    assert d["static_k_l"] == api.static_k_l and d["static_k_r"] == api.static_k_r
+    # an irregular arch: the two directions differ, both near Oppenheim's 0.37
+    assert abs(d["k_l"] - d["k_r"]) > 1e-4
+    assert 0.25 < d["k"] < 0.5
+
+
+def test_random_arch_stdout_is_reproducible_and_spreads_apply(capsys):
+    a = run_json(capsys, "random-arch", "--seed", "3")
+    b = run_json(capsys, "random-arch", "--seed", "3")
+    assert a == b
+    spans = [v["span_deg"] for v in a["voussoirs"]]
+    assert sum(spans) == pytest.approx(157.5, abs=1e-9)
+    assert a["metadata"]["seed"] == 3
+    flat = run_json(capsys, "random-arch", "--seed", "3", "--spread-span", "0",
+                    "--spread-thickness", "0", "--spread-radius", "0")
+    assert all(v == {"span_deg": pytest.approx(22.5), "radius": 10.0, "thickness": 1.5}
+               for v in flat["voussoirs"])
+
+
+def test_random_arch_around_a_given_nominal(capsys):
+    d = run_json(capsys, "random-arch", "--seed", "1", "--radius", "2", "--thickness", "0.3",
+                 "--voussoirs", "9", "--embrace", "180", "--spread-radius", "0")
+    assert len(d["voussoirs"]) == 9
+    assert all(v["radius"] == 2.0 for v in d["voussoirs"])
+    assert all(0.27 <= v["thickness"] <= 0.33 for v in d["voussoirs"])
+
+
+# ---------------------------------------------------------------------------- bad input
+BAD_INPUTS = [
+    (["limit", "--thickness", "-1"], "thickness"),
+    (["limit", "--thickness", "20"], "thickness"),       # t >= 2R
+    (["limit", "--embrace", "360"], "embrace"),          # spans adding to >= 360 deg
+    (["limit", "--voussoirs", "2"], "voussoirs"),
+    (["limit", "--voussoirs", "3.5"], "--voussoirs"),
+    (["limit", "--radius", "nan"], "--radius"),
+    (["limit", "--thickness", "inf"], "--thickness"),
+    (["limit", "--density", "0"], "density"),
+    (["limit", "--radius", "0"], "radius"),
+    (["random-arch", "--spread-span", "1.5"], "spread_span"),
+    (["random-arch", "--spread-thickness", "-inf"], "--spread-thickness"),
+    (["random-arch", "--seed", "-1"], "--seed"),
+    (["plot-limit", "--direction", "x"], "--direction"),
+    (["limit", "--geometry", "x.json", "--radius", "3"], "--geometry"),
+    (["nonsense"], "invalid choice"),
+    ([], "command"),
+]
+
+
+@pytest.mark.parametrize("argv, field", BAD_INPUTS)
+def test_bad_flags_exit_2_with_one_line(capsys, argv, field):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    last = err.strip().splitlines()[-1]
+    assert last.startswith("archrock: error: ")
+    assert field in last
+    assert "Traceback" not in err
+    assert out == ""
+
+
+def _geometry_file(tmp_path, name, voussoirs, raw=None):
+    p = tmp_path / name
+    p.write_text(raw if raw is not None else json.dumps({"voussoirs": voussoirs}))
+    return p
+
+
+V = {"span_deg": 30.0, "radius": 10.0, "thickness": 1.0}
+BAD_FILES = [
+    ("gap.json", [V, V, dict(V, radius=12.0), V, V], None, "joint 2"),      # non-overlapping joints
+    ("full.json", [dict(V, span_deg=125.0)] * 3, None, "360"),
+    ("few.json", [V, V], None, "at least 3"),
+    ("nan.json", None, '{"voussoirs": [{"span_deg": NaN, "radius": 10, "thickness": 1}]}',
+     "voussoirs[0].span_deg"),
+    ("broken.json", None, '{"voussoirs": [\n', "line 2, column 1"),
+    ("thick.json", [V, dict(V, thickness=20.0), V], None, "thickness of voussoir 1"),
+]
+
+
+@pytest.mark.parametrize("name, voussoirs, raw, fragment", BAD_FILES)
+def test_bad_geometry_files_exit_2(capsys, tmp_path, name, voussoirs, raw, fragment):
+    p = _geometry_file(tmp_path, name, voussoirs, raw)
+    for cmd in ("limit", "plot-limit", "random-arch"):
+        code, out, err = run(capsys, cmd, "--geometry", str(p), *(["--out", str(tmp_path / "o")]
+                                                                  if cmd != "limit" else []))
+        assert code == 2, (cmd, err)
+        assert err.count("\n") == 1 and err.startswith("archrock: error: ")
+        assert name in err and fragment in err
+        assert "Traceback" not in err
+
+
+def test_missing_geometry_file_exits_2(capsys, tmp_path):
+    code, out, err = run(capsys, "limit", "--geometry", str(tmp_path / "absent.json"))
+    assert code == 2
+    assert err.strip() == f"archrock: error: {tmp_path / 'absent.json'}: geometry file not found"
+
+
+# ---------------------------------------------------------------------------- figures, paper
+def test_plot_limit_writes_a_png(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "fig" / "limit.png"
+    code, stdout, err = run(capsys, "plot-limit", "--out", str(out), "--direction", "both")
+    assert code == 0, err
+    data = out.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    # PNG header: width and height (big-endian) -- two panels side by side
+    width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+    assert width > 1.8 * height
+    assert len(data) > 20_000
+    assert "k_l = 0.3700, k_r = 0.3700" in stdout
+
+
+def test_paper_writes_fig3_and_summary(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    code, out, err = run(capsys, "paper", "--out", str(tmp_path / "p"))
+    assert code == 0, err
+    assert (tmp_path / "p" / "fig3_oppenheim_limit.png").stat().st_size > 20_000
+    s = json.loads((tmp_path / "p" / "summary.json").read_text())
+    lim = s["limit_oppenheim"]
+    assert round(lim["k"], 4) == 0.3700
+    assert lim["matches_paper_4_decimals"] is True
+    assert [h["joint"] for h in lim["hinges"]["l"]] == [0, 3, 5, 7]
+    assert "k_l = 0.3700" in out
+
+
+# ---------------------------------------------------------------------------- plumbing
+def _geometry_args(*argv):
+    p = argparse.ArgumentParser()
+    add_geometry_options(p)
+    return p.parse_args(list(argv))
+
+
+def test_geometry_helpers_for_other_subcommands():
+    a = arch_from_args(_geometry_args())
+    assert a.name == "Oppenheim" and a.n == 7
+    b = arch_from_args(_geometry_args("--radius", "5", "--voussoirs", "9"))
+    assert b.n == 9 and np.all(b.radii == 5.0) and np.all(b.thicknesses == 1.5)
+    assert {"limit", "random-arch", "plot-limit", "paper"} <= set(SUBCOMMANDS)
+
+
+def test_version_and_help_return_0(capsys):
+    code, out, _ = run(capsys, "--version")
+    assert code == 0 and out.startswith("archrock ")
+    code, out, _ = run(capsys, "limit", "--help")
+    assert code == 0 and "--geometry FILE" in out
+
+
+def _installed_script():
+    # the console script sits next to the interpreter in a venv; fall back to PATH
+    cand = Path(sys.executable).parent / ("archrock.exe" if os.name == "nt" else "archrock")
+    return str(cand) if cand.exists() else shutil.which("archrock")
+
+
+def test_installed_script_runs():
+    script = _installed_script()
+    if script is None:
+        pytest.skip("the archrock console script is not installed")
+    proc = subprocess.run([script, "limit", "--json"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    d = json.loads(proc.stdout)
+    assert round(d["k_l"], 4) == 0.3700
+    bad = subprocess.run([script, "limit", "--thickness", "nan"], capture_output=True, text=True,
+                         timeout=120)
+    assert bad.returncode == 2
+    assert "Traceback" not in bad.stderr and "archrock: error: argument --thickness" in bad.stderr
+
+
+def test_python_dash_m():
+    proc = subprocess.run([sys.executable, "-m", "archrock", "limit", "--voussoirs", "3", "--json"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    d = json.loads(proc.stdout)
+    assert len(d["geometry"]["voussoirs"]) == 3
+    assert d["k_l"] == pytest.approx(d["k_r"], rel=1e-9)
