@@ -24,6 +24,7 @@ __all__ = [
     "main", "build_parser", "subcommand", "SUBCOMMANDS", "CLIError",
     "add_geometry_options", "arch_from_args", "finite_float", "positive_float",
     "non_negative_int", "emit_json", "GEOMETRY_DEFAULTS",
+    "add_motion_options", "motion_from_args", "add_impact_options", "model_from_args",
 ]
 
 PROG = "archrock"
@@ -324,6 +325,139 @@ def run_plot_limit(args) -> int:
     dirs = ("l", "r") if args.direction == "both" else (args.direction,)
     path = save_limit_figure(result, args.out, directions=dirs, dpi=int(args.dpi))
     print(f"k_l = {result.k_l:.4f}, k_r = {result.k_r:.4f}; wrote {path}")
+    return 0
+
+
+# ---------------------------------------------------------------------------- ground motion / impact
+def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) -> argparse.ArgumentParser:
+    """Add the ground-motion options: --pulse KIND --amplitude A_G --pulse-duration S, or
+    --record FILE [--units U] [--scale F]."""
+    g = parser.add_argument_group(
+        "ground motion", "an idealised pulse (amplitude in g, positive toward +x) or a record")
+    g.add_argument("--pulse", metavar="KIND",
+                   help="oppenheim (a for t_p, -a/2 for 2 t_p: the paper's), rectangular, "
+                        "half-sine, one-sine or ricker")
+    g.add_argument("--amplitude", type=finite_float, metavar="A_G", default=None,
+                   help="pulse amplitude [g], sign = direction (paper: -1)")
+    g.add_argument("--pulse-duration", type=finite_float, metavar="S", default=None,
+                   help="pulse duration t_p [s] (ricker: its period) (paper: 0.2)")
+    g.add_argument("--record", metavar="FILE",
+                   help="accelerogram: PEER .AT2 (g) or two-column 'time accel' text file")
+    g.add_argument("--units", choices=("g", "m/s2", "cm/s2"), default=None,
+                   help="units of a two-column record (default g)")
+    g.add_argument("--scale", type=finite_float, default=1.0, metavar="F",
+                   help="scale factor applied to the record (default 1)")
+    parser.set_defaults(_motion_required=required)
+    return parser
+
+
+def motion_from_args(args: argparse.Namespace):
+    """The GroundMotion described by :func:`add_motion_options`, or None if none was given."""
+    from .groundmotion import load_record, pulse
+
+    has_pulse = any(getattr(args, f, None) is not None for f in ("pulse", "amplitude", "pulse_duration"))
+    if getattr(args, "record", None):
+        if has_pulse:
+            raise CLIError("--record: cannot be combined with --pulse/--amplitude/--pulse-duration")
+        motion = load_record(args.record, units=args.units)
+        return motion.scaled(args.scale) if args.scale != 1.0 else motion
+    if not has_pulse:
+        if getattr(args, "_motion_required", False):
+            raise CLIError("ground motion: give --pulse KIND --amplitude A_G --pulse-duration S "
+                           "or --record FILE")
+        return None
+    kind = args.pulse or "oppenheim"
+    if args.amplitude is None or args.pulse_duration is None:
+        raise CLIError("--amplitude and --pulse-duration: both are needed with a pulse "
+                       "(e.g. --pulse oppenheim --amplitude -1 --pulse-duration 0.2)")
+    return pulse(kind, args.amplitude, args.pulse_duration)
+
+
+def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add --impact paper|momentum and --cv X (a fixed coefficient of restitution)."""
+    g = parser.add_argument_group("impact", "coefficient of restitution at each impact")
+    g.add_argument("--impact", choices=("paper", "momentum"), default=None,
+                   help="paper: De Lorenzis et al.'s five equations on this geometry (refused if "
+                        "it creates energy); momentum: energy-consistent projection "
+                        "(default: paper)")
+    g.add_argument("--cv", type=finite_float, default=None, metavar="CV",
+                   help="fixed coefficient of restitution, 0 < cv <= 1 (kinetic energy x cv^2)")
+    g.add_argument("--literal-cv", action="store_true",
+                   help="apply --cv to the rates literally (may gain energy on irregular arches)")
+    return parser
+
+
+def model_from_args(args: argparse.Namespace, arch=None):
+    """The prepared DynamicModel (limit analysis, mechanisms, impact law) for the options."""
+    from .response import prepare
+
+    arch = arch_from_args(args) if arch is None else arch
+    if args.cv is not None and args.impact is not None:
+        raise CLIError("--cv: cannot be combined with --impact; choose one")
+    if args.cv is not None:
+        return prepare(arch, "fixed", cv=args.cv, literal_cv=args.literal_cv)
+    return prepare(arch, args.impact or "paper")
+
+
+# ---------------------------------------------------------------------------- respond
+@subcommand("respond")
+def add_respond_parser(subparsers):
+    p = subparsers.add_parser(
+        "respond", help="rocking response of an arch to a ground motion (four-link mechanism)",
+        description="Activation by the paper's eq. (1), motion in M_l / M_r, impacts, rest or "
+                    "collapse; signed response +phi in M_l, -phi in M_r.")
+    add_geometry_options(p)
+    add_motion_options(p, required=True)
+    add_impact_options(p)
+    p.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
+                   help="end of the output window [s] (default 3); the outcome covers the whole "
+                        "ground motion and the free motion after it")
+    p.add_argument("--dt-out", type=positive_float, default=0.005, metavar="S",
+                   help="output sampling [s] (default 0.005)")
+    p.add_argument("--integrator", choices=("fast", "reference"), default="fast",
+                   help="fast: RK4 + events (numba); reference: scipy DOP853 (default fast)")
+    p.add_argument("--limit-factor", type=finite_float, default=None, metavar="F",
+                   help="collapse rotation limit as a multiple of the unstable rotation (> 1)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="write a figure of the motion and response")
+    p.add_argument("--animate", metavar="FILE.gif", help="write an animation of the mechanism")
+    p.set_defaults(func=run_respond)
+    return p
+
+
+def run_respond(args) -> int:
+    from .response import prepare, respond
+
+    motion = motion_from_args(args)
+    model = model_from_args(args)
+    if args.limit_factor is not None:
+        model = prepare(model.arch, model.impact, limit_factor=args.limit_factor, limit=model.limit)
+    res = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out, integrator=args.integrator)
+    if args.plot:
+        from .plots import save_response_figure
+
+        save_response_figure([res], args.plot, labels=[model.arch.name])
+    if args.animate:
+        from .animate import animate_response
+
+        animate_response(res, args.animate)
+    if args.json:
+        emit_json(res.to_dict())
+        return 0
+    imp = res.impacts
+    print(f"arch: {model.arch.name}; k_l = {model.k_l:.4f}, k_r = {model.k_r:.4f}")
+    print(f"ground motion: {motion.name} (duration {motion.duration:g} s, PGA {motion.pga_g:.3f} g)")
+    law = model.impact
+    print(f"impact: {law.model}; rate ratio l->r {law.l_to_r:.4f}, r->l {law.r_to_l:.4f} "
+          f"(energy ratio {law.energy_l_to_r:.4f}, {law.energy_r_to_l:.4f})")
+    outcome = (f"COLLAPSED at t = {res.t_collapse:.3f} s" if res.collapsed else
+               ("at rest" if res.status == "rest" else "still rocking at the end of the run"))
+    print(f"outcome: {outcome}; peak rotation {res.peak:.4f} rad; {len(imp)} impacts"
+          + (f" (first at {imp[0]:.3f} s)" if imp else "")
+          + (f"; passed the unstable position at {res.t_unstable:.3f} s" if res.t_unstable else ""))
+    for f in (args.plot, args.animate):
+        if f:
+            print(f"wrote {f}")
     return 0
 
 
