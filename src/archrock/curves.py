@@ -1,0 +1,411 @@
+"""Collapse-acceleration curves: the smallest pulse amplitude that collapses an arch, against t_p.
+
+The headline results of De Lorenzis, DeJong and Ochsendorf (2007, EESD 36): for a pulse of kind
+``kind`` (Oppenheim's by default), duration ``t_p`` and amplitude ``a`` in g with the sign
+``sign`` (-1: the pulse first pushes with xg'' < 0, which opens M_l at |a| >= k_l; +1: it opens M_r
+at |a| >= k_r), find the first collapse amplitude.
+
+Collapse is **not** monotonic in the amplitude (a stronger pulse can be survived, METHOD section 3),
+so :func:`collapse_amplitude` does not bisect blindly:
+
+1. scan |a| on a geometric grid of ``n_scan`` points from just above the activation threshold
+   (k of the loaded mechanism) to ``a_max``;
+2. bisect between the last survival below the first collapse on the grid and that collapse, to
+   ``tol`` [g]: the result is a true boundary (|a| - tol or less survives, |a| collapses);
+3. report the survival windows above the first collapse, each edge refined by bisection too.
+
+A collapse window narrower than the grid spacing below the first grid collapse can be missed; the
+grid spacing is reported (``CollapseAmplitude.scan``) so the caller can refine it.
+
+Impact: as in the paper, a fixed c_v computed once on the nominal arch with the "paper" model
+(0.8754 for Oppenheim's arch), applied to every random arch of an ensemble (:func:`default_cv`).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import ArchInputError
+from .geometry import Arch, random_arch
+from .groundmotion import PULSE_KINDS, pulse
+from .response import DynamicModel, prepare, respond
+
+__all__ = [
+    "CollapseAmplitude",
+    "CollapseCurve",
+    "EnsembleCurve",
+    "collapse_amplitude",
+    "collapse_curve",
+    "ensemble_curve",
+    "default_cv",
+    "collapse_mode",
+    "parse_range",
+]
+
+#: Response settings used by every collapse test (outcome only: coarse output sampling).
+_RESPOND = {"t_end": 0.5, "dt_out": 0.5, "max_events": 20_000}
+
+
+# ---------------------------------------------------------------------------- helpers
+def _check_real(name: str, value, lo: float | None = None, allowed: str = "") -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ArchInputError(f"{name}: {value!r}; allowed {allowed or 'a finite number'}")
+    v = float(value)
+    if not math.isfinite(v) or (lo is not None and v <= lo):
+        raise ArchInputError(f"{name}: {value!r}; allowed {allowed or 'a finite number'}")
+    return v
+
+
+def _check_int(name: str, value, lo: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise ArchInputError(f"{name}: {value!r}; allowed an integer >= {lo}")
+    return int(value)
+
+
+def _check_kind(kind: str) -> str:
+    key = kind.strip().lower().replace("_", "-") if isinstance(kind, str) else None
+    if key not in PULSE_KINDS:
+        raise ArchInputError(f"pulse kind: {kind!r}; allowed one of {', '.join(PULSE_KINDS)}")
+    return key
+
+
+def _check_sign(sign) -> int:
+    if isinstance(sign, bool) or sign not in (-1, 1):
+        raise ArchInputError(f"sign: {sign!r}; allowed -1 (pulse pushes with xg'' < 0 first, opens M_l) "
+                             f"or +1 (opens M_r)")
+    return int(sign)
+
+
+def parse_range(text: str, name: str = "durations") -> np.ndarray:
+    """``"lo:hi:n"`` (n evenly spaced values, ends included) or ``"a,b,c"`` -> array of floats > 0."""
+    if not isinstance(text, str) or not text.strip():
+        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' or a comma list of numbers > 0")
+    try:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise ValueError
+            lo, hi, n = float(parts[0]), float(parts[1]), int(parts[2])
+            if n < 1 or not (math.isfinite(lo) and math.isfinite(hi)) or hi < lo or (n > 1 and hi == lo):
+                raise ValueError
+            vals = np.linspace(lo, hi, n)
+        else:
+            vals = np.array([float(p) for p in text.split(",")])
+    except ValueError:
+        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' (lo < hi, n >= 1) or a comma list "
+                             f"of numbers > 0") from None
+    if vals.size == 0 or not np.all(np.isfinite(vals)) or np.any(vals <= 0):
+        raise ArchInputError(f"{name}: {text!r}; allowed numbers > 0")
+    return vals
+
+
+def default_cv(nominal: Arch) -> float:
+    """The paper's c_v: the "paper" impact model on the nominal arch (0.8754 for Oppenheim's)."""
+    return float(prepare(nominal, "paper").impact.l_to_r)
+
+
+def collapse_mode(response) -> str | None:
+    """'before first impact', 'after N impacts' for a collapsed response, None otherwise."""
+    if not response.collapsed:
+        return None
+    n = len(response.impacts)
+    return "before first impact" if n == 0 else f"after {n} impact{'s' if n > 1 else ''}"
+
+
+def _model(arch_or_model, impact, cv):
+    if isinstance(arch_or_model, DynamicModel):
+        return arch_or_model
+    if not isinstance(arch_or_model, Arch):
+        raise ArchInputError(f"model: expected an Arch or a DynamicModel, got {type(arch_or_model).__name__}")
+    if impact is None:
+        return prepare(arch_or_model, default_cv(arch_or_model) if cv is None else float(cv))
+    return prepare(arch_or_model, impact, cv=cv)
+
+
+# ---------------------------------------------------------------------------- one duration
+@dataclass(frozen=True)
+class CollapseAmplitude:
+    """First collapse amplitude of one pulse duration.
+
+    amplitude: first collapse |a| [g] (None if no collapse up to ``a_max``); the signed amplitude
+    is ``sign * amplitude``.  bracket: (last survival, first collapse) after bisection, |a| [g],
+    hi - lo <= tol.  mode: 'before first impact' or 'after N impacts' at the first collapse;
+    t_collapse [s] there.  windows: survival windows above the first collapse, (lo, hi) in |a| [g]:
+    lo is the smallest and hi the largest surviving amplitude found (edges bisected to ``tol``;
+    hi = a_max when the arch still survives at a_max).  threshold: activation threshold |a| [g]
+    (k_l for sign -1, k_r for sign +1).  scan_amplitudes / scan_collapsed: the grid and outcomes.
+    """
+
+    duration: float
+    kind: str
+    sign: int
+    amplitude: float | None
+    bracket: tuple[float, float] | None
+    mode: str | None
+    t_collapse: float | None
+    windows: tuple[tuple[float, float], ...]
+    threshold: float
+    a_max: float
+    tol: float
+    scan_amplitudes: np.ndarray = field(repr=False)
+    scan_collapsed: np.ndarray = field(repr=False)
+    n_responses: int = 0
+
+    def to_dict(self) -> dict:
+        return {
+            "duration": self.duration, "kind": self.kind, "sign": self.sign,
+            "amplitude_g": self.amplitude,
+            "bracket_g": None if self.bracket is None else list(self.bracket),
+            "mode": self.mode, "t_collapse": self.t_collapse,
+            "survival_windows_g": [list(w) for w in self.windows],
+            "threshold_g": self.threshold, "a_max_g": self.a_max, "tol_g": self.tol,
+            "scan_amplitudes_g": self.scan_amplitudes.tolist(),
+            "scan_collapsed": [bool(c) for c in self.scan_collapsed],
+            "n_responses": self.n_responses,
+        }
+
+
+def _bisect(test, lo, hi, lo_val, tol):
+    """Boundary between lo (outcome lo_val) and hi (outcome not lo_val), to tol; returns (lo, hi)."""
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        if test(mid) == lo_val:
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi
+
+
+def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: int = -1, *,
+                       a_max: float = 10.0, n_scan: int = 150, tol: float = 1e-3,
+                       impact=None, cv: float | None = None, dt: float = 2e-3) -> CollapseAmplitude:
+    """First collapse amplitude [g] of a ``kind`` pulse of duration ``duration`` [s] (module doc).
+
+    model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``; default
+    the paper's fixed c_v of that arch).  sign: -1 or +1 (direction of the pulse's first push).
+    a_max [g]: top of the scan; n_scan: grid points (geometric spacing); tol [g]: bisection
+    tolerance; dt [s]: RK4 step of the fast integrator.
+    """
+    model = _model(model, impact, cv)
+    kind = _check_kind(kind)
+    sign = _check_sign(sign)
+    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
+    tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")
+    n_scan = _check_int("n_scan", n_scan, 2)
+    thr = float(model.k_l if sign < 0 else model.k_r)
+    a_max = _check_real("a_max", a_max, None, f"a finite number > the activation threshold {thr:.4f} g")
+    if a_max <= thr * (1 + 1e-6):
+        raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation threshold "
+                             f"{thr:.4f} g")
+    count = [0]
+    cache: dict[float, object] = {}
+
+    def run(a):
+        if a not in cache:
+            count[0] += 1
+            cache[a] = respond(model, pulse(kind, sign * a, tp), dt=dt, **_RESPOND)
+        return cache[a]
+
+    def test(a):
+        return run(a).collapsed
+
+    grid = np.geomspace(thr * (1 + 1e-6), a_max, n_scan)
+    flags = np.array([test(float(a)) for a in grid])
+    hits = np.flatnonzero(flags)
+    if hits.size == 0:
+        return CollapseAmplitude(tp, kind, sign, None, None, None, None, (), thr, a_max, tol, grid,
+                                 flags, count[0])
+    i0 = int(hits[0])
+    if i0 == 0:
+        lo, hi = thr, float(grid[0])  # collapse right at activation: the threshold is the boundary
+    else:
+        lo, hi = _bisect(test, float(grid[i0 - 1]), float(grid[i0]), False, tol)
+    r = run(hi)
+    # survival windows above the first collapse: runs of False in flags[i0:], edges bisected
+    windows = []
+    j = i0
+    n = grid.size
+    while j < n:
+        if flags[j]:
+            j += 1
+            continue
+        k = j
+        while k + 1 < n and not flags[k + 1]:
+            k += 1
+        # survivals grid[j]..grid[k]; collapse at grid[j-1]; collapse at grid[k+1] (if any)
+        _, w_lo = _bisect(test, float(grid[j - 1]), float(grid[j]), True, tol)
+        if k + 1 < n:
+            w_hi, _ = _bisect(test, float(grid[k]), float(grid[k + 1]), False, tol)
+        else:
+            w_hi = float(grid[k])
+        windows.append((w_lo, w_hi))
+        j = k + 1
+    return CollapseAmplitude(tp, kind, sign, hi, (lo, hi), collapse_mode(r), r.t_collapse,
+                             tuple(windows), thr, a_max, tol, grid, flags, count[0])
+
+
+# ---------------------------------------------------------------------------- a curve
+@dataclass(frozen=True)
+class CollapseCurve:
+    """First collapse amplitude against pulse duration for one arch.
+
+    durations [s]; amplitudes [g] (NaN where no collapse up to a_max); modes; windows (survival
+    windows above the first collapse, per duration); points: the full :class:`CollapseAmplitude`s.
+    """
+
+    durations: np.ndarray
+    amplitudes: np.ndarray
+    modes: tuple
+    windows: tuple
+    points: tuple = field(repr=False)
+    k_l: float = float("nan")
+    k_r: float = float("nan")
+    cv: tuple[float, float] | None = None
+
+    def to_dict(self, scan: bool = False) -> dict:
+        pts = []
+        for p in self.points:
+            d = p.to_dict()
+            if not scan:
+                d.pop("scan_amplitudes_g")
+                d.pop("scan_collapsed")
+            pts.append(d)
+        return {
+            "durations": self.durations.tolist(),
+            "amplitudes_g": [None if not math.isfinite(a) else float(a) for a in self.amplitudes],
+            "modes": list(self.modes),
+            "survival_windows_g": [[list(w) for w in ws] for ws in self.windows],
+            "k_l": self.k_l, "k_r": self.k_r,
+            "restitution": None if self.cv is None else {"l_to_r": self.cv[0], "r_to_l": self.cv[1]},
+            "points": pts,
+        }
+
+
+def _durations(durations) -> np.ndarray:
+    try:
+        d = np.atleast_1d(np.asarray(durations, dtype=float))
+    except (TypeError, ValueError):
+        raise ArchInputError(f"durations: {durations!r}; allowed a list of numbers > 0 s") from None
+    if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
+        raise ArchInputError(f"durations: {durations!r}; allowed a non-empty list of numbers > 0 s")
+    return d
+
+
+def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
+                   n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
+                   dt: float = 2e-3) -> CollapseCurve:
+    """:func:`collapse_amplitude` for each of ``durations`` [s]."""
+    model = _model(model, impact, cv)
+    d = _durations(durations)
+    pts = tuple(collapse_amplitude(model, float(tp), kind, sign, a_max=a_max, n_scan=n_scan, tol=tol,
+                                   dt=dt) for tp in d)
+    amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in pts])
+    return CollapseCurve(d, amps, tuple(p.mode for p in pts), tuple(p.windows for p in pts), pts,
+                         float(model.k_l), float(model.k_r),
+                         (float(model.impact.l_to_r), float(model.impact.r_to_l)))
+
+
+# ---------------------------------------------------------------------------- ensembles
+@dataclass(frozen=True)
+class EnsembleCurve:
+    """Quantile bands of the first collapse amplitude over random arches.
+
+    durations [s]; quantiles (levels); bands[q_index, d_index] [g] (inf where the quantile lies
+    among arches that did not collapse up to a_max); amplitudes[sample, d_index] [g] (inf: no
+    collapse); nominal: the nominal arch's curve; seed, spreads, cv as used.
+    """
+
+    durations: np.ndarray
+    quantiles: tuple[float, ...]
+    bands: np.ndarray
+    amplitudes: np.ndarray
+    nominal: CollapseCurve
+    seed: int | None
+    spreads: dict
+    cv: float
+    n_samples: int
+    failed: tuple = ()
+
+    def to_dict(self) -> dict:
+        def f(v):
+            return None if not math.isfinite(v) else float(v)
+        return {
+            "durations": self.durations.tolist(),
+            "quantiles": list(self.quantiles),
+            "bands_g": [[f(v) for v in row] for row in self.bands],
+            "amplitudes_g": [[f(v) for v in row] for row in self.amplitudes],
+            "n_samples": self.n_samples, "seed": self.seed, "spreads": dict(self.spreads),
+            "cv": self.cv, "failed": [list(x) for x in self.failed],
+            "nominal": self.nominal.to_dict(),
+        }
+
+
+_SPREAD_KEYS = ("spread_span", "spread_thickness", "spread_radius")
+
+
+def _one_sample(job):
+    nominal, child, spreads, impact, durations, kwargs = job
+    arch = random_arch(nominal, rng=np.random.default_rng(child), **spreads)
+    model = prepare(arch, impact)
+    curve = collapse_curve(model, durations, **kwargs)
+    return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf)
+
+
+def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
+                   durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
+                   kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
+                   tol: float = 1e-3, dt: float = 2e-3, workers: int = 1) -> EnsembleCurve:
+    """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
+
+    Arch i is drawn from the i-th child of ``numpy.random.SeedSequence(seed)`` (independent streams:
+    results do not depend on ``workers``).  spreads: keys spread_span, spread_thickness,
+    spread_radius (defaults of :func:`~archrock.geometry.random_arch`).  impact: None (default)
+    = the paper's choice, a fixed c_v from the "paper" model on the nominal arch applied to every
+    arch; or a model name / number passed to :func:`~archrock.response.prepare`.
+    workers > 1 runs arches in a process pool.
+    """
+    if not isinstance(nominal, Arch):
+        raise ArchInputError(f"nominal: expected an Arch, got {type(nominal).__name__}")
+    samples = _check_int("samples", samples, 1)
+    workers = _check_int("workers", workers, 1)
+    spreads = dict(spreads or {})
+    bad = set(spreads) - set(_SPREAD_KEYS)
+    if bad:
+        raise ArchInputError(f"spreads: unknown key(s) {sorted(bad)}; allowed {', '.join(_SPREAD_KEYS)}")
+    q = np.asarray(quantiles, dtype=float)
+    if q.ndim != 1 or q.size == 0 or np.any(~np.isfinite(q)) or np.any((q < 0) | (q > 1)):
+        raise ArchInputError(f"quantiles: {quantiles!r}; allowed numbers between 0 and 1")
+    d = _durations(durations)
+    if impact is None:
+        impact = default_cv(nominal)
+    kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+    nominal_curve = collapse_curve(prepare(nominal, impact), d, **kwargs)
+    # validate spreads once (raises ArchInputError before any pool starts)
+    random_arch(nominal, rng=np.random.default_rng(0), **spreads)
+    children = np.random.SeedSequence(seed).spawn(samples)
+    jobs = [(nominal, c, spreads, impact, d, kwargs) for c in children]
+    if workers == 1:
+        rows = [_one_sample(j) for j in jobs]
+    else:
+        with ProcessPoolExecutor(max_workers=min(workers, os.cpu_count() or 1)) as ex:
+            rows = list(ex.map(_one_sample, jobs))
+    amps = np.array(rows)
+    # quantiles with non-collapsing arches as +inf: order statistics, linear interpolation
+    srt = np.sort(amps, axis=0)
+    pos = q[:, None] * (samples - 1)
+    lo_i = np.floor(pos).astype(int)
+    hi_i = np.minimum(lo_i + 1, samples - 1)
+    frac = pos - lo_i
+    cols = np.arange(d.size)[None, :]
+    a_lo, a_hi = srt[lo_i, cols], srt[hi_i, cols]
+    with np.errstate(invalid="ignore"):
+        bands = np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
+                         a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
+    return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
+                         seed, {k: spreads.get(k) for k in _SPREAD_KEYS if k in spreads},
+                         float(impact) if isinstance(impact, (int, float)) else impact, samples)

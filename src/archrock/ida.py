@@ -1,0 +1,280 @@
+"""Incremental dynamic analysis (IDA) and multiple-stripe analysis (MSA) of rocking arches.
+
+Intensity measure (IM): ``im="pga"`` (default) is the peak ground acceleration of the *scaled*
+record in g, IM = scale * PGA_record / g; ``im="scale"`` is the scale factor itself (only
+meaningful for a single record, or records normalised beforehand).
+
+* :func:`ida` -- for every record (and every arch), scan the scale factors of a grid, find the
+  first collapse (refined by bisection between the last survival below it and it) and report the
+  survivals above it (:func:`archrock.fragility.first_collapse`): rocking collapse is chaotic in the
+  scale factor (METHOD section 6).  Fragility: :func:`~archrock.fragility.fit_ida_moments` on the
+  first-collapse intensities; when some (record, arch) pairs never collapse up to the top of the
+  grid, they enter as right-censored at their highest analysed IM (``censored="mle"``).
+* :func:`msa` -- at each IM level, run every record (scaled to that level) on every arch, count
+  collapses and fit :func:`~archrock.fragility.fit_stripes_mle` (Baker 2015 eq. 11).
+
+Both add percentile bootstrap intervals with ``n_boot > 0`` (:func:`~archrock.fragility.bootstrap_fit`).
+Arches: one :class:`~archrock.response.DynamicModel` or a list of them (:func:`random_models`
+draws irregular arches from independent SeedSequence streams with the paper's fixed c_v).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import ArchInputError
+from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripes_mle,
+                        first_collapse)
+from .geometry import Arch, random_arch
+from .groundmotion import G, GroundMotion
+from .response import DynamicModel, prepare, respond
+
+__all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "msa", "random_models", "IM_KINDS"]
+
+IM_KINDS = ("pga", "scale")
+
+
+# ---------------------------------------------------------------------------- inputs
+def _records(records) -> list[GroundMotion]:
+    if isinstance(records, GroundMotion):
+        records = [records]
+    try:
+        recs = list(records)
+    except TypeError:
+        raise ArchInputError(f"records: {records!r}; allowed a list of GroundMotion") from None
+    if not recs or not all(isinstance(r, GroundMotion) for r in recs):
+        raise ArchInputError("records: allowed a non-empty list of GroundMotion")
+    for r in recs:
+        if r.pga <= 0:
+            raise ArchInputError(f"records: {r.name!r} has PGA 0; allowed records with a nonzero PGA")
+    return recs
+
+
+def _models(models) -> list[DynamicModel]:
+    if isinstance(models, (DynamicModel, Arch)):
+        models = [models]
+    try:
+        ms = list(models)
+    except TypeError:
+        raise ArchInputError(f"models: {models!r}; allowed a DynamicModel or a list of them") from None
+    out = []
+    for m in ms:
+        if isinstance(m, Arch):
+            m = prepare(m, float(prepare(m, "paper").impact.l_to_r))
+        if not isinstance(m, DynamicModel):
+            raise ArchInputError(f"models: {type(m).__name__}; allowed DynamicModel or Arch objects")
+        out.append(m)
+    if not out:
+        raise ArchInputError("models: empty; allowed at least one arch")
+    return out
+
+
+def _grid(name: str, values) -> np.ndarray:
+    try:
+        s = np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        raise ArchInputError(f"{name}: {values!r}; allowed increasing numbers > 0") from None
+    if s.ndim != 1 or s.size < 1 or not np.all(np.isfinite(s)) or np.any(s <= 0) or np.any(np.diff(s) <= 0):
+        raise ArchInputError(f"{name}: allowed a strictly increasing list of numbers > 0")
+    return s
+
+
+def _im(im: str) -> str:
+    if im not in IM_KINDS:
+        raise ArchInputError(f"im: {im!r}; allowed one of {', '.join(IM_KINDS)}")
+    return im
+
+
+def _im_factor(record: GroundMotion, im: str) -> float:
+    """IM per unit scale factor."""
+    return record.pga / G if im == "pga" else 1.0
+
+
+def random_models(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
+                  impact=None) -> list[DynamicModel]:
+    """``samples`` irregular arches around ``nominal``, arch i from child i of SeedSequence(seed).
+
+    impact: None = the paper's choice (c_v of the "paper" model on the nominal arch, fixed for every
+    arch), or anything :func:`~archrock.response.prepare` accepts.
+    """
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
+        raise ArchInputError(f"samples: {samples!r}; allowed an integer >= 1")
+    if impact is None:
+        impact = float(prepare(nominal, "paper").impact.l_to_r)
+    children = np.random.SeedSequence(seed).spawn(int(samples))
+    return [prepare(random_arch(nominal, rng=np.random.default_rng(c), **(spreads or {})), impact)
+            for c in children]
+
+
+def _collapsed(model, record, scale, dt, t_free) -> bool:
+    return respond(model, record.scaled(scale), t_end=0.5, dt_out=0.5, dt=dt, t_free=t_free,
+                   max_events=50_000).collapsed
+
+
+# ---------------------------------------------------------------------------- IDA
+@dataclass(frozen=True)
+class IDACurve:
+    """One IDA curve: a record on an arch.
+
+    scales / collapsed: the grid and the outcomes; first_scale: first collapse scale factor after
+    bisection (None if none up to the top of the grid); bracket: (last survival, first collapse)
+    scales; first_im: first collapse IM; survivals_above: grid scales above the first collapse that
+    survived; resurrections: collapse -> survival switches along the grid; max_im: IM at the top of
+    the grid; below_grid: the lowest scale of the grid already collapsed (no bisection possible).
+    """
+
+    record: str
+    arch: int
+    pga_g: float
+    scales: np.ndarray = field(repr=False)
+    collapsed: np.ndarray = field(repr=False)
+    first_scale: float | None
+    bracket: tuple[float, float] | None
+    first_im: float | None
+    survivals_above: tuple[float, ...]
+    resurrections: int
+    max_im: float
+    below_grid: bool = False
+
+    def to_dict(self) -> dict:
+        return {"record": self.record, "arch": self.arch, "pga_g": self.pga_g,
+                "scales": self.scales.tolist(), "collapsed": [bool(c) for c in self.collapsed],
+                "first_scale": self.first_scale,
+                "bracket": None if self.bracket is None else list(self.bracket),
+                "first_im": self.first_im, "survivals_above": list(self.survivals_above),
+                "resurrections": self.resurrections, "max_im": self.max_im,
+                "below_grid": self.below_grid}
+
+
+@dataclass(frozen=True)
+class IDAResult:
+    """IDA over records x arches, with the fragility fitted on first-collapse intensities.
+
+    im: 'pga' (g) or 'scale'; fit: FragilityFit (method 'moments', or 'censored_mle' when some
+    curves never collapsed), None when it cannot be identified (fit_error says why).
+    """
+
+    curves: tuple[IDACurve, ...]
+    im: str
+    fit: FragilityFit | None
+    fit_error: str | None = None
+
+    @property
+    def first_ims(self) -> np.ndarray:
+        return np.array([np.inf if c.first_im is None else c.first_im for c in self.curves])
+
+    @property
+    def n_censored(self) -> int:
+        return sum(c.first_im is None for c in self.curves)
+
+    def to_dict(self) -> dict:
+        return {"method": "ida", "im": self.im,
+                "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
+                "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error,
+                "n_curves": len(self.curves), "n_censored": self.n_censored,
+                "curves": [c.to_dict() for c in self.curves]}
+
+
+def _fit(func, *data, n_boot, seed, confidence, **kw):
+    try:
+        if n_boot and n_boot > 0:
+            return bootstrap_fit(func, *data, n_boot=n_boot, confidence=confidence, seed=seed, **kw), None
+        return func(*data, **kw), None
+    except ArchInputError as exc:
+        return None, str(exc)
+
+
+def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "pga", tol: float = 1e-3,
+              arch_index: int = 0, dt: float = 2e-3, t_free: float = 60.0) -> IDACurve:
+    """One IDA curve (see :class:`IDACurve`); tol: relative bisection tolerance on the scale."""
+    s = _grid("scales", scales)
+    im = _im(im)
+    if not (isinstance(tol, (int, float)) and math.isfinite(tol) and 0 < tol < 1):
+        raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
+    flags = np.array([_collapsed(model, record, float(x), dt, t_free) for x in s])
+    fc = first_collapse(s, flags)
+    f = _im_factor(record, im)
+    if fc["first_collapse"] is None:
+        return IDACurve(record.name, arch_index, record.pga_g, s, flags, None, None, None, (), 0,
+                        float(s[-1] * f))
+    i0 = int(np.flatnonzero(flags)[0])
+    if i0 == 0:
+        lo, hi, below = None, float(s[0]), True
+    else:
+        lo, hi, below = float(s[i0 - 1]), float(s[i0]), False
+        while hi - lo > tol * hi:
+            mid = 0.5 * (lo + hi)
+            if _collapsed(model, record, mid, dt, t_free):
+                hi = mid
+            else:
+                lo = mid
+    return IDACurve(record.name, arch_index, record.pga_g, s, flags, hi,
+                    None if lo is None else (lo, hi), hi * f, tuple(fc["survivals_above"]),
+                    fc["resurrections"], float(s[-1] * f), below)
+
+
+def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
+        seed=0, confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0) -> IDAResult:
+    """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid ``scales``."""
+    recs, ms = _records(records), _models(models)
+    im = _im(im)
+    curves = tuple(ida_curve(m, r, scales, im=im, tol=tol, arch_index=j, dt=dt, t_free=t_free)
+                   for j, m in enumerate(ms) for r in recs)
+    x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
+    if np.any(np.isinf(x)):
+        fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
+                        censored="mle", max_intensity=np.array([c.max_im for c in curves]))
+    else:
+        fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence)
+    return IDAResult(curves, im, fit, err)
+
+
+# ---------------------------------------------------------------------------- MSA
+@dataclass(frozen=True)
+class StripeResult:
+    """Multiple stripes: at each IM level, trials (records x arches) and collapses.
+
+    outcomes[level, arch, record]: collapse flags; fit: binomial MLE (None if not identifiable,
+    fit_error says why).
+    """
+
+    levels: np.ndarray
+    trials: np.ndarray
+    collapses: np.ndarray
+    outcomes: np.ndarray = field(repr=False)
+    im: str = "pga"
+    fit: FragilityFit | None = None
+    fit_error: str | None = None
+    records: tuple[str, ...] = ()
+
+    @property
+    def fractions(self) -> np.ndarray:
+        return self.collapses / self.trials
+
+    def to_dict(self) -> dict:
+        return {"method": "msa", "im": self.im,
+                "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
+                "levels": self.levels.tolist(), "trials": self.trials.tolist(),
+                "collapses": self.collapses.tolist(), "records": list(self.records),
+                "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error}
+
+
+def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
+        confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0) -> StripeResult:
+    """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
+    level / its PGA in g); stripes fitted by maximum likelihood."""
+    recs, ms = _records(records), _models(models)
+    im = _im(im)
+    lv = _grid("levels", levels)
+    out = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
+    for i, x in enumerate(lv):
+        for j, m in enumerate(ms):
+            for k, r in enumerate(recs):
+                out[i, j, k] = _collapsed(m, r, float(x / _im_factor(r, im)), dt, t_free)
+    trials = np.full(lv.size, len(ms) * len(recs))
+    coll = out.reshape(lv.size, -1).sum(axis=1)
+    fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed, confidence=confidence)
+    return StripeResult(lv, trials, coll, out, im, fit, err, tuple(r.name for r in recs))
