@@ -34,6 +34,10 @@ __all__ = [
     "save_limit_figure",
     "new_figure",
     "save_figure",
+    "plot_ground_motion",
+    "plot_response",
+    "save_response_figure",
+    "draw_displaced",
 ]
 
 HINGE_LABELS = ("A", "B", "C", "D")
@@ -264,3 +268,99 @@ def save_limit_figure(result, path: str | os.PathLike, directions=("l", "r"), dp
     for ax, d in zip(axes[0], directions):
         plot_limit(result, d, ax=ax)
     return save_figure(fig, path, dpi=dpi)
+
+
+# ---------------------------------------------------------------------------- dynamics
+def plot_ground_motion(motion, ax, t_end: float | None = None, in_g: bool = True):
+    """Ground acceleration history (paper Fig. 4a): xg''/g (or m/s^2) against time [s]."""
+    from .groundmotion import G
+
+    t_end = max(motion.duration, 1e-9) * 1.1 if t_end is None else t_end
+    t = np.concatenate([motion.times, [motion.duration, t_end]])
+    a = np.concatenate([motion.accel, [0.0, 0.0]]) / (G if in_g else 1.0)
+    ax.plot(t, a, color="#333333", lw=1.4, drawstyle="default")
+    ax.axhline(0.0, color="#999999", lw=0.6)
+    ax.set_xlim(0.0, t_end)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("xg''/g" if in_g else "xg'' [m/s^2]")
+    ax.set_title(motion.name)
+    ax.grid(True, lw=0.3, alpha=0.4)
+    return ax
+
+
+def plot_response(response, ax, label: str | None = None, color: str | None = None,
+                  show_events: bool = True):
+    """Signed response phi (+ in M_l, - in M_r, paper Fig. 4b-d) against time [s]."""
+    line, = ax.plot(response.time, response.response, lw=1.4, color=color, label=label)
+    c = line.get_color()
+    t_end = response.time[-1]
+    if show_events:
+        for t in response.impacts:
+            if t <= t_end:
+                ax.axvline(t, color=c, lw=0.5, ls=":", alpha=0.7)
+        if response.collapsed and response.t_collapse is not None and response.t_collapse <= t_end:
+            ax.plot([response.t_collapse], [np.nan], "x")
+            ax.annotate(f"collapse {response.t_collapse:.2f} s", (response.t_collapse, 0),
+                        xytext=(-70, 12), textcoords="offset points", color=c, fontsize=8,
+                        arrowprops={"arrowstyle": "->", "color": c, "lw": 0.8})
+    m = response.model
+    for phu in (m.phi_unstable_l, -m.phi_unstable_r):
+        ax.axhline(phu, color="#aa3333", lw=0.6, ls="--", alpha=0.6)
+    ax.axhline(0.0, color="#999999", lw=0.6)
+    ax.set_xlim(0.0, t_end)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("phi [rad]  (+ M_l, - M_r)")
+    outcome = (f"collapse at {response.t_collapse:.2f} s" if response.collapsed else
+               f"recovers ({len(response.impacts)} impacts)")
+    ax.set_title(f"{label or m.arch.name}: k_l = {m.k_l:.4f}, k_r = {m.k_r:.4f}; {outcome}",
+                 fontsize=9)
+    ax.grid(True, lw=0.3, alpha=0.4)
+    return ax
+
+
+def save_response_figure(responses, path, labels=None, dpi: int = 150):
+    """Ground motion on top, then one response panel per response (paper Fig. 4 layout)."""
+    responses = list(responses)
+    labels = list(labels) if labels is not None else [None] * len(responses)
+    fig, axes = new_figure(len(responses) + 1, 1, figsize=(7.0, 2.3 * (len(responses) + 1)))
+    t_end = responses[0].time[-1]
+    plot_ground_motion(responses[0].motion, axes[0][0], t_end=t_end)
+    for k, (res, lab) in enumerate(zip(responses, labels)):
+        plot_response(res, axes[k + 1][0], label=lab)
+    letters = "abcdefgh"
+    for k, row in enumerate(axes):
+        row[0].text(0.01, 0.93, f"({letters[k]})", transform=row[0].transAxes, fontsize=9,
+                    va="top", fontweight="bold")
+    return save_figure(fig, path, dpi=dpi)
+
+
+def draw_displaced(ax, model, mode: str, phi: float, **kwargs):
+    """Draw the arch with mechanism ``mode`` ('l', 'r' or 'rest') open by rotation phi [rad]:
+    every voussoir of a link is moved rigidly with its link (voussoirs outside stay still)."""
+    from matplotlib.patches import Polygon
+
+    from .mechanism import configuration
+
+    arch = model.arch
+    moved = {}
+    if mode in ("l", "r") and phi > 0:
+        fl = model.mechanism(mode)
+        bx, by, cx, cy, th1, th2, th3, _ = configuration(phi, fl.geo)
+        (ax0, ay0), (b0x, b0y), _, (dx, dy) = fl.points
+        refs = (((ax0, ay0), (ax0, ay0), th1), ((b0x, b0y), (bx, by), th2), ((dx, dy), (dx, dy), th3))
+        for idx, (p0, p1, th) in zip(fl.link_voussoirs, refs):
+            rot = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
+            for i in idx:
+                moved[i] = (np.array(p0), np.array(p1), rot)
+    face = kwargs.get("facecolor", STYLE["voussoir_face"])
+    edge = kwargs.get("edgecolor", STYLE["voussoir_edge"])
+    patches = []
+    for i in range(arch.n):
+        pts = voussoir_outline(arch, i)
+        if i in moved:
+            p0, p1, rot = moved[i]
+            pts = (pts - p0) @ rot.T + p1
+        patch = Polygon(pts, closed=True, facecolor=face, edgecolor=edge, lw=0.8)
+        ax.add_patch(patch)
+        patches.append(patch)
+    return patches

@@ -1,12 +1,19 @@
 """The paper's study, end to end (``archrock paper --out DIR``).
 
-Currently: the limit analysis of Oppenheim's arch (paper section 3, Fig. 3). Each step writes
-its files into ``out_dir`` and adds an entry to the summary; ``summary.json`` is written last.
+Steps: the limit analysis of Oppenheim's arch (paper section 3, Fig. 3); the coefficient of
+restitution (paper section 5.1: c_v = 0.8754); the responses to Oppenheim's pulse a = -1 g,
+t_p = 0.2 s over 0..3 s (Fig. 4): the nominal arch, a random arch that recovers (RA-1 type) and
+one that fails in the second half cycle after an impact (RA-2 type).  The random arches are
+found by seed among arches drawn with the METHOD spreads (0.1, 0.1, 0.05), choosing those whose
+(k_l, k_r) are nearest the paper's RA-1 and RA-2; as in the paper, the nominal arch's c_v is
+applied to them.  Each step writes its files into ``out_dir`` and adds an entry to the summary;
+``summary.json`` and ``table.md`` (the paper's figures beside ours) are written last.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import time
 from pathlib import Path
@@ -14,11 +21,128 @@ from typing import Callable
 
 from .errors import ArchInputError
 
-__all__ = ["run_paper_study", "PAPER_K_OPPENHEIM", "FIG3_NAME"]
+__all__ = ["run_paper_study", "PAPER_K_OPPENHEIM", "FIG3_NAME", "FIG4_NAME", "find_random_arches",
+           "PAPER_RA1", "PAPER_RA2", "PAPER_CV"]
 
 #: Oppenheim's arch collapse multiplier published in the paper (4 decimals).
 PAPER_K_OPPENHEIM = 0.3700
 FIG3_NAME = "fig3_oppenheim_limit.png"
+FIG4_NAME = "fig4_responses.png"
+#: The paper's random arches (k_l, k_r) and the nominal coefficient of restitution.
+PAPER_RA1 = (0.4111, 0.3104)
+PAPER_RA2 = (0.3946, 0.3501)
+PAPER_CV = 0.8754
+SPREADS = {"spread_span": 0.1, "spread_thickness": 0.1, "spread_radius": 0.05}
+
+
+def find_random_arches(cv: float, n_seeds: int = 1000, t_window: float = 3.0):
+    """Seeds of a recovering arch (at least two impacts within ``t_window``) nearest RA-1 and of an arch failing in the second half cycle
+    (collapse in M_r after exactly one impact, within ``t_window``) nearest RA-2.
+
+    Returns {"RA-1": (seed, model, response), "RA-2": (...), "searched": n, "failing": m}.
+    """
+    from .geometry import oppenheim_arch, random_arch
+    from .groundmotion import oppenheim_pulse
+    from .response import prepare, respond
+
+    motion = oppenheim_pulse(-1.0, 0.2)
+    nominal = oppenheim_arch()
+    best = {"RA-1": (math.inf, None), "RA-2": (math.inf, None)}
+    failing = 0
+    for seed in range(n_seeds):
+        model = prepare(random_arch(nominal, seed=seed, **SPREADS), cv)
+        res = respond(model, motion, t_end=t_window)
+        impacts = [e for e in res.events if e.kind == "impact" and e.time < (res.t_collapse or math.inf)]
+        second_half = (res.collapsed and len(impacts) == 1 and res.events[-1].before == "r"
+                       and res.t_collapse <= t_window)
+        failing += res.collapsed
+        target, key = (PAPER_RA2, "RA-2") if second_half else (PAPER_RA1, "RA-1")
+        if res.collapsed and not second_half:
+            continue
+        # RA-1 type: recovers "after subsequent impacts" (paper 5.2), seen within the window
+        if not res.collapsed and sum(t <= t_window for t in res.impacts) < 2:
+            continue
+        d = math.hypot(model.k_l - target[0], model.k_r - target[1])
+        if d < best[key][0]:
+            best[key] = (d, (seed, model, res))
+    return {"RA-1": best["RA-1"][1], "RA-2": best["RA-2"][1], "searched": n_seeds,
+            "failing": failing}
+
+
+def _dynamics_step(out: Path, progress: Callable[[str], None]) -> dict:
+    """Section 5: c_v of the nominal arch, Fig. 4 (a)-(d)."""
+    from .geometry import oppenheim_arch
+    from .groundmotion import oppenheim_pulse
+    from .plots import save_response_figure
+    from .response import prepare, respond
+
+    nominal = prepare(oppenheim_arch(), "paper")
+    cv = nominal.impact.l_to_r
+    momentum = prepare(oppenheim_arch(), "momentum").impact.l_to_r
+    progress(f"coefficient of restitution of Oppenheim's arch: paper model c_v = {cv:.4f} "
+             f"(paper: {PAPER_CV}); energy-consistent momentum model {momentum:.4f}")
+    motion = oppenheim_pulse(-1.0, 0.2)
+    res_nom = respond(nominal, motion, t_end=3.0)
+    res_ref = respond(nominal, motion, t_end=3.0, integrator="reference")
+    progress(f"nominal arch: {'collapses' if res_nom.collapsed else 'recovers'}; first impact at "
+             f"{res_nom.impacts[0]:.3f} s, peak {res_nom.peak:.4f} rad "
+             f"(reference integrator: peak {res_ref.peak:.4f} rad)")
+    found = find_random_arches(cv)
+    rows = {}
+    responses, labels = [res_nom], ["Oppenheim's arch"]
+    for key in ("RA-1", "RA-2"):
+        if found[key] is None:
+            progress(f"{key}: no arch of that type among {found['searched']} seeds")
+            continue
+        seed, model, res = found[key]
+        progress(f"{key} type: seed {seed}, k_l = {model.k_l:.4f}, k_r = {model.k_r:.4f}; "
+                 + (f"collapses at {res.t_collapse:.3f} s after {len(res.impacts)} impact(s)"
+                    if res.collapsed else f"recovers ({len(res.impacts)} impacts)"))
+        (out / f"{key.lower()}_geometry.json").write_text(
+            json.dumps(model.arch.to_dict(), indent=2) + "\n", encoding="utf-8")
+        responses.append(res)
+        labels.append(f"{key} type (seed {seed})")
+        rows[key] = {"seed": seed, "k_l": model.k_l, "k_r": model.k_r, "collapsed": res.collapsed,
+                     "t_collapse": res.t_collapse, "impacts": res.impacts[:5], "peak": res.peak,
+                     "mechanism_l": model.limit.mechanism_l.to_dict(),
+                     "mechanism_r": model.limit.mechanism_r.to_dict(),
+                     "restitution": model.impact.to_dict(),
+                     "geometry": f"{key.lower()}_geometry.json"}
+    fig = save_response_figure(responses, out / FIG4_NAME, labels=labels)
+    progress(f"wrote {fig}")
+    return {
+        "cv_paper_model": cv, "cv_momentum_model": momentum, "paper_cv": PAPER_CV,
+        "nominal": {"collapsed": res_nom.collapsed, "status": res_nom.status, "peak": res_nom.peak,
+                    "impacts": res_nom.impacts[:5], "reference_peak": res_ref.peak,
+                    "reference_impacts": res_ref.impacts[:5]},
+        "random": rows,
+        "random_search": {"seeds": found["searched"], "collapsing": found["failing"],
+                          "spreads": SPREADS},
+        "figure": FIG4_NAME,
+    }
+
+
+def _table(summary: dict) -> str:
+    lim, dyn = summary["limit_oppenheim"], summary["dynamics"]
+    ra = dyn["random"]
+    lines = ["| quantity | paper | archrock |", "|---|---|---|",
+             f"| k of Oppenheim's arch | {PAPER_K_OPPENHEIM:.4f} | {lim['k_l']:.4f} (k_l), {lim['k_r']:.4f} (k_r) |",
+             f"| c_v of Oppenheim's arch | {PAPER_CV:.4f} | {dyn['cv_paper_model']:.4f} (paper model); "
+             f"{dyn['cv_momentum_model']:.4f} (momentum model) |",
+             f"| Oppenheim's arch, a = -1 g, t_p = 0.2 s | recovers | "
+             f"{'collapses' if dyn['nominal']['collapsed'] else 'recovers'} (peak {dyn['nominal']['peak']:.4f} rad) |"]
+    for key, (kl, kr), fate in (("RA-1", PAPER_RA1, "recovers"),
+                                ("RA-2", PAPER_RA2, "fails in the second half cycle after an impact")):
+        if key in ra:
+            r = ra[key]
+            ours = ("collapses at %.2f s after %d impact(s)" % (r["t_collapse"], len(r["impacts"]))
+                    if r["collapsed"] else "recovers")
+            lines.append(f"| {key}: k_l, k_r; response | {kl:.4f}, {kr:.4f}; {fate} | "
+                         f"{r['k_l']:.4f}, {r['k_r']:.4f} (seed {r['seed']}); {ours} |")
+    search = dyn["random_search"]
+    lines.append(f"| random arches collapsing under the paper's pulse | not given | "
+                 f"{search['collapsing']} of {search['seeds']} |")
+    return "\n".join(lines) + "\n"
 
 
 def _limit_step(out: Path, progress: Callable[[str], None]) -> dict:
@@ -65,6 +189,13 @@ def run_paper_study(out_dir: str | os.PathLike, progress: Callable[[str], None] 
     limit = _limit_step(out, progress)
     summary["limit_oppenheim"] = limit
     summary["files"].append(limit["figure"])
+    dyn = _dynamics_step(out, progress)
+    summary["dynamics"] = dyn
+    summary["files"] += [dyn["figure"]] + [r["geometry"] for r in dyn["random"].values()]
+    table = _table(summary)
+    (out / "table.md").write_text(table, encoding="utf-8")
+    summary["files"].append("table.md")
+    progress("the paper's figures beside ours:\n" + table)
     summary["elapsed_s"] = round(time.perf_counter() - t0, 3)
     summary["files"].append("summary.json")
     path = out / "summary.json"

@@ -1,0 +1,92 @@
+"""Animation of the arch's mechanism moving through a response (GIF or MP4, matplotlib).
+
+Each frame draws every voussoir moved rigidly with its link at the response's rotation
+(exact four-bar kinematics), with the ground motion and the signed response below it.
+Displacements are drawn to scale unless ``exaggerate`` says otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ArchInputError
+
+__all__ = ["animate_response"]
+
+
+def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: float = 1.0,
+                     exaggerate: float = 1.0, dpi: int = 90, max_frames: int = 400) -> Path:
+    """Write an animation of ``response`` to ``path`` (.gif with Pillow, .mp4 with ffmpeg).
+
+    fps: frames per second; speed: simulated seconds per real second; exaggerate: factor on
+    the drawn rotations (1 = to scale); max_frames caps the file size.
+    """
+    from .plots import STYLE, draw_displaced, new_figure, plot_ground_motion, voussoir_bounds
+
+    path = Path(path)
+    if path.suffix.lower() not in (".gif", ".mp4"):
+        raise ArchInputError(f"animation file {str(path)!r}: allowed extensions .gif or .mp4")
+    for name, v in (("fps", fps), ("speed", speed), ("exaggerate", exaggerate)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0")
+    from matplotlib.animation import FFMpegWriter, FuncAnimation, PillowWriter
+
+    model = response.model
+    t = response.time
+    phi = response.response
+    # after a collapse the response is NaN: hold the last computed rotation, with its sign
+    held = phi.copy()
+    finite = np.isfinite(held)
+    if not finite.all():
+        last = np.flatnonzero(finite)
+        held[~finite] = held[last[-1]] if last.size else 0.0
+    n_frames = min(max_frames, max(2, int(t[-1] * fps / speed)))
+    frame_t = np.linspace(0.0, t[-1], n_frames)
+    fig, axes = new_figure(2, 1, figsize=(6.4, 6.0), height_ratios=(2.2, 1.0))
+    ax_arch, ax_resp = axes[0][0], axes[1][0]
+    pts = voussoir_bounds(model.arch)
+    pad = 0.1 * np.ptp(pts[:, 0])
+
+    ax_resp.plot(t, phi, color="#1f77b4", lw=1.2)
+    ax_resp.axhline(0.0, color="#999999", lw=0.6)
+    ax_resp.set_xlim(0, t[-1])
+    ax_resp.set_xlabel("time t [s]")
+    ax_resp.set_ylabel("phi [rad]")
+    marker, = ax_resp.plot([], [], "o", color="#c0392b")
+    ax_g = ax_resp.twinx()
+    plot_ground_motion(response.motion, ax_g, t_end=t[-1])
+    ax_g.set_title("")
+    ax_g.set_xlabel("")
+    for line in ax_g.get_lines():
+        line.set_alpha(0.35)
+
+    def draw(k):
+        ax_arch.clear()
+        ax_arch.set_aspect("equal")
+        ax_arch.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
+        ax_arch.set_ylim(min(pts[:, 1].min(), 0.0) - pad, pts[:, 1].max() + pad)
+        ax_arch.axhline(0.0, color=STYLE["ground"], lw=1.0)
+        tk = frame_t[k]
+        val = float(np.interp(tk, t, held))
+        collapsed = response.collapsed and response.t_collapse is not None and tk >= response.t_collapse
+        mode = "l" if val > 0 else ("r" if val < 0 else "rest")
+        draw_displaced(ax_arch, model, mode, abs(val) * exaggerate)
+        state = "COLLAPSED" if collapsed else {"l": "M_l open", "r": "M_r open", "rest": "at rest"}[mode]
+        ax_arch.set_title(f"t = {tk:5.2f} s   phi = {val:+.4f} rad   {state}"
+                          + (f"   (rotations x{exaggerate:g})" if exaggerate != 1 else ""), fontsize=9)
+        marker.set_data([tk], [val])
+        return []
+
+    anim = FuncAnimation(fig, draw, frames=n_frames, blit=False)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    writer = PillowWriter(fps=fps) if path.suffix.lower() == ".gif" else FFMpegWriter(fps=fps)
+    try:
+        anim.save(str(path), writer=writer, dpi=dpi)
+    except (FileNotFoundError, RuntimeError) as exc:
+        raise ArchInputError(f"animation file {str(path)!r}: cannot write ({exc}); "
+                             f"use .gif if ffmpeg is not installed") from None
+    return path
