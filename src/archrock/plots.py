@@ -364,3 +364,114 @@ def draw_displaced(ax, model, mode: str, phi: float, **kwargs):
         ax.add_patch(patch)
         patches.append(patch)
     return patches
+
+
+# ---------------------------------------------------------------------------- collapse curves, fragility
+_MODE_MARKERS = {"before first impact": ("o", "#c0392b"), "after impacts": ("s", "#1f4e9c")}
+
+
+def plot_collapse_curve(curve, path: str | os.PathLike | None = None, band=None, *, ax=None,
+                        title: str | None = None, dpi: int = 120):
+    """Collapse-acceleration curve: first collapse amplitude |a| [g] against t_p [s].
+
+    curve: :class:`archrock.curves.CollapseCurve`; markers by collapse mode (before the first
+    impact / after impacts), survival windows above the first collapse as vertical bars, the
+    static multiplier k as a dashed line.  band: an :class:`archrock.curves.EnsembleCurve` (its
+    outer quantiles shaded, its median dashed).  Writes ``path`` when given; returns the figure.
+    """
+    fig = None
+    if ax is None:
+        fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
+        ax = axes[0][0]
+    d = np.asarray(curve.durations, dtype=float)
+    a = np.asarray(curve.amplitudes, dtype=float)
+    if band is not None:
+        b = np.asarray(band.bands, dtype=float)
+        q = band.quantiles
+        top = np.where(np.isfinite(b[-1]), b[-1], np.nan)
+        ax.fill_between(band.durations, b[0], top, color="#9bb7d4", alpha=0.45, lw=0,
+                        label=f"{q[0]:g}-{q[-1]:g} quantiles, {band.n_samples} random arches")
+        if len(q) >= 3:
+            mid = len(q) // 2
+            ax.plot(band.durations, b[mid], "--", color="#1f4e9c", lw=1.0,
+                    label=f"{q[mid]:g} quantile")
+    ax.plot(d, a, "-", color="#444444", lw=1.0, zorder=2)
+    for key, (marker, color) in _MODE_MARKERS.items():
+        sel = np.array([(m == key) if key == "before first impact" else
+                        (m is not None and m.startswith("after")) for m in curve.modes])
+        if sel.any():
+            ax.plot(d[sel], a[sel], marker, color=color, ms=6, zorder=3,
+                    label=f"collapse {key}")
+    first = True
+    for tp, wins in zip(d, curve.windows):
+        for lo, hi in wins:
+            ax.plot([tp, tp], [lo, hi], color="#27ae60", lw=3.0, alpha=0.8, zorder=2,
+                    label="survival above first collapse" if first else None)
+            first = False
+    k = curve.k_l if curve.points and curve.points[0].sign < 0 else curve.k_r
+    if math.isfinite(k):
+        ax.axhline(k, color="#777777", ls=":", lw=1.0, label=f"static multiplier k = {k:.3f}")
+    ax.set_xlabel("pulse duration $t_p$ [s]")
+    ax.set_ylabel("first collapse amplitude |a| [g]")
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.set_xlim(0, max(d) * 1.05)
+    ax.set_ylim(0, None)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, frameon=False)
+    if fig is not None and path is not None:
+        save_figure(fig, path, dpi=dpi)
+    return fig if fig is not None else ax.figure
+
+
+def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, ida=None, ax=None,
+                   im_label: str = "PGA [g]", dpi: int = 120):
+    """Lognormal fragility P(collapse | IM): the fitted curve, its bootstrap band (the curves at
+    the ends of the theta and beta intervals, when the fit carries them), observed stripe
+    fractions (an :class:`archrock.ida.StripeResult`) and IDA first collapses (an
+    :class:`archrock.ida.IDAResult`, as an empirical CDF).  Writes ``path``; returns the figure."""
+    fig = None
+    if ax is None:
+        fig, axes = new_figure(1, 1, figsize=(6.0, 4.0))
+        ax = axes[0][0]
+    xs = []
+    if stripes is not None:
+        xs.append(np.asarray(stripes.levels, dtype=float))
+    if ida is not None:
+        f = ida.first_ims
+        xs.append(f[np.isfinite(f)])
+    if fit is not None:
+        xs.append(np.asarray(fit.quantile([0.01, 0.99])))
+    if not xs:
+        raise ArchInputError("fit: nothing to plot (give a fit, stripes or an IDA result)")
+    x_hi = max(float(np.max(v)) for v in xs if np.size(v)) * 1.15
+    x = np.linspace(0.0, x_hi, 300)
+    if fit is not None:
+        if fit.theta_ci is not None and fit.beta_ci is not None:
+            from scipy.special import ndtr
+
+            with np.errstate(divide="ignore"):
+                lnx = np.log(x)
+                curves = [ndtr((lnx - math.log(t)) / b) for t in fit.theta_ci for b in fit.beta_ci]
+            ax.fill_between(x, np.min(curves, axis=0), np.max(curves, axis=0), color="#9bb7d4",
+                            alpha=0.5, lw=0, label=f"{fit.confidence:.0%} bootstrap band")
+        ax.plot(x, fit.probability(x), color="#1f4e9c", lw=1.6,
+                label=f"{fit.method}: theta = {fit.theta:.3g}, beta = {fit.beta:.2f}")
+    if stripes is not None:
+        ax.plot(stripes.levels, stripes.collapses / stripes.trials, "o", color="#c0392b",
+                label="observed stripe fractions")
+    if ida is not None:
+        f = np.sort(ida.first_ims)
+        n = f.size
+        fin = np.isfinite(f)
+        ax.step(f[fin], (np.arange(n)[fin] + 1) / n, where="post", color="#444444", lw=1.0,
+                label="IDA first collapses (empirical)")
+    ax.set_xlabel(im_label)
+    ax.set_ylabel("P(collapse)")
+    ax.set_xlim(0, x_hi)
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, frameon=False, loc="lower right")
+    if fig is not None and path is not None:
+        save_figure(fig, path, dpi=dpi)
+    return fig if fig is not None else ax.figure
