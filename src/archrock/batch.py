@@ -455,8 +455,9 @@ if HAVE_NUMBA:
             n_imp[b] = ni
             n_act[b] = na
             n_ev[b] = ne
+    _simulate_loop_serial = numba.njit(cache=True)(_simulate_loop_py)
 else:  # pragma: no cover - without numba
-    _simulate_loop_nb = None
+    _simulate_loop_nb = _simulate_loop_serial = None
 
 
 def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float = 2e-3,
@@ -467,7 +468,8 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     Returns a dict of arrays (B,): status (0 rest, 1 collapsed, 2 still moving, -1 not run:
     unusable arch, -2 more than ``max_events`` events), peak [rad], t_collapse and t_unstable
     [s] (NaN if never), n_impacts, n_activations, n_events; plus 'seconds'.
-    ``parallel`` uses the numba prange loop (all numba threads); otherwise a serial loop.
+    ``parallel`` uses the numba prange loop (all numba threads); otherwise a serial compiled loop
+    (for process-pool or Dask workers); a Python loop when numba is absent.
     """
     if not isinstance(motion, GroundMotion):
         raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
@@ -485,8 +487,8 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
             prepared.phi_unstable_r, prepared.v_rest, run, times, accel, G, float(dt),
             float(t_free), int(max_events), res["status"], res["peak"], res["t_collapse"],
             res["t_unstable"], res["n_impacts"], res["n_activations"], res["n_events"])
-    if HAVE_NUMBA and parallel:
-        _simulate_loop_nb(*args)
+    if HAVE_NUMBA:
+        (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:
         _simulate_loop_py(*args)
     for key in ("t_collapse", "t_unstable"):
