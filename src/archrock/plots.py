@@ -475,3 +475,38 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
     if fig is not None and path is not None:
         save_figure(fig, path, dpi=dpi)
     return fig if fig is not None else ax.figure
+
+
+# ---------------------------------------------------------------------------- ensembles
+def plot_multiplier_histograms(df, path: str | os.PathLike, dpi: int = 150,
+                               reference: dict | None = None) -> Path:
+    """Histograms of k_l and k_r over an ensemble (a DataFrame with columns k_l, k_r, as from
+    :func:`archrock.ensemble.run_ensemble`); optional ``reference`` {label: (k_l, k_r)} marks
+    e.g. the nominal arch and the paper's RA-1 / RA-2.  Writes ``path`` and returns it."""
+    try:
+        kl = np.asarray(df["k_l"], float)
+        kr = np.asarray(df["k_r"], float)
+    except (KeyError, TypeError, ValueError):
+        raise ArchInputError("df: expected a table with numeric columns 'k_l' and 'k_r'") from None
+    kl, kr = kl[np.isfinite(kl)], kr[np.isfinite(kr)]
+    if kl.size == 0 or kr.size == 0:
+        raise ArchInputError("df: no finite k_l / k_r to plot")
+    fig, axes = new_figure(1, 2, figsize=(10.0, 4.0), sharey=True)
+    lo = float(min(kl.min(), kr.min()))
+    hi = float(max(kl.max(), kr.max()))
+    if hi - lo < 1e-9:
+        lo, hi = lo - 0.01, hi + 0.01
+    bins = np.linspace(lo, hi, 41)
+    colors = ("#1f4e9c", "#c0392b", "#2e8b57", "#8e44ad")
+    for ax, values, name in ((axes[0, 0], kl, "k_l"), (axes[0, 1], kr, "k_r")):
+        ax.hist(values, bins=bins, color="#9bb7d4", edgecolor="#4a6d94", lw=0.4)
+        ax.set_xlabel(f"${name[0]}_{name[2]}$ [g]")
+        ax.set_title(f"{name}: mean {values.mean():.4f}, std {values.std(ddof=1) if values.size > 1 else 0.0:.4f} "
+                     f"(n = {values.size})", fontsize=9)
+        for (label, ks), c in zip((reference or {}).items(), colors):
+            ax.axvline(ks[0] if name == "k_l" else ks[1], color=c, lw=1.2, ls="--", label=label)
+        ax.grid(True, alpha=0.3)
+        if reference:
+            ax.legend(fontsize=8, frameon=False)
+    axes[0, 0].set_ylabel("samples")
+    return save_figure(fig, path, dpi=dpi)
