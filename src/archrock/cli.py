@@ -461,6 +461,210 @@ def run_respond(args) -> int:
     return 0
 
 
+# ---------------------------------------------------------------------------- curves
+def _add_spread_options(p):
+    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
+                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
+    p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
+                   help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
+    p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
+                   help="half-width of the radii as a fraction of t, 0 <= s_R < 1 (default 0.05)")
+
+
+def _spreads(args) -> dict:
+    return {"spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
+            "spread_radius": args.spread_radius}
+
+
+def _impact_spec(args, nominal):
+    """The impact law of curves/fragility: --cv X, --impact NAME, or (default) the paper's fixed
+    c_v computed once on the nominal arch with the "paper" model."""
+    from .curves import default_cv
+
+    if args.cv is not None and args.impact is not None:
+        raise CLIError("--cv: cannot be combined with --impact; choose one")
+    if args.cv is not None:
+        if not 0.0 < args.cv <= 1.0:
+            raise ArchInputError(f"cv: {args.cv!r}; allowed 0 < cv <= 1")
+        return args.cv
+    return args.impact or default_cv(nominal)
+
+
+@subcommand("curves")
+def add_curves_parser(subparsers):
+    p = subparsers.add_parser(
+        "curves", help="collapse-acceleration curves: first collapse amplitude against pulse duration",
+        description="For each pulse duration t_p, scan the amplitude from the activation threshold "
+                    "k to --a-max, bisect the first collapse to --tol, and report the survival "
+                    "windows above it (collapse is not monotonic in the amplitude).")
+    add_geometry_options(p)
+    p.add_argument("--durations", default="0.1:1.0:10", metavar="LO:HI:N|A,B,...",
+                   help="pulse durations t_p [s] (default 0.1:1.0:10)")
+    p.add_argument("--pulse", default="oppenheim", metavar="KIND",
+                   help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
+    p.add_argument("--sign", type=_int, choices=(-1, 1), default=-1,
+                   help="direction of the first push: -1 (xg'' < 0, opens M_l; default) or +1")
+    p.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
+                   help="top of the amplitude scan [g] (default 10)")
+    p.add_argument("--n-scan", type=_int, default=150, metavar="N",
+                   help="amplitude grid points (geometric, default 150)")
+    p.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
+                   help="bisection tolerance [g] (default 0.001)")
+    p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
+                   help="random arches for quantile bands (0 = nominal only, default)")
+    p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
+    _add_spread_options(p)
+    p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
+    add_impact_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="write the curve (with bands) to a figure")
+    p.set_defaults(func=run_curves)
+    return p
+
+
+def _fmt_windows(ws) -> str:
+    return ", ".join(f"{lo:.3f}-{hi:.3f}" for lo, hi in ws) or "-"
+
+
+def run_curves(args) -> int:
+    from .curves import collapse_curve, ensemble_curve, parse_range
+    from .response import prepare
+
+    nominal = arch_from_args(args)
+    durations = parse_range(args.durations, "durations")
+    if args.n_scan < 2:
+        raise ArchInputError(f"n_scan: {args.n_scan}; allowed an integer >= 2")
+    if args.workers < 1:
+        raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
+    impact = _impact_spec(args, nominal)
+    kw = dict(kind=args.pulse, sign=args.sign, a_max=args.a_max, n_scan=args.n_scan, tol=args.tol)
+    band = None
+    if args.samples > 0:
+        band = ensemble_curve(nominal, args.samples, args.seed, _spreads(args), durations,
+                              impact=impact, workers=args.workers, **kw)
+        curve = band.nominal
+    else:
+        curve = collapse_curve(prepare(nominal, impact), durations, **kw)
+    if args.plot:
+        from .plots import plot_collapse_curve
+
+        plot_collapse_curve(curve, args.plot, band=band,
+                            title=f"{nominal.name}: {args.pulse} pulse, sign {args.sign:+d}")
+    if args.json:
+        out = {"arch": nominal.name, "pulse": args.pulse, "sign": args.sign,
+               "impact": impact if isinstance(impact, str) else {"model": "fixed", "cv": impact},
+               "curve": curve.to_dict()}
+        if band is not None:
+            b = band.to_dict()
+            b.pop("nominal")
+            out["ensemble"] = b
+        emit_json(out)
+        return 0
+    print(f"{nominal.name}: k_l = {curve.k_l:.4f}, k_r = {curve.k_r:.4f}; {args.pulse} pulse, "
+          f"sign {args.sign:+d}; impact {impact if isinstance(impact, str) else f'c_v = {impact:.4f}'}")
+    head = f"{'t_p [s]':>8} {'a_first [g]':>12}  {'mode':<22} survival windows above [g]"
+    if band is not None:
+        head = head.replace("  mode", "  " + " ".join(f"q{q:g}".rjust(7) for q in band.quantiles)
+                            + "  mode")
+    print(head)
+    for i, p in enumerate(curve.points):
+        a = "none" if p.amplitude is None else f"{p.amplitude:.4f}"
+        qs = ""
+        if band is not None:
+            qs = " ".join(("inf" if not math.isfinite(v) else f"{v:.3f}").rjust(7)
+                          for v in band.bands[:, i]) + " "
+        print(f"{p.duration:8.3f} {a:>12}  {qs}{(p.mode or '-'):<22} {_fmt_windows(p.windows)}")
+    if args.plot:
+        print(f"wrote {args.plot}", file=sys.stderr)
+    return 0
+
+
+# ---------------------------------------------------------------------------- fragility
+@subcommand("fragility")
+def add_fragility_parser(subparsers):
+    p = subparsers.add_parser(
+        "fragility", help="IDA and multiple-stripe fragility over accelerograms (and random arches)",
+        description="IM = PGA of the scaled record [g]. IDA: per record (and arch), scan the scale "
+                    "factors, bisect the first collapse, report survivals above it; lognormal fit "
+                    "by moments (censored MLE when some never collapse). Multiple stripes at "
+                    "--levels (default: 8 levels spanning the IDA first collapses): binomial MLE.")
+    add_geometry_options(p)
+    p.add_argument("--records", nargs="+", required=True, metavar="FILE",
+                   help="accelerograms: PEER .AT2 (g) or two-column 'time accel' files (g)")
+    p.add_argument("--units", choices=("g", "m/s2", "cm/s2"), default=None,
+                   help="units of two-column records (default g)")
+    p.add_argument("--scales", default="0.1:3:30", metavar="LO:HI:N|A,B,...",
+                   help="IDA scale factors (default 0.1:3:30)")
+    p.add_argument("--levels", default=None, metavar="LO:HI:N|A,B,...",
+                   help="stripe PGA levels [g] (default: 8 levels around the IDA first collapses)")
+    p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
+                   help="random arches (0 = the nominal arch only, default)")
+    p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
+    _add_spread_options(p)
+    add_impact_options(p)
+    p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
+                   help="bootstrap resamples for confidence bands (0 = none, default 200)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
+    p.set_defaults(func=run_fragility)
+    return p
+
+
+def run_fragility(args) -> int:
+    import numpy as np
+
+    from .curves import parse_range
+    from .groundmotion import load_record
+    from .ida import ida, msa, random_models
+    from .response import prepare
+
+    nominal = arch_from_args(args)
+    records = [load_record(f, units=args.units) for f in args.records]
+    scales = parse_range(args.scales, "scales")
+    impact = _impact_spec(args, nominal)
+    models = (random_models(nominal, args.samples, args.seed, _spreads(args), impact)
+              if args.samples > 0 else [prepare(nominal, impact)])
+    boot = args.bootstrap if args.bootstrap >= 2 else 0
+    res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed)
+    if args.levels:
+        levels = parse_range(args.levels, "levels")
+    else:
+        f = res_ida.first_ims
+        f = f[np.isfinite(f)]
+        lo = 0.6 * f.min() if f.size else float(scales[0] * min(r.pga_g for r in records))
+        hi = 1.4 * f.max() if f.size else float(scales[-1] * max(r.pga_g for r in records))
+        levels = np.geomspace(lo, hi, 8)
+    res_msa = msa(records, models, levels, n_boot=boot, seed=args.seed)
+    if args.plot:
+        from .plots import plot_fragility
+
+        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, args.plot,
+                       ida=res_ida)
+    if args.json:
+        emit_json({"arch": nominal.name, "records": [r.name for r in records],
+                   "n_arches": len(models), "im": "pga_g", "ida": res_ida.to_dict(),
+                   "stripes": res_msa.to_dict()})
+        return 0
+    print(f"{nominal.name}: {len(records)} record(s) x {len(models)} arch(es); IM = PGA [g]")
+    for c in res_ida.curves:
+        fc = "never" if c.first_im is None else f"{c.first_im:.4f} g (scale {c.first_scale:.4f})"
+        sa = ", ".join(f"{s:g}" for s in c.survivals_above) or "-"
+        print(f"  arch {c.arch} {c.record[:40]:<40} first collapse {fc}; survives above at scales {sa}")
+    for name, r in (("IDA", res_ida), ("stripes", res_msa)):
+        if r.fit is None or r.fit_error:
+            print(f"{name}: {'no fit' if r.fit is None else 'note'} ({r.fit_error})")
+        if r.fit is not None:
+            ci = "" if r.fit.theta_ci is None else (
+                f" [{r.fit.theta_ci[0]:.3f}, {r.fit.theta_ci[1]:.3f}], beta CI "
+                f"[{r.fit.beta_ci[0]:.2f}, {r.fit.beta_ci[1]:.2f}]")
+            print(f"{name}: {r.fit.method} theta = {r.fit.theta:.4f} g{ci}, beta = {r.fit.beta:.3f}")
+    print("stripes: " + ", ".join(f"{x:.3f} g {z}/{n}" for x, z, n in
+                                  zip(res_msa.levels, res_msa.collapses, res_msa.trials)))
+    if args.plot:
+        print(f"wrote {args.plot}", file=sys.stderr)
+    return 0
+
+
 # ---------------------------------------------------------------------------- paper
 @subcommand("paper")
 def add_paper_parser(subparsers):

@@ -154,7 +154,8 @@ class IDAResult:
     """IDA over records x arches, with the fragility fitted on first-collapse intensities.
 
     im: 'pga' (g) or 'scale'; fit: FragilityFit (method 'moments', or 'censored_mle' when some
-    curves never collapsed), None when it cannot be identified (fit_error says why).
+    curves never collapsed), None when it cannot be identified (fit_error says why; fit_error
+    also notes a point fit whose bootstrap band could not be computed).
     """
 
     curves: tuple[IDACurve, ...]
@@ -179,10 +180,14 @@ class IDAResult:
 
 
 def _fit(func, *data, n_boot, seed, confidence, **kw):
-    try:
-        if n_boot and n_boot > 0:
+    note = None
+    if n_boot and n_boot > 0:
+        try:
             return bootstrap_fit(func, *data, n_boot=n_boot, confidence=confidence, seed=seed, **kw), None
-        return func(*data, **kw), None
+        except ArchInputError as exc:  # the point fit may still exist; say why there is no band
+            note = f"no bootstrap band: {exc}"
+    try:
+        return func(*data, **kw), note
     except ArchInputError as exc:
         return None, str(exc)
 
