@@ -1,0 +1,126 @@
+"""Batch preparation and the parallel response loop against the one-arch path (response.prepare /
+response.respond)."""
+
+import numpy as np
+import pytest
+
+from archrock.batch import (check_geometries, mechanism_label, perturb, prepare_batch,
+                            simulate_batch)
+from archrock.errors import ArchInputError
+from archrock.geometry import Arch, oppenheim_arch, random_spans_thicknesses_radii
+from archrock.groundmotion import oppenheim_pulse
+from archrock.response import prepare, respond
+
+CV = 0.8754
+
+
+@pytest.fixture(scope="module")
+def sample():
+    nom = oppenheim_arch()
+    u = np.random.default_rng(2).uniform(-1, 1, size=(12, 3, nom.n))
+    spans, thick, radii = perturb(nom.spans, nom.thicknesses, nom.radii, u, 0.1, 0.1, 0.05)
+    return nom, u, spans, thick, radii
+
+
+def test_perturb_matches_random_spans_thicknesses_radii(sample):
+    nom, u, spans, thick, radii = sample
+    for b in (0, 5, 11):
+        s, t, r = random_spans_thicknesses_radii(nom, u[b], 0.1, 0.1, 0.05)
+        np.testing.assert_array_equal(spans[b], s)
+        np.testing.assert_array_equal(thick[b], t)
+        np.testing.assert_array_equal(radii[b], r)
+    np.testing.assert_allclose(spans.sum(axis=1), nom.embrace, rtol=1e-14)
+
+
+def test_prepare_batch_equals_prepare(sample):
+    nom, _, spans, thick, radii = sample
+    pb = prepare_batch(spans, radii, thick, nom.density, impact="fixed", cv=CV)
+    assert pb.ok.all()
+    for b in range(4):
+        m = prepare(Arch(spans[b], radii[b], thick[b]), CV)
+        assert pb.k_l[b] == pytest.approx(m.k_l, abs=1e-13)
+        assert pb.k_r[b] == pytest.approx(m.k_r, abs=1e-13)
+        np.testing.assert_allclose(pb.geo_l[b], m.mech_l.geo, rtol=1e-13, atol=1e-12)
+        np.testing.assert_allclose(pb.geo_r[b], m.mech_r.geo, rtol=1e-13, atol=1e-12)
+        assert pb.phi_unstable_l[b] == pytest.approx(m.phi_unstable_l, abs=1e-12)
+        assert pb.phi_unstable_r[b] == pytest.approx(m.phi_unstable_r, abs=1e-12)
+        assert pb.phi_limit_l[b] == pytest.approx(m.phi_limit_l, abs=1e-12)
+        assert pb.phi_limit_r[b] == pytest.approx(m.phi_limit_r, abs=1e-12)
+        assert pb.v_rest[b] == pytest.approx(m.v_rest, rel=1e-10)
+        assert pb.c_l_to_r[b] == pytest.approx(m.impact.l_to_r, rel=1e-12)
+        assert pb.c_r_to_l[b] == pytest.approx(m.impact.r_to_l, rel=1e-12)
+        # energy-consistent fixed c_v: kinetic energy x cv^2 in both directions
+        assert pb.energy_l_to_r[b] == pytest.approx(CV**2, rel=1e-12)
+        hinges = "-".join(f"{h.joint}{h.edge[0]}" for h in m.limit.mechanism_l.hinges)
+        assert pb.mech_l[b] == hinges
+
+
+def test_nominal_arch_batch():
+    nom = oppenheim_arch()
+    pb = prepare_batch(nom.spans[None], nom.radii[None], nom.thicknesses[None], impact="paper")
+    assert pb.k_l[0] == pytest.approx(0.3700, abs=5e-5)
+    assert pb.k_r[0] == pytest.approx(0.3700, abs=5e-5)
+    assert pb.c_l_to_r[0] == pytest.approx(0.8754, abs=5e-5)
+    assert pb.mech_l[0] == "0i-3e-5i-7e" and pb.mech_r[0] == "0e-2i-4e-7i"
+    assert mechanism_label(7, 0) == "0i-1i-2i-3i"
+
+
+def test_simulate_batch_equals_respond(sample):
+    nom, _, spans, thick, radii = sample
+    motion = oppenheim_pulse(-1.0, 0.2)
+    pb = prepare_batch(spans, radii, thick, impact="fixed", cv=CV)
+    res = simulate_batch(pb, motion)
+    serial = simulate_batch(pb, motion, parallel=False)
+    for key in ("status", "peak", "n_impacts", "n_activations"):
+        np.testing.assert_array_equal(res[key], serial[key])
+    statuses = set()
+    for b in range(8):
+        r = respond(prepare(Arch(spans[b], radii[b], thick[b]), CV), motion)
+        statuses.add(r.status)
+        assert {0: "rest", 1: "collapsed", 2: "moving"}[int(res["status"][b])] == r.status
+        assert res["peak"][b] == pytest.approx(r.peak, rel=1e-9)
+        assert res["n_impacts"][b] == len(r.impacts)
+        assert res["n_activations"][b] == sum(e.kind == "activation" for e in r.events)
+        if r.collapsed:
+            assert res["t_collapse"][b] == pytest.approx(r.t_collapse, rel=1e-9)
+        else:
+            assert np.isnan(res["t_collapse"][b])
+    # the sample covers both outcomes, so the comparison checks both
+    assert statuses == {"rest", "collapsed"}
+
+
+def test_paper_impact_energy_gain_is_recorded_not_used():
+    nom = oppenheim_arch()
+    u = np.random.default_rng(3).uniform(-1, 1, size=(200, 3, nom.n))
+    spans, thick, radii = perturb(nom.spans, nom.thicknesses, nom.radii, u, 0.1, 0.1, 0.05)
+    pb = prepare_batch(spans, radii, thick, impact="paper")
+    bad = ~pb.ok
+    assert bad.sum() >= 1
+    assert all("creates energy" in e for e in pb.error[bad])
+    assert np.all(np.isnan(pb.c_l_to_r[bad]))
+    res = simulate_batch(pb, oppenheim_pulse(-1.0, 0.2))
+    assert np.all(res["status"][bad] == -1)
+    assert np.all(np.isnan(res["peak"][bad]))
+    # the usable ones never gain energy
+    assert np.all(pb.energy_l_to_r[~bad] <= 1 + 1e-9) and np.all(pb.energy_r_to_l[~bad] <= 1 + 1e-9)
+
+
+def test_invalid_geometry_is_reported():
+    nom = oppenheim_arch()
+    spans = np.tile(nom.spans, (2, 1))
+    radii = np.tile(nom.radii, (2, 1))
+    thick = np.tile(nom.thicknesses, (2, 1))
+    radii[1, 3] += 3.0  # voussoir 3 no longer overlaps its neighbours
+    err = check_geometries(spans, radii, thick)
+    assert err[0] == "" and "overlap" in err[1]
+    pb = prepare_batch(spans, radii, thick, impact="fixed", cv=CV)
+    assert pb.ok.tolist() == [True, False]
+    assert np.isnan(pb.k_l[1])
+
+
+def test_bad_impact_options():
+    nom = oppenheim_arch()
+    with pytest.raises(ArchInputError, match="cv"):
+        prepare_batch(nom.spans[None], nom.radii[None], nom.thicknesses[None], impact="fixed", cv=1.5)
+    with pytest.raises(ArchInputError, match="impact"):
+        prepare_batch(nom.spans[None], nom.radii[None], nom.thicknesses[None], impact="elastic")
