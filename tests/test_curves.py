@@ -152,3 +152,36 @@ def test_parse_range():
     for bad in ("0.1:1.0", "a,b", "1:0.5:3", "0,0.2", "0.1:1:0"):
         with pytest.raises(ArchInputError, match="^durations:"):
             parse_range(bad)
+
+
+def test_cli_curves_json(capsys):
+    import json
+
+    from archrock.cli import main
+
+    code = main(["curves", "--durations", "0.2,0.4", "--json", "--a-max", "3.5", "--n-scan", "60"])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    d = json.loads(out)
+    c = d["curve"]
+    assert c["durations"] == [0.2, 0.4]
+    assert c["amplitudes_g"][0] == pytest.approx(1.295, abs=3e-3)
+    assert c["amplitudes_g"][1] == pytest.approx(0.489, abs=3e-3)
+    assert c["modes"] == ["after 1 impact", "after 1 impact"]
+    assert c["k_l"] == pytest.approx(0.3700, abs=1e-4)
+    assert d["impact"]["cv"] == pytest.approx(CV_OPPENHEIM, abs=5e-5)
+    assert c["points"][0]["survival_windows_g"][0][0] == pytest.approx(2.688, abs=5e-3)
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["curves", "--durations", "0,0.2"], "durations"),
+    (["curves", "--durations", "0.3", "--a-max", "0.2"], "a_max"),
+    (["curves", "--durations", "0.3", "--cv", "1.5"], "cv"),
+    (["curves", "--durations", "0.3", "--pulse", "square"], "pulse kind"),
+])
+def test_cli_curves_bad_input(capsys, argv, field):
+    from archrock.cli import main
+
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"archrock: error: {field}:") and err.count("\n") == 1
