@@ -1,0 +1,192 @@
+"""Impact laws: the paper's and the momentum c_v on Oppenheim's arch, energy bounds, the fixed
+c_v in its energy and literal readings, the energy guard of the paper model, bad input."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from archrock import geometry, limit
+from archrock.errors import ArchInputError, EnergyGainError
+from archrock.impact import EnergyGainWarning, impact_law, momentum_rate_ratio, paper_rate_ratio
+from archrock.mechanism import four_link
+
+
+def _mechs(arch):
+    lim = limit.limit_analysis(arch, verify=False)
+    return four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
+
+
+def _m0(fl):
+    return fl.coefficients(0.0)[0]
+
+
+@pytest.fixture(scope="module")
+def opp():
+    return _mechs(geometry.oppenheim_arch())
+
+
+@pytest.fixture(scope="module")
+def randoms():
+    return [_mechs(geometry.random_arch(seed=s)) for s in range(40)]
+
+
+# ------------------------------------------------------------------------- the paper's figures
+def test_paper_model_oppenheim(opp):
+    law = impact_law(*opp, "paper")
+    assert round(law.l_to_r, 4) == 0.8754
+    assert round(law.r_to_l, 4) == 0.8754
+    assert law.l_to_r == pytest.approx(law.r_to_l, rel=1e-12)
+    # symmetric arch: M_l(0) = M_r(0), so the energy ratio is c^2 < 1
+    assert law.energy_l_to_r == pytest.approx(law.l_to_r**2, rel=1e-12)
+    assert law.energy_l_to_r < 1
+
+
+def test_momentum_model_oppenheim(opp):
+    law = impact_law(*opp, "momentum")
+    assert round(law.l_to_r, 4) == 0.6450
+    assert round(law.r_to_l, 4) == 0.6450
+    assert law.energy_r_to_l == pytest.approx(law.r_to_l**2, rel=1e-12)
+
+
+def test_models_differ(opp):
+    # a swap of the two models would not go unnoticed
+    assert impact_law(*opp, "paper").l_to_r - impact_law(*opp, "momentum").l_to_r > 0.2
+
+
+# ------------------------------------------------------------------------- momentum model
+def test_momentum_never_creates_energy(randoms):
+    ratios = []
+    for ml, mr in randoms:
+        law = impact_law(ml, mr, "momentum")
+        assert 0 <= law.energy_l_to_r <= 1
+        assert 0 <= law.energy_r_to_l <= 1
+        # the projection is symmetric: both directions lose the same fraction of energy
+        assert law.energy_l_to_r == pytest.approx(law.energy_r_to_l, rel=1e-10)
+        # energy ratio from the rate ratio and the two M(0)
+        assert law.energy_l_to_r == pytest.approx(law.l_to_r**2 * _m0(mr) / _m0(ml), rel=1e-12)
+        ratios.append(law.energy_l_to_r)
+    # the rate ratios themselves differ on irregular arches
+    assert max(abs(impact_law(ml, mr, "momentum").l_to_r - impact_law(ml, mr, "momentum").r_to_l)
+               for ml, mr in randoms) > 1e-3
+    assert 0.2 < min(ratios) < max(ratios) < 0.8
+
+
+def test_momentum_never_creates_energy_wide_spreads():
+    for n in (5, 6, 8, 9):
+        nominal = geometry.nominal_arch(voussoirs=n)
+        for seed in range(15):
+            arch = geometry.random_arch(nominal, seed=seed, spread_span=0.2,
+                                        spread_thickness=0.2, spread_radius=0.1)
+            ml, mr = _mechs(arch)
+            e1 = momentum_rate_ratio(ml, mr) ** 2 * _m0(mr) / _m0(ml)
+            e2 = momentum_rate_ratio(mr, ml) ** 2 * _m0(ml) / _m0(mr)
+            assert e1 <= 1 and e2 <= 1
+            assert e1 == pytest.approx(e2, rel=1e-10)
+
+
+# ------------------------------------------------------------------------- fixed c_v
+@pytest.mark.parametrize("cv", [0.5, 0.8754, 1.0])
+def test_fixed_cv_energy_reading(randoms, cv):
+    for ml, mr in randoms[:10]:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", EnergyGainWarning)
+            law = impact_law(ml, mr, "fixed", cv=cv)
+        assert law.energy_l_to_r == pytest.approx(cv**2, rel=1e-12)
+        assert law.energy_r_to_l == pytest.approx(cv**2, rel=1e-12)
+        assert law.l_to_r == pytest.approx(cv * math.sqrt(_m0(ml) / _m0(mr)), rel=1e-12)
+        assert law.l_to_r * law.r_to_l == pytest.approx(cv**2, rel=1e-12)
+        assert law.cv == cv and not law.literal
+
+
+def test_fixed_cv_literal_reading(randoms):
+    cv = 0.8754
+    gained = 0
+    for ml, mr in randoms[:10]:
+        with warnings.catch_warnings(record=True) as rec:
+            warnings.simplefilter("always")
+            law = impact_law(ml, mr, "fixed", cv=cv, literal=True)
+        assert law.l_to_r == cv and law.r_to_l == cv and law.literal
+        assert law.energy_l_to_r == pytest.approx(cv**2 * _m0(mr) / _m0(ml), rel=1e-12)
+        assert law.energy_r_to_l == pytest.approx(cv**2 * _m0(ml) / _m0(mr), rel=1e-12)
+        gains = max(law.energy_l_to_r, law.energy_r_to_l) > 1
+        warned = any(issubclass(w.category, EnergyGainWarning) for w in rec)
+        assert warned == gains
+        gained += gains
+    assert gained >= 1  # the METHOD spreads do produce literal energy gains
+
+
+def test_fixed_cv_literal_warns_on_gain():
+    # find an irregular arch with unequal M(0) where cv = 1 literally gains energy
+    ml, mr = _mechs(geometry.random_arch(seed=0))
+    assert not math.isclose(_m0(ml), _m0(mr), rel_tol=1e-3)
+    with pytest.warns(EnergyGainWarning, match="gains kinetic energy"):
+        impact_law(ml, mr, "fixed", cv=1.0, literal=True)
+
+
+def test_fixed_cv_symmetric_readings_agree(opp):
+    a = impact_law(*opp, "fixed", cv=0.7)
+    b = impact_law(*opp, "fixed", cv=0.7, literal=True)
+    assert a.l_to_r == pytest.approx(b.l_to_r, rel=1e-12)
+    assert a.r_to_l == pytest.approx(0.7, rel=1e-12)
+
+
+@pytest.mark.parametrize("cv", [0.0, -0.2, 1.0001, 2.0, float("nan"), float("inf"), None])
+def test_fixed_cv_out_of_range(opp, cv):
+    with pytest.raises(ArchInputError, match="cv"):
+        impact_law(*opp, "fixed", cv=cv)
+
+
+def test_unknown_model(opp):
+    with pytest.raises(ArchInputError, match="impact model"):
+        impact_law(*opp, "housner")
+
+
+# ------------------------------------------------------------------------- the energy guard
+# Found by a search over random arches with spreads 0.2/0.2/0.1 (n = 5): on these the paper
+# model creates energy in one direction only (energy ratio l_to_r ~ 1.100, r_to_l ~ 1.061).
+WIDE = dict(spread_span=0.2, spread_thickness=0.2, spread_radius=0.1)
+
+
+def _wide(seed, n=5):
+    return geometry.random_arch(geometry.nominal_arch(voussoirs=n), seed=seed, **WIDE)
+
+
+@pytest.mark.parametrize("seed,direction,ratio", [(8, "l_to_r", 1.1002), (15, "r_to_l", 1.0612)])
+def test_paper_energy_guard(seed, direction, ratio):
+    ml, mr = _mechs(_wide(seed))
+    c_lr, c_rl = paper_rate_ratio(ml, mr), paper_rate_ratio(mr, ml)
+    e = {"l_to_r": c_lr**2 * _m0(mr) / _m0(ml), "r_to_l": c_rl**2 * _m0(ml) / _m0(mr)}
+    assert e[direction] == pytest.approx(ratio, abs=1e-4)
+    other = "r_to_l" if direction == "l_to_r" else "l_to_r"
+    assert e[other] < 1
+    with pytest.raises(EnergyGainError, match=f"impact {direction}") as info:
+        impact_law(ml, mr, "paper")
+    assert other not in str(info.value)
+    assert isinstance(info.value, ArchInputError)
+    # the momentum model stays usable on the same arch
+    law = impact_law(ml, mr, "momentum")
+    assert law.energy_l_to_r <= 1 and law.energy_r_to_l <= 1
+
+
+def test_paper_model_fine_on_method_spreads(randoms):
+    # with the METHOD spreads (0.1/0.1/0.05) the paper model loses energy on every arch tried
+    for ml, mr in randoms:
+        law = impact_law(ml, mr, "paper")
+        assert 0 < law.energy_l_to_r < 1 and 0 < law.energy_r_to_l < 1
+        # a rate ratio may exceed 1 where M_new(0) < M_old(0); the energy is what is bounded
+        assert law.l_to_r > 0 and law.r_to_l > 0
+
+
+def test_paper_model_gains_energy_often_on_wide_spreads():
+    gains = 0
+    for seed in range(20):
+        ml, mr = _mechs(_wide(seed))
+        try:
+            impact_law(ml, mr, "paper")
+        except EnergyGainError:
+            gains += 1
+    assert gains >= 3

@@ -1,0 +1,394 @@
+"""Response of the arch to ground motion: the paper's case, fast vs reference integrators,
+mirror symmetry, activation threshold, collapse and its independence of the rotation limit,
+non-monotonic collapse in the amplitude, the end of chattering, bad input.
+
+Two defects of the reference integrator (response._reference) are pinned by strict xfails
+below (see their docstrings); the agreement tests assert everything else at full strength.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from archrock import geometry, groundmotion as gm, kernel
+from archrock.errors import ArchInputError
+from archrock.response import prepare, respond
+
+G = 9.81
+
+
+@pytest.fixture(scope="module")
+def nominal():
+    return prepare(geometry.oppenheim_arch(), "paper")
+
+
+@pytest.fixture(scope="module")
+def paper_case(nominal):
+    return respond(nominal, gm.oppenheim_pulse(-1.0, 0.2), t_end=3.0)
+
+
+def _arc_peak(model, mode, t0, rate0, accel_fun, t_stop):
+    """Maximum of phi over one arc (phi = 0 at t0 with rate0), by an independent dense solve:
+    the first w = 0 crossing (or None if the arc closes/ends without turning)."""
+    fl = model.mech_l if mode == "l" else model.mech_r
+
+    def rhs(t, y):
+        M, L, F, P = fl.coefficients(y[0])
+        return [y[1], (P * accel_fun(t) - F * G - L * y[1] ** 2) / M]
+
+    def turn(t, y):
+        return y[1]
+    turn.terminal, turn.direction = True, -1
+    bps = [b for b in accel_fun.breakpoints() if t0 < b < t_stop] + [t_stop]
+    y, t = [0.0, rate0], t0
+    for b in bps:
+        sol = solve_ivp(rhs, (t, b), y, method="DOP853", rtol=1e-12, atol=1e-15, events=turn)
+        if sol.status == 1:
+            return float(sol.y_events[0][0][0])
+        y, t = sol.y[:, -1], b
+    return None
+
+
+# ------------------------------------------------------------------------- the paper's case
+def test_paper_case_recovers(paper_case, nominal):
+    r = paper_case
+    assert r.status == "rest" and not r.collapsed
+    assert r.activated and r.events[0].kind == "activation" and r.events[0].time == 0.0
+    assert r.events[0].after == "l"  # xg'' = -1 g < -k_l g opens M_l
+    assert r.impacts[0] == pytest.approx(0.6012004, abs=2e-6)
+    assert r.impacts[1] == pytest.approx(2.2293557, abs=2e-6)
+    assert r.peak == pytest.approx(0.0371989, rel=1e-5)
+    assert r.peak < nominal.phi_unstable_l  # never near the unstable position
+    assert r.t_unstable is None and r.t_collapse is None
+    # the first impact: rate ratio 0.8754 of the paper's model
+    e = r.events[1]
+    assert e.kind == "impact" and e.before == "l" and e.after == "r"
+    assert e.rate_after == pytest.approx(-0.87538 * e.rate_before, rel=1e-4)
+    assert e.rate_before == pytest.approx(-0.1054123, rel=1e-5)
+
+
+def test_paper_case_peak_is_the_true_maximum(paper_case, nominal):
+    """The peak (second arc, M_r, after the first impact) against an independent dense solve."""
+    r = paper_case
+    e = r.events[1]
+    true = _arc_peak(nominal, "r", e.time, e.rate_after, gm.oppenheim_pulse(-1.0, 0.2), 3.0)
+    assert true == pytest.approx(0.03719891, rel=1e-6)
+    assert r.peak == pytest.approx(true, rel=1e-6)
+
+
+def test_paper_case_signed_response(paper_case):
+    r = paper_case
+    t, y = r.time, r.response
+    assert t[-1] == pytest.approx(3.0) and y.size == 601
+    t1, t2, t3 = r.impacts[:3]
+    first = (t > 0) & (t < t1 - 1e-3)
+    second = (t > t1 + 1e-3) & (t < t2 - 1e-3)
+    third = (t > t2 + 1e-3) & (t < t3 - 1e-3)
+    assert np.all(y[first] > 0)          # M_l open: +phi
+    assert np.all(y[second] < 0)         # M_r open: -phi
+    assert np.all(y[third] > 0)
+    assert np.max(y[first]) == pytest.approx(0.013521, rel=1e-3)  # first arc's maximum
+    assert -np.min(y) == pytest.approx(r.peak, rel=1e-3)
+
+
+def test_paper_case_reference_agrees(paper_case, nominal):
+    ref = respond(nominal, gm.oppenheim_pulse(-1.0, 0.2), integrator="reference")
+    assert ref.status == paper_case.status
+    assert ref.peak == pytest.approx(paper_case.peak, rel=1e-4)
+    for a, b in zip(paper_case.impacts[:60], ref.impacts[:60]):
+        assert a == pytest.approx(b, abs=1e-5)
+    assert np.allclose(ref.response, paper_case.response, atol=1e-7)
+
+
+# ------------------------------------------------------------------------- fast vs reference
+KINDS = ("oppenheim", "half-sine", "one-sine", "rectangular")
+
+
+def _case(i):
+    """Deterministic case i: a random arch, a pulse kind, sign, amplitude (from just above the
+    activation threshold to ~2 g) and duration (0.1-1 s), impact model alternating."""
+    rng = np.random.default_rng([2024, i])
+    arch = geometry.random_arch(seed=int(rng.integers(1 << 30)))
+    model = prepare(arch, "paper" if i % 2 == 0 else "momentum")
+    kind = KINDS[i % 4]
+    sign = -1.0 if rng.random() < 0.5 else 1.0
+    k = model.k_l if sign < 0 else model.k_r
+    amp = k * math.exp(rng.uniform(math.log(1.03), math.log(2.0 / k)))
+    if kind in ("half-sine", "one-sine"):
+        amp = min(1.2 * amp, 2.2)  # the peak of a sine must pass the threshold too
+    return model, gm.pulse(kind, sign * amp, float(rng.uniform(0.1, 1.0)))
+
+
+def _spurious_closure(events, j):
+    """Event j is the reference integrator's spurious closure at the start of an arc."""
+    e = events[j]
+    return (e.kind == "impact" and e.rate_before == 0.0 and j > 0
+            and events[j - 1].kind == "impact" and events[j - 1].time == e.time)
+
+
+def _check_agreement(model, motion):
+    f = respond(model, motion, integrator="fast")
+    r = respond(model, motion, integrator="reference")
+    assert f.status == r.status
+    assert f.collapsed == r.collapsed
+    assert f.activated == r.activated
+    for a, b in ((f.t_unstable, r.t_unstable), (f.t_collapse, r.t_collapse)):
+        assert (a is None) == (b is None)
+        if a is not None:
+            assert a == pytest.approx(b, abs=1e-5)
+    fi = [e for e in f.events if e.kind in ("impact", "activation", "collapse")]
+    ri = [e for e in r.events if e.kind in ("impact", "activation", "collapse")]
+    n = len(ri)
+    if n and _spurious_closure(ri, n - 1):
+        # known defect (see test_reference_no_spurious_closure): the reference ends the motion
+        # with a fake closure when an arc fits inside its first step; the fast kernel goes on
+        # with impacts of negligible energy.  Everything before it must still agree.
+        n -= 1
+        first_rate = max(abs(e.rate_before) for e in fi if e.kind == "impact")
+        assert all(abs(e.rate_before) < 1e-3 * first_rate for e in fi[n:] if e.kind == "impact")
+        assert r.status == "rest"
+    else:
+        assert len(fi) == len(ri)
+    for a, b in zip(fi[:n], ri[:n]):
+        assert a.kind == b.kind and a.before == b.before and a.after == b.after
+        assert a.time == pytest.approx(b.time, abs=1e-5)
+        scale = max(1e-3, abs(b.rate_before))
+        assert a.rate_before == pytest.approx(b.rate_before, abs=1e-4 * scale)
+    # the reference's peak is a maximum over its solver nodes (see
+    # test_reference_peak_is_the_true_maximum): it can only fall short of the true peak
+    assert r.peak <= f.peak * (1 + 1e-7)
+    if f.collapsed:
+        assert f.peak == pytest.approx(r.peak, rel=1e-12)
+    # the sampled responses agree where both are defined
+    ok = np.isfinite(f.response) & np.isfinite(r.response)
+    assert np.array_equal(np.isfinite(f.response), np.isfinite(r.response))
+    assert np.max(np.abs(f.response[ok] - r.response[ok]), initial=0.0) < 1e-4 * max(f.peak, 1e-6)
+    return f, r
+
+
+@pytest.mark.parametrize("i", range(6))
+def test_fast_vs_reference(i):
+    _check_agreement(*_case(i))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("i", range(6, 60))
+def test_fast_vs_reference_many(i):
+    _check_agreement(*_case(i))
+
+
+def test_fast_vs_reference_collapse_and_sign(nominal):
+    # a collapse of M_r under a positive pulse and one of M_l under a negative one
+    for a in (1.4, -1.4):
+        f, r = _check_agreement(nominal, gm.oppenheim_pulse(a, 0.3))
+        assert f.collapsed
+        assert f.events[0].after == ("l" if a < 0 else "r")
+
+
+# ------------------------------------------------------------------------- known reference defects
+def _small_rocking_case():
+    """An irregular arch under a short one-sine pulse: small, short arcs (~0.1 s)."""
+    model = prepare(geometry.random_arch(seed=80399), "paper")
+    return model, gm.one_sine_pulse(-0.9042, 0.1255)
+
+
+def _true_peak(model, motion, f):
+    """Max over the arcs of f (the fast response) of each arc's true maximum."""
+    peaks = [_arc_peak(model, ev.after, ev.time, ev.rate_after, motion, ev.time + 5.0)
+             for ev in f.events if ev.kind in ("impact", "activation") and ev.after != "rest"]
+    return max(p for p in peaks if p is not None)
+
+
+def test_fast_peak_small_rocking():
+    """The fast kernel's peak is a max over its RK4 nodes (dt = 2 ms): on short arcs it is
+    slightly low (measured 1.5e-4 relative here), never high."""
+    model, motion = _small_rocking_case()
+    f = respond(model, motion, integrator="fast")
+    true = _true_peak(model, motion, f)
+    assert true == pytest.approx(1.230505e-3, rel=1e-5)
+    assert f.peak <= true * (1 + 1e-9)
+    assert f.peak == pytest.approx(true, rel=1e-3)
+    fine = respond(model, motion, integrator="fast", dt=2.5e-4)
+    assert fine.peak == pytest.approx(true, rel=1e-6)
+
+
+@pytest.mark.xfail(strict=True, reason="reference integrator: peak is the max over its solver "
+                                       "nodes, not the true maximum (22% low here)")
+def test_reference_peak_is_the_true_maximum():
+    model, motion = _small_rocking_case()
+    f = respond(model, motion, integrator="fast")
+    r = respond(model, motion, integrator="reference")
+    assert r.peak == pytest.approx(_true_peak(model, motion, f), rel=1e-3)
+
+
+@pytest.mark.xfail(strict=True, reason="reference integrator: an arc shorter than its first step "
+                                       "(1e-4 s) is taken as an immediate closure at the arc's start")
+def test_reference_no_spurious_closure(nominal):
+    """Paper's case: the reference records an 'impact' with rate_before = 0.0 at the very time
+    of the previous impact (post-impact rate ~9.5e-6 rad/s, arc ~1e-4 s) and stops at rest,
+    25 impacts before the fast kernel."""
+    r = respond(nominal, gm.oppenheim_pulse(-1.0, 0.2), integrator="reference")
+    ev = r.events
+    assert not any(_spurious_closure(ev, j) for j in range(len(ev)))
+
+
+# ------------------------------------------------------------------------- symmetry
+def test_mirrored_arch_mirrored_motion():
+    arch = geometry.random_arch(seed=3)
+    m = prepare(arch, "momentum")
+    mm = prepare(arch.mirrored(), "momentum")
+    assert mm.k_l == pytest.approx(m.k_r, rel=1e-10)
+    assert mm.impact.l_to_r == pytest.approx(m.impact.r_to_l, rel=1e-10)
+    for motion in (gm.oppenheim_pulse(-0.9, 0.25), gm.one_sine_pulse(1.1, 0.5)):
+        r = respond(m, motion)
+        rm = respond(mm, motion.mirrored())
+        assert r.activated and len(r.impacts) >= 3
+        assert rm.status == r.status
+        assert np.allclose(rm.response, -r.response, atol=1e-9, equal_nan=True)
+        assert np.allclose(rm.impacts, r.impacts, atol=1e-9)
+        assert rm.peak == pytest.approx(r.peak, rel=1e-9)
+        swap = {"l": "r", "r": "l", "rest": "rest"}
+        assert [swap[e.after] for e in r.events] == [e.after for e in rm.events]
+
+
+# ------------------------------------------------------------------------- threshold
+@pytest.mark.parametrize("kind", KINDS)
+def test_below_threshold_nothing_moves(kind):
+    arch = geometry.random_arch(seed=11)
+    m = prepare(arch, "paper")
+    assert not math.isclose(m.k_l, m.k_r, rel_tol=1e-3)
+    # a one-sine pulse goes both ways: keep both of its lobes below their thresholds
+    lim_l, lim_r = (min(m.k_l, m.k_r),) * 2 if kind == "one-sine" else (m.k_l, m.k_r)
+    for amp in (-0.995 * lim_l, 0.995 * lim_r):
+        r = respond(m, gm.pulse(kind, amp, 0.4))
+        assert r.events == () and not r.activated
+        assert r.status == "rest" and r.peak == 0.0
+        assert np.all(r.response == 0.0)
+    # just above the threshold it moves, in the right mechanism
+    r = respond(m, gm.rectangular_pulse(-1.01 * m.k_l, 0.4))
+    assert r.activated and r.events[0].after == "l" and r.peak > 0
+
+
+def test_threshold_is_direction_specific():
+    arch = geometry.random_arch(seed=11)
+    m = prepare(arch, "paper")
+    lo, hi = sorted((m.k_l, m.k_r))
+    a = 0.5 * (lo + hi)
+    # between the two multipliers only the weaker direction activates
+    weak_sign = -1.0 if m.k_l < m.k_r else 1.0
+    assert respond(m, gm.rectangular_pulse(weak_sign * a, 0.3)).activated
+    assert not respond(m, gm.rectangular_pulse(-weak_sign * a, 0.3)).activated
+
+
+# ------------------------------------------------------------------------- collapse
+def test_collapse_independent_of_limit():
+    arch = geometry.oppenheim_arch()
+    m2 = prepare(arch, "paper", limit_factor=2.0)
+    m3 = prepare(arch, "paper", limit_factor=3.0)
+    assert m3.phi_limit_l > m2.phi_limit_l > m2.phi_unstable_l
+    for motion in (gm.oppenheim_pulse(-1.4, 0.3), gm.oppenheim_pulse(-2.0, 0.3),
+                   gm.rectangular_pulse(0.9, 0.5), gm.one_sine_pulse(-2.0, 0.75),
+                   gm.oppenheim_pulse(-1.54, 0.3)):
+        r2, r3 = respond(m2, motion), respond(m3, motion)
+        assert r2.collapsed == r3.collapsed
+        assert r2.status == r3.status
+        if r2.collapsed:
+            assert r2.t_unstable is not None
+            assert r2.t_unstable == pytest.approx(r3.t_unstable, abs=1e-9)
+            assert r2.t_unstable <= r2.t_collapse < r3.t_collapse
+            assert r2.impacts == r3.impacts
+            if r2.t_collapse < r2.time[-1]:
+                assert np.isnan(r2.response[-1])
+    assert respond(m2, gm.oppenheim_pulse(-1.4, 0.3)).collapsed
+    assert not respond(m2, gm.oppenheim_pulse(-1.54, 0.3)).collapsed
+
+
+def test_collapse_on_random_arches_independent_of_limit():
+    found = 0
+    for seed in range(6):
+        arch = geometry.random_arch(seed=seed)
+        m2 = prepare(arch, "momentum", limit_factor=2.0)
+        m3 = prepare(arch, "momentum", limit_factor=3.0)
+        r2 = respond(m2, gm.oppenheim_pulse(-1.0, 0.3))
+        r3 = respond(m3, gm.oppenheim_pulse(-1.0, 0.3))
+        assert r2.collapsed == r3.collapsed
+        if r2.collapsed:
+            found += 1
+            assert r2.t_unstable == pytest.approx(r3.t_unstable, abs=1e-9)
+            assert r2.t_unstable <= r2.t_collapse
+    assert found >= 1
+
+
+def test_nonmonotonic_collapse_in_amplitude(nominal):
+    """Oppenheim's arch under Oppenheim's pulse with t_p = 0.3 s: collapses at 1.48 g,
+    survives 1.50-1.58 g (passing the unstable position and coming back), collapses at 1.60 g."""
+    out = {}
+    for a in (1.40, 1.48, 1.50, 1.54, 1.58, 1.60, 1.70):
+        out[a] = respond(nominal, gm.oppenheim_pulse(-a, 0.3))
+    assert out[1.40].collapsed and out[1.48].collapsed
+    for a in (1.50, 1.54, 1.58):
+        assert out[a].status == "rest"
+        assert out[a].t_unstable is not None  # past F = 0 and back: not collapse by itself
+        assert out[a].peak > nominal.phi_unstable_l
+    assert out[1.60].collapsed and out[1.70].collapsed
+    # the reference integrator confirms the survival window
+    assert respond(nominal, gm.oppenheim_pulse(-1.54, 0.3), integrator="reference").status == "rest"
+    assert respond(nominal, gm.oppenheim_pulse(-1.48, 0.3), integrator="reference").collapsed
+    assert respond(nominal, gm.oppenheim_pulse(-1.60, 0.3), integrator="reference").collapsed
+
+
+def test_nonmonotonic_collapse_one_sine(nominal):
+    amps = np.round(np.arange(0.40, 3.01, 0.05), 2)
+    flags = [respond(nominal, gm.one_sine_pulse(-a, 1.0)).collapsed for a in amps]
+    first = flags.index(True)
+    assert not all(flags[first:])  # a survival above the first collapse
+
+
+# ------------------------------------------------------------------------- chattering
+def test_free_rocking_ends_at_rest(paper_case, nominal):
+    r = paper_case
+    imp = [e for e in r.events if e.kind == "impact"]
+    assert r.status == "rest" and r.events[-1].kind == "rest"
+    assert 50 < len(imp) < 200
+    assert r.t_final < 20.0
+    # each impact loses energy: |rate| shrinks by 0.8754 per impact on the symmetric arch
+    rates = np.array([-e.rate_before for e in imp])
+    assert np.all(np.diff(rates) < 0)
+    assert rates[1] / rates[0] == pytest.approx(0.87538, rel=1e-3)
+    assert rates[-1] < 10 * nominal.v_rest
+
+
+def test_long_free_run_momentum_irregular():
+    m = prepare(geometry.random_arch(seed=5), "momentum")
+    r = respond(m, gm.rectangular_pulse(-1.3 * m.k_l, 0.2), t_free=600.0)
+    assert r.status == "rest"
+    assert r.events[-1].kind == "rest"
+    assert 0 < len(r.impacts) < 500
+    assert r.t_final < 60.0
+
+
+# ------------------------------------------------------------------------- bad input
+@pytest.mark.parametrize("kw,field", [
+    (dict(t_end=0.0), "t_end"), (dict(t_end=-1.0), "t_end"),
+    (dict(t_end=1.0, dt_out=2.0), "dt_out"), (dict(dt_out=0.0), "dt_out"),
+    (dict(integrator="euler"), "integrator"), (dict(dt=-1e-3), "dt"),
+    (dict(t_end=float("nan")), "t_end"),
+])
+def test_bad_input(nominal, kw, field):
+    with pytest.raises(ArchInputError, match=field):
+        respond(nominal, gm.oppenheim_pulse(-1.0, 0.2), **kw)
+
+
+def test_bad_motion_and_limit(nominal):
+    with pytest.raises(ArchInputError, match="motion"):
+        respond(nominal, [0.0, 1.0])
+    with pytest.raises(ArchInputError, match="limit factor"):
+        prepare(geometry.oppenheim_arch(), "paper", limit_factor=1.0)
+
+
+def test_kernel_status_codes_are_distinct():
+    assert len({kernel.ST_REST, kernel.ST_COLLAPSED, kernel.ST_MOVING}) == 3
