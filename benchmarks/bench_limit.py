@@ -1,0 +1,129 @@
+"""Throughput of the limit analysis: production path against a plain loop of linprog.
+
+Run:  python benchmarks/bench_limit.py [--arches N] [--lp-arches N] [--no-numba]
+
+For random arches (METHOD spreads s_a = 0.1, s_t = 0.1, s_R = 0.05 around a nominal arch with
+R = 10 m, embrace 157.5 deg, t = 1.5 m) with n = 7 and n = 20 voussoirs it measures, on one core:
+
+* the production path: ``limit.kinematic_multipliers_batch`` on the whole batch (arches/s);
+* the one-arch-at-a-time path: ``limit.kinematic_mechanisms`` in a Python loop;
+* the static linear program (``limit.static_multiplier``, scipy HiGHS) for 'l' and 'r' per arch,
+  on the first arches of the same batch, measured in the same run;
+
+then prints the rates, the speed-up ratios and the largest |kinematic - static| difference.
+Target: >= 5000 arches/s at n = 7 through the production path.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
+    os.environ[_var] = "1"
+
+import argparse  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+
+if "--no-numba" in sys.argv:
+    os.environ["ARCHROCK_DISABLE_NUMBA"] = "1"
+
+import numpy as np  # noqa: E402
+
+from archrock import limit  # noqa: E402
+from archrock.geometry import Arch, nominal_arch, random_spans_thicknesses_radii  # noqa: E402
+
+TARGET_N7 = 5000.0
+
+
+def make_batch(n: int, count: int, seed: int):
+    """``count`` random arches around the nominal n-voussoir arch, as (B, n) arrays."""
+    nom = nominal_arch(10.0, 157.5, 1.5, n)
+    rng = np.random.default_rng(seed)
+    spans, radii, thick = (np.empty((count, n)) for _ in range(3))
+    for b in range(count):
+        u = rng.uniform(-1.0, 1.0, size=(3, n))
+        spans[b], thick[b], radii[b] = random_spans_thicknesses_radii(nom, u, 0.1, 0.1, 0.05)
+    return spans, radii, thick
+
+
+def best_rate(fn, count: int, repeat: int) -> float:
+    """Best of ``repeat`` timings, as items per second."""
+    best = np.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return count / best
+
+
+def bench(n: int, n_batch: int, n_single: int, n_lp: int, seed: int) -> dict:
+    spans, radii, thick = make_batch(n, n_batch, seed)
+    arches = [Arch(spans[b], radii[b], thick[b]) for b in range(max(n_single, n_lp))]
+    # warm-up (compilation of the optional kernel, candidate tables)
+    limit.kinematic_multipliers_batch(spans[:4], radii[:4], thick[:4])
+    limit.kinematic_mechanisms(arches[0])
+
+    out = {}
+
+    def batch():
+        out["batch"] = limit.kinematic_multipliers_batch(spans, radii, thick)
+
+    rate_batch = best_rate(batch, n_batch, 3)
+
+    def single():
+        out["single"] = [limit.kinematic_mechanisms(a) for a in arches[:n_single]]
+
+    rate_single = best_rate(single, n_single, 2)
+
+    def lp():
+        out["lp"] = [(limit.static_multiplier(a, "l")[0], limit.static_multiplier(a, "r")[0])
+                     for a in arches[:n_lp]]
+
+    rate_lp = best_rate(lp, n_lp, 1)
+
+    k_l, k_r = out["batch"][0], out["batch"][1]
+    lp_arr = np.array(out["lp"])
+    diff_lp = float(np.max(np.abs(np.column_stack([k_l[:n_lp], k_r[:n_lp]]) - lp_arr)))
+    single_arr = np.array([(m_l.multiplier, m_r.multiplier) for m_l, m_r in out["single"]])
+    diff_single = float(np.max(np.abs(np.column_stack([k_l[:n_single], k_r[:n_single]]) - single_arr)))
+    return {"n": n, "batch": rate_batch, "single": rate_single, "lp": rate_lp,
+            "diff_lp": diff_lp, "diff_single": diff_single, "n_batch": n_batch,
+            "n_single": n_single, "n_lp": n_lp,
+            "candidates": len(limit._candidates(n)[0])}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--arches", type=int, default=20000, help="batch size at n = 7 (default 20000)")
+    ap.add_argument("--lp-arches", type=int, default=300, help="arches through linprog (default 300)")
+    ap.add_argument("--no-numba", action="store_true", help="use the numpy enumeration only")
+    ap.add_argument("--seed", type=int, default=2017)
+    args = ap.parse_args(argv)
+
+    backend = "numba kernel" if limit._NUMBA_ENABLED else "numpy (vectorised, blocked)"
+    print(f"archrock limit-analysis benchmark; kinematic backend: {backend}; threads = 1")
+    rows = []
+    for n, n_batch in ((7, args.arches), (20, max(200, args.arches // 50))):
+        n_single = min(n_batch, 2000 if n == 7 else 200)
+        n_lp = min(n_batch, args.lp_arches)
+        r = bench(n, n_batch, n_single, n_lp, args.seed + n)
+        rows.append(r)
+        print(f"\nn = {n:2d}  ({r['candidates']} candidate mechanisms per arch)")
+        print(f"  production, kinematic_multipliers_batch ({r['n_batch']} arches): {r['batch']:10.0f} arches/s")
+        print(f"  one arch at a time, kinematic_mechanisms ({r['n_single']} arches): {r['single']:10.0f} arches/s")
+        print(f"  linprog loop, static_multiplier l + r ({r['n_lp']} arches):      {r['lp']:10.1f} arches/s")
+        print(f"  speed-up batch / linprog:  {r['batch'] / r['lp']:8.1f} x")
+        print(f"  speed-up single / linprog: {r['single'] / r['lp']:8.1f} x")
+        print(f"  max |kinematic - static LP| = {r['diff_lp']:.2e}; "
+              f"max |batch - single| = {r['diff_single']:.2e}")
+    ok = rows[0]["batch"] >= TARGET_N7
+    print(f"\ntarget >= {TARGET_N7:.0f} arches/s at n = 7: {'met' if ok else 'NOT met'} "
+          f"({rows[0]['batch']:.0f} arches/s)")
+    agree = all(r["diff_lp"] < 1e-6 and r["diff_single"] == 0.0 for r in rows)
+    print(f"kinematic and static agree within 1e-6: {'yes' if agree else 'NO'}")
+    return 0 if agree else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
