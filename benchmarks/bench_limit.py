@@ -26,7 +26,7 @@ import sys  # noqa: E402
 import time  # noqa: E402
 
 if "--no-numba" in sys.argv:
-    os.environ["ARCHROCK_DISABLE_NUMBA"] = "1"
+    os.environ["ARCHROCK_NO_NUMBA"] = "1"
 
 import numpy as np  # noqa: E402
 

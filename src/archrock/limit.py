@@ -12,7 +12,7 @@ Two independent methods:
   prefix sums of W, W*x_G, W*y_G, so each candidate costs O(1) and the enumeration is vectorised
   over candidates and over a batch of arches, in cache-sized blocks.  With the optional numba
   extra a compiled kernel runs the same arithmetic candidate by candidate (identical results;
-  set ARCHROCK_DISABLE_NUMBA=1 to use numpy only).
+  set ARCHROCK_NO_NUMBA=1 to use numpy only).
 * static: a linear program on the three redundant reactions at the left springing and lambda:
   maximise lambda with the line of thrust inside every joint's contact surface.
 """
@@ -20,7 +20,6 @@ Two independent methods:
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 from functools import lru_cache
 from itertools import combinations
@@ -28,6 +27,8 @@ from itertools import combinations
 import numpy as np
 from scipy.optimize import linprog
 
+from ._jit import HAVE_NUMBA
+from ._jit import numba as _jit_numba
 from .errors import ArchInputError
 from .geometry import Arch, sector_properties
 
@@ -275,11 +276,8 @@ def _enumerate(spans, radii, thick):
 # by candidate, keeping the first minimum in candidate order (as numpy's argmin does).
 _NUMBA_ENABLED = False
 _numba_kernel = None
-if os.environ.get("ARCHROCK_DISABLE_NUMBA", "") not in ("1", "true", "yes"):
-    try:  # pragma: no cover - depends on the environment
-        import numba as _numba
-    except Exception:  # noqa: BLE001 - any import failure means: no compiled kernel
-        _numba = None
+if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see archrock._jit)
+    _numba = _jit_numba
     if _numba is not None:
         _NUMBA_ENABLED = True
 
