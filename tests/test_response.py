@@ -159,8 +159,9 @@ def _check_agreement(model, motion):
         scale = max(1e-3, abs(b.rate_before))
         assert a.rate_before == pytest.approx(b.rate_before, abs=1e-4 * scale)
     # the reference's peak is a maximum over its solver nodes (see
-    # test_reference_peak_is_the_true_maximum): it can only fall short of the true peak
-    assert r.peak <= f.peak * (1 + 1e-7)
+    # test_reference_peak_is_the_true_maximum) and can only fall short of the true peak; the
+    # fast one is a max over its 2 ms RK4 nodes (test_fast_peak_small_rocking), 1e-4 at worst
+    assert r.peak <= f.peak * (1 + 1e-4)
     if f.collapsed:
         assert f.peak == pytest.approx(r.peak, rel=1e-12)
     # the sampled responses agree where both are defined
