@@ -32,7 +32,7 @@ from .errors import ArchInputError
 from .geometry import sector_properties
 from .groundmotion import G, GroundMotion
 from .limit import EDGES, _candidates, kinematic_multipliers_batch
-from .mechanism import GEO_SIZE, coefficients, configuration, rates
+from .mechanism import GEO_SIZE, coefficients, configuration, rates  # noqa: F401
 
 __all__ = ["PreparedBatch", "perturb", "check_geometries", "prepare_batch", "simulate_batch",
            "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
@@ -166,10 +166,12 @@ def _mechanism_geo(px, py, mass, cen, inert, joints, edges, is_r, geo):
 
 @maybe_njit
 def _det_signed(phi, geo, det0):
-    _, _, _, _, _, _, _, ok = configuration(phi, geo)
+    """det = (C - B) x (D - C) (vanishes at the dead point), times det0; -1 past closure.
+    Computed from the positions (rates() would divide by it)."""
+    bx, by, cx, cy, _, _, _, ok = configuration(phi, geo)
     if not ok:
         return -1.0
-    return rates(phi, geo)[5] * det0
+    return _cross(cx - bx, cy - by, geo[6] - cx, geo[7] - cy) * det0
 
 
 @maybe_njit
@@ -347,9 +349,22 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact="fi
            ("phu_l", "phu_r", "lim_l", "lim_r", "m0_l", "m0_r", "v_rest")}
     err_l = np.zeros(B, dtype=np.int64)
     err_r = np.zeros(B, dtype=np.int64)
-    _prepare_loop(px, py, mass, cen, inert, cand_l, cand_r, np.ascontiguousarray(jq),
-                  np.ascontiguousarray(eq), ok, geo_l, geo_r, out["phu_l"], out["phu_r"],
-                  out["lim_l"], out["lim_r"], out["m0_l"], out["m0_r"], out["v_rest"], err_l, err_r)
+    loop_args = (px, py, mass, cen, inert, cand_l, cand_r, np.ascontiguousarray(jq),
+                 np.ascontiguousarray(eq))
+    outs = (geo_l, geo_r, out["phu_l"], out["phu_r"], out["lim_l"], out["lim_r"], out["m0_l"],
+            out["m0_r"], out["v_rest"], err_l, err_r)
+    try:
+        _prepare_loop(*loop_args, ok, *outs)
+    except (ZeroDivisionError, FloatingPointError):
+        # a degenerate four-bar somewhere: redo arch by arch and record the culprits
+        for b in np.flatnonzero(ok):
+            only = np.zeros(B, dtype=bool)
+            only[b] = True
+            try:
+                _prepare_loop(*loop_args, only, *outs)
+            except (ZeroDivisionError, FloatingPointError):
+                error[b] = "four-link model: degenerate four-bar (division by zero)"
+        ok = error == ""
     mech_l = np.array([mechanism_label(n, int(c)) if ok[b] else "" for b, c in enumerate(cand_l)],
                       dtype=object)
     mech_r = np.array([mechanism_label(n, int(c)) if ok[b] else "" for b, c in enumerate(cand_r)],

@@ -1,0 +1,186 @@
+"""Monte Carlo ensembles: nominal limit, reproducibility across executors, resume, summary."""
+
+import json
+import os
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from archrock.ensemble import (COLUMNS, EnsembleConfig, EnsembleConfigMismatch, run_batch,
+                               run_ensemble, pulse_description, sample_arch)
+from archrock.errors import ArchInputError
+from archrock.fragility import collapse_probability
+from archrock.geometry import oppenheim_arch
+from archrock.limit import limit_analysis
+
+PULSE = pulse_description("oppenheim", -1.0, 0.2)
+
+
+def config(**kw):
+    base = dict(samples=40, batch_size=10, seed=11, motion=PULSE, impact="fixed", cv=0.8754)
+    base.update(kw)
+    return EnsembleConfig.from_arch(oppenheim_arch(), **base)
+
+
+@pytest.fixture(scope="module")
+def base():
+    return run_ensemble(config(), progress=False)
+
+
+def test_zero_spreads_every_sample_is_the_nominal_arch():
+    cfg = config(samples=15, batch_size=4, spread_span=0.0, spread_thickness=0.0, spread_radius=0.0)
+    res = run_ensemble(cfg, progress=False)
+    df = res.frame
+    assert len(df) == 15
+    np.testing.assert_allclose(df["k_l"], 0.3700, atol=5e-5)
+    np.testing.assert_allclose(df["k_r"], 0.3700, atol=5e-5)
+    assert set(df["mech_l"]) == {"0i-3e-5i-7e"} and set(df["mech_r"]) == {"0e-2i-4e-7i"}
+    assert not df["collapsed"].any()
+    assert set(df["status"]) == {"rest"}
+    # identical arches, identical responses: the nominal arch rocks and recovers
+    assert df["peak"].nunique() == 1 and df["peak"].iloc[0] > 0.02
+    assert (df["n_impacts"] > 10).all()
+    s = res.summary()
+    assert s["p_collapse"]["p"] == 0.0 and s["p_collapse"]["high"] < 0.25
+    assert s["k_l"]["std"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_frame_columns_and_values(base):
+    df = base.frame
+    assert list(df.columns) == COLUMNS
+    assert df["index"].tolist() == list(range(40))
+    assert df["batch"].tolist() == [i // 10 for i in range(40)]
+    assert (df["error"] == "").all()
+    assert df["k_l"].between(0.2, 0.5).all() and df["k_r"].between(0.2, 0.5).all()
+    assert df["k_l"].std() > 0.005  # the spreads do perturb the multipliers
+    # a sample's row is the limit analysis of the arch rebuilt from the seed
+    for i in (0, 13, 39):
+        lim = limit_analysis(sample_arch(base.config, i), verify=False)
+        assert df["k_l"][i] == pytest.approx(lim.k_l, abs=1e-12)
+        assert df["k_r"][i] == pytest.approx(lim.k_r, abs=1e-12)
+    assert df["collapsed"].tolist() == (df["status"] == "collapsed").tolist()
+    col = df[df["collapsed"]]
+    assert (col["t_collapse"] >= col["t_unstable"]).all()
+    assert df.loc[~df["collapsed"], "t_collapse"].isna().all()
+
+
+def test_summary_numbers(base):
+    df, s = base.frame, base.summary()
+    assert s["samples"] == 40
+    assert s["k_l"]["mean"] == pytest.approx(np.mean(df["k_l"].to_numpy()), rel=1e-12)
+    assert s["k_l"]["std"] == pytest.approx(np.std(df["k_l"].to_numpy(), ddof=1), rel=1e-12)
+    assert s["k_r"]["mean"] == pytest.approx(np.mean(df["k_r"].to_numpy()), rel=1e-12)
+    n_col = int(df["collapsed"].sum())
+    assert 0 < n_col < 40
+    p, lo, hi = collapse_probability(n_col, 40)
+    assert s["p_collapse"]["p"] == pytest.approx(n_col / 40)
+    assert (s["p_collapse"]["low"], s["p_collapse"]["high"]) == pytest.approx((lo, hi))
+    assert sum(s["hinge_patterns"]["M_l"].values()) == 40
+    assert s["hinge_patterns"]["M_l"]["0i-3e-5i-7e"] == int((df["mech_l"] == "0i-3e-5i-7e").sum())
+    k0 = s["nominal"]["k_l"]
+    share = np.mean(np.abs(df["k_l"] - k0) >= abs(0.4111 - k0))
+    assert s["as_far_as"]["RA-1"]["k_l"] == pytest.approx(share)
+    asym = np.mean(np.abs(df["k_l"] - df["k_r"]) >= abs(0.3946 - 0.3501))
+    assert s["as_far_as"]["RA-2"]["asymmetry"] == pytest.approx(asym)
+    json.dumps(s, allow_nan=False)
+
+
+def test_same_seed_same_results_with_two_workers(base):
+    res2 = run_ensemble(config(), workers=2, progress=False)
+    pd.testing.assert_frame_equal(base.frame, res2.frame)
+    other = run_ensemble(config(seed=12, samples=10), progress=False)
+    assert not np.allclose(other.frame["k_l"], base.frame["k_l"][:10])
+
+
+def test_batches_are_self_contained(base):
+    df, _ = run_batch(config(), 2)
+    pd.testing.assert_frame_equal(df.reset_index(drop=True),
+                                  base.frame.iloc[20:30].reset_index(drop=True))
+
+
+def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
+    out = tmp_path / "ens"
+    first = run_ensemble(config(), out_dir=out, progress=False)
+    pd.testing.assert_frame_equal(first.frame, base.frame)
+    files = sorted(p.name for p in (out / "batches").iterdir())
+    assert files == [f"batch-{b:05d}.parquet" for b in range(4)]
+    (out / "batches" / "batch-00002.parquet").unlink()
+    # a half-written file of a killed run is ignored
+    (out / "batches" / "batch-00003.parquet.tmp-999").write_bytes(b"partial")
+    again = run_ensemble(config(), out_dir=out, progress=False)
+    pd.testing.assert_frame_equal(again.frame, base.frame)
+    assert again.timing["computed_batches"] == [2]
+    assert again.timing["loaded_batches"] == [0, 1, 3]
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert [r["computed"] for r in manifest["runs"]] == [[0, 1, 2, 3], [2]]
+    assert manifest["config"] == config().to_dict()
+    assert manifest["seeds"]["entropy"] == 11
+    assert manifest["versions"]["numpy"] == np.__version__
+    assert manifest["finished"] is not None
+    assert manifest["batches"]["2"]["run"] == 1 and manifest["batches"]["0"]["run"] == 0
+
+
+def test_resume_refuses_another_configuration(tmp_path):
+    out = tmp_path / "ens"
+    run_ensemble(config(samples=10), out_dir=out, progress=False)
+    with pytest.raises(EnsembleConfigMismatch, match="'seed' is 11 there and 12 here"):
+        run_ensemble(config(samples=10, seed=12), out_dir=out, progress=False)
+
+
+def test_dask_local_cluster(base):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=1, processes=False, threads_per_worker=1,
+                                  dashboard_address=None) as cluster:
+        res = run_ensemble(config(), scheduler=cluster.scheduler_address, progress=False)
+    assert res.timing["executor"] == "dask"
+    pd.testing.assert_frame_equal(res.frame, base.frame)
+
+
+def test_limit_only_without_motion():
+    res = run_ensemble(config(samples=12, motion=None), progress=False)
+    s = res.summary()
+    assert s["p_collapse"] is None and s["response"] is None
+    assert set(res.frame["status"]) == {"limit-only"}
+    assert res.frame["peak"].isna().all()
+
+
+def test_paper_impact_failures_are_counted():
+    # wide spreads: the per-geometry 'paper' impact model creates energy on many arches
+    res = run_ensemble(config(samples=100, batch_size=50, impact="paper", cv=None, seed=0,
+                              spread_span=0.3, spread_thickness=0.3, spread_radius=0.2),
+                       progress=False)
+    s = res.summary()
+    failed = res.frame[res.frame["error"] != ""]
+    assert len(failed) >= 10 and (failed["status"] == "failed").all()
+    assert failed["peak"].isna().all() and not failed["collapsed"].any()
+    assert s["failed"]["count"] == len(failed)
+    assert sum(s["failed"]["reasons"].values()) == len(failed)
+    assert any("creates energy" in r for r in s["failed"]["reasons"])
+    assert s["p_collapse"]["trials"] == 100 - len(failed)
+    used = res.frame[res.frame["error"] == ""]
+    # the laws that were used never create energy: c_lr * c_rl <= 1 (energy ratios multiply to it)
+    assert (used["c_l_to_r"] * used["c_r_to_l"] <= 1 + 1e-9).all()
+    # their k is still known: the k statistics use every sample with finite k
+    assert s["k_l"]["count"] == int(np.isfinite(res.frame["k_l"]).sum()) >= 99
+
+
+def test_nominal_paper_impact_is_the_papers_cv():
+    res = run_ensemble(config(samples=3, impact="nominal-paper", cv=None), progress=False)
+    assert res.impact["cv"] == pytest.approx(0.8754, abs=5e-5)
+    assert res.frame["c_l_to_r"].tolist() != [] and np.isfinite(res.frame["c_l_to_r"]).all()
+
+
+@pytest.mark.parametrize("kw, field", [
+    ({"samples": 0}, "samples"), ({"spread_span": -0.1}, "spread span"),
+    ({"spread_radius": 1.0}, "spread radius"), ({"batch_size": 0}, "batch size"),
+    ({"impact": "fixed", "cv": 0.0}, "cv"), ({"impact": "elastic"}, "impact"),
+])
+def test_bad_configuration(kw, field):
+    with pytest.raises(ArchInputError, match=field):
+        config(**kw)
+
+
+def test_bad_workers():
+    with pytest.raises(ArchInputError, match="workers"):
+        run_ensemble(config(samples=2), workers=0, progress=False)
