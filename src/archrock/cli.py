@@ -665,6 +665,110 @@ def run_fragility(args) -> int:
     return 0
 
 
+# ---------------------------------------------------------------------------- ensemble
+@subcommand("ensemble")
+def add_ensemble_parser(subparsers):
+    p = subparsers.add_parser(
+        "ensemble", help="Monte Carlo over random arches around a nominal one: k_l, k_r, hinge "
+                         "patterns and, under a ground motion, the probability of collapse",
+        description="Random arches (spans, thicknesses, radii uniform around the nominal arch) in "
+                    "batches with independent random streams (numpy SeedSequence), so results "
+                    "depend on --seed and --batch-size only, never on --workers. With --out DIR "
+                    "every finished batch is kept (Parquet + manifest.json) and a re-run resumes.")
+    add_geometry_options(p)
+    p.add_argument("--samples", type=_int, default=1000, metavar="N",
+                   help="number of random arches, >= 1 (default 1000)")
+    p.add_argument("--seed", type=_int, default=0, help="random seed, integer >= 0 (default 0)")
+    _add_spread_options(p)
+    p.add_argument("--batch-size", type=_int, default=500, metavar="B",
+                   help="samples per batch and random stream, >= 1 (default 500)")
+    p.add_argument("--workers", type=_int, default=1, metavar="N",
+                   help="1: in-process (numba threads, default); N > 1: local process pool")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the batches on an existing Dask cluster (needs archrock[dask])")
+    p.add_argument("--out", metavar="DIR",
+                   help="folder for batches/*.parquet and manifest.json; resumes if it exists")
+    add_motion_options(p)
+    g = p.add_argument_group("impact", "coefficient of restitution at each impact")
+    g.add_argument("--impact", choices=("nominal-paper", "paper", "momentum"), default=None,
+                   help="nominal-paper (default, the paper's choice): c_v of the nominal arch with "
+                        "the 'paper' model, applied to every sample; paper / momentum: per "
+                        "geometry ('paper' geometries that gain energy are reported as failed)")
+    g.add_argument("--cv", type=finite_float, default=None, metavar="CV",
+                   help="fixed coefficient of restitution, 0 < cv <= 1 (kinetic energy x cv^2)")
+    p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="histograms of k_l and k_r")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    p.set_defaults(func=run_ensemble_cmd)
+    return p
+
+
+def _ensemble_motion(args):
+    from .ensemble import pulse_description, record_description
+
+    motion = motion_from_args(args)  # validates the options (one-line errors)
+    if motion is None:
+        return None
+    if args.record:
+        return record_description(args.record, args.units, args.scale)
+    return pulse_description(args.pulse or "oppenheim", args.amplitude, args.pulse_duration)
+
+
+def run_ensemble_cmd(args) -> int:
+    from .ensemble import PAPER_RANDOM_ARCHES, EnsembleConfig, run_ensemble
+
+    if args.workers < 1:
+        raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
+    if args.cv is not None and args.impact is not None:
+        raise CLIError("--cv: cannot be combined with --impact; choose one")
+    nominal = arch_from_args(args)
+    impact = {"impact": "fixed", "cv": args.cv} if args.cv is not None else \
+        {"impact": args.impact or "nominal-paper"}
+    config = EnsembleConfig.from_arch(nominal, samples=args.samples, seed=args.seed,
+                                      batch_size=args.batch_size, motion=_ensemble_motion(args),
+                                      **_spreads(args), **impact)
+    result = run_ensemble(config, out_dir=args.out, workers=args.workers,
+                          scheduler=args.scheduler, progress=not args.no_progress)
+    summary = result.summary()
+    if args.plot:
+        from .plots import plot_multiplier_histograms
+
+        ref = {"nominal": (summary["nominal"]["k_l"], summary["nominal"]["k_r"]),
+               **PAPER_RANDOM_ARCHES}
+        plot_multiplier_histograms(result.frame, args.plot, reference=ref)
+    if args.json:
+        emit_json(summary)
+        return 0
+    kl, kr = summary["k_l"], summary["k_r"]
+    print(f"{summary['samples']} random arches around {nominal.name} (seed {args.seed}, spreads "
+          f"{args.spread_span:g}/{args.spread_thickness:g}/{args.spread_radius:g})")
+    print(f"nominal: k_l = {summary['nominal']['k_l']:.4f}, k_r = {summary['nominal']['k_r']:.4f}")
+    for name, s in (("k_l", kl), ("k_r", kr)):
+        if s["mean"] is not None:
+            print(f"{name}: mean {s['mean']:.4f}, std {s['std']:.4f}, 5-95% "
+                  f"[{s['q05']:.4f}, {s['q95']:.4f}]")
+    for name, far in summary["as_far_as"].items():
+        print(f"as far from nominal as {name}: k_l {far['k_l']:.3f}, k_r {far['k_r']:.3f}, "
+              f"either {far['either']:.3f}, asymmetry |k_l-k_r| {far['asymmetry']:.3f}")
+    for m, counts in summary["hinge_patterns"].items():
+        print(f"{m} hinges: " + ", ".join(f"{k} {v}" for k, v in list(counts.items())[:4]))
+    pc = summary["p_collapse"]
+    if pc is not None:
+        print(f"P(collapse) = {pc['p']:.4f} [{pc['low']:.4f}, {pc['high']:.4f}] "
+              f"({pc['collapses']}/{pc['trials']}, {pc['confidence']:.0%} Wilson)")
+    if summary["failed"]["count"]:
+        print(f"failed samples: {summary['failed']['count']} "
+              + "; ".join(f"{k}: {v}" for k, v in summary["failed"]["reasons"].items()))
+    t = summary["timing"]
+    print(f"time: {t['wall_s']:.1f} s ({t['executor']}; {len(t['computed_batches'])} batches "
+          f"computed, {len(t['loaded_batches'])} loaded)")
+    if args.out:
+        print(f"results in {args.out}")
+    if args.plot:
+        print(f"wrote {args.plot}")
+    return 0
+
+
 # ---------------------------------------------------------------------------- paper
 @subcommand("paper")
 def add_paper_parser(subparsers):

@@ -89,13 +89,15 @@ def _sha256(path) -> str:
     return h.hexdigest()
 
 
-def record_description(path, units: str | None = None) -> dict:
-    """JSON description of a recorded ground motion: absolute path, units and its sha256."""
+def record_description(path, units: str | None = None, scale: float = 1.0) -> dict:
+    """JSON description of a recorded ground motion: absolute path, units, scale factor and the
+    file's sha256 (checked whenever the motion is rebuilt)."""
     from .groundmotion import load_record
 
-    load_record(path, units)
+    load_record(path, units).scaled(scale)
     p = Path(path).resolve()
-    return {"type": "record", "path": str(p), "units": units, "sha256": _sha256(p)}
+    return {"type": "record", "path": str(p), "units": units, "scale": float(scale),
+            "sha256": _sha256(p)}
 
 
 @lru_cache(maxsize=8)
@@ -109,7 +111,9 @@ def _motion_cached(text: str):
     if digest != d["sha256"]:
         raise ArchInputError(f"record {d['path']!r}: its sha256 {digest[:12]}... differs from the "
                              f"configuration's {d['sha256'][:12]}...; the file has changed")
-    return load_record(d["path"], d.get("units"))
+    motion = load_record(d["path"], d.get("units"))
+    scale = d.get("scale", 1.0)
+    return motion.scaled(scale) if scale != 1.0 else motion
 
 
 def motion_from_description(desc: dict | None):
