@@ -184,3 +184,54 @@ def test_bad_configuration(kw, field):
 def test_bad_workers():
     with pytest.raises(ArchInputError, match="workers"):
         run_ensemble(config(samples=2), workers=0, progress=False)
+
+
+# ---------------------------------------------------------------------------- command line
+def cli(capsys, *argv):
+    from archrock.cli import main
+
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cli_json_summary(capsys):
+    code, out, err = cli(capsys, "ensemble", "--samples", "20", "--json", "--no-progress")
+    assert code == 0, err
+    s = json.loads(out)
+    assert s["samples"] == 20
+    assert set(s["k_l"]) >= {"mean", "std"} and set(s["k_r"]) >= {"mean", "std"}
+    assert 0.3 < s["k_l"]["mean"] < 0.4 and s["k_l"]["std"] > 0.005
+    assert s["p_collapse"] is None
+    # the same ensemble through the library
+    lib = run_ensemble(EnsembleConfig.from_arch(oppenheim_arch(), samples=20), progress=False)
+    assert s["k_l"]["mean"] == pytest.approx(lib.summary()["k_l"]["mean"], rel=1e-12)
+
+
+def test_cli_pulse_out_resume_and_plot(capsys, tmp_path):
+    args = ["ensemble", "--samples", "12", "--batch-size", "5", "--seed", "3", "--pulse", "oppenheim",
+            "--amplitude", "-1", "--pulse-duration", "0.2", "--cv", "0.8754", "--out",
+            str(tmp_path / "e"), "--json", "--no-progress"]
+    code, out, err = cli(capsys, *args, "--plot", str(tmp_path / "k.png"))
+    assert code == 0, err
+    s = json.loads(out)
+    assert s["p_collapse"]["trials"] == 12 and 0 <= s["p_collapse"]["p"] <= 1
+    assert s["impact"] == {"model": "fixed", "cv": 0.8754, "source": s["impact"]["source"]}
+    assert (tmp_path / "k.png").stat().st_size > 5000
+    code, out2, err = cli(capsys, *args)
+    s2 = json.loads(out2)
+    assert s2["timing"]["loaded_batches"] == [0, 1, 2] and s2["timing"]["computed_batches"] == []
+    assert s2["p_collapse"] == s["p_collapse"] and s2["k_r"] == s["k_r"]
+    code, _, err = cli(capsys, *args[:-4], "--seed", "4", "--out", str(tmp_path / "e"))
+    assert code == 2 and "'seed' is 3 there and 4 here" in err
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["--samples", "0"], "samples"), (["--spread-thickness", "-0.1"], "spread thickness"),
+    (["--workers", "0"], "workers"), (["--batch-size", "0"], "batch size"),
+    (["--cv", "0.8", "--impact", "paper"], "--cv"),
+])
+def test_cli_bad_input(capsys, argv, field):
+    code, out, err = cli(capsys, "ensemble", "--samples", "3", *argv)
+    assert code == 2
+    assert err.startswith("archrock: error: ") and field in err and err.count("\n") == 1
