@@ -2,8 +2,8 @@
 mirror symmetry, activation threshold, collapse and its independence of the rotation limit,
 non-monotonic collapse in the amplitude, the end of chattering, bad input.
 
-Two defects of the reference integrator (response._reference) are pinned by strict xfails
-below (see their docstrings); the agreement tests assert everything else at full strength.
+Two defects the reference integrator (response._reference) had are pinned by regression tests
+below (see their docstrings).
 """
 
 from __future__ import annotations
@@ -142,28 +142,22 @@ def _check_agreement(model, motion):
             assert a == pytest.approx(b, abs=1e-5)
     fi = [e for e in f.events if e.kind in ("impact", "activation", "collapse")]
     ri = [e for e in r.events if e.kind in ("impact", "activation", "collapse")]
-    n = len(ri)
-    if n and _spurious_closure(ri, n - 1):
-        # known defect (see test_reference_no_spurious_closure): the reference ends the motion
-        # with a fake closure when an arc fits inside its first step; the fast kernel goes on
-        # with impacts of negligible energy.  Everything before it must still agree.
-        n -= 1
-        first_rate = max(abs(e.rate_before) for e in fi if e.kind == "impact")
-        assert all(abs(e.rate_before) < 1e-3 * first_rate for e in fi[n:] if e.kind == "impact")
-        assert r.status == "rest"
-    else:
-        assert len(fi) == len(ri)
+    assert not any(_spurious_closure(ri, j) for j in range(len(ri)))
+    n = min(len(fi), len(ri))
+    if len(fi) != len(ri):
+        # the two may disagree only on when the last, negligible impacts fall below v_rest
+        first_rate = max(abs(e.rate_before) for e in fi + ri if e.kind == "impact")
+        tail = fi[n:] + ri[n:]
+        assert all(e.kind == "impact" and abs(e.rate_before) < 1e-3 * first_rate for e in tail)
     for a, b in zip(fi[:n], ri[:n]):
-        assert a.kind == b.kind and a.before == b.before and a.after == b.after
+        if a.kind == "impact" and abs(b.rate_before) < 1e-6:
+            break  # below this the order of tiny impacts is numerical noise
+        assert a.kind == b.kind and a.before == b.before
         assert a.time == pytest.approx(b.time, abs=1e-5)
         scale = max(1e-3, abs(b.rate_before))
         assert a.rate_before == pytest.approx(b.rate_before, abs=1e-4 * scale)
-    # the reference's peak is a maximum over its solver nodes (see
-    # test_reference_peak_is_the_true_maximum) and can only fall short of the true peak; the
-    # fast one is a max over its 2 ms RK4 nodes (test_fast_peak_small_rocking), 1e-4 at worst
-    assert r.peak <= f.peak * (1 + 1e-4)
-    if f.collapsed:
-        assert f.peak == pytest.approx(r.peak, rel=1e-12)
+    # both peaks are true maxima (turning points), not maxima over integration nodes
+    assert f.peak == pytest.approx(r.peak, rel=1e-4)
     # the sampled responses agree where both are defined
     ok = np.isfinite(f.response) & np.isfinite(r.response)
     assert np.array_equal(np.isfinite(f.response), np.isfinite(r.response))
@@ -205,31 +199,27 @@ def _true_peak(model, motion, f):
 
 
 def test_fast_peak_small_rocking():
-    """The fast kernel's peak is a max over its RK4 nodes (dt = 2 ms): on short arcs it is
-    slightly low (measured 1.5e-4 relative here), never high."""
+    """The fast kernel's peak is the max of its cubic Hermite interpolant at turning points
+    (a max over its 2 ms RK4 nodes alone was 1.5e-4 relative low here)."""
     model, motion = _small_rocking_case()
     f = respond(model, motion, integrator="fast")
     true = _true_peak(model, motion, f)
     assert true == pytest.approx(1.230505e-3, rel=1e-5)
-    assert f.peak <= true * (1 + 1e-9)
-    assert f.peak == pytest.approx(true, rel=1e-3)
+    assert f.peak == pytest.approx(true, rel=1e-6)
     fine = respond(model, motion, integrator="fast", dt=2.5e-4)
     assert fine.peak == pytest.approx(true, rel=1e-6)
 
 
-@pytest.mark.xfail(strict=True, reason="reference integrator: peak is the max over its solver "
-                                       "nodes, not the true maximum (22% low here)")
 def test_reference_peak_is_the_true_maximum():
+    """Was 22% low when the peak was a max over solver nodes; now taken at phi' = 0 events."""
     model, motion = _small_rocking_case()
     f = respond(model, motion, integrator="fast")
     r = respond(model, motion, integrator="reference")
     assert r.peak == pytest.approx(_true_peak(model, motion, f), rel=1e-3)
 
 
-@pytest.mark.xfail(strict=True, reason="reference integrator: an arc shorter than its first step "
-                                       "(1e-4 s) is taken as an immediate closure at the arc's start")
 def test_reference_no_spurious_closure(nominal):
-    """Paper's case: the reference records an 'impact' with rate_before = 0.0 at the very time
+    """Paper's case: the reference used to record an 'impact' with rate_before = 0.0 at the very time
     of the previous impact (post-impact rate ~9.5e-6 rad/s, arc ~1e-4 s) and stops at rest,
     25 impacts before the fast kernel."""
     r = respond(nominal, gm.oppenheim_pulse(-1.0, 0.2), integrator="reference")

@@ -112,6 +112,28 @@ def _fill(out, dt_out, t0, t1, phi0, w0, phi1, w1, sign, start):
 
 
 @maybe_njit
+def _hermite_max(h, phi0, w0, phi1, w1):
+    """Maximum of the cubic Hermite interpolant over a step where the rate turns from + to -."""
+    a = 2.0 * (phi0 - phi1) + h * (w0 + w1)
+    b = 3.0 * (phi1 - phi0) - h * (2.0 * w0 + w1)
+    c = h * w0
+    best = max(phi0, phi1)
+    # p'(s) = 3 a s^2 + 2 b s + c
+    if abs(a) < 1e-300:
+        roots = (-c / (2.0 * b) if b != 0.0 else -1.0, -1.0)
+    else:
+        disc = b * b - 3.0 * a * c
+        if disc < 0.0:
+            return best
+        sq = math.sqrt(disc)
+        roots = ((-b + sq) / (3.0 * a), (-b - sq) / (3.0 * a))
+    for s in roots:
+        if 0.0 < s < 1.0:
+            best = max(best, ((a * s + b) * s + c) * s + phi0)
+    return best
+
+
+@maybe_njit
 def _fill_value(out, dt_out, t1, value, start):
     k = start
     while k < out.size and k * dt_out < t1:
@@ -252,6 +274,8 @@ def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_r
             hu = _locate(phi, w, t, h, i, times, accel, geo, g, phu, False)
             t_unstable = t + hu
             n_ev = _add_event(ev, n_ev, EV_UNSTABLE, t_unstable, mode, mode, w, w)
+        if w > 0.0 and w1 <= 0.0:
+            peak = max(peak, _hermite_max(h, phi, w, p1, w1))
         t = t + h
         phi, w = p1, w1
         if phi > peak:

@@ -315,9 +315,14 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
             def rhs(tt, y, j=j):
                 return [y[1], K._rhs(y[0], y[1], a_of(tt, j), geo, G)]
 
-            def close(tt, y):
-                return y[0]
+            def close(tt, y, t_start=t0):
+                # phi = 0 exactly at the start of an arc is not a closure: only a return to 0
+                return y[0] if tt > t_start else 1.0
             close.terminal, close.direction = True, -1
+
+            def turning(tt, y):
+                return y[1]
+            turning.terminal, turning.direction = False, -1
 
             def limit_ev(tt, y):
                 return y[0] - lim
@@ -328,13 +333,15 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
             unstable_ev.terminal, unstable_ev.direction = False, 1
 
             sol = solve_ivp(rhs, (t0, t1), [phi, w], method="DOP853", rtol=rtol, atol=atol,
-                            events=(close, limit_ev, unstable_ev), dense_output=True,
+                            events=(close, limit_ev, unstable_ev, turning), dense_output=True,
                             first_step=min(1e-4, (t1 - t0) / 2))
             if t_uns < 0 and sol.t_events[2].size:
                 t_uns = float(sol.t_events[2][0])
                 ev.append((K.EV_UNSTABLE, t_uns, mode, mode, float(sol.y_events[2][0][1]),
                            float(sol.y_events[2][0][1])))
-            peak = max(peak, float(np.max(sol.y[0])))
+            # the true maximum is at a turning point (phi' = 0), not at a solver node
+            peak = max(peak, float(np.max(sol.y[0])),
+                       max((float(y[0]) for y in sol.y_events[3]), default=0.0))
             t_hit = sol.t[-1]
             fill(t0, t_hit, sol.sol, sign)
             if sol.status == 1 and sol.t_events[1].size:
