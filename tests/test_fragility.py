@@ -49,7 +49,9 @@ def test_probability_and_quantile_are_inverse():
 def test_quantile_inverts_probability_property(theta, beta, x):
     f = FragilityFit(theta=theta, beta=beta, method="moments", n_records=2)
     p = float(f.probability(x))
-    if 1e-12 < p < 1 - 1e-12:  # away from saturation the inverse is well conditioned
+    # away from saturation the inverse is well conditioned: near p = 1 the spacing of doubles
+    # (1e-16) is a relative error of 1e-16 / (1 - p) on the tail that the quantile inherits
+    if 1e-9 < p < 1 - 1e-9:
         assert float(f.quantile(p)) == pytest.approx(x, rel=1e-6)
 
 
