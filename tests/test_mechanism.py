@@ -316,3 +316,24 @@ def test_four_link_bad_input(opp):
                                         Hinge(3, "intrados"), Hinge(7, "extrados")), 0.4))
     with pytest.raises(ArchInputError, match="direction"):
         four_link(arch, Mechanism("x", lim.mechanism_l.hinges, lim.k_l))
+
+
+# ------------------------------------------------------------------ spline tables (fast kernel)
+@pytest.mark.parametrize("seed", [None, 3, 315])
+def test_tabulated_coefficients_match_exact(seed):
+    """The fast kernel's spline tables reproduce the exact M, L, F, P to 1e-8 of their scale
+    over the whole range the integrator visits (slightly below 0 up to the rotation limit)."""
+    from archrock.mechanism import fast_coefficients
+    from archrock.response import prepare
+
+    arch = geometry.oppenheim_arch() if seed is None else geometry.random_arch(seed=seed)
+    model = prepare(arch, "momentum")
+    for fl, lim, tab in ((model.mech_l, model.phi_limit_l, model.tables[0]),
+                         (model.mech_r, model.phi_limit_r, model.tables[1])):
+        scale = np.abs(np.array(fl.coefficients(0.0)))
+        for phi in np.linspace(-1e-3, lim, 997):
+            exact = np.array(fl.coefficients(phi))
+            approx = np.array(fast_coefficients(phi, tab))
+            assert np.all(np.abs(approx - exact) <= 1e-8 * scale)
+        # outside the table the exact formulas are used
+        assert fast_coefficients(2 * lim, tab) == fl.coefficients(2 * lim)

@@ -29,7 +29,8 @@ from .errors import ArchInputError
 from .geometry import Arch
 from .limit import EDGES, Hinge, Mechanism
 
-__all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration"]
+__all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",
+           "fast_coefficients"]
 
 G = 9.81  # m/s^2
 
@@ -332,6 +333,23 @@ class FourLink:
             w[idx] = th
         return v, w
 
+    def tabulated(self, phi_max: float, n_intervals: int = 600) -> np.ndarray:
+        """``geo`` with spline tables of the coefficients for 0 <= phi <= ``phi_max`` [rad] (for
+        the fast integrator; the tables reach past both ends so that their free ends are far)."""
+        top = min(phi_max * 1.25, self.phi_dead * (1 - 1e-6))
+        det0 = rates(0.0, self.geo)[5]
+        start = -0.05 * top
+        # the four-bar can lock on the negative side too: keep the grid inside the valid range
+        for _ in range(40):
+            ok = all(configuration(p, self.geo)[7] and rates(p, self.geo)[5] * det0 > 0
+                     for p in np.linspace(start, 0.0, 9))
+            if ok:
+                break
+            start *= 0.5
+        tab = coefficient_table(np.asarray(self.geo), start, top, int(n_intervals))
+        tab.setflags(write=False)
+        return tab
+
     def link_rates0(self):
         """(th1', th2', th3') at phi = 0."""
         return rates(0.0, self.geo)[:3]
@@ -371,3 +389,71 @@ def four_link(arch: Arch, mechanism: Mechanism) -> FourLink:
             f"mechanism: hinges {[h.to_dict() for h in hinges]} do not open under forces of "
             f"direction {mechanism.direction!r}")
     return fl
+
+
+# ---------------------------------------------------------------------------- tabulated coefficients
+# The fast integrator evaluates M, L, F, P a few million times per ensemble.  It can read them
+# from natural cubic splines through exact values on a uniform grid of phi instead of redoing
+# the loop closure (about 10x cheaper).  The grid starts below 0 so that phi = 0, where
+# impacts happen, is far from the splines' free ends (natural end conditions are only O(h^2)).  Layout appended to the 21 geometry
+# numbers: [phi_start, h, n_intervals, then per interval 4 functions x 4 polynomial coefficients
+# in s = phi - phi_i].
+TABLE_HEADER = 3
+
+
+@maybe_njit
+def coefficient_table(geo, start, phi_max, n_intervals):
+    """geo extended with spline tables of (M, L, F, P) on [start, phi_max] (start < 0)."""
+    n = n_intervals
+    h = (phi_max - start) / n
+    y = np.empty((4, n + 1))
+    for i in range(n + 1):
+        M, L, F, P = coefficients(start + i * h, geo)
+        y[0, i], y[1, i], y[2, i], y[3, i] = M, L, F, P
+    out = np.empty(GEO_SIZE + TABLE_HEADER + 16 * n)
+    out[:GEO_SIZE] = geo[:GEO_SIZE]
+    out[GEO_SIZE] = start
+    out[GEO_SIZE + 1] = h
+    out[GEO_SIZE + 2] = n
+    # natural cubic spline second derivatives by the Thomas algorithm (uniform grid)
+    cp = np.zeros(n + 1)
+    dp = np.zeros(n + 1)
+    m2 = np.zeros(n + 1)
+    for f in range(4):
+        for i in range(1, n):
+            rhs = 6.0 * (y[f, i + 1] - 2.0 * y[f, i] + y[f, i - 1]) / (h * h)
+            denom = 4.0 - cp[i - 1]
+            cp[i] = 1.0 / denom
+            dp[i] = (rhs - dp[i - 1]) / denom
+        m2[n] = 0.0
+        for i in range(n - 1, 0, -1):
+            m2[i] = dp[i] - cp[i] * m2[i + 1]
+        m2[0] = 0.0
+        for i in range(n):
+            base = GEO_SIZE + TABLE_HEADER + 16 * i + 4 * f
+            out[base] = y[f, i]
+            out[base + 1] = (y[f, i + 1] - y[f, i]) / h - h * (2.0 * m2[i] + m2[i + 1]) / 6.0
+            out[base + 2] = m2[i] / 2.0
+            out[base + 3] = (m2[i + 1] - m2[i]) / (6.0 * h)
+    return out
+
+
+@maybe_njit
+def fast_coefficients(phi, geo):
+    """(M, L, F, P) from the spline tables when ``geo`` carries them, else exactly."""
+    if geo.size <= GEO_SIZE:
+        return coefficients(phi, geo)
+    start = geo[GEO_SIZE]
+    h = geo[GEO_SIZE + 1]
+    n = int(geo[GEO_SIZE + 2])
+    x = (phi - start) / h
+    i = int(x)
+    if i < 0 or i >= n:
+        return coefficients(phi, geo)
+    s = phi - (start + i * h)
+    base = GEO_SIZE + TABLE_HEADER + 16 * i
+    M = ((geo[base + 3] * s + geo[base + 2]) * s + geo[base + 1]) * s + geo[base]
+    L = ((geo[base + 7] * s + geo[base + 6]) * s + geo[base + 5]) * s + geo[base + 4]
+    F = ((geo[base + 11] * s + geo[base + 10]) * s + geo[base + 9]) * s + geo[base + 8]
+    P = ((geo[base + 15] * s + geo[base + 14]) * s + geo[base + 13]) * s + geo[base + 12]
+    return M, L, F, P
