@@ -78,7 +78,8 @@ def test_simulate_batch_equals_respond(sample):
         r = respond(prepare(Arch(spans[b], radii[b], thick[b]), CV), motion)
         statuses.add(r.status)
         assert {0: "rest", 1: "collapsed", 2: "moving"}[int(res["status"][b])] == r.status
-        assert res["peak"][b] == pytest.approx(r.peak, rel=1e-9)  # geo equal to a few ulps
+        # respond also samples the output (n_out > 1): its peak refinement differs by ~1e-10
+        assert res["peak"][b] == pytest.approx(r.peak, rel=1e-8)
         assert res["n_impacts"][b] == len(r.impacts)
         assert res["n_activations"][b] == sum(e.kind == "activation" for e in r.events)
         if r.collapsed:
