@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 from functools import cached_property
 
 import numpy as np
@@ -114,8 +115,7 @@ def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float 
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
 
 
-@dataclass(frozen=True)
-class Event:
+class Event(NamedTuple):
     """A discrete event: kind in {activation, impact, rest, collapse, unstable}; time [s];
     mechanisms before/after ('l', 'r' or 'rest'); rates [rad/s] before/after, each in its own
     mechanism's coordinate (an impact's rate before is negative: the joints are closing)."""
@@ -242,8 +242,8 @@ def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=
     out, ev, n_ev, status, t_final, peak, t_col, t_uns = res
     if n_ev > max_events:
         raise ArchInputError(f"max_events: more than {max_events} events; raise max_events")
-    events = tuple(Event(_KIND_NAME[int(r[0])], float(r[1]), _MODE_NAME[int(r[2])],
-                         _MODE_NAME[int(r[3])], float(r[4]), float(r[5])) for r in ev[:n_ev])
+    events = tuple(Event(_KIND_NAME[int(k)], t, _MODE_NAME[int(b)], _MODE_NAME[int(a)], rb, ra)
+                   for k, t, b, a, rb, ra in ev[:n_ev].tolist())
     return Response(model, motion, np.arange(n_out) * dt_out, out, events,
                     {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}[int(status)],
                     float(peak), None if t_col < 0 else float(t_col), None if t_uns < 0 else float(t_uns),
