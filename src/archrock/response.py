@@ -118,7 +118,8 @@ def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float 
 class Event(NamedTuple):
     """A discrete event: kind in {activation, impact, rest, collapse, unstable}; time [s];
     mechanisms before/after ('l', 'r' or 'rest'); rates [rad/s] before/after, each in its own
-    mechanism's coordinate (an impact's rate before is negative: the joints are closing)."""
+    mechanism's coordinate (an impact's rate before is negative: the joints are closing);
+    energy_ratio: for an impact, kinetic energy after / before (0 when the arch comes to rest)."""
 
     kind: str
     time: float
@@ -126,10 +127,12 @@ class Event(NamedTuple):
     after: str
     rate_before: float
     rate_after: float
+    energy_ratio: float | None = None
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "time": self.time, "before": self.before, "after": self.after,
-                "rate_before": self.rate_before, "rate_after": self.rate_after}
+                "rate_before": self.rate_before, "rate_after": self.rate_after,
+                "energy_ratio": self.energy_ratio}
 
 
 @dataclass(frozen=True, eq=False)
@@ -242,7 +245,10 @@ def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=
     out, ev, n_ev, status, t_final, peak, t_col, t_uns = res
     if n_ev > max_events:
         raise ArchInputError(f"max_events: more than {max_events} events; raise max_events")
-    events = tuple(Event(_KIND_NAME[int(k)], t, _MODE_NAME[int(b)], _MODE_NAME[int(a)], rb, ra)
+    law = model.impact
+    gain = {(1, 2): law.energy_l_to_r, (2, 1): law.energy_r_to_l}
+    events = tuple(Event(_KIND_NAME[int(k)], t, _MODE_NAME[int(b)], _MODE_NAME[int(a)], rb, ra,
+                         gain.get((int(b), int(a)), 0.0) if k == K.EV_IMPACT else None)
                    for k, t, b, a, rb, ra in ev[:n_ev].tolist())
     return Response(model, motion, np.arange(n_out) * dt_out, out, events,
                     {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}[int(status)],
