@@ -143,7 +143,9 @@ class EnsembleConfig:
     'nominal-paper' (default, the paper's choice: c_v computed once on the nominal arch with the
     'paper' model, then applied as a fixed c_v to every sample), 'paper' or 'momentum' (per
     geometry), 'fixed' (with ``cv``); dt [s]: RK4 step; t_free [s]: free motion allowed after the
-    ground motion.
+    ground motion; tabulate: the RK4 kernel reads the equation's coefficients from spline
+    tables (as ``respond``'s default; ~1e-9 relative, about 3x faster) instead of the exact loop
+    closure.
     """
 
     nominal: dict
@@ -158,6 +160,7 @@ class EnsembleConfig:
     cv: float | None = None
     dt: float = 2e-3
     t_free: float = 60.0
+    tabulate: bool = True
 
     def __post_init__(self):
         if isinstance(self.nominal, Arch):
@@ -190,6 +193,8 @@ class EnsembleConfig:
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
                 raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0 s")
             object.__setattr__(self, name, float(v))
+        if not isinstance(self.tabulate, bool):
+            raise ArchInputError(f"tabulate: {self.tabulate!r}; allowed true or false")
         if self.motion is not None:
             motion_from_description(self.motion)
 
@@ -310,7 +315,8 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
     motion = motion_from_description(cfg.motion)
     error = pb.error.copy()
     if motion is not None:
-        res = simulate_batch(pb, motion, dt=cfg.dt, t_free=cfg.t_free, parallel=parallel)
+        res = simulate_batch(pb, motion, dt=cfg.dt, t_free=cfg.t_free, parallel=parallel,
+                             tabulate=cfg.tabulate)
         st = res["status"]
         error[st == ST_OVERFLOW] = f"response: more than {MAX_EVENTS} events"
         status = np.array([STATUS_NAMES.get(int(s), "failed") for s in st], dtype=object)
