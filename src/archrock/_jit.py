@@ -1,9 +1,16 @@
 """Optional numba compilation: the physics runs with numpy alone, faster with numba.
 
 Set ARCHROCK_NO_NUMBA=1 to run the pure-Python versions (used to check that both agree).
+
+numba keys its on-disk cache on the source file of the cached function alone, so a cached
+kernel would keep a stale inlined copy of a function from another module after that module
+changed.  Every dispatcher made here is therefore stamped with a hash of all the package's
+sources: any change to the package recompiles every cached function once.
 """
 
+import hashlib
 import os
+from pathlib import Path
 
 try:  # numba is an optional extra ("fast")
     if os.environ.get("ARCHROCK_NO_NUMBA"):
@@ -16,8 +23,38 @@ except ImportError:  # pragma: no cover - exercised when numba is absent
     HAVE_NUMBA = False
 
 
-def maybe_njit(func):
-    """numba.njit(cache=True) when numba is available, otherwise the function itself."""
-    if HAVE_NUMBA:
-        return numba.njit(cache=True, fastmath=False)(func)
-    return func
+def _package_digest() -> str:
+    h = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        h.update(path.name.encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
+_DIGEST = _package_digest() if HAVE_NUMBA else ""
+
+
+def _bind_cache(dispatcher):
+    """Add the package digest to the cache stamp of a numba dispatcher (numba internals; where
+    they differ, caching is turned off rather than risking a stale kernel)."""
+    try:
+        cache_file = dispatcher._cache._cache_file
+        stamp = cache_file._source_stamp
+        if not (isinstance(stamp, tuple) and stamp[-1:] == (_DIGEST,)):
+            cache_file._source_stamp = (stamp, _DIGEST)
+    except AttributeError:  # pragma: no cover - other numba versions
+        dispatcher.enable_caching = lambda: None
+        dispatcher._cache = getattr(numba.core.caching, "NullCache", lambda: None)()
+    return dispatcher
+
+
+def maybe_njit(func=None, **options):
+    """numba.njit(cache=True, **options) when numba is available, otherwise the function itself.
+
+    Usable bare (``@maybe_njit``) or with options (``@maybe_njit(parallel=True)``).
+    """
+    def wrap(f):
+        if not HAVE_NUMBA:
+            return f
+        return _bind_cache(numba.njit(cache=True, **options)(f))
+    return wrap if func is None else wrap(func)

@@ -480,7 +480,7 @@ def _simulate_loop_py(geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, l
 
 
 if HAVE_NUMBA:
-    @numba.njit(parallel=True, cache=True)
+    @maybe_njit(parallel=True)
     def _simulate_loop_nb(geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l, lim_r,
                           phu_l, phu_r, v_rest, run, times, accel, g, dt, t_free, max_events,
                           status, peak, t_col, t_uns, n_imp, n_act, n_ev):
@@ -512,43 +512,9 @@ if HAVE_NUMBA:
             n_act[b] = na
             n_ev[b] = ne
 
-    _simulate_loop_serial = numba.njit(cache=True)(_simulate_loop_py)
+    _simulate_loop_serial = maybe_njit(_simulate_loop_py)
 else:  # pragma: no cover - without numba
     _simulate_loop_nb = _simulate_loop_serial = None
-
-
-def _bind_cache_to_dependencies():
-    """numba keys an on-disk cache on the source file of the cached function only, so a cached
-    loop of this module would keep a stale copy of kernel.simulate / mechanism.coefficients after
-    kernel.py or mechanism.py change.  Add the hash of those sources to the caches' stamps."""
-    import hashlib
-    from pathlib import Path
-
-    from . import mechanism
-
-    h = hashlib.sha256()
-    for mod in (K, mechanism, _jit_module()):
-        h.update(Path(mod.__file__).read_bytes())
-    digest = h.hexdigest()
-    for disp in (_simulate_loop_nb, _simulate_loop_serial, _prepare_loop, _mechanism_geo,
-                 _phi_dead, _phi_unstable, _det_signed, _cross):
-        try:
-            cache_file = disp._cache._cache_file
-            stamp = cache_file._source_stamp
-            if not (isinstance(stamp, tuple) and stamp[-1:] == (digest,)):
-                cache_file._source_stamp = (stamp, digest)
-        except AttributeError:  # another numba version: caching without the guard
-            disp.enable_caching = None
-
-
-def _jit_module():
-    from . import _jit
-
-    return _jit
-
-
-if HAVE_NUMBA:
-    _bind_cache_to_dependencies()
 
 
 def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float = 2e-3,

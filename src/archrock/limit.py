@@ -27,7 +27,7 @@ from itertools import combinations
 import numpy as np
 from scipy.optimize import linprog
 
-from ._jit import HAVE_NUMBA
+from ._jit import HAVE_NUMBA, maybe_njit
 from ._jit import numba as _jit_numba
 from .errors import ArchInputError
 from .geometry import Arch, sector_properties
@@ -281,7 +281,7 @@ if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see arc
     if _numba is not None:
         _NUMBA_ENABLED = True
 
-        @_numba.njit(cache=True, nogil=True)
+        @maybe_njit(nogil=True)
         def _numba_kernel(cw, cwx, cwy, pxf, pyf, idx, pt, pair, sign, k_l, k_r, i_l, i_r):
             B = cw.shape[0]
             m = cw.shape[1]

@@ -273,10 +273,12 @@ class FourLink:
     def phi_dead(self) -> float:
         """First rotation [rad] at which the four-bar locks (dead point), capped at pi/2."""
         def det(phi):
+            # u2 x u3 from the positions: rates() would divide by it, and it can be exactly 0
             bx, by, cx, cy, *_, ok = configuration(phi, self.geo)
             if not ok:
                 return -1.0
-            return rates(phi, self.geo)[5] * det0
+            dx, dy = self.geo[_D], self.geo[_D + 1]
+            return _cross(cx - bx, cy - by, dx - cx, dy - cy) * det0
         det0 = math.copysign(1.0, rates(0.0, self.geo)[5])
         grid = np.linspace(0.0, math.pi / 2, 91)
         prev = grid[0]
