@@ -1,7 +1,6 @@
 """Monte Carlo ensembles: nominal limit, reproducibility across executors, resume, summary."""
 
 import json
-import os
 
 import numpy as np
 import pandas as pd

@@ -31,8 +31,9 @@ from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError
 from .geometry import sector_properties
 from .groundmotion import G, GroundMotion
-from .limit import EDGES, _candidates, kinematic_multipliers_batch
-from .mechanism import GEO_SIZE, coefficient_table, coefficients, configuration, rates  # noqa: F401
+from .limit import _candidates, kinematic_multipliers_batch
+from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficient_table, coefficients, dead_point, mechanism_geo,
+                        rest_rate, rotation_limit, table_range, unstable_rotation)
 
 __all__ = ["PreparedBatch", "perturb", "check_geometries", "prepare_batch", "simulate_batch",
            "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
@@ -43,15 +44,6 @@ ST_NOT_RUN = -1
 ST_OVERFLOW = -2
 #: event-table size per response in the batch kernel (the paper's pulse needs about 100).
 MAX_EVENTS = 4096
-
-# error codes of the compiled preparation
-_E_OK, _E_SINGULAR, _E_NOT_ADMISSIBLE, _E_WRONG_DIRECTION = 0, 1, 2, 3
-_GEO_ERRORS = {
-    _E_SINGULAR: "mechanism {m}: the hinges are aligned (singular four-bar)",
-    _E_NOT_ADMISSIBLE: "mechanism {m}: the hinges admit no opening motion",
-    _E_WRONG_DIRECTION: "mechanism {m}: the hinges do not open under forces of its direction",
-}
-
 
 # ---------------------------------------------------------------------------- random geometry
 def perturb(spans0, thick0, radii0, u, spread_span: float, spread_thickness: float,
@@ -96,154 +88,6 @@ def mechanism_label(n: int, candidate: int) -> str:
 
 
 # ---------------------------------------------------------------------------- compiled geometry
-@maybe_njit
-def _cross(ax, ay, bx, by):
-    return ax * by - ay * bx
-
-
-@maybe_njit
-def _mechanism_geo(px, py, mass, cen, inert, joints, edges, is_r, geo):
-    """Fill ``geo`` (GEO_SIZE) for one mechanism of one arch, as mechanism.four_link does.
-
-    px, py (n+1, 2): joint points (intrados, extrados); mass, inert (n,), cen (n, 2);
-    joints, edges (4,): hinges from the left springing.  Returns an error code (0 = ok).
-    """
-    ptx = np.empty(4)
-    pty = np.empty(4)
-    sg = np.empty(4)
-    for k in range(4):
-        ptx[k] = px[joints[k], edges[k]]
-        pty[k] = py[joints[k], edges[k]]
-        sg[k] = -1.0 if edges[k] == 0 else 1.0
-    u2x, u2y = ptx[2] - ptx[1], pty[2] - pty[1]
-    u3x, u3y = ptx[3] - ptx[2], pty[3] - pty[2]
-    rx, ry = ptx[0] - ptx[1], pty[0] - pty[1]
-    det = _cross(u2x, u2y, u3x, u3y)
-    if abs(det) < 1e-12 * math.hypot(u2x, u2y) * math.hypot(u3x, u3y):
-        return _E_SINGULAR
-    w2 = _cross(rx, ry, u3x, u3y) / det
-    w3 = _cross(u2x, u2y, rx, ry) / det
-    q0, q1, q2, q3 = sg[0], sg[1] * (w2 - 1.0), sg[2] * (w3 - w2), sg[3] * (-w3)
-    tol = 1e-9 * max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
-    if q0 > tol and q1 > tol and q2 > tol and q3 > tol:
-        sigma = 1.0
-    elif q0 < -tol and q1 < -tol and q2 < -tol and q3 < -tol:
-        sigma = -1.0
-    else:
-        return _E_NOT_ADMISSIBLE
-    lead = sigma * w3 if is_r else sigma
-    geo[8] = 1.0 if lead > 0 else -1.0
-    for k in range(4):
-        kk = 3 - k if is_r else k
-        geo[2 * k] = ptx[kk]
-        geo[2 * k + 1] = pty[kk]
-    for link in range(3):
-        src = 2 - link if is_r else link
-        j0, j1 = joints[src], joints[src + 1]
-        m = 0.0
-        for i in range(j0, j1):
-            m += mass[i]
-        gx = 0.0
-        gy = 0.0
-        for i in range(j0, j1):
-            gx += mass[i] * cen[i, 0]
-            gy += mass[i] * cen[i, 1]
-        gx /= m
-        gy /= m
-        inertia = 0.0
-        for i in range(j0, j1):
-            inertia += inert[i] + mass[i] * ((cen[i, 0] - gx) ** 2 + (cen[i, 1] - gy) ** 2)
-        geo[9 + link] = m
-        geo[12 + 2 * link] = gx
-        geo[13 + 2 * link] = gy
-        geo[18 + link] = inertia
-    _, _, F, P = coefficients(0.0, geo)
-    k = F / P
-    if (not is_r and k >= 0) or (is_r and k <= 0):
-        return _E_WRONG_DIRECTION
-    return _E_OK
-
-
-@maybe_njit
-def _det_signed(phi, geo, det0):
-    """det = (C - B) x (D - C) (vanishes at the dead point), times det0; -1 past closure.
-    Computed from the positions (rates() would divide by it)."""
-    bx, by, cx, cy, _, _, _, ok = configuration(phi, geo)
-    if not ok:
-        return -1.0
-    return _cross(cx - bx, cy - by, geo[6] - cx, geo[7] - cy) * det0
-
-
-@maybe_njit
-def _phi_dead(geo):
-    """FourLink.phi_dead: first rotation at which the four-bar locks, capped at pi/2."""
-    det0 = 1.0 if rates(0.0, geo)[5] >= 0 else -1.0
-    n = 91
-    prev = 0.0
-    for k in range(1, n):
-        phi = (math.pi / 2) * k / (n - 1)
-        if _det_signed(phi, geo, det0) <= 0:
-            a, b = prev, phi
-            for _ in range(60):
-                mid = 0.5 * (a + b)
-                if _det_signed(mid, geo, det0) > 0:
-                    a = mid
-                else:
-                    b = mid
-            return a
-        prev = phi
-    return math.pi / 2
-
-
-@maybe_njit
-def _phi_unstable(geo, phi_dead):
-    """FourLink.phi_unstable: first root of F(phi) (bracketed on a 60-point grid)."""
-    top = phi_dead * (1 - 1e-9)
-    n = 60
-    prev_phi = 0.0
-    prev_f = coefficients(0.0, geo)[2]
-    for k in range(1, n):
-        phi = top * k / (n - 1)
-        f = coefficients(phi, geo)[2]
-        if prev_f > 0 >= f:
-            a, fa, b, fb = prev_phi, prev_f, phi, f
-            for _ in range(200):  # bisection safeguarded secant (Illinois)
-                c = b - fb * (b - a) / (fb - fa)
-                if not (min(a, b) < c < max(a, b)):
-                    c = 0.5 * (a + b)
-                fc = coefficients(c, geo)[2]
-                if fc == 0.0:
-                    return c
-                if (fc > 0) == (fa > 0):
-                    a, fa = c, fc
-                    fb *= 0.5
-                else:
-                    b, fb = c, fc
-                    fa *= 0.5
-                if abs(b - a) < 1e-14:
-                    break
-            return 0.5 * (a + b)
-        prev_phi, prev_f = phi, f
-    return top
-
-
-@maybe_njit
-def _table_start(geo, top):
-    """Lower end of the spline tables (FourLink.tabulated): -5% of the top, halved until the
-    four-bar closes with the undisplaced branch on 9 points from there to 0."""
-    det0 = 1.0 if rates(0.0, geo)[5] >= 0 else -1.0
-    start = -0.05 * top
-    for _ in range(40):
-        ok = True
-        for k in range(9):
-            p = start + (0.0 - start) * k / 8.0 if k < 8 else 0.0
-            if _det_signed(p, geo, det0) <= 0:
-                ok = False
-                break
-        if ok:
-            break
-        start *= 0.5
-    return start
 
 
 @maybe_njit
@@ -253,28 +97,26 @@ def _prepare_loop(px, py, mass, cen, inert, cand_l, cand_r, jq, eq, ok, geo_l, g
     for b in range(B):
         if not ok[b]:
             continue
-        err_l[b] = _mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jq[cand_l[b]],
+        err_l[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jq[cand_l[b]],
                                   eq[cand_l[b]], False, geo_l[b])
-        err_r[b] = _mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jq[cand_r[b]],
+        err_r[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jq[cand_r[b]],
                                   eq[cand_r[b]], True, geo_r[b])
         if err_l[b] != 0 or err_r[b] != 0:
             continue
         for side in range(2):
             geo = geo_l[b] if side == 0 else geo_r[b]
-            dead = _phi_dead(geo)
-            phu = _phi_unstable(geo, dead)
-            lim = min(phu + 0.5 * (dead - phu), 2.5 * phu)
-            M0, _, F0, _ = coefficients(0.0, geo)
+            dead = dead_point(geo)
+            phu = unstable_rotation(geo, dead)
+            lim = rotation_limit(phu, dead)
+            start, top = table_range(geo, lim, dead)
+            M0 = coefficients(0.0, geo)[0]
             if side == 0:
                 phu_l[b], lim_l[b], m0_l[b] = phu, lim, M0
-                top = min(lim * 1.25, dead * (1 - 1e-6))
-                tab_l[b, 0], tab_l[b, 1] = _table_start(geo, top), top
-                p = math.sqrt(9.81 * F0 / M0)
+                tab_l[b, 0], tab_l[b, 1] = start, top
             else:
                 phu_r[b], lim_r[b], m0_r[b] = phu, lim, M0
-                top = min(lim * 1.25, dead * (1 - 1e-6))
-                tab_r[b, 0], tab_r[b, 1] = _table_start(geo, top), top
-        v_rest[b] = 1e-5 * p * min(phu_l[b], phu_r[b])
+                tab_r[b, 0], tab_r[b, 1] = start, top
+        v_rest[b] = rest_rate(geo_l[b], phu_l[b], phu_r[b], 9.81)
 
 
 # ---------------------------------------------------------------------------- preparation
@@ -400,7 +242,7 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact="fi
                       dtype=object)
     for b in np.flatnonzero(ok & ((err_l != 0) | (err_r != 0))):
         code, m = (err_l[b], "M_l " + mech_l[b]) if err_l[b] != 0 else (err_r[b], "M_r " + mech_r[b])
-        error[b] = _GEO_ERRORS[int(code)].format(m=m)
+        error[b] = GEO_ERRORS[int(code)].format(m=m)
     ok = error == ""
     t2 = time.perf_counter()
     c_lr = np.full(B, np.nan)
@@ -447,36 +289,45 @@ def _impact_per_arch(model, spans, radii, thick, density, k_l, k_r, cand_l, cand
 
 
 # ---------------------------------------------------------------------------- batch kernel
+@maybe_njit
+def _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l, lim_r,
+                  phu_l, phu_r, v_rest, times, accel, g, dt, t_free, max_events, status, peak,
+                  t_col, t_uns, n_imp, n_act, n_ev):
+    """Integrate arch b and write its summary into the output arrays (shared by both loops)."""
+    if n_tab > 0:
+        gl = coefficient_table(geo_l[b], tab_l[b, 0], tab_l[b, 1], n_tab)
+        gr = coefficient_table(geo_r[b], tab_r[b, 0], tab_r[b, 1], n_tab)
+    else:
+        gl = geo_l[b].copy()
+        gr = geo_r[b].copy()
+    _, ev, ne, st, _, pk, tc, tu = K.simulate(
+        gl, gr, k_l[b], k_r[b], c_lr[b], c_rl[b], lim_l[b], lim_r[b], phu_l[b],
+        phu_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free, max_events)
+    m = min(ne, max_events)
+    ni = 0
+    na = 0
+    for e in range(m):
+        if ev[e, 0] == K.EV_IMPACT:
+            ni += 1
+        elif ev[e, 0] == K.EV_ACTIVATION:
+            na += 1
+    status[b] = st if ne <= max_events else ST_OVERFLOW
+    peak[b] = pk
+    t_col[b] = tc
+    t_uns[b] = tu
+    n_imp[b] = ni
+    n_act[b] = na
+    n_ev[b] = ne
+
+
 def _simulate_loop_py(geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l, lim_r,
                       phu_l, phu_r, v_rest, run, times, accel, g, dt, t_free, max_events, status,
                       peak, t_col, t_uns, n_imp, n_act, n_ev):
     for b in range(geo_l.shape[0]):
-        if not run[b]:
-            continue
-        if n_tab > 0:
-            gl = coefficient_table(geo_l[b], tab_l[b, 0], tab_l[b, 1], n_tab)
-            gr = coefficient_table(geo_r[b], tab_r[b, 0], tab_r[b, 1], n_tab)
-        else:
-            gl = geo_l[b]
-            gr = geo_r[b]
-        _, ev, ne, st, _, pk, tc, tu = K.simulate(
-            gl, gr, k_l[b], k_r[b], c_lr[b], c_rl[b], lim_l[b], lim_r[b], phu_l[b],
-            phu_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free, max_events)
-        m = min(ne, max_events)
-        ni = 0
-        na = 0
-        for e in range(m):
-            if ev[e, 0] == K.EV_IMPACT:
-                ni += 1
-            elif ev[e, 0] == K.EV_ACTIVATION:
-                na += 1
-        status[b] = st if ne <= max_events else ST_OVERFLOW
-        peak[b] = pk
-        t_col[b] = tc
-        t_uns[b] = tu
-        n_imp[b] = ni
-        n_act[b] = na
-        n_ev[b] = ne
+        if run[b]:
+            _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l,
+                          lim_r, phu_l, phu_r, v_rest, times, accel, g, dt, t_free, max_events,
+                          status, peak, t_col, t_uns, n_imp, n_act, n_ev)
 
 
 if HAVE_NUMBA:
@@ -485,32 +336,10 @@ if HAVE_NUMBA:
                           phu_l, phu_r, v_rest, run, times, accel, g, dt, t_free, max_events,
                           status, peak, t_col, t_uns, n_imp, n_act, n_ev):
         for b in numba.prange(geo_l.shape[0]):
-            if not run[b]:
-                continue
-            if n_tab > 0:
-                gl = coefficient_table(geo_l[b], tab_l[b, 0], tab_l[b, 1], n_tab)
-                gr = coefficient_table(geo_r[b], tab_r[b, 0], tab_r[b, 1], n_tab)
-            else:
-                gl = geo_l[b].copy()
-                gr = geo_r[b].copy()
-            _, ev, ne, st, _, pk, tc, tu = K.simulate(
-                gl, gr, k_l[b], k_r[b], c_lr[b], c_rl[b], lim_l[b], lim_r[b],
-                phu_l[b], phu_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free, max_events)
-            m = min(ne, max_events)
-            ni = 0
-            na = 0
-            for e in range(m):
-                if ev[e, 0] == K.EV_IMPACT:
-                    ni += 1
-                elif ev[e, 0] == K.EV_ACTIVATION:
-                    na += 1
-            status[b] = st if ne <= max_events else ST_OVERFLOW
-            peak[b] = pk
-            t_col[b] = tc
-            t_uns[b] = tu
-            n_imp[b] = ni
-            n_act[b] = na
-            n_ev[b] = ne
+            if run[b]:
+                _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l,
+                              lim_r, phu_l, phu_r, v_rest, times, accel, g, dt, t_free,
+                              max_events, status, peak, t_col, t_uns, n_imp, n_act, n_ev)
 
     _simulate_loop_serial = maybe_njit(_simulate_loop_py)
 else:  # pragma: no cover - without numba

@@ -19,7 +19,6 @@ Two independent methods:
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 from itertools import combinations

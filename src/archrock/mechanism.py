@@ -22,12 +22,11 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ._jit import maybe_njit
 from .errors import ArchInputError
 from .geometry import Arch
-from .limit import EDGES, Hinge, Mechanism
+from .limit import EDGES, Mechanism
 
 __all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",
            "fast_coefficients"]
@@ -191,39 +190,181 @@ def potential(phi, geo):
     return out
 
 
-# ---------------------------------------------------------------------------- model object
-def _rigid_union(masses, centroids, inertias):
-    m = float(np.sum(masses))
-    g = np.sum(masses[:, None] * centroids, axis=0) / m
-    i = float(np.sum(inertias + masses * np.sum((centroids - g) ** 2, axis=1)))
-    return m, g, i
+# ---------------------------------------------------------------------------- compiled construction
+# four_link, FourLink and the batch preparation of archrock.batch share these compiled pieces, so
+# that one arch prepared alone or in a batch of thousands gets the same model to the last bit.
+GEO_OK, GEO_SINGULAR, GEO_NOT_ADMISSIBLE, GEO_WRONG_DIRECTION = 0, 1, 2, 3
+GEO_ERRORS = {
+    GEO_SINGULAR: "mechanism {m}: the hinges are aligned (singular four-bar)",
+    GEO_NOT_ADMISSIBLE: "mechanism {m}: the hinges admit no opening motion",
+    GEO_WRONG_DIRECTION: "mechanism {m}: the hinges do not open under forces of its direction",
+}
 
 
-def _link_rates(points, edges_sign):
-    """Angular velocities (w1, w2, w3) of the links, left to right, of the admissible velocity
-    field through hinge points ordered left to right, normalised to |w1| = 1; None if no
-    admissible field exists."""
-    (ax, ay), (bx, by), (cx, cy), (dx, dy) = points
-    u2 = (cx - bx, cy - by)
-    u3 = (dx - cx, dy - cy)
-    r = (ax - bx, ay - by)
-    det = _cross(*u2, *u3)
-    if abs(det) < 1e-12 * math.hypot(*u2) * math.hypot(*u3):
-        return None
-    w2 = _cross(*r, *u3) / det
-    w3 = _cross(*u2, *r) / det
-    q = np.array([edges_sign[0] * 1.0, edges_sign[1] * (w2 - 1.0), edges_sign[2] * (w3 - w2),
-                  edges_sign[3] * (-w3)])
-    tol = 1e-9 * np.max(np.abs(q))
-    if np.all(q > tol):
+@maybe_njit
+def mechanism_geo(px, py, mass, cen, inert, joints, edges, is_r, geo):
+    """Fill ``geo`` (GEO_SIZE) for one mechanism of one arch (the compiled core of four_link).
+
+    px, py (n+1, 2): joint points (intrados, extrados); mass, inert (n,), cen (n, 2);
+    joints, edges (4,): hinges from the left springing.  Returns an error code (0 = ok).
+    """
+    ptx = np.empty(4)
+    pty = np.empty(4)
+    sg = np.empty(4)
+    for k in range(4):
+        ptx[k] = px[joints[k], edges[k]]
+        pty[k] = py[joints[k], edges[k]]
+        sg[k] = -1.0 if edges[k] == 0 else 1.0
+    u2x, u2y = ptx[2] - ptx[1], pty[2] - pty[1]
+    u3x, u3y = ptx[3] - ptx[2], pty[3] - pty[2]
+    rx, ry = ptx[0] - ptx[1], pty[0] - pty[1]
+    det = _cross(u2x, u2y, u3x, u3y)
+    if abs(det) < 1e-12 * math.hypot(u2x, u2y) * math.hypot(u3x, u3y):
+        return GEO_SINGULAR
+    w2 = _cross(rx, ry, u3x, u3y) / det
+    w3 = _cross(u2x, u2y, rx, ry) / det
+    q0, q1, q2, q3 = sg[0], sg[1] * (w2 - 1.0), sg[2] * (w3 - w2), sg[3] * (-w3)
+    tol = 1e-9 * max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
+    if q0 > tol and q1 > tol and q2 > tol and q3 > tol:
         sigma = 1.0
-    elif np.all(q < -tol):
+    elif q0 < -tol and q1 < -tol and q2 < -tol and q3 < -tol:
         sigma = -1.0
     else:
-        return None
-    return sigma * 1.0, sigma * w2, sigma * w3
+        return GEO_NOT_ADMISSIBLE
+    lead = sigma * w3 if is_r else sigma
+    geo[8] = 1.0 if lead > 0 else -1.0
+    for k in range(4):
+        kk = 3 - k if is_r else k
+        geo[2 * k] = ptx[kk]
+        geo[2 * k + 1] = pty[kk]
+    for link in range(3):
+        src = 2 - link if is_r else link
+        j0, j1 = joints[src], joints[src + 1]
+        m = 0.0
+        for i in range(j0, j1):
+            m += mass[i]
+        gx = 0.0
+        gy = 0.0
+        for i in range(j0, j1):
+            gx += mass[i] * cen[i, 0]
+            gy += mass[i] * cen[i, 1]
+        gx /= m
+        gy /= m
+        inertia = 0.0
+        for i in range(j0, j1):
+            inertia += inert[i] + mass[i] * ((cen[i, 0] - gx) ** 2 + (cen[i, 1] - gy) ** 2)
+        geo[9 + link] = m
+        geo[12 + 2 * link] = gx
+        geo[13 + 2 * link] = gy
+        geo[18 + link] = inertia
+    _, _, F, P = coefficients(0.0, geo)
+    k = F / P
+    if (not is_r and k >= 0) or (is_r and k <= 0):
+        return GEO_WRONG_DIRECTION
+    return GEO_OK
 
 
+@maybe_njit
+def _det_signed(phi, geo, det0):
+    """det = (C - B) x (D - C) (vanishes at the dead point), times det0; -1 past closure.
+    Computed from the positions (rates() would divide by it)."""
+    bx, by, cx, cy, _, _, _, ok = configuration(phi, geo)
+    if not ok:
+        return -1.0
+    return _cross(cx - bx, cy - by, geo[6] - cx, geo[7] - cy) * det0
+
+
+@maybe_njit
+def dead_point(geo):
+    """First rotation [rad] at which the four-bar locks (dead point), capped at pi/2."""
+    det0 = 1.0 if rates(0.0, geo)[5] >= 0 else -1.0
+    n = 91
+    prev = 0.0
+    for k in range(1, n):
+        phi = (math.pi / 2) * k / (n - 1)
+        if _det_signed(phi, geo, det0) <= 0:
+            a, b = prev, phi
+            for _ in range(60):
+                mid = 0.5 * (a + b)
+                if _det_signed(mid, geo, det0) > 0:
+                    a = mid
+                else:
+                    b = mid
+            return a
+        prev = phi
+    return math.pi / 2
+
+
+@maybe_njit
+def unstable_rotation(geo, phi_dead):
+    """Rotation [rad] of the unstable static position under gravity alone: the first root of
+    F(phi) (bracketed on a 60-point grid, then Illinois), or just below the dead point."""
+    top = phi_dead * (1 - 1e-9)
+    n = 60
+    prev_phi = 0.0
+    prev_f = coefficients(0.0, geo)[2]
+    for k in range(1, n):
+        phi = top * k / (n - 1)
+        f = coefficients(phi, geo)[2]
+        if prev_f > 0 >= f:
+            a, fa, b, fb = prev_phi, prev_f, phi, f
+            for _ in range(200):  # bisection safeguarded secant (Illinois)
+                c = b - fb * (b - a) / (fb - fa)
+                if not (min(a, b) < c < max(a, b)):
+                    c = 0.5 * (a + b)
+                fc = coefficients(c, geo)[2]
+                if fc == 0.0:
+                    return c
+                if (fc > 0) == (fa > 0):
+                    a, fa = c, fc
+                    fb *= 0.5
+                else:
+                    b, fb = c, fc
+                    fa *= 0.5
+                if abs(b - a) < 1e-14:
+                    break
+            return 0.5 * (a + b)
+        prev_phi, prev_f = phi, f
+    return top
+
+
+@maybe_njit
+def rotation_limit(phi_unstable, phi_dead):
+    """Default rotation limit [rad] for collapse: well beyond the unstable position, before the
+    dead point (halfway to the dead point, at most 2.5 times the unstable rotation)."""
+    return min(phi_unstable + 0.5 * (phi_dead - phi_unstable), 2.5 * phi_unstable)
+
+
+@maybe_njit
+def rest_rate(geo, phi_unstable_l, phi_unstable_r, g):
+    """Post-impact rate [rad/s] below which the arch is at rest again: 1e-5 of the rate scale
+    p * phi_u with p = sqrt(g F(0) / M(0)) (no endless chattering, negligible energy)."""
+    M0, _, F0, _ = coefficients(0.0, geo)
+    return 1e-5 * math.sqrt(g * F0 / M0) * min(phi_unstable_l, phi_unstable_r)
+
+
+@maybe_njit
+def table_range(geo, phi_limit, phi_dead):
+    """(start, top) [rad] of the spline tables for motions up to ``phi_limit``: past the limit
+    by 25% (not past the dead point) and below 0 by 5% of that, halved until the four-bar
+    closes on the undisplaced branch from there to 0 (it can lock on the negative side too)."""
+    top = min(phi_limit * 1.25, phi_dead * (1 - 1e-6))
+    det0 = 1.0 if rates(0.0, geo)[5] >= 0 else -1.0
+    start = -0.05 * top
+    for _ in range(40):
+        ok = True
+        for k in range(9):
+            p = start * (1.0 - k / 8.0)
+            if _det_signed(p, geo, det0) <= 0:
+                ok = False
+                break
+        if ok:
+            break
+        start *= 0.5
+    return start, top
+
+
+# ---------------------------------------------------------------------------- model object
 @dataclass(frozen=True, eq=False)
 class FourLink:
     """One mechanism of an arch as a four-link system (or any three rigid links on four hinges).
@@ -272,46 +413,17 @@ class FourLink:
     @cached_property
     def phi_dead(self) -> float:
         """First rotation [rad] at which the four-bar locks (dead point), capped at pi/2."""
-        def det(phi):
-            # u2 x u3 from the positions: rates() would divide by it, and it can be exactly 0
-            bx, by, cx, cy, *_, ok = configuration(phi, self.geo)
-            if not ok:
-                return -1.0
-            dx, dy = self.geo[_D], self.geo[_D + 1]
-            return _cross(cx - bx, cy - by, dx - cx, dy - cy) * det0
-        det0 = math.copysign(1.0, rates(0.0, self.geo)[5])
-        grid = np.linspace(0.0, math.pi / 2, 91)
-        prev = grid[0]
-        for phi in grid[1:]:
-            if det(phi) <= 0:
-                a, b = prev, phi
-                for _ in range(60):
-                    mid = 0.5 * (a + b)
-                    if det(mid) > 0:
-                        a = mid
-                    else:
-                        b = mid
-                return a
-            prev = phi
-        return math.pi / 2
+        return float(dead_point(self.geo))
 
     @cached_property
     def phi_unstable(self) -> float:
         """Rotation [rad] of the unstable static position under gravity alone (F = 0)."""
-        f = lambda phi: coefficients(phi, self.geo)[2]
-        top = self.phi_dead * (1 - 1e-9)
-        grid = np.linspace(0.0, top, 60)
-        vals = [f(p) for p in grid]
-        for i in range(1, len(grid)):
-            if vals[i - 1] > 0 >= vals[i]:
-                return float(brentq(f, grid[i - 1], grid[i], xtol=1e-14))
-        return float(top)
+        return float(unstable_rotation(self.geo, self.phi_dead))
 
     def default_limit(self) -> float:
         """Rotation limit [rad] for collapse: well beyond the unstable position, before the dead
         point (halfway to the dead point, at most 2.5 times the unstable rotation)."""
-        return min(self.phi_unstable + 0.5 * (self.phi_dead - self.phi_unstable),
-                   2.5 * self.phi_unstable)
+        return float(rotation_limit(self.phi_unstable, self.phi_dead))
 
     # -- velocity field at phi = 0, voussoir by voussoir (for impacts)
     def voussoir_field(self, n: int | None = None):
@@ -338,16 +450,7 @@ class FourLink:
     def tabulated(self, phi_max: float, n_intervals: int = 600) -> np.ndarray:
         """``geo`` with spline tables of the coefficients for 0 <= phi <= ``phi_max`` [rad] (for
         the fast integrator; the tables reach past both ends so that their free ends are far)."""
-        top = min(phi_max * 1.25, self.phi_dead * (1 - 1e-6))
-        det0 = rates(0.0, self.geo)[5]
-        start = -0.05 * top
-        # the four-bar can lock on the negative side too: keep the grid inside the valid range
-        for _ in range(40):
-            ok = all(configuration(p, self.geo)[7] and rates(p, self.geo)[5] * det0 > 0
-                     for p in np.linspace(start, 0.0, 9))
-            if ok:
-                break
-            start *= 0.5
+        start, top = table_range(self.geo, phi_max, self.phi_dead)
         tab = coefficient_table(np.asarray(self.geo), start, top, int(n_intervals))
         tab.setflags(write=False)
         return tab
@@ -365,32 +468,23 @@ def four_link(arch: Arch, mechanism: Mechanism) -> FourLink:
     joints = [h.joint for h in hinges]
     if len(set(joints)) != 4 or joints[0] < 0 or joints[-1] > arch.n:
         raise ArchInputError(f"mechanism.hinges: need 4 distinct joints in 0..{arch.n}, got {joints}")
-    pts = np.array([arch.joint_point(h.joint, h.edge) for h in hinges])
-    signs = [(-1.0 if h.edge == "intrados" else 1.0) for h in hinges]
-    w = _link_rates(pts, signs)
-    if w is None:
-        raise ArchInputError(f"mechanism.hinges: {[h.to_dict() for h in hinges]} admit no opening motion")
-    groups = [list(range(joints[0], joints[1])), list(range(joints[1], joints[2])),
-              list(range(joints[2], joints[3]))]
-    # work of unit horizontal forces toward +x decides which direction this field loads
-    if mechanism.direction == "r":
-        pts = pts[::-1]
+    radii = np.column_stack([arch.contact_inner, arch.contact_outer])
+    px = radii * np.cos(arch.joint_angles)[:, None]
+    py = radii * np.sin(arch.joint_angles)[:, None]
+    edges = np.array([EDGES.index(h.edge) for h in hinges], dtype=np.int64)
+    geo = np.empty(GEO_SIZE)
+    code = mechanism_geo(px, py, arch.masses, np.ascontiguousarray(arch.centroids), arch.inertias,
+                         np.array(joints, dtype=np.int64), edges, mechanism.direction == "r", geo)
+    if code != GEO_OK:
+        label = f"M_{mechanism.direction} {[h.to_dict() for h in hinges]}"
+        raise ArchInputError(GEO_ERRORS[int(code)].format(m=label))
+    groups = [tuple(range(joints[0], joints[1])), tuple(range(joints[1], joints[2])),
+              tuple(range(joints[2], joints[3]))]
+    if mechanism.direction == "r":  # links and hinges from the leading (right) side
         groups = groups[::-1]
-        lead_rate = w[2]
-    else:
-        lead_rate = w[0]
-    sign = 1.0 if lead_rate > 0 else -1.0
-    links = [_rigid_union(arch.masses[g], arch.centroids[g], arch.inertias[g]) for g in groups]
-    fl = FourLink(mechanism.direction, pts, sign,
-                  np.array([l[0] for l in links]), np.array([l[1] for l in links]),
-                  np.array([l[2] for l in links]), tuple(tuple(g) for g in groups), mechanism, arch)
-    # the opening direction must load the mechanism's own direction (checked: eq. 1 signs)
-    k = fl.static_multiplier()
-    if (mechanism.direction == "l" and k >= 0) or (mechanism.direction == "r" and k <= 0):
-        raise ArchInputError(
-            f"mechanism: hinges {[h.to_dict() for h in hinges]} do not open under forces of "
-            f"direction {mechanism.direction!r}")
-    return fl
+    return FourLink(mechanism.direction, geo[0:8].reshape(4, 2).copy(), float(geo[8]),
+                    geo[9:12].copy(), geo[12:18].reshape(3, 2).copy(), geo[18:21].copy(),
+                    tuple(groups), mechanism, arch)
 
 
 # ---------------------------------------------------------------------------- tabulated coefficients

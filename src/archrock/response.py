@@ -33,7 +33,7 @@ from .geometry import Arch
 from .groundmotion import G, GroundMotion
 from .impact import ImpactLaw, impact_law
 from .limit import LimitResult, limit_analysis
-from .mechanism import FourLink, four_link
+from .mechanism import FourLink, four_link, rest_rate
 
 __all__ = ["DynamicModel", "Event", "Response", "prepare", "respond"]
 
@@ -109,9 +109,7 @@ def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float 
                                  f"unstable rotation)")
         pl_l = min(limit_factor * m_l.phi_unstable, m_l.phi_dead * (1 - 1e-6))
         pl_r = min(limit_factor * m_r.phi_unstable, m_r.phi_dead * (1 - 1e-6))
-    # a rate whose kinetic energy could lift the arch by a nanometre-scale fraction of phi_u
-    p = math.sqrt(G * m_l.coefficients(0.0)[2] / m_l.coefficients(0.0)[0])
-    v_rest = 1e-5 * p * min(m_l.phi_unstable, m_r.phi_unstable)
+    v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
 
 
@@ -267,7 +265,6 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
     grid = np.arange(n_out) * dt_out
     thr_l, thr_r = -model.k_l * G, model.k_r * G
     # segments with positive length, plus the free motion after the record
-    seg_t0 = [times[j] for j in range(nseg) if times[j + 1] > times[j]]
     seg_j = [j for j in range(nseg) if times[j + 1] > times[j]]
 
     def a_of(t, j):
