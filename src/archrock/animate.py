@@ -25,7 +25,8 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     fps: frames per second; speed: simulated seconds per real second; exaggerate: factor on
     the drawn rotations (1 = to scale); max_frames caps the file size.
     """
-    from .plots import STYLE, draw_displaced, new_figure, plot_ground_motion, voussoir_bounds
+    from .plots import (STYLE, displaced_outlines, draw_displaced, new_figure, plot_ground_motion,
+                        voussoir_bounds)
 
     path = Path(path)
     if path.suffix.lower() not in (".gif", ".mp4"):
@@ -64,22 +65,28 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     for line in ax_g.get_lines():
         line.set_alpha(0.35)
 
+    ax_arch.set_aspect("equal")
+    ax_arch.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
+    ax_arch.set_ylim(min(pts[:, 1].min(), 0.0) - pad, pts[:, 1].max() + pad)
+    ax_arch.axhline(0.0, color=STYLE["ground"], lw=1.0)
+    patches = draw_displaced(ax_arch, model, "rest", 0.0)
+    title = ax_arch.set_title("", fontsize=9)
+    # lay the figure out once; frames then only move the voussoirs (no relayout, no clearing)
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
+
     def draw(k):
-        ax_arch.clear()
-        ax_arch.set_aspect("equal")
-        ax_arch.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
-        ax_arch.set_ylim(min(pts[:, 1].min(), 0.0) - pad, pts[:, 1].max() + pad)
-        ax_arch.axhline(0.0, color=STYLE["ground"], lw=1.0)
         tk = frame_t[k]
         val = float(np.interp(tk, t, held))
         collapsed = response.collapsed and response.t_collapse is not None and tk >= response.t_collapse
         mode = "l" if val > 0 else ("r" if val < 0 else "rest")
-        draw_displaced(ax_arch, model, mode, abs(val) * exaggerate)
+        for patch, outline in zip(patches, displaced_outlines(model, mode, abs(val) * exaggerate)):
+            patch.set_xy(outline)
         state = "COLLAPSED" if collapsed else {"l": "M_l open", "r": "M_r open", "rest": "at rest"}[mode]
-        ax_arch.set_title(f"t = {tk:5.2f} s   phi = {val:+.4f} rad   {state}"
-                          + (f"   (rotations x{exaggerate:g})" if exaggerate != 1 else ""), fontsize=9)
+        title.set_text(f"t = {tk:5.2f} s   phi = {val:+.4f} rad   {state}"
+                       + (f"   (rotations x{exaggerate:g})" if exaggerate != 1 else ""))
         marker.set_data([tk], [val])
-        return []
+        return [*patches, title, marker]
 
     anim = FuncAnimation(fig, draw, frames=n_frames, blit=False)
     path.parent.mkdir(parents=True, exist_ok=True)

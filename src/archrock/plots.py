@@ -334,15 +334,14 @@ def save_response_figure(responses, path, labels=None, dpi: int = 150):
     return save_figure(fig, path, dpi=dpi)
 
 
-def draw_displaced(ax, model, mode: str, phi: float, **kwargs):
-    """Draw the arch with mechanism ``mode`` ('l', 'r' or 'rest') open by rotation phi [rad]:
-    every voussoir of a link is moved rigidly with its link (voussoirs outside stay still)."""
-    from matplotlib.patches import Polygon
-
+def displaced_outlines(model, mode: str, phi: float) -> list[np.ndarray]:
+    """Outline (m, 2) [m] of every voussoir with mechanism ``mode`` ('l', 'r' or 'rest') open by
+    rotation phi [rad]: each voussoir of a link moves rigidly with its link (exact four-bar
+    kinematics); voussoirs outside the mechanism stay still."""
     from .mechanism import configuration
 
     arch = model.arch
-    moved = {}
+    outlines = [voussoir_outline(arch, i) for i in range(arch.n)]
     if mode in ("l", "r") and phi > 0:
         fl = model.mechanism(mode)
         bx, by, cx, cy, th1, th2, th3, _ = configuration(phi, fl.geo)
@@ -351,15 +350,19 @@ def draw_displaced(ax, model, mode: str, phi: float, **kwargs):
         for idx, (p0, p1, th) in zip(fl.link_voussoirs, refs):
             rot = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
             for i in idx:
-                moved[i] = (np.array(p0), np.array(p1), rot)
+                outlines[i] = (outlines[i] - np.array(p0)) @ rot.T + np.array(p1)
+    return outlines
+
+
+def draw_displaced(ax, model, mode: str, phi: float, **kwargs):
+    """Draw the arch displaced as in :func:`displaced_outlines`; returns the voussoir patches
+    (update them with ``patch.set_xy`` to animate without redrawing the axes)."""
+    from matplotlib.patches import Polygon
+
     face = kwargs.get("facecolor", STYLE["voussoir_face"])
     edge = kwargs.get("edgecolor", STYLE["voussoir_edge"])
     patches = []
-    for i in range(arch.n):
-        pts = voussoir_outline(arch, i)
-        if i in moved:
-            p0, p1, rot = moved[i]
-            pts = (pts - p0) @ rot.T + p1
+    for pts in displaced_outlines(model, mode, phi):
         patch = Polygon(pts, closed=True, facecolor=face, edgecolor=edge, lw=0.8)
         ax.add_patch(patch)
         patches.append(patch)
