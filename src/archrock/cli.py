@@ -25,6 +25,7 @@ __all__ = [
     "add_geometry_options", "arch_from_args", "finite_float", "positive_float",
     "non_negative_int", "emit_json", "GEOMETRY_DEFAULTS",
     "add_motion_options", "motion_from_args", "add_impact_options", "model_from_args",
+    "add_spread_options",
 ]
 
 PROG = "archrock"
@@ -119,6 +120,17 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                    help="JSON geometry file (voussoirs from the left springing); "
                         "excludes the flags above")
     return parser
+
+
+def add_spread_options(p: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add --spread-span, --spread-thickness, --spread-radius (METHOD section 1 widths)."""
+    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
+                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
+    p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
+                   help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
+    p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
+                   help="half-width of the radii as a fraction of t, 0 <= s_R < 1 (default 0.05)")
+    return p
 
 
 def arch_from_args(args: argparse.Namespace):
@@ -267,12 +279,7 @@ def add_random_arch_parser(subparsers):
     add_geometry_options(p)
     p.add_argument("--seed", type=non_negative_int, default=None,
                    help="random seed (integer >= 0); omit for a fresh draw")
-    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
-                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
-    p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
-                   help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
-    p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
-                   help="half-width of the radii as a fraction of t, 0 <= s_R < 1 (default 0.05)")
+    add_spread_options(p)
     p.add_argument("--out", metavar="FILE", help="geometry file to write (default: stdout)")
     p.set_defaults(func=run_random_arch)
     return p
@@ -462,15 +469,6 @@ def run_respond(args) -> int:
 
 
 # ---------------------------------------------------------------------------- curves
-def _add_spread_options(p):
-    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
-                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
-    p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
-                   help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
-    p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
-                   help="half-width of the radii as a fraction of t, 0 <= s_R < 1 (default 0.05)")
-
-
 def _spreads(args) -> dict:
     return {"spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
             "spread_radius": args.spread_radius}
@@ -513,7 +511,7 @@ def add_curves_parser(subparsers):
     p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
                    help="random arches for quantile bands (0 = nominal only, default)")
     p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    _add_spread_options(p)
+    add_spread_options(p)
     p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -600,7 +598,7 @@ def add_fragility_parser(subparsers):
     p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
                    help="random arches (0 = the nominal arch only, default)")
     p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    _add_spread_options(p)
+    add_spread_options(p)
     add_impact_options(p)
     p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
                    help="bootstrap resamples for confidence bands (0 = none, default 200)")
@@ -679,7 +677,7 @@ def add_ensemble_parser(subparsers):
     p.add_argument("--samples", type=_int, default=1000, metavar="N",
                    help="number of random arches, >= 1 (default 1000)")
     p.add_argument("--seed", type=_int, default=0, help="random seed, integer >= 0 (default 0)")
-    _add_spread_options(p)
+    add_spread_options(p)
     p.add_argument("--batch-size", type=_int, default=500, metavar="B",
                    help="samples per batch and random stream, >= 1 (default 500)")
     p.add_argument("--workers", type=_int, default=1, metavar="N",
