@@ -116,7 +116,7 @@ def _prepare_loop(px, py, mass, cen, inert, cand_l, cand_r, jq, eq, ok, geo_l, g
             else:
                 phu_r[b], lim_r[b], m0_r[b] = phu, lim, M0
                 tab_r[b, 0], tab_r[b, 1] = start, top
-        v_rest[b] = rest_rate(geo_l[b], phu_l[b], phu_r[b], 9.81)
+        v_rest[b] = rest_rate(geo_l[b], phu_l[b], phu_r[b], G)
 
 
 # ---------------------------------------------------------------------------- preparation

@@ -16,6 +16,7 @@ from functools import cached_property
 import numpy as np
 
 from .errors import ArchInputError
+from .units import G
 
 __all__ = [
     "Arch",
@@ -210,8 +211,8 @@ class Arch:
 
     @property
     def weights(self) -> np.ndarray:
-        """Weight of each voussoir per metre of depth [N/m] with g = 9.81 m/s^2."""
-        return self.masses * 9.81
+        """Weight of each voussoir per metre of depth [N/m] (g = units.G)."""
+        return self.masses * G
 
     # ------------------------------------------------------------------ transformations
     def mirrored(self) -> "Arch":

@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import ArchInputError
+from .units import G  # re-exported: the package's gravity constant [m/s^2]
 
 __all__ = [
     "G",
@@ -44,7 +45,6 @@ __all__ = [
     "load_record",
 ]
 
-G = 9.81  # m/s^2, the package's gravity constant (geometry.py uses the same value)
 
 #: Accepted acceleration units and their factor to m/s^2.
 UNITS = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}

@@ -27,11 +27,10 @@ from ._jit import maybe_njit
 from .errors import ArchInputError
 from .geometry import Arch
 from .limit import EDGES, Mechanism
+from .units import G
 
 __all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",
            "fast_coefficients"]
-
-G = 9.81  # m/s^2
 
 # Layout of the flat geometry vector used by the scalar kernels (shared with the compiled
 # integrator): hinge points A, B, C, D at phi = 0; sign s (theta_1 = s phi); link masses;
@@ -426,7 +425,7 @@ class FourLink:
         return float(rotation_limit(self.phi_unstable, self.phi_dead))
 
     # -- velocity field at phi = 0, voussoir by voussoir (for impacts)
-    def voussoir_field(self, n: int | None = None):
+    def voussoir_field(self):
         """Velocity of every voussoir centroid (n, 2) and its angular rate (n,) per unit
         phi-rate at phi = 0; voussoirs outside the mechanism have zero velocity."""
         if self.arch is None:
@@ -454,10 +453,6 @@ class FourLink:
         tab = coefficient_table(np.asarray(self.geo), start, top, int(n_intervals))
         tab.setflags(write=False)
         return tab
-
-    def link_rates0(self):
-        """(th1', th2', th3') at phi = 0."""
-        return rates(0.0, self.geo)[:3]
 
 
 def four_link(arch: Arch, mechanism: Mechanism) -> FourLink:
