@@ -384,3 +384,18 @@ def test_bad_motion_and_limit(nominal):
 
 def test_kernel_status_codes_are_distinct():
     assert len({kernel.ST_REST, kernel.ST_COLLAPSED, kernel.ST_MOVING}) == 3
+
+
+@pytest.mark.parametrize("integrator", ["fast", "reference"])
+def test_threshold_touched_exactly(nominal, integrator):
+    """A record whose peak sample equals -k_l g exactly leaves phi = 0 in equilibrium: no
+    activation (and no stall of rest/activation at one instant); going past it activates."""
+    k = nominal.k_l
+    touch = gm.GroundMotion(np.array([0.0, 0.5, 1.0]), np.array([0.0, -k * gm.G, 0.0]))
+    r = respond(nominal, touch, integrator=integrator)
+    assert r.status == "rest" and r.events == () and r.peak == 0.0
+    past = gm.GroundMotion(np.array([0.0, 0.5, 0.6, 1.0]),
+                           np.array([0.0, -k * gm.G, -1.5 * k * gm.G, 0.0]))
+    r = respond(nominal, past, integrator=integrator)
+    assert r.events[0].kind == "activation" and r.events[0].time == pytest.approx(0.5, abs=1e-12)
+    assert r.events[0].after == "l" and r.peak > 0

@@ -201,9 +201,11 @@ def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_r
                 if t1 > t0:
                     a0 = _accel(t0, j, times, accel)
                     a1 = accel[j + 1]
-                    if a0 <= thr_l:
+                    # strictly beyond: at the threshold itself phi = 0 is in equilibrium, and
+                    # activating there could stall (no motion, rest, activation again, ...)
+                    if a0 < thr_l:
                         t_act, new_mode = t0, 1
-                    elif a0 >= thr_r:
+                    elif a0 > thr_r:
                         t_act, new_mode = t0, 2
                     elif a1 < thr_l:
                         t_act, new_mode = t0 + (t1 - t0) * (thr_l - a0) / (a1 - a0), 1

@@ -284,9 +284,9 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
             if j < 0:
                 return None
             a0, a1 = a_of(t0, j), accel[j + 1]
-            if a0 <= thr_l:
+            if a0 < thr_l:  # strictly: at the threshold phi = 0 is in equilibrium
                 return t0, j, 1
-            if a0 >= thr_r:
+            if a0 > thr_r:
                 return t0, j, 2
             if a1 < thr_l:
                 return t0 + (t1 - t0) * (thr_l - a0) / (a1 - a0), j, 1
