@@ -189,3 +189,21 @@ def test_paper_model_gains_energy_often_on_wide_spreads():
         except EnergyGainError:
             gains += 1
     assert gains >= 3
+
+
+def test_nominal_cv_is_one_rule_for_every_command():
+    """The paper's c_v of a nominal arch is the rate ratio on a symmetric arch, and on an
+    asymmetric one the c_v with the same mean kinetic-energy loss; curves, IDA and ensembles
+    all use this one function."""
+    from archrock import curves, geometry
+    from archrock.response import nominal_cv, prepare
+
+    assert nominal_cv(geometry.oppenheim_arch()) == pytest.approx(0.8753811790524912, rel=1e-12)
+    ra = geometry.random_arch(seed=5)
+    law = prepare(ra, "paper").impact
+    cv = nominal_cv(ra)
+    assert cv == pytest.approx(((law.energy_l_to_r + law.energy_r_to_l) / 2) ** 0.5, rel=1e-12)
+    assert law.energy_l_to_r != pytest.approx(law.energy_r_to_l, rel=1e-3)
+    assert curves.default_cv(ra) == cv
+    fixed = prepare(ra, cv).impact
+    assert fixed.energy_l_to_r == pytest.approx(cv**2) and fixed.energy_r_to_l == pytest.approx(cv**2)

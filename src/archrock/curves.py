@@ -33,7 +33,7 @@ import numpy as np
 from .errors import ArchInputError
 from .geometry import Arch, random_arch
 from .groundmotion import PULSE_KINDS, pulse
-from .response import DynamicModel, prepare, respond
+from .response import DynamicModel, nominal_cv, prepare, respond
 
 __all__ = [
     "CollapseAmplitude",
@@ -105,8 +105,8 @@ def parse_range(text: str, name: str = "durations") -> np.ndarray:
 
 
 def default_cv(nominal: Arch) -> float:
-    """The paper's c_v: the "paper" impact model on the nominal arch (0.8754 for Oppenheim's)."""
-    return float(prepare(nominal, "paper").impact.l_to_r)
+    """The paper's c_v on the nominal arch (:func:`archrock.response.nominal_cv`)."""
+    return nominal_cv(nominal)
 
 
 def collapse_mode(response) -> str | None:

@@ -250,16 +250,12 @@ def _config_differences(old: dict, new: dict) -> list[str]:
 def _nominal_paper_cv(nominal_json: str) -> float:
     import warnings
 
-    from .response import prepare
+    from .response import nominal_cv
 
     arch = Arch.from_dict(json.loads(nominal_json), name="nominal")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        law = prepare(arch, "paper").impact  # raises EnergyGainError if it creates energy
-    if abs(law.l_to_r - law.r_to_l) < 1e-9:
-        return float(law.l_to_r)
-    # asymmetric nominal arch: the c_v with the same mean kinetic-energy loss
-    return float(math.sqrt(0.5 * (law.energy_l_to_r + law.energy_r_to_l)))
+        return nominal_cv(arch)  # raises EnergyGainError if it creates energy
 
 
 def resolve_impact(config: EnsembleConfig) -> dict:

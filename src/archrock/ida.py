@@ -30,7 +30,7 @@ from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripe
                         first_collapse)
 from .geometry import Arch, random_arch
 from .groundmotion import G, GroundMotion
-from .response import DynamicModel, prepare, respond
+from .response import DynamicModel, nominal_cv, prepare, respond
 
 __all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "msa", "random_models", "IM_KINDS"]
 
@@ -63,7 +63,7 @@ def _models(models) -> list[DynamicModel]:
     out = []
     for m in ms:
         if isinstance(m, Arch):
-            m = prepare(m, float(prepare(m, "paper").impact.l_to_r))
+            m = prepare(m, nominal_cv(m))
         if not isinstance(m, DynamicModel):
             raise ArchInputError(f"models: {type(m).__name__}; allowed DynamicModel or Arch objects")
         out.append(m)
@@ -103,7 +103,7 @@ def random_models(nominal: Arch, samples: int, seed: int | None = 0, spreads: di
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ArchInputError(f"samples: {samples!r}; allowed an integer >= 1")
     if impact is None:
-        impact = float(prepare(nominal, "paper").impact.l_to_r)
+        impact = nominal_cv(nominal)
     children = np.random.SeedSequence(seed).spawn(int(samples))
     return [prepare(random_arch(nominal, rng=np.random.default_rng(c), **(spreads or {})), impact)
             for c in children]

@@ -53,6 +53,12 @@ class ImpactLaw:
     cv: float | None = None
     literal: bool = False
 
+    @property
+    def equivalent_cv(self) -> float:
+        """One coefficient of restitution for this law: sqrt of the mean kinetic-energy ratio of
+        the two directions (the rate ratio itself on a symmetric arch)."""
+        return math.sqrt(0.5 * (self.energy_l_to_r + self.energy_r_to_l))
+
     def ratio(self, closing: str) -> float:
         """Rate ratio at an impact that closes mechanism ``closing`` ('l' or 'r')."""
         return self.l_to_r if closing == "l" else self.r_to_l

@@ -35,7 +35,7 @@ from .impact import ImpactLaw, impact_law
 from .limit import LimitResult, limit_analysis
 from .mechanism import FourLink, four_link, rest_rate
 
-__all__ = ["DynamicModel", "Event", "Response", "prepare", "respond"]
+__all__ = ["DynamicModel", "Event", "Response", "prepare", "respond", "nominal_cv"]
 
 _MODE_NAME = {0: "rest", 1: "l", 2: "r"}
 _KIND_NAME = {K.EV_ACTIVATION: "activation", K.EV_IMPACT: "impact", K.EV_REST: "rest",
@@ -111,6 +111,14 @@ def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float 
         pl_r = min(limit_factor * m_r.phi_unstable, m_r.phi_dead * (1 - 1e-6))
     v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
+
+
+def nominal_cv(nominal: Arch) -> float:
+    """The paper's c_v: the "paper" impact model on the nominal arch, applied "as a first
+    approximation" to its irregular arches (0.8754 for Oppenheim's arch).  For an asymmetric
+    nominal arch, the c_v with the same mean kinetic-energy loss as the two directions
+    (:attr:`ImpactLaw.equivalent_cv`).  Raises EnergyGainError where the model creates energy."""
+    return float(prepare(nominal, "paper").impact.equivalent_cv)
 
 
 class Event(NamedTuple):

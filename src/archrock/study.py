@@ -87,7 +87,7 @@ def _dynamics_step(out: Path, progress: Callable[[str], None]) -> dict:
     from .response import prepare, respond
 
     nominal = prepare(oppenheim_arch(), "paper")
-    cv = nominal.impact.l_to_r
+    cv = nominal.impact.equivalent_cv  # = the rate ratio: Oppenheim's arch is symmetric
     momentum = prepare(oppenheim_arch(), "momentum").impact.l_to_r
     progress(f"coefficient of restitution of Oppenheim's arch: paper model c_v = {cv:.4f} "
              f"(paper: {PAPER_CV}); energy-consistent momentum model {momentum:.4f}")
