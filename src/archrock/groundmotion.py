@@ -460,6 +460,14 @@ def _number(p: Path, lineno: int, token: str) -> float:
     return x
 
 
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
 def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMotion:
     """Read "time accel" rows (whitespace- or comma-separated) into a GroundMotion.
 
@@ -481,10 +489,8 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
         tokens = line.replace(",", " ").replace(";", " ").split()
         if not seen_first:
             seen_first = True
-            try:
-                [float(tok) for tok in tokens]
-            except ValueError:
-                continue  # a header line such as "time, accel"
+            if not any(_is_number(tok) for tok in tokens):
+                continue  # a header line such as "time, accel" (a line with a number is data)
         if len(tokens) != 2:
             raise ArchInputError(
                 f"record {p.name}: line {lineno}: {len(tokens)} columns; allowed 2 (time accel)"

@@ -38,6 +38,7 @@ from .mechanism import FourLink, four_link, rest_rate
 __all__ = ["DynamicModel", "Event", "Response", "prepare", "respond", "nominal_cv"]
 
 _MODE_NAME = {0: "rest", 1: "l", 2: "r"}
+MAX_SAMPLES = 10_000_000  # output samples of one response (80 MB)
 _KIND_NAME = {K.EV_ACTIVATION: "activation", K.EV_IMPACT: "impact", K.EV_REST: "rest",
               K.EV_COLLAPSE: "collapse", K.EV_UNSTABLE: "unstable"}
 
@@ -212,6 +213,9 @@ def _check_times(t_end, dt_out, dt, t_free):
             raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0 s")
     if dt_out > t_end:
         raise ArchInputError(f"dt_out: {dt_out} s; allowed <= t_end = {t_end} s")
+    if t_end / dt_out > MAX_SAMPLES:
+        raise ArchInputError(f"t_end: {t_end:g} s at dt_out = {dt_out:g} s is {t_end / dt_out:.3g} "
+                             f"output samples; allowed at most {MAX_SAMPLES:,} (raise dt_out)")
 
 
 def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact="paper",
