@@ -19,20 +19,19 @@ import time
 from pathlib import Path
 from typing import Callable
 
+from . import published
 from .errors import ArchInputError
 
 __all__ = ["run_paper_study", "PAPER_K_OPPENHEIM", "FIG3_NAME", "FIG4_NAME", "find_random_arches",
            "PAPER_RA1", "PAPER_RA2", "PAPER_CV"]
 
-#: Oppenheim's arch collapse multiplier published in the paper (4 decimals).
-PAPER_K_OPPENHEIM = 0.3700
+PAPER_K_OPPENHEIM = published.K_OPPENHEIM
 FIG3_NAME = "fig3_oppenheim_limit.png"
 FIG4_NAME = "fig4_responses.png"
-#: The paper's random arches (k_l, k_r) and the nominal coefficient of restitution.
-PAPER_RA1 = (0.4111, 0.3104)
-PAPER_RA2 = (0.3946, 0.3501)
-PAPER_CV = 0.8754
-SPREADS = {"spread_span": 0.1, "spread_thickness": 0.1, "spread_radius": 0.05}
+PAPER_RA1 = published.RANDOM_ARCHES["RA-1"]
+PAPER_RA2 = published.RANDOM_ARCHES["RA-2"]
+PAPER_CV = published.CV_OPPENHEIM
+SPREADS = published.METHOD_SPREADS
 
 
 def find_random_arches(cv: float, n_seeds: int = 1000, t_window: float = 3.0,
