@@ -165,3 +165,40 @@ def test_peer_records_tiny_ida(small):
             assert collapses(small, r, c.first_scale)
             assert not collapses(small, r, c.bracket[0])
     assert sum(c.first_scale is not None for c in res.curves) >= 1
+
+
+def test_first_collapse_below_the_grid_is_bisected_from_the_safe_scale():
+    """Oppenheim's 0.2 s pulse (a = -1 g): the whole grid 2..4 is above the first collapse
+    (1.294 g, tests/test_curves.py); it must be found below the grid, not reported as 2.0."""
+    from archrock.curves import collapse_amplitude, default_cv
+    from archrock.geometry import oppenheim_arch
+    from archrock.groundmotion import oppenheim_pulse
+    from archrock.ida import safe_scale
+
+    arch = oppenheim_arch()
+    model = prepare(arch, default_cv(arch))
+    rec = oppenheim_pulse(-1.0, 0.2)
+    c = ida_curve(model, rec, [2.0, 3.0, 4.0], tol=1e-3)
+    assert c.collapsed[0] and c.below_grid
+    safe = safe_scale(model, rec)
+    assert safe == pytest.approx(model.k_l, rel=1e-6) and c.safe_scale == safe
+    assert not respond(model, rec.scaled(safe)).activated  # nothing moves there
+    lo, hi = c.bracket
+    assert safe <= lo < hi < 2.0 and hi - lo <= 1e-3 * hi and hi == c.first_scale
+    assert collapses(model, rec, hi) and not collapses(model, rec, lo)
+    assert c.first_im == pytest.approx(hi * rec.pga_g)
+    assert "bisected" in c.to_dict()["note"]
+    # a direct scan from the safe scale to the grid: every point below lo survives, and the scan's
+    # first collapse agrees with the bisected one to the scan spacing
+    scan = np.linspace(safe, 2.0, 41)
+    flags = np.array([collapses(model, rec, x) for x in scan])
+    assert not flags[scan < lo].any()
+    first = scan[np.flatnonzero(flags)[0]]
+    assert hi <= first <= hi + (scan[1] - scan[0])
+    # and the collapse-curve answer for the same pulse (amplitude = scale: PGA 1 g)
+    assert hi == pytest.approx(collapse_amplitude(model, 0.2, a_max=3.5, n_scan=80).amplitude,
+                               abs=3e-3)
+    # a grid that starts below the first collapse keeps the ordinary bisection
+    c2 = ida_curve(model, rec, [1.0, 2.0, 3.0])
+    assert not c2.below_grid and c2.safe_scale is None and c2.bracket[0] >= 1.0
+    assert c2.first_scale == pytest.approx(hi, abs=3e-3)

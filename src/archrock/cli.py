@@ -651,6 +651,8 @@ def run_fragility(args) -> int:
         fc = "never" if c.first_im is None else f"{c.first_im:.4f} g (scale {c.first_scale:.4f})"
         sa = ", ".join(f"{s:g}" for s in c.survivals_above) or "-"
         print(f"  arch {c.arch} {c.record[:40]:<40} first collapse {fc}; survives above at scales {sa}")
+        if c.note:
+            print(f"    ({c.note})")
     for name, r in (("IDA", res_ida), ("stripes", res_msa)):
         if r.fit is None or r.fit_error:
             print(f"{name}: {'no fit' if r.fit is None else 'note'} ({r.fit_error})")
@@ -715,6 +717,11 @@ def _ensemble_motion(args):
     return pulse_description(args.pulse or "oppenheim", args.amplitude, args.pulse_duration)
 
 
+def _ensemble_num(x, spec: str) -> str:
+    """A summary number for the text output; '-' for None (no sample to take it over)."""
+    return "-" if x is None else format(x, spec)
+
+
 def run_ensemble_cmd(args) -> int:
     from .ensemble import PAPER_RANDOM_ARCHES, EnsembleConfig, run_ensemble
 
@@ -746,11 +753,12 @@ def run_ensemble_cmd(args) -> int:
     print(f"nominal: k_l = {summary['nominal']['k_l']:.4f}, k_r = {summary['nominal']['k_r']:.4f}")
     for name, s in (("k_l", kl), ("k_r", kr)):
         if s["mean"] is not None:
-            print(f"{name}: mean {s['mean']:.4f}, std {s['std']:.4f}, 5-95% "
+            print(f"{name}: mean {s['mean']:.4f}, std {_ensemble_num(s['std'], '.4f')}, 5-95% "
                   f"[{s['q05']:.4f}, {s['q95']:.4f}]")
     for name, far in summary["as_far_as"].items():
-        print(f"as far from nominal as {name}: k_l {far['k_l']:.3f}, k_r {far['k_r']:.3f}, "
-              f"either {far['either']:.3f}, asymmetry |k_l-k_r| {far['asymmetry']:.3f}")
+        f3 = {k: _ensemble_num(far[k], ".3f") for k in ("k_l", "k_r", "either", "asymmetry")}
+        print(f"as far from nominal as {name}: k_l {f3['k_l']}, k_r {f3['k_r']}, "
+              f"either {f3['either']}, asymmetry |k_l-k_r| {f3['asymmetry']}")
     for m, counts in summary["hinge_patterns"].items():
         print(f"{m} hinges: " + ", ".join(f"{k} {v}" for k, v in list(counts.items())[:4]))
     pc = summary["p_collapse"]

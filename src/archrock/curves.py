@@ -170,9 +170,14 @@ class CollapseAmplitude:
         }
 
 
-def _bisect(test, lo, hi, lo_val, tol):
-    """Boundary between lo (outcome lo_val) and hi (outcome not lo_val), to tol; returns (lo, hi)."""
-    while hi - lo > tol:
+def bisect_boundary(test, lo, hi, lo_val, tol, relative=False):
+    """Boundary between lo (outcome ``test(lo) == lo_val``) and hi (the other outcome), narrowed
+    until hi - lo <= tol (or tol * hi with ``relative``); returns the final (lo, hi).
+
+    The one bisection of the package: collapse amplitudes here, IDA scale factors in
+    :mod:`archrock.ida`.  Collapse is not monotonic, so the result is *a* boundary between the
+    given ends, not necessarily the lowest one."""
+    while hi - lo > (tol * hi if relative else tol):
         mid = 0.5 * (lo + hi)
         if test(mid) == lo_val:
             lo = mid
@@ -224,7 +229,7 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
     if i0 == 0:
         lo, hi = thr, float(grid[0])  # collapse right at activation: the threshold is the boundary
     else:
-        lo, hi = _bisect(test, float(grid[i0 - 1]), float(grid[i0]), False, tol)
+        lo, hi = bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, tol)
     r = run(hi)
     # survival windows above the first collapse: runs of False in flags[i0:], edges bisected
     windows = []
@@ -238,9 +243,9 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
         while k + 1 < n and not flags[k + 1]:
             k += 1
         # survivals grid[j]..grid[k]; collapse at grid[j-1]; collapse at grid[k+1] (if any)
-        _, w_lo = _bisect(test, float(grid[j - 1]), float(grid[j]), True, tol)
+        _, w_lo = bisect_boundary(test, float(grid[j - 1]), float(grid[j]), True, tol)
         if k + 1 < n:
-            w_hi, _ = _bisect(test, float(grid[k]), float(grid[k + 1]), False, tol)
+            w_hi, _ = bisect_boundary(test, float(grid[k]), float(grid[k + 1]), False, tol)
         else:
             w_hi = float(grid[k])
         windows.append((w_lo, w_hi))

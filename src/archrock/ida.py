@@ -5,8 +5,9 @@ record in g, IM = scale * PGA_record / g; ``im="scale"`` is the scale factor its
 meaningful for a single record, or records normalised beforehand).
 
 * :func:`ida` -- for every record (and every arch), scan the scale factors of a grid, find the
-  first collapse (refined by bisection between the last survival below it and it) and report the
-  survivals above it (:func:`archrock.fragility.first_collapse`): rocking collapse is chaotic in the
+  first collapse (refined by bisection between the last survival below it and it; when the lowest
+  grid scale already collapses, between :func:`safe_scale`, where the record cannot activate the
+  arch, and it) and report the survivals above it (:func:`archrock.fragility.first_collapse`): rocking collapse is chaotic in the
   scale factor (METHOD section 6).  Fragility: :func:`~archrock.fragility.fit_ida_moments` on the
   first-collapse intensities; when some (record, arch) pairs never collapse up to the top of the
   grid, they enter as right-censored at their highest analysed IM (``censored="mle"``).
@@ -30,9 +31,11 @@ from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripe
                         first_collapse)
 from .geometry import Arch, random_arch
 from .groundmotion import G, GroundMotion
+from .curves import bisect_boundary
 from .response import DynamicModel, nominal_cv, prepare, respond
 
-__all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "msa", "random_models", "IM_KINDS"]
+__all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "ida_curve", "msa", "random_models",
+           "safe_scale", "IM_KINDS"]
 
 IM_KINDS = ("pga", "scale")
 
@@ -123,7 +126,10 @@ class IDACurve:
     bisection (None if none up to the top of the grid); bracket: (last survival, first collapse)
     scales; first_im: first collapse IM; survivals_above: grid scales above the first collapse that
     survived; resurrections: collapse -> survival switches along the grid; max_im: IM at the top of
-    the grid; below_grid: the lowest scale of the grid already collapsed (no bisection possible).
+    the grid.  below_grid: the lowest scale of the grid already collapsed; the first collapse was
+    then bisected between ``safe_scale`` (:func:`safe_scale`, where the record cannot activate the
+    arch: a guaranteed survival) and the lowest grid scale.  That range is bisected, not scanned:
+    a collapse window inside it, below the boundary found, would be missed.
     """
 
     record: str
@@ -138,6 +144,16 @@ class IDACurve:
     resurrections: int
     max_im: float
     below_grid: bool = False
+    safe_scale: float | None = None
+
+    @property
+    def note(self) -> str | None:
+        if not self.below_grid:
+            return None
+        if self.safe_scale is None:
+            return "lowest grid scale collapsed; not bracketed"
+        return (f"lowest grid scale collapsed: first collapse bisected between the no-activation "
+                f"scale {self.safe_scale:.4g} and the lowest grid scale {self.scales[0]:.4g}")
 
     def to_dict(self) -> dict:
         return {"record": self.record, "arch": self.arch, "pga_g": self.pga_g,
@@ -146,7 +162,7 @@ class IDACurve:
                 "bracket": None if self.bracket is None else list(self.bracket),
                 "first_im": self.first_im, "survivals_above": list(self.survivals_above),
                 "resurrections": self.resurrections, "max_im": self.max_im,
-                "below_grid": self.below_grid}
+                "below_grid": self.below_grid, "safe_scale": self.safe_scale, "note": self.note}
 
 
 @dataclass(frozen=True)
@@ -192,6 +208,17 @@ def _fit(func, *data, n_boot, seed, confidence, **kw):
         return None, str(exc)
 
 
+def safe_scale(model: DynamicModel, record: GroundMotion) -> float:
+    """Largest scale factor at which ``record`` cannot activate ``model`` (paper eq. 1: M_l opens
+    only for xg'' < -k_l g, M_r only for xg'' > k_r g): min over the two directions of
+    k g / (peak acceleration that way), at least min(k_l, k_r) g / PGA.  A guaranteed survival."""
+    a = np.asarray(record.accel, dtype=float)
+    neg, pos = float(max(-a.min(), 0.0)), float(max(a.max(), 0.0))
+    cands = [model.k_l * G / neg] if neg > 0 else []
+    cands += [model.k_r * G / pos] if pos > 0 else []
+    return float(min(cands)) * (1.0 - 1e-9)  # a hair below: activation is strict at the threshold
+
+
 def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "pga", tol: float = 1e-3,
               arch_index: int = 0, dt: float = 2e-3, t_free: float = 60.0) -> IDACurve:
     """One IDA curve (see :class:`IDACurve`); tol: relative bisection tolerance on the scale."""
@@ -206,19 +233,25 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
         return IDACurve(record.name, arch_index, record.pga_g, s, flags, None, None, None, (), 0,
                         float(s[-1] * f))
     i0 = int(np.flatnonzero(flags)[0])
+
+    def test(x):
+        return _collapsed(model, record, x, dt, t_free)
+
+    safe = None
     if i0 == 0:
-        lo, hi, below = None, float(s[0]), True
+        # the lowest grid scale collapsed: bisect down from a scale where nothing can activate
+        below = True
+        safe = safe_scale(model, record)
+        if safe < float(s[0]) and not test(safe):
+            lo, hi = bisect_boundary(test, safe, float(s[0]), False, tol, relative=True)
+        else:  # not reachable for a consistent model; keep the grid point, unbracketed
+            lo, hi, safe = None, float(s[0]), None
     else:
-        lo, hi, below = float(s[i0 - 1]), float(s[i0]), False
-        while hi - lo > tol * hi:
-            mid = 0.5 * (lo + hi)
-            if _collapsed(model, record, mid, dt, t_free):
-                hi = mid
-            else:
-                lo = mid
+        below = False
+        lo, hi = bisect_boundary(test, float(s[i0 - 1]), float(s[i0]), False, tol, relative=True)
     return IDACurve(record.name, arch_index, record.pga_g, s, flags, hi,
                     None if lo is None else (lo, hi), hi * f, tuple(fc["survivals_above"]),
-                    fc["resurrections"], float(s[-1] * f), below)
+                    fc["resurrections"], float(s[-1] * f), below, safe)
 
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
