@@ -234,3 +234,13 @@ def test_cli_bad_input(capsys, argv, field):
     code, out, err = cli(capsys, "ensemble", "--samples", "3", *argv)
     assert code == 2
     assert err.startswith("archrock: error: ") and field in err and err.count("\n") == 1
+
+
+def test_cli_text_output_without_a_finite_k(capsys):
+    # the only sample's geometry is invalid: no k, so no k statistics nor shares ('-')
+    code, out, err = cli(capsys, "ensemble", "--samples", "1", "--seed", "1", "--spread-radius",
+                         "0.99", "--spread-thickness", "0.99", "--no-progress")
+    assert code == 0, err
+    assert "as far from nominal as RA-1: k_l -, k_r -, either -, asymmetry |k_l-k_r| -" in out
+    assert "failed samples: 1" in out
+
