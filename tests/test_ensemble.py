@@ -244,3 +244,28 @@ def test_cli_text_output_without_a_finite_k(capsys):
     assert "as far from nominal as RA-1: k_l -, k_r -, either -, asymmetry |k_l-k_r| -" in out
     assert "failed samples: 1" in out
 
+
+def _unused_port():
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
+    pytest.importorskip("distributed")
+    import time
+
+    import archrock.ensemble as ens
+
+    monkeypatch.setattr(ens, "SCHEDULER_TIMEOUT_S", 1.0)
+    address = f"127.0.0.1:{_unused_port()}"
+    t0 = time.perf_counter()
+    with pytest.raises(ArchInputError, match=f"scheduler: cannot connect to '{address}'"):
+        run_ensemble(config(samples=2), scheduler=address, progress=False)
+    code, out, err = cli(capsys, "ensemble", "--samples", "2", "--scheduler", address,
+                         "--no-progress")
+    assert code == 2 and err.startswith("archrock: error: scheduler: cannot connect to ")
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert time.perf_counter() - t0 < 10

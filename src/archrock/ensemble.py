@@ -59,6 +59,8 @@ __all__ = ["EnsembleConfig", "EnsembleResult", "EnsembleConfigMismatch", "run_en
 PAPER_RANDOM_ARCHES = {"RA-1": (0.4111, 0.3104), "RA-2": (0.3946, 0.3501)}
 IMPACT_CHOICES = ("nominal-paper", "paper", "momentum", "fixed")
 MANIFEST = "manifest.json"
+#: seconds to wait for a Dask scheduler given by address before giving up with an ArchInputError.
+SCHEDULER_TIMEOUT_S = 10.0
 FORMAT = "archrock-ensemble/1"
 COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
            "status", "peak", "t_collapse", "t_unstable", "n_impacts", "n_activations", "error"]
@@ -682,7 +684,14 @@ def _run_dask(scheduler, cfg_dict, todo, finished):
         raise ImportError("running on a Dask cluster needs the 'dask' extra: "
                           "pip install 'archrock[dask]'") from None
     own = not isinstance(scheduler, Client)
-    client = Client(scheduler) if own else scheduler
+    if own:
+        try:
+            client = Client(scheduler, timeout=SCHEDULER_TIMEOUT_S)
+        except (OSError, ValueError, TypeError) as exc:
+            reason = " ".join(str(exc).split()) or type(exc).__name__
+            raise ArchInputError(f"scheduler: cannot connect to {scheduler!r} ({reason})") from None
+    else:
+        client = scheduler
     try:
         futs = [client.submit(_run_batch_task, cfg_dict, b, pure=False) for b in todo]
         for fut in as_completed(futs):
