@@ -185,3 +185,35 @@ def test_cli_curves_bad_input(capsys, argv, field):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"archrock: error: {field}:") and err.count("\n") == 1
+
+
+def test_literal_cv_is_applied(irregular):
+    """--literal-cv / literal_cv: the fixed c_v on the rates themselves (both directions equal),
+    instead of the energy-consistent rate ratios that differ on an irregular arch."""
+    arch, model = irregular
+    plain = collapse_curve(arch, [0.4], cv=CV_OPPENHEIM, a_max=2.0, n_scan=20)
+    lit = collapse_curve(arch, [0.4], cv=CV_OPPENHEIM, literal_cv=True, a_max=2.0, n_scan=20)
+    assert plain.cv[0] != pytest.approx(plain.cv[1], abs=1e-4)
+    assert lit.cv == pytest.approx((CV_OPPENHEIM, CV_OPPENHEIM), abs=1e-12)
+    with pytest.raises(ArchInputError, match="^literal_cv:"):
+        collapse_curve(model, [0.4], literal_cv=True)
+
+
+def test_cli_literal_cv(capsys):
+    import json
+
+    from archrock.cli import main
+
+    argv = ["curves", "--durations", "0.5", "--json", "--a-max", "1.5", "--n-scan", "20",
+            "--samples", "2", "--seed", "3"]
+    out = {}
+    for lit in (False, True):
+        assert main(argv + (["--literal-cv"] if lit else [])) == 0
+        out[lit] = json.loads(capsys.readouterr().out)
+    assert out[True]["impact"]["literal"] is True and out[False]["impact"]["literal"] is False
+    direct = ensemble_curve(oppenheim_arch(), 2, 3, durations=[0.5], a_max=1.5, n_scan=20,
+                            literal_cv=True)
+    assert out[True]["ensemble"]["amplitudes_g"] == direct.amplitudes.tolist()
+    assert out[True]["ensemble"]["amplitudes_g"] != out[False]["ensemble"]["amplitudes_g"]
+    assert main(["curves", "--durations", "0.5", "--impact", "momentum", "--literal-cv"]) == 2
+    assert capsys.readouterr().err.startswith("archrock: error: --literal-cv:")

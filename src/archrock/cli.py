@@ -479,11 +479,15 @@ def _spreads(args) -> dict:
 
 def _impact_spec(args, nominal):
     """The impact law of curves/fragility: --cv X, --impact NAME, or (default) the paper's fixed
-    c_v computed once on the nominal arch with the "paper" model."""
+    c_v computed once on the nominal arch with the "paper" model.  --literal-cv (args.literal_cv,
+    passed on by the callers) applies that fixed c_v to the rates literally."""
     from .curves import default_cv
 
     if args.cv is not None and args.impact is not None:
         raise CLIError("--cv: cannot be combined with --impact; choose one")
+    if args.literal_cv and args.impact is not None:
+        raise CLIError("--literal-cv: applies to a fixed c_v (--cv, or the default paper c_v); "
+                       "cannot be combined with --impact")
     if args.cv is not None:
         if not 0.0 < args.cv <= 1.0:
             raise ArchInputError(f"cv: {args.cv!r}; allowed 0 < cv <= 1")
@@ -542,10 +546,10 @@ def run_curves(args) -> int:
     band = None
     if args.samples > 0:
         band = ensemble_curve(nominal, args.samples, args.seed, _spreads(args), durations,
-                              impact=impact, workers=args.workers, **kw)
+                              impact=impact, literal_cv=args.literal_cv, workers=args.workers, **kw)
         curve = band.nominal
     else:
-        curve = collapse_curve(prepare(nominal, impact), durations, **kw)
+        curve = collapse_curve(prepare(nominal, impact, literal_cv=args.literal_cv), durations, **kw)
     if args.plot:
         from .plots import plot_collapse_curve
 
@@ -553,7 +557,8 @@ def run_curves(args) -> int:
                             title=f"{nominal.name}: {args.pulse} pulse, sign {args.sign:+d}")
     if args.json:
         out = {"arch": nominal.name, "pulse": args.pulse, "sign": args.sign,
-               "impact": impact if isinstance(impact, str) else {"model": "fixed", "cv": impact},
+               "impact": impact if isinstance(impact, str) else {"model": "fixed", "cv": impact,
+                                                                 "literal": args.literal_cv},
                "curve": curve.to_dict()}
         if band is not None:
             b = band.to_dict()
@@ -562,7 +567,8 @@ def run_curves(args) -> int:
         emit_json(out)
         return 0
     print(f"{nominal.name}: k_l = {curve.k_l:.4f}, k_r = {curve.k_r:.4f}; {args.pulse} pulse, "
-          f"sign {args.sign:+d}; impact {impact if isinstance(impact, str) else f'c_v = {impact:.4f}'}")
+          f"sign {args.sign:+d}; impact {impact if isinstance(impact, str) else f'c_v = {impact:.4f}'}"
+          f"{' (literal, on the rates)' if args.literal_cv else ''}")
     head = f"{'t_p [s]':>8} {'a_first [g]':>12}  {'mode':<22} survival windows above [g]"
     if band is not None:
         head = head.replace("  mode", "  " + " ".join(f"q{q:g}".rjust(7) for q in band.quantiles)
@@ -623,8 +629,9 @@ def run_fragility(args) -> int:
     records = [load_record(f, units=args.units) for f in args.records]
     scales = parse_range(args.scales, "scales")
     impact = _impact_spec(args, nominal)
-    models = (random_models(nominal, args.samples, args.seed, _spreads(args), impact)
-              if args.samples > 0 else [prepare(nominal, impact)])
+    models = (random_models(nominal, args.samples, args.seed, _spreads(args), impact,
+                            literal_cv=args.literal_cv)
+              if args.samples > 0 else [prepare(nominal, impact, literal_cv=args.literal_cv)])
     boot = args.bootstrap if args.bootstrap >= 2 else 0
     res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed)
     if args.levels:
@@ -643,7 +650,10 @@ def run_fragility(args) -> int:
                        ida=res_ida)
     if args.json:
         emit_json({"arch": nominal.name, "records": [r.name for r in records],
-                   "n_arches": len(models), "im": "pga_g", "ida": res_ida.to_dict(),
+                   "n_arches": len(models), "im": "pga_g",
+                   "impact": impact if isinstance(impact, str) else {"model": "fixed", "cv": impact,
+                                                                     "literal": args.literal_cv},
+                   "ida": res_ida.to_dict(),
                    "stripes": res_msa.to_dict()})
         return 0
     print(f"{nominal.name}: {len(records)} record(s) x {len(models)} arch(es); IM = PGA [g]")

@@ -117,14 +117,18 @@ def collapse_mode(response) -> str | None:
     return "before first impact" if n == 0 else f"after {n} impact{'s' if n > 1 else ''}"
 
 
-def _model(arch_or_model, impact, cv):
+def _model(arch_or_model, impact, cv, literal_cv=False):
     if isinstance(arch_or_model, DynamicModel):
+        if literal_cv:
+            raise ArchInputError("literal_cv: the model is already prepared with its impact law; "
+                                 "allowed only with an Arch (or prepare the model with literal_cv)")
         return arch_or_model
     if not isinstance(arch_or_model, Arch):
         raise ArchInputError(f"model: expected an Arch or a DynamicModel, got {type(arch_or_model).__name__}")
     if impact is None:
-        return prepare(arch_or_model, default_cv(arch_or_model) if cv is None else float(cv))
-    return prepare(arch_or_model, impact, cv=cv)
+        return prepare(arch_or_model, default_cv(arch_or_model) if cv is None else float(cv),
+                       literal_cv=literal_cv)
+    return prepare(arch_or_model, impact, cv=cv, literal_cv=literal_cv)
 
 
 # ---------------------------------------------------------------------------- one duration
@@ -188,15 +192,17 @@ def bisect_boundary(test, lo, hi, lo_val, tol, relative=False):
 
 def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: int = -1, *,
                        a_max: float = 10.0, n_scan: int = 150, tol: float = 1e-3,
-                       impact=None, cv: float | None = None, dt: float = 2e-3) -> CollapseAmplitude:
+                       impact=None, cv: float | None = None, literal_cv: bool = False,
+                       dt: float = 2e-3) -> CollapseAmplitude:
     """First collapse amplitude [g] of a ``kind`` pulse of duration ``duration`` [s] (module doc).
 
-    model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``; default
-    the paper's fixed c_v of that arch).  sign: -1 or +1 (direction of the pulse's first push).
+    model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``/
+    ``literal_cv``; default the paper's fixed c_v of that arch, applied energy-consistently;
+    ``literal_cv=True`` applies a fixed c_v to the rates literally, METHOD section 4).  sign: -1 or +1 (direction of the pulse's first push).
     a_max [g]: top of the scan; n_scan: grid points (geometric spacing); tol [g]: bisection
     tolerance; dt [s]: RK4 step of the fast integrator.
     """
-    model = _model(model, impact, cv)
+    model = _model(model, impact, cv, literal_cv)
     kind = _check_kind(kind)
     sign = _check_sign(sign)
     tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
@@ -303,9 +309,9 @@ def _durations(durations) -> np.ndarray:
 
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
-                   dt: float = 2e-3) -> CollapseCurve:
+                   literal_cv: bool = False, dt: float = 2e-3) -> CollapseCurve:
     """:func:`collapse_amplitude` for each of ``durations`` [s]."""
-    model = _model(model, impact, cv)
+    model = _model(model, impact, cv, literal_cv)
     d = _durations(durations)
     pts = tuple(collapse_amplitude(model, float(tp), kind, sign, a_max=a_max, n_scan=n_scan, tol=tol,
                                    dt=dt) for tp in d)
@@ -354,16 +360,16 @@ _SPREAD_KEYS = ("spread_span", "spread_thickness", "spread_radius")
 
 
 def _one_sample(job):
-    nominal, child, spreads, impact, durations, kwargs = job
+    nominal, child, spreads, impact, literal_cv, durations, kwargs = job
     arch = random_arch(nominal, rng=np.random.default_rng(child), **spreads)
-    model = prepare(arch, impact)
+    model = prepare(arch, impact, literal_cv=literal_cv)
     curve = collapse_curve(model, durations, **kwargs)
     return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf)
 
 
 def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
-                   kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
+                   literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
                    tol: float = 1e-3, dt: float = 2e-3, workers: int = 1) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
@@ -371,7 +377,8 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: d
     results do not depend on ``workers``).  spreads: keys spread_span, spread_thickness,
     spread_radius (defaults of :func:`~archrock.geometry.random_arch`).  impact: None (default)
     = the paper's choice, a fixed c_v from the "paper" model on the nominal arch applied to every
-    arch; or a model name / number passed to :func:`~archrock.response.prepare`.
+    arch; or a model name / number passed to :func:`~archrock.response.prepare`.  literal_cv:
+    apply a fixed c_v to the rates literally instead of energy-consistently (METHOD section 4).
     workers > 1 runs arches in a process pool.
     """
     if not isinstance(nominal, Arch):
@@ -389,11 +396,11 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: d
     if impact is None:
         impact = default_cv(nominal)
     kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
-    nominal_curve = collapse_curve(prepare(nominal, impact), d, **kwargs)
+    nominal_curve = collapse_curve(prepare(nominal, impact, literal_cv=literal_cv), d, **kwargs)
     # validate spreads once (raises ArchInputError before any pool starts)
     random_arch(nominal, rng=np.random.default_rng(0), **spreads)
     children = np.random.SeedSequence(seed).spawn(samples)
-    jobs = [(nominal, c, spreads, impact, d, kwargs) for c in children]
+    jobs = [(nominal, c, spreads, impact, literal_cv, d, kwargs) for c in children]
     if workers == 1:
         rows = [_one_sample(j) for j in jobs]
     else:

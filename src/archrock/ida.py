@@ -97,19 +97,20 @@ def _im_factor(record: GroundMotion, im: str) -> float:
 
 
 def random_models(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
-                  impact=None) -> list[DynamicModel]:
+                  impact=None, literal_cv: bool = False) -> list[DynamicModel]:
     """``samples`` irregular arches around ``nominal``, arch i from child i of SeedSequence(seed).
 
     impact: None = the paper's choice (c_v of the "paper" model on the nominal arch, fixed for every
-    arch), or anything :func:`~archrock.response.prepare` accepts.
+    arch), or anything :func:`~archrock.response.prepare` accepts; literal_cv: apply a fixed c_v
+    to the rates literally (METHOD section 4).
     """
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ArchInputError(f"samples: {samples!r}; allowed an integer >= 1")
     if impact is None:
         impact = nominal_cv(nominal)
     children = np.random.SeedSequence(seed).spawn(int(samples))
-    return [prepare(random_arch(nominal, rng=np.random.default_rng(c), **(spreads or {})), impact)
-            for c in children]
+    return [prepare(random_arch(nominal, rng=np.random.default_rng(c), **(spreads or {})), impact,
+                    literal_cv=literal_cv) for c in children]
 
 
 def _collapsed(model, record, scale, dt, t_free) -> bool:
