@@ -50,7 +50,8 @@ def test_prepare_batch_equals_prepare(sample):
         assert pb.c_l_to_r[b] == pytest.approx(m.impact.l_to_r, rel=1e-12)
         assert pb.c_r_to_l[b] == pytest.approx(m.impact.r_to_l, rel=1e-12)
         # energy-consistent fixed c_v: kinetic energy x cv^2 in both directions
-        assert pb.energy_l_to_r[b] == pytest.approx(CV**2, rel=1e-12)
+        assert m.impact.energy_l_to_r == pytest.approx(CV**2, rel=1e-12)
+        assert pb.c_l_to_r[b] * pb.c_r_to_l[b] == pytest.approx(CV**2, rel=1e-12)
         hinges = "-".join(f"{h.joint}{h.edge[0]}" for h in m.limit.mechanism_l.hinges)
         assert pb.mech_l[b] == hinges
 
@@ -106,8 +107,14 @@ def test_paper_impact_energy_gain_is_recorded_not_used():
     res = simulate_batch(pb, oppenheim_pulse(-1.0, 0.2))
     assert np.all(res["status"][bad] == -1)
     assert np.all(np.isnan(res["peak"][bad]))
-    # the usable ones never gain energy
-    assert np.all(pb.energy_l_to_r[~bad] <= 1 + 1e-9) and np.all(pb.energy_r_to_l[~bad] <= 1 + 1e-9)
+    # the usable ones never gain energy (the energy ratios multiply to (c_lr c_rl)^2) and are
+    # the one-arch laws
+    assert np.all(pb.c_l_to_r[~bad] * pb.c_r_to_l[~bad] <= 1 + 1e-9)
+    for b in np.flatnonzero(~bad)[:3]:
+        law = prepare(Arch(spans[b], radii[b], thick[b]), "paper").impact
+        assert pb.c_l_to_r[b] == pytest.approx(law.l_to_r, rel=1e-12)
+        assert pb.c_r_to_l[b] == pytest.approx(law.r_to_l, rel=1e-12)
+        assert max(law.energy_l_to_r, law.energy_r_to_l) <= 1 + 1e-9
 
 
 def test_invalid_geometry_is_reported():
@@ -129,3 +136,23 @@ def test_bad_impact_options():
         prepare_batch(nom.spans[None], nom.radii[None], nom.thicknesses[None], impact="fixed", cv=1.5)
     with pytest.raises(ArchInputError, match="impact"):
         prepare_batch(nom.spans[None], nom.radii[None], nom.thicknesses[None], impact="elastic")
+
+
+def test_event_table_overflow_keeps_the_outcome(sample):
+    # more events than the table holds: status, peak and times are still those of the full
+    # integration; only the counts of impacts and activations are lower bounds
+    nom, _, spans, thick, radii = sample
+    motion = oppenheim_pulse(-1.0, 0.2)
+    pb = prepare_batch(spans, radii, thick, impact="fixed", cv=CV)
+    full = simulate_batch(pb, motion)
+    assert not full["events_truncated"].any()
+    small = simulate_batch(pb, motion, max_events=8)
+    over = small["events_truncated"]
+    assert over.any() and not over.all()
+    for key in ("status", "peak", "t_collapse", "t_unstable"):
+        np.testing.assert_array_equal(small[key], full[key])
+    assert set(small["status"][over]) <= {0, 1, 2}
+    assert (small["n_impacts"][over] < full["n_impacts"][over]).all()
+    np.testing.assert_array_equal(small["n_impacts"][~over], full["n_impacts"][~over])
+    serial = simulate_batch(pb, motion, max_events=8, parallel=False)
+    np.testing.assert_array_equal(serial["events_truncated"], over)

@@ -269,3 +269,20 @@ def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
     assert code == 2 and err.startswith("archrock: error: scheduler: cannot connect to ")
     assert err.count("\n") == 1 and "Traceback" not in err
     assert time.perf_counter() - t0 < 10
+
+
+def test_event_table_overflow_is_flagged_not_failed(base, monkeypatch):
+    import archrock.ensemble as ens
+
+    monkeypatch.setattr(ens, "MAX_EVENTS", 8)
+    res = run_ensemble(config(), progress=False)
+    df, ref = res.frame, base.frame
+    over = df["events_truncated"].to_numpy()
+    assert over.any() and not ref["events_truncated"].any()
+    assert (df["error"] == "").all()
+    for col in ("status", "collapsed", "peak", "t_collapse", "t_unstable"):
+        pd.testing.assert_series_equal(df[col], ref[col])
+    assert (df.loc[over, "n_impacts"] < ref.loc[over, "n_impacts"]).all()
+    s = res.summary()
+    assert s["failed"]["count"] == 0 and s["p_collapse"] == base.summary()["p_collapse"]
+    assert s["response"]["events_truncated"] == int(over.sum())

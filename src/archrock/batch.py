@@ -14,8 +14,9 @@ parallel loop of the single-response kernel :func:`archrock.kernel.simulate`.
   are not dropped: their ``error`` holds the reason.
 * :func:`simulate_batch` integrates one ground motion for every prepared arch with a numba
   ``prange`` loop over arches (no output samples, ``n_out = 1``), returning per-arch summaries:
-  status, peak, t_collapse, t_unstable, number of impacts and of activations.  Without numba the
-  same loop runs in Python.
+  status, peak, t_collapse, t_unstable, number of impacts and of activations, and whether the
+  event table overflowed (``events_truncated``: the outcome is still complete, only the impact
+  and activation counts are then lower bounds).  Without numba the same loop runs in Python.
 """
 
 from __future__ import annotations
@@ -41,8 +42,9 @@ __all__ = ["PreparedBatch", "perturb", "check_geometries", "prepare_batch", "sim
 #: status codes of :func:`simulate_batch` (those of the kernel, plus -1 not run / failed).
 STATUS_NAMES = {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}
 ST_NOT_RUN = -1
-ST_OVERFLOW = -2
-#: event-table size per response in the batch kernel (the paper's pulse needs about 100).
+#: event-table size per response in the batch kernel (the paper's pulse needs about 100).  The
+#: kernel keeps integrating past it (status, peak and times stay exact); only the counts of
+#: impacts and activations then miss the events beyond the table.
 MAX_EVENTS = 4096
 
 # ---------------------------------------------------------------------------- random geometry
@@ -127,7 +129,7 @@ class PreparedBatch:
     error: '' for usable arches, otherwise the reason (such arches are not integrated).
     mech_l / mech_r: compact hinge labels ('0i-3e-5i-7e'); geo_l / geo_r (B, 21): flat four-link
     vectors; phi_unstable_* / phi_limit_* [rad]; c_l_to_r / c_r_to_l: impact rate ratios;
-    energy_*: kinetic-energy ratios at impact; v_rest [rad/s]; table_l / table_r (B, 2): the
+    v_rest [rad/s]; table_l / table_r (B, 2): the
     range [start, top] of phi [rad] of the spline tables of M, L, F, P used by the fast kernel
     (as FourLink.tabulated(phi_limit)); seconds: time spent preparing.
     """
@@ -144,8 +146,6 @@ class PreparedBatch:
     phi_limit_r: np.ndarray
     c_l_to_r: np.ndarray
     c_r_to_l: np.ndarray
-    energy_l_to_r: np.ndarray
-    energy_r_to_l: np.ndarray
     v_rest: np.ndarray
     error: np.ndarray
     table_l: np.ndarray = None
@@ -255,11 +255,9 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact="fi
         _impact_per_arch(impact, spans, radii, thick, density, k_l, k_r, cand_l, cand_r, ok,
                          c_lr, c_rl, error)
         ok = error == ""
-    e_lr = c_lr**2 * out["m0_r"] / out["m0_l"]
-    e_rl = c_rl**2 * out["m0_l"] / out["m0_r"]
     t3 = time.perf_counter()
     return PreparedBatch(k_l, k_r, mech_l, mech_r, geo_l, geo_r, out["phu_l"], out["phu_r"],
-                         out["lim_l"], out["lim_r"], c_lr, c_rl, e_lr, e_rl, out["v_rest"], error,
+                         out["lim_l"], out["lim_r"], c_lr, c_rl, out["v_rest"], error,
                          tab_l, tab_r, {"limit": t1 - t0, "four_link": t2 - t1, "impact": t3 - t2})
 
 
@@ -311,7 +309,7 @@ def _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, li
             ni += 1
         elif ev[e, 0] == K.EV_ACTIVATION:
             na += 1
-    status[b] = st if ne <= max_events else ST_OVERFLOW
+    status[b] = st  # complete even when the event table overflowed (ne > max_events)
     peak[b] = pk
     t_col[b] = tc
     t_uns[b] = tu
@@ -353,8 +351,9 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     free motion after the record at most ``t_free`` [s]).
 
     Returns a dict of arrays (B,): status (0 rest, 1 collapsed, 2 still moving, -1 not run:
-    unusable arch, -2 more than ``max_events`` events), peak [rad], t_collapse and t_unstable
-    [s] (NaN if never), n_impacts, n_activations, n_events; plus 'seconds'.
+    unusable arch), peak [rad], t_collapse and t_unstable [s] (NaN if never), n_impacts,
+    n_activations, events_truncated (more than ``max_events`` events: status, peak and times are
+    still exact, n_impacts and n_activations are lower bounds); plus 'seconds'.
     ``tabulate``: the kernel reads M, L, F, P from natural cubic splines on ``table_intervals``
     intervals (as ``respond(..., tabulate=True)``, relative error ~1e-9, about 3x faster), built
     per arch inside the loop; otherwise the exact loop closure.
@@ -384,5 +383,6 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
         _simulate_loop_py(*args)
     for key in ("t_collapse", "t_unstable"):
         res[key][res[key] < 0] = np.nan
+    res["events_truncated"] = res.pop("n_events") > int(max_events)
     res["seconds"] = time.perf_counter() - t0
     return res

@@ -46,8 +46,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .batch import MAX_EVENTS, ST_NOT_RUN, ST_OVERFLOW, STATUS_NAMES, perturb, prepare_batch, \
-    simulate_batch
+from .batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, perturb, prepare_batch, simulate_batch
 from .errors import ArchInputError
 from .geometry import Arch
 
@@ -63,7 +62,8 @@ MANIFEST = "manifest.json"
 SCHEDULER_TIMEOUT_S = 10.0
 FORMAT = "archrock-ensemble/1"
 COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
-           "status", "peak", "t_collapse", "t_unstable", "n_impacts", "n_activations", "error"]
+           "status", "peak", "t_collapse", "t_unstable", "n_impacts", "n_activations", "events_truncated",
+           "error"]
 
 
 class EnsembleConfigMismatch(ArchInputError):
@@ -314,16 +314,16 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
     error = pb.error.copy()
     if motion is not None:
         res = simulate_batch(pb, motion, dt=cfg.dt, t_free=cfg.t_free, parallel=parallel,
-                             tabulate=cfg.tabulate)
+                             tabulate=cfg.tabulate, max_events=MAX_EVENTS)
         st = res["status"]
-        error[st == ST_OVERFLOW] = f"response: more than {MAX_EVENTS} events"
         status = np.array([STATUS_NAMES.get(int(s), "failed") for s in st], dtype=object)
-        status[(st == ST_NOT_RUN) | (st == ST_OVERFLOW)] = "failed"
+        status[st == ST_NOT_RUN] = "failed"
         sim_seconds = res["seconds"]
     else:
         res = {"peak": np.full(nb, np.nan), "t_collapse": np.full(nb, np.nan),
                "t_unstable": np.full(nb, np.nan), "n_impacts": np.zeros(nb, dtype=np.int64),
-               "n_activations": np.zeros(nb, dtype=np.int64)}
+               "n_activations": np.zeros(nb, dtype=np.int64),
+               "events_truncated": np.zeros(nb, dtype=bool)}
         status = np.where(error == "", "limit-only", "failed").astype(object)
         sim_seconds = 0.0
     df = pd.DataFrame({
@@ -337,6 +337,7 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
         "peak": res["peak"], "t_collapse": res["t_collapse"], "t_unstable": res["t_unstable"],
         "n_impacts": res["n_impacts"].astype(np.int64),
         "n_activations": res["n_activations"].astype(np.int64),
+        "events_truncated": res["events_truncated"].astype(bool),
         "error": error.astype(str),
     }, columns=COLUMNS)
     timings = {"prepare_s": float(sum(pb.seconds.values())), "response_s": float(sim_seconds),
@@ -571,6 +572,7 @@ class EnsembleResult:
                 "activated": float((ran["n_activations"] > 0).mean()) if n else None,
                 "peak_rad": _stats(ran["peak"].to_numpy()),
                 "n_impacts": _stats(ran["n_impacts"].to_numpy()),
+                "events_truncated": int(ran["events_truncated"].sum()),
                 "t_collapse_s": _stats(col["t_collapse"].to_numpy()),
                 "t_unstable_s": _stats(ran["t_unstable"].to_numpy()),
                 "unstable_but_survived": int((np.isfinite(ran["t_unstable"].to_numpy())
