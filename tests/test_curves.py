@@ -217,3 +217,37 @@ def test_cli_literal_cv(capsys):
     assert out[True]["ensemble"]["amplitudes_g"] != out[False]["ensemble"]["amplitudes_g"]
     assert main(["curves", "--durations", "0.5", "--impact", "momentum", "--literal-cv"]) == 2
     assert capsys.readouterr().err.startswith("archrock: error: --literal-cv:")
+
+
+WILD = {"spread_radius": 0.99, "spread_thickness": 0.99}  # seed 0: samples 0 and 2 cannot be built
+
+
+def test_ensemble_leaves_out_unusable_arches_and_says_which():
+    nominal = oppenheim_arch()
+    e = ensemble_curve(nominal, 3, seed=0, spreads=WILD, durations=[0.2], a_max=3.0, n_scan=20)
+    assert [i for i, _ in e.failed] == [0, 2]
+    assert "cannot stand" in e.failed[0][1] and "overlap" in e.failed[1][1]
+    assert e.samples == (1,) and e.n_samples == 1 and e.n_requested == 3
+    assert e.amplitudes.shape == (1, 1)
+    child = np.random.SeedSequence(0).spawn(3)[1]
+    arch1 = random_arch(nominal, rng=np.random.default_rng(child), **WILD)
+    direct = collapse_amplitude(prepare(arch1, e.cv), 0.2, a_max=3.0, n_scan=20)
+    assert e.amplitudes[0, 0] == direct.amplitude
+    d = e.to_dict()
+    assert d["failed"][0][0] == 0 and d["n_failed"] == 2 and d["samples"] == [1]
+    # no usable arch at all: a clear error naming a sample
+    with pytest.raises(ArchInputError, match=r"^samples: none of the 4 random arches is usable \(sample 0"):
+        ensemble_curve(nominal, 4, seed=1, spreads=WILD, durations=[0.2], a_max=3.0, n_scan=5)
+    with pytest.raises(ArchInputError, match="^spread_radius:"):
+        ensemble_curve(nominal, 2, spreads={"spread_radius": 1.5}, durations=[0.2])
+
+
+def test_cli_curves_reports_failed_samples(capsys):
+    from archrock.cli import main
+
+    argv = ["curves", "--durations", "0.2", "--samples", "3", "--spread-radius", "0.99",
+            "--spread-thickness", "0.99", "--a-max", "3", "--n-scan", "20"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "2 of 3 random arches left out" in out
+    assert "sample 0: arch: it cannot stand" in out and "sample 2: joint 2" in out

@@ -202,3 +202,21 @@ def test_first_collapse_below_the_grid_is_bisected_from_the_safe_scale():
     c2 = ida_curve(model, rec, [1.0, 2.0, 3.0])
     assert not c2.below_grid and c2.safe_scale is None and c2.bracket[0] >= 1.0
     assert c2.first_scale == pytest.approx(hi, abs=3e-3)
+
+
+def test_unusable_random_arches_are_left_out_and_reported():
+    from archrock.geometry import oppenheim_arch
+    from archrock.groundmotion import oppenheim_pulse
+
+    wild = {"spread_radius": 0.99, "spread_thickness": 0.99}  # seed 0: samples 0, 2 unusable
+    models = random_models(oppenheim_arch(), 3, seed=0, spreads=wild)
+    assert len(models) == 1 and models.indices == (1,)
+    assert [i for i, _ in models.failed] == [0, 2] and "cannot stand" in models.failed[0][1]
+    rec = oppenheim_pulse(-1.0, 0.4)
+    res = ida([rec], models, [0.5, 1.0, 2.0])
+    assert [c.arch for c in res.curves] == [1] and res.failed == models.failed
+    assert res.to_dict()["failed"][1][0] == 2
+    st = msa([rec], models, [0.5, 1.0])
+    assert st.arches == (1,) and st.failed == models.failed and st.trials.tolist() == [1, 1]
+    with pytest.raises(ArchInputError, match="^samples: none of the 4"):
+        random_models(oppenheim_arch(), 4, seed=1, spreads=wild)

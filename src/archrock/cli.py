@@ -531,6 +531,14 @@ def _fmt_windows(ws) -> str:
     return ", ".join(f"{lo:.3f}-{hi:.3f}" for lo, hi in ws) or "-"
 
 
+def _print_failed(failed, n_requested: int) -> None:
+    """The random arches of curves/fragility that could not be analysed, one line each."""
+    if failed:
+        print(f"{len(failed)} of {n_requested} random arches left out (unusable):")
+        for i, why in failed:
+            print(f"  sample {i}: {why}")
+
+
 def run_curves(args) -> int:
     from .curves import collapse_curve, ensemble_curve, parse_range
     from .response import prepare
@@ -581,6 +589,8 @@ def run_curves(args) -> int:
             qs = " ".join(("inf" if not math.isfinite(v) else f"{v:.3f}").rjust(7)
                           for v in band.bands[:, i]) + " "
         print(f"{p.duration:8.3f} {a:>12}  {qs}{(p.mode or '-'):<22} {_fmt_windows(p.windows)}")
+    if band is not None:
+        _print_failed(band.failed, band.n_requested)
     if args.plot:
         print(f"wrote {args.plot}", file=sys.stderr)
     return 0
@@ -657,6 +667,7 @@ def run_fragility(args) -> int:
                    "stripes": res_msa.to_dict()})
         return 0
     print(f"{nominal.name}: {len(records)} record(s) x {len(models)} arch(es); IM = PGA [g]")
+    _print_failed(res_ida.failed, args.samples)
     for c in res_ida.curves:
         fc = "never" if c.first_im is None else f"{c.first_im:.4f} g (scale {c.first_scale:.4f})"
         sa = ", ".join(f"{s:g}" for s in c.survivals_above) or "-"

@@ -327,8 +327,11 @@ class EnsembleCurve:
     """Quantile bands of the first collapse amplitude over random arches.
 
     durations [s]; quantiles (levels); bands[q_index, d_index] [g] (inf where the quantile lies
-    among arches that did not collapse up to a_max); amplitudes[sample, d_index] [g] (inf: no
-    collapse); nominal: the nominal arch's curve; seed, spreads, cv as used.
+    among arches that did not collapse up to a_max); amplitudes[row, d_index] [g] (inf: no
+    collapse), one row per usable arch, row i being sample ``samples[i]``; nominal: the nominal
+    arch's curve; seed, spreads, cv as used.  n_samples: usable arches (the quantiles are over
+    them); n_requested: arches drawn; failed: (sample index, reason) of each drawn arch that could
+    not be analysed (e.g. it cannot stand), left out of the quantiles.
     """
 
     durations: np.ndarray
@@ -341,6 +344,8 @@ class EnsembleCurve:
     cv: float
     n_samples: int
     failed: tuple = ()
+    samples: tuple = ()
+    n_requested: int = 0
 
     def to_dict(self) -> dict:
         def f(v):
@@ -350,7 +355,9 @@ class EnsembleCurve:
             "quantiles": list(self.quantiles),
             "bands_g": [[f(v) for v in row] for row in self.bands],
             "amplitudes_g": [[f(v) for v in row] for row in self.amplitudes],
-            "n_samples": self.n_samples, "seed": self.seed, "spreads": dict(self.spreads),
+            "n_samples": self.n_samples, "n_requested": self.n_requested,
+            "samples": list(self.samples), "n_failed": len(self.failed),
+            "seed": self.seed, "spreads": dict(self.spreads),
             "cv": self.cv, "failed": [list(x) for x in self.failed],
             "nominal": self.nominal.to_dict(),
         }
@@ -360,11 +367,23 @@ _SPREAD_KEYS = ("spread_span", "spread_thickness", "spread_radius")
 
 
 def _one_sample(job):
+    """(row of first collapse amplitudes, None), or (None, reason) for an unusable arch."""
     nominal, child, spreads, impact, literal_cv, durations, kwargs = job
-    arch = random_arch(nominal, rng=np.random.default_rng(child), **spreads)
-    model = prepare(arch, impact, literal_cv=literal_cv)
-    curve = collapse_curve(model, durations, **kwargs)
-    return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf)
+    try:
+        arch = random_arch(nominal, rng=np.random.default_rng(child), **spreads)
+        model = prepare(arch, impact, literal_cv=literal_cv)
+        curve = collapse_curve(model, durations, **kwargs)
+    except ArchInputError as exc:
+        return None, str(exc)
+    return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf), None
+
+
+def _check_spreads(spreads: dict) -> None:
+    """Spread widths 0 <= s < 1 (the check of random_arch, without drawing an arch)."""
+    from .geometry import _check_spread
+
+    for k, v in spreads.items():
+        _check_spread(k, v, 1.0)
 
 
 def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
@@ -377,7 +396,9 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: d
     results do not depend on ``workers``).  spreads: keys spread_span, spread_thickness,
     spread_radius (defaults of :func:`~archrock.geometry.random_arch`).  impact: None (default)
     = the paper's choice, a fixed c_v from the "paper" model on the nominal arch applied to every
-    arch; or a model name / number passed to :func:`~archrock.response.prepare`.  literal_cv:
+    arch; or a model name / number passed to :func:`~archrock.response.prepare`.  An arch that
+    cannot be analysed (ArchInputError: it cannot stand, voussoirs do not overlap, ...) is left out
+    and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv:
     apply a fixed c_v to the rates literally instead of energy-consistently (METHOD section 4).
     workers > 1 runs arches in a process pool.
     """
@@ -397,8 +418,7 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: d
         impact = default_cv(nominal)
     kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
     nominal_curve = collapse_curve(prepare(nominal, impact, literal_cv=literal_cv), d, **kwargs)
-    # validate spreads once (raises ArchInputError before any pool starts)
-    random_arch(nominal, rng=np.random.default_rng(0), **spreads)
+    _check_spreads(spreads)  # bad widths: ArchInputError before any pool starts
     children = np.random.SeedSequence(seed).spawn(samples)
     jobs = [(nominal, c, spreads, impact, literal_cv, d, kwargs) for c in children]
     if workers == 1:
@@ -406,7 +426,14 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: d
     else:
         with ProcessPoolExecutor(max_workers=min(workers, os.cpu_count() or 1)) as ex:
             rows = list(ex.map(_one_sample, jobs))
-    amps = np.array(rows)
+    failed = tuple((i, why) for i, (_, why) in enumerate(rows) if why is not None)
+    kept = tuple(i for i, (row, _) in enumerate(rows) if row is not None)
+    if not kept:
+        i, why = failed[0]
+        raise ArchInputError(f"samples: none of the {samples} random arches is usable (sample {i}: "
+                             f"{why}); allowed spreads that give arches able to stand")
+    amps = np.array([rows[i][0] for i in kept])
+    requested, samples = samples, len(kept)
     # quantiles with non-collapsing arches as +inf: order statistics, linear interpolation
     srt = np.sort(amps, axis=0)
     pos = q[:, None] * (samples - 1)
@@ -420,4 +447,5 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: d
                          a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
     return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
                          seed, {k: spreads.get(k) for k in _SPREAD_KEYS if k in spreads},
-                         float(impact) if isinstance(impact, (int, float)) else impact, samples)
+                         float(impact) if isinstance(impact, (int, float)) else impact, samples,
+                         failed, kept, requested)

@@ -31,11 +31,11 @@ from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripe
                         first_collapse)
 from .geometry import Arch, random_arch
 from .groundmotion import G, GroundMotion
-from .curves import bisect_boundary
+from .curves import _check_spreads, bisect_boundary
 from .response import DynamicModel, nominal_cv, prepare, respond
 
-__all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "ida_curve", "msa", "random_models",
-           "safe_scale", "IM_KINDS"]
+__all__ = ["IDACurve", "IDAResult", "ModelList", "StripeResult", "ida", "ida_curve", "msa",
+           "random_models", "safe_scale", "IM_KINDS"]
 
 IM_KINDS = ("pga", "scale")
 
@@ -75,6 +75,13 @@ def _models(models) -> list[DynamicModel]:
     return out
 
 
+def _ids_failed(models, ms) -> tuple[list[int], tuple]:
+    """Sample indices of the models and the failed samples (from a :class:`ModelList`)."""
+    ids = getattr(models, "indices", None)
+    ids = list(ids) if ids is not None and len(ids) == len(ms) else list(range(len(ms)))
+    return ids, tuple(getattr(models, "failed", ()))
+
+
 def _grid(name: str, values) -> np.ndarray:
     try:
         s = np.atleast_1d(np.asarray(values, dtype=float))
@@ -96,21 +103,47 @@ def _im_factor(record: GroundMotion, im: str) -> float:
     return record.pga / G if im == "pga" else 1.0
 
 
+class ModelList(list):
+    """The usable arches of :func:`random_models` (a list of DynamicModel), with ``indices``
+    (sample index of each) and ``failed`` ((sample index, reason) of each unusable arch);
+    :func:`ida` and :func:`msa` carry both into their results."""
+
+    def __init__(self, models, indices, failed):
+        super().__init__(models)
+        self.indices = tuple(indices)
+        self.failed = tuple(failed)
+
+
 def random_models(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
-                  impact=None, literal_cv: bool = False) -> list[DynamicModel]:
+                  impact=None, literal_cv: bool = False) -> ModelList:
     """``samples`` irregular arches around ``nominal``, arch i from child i of SeedSequence(seed).
 
     impact: None = the paper's choice (c_v of the "paper" model on the nominal arch, fixed for every
     arch), or anything :func:`~archrock.response.prepare` accepts; literal_cv: apply a fixed c_v
-    to the rates literally (METHOD section 4).
+    to the rates literally (METHOD section 4).  An arch that cannot be analysed (ArchInputError:
+    it cannot stand, voussoirs do not overlap, ...) is left out and listed in ``failed`` of the
+    returned :class:`ModelList`; ArchInputError only when no arch is usable.
     """
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ArchInputError(f"samples: {samples!r}; allowed an integer >= 1")
     if impact is None:
         impact = nominal_cv(nominal)
     children = np.random.SeedSequence(seed).spawn(int(samples))
-    return [prepare(random_arch(nominal, rng=np.random.default_rng(c), **(spreads or {})), impact,
-                    literal_cv=literal_cv) for c in children]
+    spreads = dict(spreads or {})
+    _check_spreads(spreads)
+    models, kept, failed = [], [], []
+    for i, c in enumerate(children):
+        try:
+            models.append(prepare(random_arch(nominal, rng=np.random.default_rng(c), **spreads),
+                                  impact, literal_cv=literal_cv))
+            kept.append(i)
+        except ArchInputError as exc:
+            failed.append((i, str(exc)))
+    if not models:
+        i, why = failed[0]
+        raise ArchInputError(f"samples: none of the {samples} random arches is usable (sample {i}: "
+                             f"{why}); allowed spreads that give arches able to stand")
+    return ModelList(models, kept, failed)
 
 
 def _collapsed(model, record, scale, dt, t_free) -> bool:
@@ -172,13 +205,16 @@ class IDAResult:
 
     im: 'pga' (g) or 'scale'; fit: FragilityFit (method 'moments', or 'censored_mle' when some
     curves never collapsed), None when it cannot be identified (fit_error says why; fit_error
-    also notes a point fit whose bootstrap band could not be computed).
+    also notes a point fit whose bootstrap band could not be computed).  failed: (sample index,
+    reason) of the random arches that could not be analysed and were left out
+    (:func:`random_models`); IDACurve.arch is the sample index of each analysed arch.
     """
 
     curves: tuple[IDACurve, ...]
     im: str
     fit: FragilityFit | None
     fit_error: str | None = None
+    failed: tuple = ()
 
     @property
     def first_ims(self) -> np.ndarray:
@@ -193,6 +229,7 @@ class IDAResult:
                 "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
                 "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error,
                 "n_curves": len(self.curves), "n_censored": self.n_censored,
+                "failed": [list(x) for x in self.failed],
                 "curves": [c.to_dict() for c in self.curves]}
 
 
@@ -259,16 +296,17 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
         seed=0, confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid ``scales``."""
     recs, ms = _records(records), _models(models)
+    ids, failed = _ids_failed(models, ms)
     im = _im(im)
     curves = tuple(ida_curve(m, r, scales, im=im, tol=tol, arch_index=j, dt=dt, t_free=t_free)
-                   for j, m in enumerate(ms) for r in recs)
+                   for j, m in zip(ids, ms) for r in recs)
     x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
     if np.any(np.isinf(x)):
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
                         censored="mle", max_intensity=np.array([c.max_im for c in curves]))
     else:
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence)
-    return IDAResult(curves, im, fit, err)
+    return IDAResult(curves, im, fit, err, failed)
 
 
 # ---------------------------------------------------------------------------- MSA
@@ -277,7 +315,8 @@ class StripeResult:
     """Multiple stripes: at each IM level, trials (records x arches) and collapses.
 
     outcomes[level, arch, record]: collapse flags; fit: binomial MLE (None if not identifiable,
-    fit_error says why).
+    fit_error says why); arches: sample index of each arch; failed: (sample index, reason) of the
+    random arches left out (:func:`random_models`).
     """
 
     levels: np.ndarray
@@ -288,6 +327,8 @@ class StripeResult:
     fit: FragilityFit | None = None
     fit_error: str | None = None
     records: tuple[str, ...] = ()
+    arches: tuple[int, ...] = ()
+    failed: tuple = ()
 
     @property
     def fractions(self) -> np.ndarray:
@@ -298,6 +339,7 @@ class StripeResult:
                 "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
                 "levels": self.levels.tolist(), "trials": self.trials.tolist(),
                 "collapses": self.collapses.tolist(), "records": list(self.records),
+                "arches": list(self.arches), "failed": [list(x) for x in self.failed],
                 "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error}
 
 
@@ -306,6 +348,7 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood."""
     recs, ms = _records(records), _models(models)
+    ids, failed = _ids_failed(models, ms)
     im = _im(im)
     lv = _grid("levels", levels)
     out = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
@@ -316,4 +359,5 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     trials = np.full(lv.size, len(ms) * len(recs))
     coll = out.reshape(lv.size, -1).sum(axis=1)
     fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed, confidence=confidence)
-    return StripeResult(lv, trials, coll, out, im, fit, err, tuple(r.name for r in recs))
+    return StripeResult(lv, trials, coll, out, im, fit, err, tuple(r.name for r in recs),
+                        tuple(ids), failed)
