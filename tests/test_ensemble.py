@@ -286,3 +286,32 @@ def test_event_table_overflow_is_flagged_not_failed(base, monkeypatch):
     s = res.summary()
     assert s["failed"]["count"] == 0 and s["p_collapse"] == base.summary()["p_collapse"]
     assert s["response"]["events_truncated"] == int(over.sum())
+
+
+def test_summary_leaves_out_arches_that_cannot_stand_and_collapsed_peaks(base):
+    from archrock.ensemble import EnsembleResult
+
+    df = base.frame.copy()
+    df.loc[0, ["k_l", "k_r"]] = [-0.05, 0.2]
+    df.loc[0, "error"] = "limit analysis: the arch cannot stand (k_l = -0.05, k_r = 0.2)"
+    df.loc[0, ["mech_l", "mech_r", "status"]] = ["", "", "failed"]
+    df.loc[0, "collapsed"] = False
+    s = EnsembleResult(base.config, df, base.nominal, base.impact).summary()
+    rest = base.frame.iloc[1:]
+    assert s["failed"]["count"] == 1
+    assert s["k_l"]["count"] == s["k_r"]["count"] == 39
+    assert s["k_l"]["mean"] == pytest.approx(rest["k_l"].mean(), rel=1e-12)
+    assert s["k_min"]["min"] == pytest.approx(np.minimum(rest["k_l"], rest["k_r"]).min())
+    k0 = s["nominal"]["k_l"]
+    assert s["as_far_as"]["RA-1"]["k_l"] == pytest.approx(
+        np.mean(np.abs(rest["k_l"] - k0) >= abs(0.4111 - k0)))
+    assert s["p_collapse"]["trials"] == 39
+    # collapsed samples' peak is their rotation limit: peak statistics cover the survivors only
+    survived = df[(df["status"] != "failed") & ~df["collapsed"]]
+    assert s["response"]["peak_rad"]["count"] == len(survived)
+    assert s["response"]["peak_rad"]["max"] == pytest.approx(survived["peak"].max())
+
+
+def test_one_sample_has_no_std():
+    s = run_ensemble(config(samples=1, motion=None), progress=False).summary()
+    assert s["k_l"]["count"] == 1 and s["k_l"]["std"] is None and s["k_l"]["mean"] is not None

@@ -18,8 +18,12 @@ next to ``manifest.json`` (configuration, seeds, versions, runs); running again 
 
 Definitions used by :meth:`EnsembleResult.summary`:
 
-* k statistics over the samples with finite k_l, k_r; std is the sample standard deviation
-  (ddof = 1).
+* k statistics and the "as far as RA-x" shares over the samples whose limit analysis found a
+  standing arch (finite k_l, k_r > 0): samples that failed there (invalid geometry, no
+  mechanism, "cannot stand") are left out; samples that failed later (four-link model, impact
+  law) keep their valid k.  std is the sample standard deviation (ddof = 1; None for one sample).
+* response statistics over the samples whose response was integrated; ``peak_rad`` only over
+  those that did not collapse (a collapsed sample's ``peak`` column is its rotation limit).
 * p_collapse over the samples whose response was integrated (status rest, collapsed or moving),
   with the Wilson score interval (:func:`archrock.fragility.collapse_probability`).
 * "as far from nominal as RA-x" (RA-1: k_l = 0.4111, k_r = 0.3104; RA-2: k_l = 0.3946,
@@ -493,7 +497,7 @@ def _stats(x: np.ndarray) -> dict:
         return {"mean": None, "std": None, "min": None, "q05": None, "median": None, "q95": None,
                 "max": None, "count": 0}
     q = np.quantile(x, [0.05, 0.5, 0.95])
-    return {"mean": float(x.mean()), "std": float(x.std(ddof=1)) if x.size > 1 else 0.0,
+    return {"mean": float(x.mean()), "std": float(x.std(ddof=1)) if x.size > 1 else None,
             "min": float(x.min()), "q05": float(q[0]), "median": float(q[1]), "q95": float(q[2]),
             "max": float(x.max()), "count": int(x.size)}
 
@@ -523,7 +527,10 @@ class EnsembleResult:
         from .fragility import collapse_probability
 
         df = self.frame
-        k_ok = np.isfinite(df["k_l"].to_numpy()) & np.isfinite(df["k_r"].to_numpy())
+        kl_all, kr_all = df["k_l"].to_numpy(), df["k_r"].to_numpy()
+        # a standing arch by limit analysis (k <= 0: "cannot stand", a failed sample)
+        with np.errstate(invalid="ignore"):
+            k_ok = np.isfinite(kl_all) & np.isfinite(kr_all) & (kl_all > 0) & (kr_all > 0)
         kl, kr = df["k_l"].to_numpy()[k_ok], df["k_r"].to_numpy()[k_ok]
         failed = df[df["error"] != ""]
         reasons: dict[str, int] = {}
@@ -570,7 +577,7 @@ class EnsembleResult:
             out["response"] = {
                 "status": {str(k_): int(v) for k_, v in ran["status"].value_counts().items()},
                 "activated": float((ran["n_activations"] > 0).mean()) if n else None,
-                "peak_rad": _stats(ran["peak"].to_numpy()),
+                "peak_rad": _stats(ran.loc[~ran["collapsed"], "peak"].to_numpy()),
                 "n_impacts": _stats(ran["n_impacts"].to_numpy()),
                 "events_truncated": int(ran["events_truncated"].sum()),
                 "t_collapse_s": _stats(col["t_collapse"].to_numpy()),
