@@ -149,7 +149,8 @@ def test_bad_input(nominal_model, kwargs, field):
 def test_parse_range():
     assert np.allclose(parse_range("0.1:1.0:10"), np.linspace(0.1, 1.0, 10))
     assert np.allclose(parse_range("0.2,0.4"), [0.2, 0.4])
-    for bad in ("0.1:1.0", "a,b", "1:0.5:3", "0,0.2", "0.1:1:0"):
+    # "0.1:3:1" used to give [0.1], silently dropping hi: LO:HI:N needs N >= 2
+    for bad in ("0.1:1.0", "a,b", "1:0.5:3", "0,0.2", "0.1:1:0", "0.1:3:1", "0.2:0.2:2"):
         with pytest.raises(ArchInputError, match="^durations:"):
             parse_range(bad)
 
@@ -251,3 +252,35 @@ def test_cli_curves_reports_failed_samples(capsys):
     out = capsys.readouterr().out
     assert "2 of 3 random arches left out" in out
     assert "sample 0: arch: it cannot stand" in out and "sample 2: joint 2" in out
+
+
+def test_prepared_model_refuses_impact_options(nominal_model):
+    """A DynamicModel carries its impact law: impact/cv/literal_cv given with it used to be
+    silently ignored."""
+    for kw, field in (({"impact": "momentum"}, "impact"), ({"cv": 0.5}, "cv"),
+                      ({"literal_cv": True}, "literal_cv")):
+        with pytest.raises(ArchInputError, match=f"^{field}: the model is already prepared"):
+            collapse_amplitude(nominal_model, 0.4, **kw)
+        with pytest.raises(ArchInputError, match=f"^{field}:"):
+            collapse_curve(nominal_model, [0.4], **kw)
+
+
+def test_sign_is_the_sign_of_a_not_the_first_push_for_ricker():
+    """The docstring said 'direction of the first push': the Ricker pulse's first lobe is -0.446 a."""
+    r = pulse("ricker", -1.0, 0.3)
+    first = r.accel[np.flatnonzero(np.abs(r.accel) > 1e-3)[0]]
+    assert first > 0 and r.accel.min() == pytest.approx(-r.pga)
+    assert r.accel.max() == pytest.approx(0.446 * r.pga, abs=1e-3 * r.pga)
+    import archrock.curves as curves
+    assert "first lobe" in curves.__doc__ and "-0.446 a" in curves.__doc__
+
+
+def test_cli_fragility_bootstrap_one_is_refused(capsys, tmp_path):
+    from archrock.cli import main
+
+    f = tmp_path / "opp.txt"
+    f.write_text("0 -1\n0.2 -1\n0.2 0.5\n0.6 0.5\n0.6 0\n")
+    assert main(["fragility", "--records", str(f), "--scales", "1,2", "--bootstrap", "1"]) == 2
+    assert capsys.readouterr().err.startswith("archrock: error: bootstrap: 1; allowed 0")
+    assert main(["fragility", "--records", str(f), "--scales", "0.1:3:1"]) == 2
+    assert capsys.readouterr().err.startswith("archrock: error: scales:")

@@ -508,7 +508,8 @@ def add_curves_parser(subparsers):
     p.add_argument("--pulse", default="oppenheim", metavar="KIND",
                    help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
     p.add_argument("--sign", type=_int, choices=(-1, 1), default=-1,
-                   help="direction of the first push: -1 (xg'' < 0, opens M_l; default) or +1")
+                   help="sign of the amplitude (main lobe): -1 (xg'' < 0, opens M_l; default) or "
+                        "+1; the first push except for ricker, whose first lobe is -0.446 a")
     p.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
                    help="top of the amplitude scan [g] (default 10)")
     p.add_argument("--n-scan", type=_int, default=150, metavar="N",
@@ -620,7 +621,7 @@ def add_fragility_parser(subparsers):
     add_spread_options(p)
     add_impact_options(p)
     p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
-                   help="bootstrap resamples for confidence bands (0 = none, default 200)")
+                   help="bootstrap resamples for confidence bands (0 = none, or >= 2; default 200)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
     p.set_defaults(func=run_fragility)
@@ -635,6 +636,8 @@ def run_fragility(args) -> int:
     from .ida import ida, msa, random_models
     from .response import prepare
 
+    if args.bootstrap == 1:
+        raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
     nominal = arch_from_args(args)
     records = [load_record(f, units=args.units) for f in args.records]
     scales = parse_range(args.scales, "scales")
@@ -642,7 +645,7 @@ def run_fragility(args) -> int:
     models = (random_models(nominal, args.samples, args.seed, _spreads(args), impact,
                             literal_cv=args.literal_cv)
               if args.samples > 0 else [prepare(nominal, impact, literal_cv=args.literal_cv)])
-    boot = args.bootstrap if args.bootstrap >= 2 else 0
+    boot = args.bootstrap
     res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed)
     if args.levels:
         levels = parse_range(args.levels, "levels")

@@ -2,8 +2,10 @@
 
 The headline results of De Lorenzis, DeJong and Ochsendorf (2007, EESD 36): for a pulse of kind
 ``kind`` (Oppenheim's by default), duration ``t_p`` and amplitude ``a`` in g with the sign
-``sign`` (-1: the pulse first pushes with xg'' < 0, which opens M_l at |a| >= k_l; +1: it opens M_r
-at |a| >= k_r), find the first collapse amplitude.
+``sign`` = the sign of ``a``, i.e. of the pulse's main lobe (-1: xg'' = a < 0 there, which opens
+M_l at |a| > k_l; +1: it opens M_r at |a| > k_r), find the first collapse amplitude.  For the
+Oppenheim, rectangular, half-sine and one-sine pulses the main lobe is the first push; the Ricker
+pulse's first lobe has the opposite sign (-0.446 a) and precedes its main lobe a.
 
 Collapse is **not** monotonic in the amplitude (a stronger pulse can be survived, METHOD section 3),
 so :func:`collapse_amplitude` does not bisect blindly:
@@ -76,13 +78,14 @@ def _check_kind(kind: str) -> str:
 
 def _check_sign(sign) -> int:
     if isinstance(sign, bool) or sign not in (-1, 1):
-        raise ArchInputError(f"sign: {sign!r}; allowed -1 (pulse pushes with xg'' < 0 first, opens M_l) "
+        raise ArchInputError(f"sign: {sign!r}; allowed -1 (main lobe xg'' = a < 0, opens M_l) "
                              f"or +1 (opens M_r)")
     return int(sign)
 
 
 def parse_range(text: str, name: str = "durations") -> np.ndarray:
-    """``"lo:hi:n"`` (n evenly spaced values, ends included) or ``"a,b,c"`` -> array of floats > 0."""
+    """``"lo:hi:n"`` (n >= 2 evenly spaced values, both ends included) or ``"a,b,c"`` -> array of
+    floats > 0."""
     if not isinstance(text, str) or not text.strip():
         raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' or a comma list of numbers > 0")
     try:
@@ -91,13 +94,14 @@ def parse_range(text: str, name: str = "durations") -> np.ndarray:
             if len(parts) != 3:
                 raise ValueError
             lo, hi, n = float(parts[0]), float(parts[1]), int(parts[2])
-            if n < 1 or not (math.isfinite(lo) and math.isfinite(hi)) or hi < lo or (n > 1 and hi == lo):
+            if n < 2 or not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
                 raise ValueError
             vals = np.linspace(lo, hi, n)
         else:
             vals = np.array([float(p) for p in text.split(",")])
     except ValueError:
-        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' (lo < hi, n >= 1) or a comma list "
+        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' (lo < hi, n >= 2: both ends "
+                             f"included; one value: write it alone) or a comma list "
                              f"of numbers > 0") from None
     if vals.size == 0 or not np.all(np.isfinite(vals)) or np.any(vals <= 0):
         raise ArchInputError(f"{name}: {text!r}; allowed numbers > 0")
@@ -119,9 +123,12 @@ def collapse_mode(response) -> str | None:
 
 def _model(arch_or_model, impact, cv, literal_cv=False):
     if isinstance(arch_or_model, DynamicModel):
-        if literal_cv:
-            raise ArchInputError("literal_cv: the model is already prepared with its impact law; "
-                                 "allowed only with an Arch (or prepare the model with literal_cv)")
+        given = [n for n, v in (("impact", impact), ("cv", cv), ("literal_cv", literal_cv))
+                 if v is not None and v is not False]
+        if given:
+            raise ArchInputError(f"{given[0]}: the model is already prepared with its impact law "
+                                 f"({arch_or_model.impact.model}); allowed only with an Arch (or "
+                                 f"prepare the model with the impact law wanted)")
         return arch_or_model
     if not isinstance(arch_or_model, Arch):
         raise ArchInputError(f"model: expected an Arch or a DynamicModel, got {type(arch_or_model).__name__}")
@@ -198,7 +205,10 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
 
     model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``/
     ``literal_cv``; default the paper's fixed c_v of that arch, applied energy-consistently;
-    ``literal_cv=True`` applies a fixed c_v to the rates literally, METHOD section 4).  sign: -1 or +1 (direction of the pulse's first push).
+    ``literal_cv=True`` applies a fixed c_v to the rates literally, METHOD section 4); a prepared
+    model carries its own impact law, so ``impact``/``cv``/``literal_cv`` are refused with it.
+    sign: -1 or +1, the sign of the amplitude a (of the main lobe; for the Ricker pulse not the
+    first push, module doc).
     a_max [g]: top of the scan; n_scan: grid points (geometric spacing); tol [g]: bisection
     tolerance; dt [s]: RK4 step of the fast integrator.
     """
