@@ -105,12 +105,15 @@ def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     files = sorted(p.name for p in (out / "batches").iterdir())
     assert files == [f"batch-{b:05d}.parquet" for b in range(4)]
     (out / "batches" / "batch-00002.parquet").unlink()
-    # a half-written file of a killed run is ignored
-    (out / "batches" / "batch-00003.parquet.tmp-999").write_bytes(b"partial")
+    # a half-written file of a killed run (its process is gone) is removed
+    stale = out / "batches" / "batch-00003.parquet.tmp-99999999"
+    stale.write_bytes(b"partial")
     again = run_ensemble(config(), out_dir=out, progress=False)
     pd.testing.assert_frame_equal(again.frame, base.frame)
     assert again.timing["computed_batches"] == [2]
     assert again.timing["loaded_batches"] == [0, 1, 3]
+    assert again.timing["recomputed_batches"] == {}  # a missing file is simply computed
+    assert not stale.exists()
     manifest = json.loads((out / "manifest.json").read_text())
     assert [r["computed"] for r in manifest["runs"]] == [[0, 1, 2, 3], [2]]
     assert manifest["config"] == config().to_dict()
@@ -315,3 +318,83 @@ def test_summary_leaves_out_arches_that_cannot_stand_and_collapsed_peaks(base):
 def test_one_sample_has_no_std():
     s = run_ensemble(config(samples=1, motion=None), progress=False).summary()
     assert s["k_l"]["count"] == 1 and s["k_l"]["std"] is None and s["k_l"]["mean"] is not None
+
+
+# ---------------------------------------------------------------------------- provenance of batches
+@pytest.fixture
+def written(base, tmp_path):
+    out = tmp_path / "ens"
+    run_ensemble(config(), out_dir=out, progress=False)
+    return out
+
+
+def _resume(out, capsys):
+    capsys.readouterr()
+    res = run_ensemble(config(), out_dir=out, progress=True)
+    return res, capsys.readouterr().err
+
+
+def test_resume_without_manifest_is_refused(written):
+    (written / "manifest.json").unlink()
+    with pytest.raises(ArchInputError, match=r"batches'? holds batch files but .*manifest.json"):
+        run_ensemble(config(seed=12), out_dir=written, progress=False)
+    assert len(list((written / "batches").iterdir())) == 4  # nothing touched
+
+
+def test_resume_recomputes_a_copied_batch(base, written, capsys):
+    import shutil
+
+    shutil.copy(written / "batches" / "batch-00000.parquet", written / "batches" / "batch-00001.parquet")
+    res, err = _resume(written, capsys)
+    pd.testing.assert_frame_equal(res.frame, base.frame)
+    assert res.frame["index"].is_unique
+    assert res.timing["computed_batches"] == [1] and res.timing["loaded_batches"] == [0, 2, 3]
+    assert res.timing["recomputed_batches"] == {"1": "holds batch 0"}
+    assert "recomputing batch 1: batch-00001.parquet holds batch 0" in err
+    manifest = json.loads((written / "manifest.json").read_text())
+    assert manifest["runs"][-1]["recomputed"] == {"1": "holds batch 0"}
+
+
+def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch):
+    import archrock.ensemble as ens
+
+    other = written.parent / "other"
+    run_ensemble(config(seed=12), out_dir=other, progress=False)
+    batches = written / "batches"
+    (other / "batches" / "batch-00002.parquet").replace(batches / "batch-00002.parquet")
+    # right metadata, wrong index column
+    df = pd.read_parquet(batches / "batch-00003.parquet")
+    df["index"] = df["index"] + 1
+    ens._write_batch(written, 3, df, config())
+    # no metadata at all: written by older code
+    pd.read_parquet(batches / "batch-00000.parquet").to_parquet(batches / "batch-00000.parquet",
+                                                                index=False)
+    res, err = _resume(written, capsys)
+    pd.testing.assert_frame_equal(res.frame, base.frame)
+    why = res.timing["recomputed_batches"]
+    assert sorted(why) == ["0", "2", "3"] and res.timing["loaded_batches"] == [1]
+    assert "older code" in why["0"] and "another configuration" in why["2"]
+    assert "index" in why["3"]
+    assert err.count("recomputing batch") == 3
+    # the package's sources changed: every batch is recomputed, and said so
+    monkeypatch.setattr(ens, "_code_digest", lambda: "0" * 64)
+    res, err = _resume(written, capsys)
+    assert res.timing["computed_batches"] == [0, 1, 2, 3]
+    assert set(res.timing["recomputed_batches"].values()) == {"written by other archrock code"}
+    assert err.count("written by other archrock code") == 4
+    pd.testing.assert_frame_equal(res.frame, base.frame)
+    res, _ = _resume(written, capsys)
+    assert res.timing["loaded_batches"] == [0, 1, 2, 3]
+
+
+def test_tmp_files_of_live_processes_are_kept(written):
+    import os
+
+    mine = written / "batches" / f"batch-00000.parquet.tmp-{os.getppid()}"
+    dead = written / f"manifest.json.tmp-99999999"
+    mine.write_bytes(b"x")
+    dead.write_bytes(b"x")
+    run_ensemble(config(), out_dir=written, progress=False)
+    assert mine.exists() and not dead.exists()
+    manifest = json.loads((written / "manifest.json").read_text())
+    assert manifest["runs"][-1]["removed_tmp"] == ["manifest.json.tmp-99999999"]

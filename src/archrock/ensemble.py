@@ -14,7 +14,11 @@ Execution: in-process by default (numba ``prange`` over the arches of a batch), 
 for a local process pool over batches, ``scheduler=ADDRESS`` for an existing Dask cluster.
 With ``out_dir`` every finished batch is written atomically as ``batches/batch-00000.parquet``
 next to ``manifest.json`` (configuration, seeds, versions, runs); running again with the same
-``out_dir`` and configuration computes only the missing batches.
+``out_dir`` and configuration computes only the missing batches.  Each batch file carries in its
+Parquet metadata the configuration's sha256, its batch number and the sha256 of the package's
+sources; a file whose metadata, ``batch`` or ``index`` columns do not match (or that cannot be
+read) is recomputed and the progress output says why.  Batch files without ``manifest.json``
+are refused; ``*.tmp-PID`` files of killed writes are removed at start.
 
 Definitions used by :meth:`EnsembleResult.summary`:
 
@@ -376,26 +380,100 @@ def _batch_path(out: Path, b: int) -> Path:
     return out / "batches" / f"batch-{b:05d}.parquet"
 
 
-def _write_batch(out: Path, b: int, df) -> None:
+PROVENANCE_KEY = b"archrock.ensemble"
+
+
+@lru_cache(maxsize=1)
+def _code_digest() -> str:
+    """sha256 of the package's sources: batches written by other code are recomputed."""
+    from ._jit import _package_digest
+
+    return _package_digest()
+
+
+def _config_hash(config: EnsembleConfig) -> str:
+    return hashlib.sha256(config.to_json().encode()).hexdigest()
+
+
+def _provenance(config: EnsembleConfig, b: int) -> dict:
+    return {"format": FORMAT, "config_sha256": _config_hash(config), "batch": int(b),
+            "code_sha256": _code_digest()}
+
+
+def _write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
     path = _batch_path(out, b)
     tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
-    df.to_parquet(tmp, index=False)
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    meta = dict(table.schema.metadata or {})
+    meta[PROVENANCE_KEY] = json.dumps(_provenance(config, b), sort_keys=True).encode()
+    pq.write_table(table.replace_schema_metadata(meta), tmp)
     os.replace(tmp, path)
 
 
-def _read_batch(out: Path, b: int, expected: int):
-    import pandas as pd
+def _read_batch(out: Path, b: int, config: EnsembleConfig):
+    """(DataFrame, None) for a verified batch file; (None, None) when there is none; (None,
+    reason) when the file exists but cannot be used (it is then recomputed)."""
+    import pyarrow.parquet as pq
 
     path = _batch_path(out, b)
     if not path.is_file():
-        return None
+        return None, None
     try:
-        df = pd.read_parquet(path)
-    except Exception:  # a damaged file is recomputed
-        return None
-    if len(df) != expected or list(df.columns) != COLUMNS:
-        return None
-    return df
+        table = pq.read_table(path)
+        meta = json.loads((table.schema.metadata or {}).get(PROVENANCE_KEY, b"null"))
+        df = table.to_pandas()
+    except Exception as exc:  # a damaged file is recomputed
+        return None, f"unreadable ({type(exc).__name__})"
+    if not isinstance(meta, dict):
+        return None, "no provenance metadata (written by older code)"
+    want = _provenance(config, b)
+    if meta.get("format") != FORMAT:
+        return None, f"format {meta.get('format')!r}, expected {FORMAT!r}"
+    if meta.get("config_sha256") != want["config_sha256"]:
+        return None, "written for another configuration"
+    if meta.get("batch") != b:
+        return None, f"holds batch {meta.get('batch')!r}"
+    if meta.get("code_sha256") != want["code_sha256"]:
+        return None, "written by other archrock code"
+    start, nb = config.batch_range(b)
+    if list(df.columns) != COLUMNS or len(df) != nb:
+        return None, "unexpected columns or number of rows"
+    if not ((df["batch"].to_numpy() == b).all()
+            and np.array_equal(df["index"].to_numpy(), np.arange(start, start + nb))):
+        return None, f"its batch/index columns are not batch {b}, samples {start}..{start + nb - 1}"
+    return df, None
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError, ValueError):
+        return pid > 0
+    return pid > 0
+
+
+def _remove_stale_tmp(out: Path) -> list[str]:
+    """Remove the ``*.tmp-PID`` files of killed writes (not those of a live process)."""
+    removed = []
+    for folder in (out, out / "batches"):
+        for p in folder.glob("*.tmp-*"):
+            m = re.fullmatch(r".*\.tmp-(\d+)", p.name)
+            if not m or not p.is_file():
+                continue
+            pid = int(m.group(1))
+            if pid != os.getpid() and _pid_alive(pid):
+                continue
+            try:
+                p.unlink()
+                removed.append(p.name)
+            except OSError:
+                pass
+    return removed
 
 
 class _Manifest:
@@ -407,6 +485,11 @@ class _Manifest:
         except OSError as exc:
             raise ArchInputError(f"out: cannot create {str(out)!r} ({exc.strerror or exc})") from None
         cfg = config.to_dict()
+        if not self.path.is_file() and any((out / "batches").glob("*.parquet")):
+            raise ArchInputError(
+                f"out: {str(out / 'batches')!r} holds batch files but {str(self.path)!r} is "
+                f"missing, so their configuration is unknown; use another output folder or "
+                f"delete that folder")
         if self.path.is_file():
             try:
                 data = json.loads(self.path.read_text(encoding="utf-8"))
@@ -432,7 +515,9 @@ class _Manifest:
                 "impact": impact, "nominal": nominal, "versions": _versions(),
                 "started": _now(), "finished": None, "batches": {}, "runs": []}
         self.data["versions"] = _versions()
-        self.run = {"started": _now(), "finished": None, "computed": [], "loaded": []}
+        self.run = {"started": _now(), "finished": None, "code_sha256": _code_digest(),
+                    "computed": [], "loaded": [], "recomputed": {},
+                    "removed_tmp": _remove_stale_tmp(out)}
         self.data["runs"].append(self.run)
         self.save()
 
@@ -483,6 +568,15 @@ class _Progress:
         elif time.monotonic() - self.last > 1.0 or self.done == self.total:
             self.last = time.monotonic()
             print(f"ensemble: {self.done}/{self.total} samples", file=sys.stderr, flush=True)
+
+    def note(self, text: str):
+        """A line of progress output (above the bar)."""
+        if not self.enabled:
+            return
+        if self.bar is not None:
+            self.bar.write(text, file=sys.stderr)
+        else:
+            print(text, file=sys.stderr, flush=True)
 
     def close(self):
         if self.bar is not None:
@@ -627,17 +721,23 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
     frames: dict[int, object] = {}
     batch_timings: dict[int, dict] = {}
     todo = []
+    recomputed: dict[int, str] = {}
     bar = _Progress(config.samples, progress)
     try:
         for b in range(config.n_batches):
             nb = config.batch_range(b)[1]
-            df = _read_batch(out, b, nb) if out is not None else None
+            df, why = _read_batch(out, b, config) if out is not None else (None, None)
             if df is not None:
                 frames[b] = df
                 manifest.batch_done(b, nb, {}, computed=False)
                 bar.update(nb)
             else:
                 todo.append(b)
+                if why is not None:
+                    recomputed[b] = why
+                    manifest.run["recomputed"][str(b)] = why
+                    bar.note(f"ensemble: recomputing batch {b}: "
+                             f"{_batch_path(out, b).name} {why}")
         if manifest is not None:
             manifest.save()
 
@@ -645,7 +745,7 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
             frames[b] = df
             batch_timings[b] = timings
             if out is not None:
-                _write_batch(out, b, df)
+                _write_batch(out, b, df, config)
                 manifest.batch_done(b, len(df), timings, computed=True)
                 manifest.save()
             bar.update(len(df))
@@ -678,6 +778,7 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
     n_computed = int(sum(config.batch_range(b)[1] for b in computed))
     timing = {"wall_s": wall, "executor": executor, "workers": workers,
               "computed_batches": computed, "loaded_batches": sorted(set(frames) - set(computed)),
+              "recomputed_batches": {str(b): why for b, why in sorted(recomputed.items())},
               "computed_samples": n_computed,
               "samples_per_s": n_computed / wall if n_computed and wall > 0 else None,
               "prepare_s": float(sum(t["prepare_s"] for t in batch_timings.values())),
