@@ -30,7 +30,7 @@ import numpy as np
 from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError
-from .geometry import sector_properties
+from .geometry import perturb_voussoirs, sector_properties
 from .groundmotion import G, GroundMotion
 from .limit import _candidates, kinematic_multipliers_batch
 from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficient_table, coefficients, dead_point, mechanism_geo,
@@ -48,20 +48,7 @@ ST_NOT_RUN = -1
 MAX_EVENTS = 4096
 
 # ---------------------------------------------------------------------------- random geometry
-def perturb(spans0, thick0, radii0, u, spread_span: float, spread_thickness: float,
-            spread_radius: float):
-    """(spans, thicknesses, radii), each (B, n), from uniform draws ``u`` of shape (B, 3, n).
-
-    span_i = s0_i (1 + s_a U), t_i = t0_i (1 + s_t U), R_i = R0_i + s_R t0_i U, spans rescaled
-    to the nominal embrace (METHOD section 1) -- :func:`random_spans_thicknesses_radii`, row-wise.
-    """
-    spans0, thick0, radii0 = (np.asarray(a, float) for a in (spans0, thick0, radii0))
-    u = np.asarray(u, float)
-    spans = spans0 * (1.0 + spread_span * u[:, 0])
-    spans = spans * (spans0.sum() / spans.sum(axis=1, keepdims=True))
-    thick = thick0 * (1.0 + spread_thickness * u[:, 1])
-    radii = radii0 + spread_radius * thick0 * u[:, 2]
-    return spans, thick, radii
+perturb = perturb_voussoirs  # the random-arch formula, batch of draws (B, 3, n) -> (B, n)
 
 
 def check_geometries(spans, radii, thick) -> np.ndarray:

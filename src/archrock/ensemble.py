@@ -54,6 +54,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import published
 from .batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, perturb, prepare_batch, simulate_batch
 from .errors import ArchInputError
 from .geometry import Arch
@@ -63,7 +64,7 @@ __all__ = ["EnsembleConfig", "EnsembleResult", "EnsembleConfigMismatch", "run_en
            "sample_arch", "PAPER_RANDOM_ARCHES", "IMPACT_CHOICES"]
 
 #: The paper's random arches (plausibility figures, METHOD section 2).
-PAPER_RANDOM_ARCHES = {"RA-1": (0.4111, 0.3104), "RA-2": (0.3946, 0.3501)}
+PAPER_RANDOM_ARCHES = published.RANDOM_ARCHES
 IMPACT_CHOICES = ("nominal-paper", "paper", "momentum", "fixed")
 MANIFEST = "manifest.json"
 #: seconds to wait for a Dask scheduler given by address before giving up with an ArchInputError.

@@ -301,19 +301,29 @@ def _check_spread(name: str, value: float, hi: float) -> float:
     return _check_scalar(name, value, 0.0, hi, lo_open=False, hi_open=True, allowed=f"0 <= {name} < {hi:g}")
 
 
+def perturb_voussoirs(spans0, thick0, radii0, u, spread_span: float, spread_thickness: float,
+                      spread_radius: float):
+    """Map uniform draws ``u`` (shape (..., 3, n), on [-1, 1]) to (spans, thicknesses, radii),
+    each (..., n), around per-voussoir values spans0 [rad], thick0 [m], radii0 [m] (shape (n,)).
+
+    span_i = s0_i (1 + s_a U), t_i = t0_i (1 + s_t U), R_i = R0_i + s_R t0_i U (METHOD section 1),
+    then the spans rescaled to add up to the nominal embrace.  One draw or a batch of draws.
+    """
+    spans0, thick0, radii0 = (np.asarray(a, float) for a in (spans0, thick0, radii0))
+    u = np.asarray(u, float)
+    spans = spans0 * (1.0 + spread_span * u[..., 0, :])
+    spans = spans * (spans0.sum() / spans.sum(axis=-1, keepdims=True))
+    thick = thick0 * (1.0 + spread_thickness * u[..., 1, :])
+    radii = radii0 + spread_radius * thick0 * u[..., 2, :]
+    return spans, thick, radii
+
+
 def random_spans_thicknesses_radii(nominal: Arch, u: np.ndarray, spread_span: float,
                                    spread_thickness: float, spread_radius: float):
-    """Map uniform draws ``u`` (shape (3, n), on [-1, 1]) to (spans, thicknesses, radii).
-
-    span_i = (alpha/n)(1 + s_a U), t_i = t (1 + s_t U), R_i = R + s_R t U (METHOD section 1),
-    then the spans rescaled to add up to the nominal embrace.  Perturbations are applied to the
-    nominal arch's own per-voussoir values, so a given arch can itself be perturbed.
-    """
-    spans = nominal.spans * (1.0 + spread_span * u[0])
-    spans = spans * (nominal.embrace / spans.sum())
-    thick = nominal.thicknesses * (1.0 + spread_thickness * u[1])
-    radii = nominal.radii + spread_radius * nominal.thicknesses * u[2]
-    return spans, thick, radii
+    """:func:`perturb_voussoirs` around ``nominal``'s own per-voussoir values (so a given arch
+    can itself be perturbed); ``u`` of shape (3, n)."""
+    return perturb_voussoirs(nominal.spans, nominal.thicknesses, nominal.radii, u, spread_span,
+                             spread_thickness, spread_radius)
 
 
 def random_arch(nominal: Arch | None = None, seed=None, spread_span: float = 0.1,
