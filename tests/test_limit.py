@@ -248,3 +248,30 @@ def test_result_serialises():
     assert d["mechanism_l"]["hinges"][1] == {"joint": 3, "edge": E}
     assert Arch.from_dict(d["arch"]).n == 7
     assert math.isclose(d["discrepancy"], 0.0, abs_tol=1e-9)
+
+
+def test_many_voussoirs_without_building_the_candidate_list():
+    """120 voussoirs: 14 C(121, 4) = 124 million candidates are enumerated in loops (numba) or
+    refused with a clear error (numpy only); the result still matches the static LP."""
+    from archrock import _jit
+    from archrock.geometry import nominal_arch
+    from archrock.limit import limit_analysis
+
+    arch = nominal_arch(10.0, 157.5, 1.5, 120)
+    if not _jit.HAVE_NUMBA:
+        with pytest.raises(ArchInputError, match="voussoirs: 120"):
+            limit_analysis(arch)
+        return
+    res = limit_analysis(arch)
+    assert res.discrepancy < 1e-9
+    assert res.k_l == pytest.approx(0.353407, abs=2e-6)
+    assert res.mechanism_l.joints == (1, 45, 89, 120)
+
+
+def test_candidate_hinges_unranks_the_candidate_list():
+    from archrock.limit import _candidates, candidate_hinges
+
+    for n in (3, 7, 12):
+        jq, eq = _candidates(n)
+        for i in range(0, len(jq), 5):
+            assert candidate_hinges(n, i) == (tuple(jq[i]), tuple(eq[i]))

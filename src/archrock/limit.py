@@ -19,6 +19,7 @@ Two independent methods:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 from itertools import combinations
@@ -275,16 +276,19 @@ def _enumerate(spans, radii, thick):
 # by candidate, keeping the first minimum in candidate order (as numpy's argmin does).
 _NUMBA_ENABLED = False
 _numba_kernel = None
+_EDGE_SIGN_NB = np.array([-1.0, 1.0])
 if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see archrock._jit)
     _numba = _jit_numba
     if _numba is not None:
         _NUMBA_ENABLED = True
 
         @maybe_njit(nogil=True)
-        def _numba_kernel(cw, cwx, cwy, pxf, pyf, idx, pt, pair, sign, k_l, k_r, i_l, i_r):
+        def _numba_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r):
+            """Nested loops over joint quadruples a < b < c < d and the 14 hinge-edge patterns
+            that can be admissible, in the order of _candidates(n) (candidate index = rank of
+            the quadruple * 16 + pattern): no candidate list is built, so memory stays O(n)."""
             B = cw.shape[0]
             m = cw.shape[1]
-            K = idx.shape[0]
             tol = 1e-9
             tiny = 1e-14
             for b in range(B):
@@ -292,77 +296,83 @@ if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see arc
                 best_r = np.inf
                 arg_l = 0
                 arg_r = 0
-                for k in range(K):
-                    a, bb, c, d = pt[0, k], pt[1, k], pt[2, k], pt[3, k]
-                    Ax = pxf[b, a]
-                    Ay = pyf[b, a]
-                    Bx = pxf[b, bb]
-                    By = pyf[b, bb]
-                    Cx = pxf[b, c]
-                    Cy = pyf[b, c]
-                    Dx = pxf[b, d]
-                    Dy = pyf[b, d]
-                    u2x = Cx - Bx
-                    u2y = Cy - By
-                    u3x = Dx - Cx
-                    u3y = Dy - Cy
-                    rx = Ax - Bx
-                    ry = Ay - By
-                    det = u2x * u3y - u2y * u3x
-                    scale = max(abs(u2x) + abs(u2y), 1e-300) * max(abs(u3x) + abs(u3y), 1e-300)
-                    if not abs(det) > 1e-12 * scale:
-                        continue
-                    w2 = (rx * u3y - ry * u3x) / det
-                    w3 = (u2x * ry - u2y * rx) / det
-                    q0 = sign[0, k] * 1.0
-                    q1 = sign[1, k] * (w2 - 1.0)
-                    q2 = sign[2, k] * (w3 - w2)
-                    q3 = sign[3, k] * (-w3)
-                    qmag = max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
-                    thr = tol * qmag
-                    if q0 > thr and q1 > thr and q2 > thr and q3 > thr:
-                        sigma = 1.0
-                    elif q0 < -thr and q1 < -thr and q2 < -thr and q3 < -thr:
-                        sigma = -1.0
-                    else:
-                        continue
-                    p1, p2, p3 = pair[0, k], pair[1, k], pair[2, k]
-                    i1, j1 = p1 // m, p1 % m
-                    i2, j2 = p2 // m, p2 % m
-                    i3, j3 = p3 // m, p3 % m
-                    W1 = cw[b, j1] - cw[b, i1]
-                    X1 = cwx[b, j1] - cwx[b, i1]
-                    Y1 = cwy[b, j1] - cwy[b, i1]
-                    W2 = cw[b, j2] - cw[b, i2]
-                    X2 = cwx[b, j2] - cwx[b, i2]
-                    Y2 = cwy[b, j2] - cwy[b, i2]
-                    W3 = cw[b, j3] - cw[b, i3]
-                    X3 = cwx[b, j3] - cwx[b, i3]
-                    Y3 = cwy[b, j3] - cwy[b, i3]
-                    vBx = -(By - Ay)
-                    vBy = Bx - Ax
-                    work_x = (-(Y1 - W1 * Ay)
-                              + W2 * vBx - (Y2 - W2 * By) * w2
-                              - (Y3 - W3 * Dy) * w3)
-                    work_y = ((X1 - W1 * Ax)
-                              + W2 * vBy + (X2 - W2 * Bx) * w2
-                              + (X3 - W3 * Dx) * w3)
-                    work_x = sigma * work_x
-                    work_y = sigma * work_y
-                    if work_x > tiny:
-                        lam = work_y / work_x
-                        if lam < best_l:
-                            best_l = lam
-                            arg_l = k
-                    elif work_x < -tiny:
-                        lam = work_y / (-work_x)
-                        if lam < best_r:
-                            best_r = lam
-                            arg_r = k
+                rank = -1
+                for ja in range(m):
+                    for jb in range(ja + 1, m):
+                        W1 = cw[b, jb] - cw[b, ja]
+                        X1 = cwx[b, jb] - cwx[b, ja]
+                        Y1 = cwy[b, jb] - cwy[b, ja]
+                        for jc in range(jb + 1, m):
+                            W2 = cw[b, jc] - cw[b, jb]
+                            X2 = cwx[b, jc] - cwx[b, jb]
+                            Y2 = cwy[b, jc] - cwy[b, jb]
+                            for jd in range(jc + 1, m):
+                                rank += 1
+                                W3 = cw[b, jd] - cw[b, jc]
+                                X3 = cwx[b, jd] - cwx[b, jc]
+                                Y3 = cwy[b, jd] - cwy[b, jc]
+                                for pat in range(1, 15):
+                                    ea = (pat >> 3) & 1
+                                    eb = (pat >> 2) & 1
+                                    ec = (pat >> 1) & 1
+                                    ed = pat & 1
+                                    Ax = pxf[b, 2 * ja + ea]
+                                    Ay = pyf[b, 2 * ja + ea]
+                                    Bx = pxf[b, 2 * jb + eb]
+                                    By = pyf[b, 2 * jb + eb]
+                                    Cx = pxf[b, 2 * jc + ec]
+                                    Cy = pyf[b, 2 * jc + ec]
+                                    Dx = pxf[b, 2 * jd + ed]
+                                    Dy = pyf[b, 2 * jd + ed]
+                                    u2x = Cx - Bx
+                                    u2y = Cy - By
+                                    u3x = Dx - Cx
+                                    u3y = Dy - Cy
+                                    rx = Ax - Bx
+                                    ry = Ay - By
+                                    det = u2x * u3y - u2y * u3x
+                                    scale = (max(abs(u2x) + abs(u2y), 1e-300)
+                                             * max(abs(u3x) + abs(u3y), 1e-300))
+                                    if not abs(det) > 1e-12 * scale:
+                                        continue
+                                    w2 = (rx * u3y - ry * u3x) / det
+                                    w3 = (u2x * ry - u2y * rx) / det
+                                    q0 = _EDGE_SIGN_NB[ea] * 1.0
+                                    q1 = _EDGE_SIGN_NB[eb] * (w2 - 1.0)
+                                    q2 = _EDGE_SIGN_NB[ec] * (w3 - w2)
+                                    q3 = _EDGE_SIGN_NB[ed] * (-w3)
+                                    qmag = max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
+                                    thr = tol * qmag
+                                    if q0 > thr and q1 > thr and q2 > thr and q3 > thr:
+                                        sigma = 1.0
+                                    elif q0 < -thr and q1 < -thr and q2 < -thr and q3 < -thr:
+                                        sigma = -1.0
+                                    else:
+                                        continue
+                                    vBx = -(By - Ay)
+                                    vBy = Bx - Ax
+                                    work_x = (-(Y1 - W1 * Ay)
+                                              + W2 * vBx - (Y2 - W2 * By) * w2
+                                              - (Y3 - W3 * Dy) * w3)
+                                    work_y = ((X1 - W1 * Ax)
+                                              + W2 * vBy + (X2 - W2 * Bx) * w2
+                                              + (X3 - W3 * Dx) * w3)
+                                    work_x = sigma * work_x
+                                    work_y = sigma * work_y
+                                    if work_x > tiny:
+                                        lam = work_y / work_x
+                                        if lam < best_l:
+                                            best_l = lam
+                                            arg_l = rank * 16 + pat
+                                    elif work_x < -tiny:
+                                        lam = work_y / (-work_x)
+                                        if lam < best_r:
+                                            best_r = lam
+                                            arg_r = rank * 16 + pat
                 k_l[b] = best_l
                 k_r[b] = best_r
-                i_l[b] = idx[arg_l] if best_l < np.inf else 0
-                i_r[b] = idx[arg_r] if best_r < np.inf else 0
+                i_l[b] = arg_l
+                i_r[b] = arg_r
 
 
 def _validate_batch(spans, radii, thick):
@@ -389,6 +399,8 @@ def _disable_numba() -> None:
 # Elements per block of the numpy enumeration: blocks that stay in cache are several times
 # faster than one big block (measured: ~10x at n = 7 against 4e6-element blocks).
 _BLOCK_ELEMENTS = 16_384
+# The numpy enumeration keeps index arrays of all candidates (14 C(n+1, 4)): 2 GB at n = 60.
+_NUMPY_MAX_VOUSSOIRS = 48
 
 
 def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = None):
@@ -401,8 +413,6 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     """
     spans, radii, thick = _validate_batch(spans, radii, thicknesses)
     B, n = spans.shape
-    idx, pt, pair, sign = _active_candidates(n)
-    K = len(idx)
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)
@@ -411,11 +421,16 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
         cw, cwx, cwy, px, py, _ = _batch_sums(spans, radii, thick)
         try:
             _numba_kernel(cw, cwx, cwy, np.ascontiguousarray(px.reshape(B, -1)),
-                          np.ascontiguousarray(py.reshape(B, -1)), idx, pt, pair, sign,
-                          k_l, k_r, i_l, i_r)
+                          np.ascontiguousarray(py.reshape(B, -1)), k_l, k_r, i_l, i_r)
             return k_l, k_r, i_l, i_r
         except Exception:  # noqa: BLE001 - a kernel that cannot compile here: use numpy
             _disable_numba()
+    if n > _NUMPY_MAX_VOUSSOIRS:
+        raise ArchInputError(
+            f"voussoirs: {n}; without numba the enumeration holds every candidate in memory, "
+            f"allowed <= {_NUMPY_MAX_VOUSSOIRS} (install the 'fast' extra for more)")
+    idx, pt, pair, sign = _active_candidates(n)
+    K = len(idx)
     if chunk is None:
         chunk = max(1, _BLOCK_ELEMENTS // K)
     # candidates per sub-block when a single arch already exceeds the block size
@@ -449,9 +464,30 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     return k_l, k_r, i_l, i_r
 
 
+def candidate_hinges(n: int, idx: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """(joints, edges) of candidate ``idx`` in the order of :func:`_candidates` (quadruples
+    a < b < c < d in lexicographic order, 16 edge patterns each), without building the list."""
+    rank, pattern = divmod(int(idx), 16)
+    m = n + 1
+    joints = []
+    x = 0
+    for slot in range(4):
+        left = 3 - slot
+        while True:
+            count = math.comb(m - x - 1, left)  # combinations whose slot-th joint is x
+            if rank < count:
+                joints.append(x)
+                x += 1
+                break
+            rank -= count
+            x += 1
+    edges = tuple((pattern >> k) & 1 for k in (3, 2, 1, 0))
+    return tuple(joints), edges
+
+
 def _mechanism_from_candidate(n: int, idx: int, direction: str, k: float) -> Mechanism:
-    jq, eq = _candidates(n)
-    hinges = tuple(Hinge(int(j), EDGES[int(e)]) for j, e in zip(jq[idx], eq[idx]))
+    joints, edges = candidate_hinges(n, idx)
+    hinges = tuple(Hinge(j, EDGES[e]) for j, e in zip(joints, edges))
     return Mechanism(direction, hinges, float(k))
 
 
