@@ -32,7 +32,7 @@ from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError
 from .geometry import perturb_voussoirs, sector_properties
 from .groundmotion import G, GroundMotion
-from .limit import _candidates, kinematic_multipliers_batch
+from .limit import candidate_hinges, kinematic_multipliers_batch
 from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficient_table, coefficients, dead_point, mechanism_geo,
                         rest_rate, rotation_limit, table_range, unstable_rotation)
 
@@ -72,24 +72,24 @@ def check_geometries(spans, radii, thick) -> np.ndarray:
 def mechanism_label(n: int, candidate: int) -> str:
     """Compact label of a kinematic candidate: joints from the left springing with their edge,
     e.g. '0i-3e-5i-7e' (i = intrados, e = extrados)."""
-    jq, eq = _candidates(n)
-    return "-".join(f"{int(j)}{'ie'[int(e)]}" for j, e in zip(jq[candidate], eq[candidate]))
+    joints, edges = candidate_hinges(n, candidate)
+    return "-".join(f"{j}{'ie'[e]}" for j, e in zip(joints, edges))
 
 
 # ---------------------------------------------------------------------------- compiled geometry
 
 
 @maybe_njit
-def _prepare_loop(px, py, mass, cen, inert, cand_l, cand_r, jq, eq, ok, geo_l, geo_r,
+def _prepare_loop(px, py, mass, cen, inert, jl, el, jr, er, ok, geo_l, geo_r,
                   phu_l, phu_r, lim_l, lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r):
     B = px.shape[0]
     for b in range(B):
         if not ok[b]:
             continue
-        err_l[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jq[cand_l[b]],
-                                  eq[cand_l[b]], False, geo_l[b])
-        err_r[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jq[cand_r[b]],
-                                  eq[cand_r[b]], True, geo_r[b])
+        err_l[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jl[b], el[b], False,
+                                 geo_l[b])
+        err_r[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jr[b], er[b], True,
+                                 geo_r[b])
         if err_l[b] != 0 or err_r[b] != 0:
             continue
         for side in range(2):
@@ -198,7 +198,11 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact="fi
     mass = np.ascontiguousarray(density * p["area"])
     cen = np.ascontiguousarray(p["centroid"])
     inert = np.ascontiguousarray(density * p["polar"])
-    jq, eq = _candidates(n)
+    # hinges of each arch's two mechanisms, unranked from the candidate indices (the candidate
+    # list itself is never built: 14 C(n+1, 4) entries)
+    hinges = {c: candidate_hinges(n, c) for c in set(cand_l.tolist()) | set(cand_r.tolist())}
+    jl, el, jr, er = (np.array([hinges[int(c)][k] for c in cand], dtype=np.int64).reshape(B, 4)
+                      for cand in (cand_l, cand_r) for k in (0, 1))
     geo_l = np.full((B, GEO_SIZE), np.nan)
     geo_r = np.full((B, GEO_SIZE), np.nan)
     out = {name: np.full(B, np.nan) for name in
@@ -207,8 +211,7 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact="fi
     err_r = np.zeros(B, dtype=np.int64)
     tab_l = np.full((B, 2), np.nan)
     tab_r = np.full((B, 2), np.nan)
-    loop_args = (px, py, mass, cen, inert, cand_l, cand_r, np.ascontiguousarray(jq),
-                 np.ascontiguousarray(eq))
+    loop_args = (px, py, mass, cen, inert, jl, el, jr, er)
     outs = (geo_l, geo_r, out["phu_l"], out["phu_r"], out["lim_l"], out["lim_r"], out["m0_l"],
             out["m0_r"], out["v_rest"], err_l, err_r, tab_l, tab_r)
     try:
