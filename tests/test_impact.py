@@ -207,3 +207,35 @@ def test_nominal_cv_is_one_rule_for_every_command():
     assert curves.default_cv(ra) == cv
     fixed = prepare(ra, cv).impact
     assert fixed.energy_l_to_r == pytest.approx(cv**2) and fixed.energy_r_to_l == pytest.approx(cv**2)
+
+
+def test_least_loss_mechanism_oppenheim():
+    """Beyond the paper (Bisegna et al. 2023): among all admissible mechanisms opening toward
+    -x after M_l closes, the momentum law keeps the most energy with hinges 0e-2i-5e-7i (one
+    hinge joint shared with M_l), 0.5567 of it, against 0.4160 for the limit mechanism M_r;
+    the mirror impact picks the mirror mechanism."""
+    from archrock import geometry
+    from archrock.impact import least_loss_mechanism
+    from archrock.response import prepare
+
+    m = prepare(geometry.oppenheim_arch(), "momentum")
+    lr = least_loss_mechanism(m.mech_l, m.mech_r)
+    assert [(h.joint, h.edge[0]) for h in lr.mechanism.hinges] == [(0, "e"), (2, "i"), (5, "e"), (7, "i")]
+    assert lr.energy_ratio == pytest.approx(0.5567, abs=1e-4)
+    assert lr.limit_energy_ratio == pytest.approx(m.impact.energy_l_to_r, rel=1e-12)
+    assert not lr.is_limit_mechanism and lr.candidates > 50
+    rl = least_loss_mechanism(m.mech_r, m.mech_l)
+    assert [(h.joint, h.edge[0]) for h in rl.mechanism.hinges] == [(0, "i"), (2, "e"), (5, "i"), (7, "e")]
+    assert rl.energy_ratio == pytest.approx(lr.energy_ratio, rel=1e-9)
+
+
+@pytest.mark.parametrize("seed", [3, 315])
+def test_least_loss_never_below_the_limit_mechanism(seed):
+    from archrock import geometry
+    from archrock.impact import least_loss_mechanism
+    from archrock.response import prepare
+
+    m = prepare(geometry.random_arch(seed=seed), "momentum")
+    for old, new in ((m.mech_l, m.mech_r), (m.mech_r, m.mech_l)):
+        res = least_loss_mechanism(old, new)
+        assert 0 < res.limit_energy_ratio <= res.energy_ratio <= 1.0
