@@ -386,10 +386,11 @@ def motion_from_args(args: argparse.Namespace):
 def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     """Add --impact paper|momentum and --cv X (a fixed coefficient of restitution)."""
     g = parser.add_argument_group("impact", "coefficient of restitution at each impact")
-    g.add_argument("--impact", choices=("paper", "momentum"), default=None,
+    g.add_argument("--impact", choices=("paper", "momentum", "least-loss"), default=None,
                    help="paper: De Lorenzis et al.'s five equations on this geometry (refused if "
-                        "it creates energy); momentum: energy-consistent projection "
-                        "(default: paper)")
+                        "it creates energy); momentum: energy-consistent projection; least-loss: "
+                        "momentum, opening the mechanism that keeps the most energy (Bisegna et "
+                        "al. 2023) (default: paper)")
     g.add_argument("--cv", type=finite_float, default=None, metavar="CV",
                    help="fixed coefficient of restitution, 0 < cv <= 1 (kinetic energy x cv^2)")
     g.add_argument("--literal-cv", action="store_true",

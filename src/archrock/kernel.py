@@ -160,12 +160,30 @@ def _add_event(ev, n_ev, kind, t, mode_before, mode_after, rate_before, rate_aft
 @maybe_njit
 def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_rest,
              times, accel, g, n_out, dt_out, dt, t_free, max_events):
-    """Run one response.  Modes: 0 rest, 1 M_l open, 2 M_r open.
+    """Run one response with the two limit mechanisms.  Modes: 0 rest, 1 M_l open, 2 M_r open.
 
     Returns (out, events, n_events, status, t_final, peak, t_collapse, t_unstable):
     out[k] = signed response at k dt_out (+phi in M_l, -phi in M_r, NaN after collapse);
     events rows (kind, time, mode before, mode after, rate before, rate after);
     status 0 at rest, 1 collapsed, 2 still moving at t_motion_end + t_free.
+    """
+    size = max(geo_l.size, geo_r.size)
+    geos = np.zeros((2, size))
+    geos[0, :geo_l.size] = geo_l
+    geos[1, :geo_r.size] = geo_r
+    return simulate_chain(geos, np.array([lim_l, lim_r]), np.array([phu_l, phu_r]),
+                          np.array([1.0, -1.0]), np.array([2, 1]), np.array([c_lr, c_rl]),
+                          k_l, k_r, v_rest, times, accel, g, n_out, dt_out, dt, t_free,
+                          max_events)
+
+
+@maybe_njit
+def simulate_chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times, accel, g,
+                   n_out, dt_out, dt, t_free, max_events):
+    """Run one response over a chain of mechanisms.  Mode m >= 1 is row m - 1 of ``geos``;
+    rows 0 and 1 are the limit mechanisms M_l and M_r that open from rest (paper eq. 1).
+    dirs: +1 for a mechanism of direction l, -1 for r (the sign of the response); closing
+    mode m opens mode nexts[m - 1] with rate ratio ratios[m - 1].  Returns as :func:`simulate`.
     """
     out = np.zeros(n_out)
     ev = np.zeros((max_events, 6))
@@ -227,10 +245,10 @@ def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_r
             w = 0.0
             n_ev = _add_event(ev, n_ev, EV_ACTIVATION, t, 0, mode, 0.0, 0.0)
             continue
-        geo = geo_l if mode == 1 else geo_r
-        lim = lim_l if mode == 1 else lim_r
-        phu = phu_l if mode == 1 else phu_r
-        sign = 1.0 if mode == 1 else -1.0
+        geo = geos[mode - 1]
+        lim = lims[mode - 1]
+        phu = phus[mode - 1]
+        sign = dirs[mode - 1]
         if t >= t_stop:
             status = ST_MOVING
             break
@@ -264,8 +282,7 @@ def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_r
             k_out = _fill(out, dt_out, t, t + hc, phi, w, 0.0, w1, sign, k_out)
             t = t + hc
             w_minus = w1 if w1 < 0 else 0.0
-            c = c_lr if mode == 1 else c_rl
-            w_plus = -c * w_minus
+            w_plus = -ratios[mode - 1] * w_minus
             if w_plus < v_rest:
                 n_ev = _add_event(ev, n_ev, EV_IMPACT, t, mode, 0, w_minus, 0.0)
                 n_ev = _add_event(ev, n_ev, EV_REST, t, mode, 0, 0.0, 0.0)
@@ -273,7 +290,7 @@ def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_r
                 phi = 0.0
                 w = 0.0
             else:
-                new_mode = 2 if mode == 1 else 1
+                new_mode = nexts[mode - 1]
                 n_ev = _add_event(ev, n_ev, EV_IMPACT, t, mode, new_mode, w_minus, w_plus)
                 mode = new_mode
                 phi = 0.0

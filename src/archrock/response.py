@@ -31,7 +31,7 @@ from ._jit import HAVE_NUMBA
 from .errors import ArchInputError
 from .geometry import Arch
 from .groundmotion import G, GroundMotion
-from .impact import ImpactLaw, impact_law
+from .impact import ImpactLaw, impact_law, least_loss_mechanism
 from .limit import LimitResult, limit_analysis
 from .mechanism import FourLink, four_link, rest_rate
 
@@ -59,6 +59,19 @@ class DynamicModel:
     phi_limit_l: float
     phi_limit_r: float
     v_rest: float
+    #: extra mechanisms opened after impacts, as (FourLink, rotation limit) (least-loss law)
+    extra: tuple = ()
+    #: per mechanism of the chain (M_l, M_r, extra...): (row opened at its closing, rate ratio);
+    #: empty means the paper's alternation M_l <-> M_r with the impact law's ratios
+    transitions: tuple = ()
+
+    @property
+    def chain(self) -> tuple[list, list, list]:
+        """(mechanisms, rotation limits, [(next row, rate ratio)]): rows 0 and 1 are M_l, M_r."""
+        mechs = [self.mech_l, self.mech_r] + [fl for fl, _ in self.extra]
+        lims = [self.phi_limit_l, self.phi_limit_r] + [lim for _, lim in self.extra]
+        trans = list(self.transitions) or [(1, self.impact.l_to_r), (0, self.impact.r_to_l)]
+        return mechs, lims, trans
 
     @property
     def k_l(self) -> float:
@@ -80,9 +93,11 @@ class DynamicModel:
         return self.mech_l if mode == "l" else self.mech_r
 
     @cached_property
-    def tables(self) -> tuple[np.ndarray, np.ndarray]:
-        """Geometry vectors with spline tables of M, L, F, P (fast integrator), (M_l, M_r)."""
-        return self.mech_l.tabulated(self.phi_limit_l), self.mech_r.tabulated(self.phi_limit_r)
+    def tables(self) -> tuple[np.ndarray, ...]:
+        """Geometry vectors with spline tables of M, L, F, P (fast integrator), one per mechanism
+        of the chain (M_l, M_r, extra...)."""
+        mechs, lims, _ = self.chain
+        return tuple(fl.tabulated(lim) for fl, lim in zip(mechs, lims))
 
 
 def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float | None = None,
@@ -90,28 +105,63 @@ def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float 
             limit: LimitResult | None = None) -> DynamicModel:
     """Limit analysis, four-link models and impact law of ``arch``.
 
-    impact: "paper", "momentum", "fixed" (with ``cv``), a number (a fixed c_v) or an ImpactLaw.
+    impact: "paper", "momentum", "fixed" (with ``cv``), a number (a fixed c_v), an ImpactLaw, or
+    "least-loss": the momentum law, each impact opening the admissible mechanism that keeps the
+    most kinetic energy (Bisegna et al. 2023) instead of the opposite limit mechanism.
     limit_factor: rotation limit as a multiple of the unstable rotation (default: halfway to
     the four-bar's dead point, at most 2.5 times the unstable rotation); must be > 1.
     """
     lim = limit_analysis(arch, verify=False) if limit is None else limit
     m_l, m_r = four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
+    if impact == "least-loss":
+        return _prepare_least_loss(arch, lim, m_l, m_r, limit_factor)
     if isinstance(impact, ImpactLaw):
         law = impact
     elif isinstance(impact, (int, float)) and not isinstance(impact, bool):
         law = impact_law(m_l, m_r, "fixed", cv=float(impact), literal=literal_cv)
     else:
         law = impact_law(m_l, m_r, impact, cv=cv, literal=literal_cv)
-    if limit_factor is None:
-        pl_l, pl_r = m_l.default_limit(), m_r.default_limit()
-    else:
-        if not math.isfinite(limit_factor) or limit_factor <= 1.0:
-            raise ArchInputError(f"limit factor: {limit_factor!r}; allowed > 1 (a multiple of the "
-                                 f"unstable rotation)")
-        pl_l = min(limit_factor * m_l.phi_unstable, m_l.phi_dead * (1 - 1e-6))
-        pl_r = min(limit_factor * m_r.phi_unstable, m_r.phi_dead * (1 - 1e-6))
+    pl_l, pl_r = _rotation_limit(m_l, limit_factor), _rotation_limit(m_r, limit_factor)
     v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
+
+
+def _rotation_limit(fl: FourLink, limit_factor: float | None) -> float:
+    if limit_factor is None:
+        return fl.default_limit()
+    if not math.isfinite(limit_factor) or limit_factor <= 1.0:
+        raise ArchInputError(f"limit factor: {limit_factor!r}; allowed > 1 (a multiple of the "
+                             f"unstable rotation)")
+    return min(limit_factor * fl.phi_unstable, fl.phi_dead * (1 - 1e-6))
+
+
+def _prepare_least_loss(arch, lim, m_l, m_r, limit_factor) -> DynamicModel:
+    """The chain of mechanisms of the least-loss law: from each mechanism, the impact opens the
+    admissible mechanism of the other direction that keeps the most kinetic energy (momentum
+    law); new mechanisms are added until every closing has its successor."""
+    mechs = [m_l, m_r]
+    lims = [_rotation_limit(m_l, limit_factor), _rotation_limit(m_r, limit_factor)]
+    keys = [m_l.mechanism.hinges, m_r.mechanism.hinges]
+    trans = []
+    k = 0
+    while k < len(mechs):
+        old = mechs[k]
+        best = least_loss_mechanism(old, m_r if old.direction == "l" else m_l)
+        key = best.mechanism.hinges
+        if key not in keys:
+            fl = four_link(arch, best.mechanism)
+            mechs.append(fl)
+            lims.append(_rotation_limit(fl, limit_factor))
+            keys.append(key)
+        nxt = keys.index(key)
+        trans.append((nxt, best.rate_ratio))
+        k += 1
+    m0 = [fl.coefficients(0.0)[0] for fl in mechs]
+    (n_l, c_l), (n_r, c_r) = trans[0], trans[1]
+    law = ImpactLaw("least-loss", c_l, c_r, c_l**2 * m0[n_l] / m0[0], c_r**2 * m0[n_r] / m0[1])
+    v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
+    return DynamicModel(arch, lim, m_l, m_r, law, lims[0], lims[1], v_rest,
+                        tuple(zip(mechs[2:], lims[2:])), tuple(trans))
 
 
 def nominal_cv(nominal: Arch) -> float:
@@ -240,11 +290,17 @@ def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=
     accel = np.ascontiguousarray(motion.accel, dtype=float)
     settings = {"t_end": t_end, "dt_out": dt_out, "t_free": t_free}
     if integrator == "fast":
-        tab_l, tab_r = model.tables if tabulate else (model.mech_l.geo, model.mech_r.geo)
-        res = K.simulate(tab_l, tab_r, model.k_l, model.k_r,
-                         model.impact.l_to_r, model.impact.r_to_l, model.phi_limit_l,
-                         model.phi_limit_r, model.phi_unstable_l, model.phi_unstable_r,
-                         model.v_rest, times, accel, G, n_out, dt_out, dt, t_free, max_events)
+        mechs, lims, trans = model.chain
+        rows = model.tables if tabulate else tuple(fl.geo for fl in mechs)
+        geos = np.zeros((len(rows), max(r.size for r in rows)))
+        for j, r in enumerate(rows):
+            geos[j, :r.size] = r
+        res = K.simulate_chain(
+            geos, np.array(lims, float), np.array([fl.phi_unstable for fl in mechs]),
+            np.array([1.0 if fl.direction == "l" else -1.0 for fl in mechs]),
+            np.array([n + 1 for n, _ in trans]), np.array([c for _, c in trans], float),
+            model.k_l, model.k_r, model.v_rest, times, accel, G, n_out, dt_out, dt, t_free,
+            max_events)
         settings.update(dt=dt, tabulated=tabulate, method="RK4 fixed step with event location"
                         + (" (numba)" if HAVE_NUMBA else " (pure Python)"))
     elif integrator == "reference":
@@ -255,9 +311,11 @@ def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=
     out, ev, n_ev, status, t_final, peak, t_col, t_uns = res
     if n_ev > max_events:
         raise ArchInputError(f"max_events: more than {max_events} events; raise max_events")
-    law = model.impact
-    gain = {(1, 2): law.energy_l_to_r, (2, 1): law.energy_r_to_l}
-    events = tuple(Event(_KIND_NAME[int(k)], t, _MODE_NAME[int(b)], _MODE_NAME[int(a)], rb, ra,
+    mechs, _, trans = model.chain
+    m0 = [fl.coefficients(0.0)[0] for fl in mechs]
+    gain = {(j + 1, n + 1): c * c * m0[n] / m0[j] for j, (n, c) in enumerate(trans)}
+    name = {0: "rest", **{j + 1: fl.direction for j, fl in enumerate(mechs)}}
+    events = tuple(Event(_KIND_NAME[int(k)], t, name[int(b)], name[int(a)], rb, ra,
                          gain.get((int(b), int(a)), 0.0) if k == K.EV_IMPACT else None)
                    for k, t, b, a, rb, ra in ev[:n_ev].tolist())
     return Response(model, motion, np.arange(n_out) * dt_out, out, events,
@@ -268,7 +326,8 @@ def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=
 
 # ---------------------------------------------------------------------------- reference
 def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, atol, max_events):
-    """Adaptive reference integrator (scipy DOP853), same rules as :func:`kernel.simulate`."""
+    """Adaptive reference integrator (scipy DOP853), same rules as :func:`kernel.simulate_chain`."""
+    chain_mechs, chain_lims, chain_trans = model.chain
     out = np.zeros(n_out)
     ev = []
     nseg = times.size - 1
@@ -328,11 +387,11 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
             t, phi, w = t_act, 0.0, 0.0
             ev.append((K.EV_ACTIVATION, t, 0, mode, 0.0, 0.0))
             continue
-        fl = model.mech_l if mode == 1 else model.mech_r
+        fl = chain_mechs[mode - 1]
         geo = fl.geo
-        lim = model.phi_limit_l if mode == 1 else model.phi_limit_r
-        phu = model.phi_unstable_l if mode == 1 else model.phi_unstable_r
-        sign = 1.0 if mode == 1 else -1.0
+        lim = chain_lims[mode - 1]
+        phu = fl.phi_unstable
+        sign = 1.0 if fl.direction == "l" else -1.0
         ended = None
         for j, t0, t1 in segments_from(t):
             if t0 >= t_stop:
@@ -394,13 +453,14 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
             status = K.ST_COLLAPSED
             break
         w_minus = min(w, 0.0)
-        w_plus = -model.impact.ratio("l" if mode == 1 else "r") * w_minus
+        nxt, ratio = chain_trans[mode - 1]
+        w_plus = -ratio * w_minus
         if w_plus < model.v_rest:
             ev.append((K.EV_IMPACT, t, mode, 0, w_minus, 0.0))
             ev.append((K.EV_REST, t, mode, 0, 0.0, 0.0))
             mode, phi, w = 0, 0.0, 0.0
         else:
-            new = 2 if mode == 1 else 1
+            new = nxt + 1
             ev.append((K.EV_IMPACT, t, mode, new, w_minus, w_plus))
             mode, phi, w = new, 0.0, w_plus
         if len(ev) > max_events:
