@@ -391,7 +391,7 @@ def test_tmp_files_of_live_processes_are_kept(written):
     import os
 
     mine = written / "batches" / f"batch-00000.parquet.tmp-{os.getppid()}"
-    dead = written / f"manifest.json.tmp-99999999"
+    dead = written / "manifest.json.tmp-99999999"
     mine.write_bytes(b"x")
     dead.write_bytes(b"x")
     run_ensemble(config(), out_dir=written, progress=False)
