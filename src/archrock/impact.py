@@ -59,10 +59,6 @@ class ImpactLaw:
         the two directions (the rate ratio itself on a symmetric arch)."""
         return math.sqrt(0.5 * (self.energy_l_to_r + self.energy_r_to_l))
 
-    def ratio(self, closing: str) -> float:
-        """Rate ratio at an impact that closes mechanism ``closing`` ('l' or 'r')."""
-        return self.l_to_r if closing == "l" else self.r_to_l
-
     def to_dict(self) -> dict:
         return {"model": self.model, "l_to_r": self.l_to_r, "r_to_l": self.r_to_l,
                 "energy_l_to_r": self.energy_l_to_r, "energy_r_to_l": self.energy_r_to_l,

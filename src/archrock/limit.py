@@ -28,7 +28,6 @@ import numpy as np
 from scipy.optimize import linprog
 
 from ._jit import HAVE_NUMBA, maybe_njit
-from ._jit import numba as _jit_numba
 from .errors import ArchInputError
 from .geometry import Arch, sector_properties
 
@@ -276,103 +275,100 @@ def _enumerate(spans, radii, thick):
 # by candidate, keeping the first minimum in candidate order (as numpy's argmin does).
 _NUMBA_ENABLED = False
 _numba_kernel = None
-_EDGE_SIGN_NB = np.array([-1.0, 1.0])
 if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see archrock._jit)
-    _numba = _jit_numba
-    if _numba is not None:
-        _NUMBA_ENABLED = True
+    _NUMBA_ENABLED = True
 
-        @maybe_njit(nogil=True)
-        def _numba_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r):
-            """Nested loops over joint quadruples a < b < c < d and the 14 hinge-edge patterns
-            that can be admissible, in the order of _candidates(n) (candidate index = rank of
-            the quadruple * 16 + pattern): no candidate list is built, so memory stays O(n)."""
-            B = cw.shape[0]
-            m = cw.shape[1]
-            tol = 1e-9
-            tiny = 1e-14
-            for b in range(B):
-                best_l = np.inf
-                best_r = np.inf
-                arg_l = 0
-                arg_r = 0
-                rank = -1
-                for ja in range(m):
-                    for jb in range(ja + 1, m):
-                        W1 = cw[b, jb] - cw[b, ja]
-                        X1 = cwx[b, jb] - cwx[b, ja]
-                        Y1 = cwy[b, jb] - cwy[b, ja]
-                        for jc in range(jb + 1, m):
-                            W2 = cw[b, jc] - cw[b, jb]
-                            X2 = cwx[b, jc] - cwx[b, jb]
-                            Y2 = cwy[b, jc] - cwy[b, jb]
-                            for jd in range(jc + 1, m):
-                                rank += 1
-                                W3 = cw[b, jd] - cw[b, jc]
-                                X3 = cwx[b, jd] - cwx[b, jc]
-                                Y3 = cwy[b, jd] - cwy[b, jc]
-                                for pat in range(1, 15):
-                                    ea = (pat >> 3) & 1
-                                    eb = (pat >> 2) & 1
-                                    ec = (pat >> 1) & 1
-                                    ed = pat & 1
-                                    Ax = pxf[b, 2 * ja + ea]
-                                    Ay = pyf[b, 2 * ja + ea]
-                                    Bx = pxf[b, 2 * jb + eb]
-                                    By = pyf[b, 2 * jb + eb]
-                                    Cx = pxf[b, 2 * jc + ec]
-                                    Cy = pyf[b, 2 * jc + ec]
-                                    Dx = pxf[b, 2 * jd + ed]
-                                    Dy = pyf[b, 2 * jd + ed]
-                                    u2x = Cx - Bx
-                                    u2y = Cy - By
-                                    u3x = Dx - Cx
-                                    u3y = Dy - Cy
-                                    rx = Ax - Bx
-                                    ry = Ay - By
-                                    det = u2x * u3y - u2y * u3x
-                                    scale = (max(abs(u2x) + abs(u2y), 1e-300)
-                                             * max(abs(u3x) + abs(u3y), 1e-300))
-                                    if not abs(det) > 1e-12 * scale:
-                                        continue
-                                    w2 = (rx * u3y - ry * u3x) / det
-                                    w3 = (u2x * ry - u2y * rx) / det
-                                    q0 = _EDGE_SIGN_NB[ea] * 1.0
-                                    q1 = _EDGE_SIGN_NB[eb] * (w2 - 1.0)
-                                    q2 = _EDGE_SIGN_NB[ec] * (w3 - w2)
-                                    q3 = _EDGE_SIGN_NB[ed] * (-w3)
-                                    qmag = max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
-                                    thr = tol * qmag
-                                    if q0 > thr and q1 > thr and q2 > thr and q3 > thr:
-                                        sigma = 1.0
-                                    elif q0 < -thr and q1 < -thr and q2 < -thr and q3 < -thr:
-                                        sigma = -1.0
-                                    else:
-                                        continue
-                                    vBx = -(By - Ay)
-                                    vBy = Bx - Ax
-                                    work_x = (-(Y1 - W1 * Ay)
-                                              + W2 * vBx - (Y2 - W2 * By) * w2
-                                              - (Y3 - W3 * Dy) * w3)
-                                    work_y = ((X1 - W1 * Ax)
-                                              + W2 * vBy + (X2 - W2 * Bx) * w2
-                                              + (X3 - W3 * Dx) * w3)
-                                    work_x = sigma * work_x
-                                    work_y = sigma * work_y
-                                    if work_x > tiny:
-                                        lam = work_y / work_x
-                                        if lam < best_l:
-                                            best_l = lam
-                                            arg_l = rank * 16 + pat
-                                    elif work_x < -tiny:
-                                        lam = work_y / (-work_x)
-                                        if lam < best_r:
-                                            best_r = lam
-                                            arg_r = rank * 16 + pat
-                k_l[b] = best_l
-                k_r[b] = best_r
-                i_l[b] = arg_l
-                i_r[b] = arg_r
+    @maybe_njit(nogil=True)
+    def _numba_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r):
+        """Nested loops over joint quadruples a < b < c < d and the 14 hinge-edge patterns
+        that can be admissible, in the order of _candidates(n) (candidate index = rank of
+        the quadruple * 16 + pattern): no candidate list is built, so memory stays O(n)."""
+        B = cw.shape[0]
+        m = cw.shape[1]
+        tol = 1e-9
+        tiny = 1e-14
+        for b in range(B):
+            best_l = np.inf
+            best_r = np.inf
+            arg_l = 0
+            arg_r = 0
+            rank = -1
+            for ja in range(m):
+                for jb in range(ja + 1, m):
+                    W1 = cw[b, jb] - cw[b, ja]
+                    X1 = cwx[b, jb] - cwx[b, ja]
+                    Y1 = cwy[b, jb] - cwy[b, ja]
+                    for jc in range(jb + 1, m):
+                        W2 = cw[b, jc] - cw[b, jb]
+                        X2 = cwx[b, jc] - cwx[b, jb]
+                        Y2 = cwy[b, jc] - cwy[b, jb]
+                        for jd in range(jc + 1, m):
+                            rank += 1
+                            W3 = cw[b, jd] - cw[b, jc]
+                            X3 = cwx[b, jd] - cwx[b, jc]
+                            Y3 = cwy[b, jd] - cwy[b, jc]
+                            for pat in range(1, 15):
+                                ea = (pat >> 3) & 1
+                                eb = (pat >> 2) & 1
+                                ec = (pat >> 1) & 1
+                                ed = pat & 1
+                                Ax = pxf[b, 2 * ja + ea]
+                                Ay = pyf[b, 2 * ja + ea]
+                                Bx = pxf[b, 2 * jb + eb]
+                                By = pyf[b, 2 * jb + eb]
+                                Cx = pxf[b, 2 * jc + ec]
+                                Cy = pyf[b, 2 * jc + ec]
+                                Dx = pxf[b, 2 * jd + ed]
+                                Dy = pyf[b, 2 * jd + ed]
+                                u2x = Cx - Bx
+                                u2y = Cy - By
+                                u3x = Dx - Cx
+                                u3y = Dy - Cy
+                                rx = Ax - Bx
+                                ry = Ay - By
+                                det = u2x * u3y - u2y * u3x
+                                scale = (max(abs(u2x) + abs(u2y), 1e-300)
+                                         * max(abs(u3x) + abs(u3y), 1e-300))
+                                if not abs(det) > 1e-12 * scale:
+                                    continue
+                                w2 = (rx * u3y - ry * u3x) / det
+                                w3 = (u2x * ry - u2y * rx) / det
+                                q0 = _EDGE_SIGN[ea] * 1.0
+                                q1 = _EDGE_SIGN[eb] * (w2 - 1.0)
+                                q2 = _EDGE_SIGN[ec] * (w3 - w2)
+                                q3 = _EDGE_SIGN[ed] * (-w3)
+                                qmag = max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
+                                thr = tol * qmag
+                                if q0 > thr and q1 > thr and q2 > thr and q3 > thr:
+                                    sigma = 1.0
+                                elif q0 < -thr and q1 < -thr and q2 < -thr and q3 < -thr:
+                                    sigma = -1.0
+                                else:
+                                    continue
+                                vBx = -(By - Ay)
+                                vBy = Bx - Ax
+                                work_x = (-(Y1 - W1 * Ay)
+                                          + W2 * vBx - (Y2 - W2 * By) * w2
+                                          - (Y3 - W3 * Dy) * w3)
+                                work_y = ((X1 - W1 * Ax)
+                                          + W2 * vBy + (X2 - W2 * Bx) * w2
+                                          + (X3 - W3 * Dx) * w3)
+                                work_x = sigma * work_x
+                                work_y = sigma * work_y
+                                if work_x > tiny:
+                                    lam = work_y / work_x
+                                    if lam < best_l:
+                                        best_l = lam
+                                        arg_l = rank * 16 + pat
+                                elif work_x < -tiny:
+                                    lam = work_y / (-work_x)
+                                    if lam < best_r:
+                                        best_r = lam
+                                        arg_r = rank * 16 + pat
+            k_l[b] = best_l
+            k_r[b] = best_r
+            i_l[b] = arg_l
+            i_r[b] = arg_r
 
 
 def _validate_batch(spans, radii, thick):
