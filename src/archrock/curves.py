@@ -34,7 +34,7 @@ import numpy as np
 
 from .errors import ArchInputError
 from .geometry import Arch, random_arch
-from .groundmotion import PULSE_KINDS, pulse
+from .groundmotion import PULSE_KINDS, pulse, pulse_kind
 from .response import DynamicModel, nominal_cv, prepare, respond
 
 __all__ = [
@@ -67,13 +67,6 @@ def _check_int(name: str, value, lo: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
         raise ArchInputError(f"{name}: {value!r}; allowed an integer >= {lo}")
     return int(value)
-
-
-def _check_kind(kind: str) -> str:
-    key = kind.strip().lower().replace("_", "-") if isinstance(kind, str) else None
-    if key not in PULSE_KINDS:
-        raise ArchInputError(f"pulse kind: {kind!r}; allowed one of {', '.join(PULSE_KINDS)}")
-    return key
 
 
 def _check_sign(sign) -> int:
@@ -213,7 +206,7 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
     tolerance; dt [s]: RK4 step of the fast integrator.
     """
     model = _model(model, impact, cv, literal_cv)
-    kind = _check_kind(kind)
+    kind = pulse_kind(kind)
     sign = _check_sign(sign)
     tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
     tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")

@@ -39,6 +39,7 @@ __all__ = [
     "one_sine_pulse",
     "ricker_pulse",
     "pulse",
+    "pulse_kind",
     "from_samples",
     "read_two_column",
     "read_at2",
@@ -398,10 +399,15 @@ _PULSES = {
 def pulse(kind: str, amplitude_g: float, duration: float) -> GroundMotion:
     """Pulse by name: kind in PULSE_KINDS ('_' and case are tolerated); for 'ricker' the
     duration is the period.  Default sampling of each constructor."""
+    return _PULSES[pulse_kind(kind)](amplitude_g, duration)
+
+
+def pulse_kind(kind: str) -> str:
+    """The canonical name of a pulse kind ('_' and case tolerated), or a clear error."""
     key = kind.strip().lower().replace("_", "-") if isinstance(kind, str) else None
-    if key not in _PULSES:
+    if key not in PULSE_KINDS:
         raise ArchInputError(f"pulse kind: {kind!r}; allowed one of {', '.join(PULSE_KINDS)}")
-    return _PULSES[key](amplitude_g, duration)
+    return key
 
 
 def from_samples(accel, dt: float, units: str = "g", name: str = "ground motion") -> GroundMotion:
