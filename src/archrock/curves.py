@@ -34,7 +34,7 @@ import numpy as np
 
 from .errors import ArchInputError
 from .geometry import Arch, random_arch
-from .groundmotion import PULSE_KINDS, pulse, pulse_kind
+from .groundmotion import pulse, pulse_kind
 from .response import DynamicModel, nominal_cv, prepare, respond
 
 __all__ = [
