@@ -9,7 +9,10 @@ from hypothesis import given, settings, strategies as st
 from scipy.optimize import minimize
 from scipy.stats import binom, binomtest, norm
 
-from archrock.errors import ArchInputError
+from archrock.errors import ArchInputError, ArchrockError, FitError
+
+#: malformed data is an input error; data from which no fit can be identified a FitError
+BAD_OR_UNIDENTIFIABLE = (ArchInputError, FitError)
 from archrock.fragility import (
     FragilityFit,
     bootstrap_fit,
@@ -102,9 +105,9 @@ def test_moments_on_hand_made_sample():
 
 
 def test_ida_survivors_raise_by_default():
-    with pytest.raises(ArchInputError, match=r"^collapse_intensities: 1 of 4 records never collapsed"):
+    with pytest.raises(FitError, match=r"^collapse_intensities: 1 of 4 records never collapsed"):
         fit_ida_moments([0.3, 0.4, np.inf, 0.5])
-    with pytest.raises(ArchInputError, match=r"^collapse_intensities:"):
+    with pytest.raises(FitError, match=r"^collapse_intensities:"):
         fit_ida_moments([0.3, np.nan, 0.5])
 
 
@@ -163,7 +166,7 @@ def test_censored_mle_per_record_max_intensity():
     ([0.3, np.inf, np.inf], dict(censored="mle", max_intensity=1), "collapse_intensities"),
 ])
 def test_ida_bad_input(x, kwargs, field):
-    with pytest.raises(ArchInputError, match=rf"^{field}:"):
+    with pytest.raises(BAD_OR_UNIDENTIFIABLE, match=rf"^{field}:"):
         fit_ida_moments(x, **kwargs)
 
 
@@ -226,7 +229,7 @@ def test_stripes_pooled_duplicate_levels_give_same_fit():
     ([], [], [], "intensities", "non-empty"),
 ])
 def test_stripes_bad_or_unidentifiable_input(x, n, z, field, text):
-    with pytest.raises(ArchInputError, match=rf"^{field}:.*{text}"):
+    with pytest.raises(BAD_OR_UNIDENTIFIABLE, match=rf"^{field}:.*{text}"):
         fit_stripes_mle(x, n, z)
 
 
@@ -285,7 +288,7 @@ def test_bootstrap_reports_and_rejects_unidentifiable_resamples():
     f = bootstrap_fit(fit_stripes_mle, [0.2, 0.3, 0.4], [3, 3, 3], [0, 1, 1], n_boot=50, seed=0)
     assert 0 < f.n_boot_failed < 25 and f.n_boot == 50
     # 1 of 30 vs 2 of 30: most resamples lose the lower collapse or the trend -> refuse
-    with pytest.raises(ArchInputError, match=r"^data: \d+ of 50 bootstrap resamples"):
+    with pytest.raises(FitError, match=r"^data: \d+ of 50 bootstrap resamples"):
         bootstrap_fit(fit_stripes_mle, [0.2, 0.3], [30, 30], [1, 2], n_boot=50, seed=0)
 
 
@@ -299,7 +302,7 @@ def test_bootstrap_reports_and_rejects_unidentifiable_resamples():
     ((fit_stripes_mle, [0.2, 0.4], [10, 10]), {}, "data"),
 ])
 def test_bootstrap_bad_input(args, kwargs, field):
-    with pytest.raises(ArchInputError, match=rf"^{field}:"):
+    with pytest.raises(BAD_OR_UNIDENTIFIABLE, match=rf"^{field}:"):
         bootstrap_fit(*args, **kwargs)
 
 
@@ -370,3 +373,17 @@ def test_first_collapse_monotonic_and_never():
 def test_first_collapse_bad_input(scales, collapsed, field):
     with pytest.raises(ArchInputError, match=rf"^{field}:"):
         first_collapse(scales, collapsed)
+
+
+@pytest.mark.parametrize("fit, args, cls", [
+    (fit_ida_moments, ([0.3, -0.4, 0.5],), ArchInputError),
+    (fit_ida_moments, ([0.3, 0.3, 0.3],), FitError),
+    (fit_stripes_mle, ([0.2, 0.4], [10, 10], [1, 11]), ArchInputError),
+    (fit_stripes_mle, ([0.2, 0.4], [10, 10], [0, 10]), FitError),
+    (fit_stripes_mle, ([0.2, 0.3, 0.4], [10, 10, 10], [0, 0, 0]), FitError),
+])
+def test_input_errors_and_fit_errors_are_told_apart(fit, args, cls):
+    """Callers (IDA, bootstrap) skip unidentifiable data but must not hide malformed input."""
+    with pytest.raises(ArchrockError) as info:
+        fit(*args)
+    assert type(info.value) is cls

@@ -170,7 +170,8 @@ def test_peer_records_tiny_ida(small):
 def test_first_collapse_below_the_grid_is_bisected_from_the_safe_scale():
     """Oppenheim's 0.2 s pulse (a = -1 g): the whole grid 2..4 is above the first collapse
     (1.294 g, tests/test_curves.py); it must be found below the grid, not reported as 2.0."""
-    from archrock.curves import collapse_amplitude, default_cv
+    from archrock.curves import collapse_amplitude
+    from archrock.impact import nominal_cv as default_cv
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import oppenheim_pulse
     from archrock.ida import safe_scale
@@ -208,8 +209,8 @@ def test_unusable_random_arches_are_left_out_and_reported():
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import oppenheim_pulse
 
-    wild = {"spread_radius": 0.99, "spread_thickness": 0.99}  # seed 0: samples 0, 2 unusable
-    models = random_models(oppenheim_arch(), 3, seed=0, spreads=wild)
+    wild = {"spread_radius": 0.99, "spread_thickness": 0.99}  # seed 27: samples 0, 2 unusable
+    models = random_models(oppenheim_arch(), 3, seed=27, spreads=wild)
     assert len(models) == 1 and models.indices == (1,)
     assert [i for i, _ in models.failed] == [0, 2] and "cannot stand" in models.failed[0][1]
     rec = oppenheim_pulse(-1.0, 0.4)

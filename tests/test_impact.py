@@ -9,7 +9,7 @@ import warnings
 import pytest
 
 from archrock import geometry, limit
-from archrock.errors import ArchInputError, EnergyGainError
+from archrock.errors import ArchInputError, EnergyGainError, ImpactModelError
 from archrock.impact import EnergyGainWarning, impact_law, momentum_rate_ratio, paper_rate_ratio
 from archrock.mechanism import four_link
 
@@ -165,7 +165,7 @@ def test_paper_energy_guard(seed, direction, ratio):
     with pytest.raises(EnergyGainError, match=f"impact {direction}") as info:
         impact_law(ml, mr, "paper")
     assert other not in str(info.value)
-    assert isinstance(info.value, ArchInputError)
+    assert isinstance(info.value, ImpactModelError) and not isinstance(info.value, ArchInputError)
     # the momentum model stays usable on the same arch
     law = impact_law(ml, mr, "momentum")
     assert law.energy_l_to_r <= 1 and law.energy_r_to_l <= 1
@@ -194,9 +194,10 @@ def test_paper_model_gains_energy_often_on_wide_spreads():
 def test_nominal_cv_is_one_rule_for_every_command():
     """The paper's c_v of a nominal arch is the rate ratio on a symmetric arch, and on an
     asymmetric one the c_v with the same mean kinetic-energy loss; curves, IDA and ensembles
-    all use this one function."""
-    from archrock import curves, geometry
-    from archrock.response import nominal_cv, prepare
+    all use this one function (through the paper's-practice ImpactSpec)."""
+    from archrock import geometry
+    from archrock.impact import PAPER_PRACTICE, nominal_cv
+    from archrock.response import prepare
 
     assert nominal_cv(geometry.oppenheim_arch()) == pytest.approx(0.8753811790524912, rel=1e-12)
     ra = geometry.random_arch(seed=5)
@@ -204,7 +205,7 @@ def test_nominal_cv_is_one_rule_for_every_command():
     cv = nominal_cv(ra)
     assert cv == pytest.approx(((law.energy_l_to_r + law.energy_r_to_l) / 2) ** 0.5, rel=1e-12)
     assert law.energy_l_to_r != pytest.approx(law.energy_r_to_l, rel=1e-3)
-    assert curves.default_cv(ra) == cv
+    assert PAPER_PRACTICE.resolved(ra).cv == cv
     fixed = prepare(ra, cv).impact
     assert fixed.energy_l_to_r == pytest.approx(cv**2) and fixed.energy_r_to_l == pytest.approx(cv**2)
 

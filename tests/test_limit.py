@@ -9,7 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from archrock import limit
-from archrock.errors import ArchInputError
+from archrock.errors import ArchInputError, CannotStandError
 from archrock.geometry import Arch, nominal_arch, oppenheim_arch, random_arch
 from archrock.limit import Hinge, Mechanism
 
@@ -184,11 +184,12 @@ def test_thicker_arch_has_larger_multiplier():
 
 def test_too_thin_arch_is_refused():
     thin = nominal_arch(10.0, 180.0, 0.8, 12)  # t/R = 0.08 < 0.105
-    with pytest.raises(ArchInputError, match="arch"):
+    # a physical outcome, not an input error
+    with pytest.raises(CannotStandError, match="arch"):
         limit.static_multiplier(thin, "l")
-    with pytest.raises(ArchInputError, match="arch"):
+    with pytest.raises(CannotStandError, match="arch"):
         limit.static_multiplier(thin, "r")
-    with pytest.raises(ArchInputError, match="arch"):
+    with pytest.raises(CannotStandError, match="arch"):
         limit.limit_analysis(thin)
     with pytest.raises(ArchInputError, match="direction"):
         limit.static_multiplier(oppenheim_arch(), "up")

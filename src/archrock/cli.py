@@ -482,7 +482,7 @@ def _impact_spec(args, nominal):
     """The impact law of curves/fragility: --cv X, --impact NAME, or (default) the paper's fixed
     c_v computed once on the nominal arch with the "paper" model.  --literal-cv (args.literal_cv,
     passed on by the callers) applies that fixed c_v to the rates literally."""
-    from .curves import default_cv
+    from .impact import nominal_cv as default_cv
 
     if args.cv is not None and args.impact is not None:
         raise CLIError("--cv: cannot be combined with --impact; choose one")

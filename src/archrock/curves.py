@@ -19,8 +19,9 @@ so :func:`collapse_amplitude` does not bisect blindly:
 A collapse window narrower than the grid spacing below the first grid collapse can be missed; the
 grid spacing is reported (``CollapseAmplitude.scan``) so the caller can refine it.
 
-Impact: as in the paper, a fixed c_v computed once on the nominal arch with the "paper" model
-(0.8754 for Oppenheim's arch), applied to every random arch of an ensemble (:func:`default_cv`).
+Impact: by default the paper's practice (:data:`archrock.impact.PAPER_PRACTICE`): the "paper"
+model on the nominal arch, and its c_v (0.8754 for Oppenheim's arch) as a fixed coefficient on
+every random arch of an ensemble.
 """
 
 from __future__ import annotations
@@ -33,9 +34,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import ArchInputError
-from .geometry import Arch, random_arch
+from .geometry import Arch
 from .groundmotion import pulse, pulse_kind
-from .response import DynamicModel, nominal_cv, prepare, respond
+from .impact import ImpactSpec
+from .population import prepare_sample
+from .response import DynamicModel, prepare, respond
+from .sampling import ArchSampler, Spreads
 
 __all__ = [
     "CollapseAmplitude",
@@ -44,7 +48,6 @@ __all__ = [
     "collapse_amplitude",
     "collapse_curve",
     "ensemble_curve",
-    "default_cv",
     "collapse_mode",
     "parse_range",
 ]
@@ -101,11 +104,6 @@ def parse_range(text: str, name: str = "durations") -> np.ndarray:
     return vals
 
 
-def default_cv(nominal: Arch) -> float:
-    """The paper's c_v on the nominal arch (:func:`archrock.response.nominal_cv`)."""
-    return nominal_cv(nominal)
-
-
 def collapse_mode(response) -> str | None:
     """'before first impact', 'after N impacts' for a collapsed response, None otherwise."""
     if not response.collapsed:
@@ -125,10 +123,8 @@ def _model(arch_or_model, impact, cv, literal_cv=False):
         return arch_or_model
     if not isinstance(arch_or_model, Arch):
         raise ArchInputError(f"model: expected an Arch or a DynamicModel, got {type(arch_or_model).__name__}")
-    if impact is None:
-        return prepare(arch_or_model, default_cv(arch_or_model) if cv is None else float(cv),
-                       literal_cv=literal_cv)
-    return prepare(arch_or_model, impact, cv=cv, literal_cv=literal_cv)
+    # one arch analysed alone is its own nominal arch: the model on it (ImpactSpec docs)
+    return prepare(arch_or_model, ImpactSpec.parse(impact, cv=cv, literal=literal_cv))
 
 
 # ---------------------------------------------------------------------------- one duration
@@ -197,8 +193,8 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
     """First collapse amplitude [g] of a ``kind`` pulse of duration ``duration`` [s] (module doc).
 
     model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``/
-    ``literal_cv``; default the paper's fixed c_v of that arch, applied energy-consistently;
-    ``literal_cv=True`` applies a fixed c_v to the rates literally, METHOD section 4); a prepared
+    ``literal_cv`` as :func:`~archrock.response.prepare` reads them; default the paper's model
+    on that arch; ``literal_cv=True`` applies a fixed c_v to the rates, METHOD section 4); a prepared
     model carries its own impact law, so ``impact``/``cv``/``literal_cv`` are refused with it.
     sign: -1 or +1, the sign of the amplitude a (of the main lobe; for the Ricker pulse not the
     first push, module doc).
@@ -332,7 +328,9 @@ class EnsembleCurve:
     durations [s]; quantiles (levels); bands[q_index, d_index] [g] (inf where the quantile lies
     among arches that did not collapse up to a_max); amplitudes[row, d_index] [g] (inf: no
     collapse), one row per usable arch, row i being sample ``samples[i]``; nominal: the nominal
-    arch's curve; seed, spreads, cv as used.  n_samples: usable arches (the quantiles are over
+    arch's curve; seed, spreads (:class:`~archrock.sampling.Spreads`), impact (the
+    :class:`~archrock.impact.ImpactSpec` as given) and cv (the fixed c_v applied to the random
+    arches, None for a per-arch law) as used.  n_samples: usable arches (the quantiles are over
     them); n_requested: arches drawn; failed: (sample index, reason) of each drawn arch that could
     not be analysed (e.g. it cannot stand), left out of the quantiles.
     """
@@ -342,9 +340,10 @@ class EnsembleCurve:
     bands: np.ndarray
     amplitudes: np.ndarray
     nominal: CollapseCurve
-    seed: int | None
-    spreads: dict
-    cv: float
+    seed: int
+    spreads: Spreads
+    impact: ImpactSpec
+    cv: float | None
     n_samples: int
     failed: tuple = ()
     samples: tuple = ()
@@ -360,70 +359,53 @@ class EnsembleCurve:
             "amplitudes_g": [[f(v) for v in row] for row in self.amplitudes],
             "n_samples": self.n_samples, "n_requested": self.n_requested,
             "samples": list(self.samples), "n_failed": len(self.failed),
-            "seed": self.seed, "spreads": dict(self.spreads),
-            "cv": self.cv, "failed": [list(x) for x in self.failed],
+            "seed": self.seed, "spreads": self.spreads.to_dict(),
+            "impact": self.impact.to_dict(), "cv": self.cv, "failed": [list(x) for x in self.failed],
             "nominal": self.nominal.to_dict(),
         }
 
 
-_SPREAD_KEYS = ("spread_span", "spread_thickness", "spread_radius")
-
-
 def _one_sample(job):
     """(row of first collapse amplitudes, None), or (None, reason) for an unusable arch."""
-    nominal, child, spreads, impact, literal_cv, durations, kwargs = job
-    try:
-        arch = random_arch(nominal, rng=np.random.default_rng(child), **spreads)
-        model = prepare(arch, impact, literal_cv=literal_cv)
-        curve = collapse_curve(model, durations, **kwargs)
-    except ArchInputError as exc:
-        return None, str(exc)
+    sampler, index, impact, durations, kwargs = job
+    model, why = prepare_sample(sampler, index, impact)
+    if model is None:
+        return None, why
+    curve = collapse_curve(model, durations, **kwargs)
     return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf), None
 
 
-def _check_spreads(spreads: dict) -> None:
-    """Spread widths 0 <= s < 1 (the check of random_arch, without drawing an arch)."""
-    from .geometry import _check_spread
-
-    for k, v in spreads.items():
-        _check_spread(k, v, 1.0)
-
-
-def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
+def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
                    tol: float = 1e-3, dt: float = 2e-3, workers: int = 1) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
-    Arch i is drawn from the i-th child of ``numpy.random.SeedSequence(seed)`` (independent streams:
-    results do not depend on ``workers``).  spreads: keys spread_span, spread_thickness,
-    spread_radius (defaults of :func:`~archrock.geometry.random_arch`).  impact: None (default)
-    = the paper's choice, a fixed c_v from the "paper" model on the nominal arch applied to every
-    arch; or a model name / number passed to :func:`~archrock.response.prepare`.  An arch that
-    cannot be analysed (ArchInputError: it cannot stand, voussoirs do not overlap, ...) is left out
-    and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv:
-    apply a fixed c_v to the rates literally instead of energy-consistently (METHOD section 4).
+    Arch i is sample i of :class:`~archrock.sampling.ArchSampler` (nominal, spreads, seed): the
+    same arch as sample i of ``ensemble`` and ``fragility``; results do not depend on ``workers``.
+    spreads: a :class:`~archrock.sampling.Spreads` or a dict with keys spread_span,
+    spread_thickness, spread_radius (default the METHOD spreads).  impact: an ImpactSpec or what
+    ``ImpactSpec.parse`` reads; None = the paper's practice (the "paper" model on the nominal
+    arch, its c_v fixed on every random arch).  An arch with no answer under the model
+    (:data:`archrock.errors.UNUSABLE_ARCH`: it cannot stand, voussoirs do not overlap, ...) is left
+    out and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv: apply a
+    fixed c_v to the rates literally instead of energy-consistently (METHOD section 4).
     workers > 1 runs arches in a process pool.
     """
     if not isinstance(nominal, Arch):
         raise ArchInputError(f"nominal: expected an Arch, got {type(nominal).__name__}")
     samples = _check_int("samples", samples, 1)
     workers = _check_int("workers", workers, 1)
-    spreads = dict(spreads or {})
-    bad = set(spreads) - set(_SPREAD_KEYS)
-    if bad:
-        raise ArchInputError(f"spreads: unknown key(s) {sorted(bad)}; allowed {', '.join(_SPREAD_KEYS)}")
+    sampler = ArchSampler(nominal, Spreads.from_dict(spreads), seed)
     q = np.asarray(quantiles, dtype=float)
     if q.ndim != 1 or q.size == 0 or np.any(~np.isfinite(q)) or np.any((q < 0) | (q > 1)):
         raise ArchInputError(f"quantiles: {quantiles!r}; allowed numbers between 0 and 1")
     d = _durations(durations)
-    if impact is None:
-        impact = default_cv(nominal)
+    spec = ImpactSpec.parse(impact, literal=literal_cv)
+    resolved = spec.resolved(nominal)
     kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
-    nominal_curve = collapse_curve(prepare(nominal, impact, literal_cv=literal_cv), d, **kwargs)
-    _check_spreads(spreads)  # bad widths: ArchInputError before any pool starts
-    children = np.random.SeedSequence(seed).spawn(samples)
-    jobs = [(nominal, c, spreads, impact, literal_cv, d, kwargs) for c in children]
+    nominal_curve = collapse_curve(prepare(nominal, spec), d, **kwargs)
+    jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
     if workers == 1:
         rows = [_one_sample(j) for j in jobs]
     else:
@@ -449,6 +431,5 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int | None = 0, spreads: d
         bands = np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
                          a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
     return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
-                         seed, {k: spreads.get(k) for k in _SPREAD_KEYS if k in spreads},
-                         float(impact) if isinstance(impact, (int, float)) else impact, samples,
+                         sampler.seed, sampler.spreads, spec, resolved.cv, samples,
                          failed, kept, requested)

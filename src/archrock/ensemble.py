@@ -261,7 +261,7 @@ def _config_differences(old: dict, new: dict) -> list[str]:
 def _nominal_paper_cv(nominal_json: str) -> float:
     import warnings
 
-    from .response import nominal_cv
+    from .impact import nominal_cv
 
     arch = Arch.from_dict(json.loads(nominal_json), name="nominal")
     with warnings.catch_warnings():

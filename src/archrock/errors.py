@@ -1,9 +1,67 @@
-"""Errors raised for bad input: each message names the field and the allowed range."""
+"""The errors archrock raises, one class per kind of problem.
+
+* :class:`ArchInputError` -- the input is wrong (a field out of range, a malformed file): the
+  message names the field and the allowed range.  Fix the input.
+* :class:`GeometryOutcome` -- the input is valid but the arch has no answer of the kind asked:
+  it cannot stand under its own weight (:class:`CannotStandError`), no four-hinge mechanism can
+  open (:class:`NoMechanismError`: sliding or crushing governs), or a drawn random arch is not a
+  valid arch (:class:`InvalidSampleError`).  A physical outcome, reported as such.
+* :class:`ImpactModelError` -- an impact model cannot be used on this geometry (it would create
+  energy: :class:`EnergyGainError`; its equations are singular).
+* :class:`FitError` -- a fragility curve cannot be identified from the data.
+* :class:`LimitExceededError` -- a computation would exceed a limit (events, samples, memory).
+
+Studies over random arches leave out an arch only on a :class:`GeometryOutcome` or an
+:class:`ImpactModelError` (both depend on the drawn geometry) and report it; any other error stops
+the study.  Every class derives from :class:`ArchrockError`.
+"""
+
+__all__ = ["ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
+           "NoMechanismError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
+           "FitError", "LimitExceededError", "UNUSABLE_ARCH"]
 
 
-class ArchInputError(ValueError):
+class ArchrockError(Exception):
+    """Base class of every error archrock raises on purpose."""
+
+
+class ArchInputError(ArchrockError, ValueError):
     """Invalid user input (geometry, ground motion, options). The message names the field."""
 
 
-class EnergyGainError(ArchInputError):
+class GeometryOutcome(ArchrockError):
+    """A valid input whose arch has no answer of the kind asked (a physical outcome)."""
+
+
+class CannotStandError(GeometryOutcome):
+    """The arch cannot stand under its own weight (no thrust line inside the arch)."""
+
+
+class NoMechanismError(GeometryOutcome):
+    """No admissible four-hinge mechanism opens under horizontal forces: the arch fails by
+    sliding or crushing, which Heyman's hypotheses exclude."""
+
+
+class InvalidSampleError(GeometryOutcome):
+    """A random arch drawn around a nominal one is not a valid arch (e.g. neighbouring voussoirs
+    do not overlap): the spreads are too wide for this sample."""
+
+
+class ImpactModelError(ArchrockError):
+    """An impact model cannot be applied to this geometry."""
+
+
+class EnergyGainError(ImpactModelError):
     """An impact model would create kinetic energy on this geometry."""
+
+
+class FitError(ArchrockError):
+    """A fragility fit cannot be identified from the data."""
+
+
+class LimitExceededError(ArchrockError):
+    """A computation would exceed a limit (events, samples, memory); the message gives it."""
+
+
+#: What a study over random arches catches to leave one arch out (and report why).
+UNUSABLE_ARCH = (GeometryOutcome, ImpactModelError)

@@ -20,7 +20,8 @@ collapse *and* the survivals above it, and the fragility is a statement over rec
 
 :func:`bootstrap_fit` adds percentile confidence intervals; :func:`collapse_probability` gives the
 binomial interval of a single stripe.  Pure numpy/scipy; bad input raises
-:class:`~archrock.errors.ArchInputError` whose message starts with the offending field.
+:class:`~archrock.errors.ArchInputError` whose message starts with the offending field; data from
+which no fragility can be identified raises :class:`~archrock.errors.FitError`.
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from scipy.optimize import minimize
 from scipy.special import gammaln, log_ndtr, ndtr, ndtri
 from scipy.stats import beta as _beta_dist
 
-from .errors import ArchInputError
+from .errors import ArchInputError, FitError
 
 __all__ = [
     "FragilityFit",
@@ -243,12 +244,12 @@ def fit_ida_moments(collapse_intensities, *, censored: str = "error",
 
     if censored == "error":
         if np.any(survived):
-            raise ArchInputError(
+            raise FitError(
                 f"collapse_intensities: {int(survived.sum())} of {n} records never collapsed (inf/nan); "
                 "use censored='mle' with max_intensity, or analyse them to higher intensity")
         lnx = np.log(x)
         if n < 2 or np.ptp(lnx) == 0:
-            raise ArchInputError("collapse_intensities: need at least 2 distinct values to estimate beta")
+            raise FitError("collapse_intensities: need at least 2 distinct values to estimate beta")
         lt, b = float(np.mean(lnx)), float(np.std(lnx, ddof=1))
         ll = float(np.sum(-math.log(b) - _LOG_SQRT_2PI - 0.5 * ((lnx - lt) / b) ** 2))
         return FragilityFit(theta=math.exp(lt), beta=b, method="moments", n_records=n, log_likelihood=ll)
@@ -257,7 +258,7 @@ def fit_ida_moments(collapse_intensities, *, censored: str = "error",
     lnx = np.log(xc)
     if lnx.size < 2 or np.ptp(lnx) == 0:
         # with fewer than two distinct collapses the likelihood is unbounded as beta -> 0
-        raise ArchInputError("collapse_intensities: need at least 2 distinct finite collapse intensities")
+        raise FitError("collapse_intensities: need at least 2 distinct finite collapse intensities")
     if np.any(survived):
         if max_intensity is None:
             raise ArchInputError("max_intensity: required (> 0) when some records never collapsed")
@@ -305,22 +306,22 @@ def _check_identifiable(x, n, z) -> None:
     """
     total, zc = int(n.sum()), int(z.sum())
     if zc == 0:
-        raise ArchInputError("collapses: no collapse at any intensity; the fragility cannot be identified "
+        raise FitError("collapses: no collapse at any intensity; the fragility cannot be identified "
                              "(analyse higher intensities)")
     if zc == total:
-        raise ArchInputError("collapses: every trial collapsed at every intensity; the fragility cannot be "
+        raise FitError("collapses: every trial collapsed at every intensity; the fragility cannot be "
                              "identified (analyse lower intensities)")
     if np.unique(x).size < 2:
-        raise ArchInputError("intensities: need at least 2 distinct intensity levels")
+        raise FitError("intensities: need at least 2 distinct intensity levels")
     lo_collapse = x[z > 0].min()
     hi_survival = x[z < n].max()
     if not lo_collapse < hi_survival:
-        raise ArchInputError(
+        raise FitError(
             f"collapses: stripes are separated (no survival above the lowest collapse at {lo_collapse:g}), "
             "beta -> 0; add stripes between the last all-survive and first all-collapse levels")
     lnx = np.log(x)
     if not np.sum(z * lnx) / zc > np.sum(n * lnx) / total + 1e-12 * (1 + abs(lnx).max()):
-        raise ArchInputError("collapses: collapse fraction does not increase with intensity; "
+        raise FitError("collapses: collapse fraction does not increase with intensity; "
                              "a lognormal fragility cannot be fitted")
 
 
@@ -405,13 +406,13 @@ def bootstrap_fit(fit_function, *data, n_boot: int = 200, confidence: float = 0.
     for _ in range(n_boot):
         try:
             f = resample(rng)
-        except ArchInputError:  # unidentifiable resample; counted, reported
+        except FitError:  # unidentifiable resample; counted, reported
             failed += 1
             continue
         thetas.append(f.theta)
         betas.append(f.beta)
     if failed > n_boot // 2:
-        raise ArchInputError(f"data: {failed} of {n_boot} bootstrap resamples cannot identify a fit; "
+        raise FitError(f"data: {failed} of {n_boot} bootstrap resamples cannot identify a fit; "
                              "too few records or collapses for a confidence interval")
     q = [(1.0 - conf) / 2.0, (1.0 + conf) / 2.0]
     tci = np.quantile(thetas, q)

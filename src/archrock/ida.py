@@ -16,7 +16,8 @@ meaningful for a single record, or records normalised beforehand).
 
 Both add percentile bootstrap intervals with ``n_boot > 0`` (:func:`~archrock.fragility.bootstrap_fit`).
 Arches: one :class:`~archrock.response.DynamicModel` or a list of them (:func:`random_models`
-draws irregular arches from independent SeedSequence streams with the paper's fixed c_v).
+prepares irregular arches from :class:`~archrock.sampling.ArchSampler`, by default under the
+paper's practice: the paper model's c_v of the nominal arch fixed on every arch).
 """
 
 from __future__ import annotations
@@ -26,15 +27,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import ArchInputError
+from .errors import ArchInputError, FitError
 from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripes_mle,
                         first_collapse)
-from .geometry import Arch, random_arch
+from .curves import bisect_boundary
+from .geometry import Arch
 from .groundmotion import G, GroundMotion
-from .curves import _check_spreads, bisect_boundary
-from .response import DynamicModel, nominal_cv, prepare, respond
+from .impact import ImpactSpec
+from .population import PreparedArches, prepare_many
+from .response import DynamicModel, prepare, respond
+from .sampling import ArchSampler, Spreads
 
-__all__ = ["IDACurve", "IDAResult", "ModelList", "StripeResult", "ida", "ida_curve", "msa",
+__all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "ida_curve", "msa",
            "random_models", "safe_scale", "IM_KINDS"]
 
 IM_KINDS = ("pga", "scale")
@@ -66,7 +70,7 @@ def _models(models) -> list[DynamicModel]:
     out = []
     for m in ms:
         if isinstance(m, Arch):
-            m = prepare(m, nominal_cv(m))
+            m = prepare(m)  # an arch alone: the paper's model on it (ImpactSpec docs)
         if not isinstance(m, DynamicModel):
             raise ArchInputError(f"models: {type(m).__name__}; allowed DynamicModel or Arch objects")
         out.append(m)
@@ -76,7 +80,7 @@ def _models(models) -> list[DynamicModel]:
 
 
 def _ids_failed(models, ms) -> tuple[list[int], tuple]:
-    """Sample indices of the models and the failed samples (from a :class:`ModelList`)."""
+    """Sample indices of the models and the failed samples (from :class:`PreparedArches`)."""
     ids = getattr(models, "indices", None)
     ids = list(ids) if ids is not None and len(ids) == len(ms) else list(range(len(ms)))
     return ids, tuple(getattr(models, "failed", ()))
@@ -103,47 +107,21 @@ def _im_factor(record: GroundMotion, im: str) -> float:
     return record.pga / G if im == "pga" else 1.0
 
 
-class ModelList(list):
-    """The usable arches of :func:`random_models` (a list of DynamicModel), with ``indices``
-    (sample index of each) and ``failed`` ((sample index, reason) of each unusable arch);
-    :func:`ida` and :func:`msa` carry both into their results."""
+def random_models(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
+                  impact=None, literal_cv: bool = False) -> PreparedArches:
+    """Samples 0 .. samples - 1 of ``ArchSampler(nominal, spreads, seed)`` (the same arches as
+    ``ensemble`` and ``curves`` draw), prepared with :func:`archrock.population.prepare_many`.
 
-    def __init__(self, models, indices, failed):
-        super().__init__(models)
-        self.indices = tuple(indices)
-        self.failed = tuple(failed)
-
-
-def random_models(nominal: Arch, samples: int, seed: int | None = 0, spreads: dict | None = None,
-                  impact=None, literal_cv: bool = False) -> ModelList:
-    """``samples`` irregular arches around ``nominal``, arch i from child i of SeedSequence(seed).
-
-    impact: None = the paper's choice (c_v of the "paper" model on the nominal arch, fixed for every
-    arch), or anything :func:`~archrock.response.prepare` accepts; literal_cv: apply a fixed c_v
-    to the rates literally (METHOD section 4).  An arch that cannot be analysed (ArchInputError:
-    it cannot stand, voussoirs do not overlap, ...) is left out and listed in ``failed`` of the
-    returned :class:`ModelList`; ArchInputError only when no arch is usable.
+    impact: an ImpactSpec or what ``ImpactSpec.parse`` reads; None = the paper's practice (the
+    "paper" model's c_v of the nominal arch, fixed on every arch); literal_cv: apply a fixed c_v
+    to the rates literally (METHOD section 4).  Arches with no answer under the model (it cannot
+    stand, the draw is not an arch, ...) are left out and listed in ``failed`` of the result;
+    ArchInputError only when no arch is usable.
     """
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ArchInputError(f"samples: {samples!r}; allowed an integer >= 1")
-    if impact is None:
-        impact = nominal_cv(nominal)
-    children = np.random.SeedSequence(seed).spawn(int(samples))
-    spreads = dict(spreads or {})
-    _check_spreads(spreads)
-    models, kept, failed = [], [], []
-    for i, c in enumerate(children):
-        try:
-            models.append(prepare(random_arch(nominal, rng=np.random.default_rng(c), **spreads),
-                                  impact, literal_cv=literal_cv))
-            kept.append(i)
-        except ArchInputError as exc:
-            failed.append((i, str(exc)))
-    if not models:
-        i, why = failed[0]
-        raise ArchInputError(f"samples: none of the {samples} random arches is usable (sample {i}: "
-                             f"{why}); allowed spreads that give arches able to stand")
-    return ModelList(models, kept, failed)
+    sampler = ArchSampler(nominal, Spreads.from_dict(spreads), seed)
+    return prepare_many(sampler, int(samples), ImpactSpec.parse(impact, literal=literal_cv))
 
 
 def _collapsed(model, record, scale, dt, t_free) -> bool:
@@ -238,11 +216,11 @@ def _fit(func, *data, n_boot, seed, confidence, **kw):
     if n_boot and n_boot > 0:
         try:
             return bootstrap_fit(func, *data, n_boot=n_boot, confidence=confidence, seed=seed, **kw), None
-        except ArchInputError as exc:  # the point fit may still exist; say why there is no band
+        except FitError as exc:  # the point fit may still exist; say why there is no band
             note = f"no bootstrap band: {exc}"
     try:
         return func(*data, **kw), note
-    except ArchInputError as exc:
+    except FitError as exc:
         return None, str(exc)
 
 

@@ -28,7 +28,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 from ._jit import HAVE_NUMBA, maybe_njit
-from .errors import ArchInputError
+from .errors import ArchInputError, CannotStandError, NoMechanismError
 from .geometry import Arch, sector_properties
 
 __all__ = [
@@ -492,7 +492,10 @@ def kinematic_mechanisms(arch: Arch) -> tuple[Mechanism, Mechanism]:
     k_l, k_r, i_l, i_r = kinematic_multipliers_batch(arch.spans[None], arch.radii[None],
                                                      arch.thicknesses[None])
     if not (np.isfinite(k_l[0]) and np.isfinite(k_r[0])):
-        raise ArchInputError("arch: no admissible four-hinge mechanism found; check the geometry")
+        raise NoMechanismError(
+            "arch: no four-hinge mechanism can open under horizontal forces (the arch is too flat "
+            "or too thick to hinge); sliding or crushing governs, which limit analysis under "
+            "Heyman's hypotheses does not cover")
     return (_mechanism_from_candidate(arch.n, int(i_l[0]), "l", k_l[0]),
             _mechanism_from_candidate(arch.n, int(i_r[0]), "r", k_r[0]))
 
@@ -536,7 +539,7 @@ def static_multiplier(arch: Arch, direction: str) -> tuple[float, ThrustLine]:
     b_ub = np.concatenate([-(arch.contact_inner * b_N + b_M), b_M + arch.contact_outer * b_N])
     res = linprog(c=[0, 0, 0, -1.0], A_ub=A_ub, b_ub=b_ub, bounds=[(None, None)] * 4, method="highs")
     if res.status != 0:
-        raise ArchInputError(
+        raise CannotStandError(
             f"arch: no line of thrust fits inside the arch for direction {direction!r} "
             f"(linear program status {res.status}: {res.message}); the arch cannot stand")
     return float(res.x[3]), _thrust_from_x(arch, direction, res.x)
@@ -590,7 +593,7 @@ def limit_analysis(arch: Arch, verify: bool = True) -> LimitResult:
         raise ArchInputError(f"arch: expected an Arch, got {type(arch).__name__}")
     m_l, m_r = kinematic_mechanisms(arch)
     if m_l.multiplier <= 0 or m_r.multiplier <= 0:
-        raise ArchInputError(
+        raise CannotStandError(
             f"arch: it cannot stand under its own weight (k_l = {m_l.multiplier:.4g}, "
             f"k_r = {m_r.multiplier:.4g}); increase the thickness")
     th_l, th_r = thrust_line(arch, m_l), thrust_line(arch, m_r)
@@ -632,7 +635,7 @@ def minimum_thickness(arch: Arch, tol: float = 1e-7) -> MinimumThickness:
     lo, hi = 1e-6, min(1.0, max_factor)
     while not _stands(arch.with_thickness_factor(hi)):
         if hi >= max_factor:
-            raise ArchInputError("arch: it does not stand under its own weight at any thickness")
+            raise CannotStandError("arch: it does not stand under its own weight at any thickness")
         hi = min(2 * hi, max_factor)
     it = 0
     while hi - lo > tol * hi:

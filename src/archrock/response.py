@@ -31,11 +31,11 @@ from ._jit import HAVE_NUMBA
 from .errors import ArchInputError
 from .geometry import Arch
 from .groundmotion import G, GroundMotion
-from .impact import ImpactLaw, impact_law, least_loss_mechanism
+from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
 from .limit import LimitResult, limit_analysis
 from .mechanism import FourLink, four_link, rest_rate
 
-__all__ = ["DynamicModel", "Event", "Response", "prepare", "respond", "nominal_cv"]
+__all__ = ["DynamicModel", "Event", "Response", "prepare", "respond"]
 
 _MODE_NAME = {0: "rest", 1: "l", 2: "r"}
 MAX_SAMPLES = 10_000_000  # output samples of one response (80 MB)
@@ -100,27 +100,30 @@ class DynamicModel:
         return tuple(fl.tabulated(lim) for fl, lim in zip(mechs, lims))
 
 
-def prepare(arch: Arch, impact: str | float | ImpactLaw = "paper", *, cv: float | None = None,
+def prepare(arch: Arch, impact=None, *, cv: float | None = None,
             literal_cv: bool = False, limit_factor: float | None = None,
-            limit: LimitResult | None = None) -> DynamicModel:
+            limit: LimitResult | None = None, nominal: Arch | None = None) -> DynamicModel:
     """Limit analysis, four-link models and impact law of ``arch``.
 
-    impact: "paper", "momentum", "fixed" (with ``cv``), a number (a fixed c_v), an ImpactLaw, or
-    "least-loss": the momentum law, each impact opening the admissible mechanism that keeps the
-    most kinetic energy (Bisegna et al. 2023) instead of the opposite limit mechanism.
+    impact: an :class:`~archrock.impact.ImpactSpec`, or what :meth:`ImpactSpec.parse` reads: a
+    model name ("paper", "momentum", "fixed" with ``cv``, "least-loss": the momentum law, each
+    impact opening the admissible mechanism that keeps the most kinetic energy, Bisegna et al.
+    2023), a number (a fixed c_v), or None: the paper's model (on ``nominal`` when given, else on
+    ``arch``).  An :class:`ImpactLaw` is used as it is.  ``literal_cv`` applies a fixed c_v to the
+    rates.  nominal: the study's nominal arch, on which a spec with ``on='nominal'`` is evaluated.
     limit_factor: rotation limit as a multiple of the unstable rotation (default: halfway to
     the four-bar's dead point, at most 2.5 times the unstable rotation); must be > 1.
     """
+    if isinstance(impact, ImpactLaw):
+        spec = None
+    else:
+        spec = ImpactSpec.parse(impact, cv=cv, literal=literal_cv).resolved(nominal)
     lim = limit_analysis(arch, verify=False) if limit is None else limit
     m_l, m_r = four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
-    if impact == "least-loss":
+    if spec is not None and spec.model == "least-loss":
         return _prepare_least_loss(arch, lim, m_l, m_r, limit_factor)
-    if isinstance(impact, ImpactLaw):
-        law = impact
-    elif isinstance(impact, (int, float)) and not isinstance(impact, bool):
-        law = impact_law(m_l, m_r, "fixed", cv=float(impact), literal=literal_cv)
-    else:
-        law = impact_law(m_l, m_r, impact, cv=cv, literal=literal_cv)
+    law = impact if spec is None else impact_law(m_l, m_r, spec.model, cv=spec.cv,
+                                                 literal=spec.literal)
     pl_l, pl_r = _rotation_limit(m_l, limit_factor), _rotation_limit(m_r, limit_factor)
     v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
@@ -162,14 +165,6 @@ def _prepare_least_loss(arch, lim, m_l, m_r, limit_factor) -> DynamicModel:
     v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, lims[0], lims[1], v_rest,
                         tuple(zip(mechs[2:], lims[2:])), tuple(trans))
-
-
-def nominal_cv(nominal: Arch) -> float:
-    """The paper's c_v: the "paper" impact model on the nominal arch, applied "as a first
-    approximation" to its irregular arches (0.8754 for Oppenheim's arch).  For an asymmetric
-    nominal arch, the c_v with the same mean kinetic-energy loss as the two directions
-    (:attr:`ImpactLaw.equivalent_cv`).  Raises EnergyGainError where the model creates energy."""
-    return float(prepare(nominal, "paper").impact.equivalent_cv)
 
 
 class Event(NamedTuple):
@@ -268,7 +263,7 @@ def _check_times(t_end, dt_out, dt, t_free):
                              f"output samples; allowed at most {MAX_SAMPLES:,} (raise dt_out)")
 
 
-def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact="paper",
+def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=None,
             cv: float | None = None, t_end: float = 3.0, dt_out: float = 0.005,
             integrator: str = "fast", dt: float = 2e-3, t_free: float = 60.0,
             rtol: float = 1e-10, atol: float = 1e-12, max_events: int = 100_000,

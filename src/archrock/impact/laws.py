@@ -23,13 +23,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ArchInputError, EnergyGainError
-from .mechanism import FourLink
+from ..errors import ArchInputError, EnergyGainError, ImpactModelError
+from ..mechanism import FourLink
+from .spec import IMPACT_MODELS
 
-__all__ = ["ImpactLaw", "impact_law", "paper_rate_ratio", "momentum_rate_ratio", "MODELS",
-           "EnergyGainWarning", "projection_ratio", "LeastLoss", "least_loss_mechanism"]
+__all__ = ["ImpactLaw", "impact_law", "paper_rate_ratio", "momentum_rate_ratio",
+           "EnergyGainWarning", "projection_ratio"]
 
-MODELS = ("paper", "momentum", "fixed")
+#: The models that give a rate ratio per direction (least-loss builds a chain on top of momentum).
+_LAW_MODELS = tuple(m for m in IMPACT_MODELS if m != "least-loss")
 
 
 class EnergyGainWarning(UserWarning):
@@ -148,7 +150,7 @@ def paper_rate_ratio(old: FourLink, new: FourLink) -> float:
     try:
         x = np.linalg.solve(A, b)
     except np.linalg.LinAlgError:
-        raise ArchInputError("impact: the 'paper' model's momentum equations are singular for "
+        raise ImpactModelError("impact: the 'paper' model's momentum equations are singular for "
                              "this geometry; use --impact momentum") from None
     return float(x[0])
 
@@ -156,8 +158,8 @@ def paper_rate_ratio(old: FourLink, new: FourLink) -> float:
 def impact_law(mech_l: FourLink, mech_r: FourLink, model: str = "momentum", cv: float | None = None,
                literal: bool = False) -> ImpactLaw:
     """Rate ratios of an arch's two mechanisms for the chosen impact model."""
-    if model not in MODELS:
-        raise ArchInputError(f"impact model: {model!r}; allowed {', '.join(MODELS)}")
+    if model not in _LAW_MODELS:
+        raise ArchInputError(f"impact model: {model!r}; allowed {', '.join(_LAW_MODELS)}")
     m_l, m_r = _m0(mech_l), _m0(mech_r)
     if model == "fixed":
         if cv is None or not math.isfinite(float(cv)) or not 0.0 < float(cv) <= 1.0:
@@ -181,82 +183,10 @@ def impact_law(mech_l: FourLink, mech_r: FourLink, model: str = "momentum", cv: 
                     f"energy ratio {e:.4f} > 1, rate ratio {c:.4f}); use --impact momentum or a "
                     f"fixed --cv")
             if c < 0:
-                raise ArchInputError(f"impact {name}: the 'paper' model gives a negative rate "
+                raise ImpactModelError(f"impact {name}: the 'paper' model gives a negative rate "
                                      f"ratio {c:.4f} on this geometry; use --impact momentum")
     if max(e_lr, e_rl) > 1.0 + 1e-9:
         warnings.warn(f"impact law {model!r} gains kinetic energy at impact "
                       f"(ratios l_to_r {e_lr:.4f}, r_to_l {e_rl:.4f})", EnergyGainWarning, stacklevel=2)
     return ImpactLaw(model, float(c_lr), float(c_rl), float(e_lr), float(e_rl),
                      cv if model == "fixed" else None, bool(literal and model == "fixed"))
-
-
-# ---------------------------------------------------------------------------- least-loss choice
-@dataclass(frozen=True)
-class LeastLoss:
-    """The post-impact mechanism that keeps the most kinetic energy (Bisegna, Coccia, Como,
-    Nodargi 2023), among all admissible four-hinge mechanisms opening in the other direction,
-    with the momentum (projection) impact law.
-
-    mechanism: its hinges; rate_ratio, energy_ratio: its c and kinetic-energy ratio; limit_*:
-    the same for the limit-analysis mechanism archrock opens by default; candidates: how many
-    mechanisms were compared.
-    """
-
-    closing: str
-    mechanism: object
-    rate_ratio: float
-    energy_ratio: float
-    limit_rate_ratio: float
-    limit_energy_ratio: float
-    candidates: int
-
-    @property
-    def is_limit_mechanism(self) -> bool:
-        return self.energy_ratio <= self.limit_energy_ratio * (1 + 1e-12)
-
-    def to_dict(self) -> dict:
-        return {"closing": self.closing, "mechanism": self.mechanism.to_dict(),
-                "rate_ratio": self.rate_ratio, "energy_ratio": self.energy_ratio,
-                "limit_rate_ratio": self.limit_rate_ratio,
-                "limit_energy_ratio": self.limit_energy_ratio,
-                "is_limit_mechanism": self.is_limit_mechanism, "candidates": self.candidates}
-
-
-def least_loss_mechanism(old: FourLink, limit_new: FourLink) -> LeastLoss:
-    """Compare the limit-analysis post-impact mechanism ``limit_new`` with every admissible
-    four-hinge mechanism of its direction; return the one with the largest energy ratio.
-
-    Beyond the paper, after Bisegna et al. (2023): the dynamics keep opening ``limit_new``; this
-    says how much less energy another mechanism would lose at the same impact.
-    """
-    from itertools import combinations, product
-
-    from .limit import EDGES, Hinge, Mechanism
-    from .mechanism import four_link
-
-    arch = old.arch
-    direction = limit_new.direction
-    m_old = _m0(old)
-
-    def energy(fl):
-        c = momentum_rate_ratio(old, fl)
-        return c, c * c * _m0(fl) / m_old
-
-    c_lim, e_lim = energy(limit_new)
-    best = (e_lim, c_lim, limit_new.mechanism)
-    count = 0
-    for joints in combinations(range(arch.n + 1), 4):
-        for edges in product(EDGES, repeat=4):
-            if len(set(edges)) == 1:
-                continue  # all intrados or all extrados never opens
-            mech = Mechanism(direction, tuple(Hinge(j, e) for j, e in zip(joints, edges)), float("nan"))
-            try:
-                fl = four_link(arch, mech)
-            except (ArchInputError, ZeroDivisionError):
-                continue
-            count += 1
-            c, e = energy(fl)
-            if e > best[0] * (1 + 1e-12):
-                # its own activation multiplier (virtual work), for the record
-                best = (e, c, Mechanism(direction, mech.hinges, abs(fl.static_multiplier())))
-    return LeastLoss("l" if direction == "r" else "r", best[2], best[1], best[0], c_lim, e_lim, count)
