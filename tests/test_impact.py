@@ -240,3 +240,58 @@ def test_least_loss_never_below_the_limit_mechanism(seed):
     for old, new in ((m.mech_l, m.mech_r), (m.mech_r, m.mech_l)):
         res = least_loss_mechanism(old, new)
         assert 0 < res.limit_energy_ratio <= res.energy_ratio <= 1.0
+
+
+# ----------------------------------------------------------------------------- ImpactSpec
+def test_impact_spec_round_trips_and_parses_every_spelling():
+    from archrock.impact import PAPER_PRACTICE, ImpactSpec
+
+    for spec in (ImpactSpec(), PAPER_PRACTICE, ImpactSpec("momentum"), ImpactSpec.fixed(0.8),
+                 ImpactSpec.fixed(0.7, literal=True), ImpactSpec("least-loss"),
+                 ImpactSpec("momentum", on="nominal", literal=True)):
+        assert ImpactSpec.from_dict(spec.to_dict()) == spec
+    assert ImpactSpec.parse(None) == PAPER_PRACTICE
+    assert ImpactSpec.parse("nominal-paper") == PAPER_PRACTICE        # 0.1.0's ensemble spelling
+    assert ImpactSpec.parse("momentum") == ImpactSpec("momentum", on="arch")
+    assert ImpactSpec.parse(0.8) == ImpactSpec.parse("fixed", cv=0.8) == ImpactSpec.parse(None, cv=0.8)
+    assert ImpactSpec.parse(0.8, literal=True).literal
+    assert ImpactSpec.parse(None, literal=True) == ImpactSpec("paper", literal=True, on="nominal")
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    (dict(model="elastic"), "impact model"),
+    (dict(model="fixed"), "cv"),
+    (dict(model="fixed", cv=1.5), "cv"),
+    (dict(model="fixed", cv=float("nan")), "cv"),
+    (dict(model="paper", cv=0.5), "cv"),
+    (dict(model="least-loss", on="nominal"), "impact on"),
+    (dict(model="momentum", literal=True), "literal"),
+    (dict(model="paper", on="crown"), "impact on"),
+])
+def test_impact_spec_refuses_bad_fields(kwargs, field):
+    from archrock.impact import ImpactSpec
+
+    with pytest.raises(ArchInputError, match=f"^{field}:"):
+        ImpactSpec(**kwargs)
+
+
+def test_impact_spec_on_nominal_is_the_papers_practice():
+    """on='nominal': the model's c_v on the nominal arch, fixed (energy-consistently) on every
+    arch; the nominal arch itself, prepared alone, keeps the model's own law."""
+    from archrock.impact import PAPER_PRACTICE, ImpactSpec
+    from archrock.response import prepare
+
+    nominal = geometry.oppenheim_arch()
+    ra = geometry.random_arch(seed=315)
+    assert PAPER_PRACTICE.resolved(nominal) == ImpactSpec.fixed(0.8753811790524885)
+    model = prepare(ra, PAPER_PRACTICE, nominal=nominal)
+    assert model.impact.model == "fixed"
+    assert model.impact.energy_l_to_r == pytest.approx(0.8753811790524885**2, rel=1e-12)
+    assert model.impact.energy_r_to_l == pytest.approx(0.8753811790524885**2, rel=1e-12)
+    alone = prepare(ra, PAPER_PRACTICE)            # one arch: its own nominal arch
+    assert alone.impact == prepare(ra, "paper").impact
+    mom = prepare(ra, ImpactSpec("momentum", on="nominal"), nominal=nominal).impact
+    assert mom.energy_l_to_r == pytest.approx(prepare(nominal, "momentum").impact.energy_l_to_r)
+    assert ImpactSpec.fixed(0.5).resolved(nominal) == ImpactSpec.fixed(0.5)
+    with pytest.raises(ArchInputError, match="^impact model"):
+        ImpactSpec.parse("bogus")
