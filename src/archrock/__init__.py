@@ -1,0 +1,53 @@
+"""archrock: seismic rocking assessment of masonry arches.
+
+The Python API in one namespace, in the order data flows (docs/architecture.md):
+
+* geometry: :class:`Arch`, :func:`nominal_arch`, :func:`oppenheim_arch`, :func:`random_arch`;
+  irregular arches of a study: :class:`ArchSampler`, :class:`Spreads`;
+* limit analysis: :func:`limit_analysis`, :func:`minimum_thickness`;
+* ground motion: :class:`GroundMotion`, :func:`pulse`, :func:`oppenheim_pulse`,
+  :func:`load_record`, :class:`PulseSpec`, :class:`RecordSpec`;
+* impacts: :class:`ImpactSpec`, :data:`PAPER_PRACTICE`;
+* dynamics: :func:`prepare`, :func:`respond`, :func:`prepare_many`;
+* studies: :func:`collapse_curve`, :func:`ensemble_curve`, :class:`EnsembleConfig`,
+  :func:`run_ensemble` (incremental dynamic analysis: :mod:`archrock.ida`, whose function
+  ``ida`` shares the module's name and so is not lifted here);
+* errors: :class:`ArchrockError` and its subclasses.
+
+Names are imported on first use, so ``import archrock`` stays cheap and the optional extras
+(pandas, matplotlib, ...) are only needed by what uses them.
+"""
+
+from importlib import import_module
+
+_EXPORTS = {
+    "errors": ("ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
+               "NoMechanismError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
+               "FitError", "LimitExceededError"),
+    "geometry": ("Arch", "nominal_arch", "oppenheim_arch", "random_arch"),
+    "sampling": ("ArchSampler", "Spreads"),
+    "limit": ("limit_analysis", "minimum_thickness"),
+    "groundmotion": ("GroundMotion", "pulse", "oppenheim_pulse", "load_record", "PulseSpec",
+                     "RecordSpec"),
+    "impact": ("ImpactSpec", "PAPER_PRACTICE"),
+    "response": ("prepare", "respond"),
+    "population": ("prepare_many",),
+    "curves": ("collapse_curve", "ensemble_curve"),
+    "ensemble": ("EnsembleConfig", "run_ensemble"),
+}
+_OWNER = {name: module for module, names in _EXPORTS.items() for name in names}
+
+__all__ = sorted(_OWNER)
+
+
+def __getattr__(name):
+    module = _OWNER.get(name)
+    if module is None:
+        raise AttributeError(f"module 'archrock' has no attribute {name!r}")
+    value = getattr(import_module(f".{module}", __name__), name)
+    globals()[name] = value  # later lookups skip this function
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
