@@ -277,3 +277,131 @@ def test_python_dash_m():
     d = json.loads(proc.stdout)
     assert len(d["geometry"]["voussoirs"]) == 3
     assert d["k_l"] == pytest.approx(d["k_r"], rel=1e-9)
+
+
+# ---------------------------------------------------------------------------- help, reports
+@pytest.mark.parametrize("name", list(SUBCOMMANDS))
+def test_every_subcommand_help_works(capsys, name):
+    code, out, err = run(capsys, name, "--help")
+    assert code == 0 and err == ""
+    assert out.startswith(f"usage: archrock {name} ")
+
+
+def test_help_lists_the_subcommands_in_order(capsys):
+    code, out, _ = run(capsys, "--help")
+    assert code == 0
+    order = ["limit", "random-arch", "plot-limit", "respond", "curves", "fragility", "ensemble",
+             "paper"]
+    assert list(SUBCOMMANDS)[:len(order)] == order
+    assert [out.index(f"\n    {n}") for n in order] == sorted(out.index(f"\n    {n}") for n in order)
+
+
+def test_limit_reports_are_what_the_command_prints(capsys):
+    from archrock.reports import format_limit_table, limit_summary
+
+    arch = arch_from_args(_geometry_args("--thickness", "1.2"))
+    res, mt = limit_analysis(arch, verify=True), minimum_thickness(arch)
+    code, out, _ = run(capsys, "limit", "--thickness", "1.2", "--min-thickness")
+    assert code == 0 and out == format_limit_table(res, mt) + "\n"
+    assert run_json(capsys, "limit", "--thickness", "1.2", "--min-thickness", "--json") == \
+        json.loads(json.dumps(limit_summary(res, mt)))
+
+
+def test_respond_report_is_what_the_command_prints(capsys):
+    from archrock.groundmotion import pulse
+    from archrock.reports import format_response
+    from archrock.response import prepare, respond
+
+    model, motion = prepare(arch_from_args(_geometry_args()), "paper"), pulse("oppenheim", -1, 0.2)
+    res = respond(model, motion, t_end=3.0, dt_out=0.005)
+    code, out, _ = run(capsys, "respond", "--pulse", "oppenheim", "--amplitude", "-1",
+                       "--pulse-duration", "0.2")
+    assert code == 0 and out == format_response(res, model, motion) + "\n"
+    assert out.startswith("arch: Oppenheim; k_l = 0.3700") and "outcome: " in out
+
+
+@pytest.mark.parametrize("samples", [0, 2])
+def test_curves_reports_are_what_the_command_prints(capsys, samples):
+    from archrock.curves import collapse_curve, ensemble_curve
+    from archrock.impact import PAPER_PRACTICE, nominal_cv
+    from archrock.reports import curves_summary, format_curves
+    from archrock.response import prepare
+
+    nominal = arch_from_args(_geometry_args())
+    cv, durations = nominal_cv(nominal), np.array([0.2, 0.5])
+    kw = dict(kind="oppenheim", sign=-1, a_max=10.0, n_scan=12, tol=1e-3)
+    band = None
+    if samples:
+        spreads = {"spread_span": 0.1, "spread_thickness": 0.1, "spread_radius": 0.05}
+        band = ensemble_curve(nominal, samples, 0, spreads, durations, impact=PAPER_PRACTICE, **kw)
+        curve = band.nominal
+    else:
+        curve = collapse_curve(prepare(nominal, PAPER_PRACTICE), durations, **kw)
+    about = dict(arch_name="Oppenheim", pulse="oppenheim", sign=-1, impact=PAPER_PRACTICE, cv=cv)
+    argv = ["curves", "--durations", "0.2,0.5", "--n-scan", "12", "--samples", str(samples)]
+    code, out, _ = run(capsys, *argv)
+    assert code == 0 and out == format_curves(curve, band, **about) + "\n"
+    assert run_json(capsys, *argv, "--json") == json.loads(json.dumps(curves_summary(curve, band,
+                                                                                     **about)))
+
+
+def _record_file(tmp_path, name, freq):
+    # a short sine burst under a smooth envelope, PGA 0.3 g: collapses within a few scale steps
+    t = np.arange(0, 3.0, 0.01)
+    a = 0.3 * np.sin(2 * np.pi * freq * t) * np.sin(np.pi * t / 3.0) ** 2
+    p = tmp_path / name
+    np.savetxt(p, np.column_stack([t, a]))
+    return p
+
+
+def test_fragility_reports_are_what_the_command_prints(capsys, tmp_path):
+    from archrock.groundmotion import load_record
+    from archrock.ida import default_stripe_levels, ida, msa
+    from archrock.reports import format_fragility, fragility_summary
+    from archrock.impact import PAPER_PRACTICE, nominal_cv
+    from archrock.response import prepare
+
+    files = [_record_file(tmp_path, "r1.txt", 1.5), _record_file(tmp_path, "r2.txt", 2.5)]
+    argv = ["fragility", "--records", *map(str, files), "--radius", "2", "--thickness", "0.3",
+            "--scales", "0.5:6:6", "--bootstrap", "0"]
+    nominal = arch_from_args(_geometry_args("--radius", "2", "--thickness", "0.3"))
+    records = [load_record(f) for f in files]
+    cv = nominal_cv(nominal)
+    models = [prepare(nominal, PAPER_PRACTICE)]
+    res_ida = ida(records, models, np.linspace(0.5, 6, 6))
+    res_msa = msa(records, models, default_stripe_levels(res_ida, np.linspace(0.5, 6, 6), records))
+    code, out, _ = run(capsys, *argv)
+    assert code == 0 and out == format_fragility(res_ida, res_msa, arch_name="nominal", n_records=2,
+                                                 n_arches=1, n_requested=0) + "\n"
+    d = run_json(capsys, *argv, "--json")
+    assert d == json.loads(json.dumps(fragility_summary(res_ida, res_msa, arch_name="nominal",
+                                                        records=records, n_arches=1, impact=PAPER_PRACTICE,
+                                                        cv=cv)))
+    assert len(d["stripes"]["levels"]) == 8
+
+
+def test_default_stripe_levels_bracket_the_first_collapses_or_fall_back_on_the_scales():
+    from types import SimpleNamespace
+
+    from archrock.ida import IDAResult, default_stripe_levels
+
+    recs = [SimpleNamespace(pga_g=0.2), SimpleNamespace(pga_g=0.4)]
+    curves = [SimpleNamespace(first_im=x) for x in (0.5, None, 2.0)]
+    lv = default_stripe_levels(IDAResult(tuple(curves), "pga", None), [1.0, 3.0], recs)
+    assert len(lv) == 8 and lv[0] == pytest.approx(0.3) and lv[-1] == pytest.approx(2.8)
+    assert np.allclose(np.diff(np.log(lv)), np.log(lv[1] / lv[0]))
+    none = IDAResult((curves[1],), "pga", None)
+    assert default_stripe_levels(none, [1.0, 3.0], recs, n=3) == pytest.approx([0.2, 0.24 ** 0.5, 1.2])
+
+
+def test_ensemble_report_is_what_the_command_prints(capsys):
+    from archrock.reports import format_ensemble
+
+    argv = ["ensemble", "--samples", "20", "--pulse", "oppenheim", "--amplitude", "-1",
+            "--pulse-duration", "0.2", "--no-progress"]
+    summary = run_json(capsys, *argv, "--json")
+    code, out, _ = run(capsys, *argv)
+    assert code == 0
+    # the last line is the wall time, which differs run to run
+    assert out.splitlines()[:-1] == format_ensemble(summary, "Oppenheim").splitlines()[:-1]
+    assert out.splitlines()[-1].startswith("time: ")

@@ -172,7 +172,8 @@ def test_cli_curves_json(capsys):
     assert c["amplitudes_g"][1] == pytest.approx(0.489, abs=3e-3)
     assert c["modes"] == ["after 1 impact", "after 1 impact"]
     assert c["k_l"] == pytest.approx(0.3700, abs=1e-4)
-    assert d["impact"]["cv"] == pytest.approx(CV_OPPENHEIM, abs=5e-5)
+    assert d["impact"]["applied_cv"] == pytest.approx(CV_OPPENHEIM, abs=5e-5)
+    assert d["impact"]["model"] == "paper" and d["impact"]["on"] == "nominal"
     assert c["points"][0]["survival_windows_g"][0][0] == pytest.approx(2.688, abs=5e-3)
 
 

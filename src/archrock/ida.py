@@ -339,3 +339,19 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed, confidence=confidence)
     return StripeResult(lv, trials, coll, out, im, fit, err, tuple(r.name for r in recs),
                         tuple(ids), failed)
+
+
+def default_stripe_levels(ida_result: IDAResult, scales, records, n: int = 8) -> np.ndarray:
+    """Default PGA levels [g] of the multiple stripes after an IDA: ``n`` geometric levels from
+    0.6 x the smallest to 1.4 x the largest first-collapse IM, so the stripes bracket the collapses;
+    if nothing collapsed, from the lowest to the highest scale factor x the records' PGA."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ArchInputError(f"n: {n!r}; allowed an integer >= 1")
+    f = ida_result.first_ims
+    f = f[np.isfinite(f)]
+    lo = 0.6 * f.min() if f.size else float(scales[0] * min(r.pga_g for r in records))
+    hi = 1.4 * f.max() if f.size else float(scales[-1] * max(r.pga_g for r in records))
+    return np.geomspace(lo, hi, n)
+
+
+__all__ += ["default_stripe_levels"]

@@ -117,7 +117,10 @@ def prepare(arch: Arch, impact=None, *, cv: float | None = None,
     if isinstance(impact, ImpactLaw):
         spec = None
     else:
-        spec = ImpactSpec.parse(impact, cv=cv, literal=literal_cv).resolved(nominal)
+        spec = ImpactSpec.parse(impact, cv=cv, literal=literal_cv)
+        if spec.on == "nominal" and spec.literal and nominal is None:
+            nominal = arch  # a c_v to apply literally: the arch alone is its own nominal arch
+        spec = spec.resolved(nominal)
     lim = limit_analysis(arch, verify=False) if limit is None else limit
     m_l, m_r = four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
     if spec is not None and spec.model == "least-loss":

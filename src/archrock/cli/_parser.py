@@ -1,0 +1,132 @@
+"""argparse plumbing: the parser class, the subcommand registry, option types, JSON output and
+the error handling of :func:`archrock.cli.main`."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Callable
+
+from ..errors import ArchInputError
+
+PROG = "archrock"
+EXIT_USAGE = 2  # bad input: same status as argparse's own errors
+_OPTIONAL_MODULES = {"matplotlib", "PIL", "pandas", "pyarrow", "tqdm", "numba", "dask", "distributed"}
+
+#: name -> add_<name>_parser(subparsers), in the order shown by --help (filled by archrock.cli).
+SUBCOMMANDS: dict[str, Callable] = {}
+
+
+class CLIError(Exception):
+    """A command-line problem that is not an arch-input problem (e.g. conflicting options)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose errors read ``archrock: error: <message>`` (exit status 2)."""
+
+    def error(self, message):  # noqa: D401 - argparse API
+        self.print_usage(sys.stderr)
+        self.exit(EXIT_USAGE, f"{PROG}: error: {message}\n")
+
+
+def subcommand(name: str):
+    """Decorator registering ``add_<name>_parser(subparsers)`` under ``name`` (after the built-in
+    subcommands in --help)."""
+    def register(add_parser: Callable) -> Callable:
+        SUBCOMMANDS[name] = add_parser
+        return add_parser
+    return register
+
+
+# ---------------------------------------------------------------------------- argparse types
+def finite_float(text: str) -> float:
+    """argparse type: a finite number (NaN and infinities refused)."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(v):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
+    return v
+
+
+def positive_float(text: str) -> float:
+    """argparse type: a finite number > 0."""
+    v = finite_float(text)
+    if v <= 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is out of range; allowed > 0")
+    return v
+
+
+def non_negative_int(text: str) -> int:
+    """argparse type: an integer >= 0 (e.g. a random seed)."""
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is out of range; allowed an integer >= 0")
+    return v
+
+
+def _int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+
+
+def emit_json(obj, out=None) -> None:
+    """Print ``obj`` as one JSON document (strict: NaN/inf refused) on stdout."""
+    out = sys.stdout if out is None else out
+    out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
+
+
+# ---------------------------------------------------------------------------- top level
+def _version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("archrock")
+    except Exception:  # not installed (running from a source tree)
+        return "unknown"
+
+
+def new_parser() -> argparse.ArgumentParser:
+    """The top-level parser with every subcommand of :data:`SUBCOMMANDS`."""
+    parser = _Parser(prog=PROG, description="Seismic rocking assessment of masonry arches: "
+                                            "limit analysis, rocking dynamics, ensembles.")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    sub = parser.add_subparsers(dest="command", metavar="<command>", parser_class=_Parser)
+    sub.required = True
+    for add_parser in SUBCOMMANDS.values():
+        add_parser(sub)
+    return parser
+
+
+def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
+    """Parse ``argv`` and run the chosen subcommand; returns the exit status (0 ok, 2 bad input,
+    1 missing optional dependency)."""
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # argparse: --help/--version (0) or a usage error (2)
+        return int(exc.code) if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_USAGE)
+    try:
+        return int(args.func(args) or 0)
+    except (ArchInputError, CLIError) as exc:
+        # one line, no traceback: the message names the field and the allowed range
+        msg = " ".join(str(exc).split())
+        print(f"{PROG}: error: {msg}", file=sys.stderr)
+        return EXIT_USAGE
+    except ImportError as exc:
+        # only a missing optional extra is a user-facing condition; anything else is a bug
+        root = (getattr(exc, "name", None) or "").split(".")[0]
+        if root not in _OPTIONAL_MODULES and "pip install" not in str(exc):
+            raise
+        print(f"{PROG}: error: {exc} (install the extras: pip install 'archrock[all]')",
+              file=sys.stderr)
+        return 1
+    except BrokenPipeError:  # e.g. `archrock limit --json | head`
+        return 0

@@ -1,0 +1,78 @@
+"""``archrock curves``: collapse-acceleration curves of pulses against their duration."""
+
+from __future__ import annotations
+
+import sys
+
+from ..errors import ArchInputError
+from ._parser import _int, emit_json, non_negative_int, positive_float
+from .options import (add_geometry_options, add_impact_options, add_spread_options,
+                      arch_from_args, impact_spec_from_args, spreads)
+
+
+def add_curves_parser(subparsers):
+    p = subparsers.add_parser(
+        "curves", help="collapse-acceleration curves: first collapse amplitude against pulse duration",
+        description="For each pulse duration t_p, scan the amplitude from the activation threshold "
+                    "k to --a-max, bisect the first collapse to --tol, and report the survival "
+                    "windows above it (collapse is not monotonic in the amplitude).")
+    add_geometry_options(p)
+    p.add_argument("--durations", default="0.1:1.0:10", metavar="LO:HI:N|A,B,...",
+                   help="pulse durations t_p [s] (default 0.1:1.0:10)")
+    p.add_argument("--pulse", default="oppenheim", metavar="KIND",
+                   help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
+    p.add_argument("--sign", type=_int, choices=(-1, 1), default=-1,
+                   help="sign of the amplitude (main lobe): -1 (xg'' < 0, opens M_l; default) or "
+                        "+1; the first push except for ricker, whose first lobe is -0.446 a")
+    p.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
+                   help="top of the amplitude scan [g] (default 10)")
+    p.add_argument("--n-scan", type=_int, default=150, metavar="N",
+                   help="amplitude grid points (geometric, default 150)")
+    p.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
+                   help="bisection tolerance [g] (default 0.001)")
+    p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
+                   help="random arches for quantile bands (0 = nominal only, default)")
+    p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
+    add_spread_options(p)
+    p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
+    add_impact_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="write the curve (with bands) to a figure")
+    p.set_defaults(func=run_curves)
+    return p
+
+
+def run_curves(args) -> int:
+    from ..curves import collapse_curve, ensemble_curve, parse_range
+    from ..reports.curves import curves_summary, format_curves
+    from ..response import prepare
+
+    nominal = arch_from_args(args)
+    durations = parse_range(args.durations, "durations")
+    if args.n_scan < 2:
+        raise ArchInputError(f"n_scan: {args.n_scan}; allowed an integer >= 2")
+    if args.workers < 1:
+        raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
+    impact = impact_spec_from_args(args)
+    kw = dict(kind=args.pulse, sign=args.sign, a_max=args.a_max, n_scan=args.n_scan, tol=args.tol)
+    band = None
+    if args.samples > 0:
+        band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,
+                              impact=impact, workers=args.workers, **kw)
+        curve = band.nominal
+    else:
+        curve = collapse_curve(prepare(nominal, impact), durations, **kw)
+    if args.plot:
+        from ..plots import plot_collapse_curve
+
+        plot_collapse_curve(curve, args.plot, band=band,
+                            title=f"{nominal.name}: {args.pulse} pulse, sign {args.sign:+d}")
+    about = dict(arch_name=nominal.name, pulse=args.pulse, sign=args.sign,
+                 impact=impact, cv=impact.resolved(nominal).cv)
+    if args.json:
+        emit_json(curves_summary(curve, band, **about))
+        return 0
+    print(format_curves(curve, band, **about))
+    if args.plot:
+        print(f"wrote {args.plot}", file=sys.stderr)
+    return 0

@@ -1,0 +1,101 @@
+"""``archrock limit``, ``random-arch`` and ``plot-limit``: one arch, no ground motion."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from ._parser import CLIError, emit_json, non_negative_int, positive_float
+from .options import add_geometry_options, add_spread_options, arch_from_args
+
+
+# ---------------------------------------------------------------------------- limit
+def add_limit_parser(subparsers):
+    p = subparsers.add_parser(
+        "limit", help="collapse multipliers k_l, k_r and mechanisms (limit analysis)",
+        description="Limit analysis under horizontal forces proportional to the weight: "
+                    "kinematic enumeration of four-hinge mechanisms, checked by a static LP.")
+    add_geometry_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    p.add_argument("--min-thickness", action="store_true",
+                   help="also compute the minimum thickness under self-weight (bisection)")
+    p.set_defaults(func=run_limit)
+    return p
+
+
+def run_limit(args) -> int:
+    from ..limit import limit_analysis, minimum_thickness
+    from ..reports.limit import format_limit_table, limit_summary
+
+    arch = arch_from_args(args)
+    result = limit_analysis(arch, verify=True)
+    mt = minimum_thickness(arch) if args.min_thickness else None
+    if args.json:
+        emit_json(limit_summary(result, mt))
+    else:
+        print(format_limit_table(result, mt))
+    return 0
+
+
+# ---------------------------------------------------------------------------- random-arch
+def add_random_arch_parser(subparsers):
+    p = subparsers.add_parser(
+        "random-arch", help="draw an irregular arch around a nominal one; write its geometry file",
+        description="span_i = (alpha/n)(1 + s_a U), t_i = t (1 + s_t U), R_i = R + s_R t U, "
+                    "U uniform on [-1, 1], spans rescaled to the nominal embrace.")
+    add_geometry_options(p)
+    p.add_argument("--seed", type=non_negative_int, default=None,
+                   help="random seed (integer >= 0); omit for a fresh draw")
+    add_spread_options(p)
+    p.add_argument("--out", metavar="FILE", help="geometry file to write (default: stdout)")
+    p.set_defaults(func=run_random_arch)
+    return p
+
+
+def run_random_arch(args) -> int:
+    from ..geometry import random_arch
+
+    nominal = arch_from_args(args)
+    arch = random_arch(nominal, seed=args.seed, spread_span=args.spread_span,
+                       spread_thickness=args.spread_thickness, spread_radius=args.spread_radius)
+    meta = {"generator": "archrock random-arch", "seed": args.seed, "nominal": nominal.name,
+            "spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
+            "spread_radius": args.spread_radius}
+    if args.out:
+        from ..files import write_arch
+
+        try:
+            Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise CLIError(f"--out: cannot create the folder of {args.out!r} ({exc.strerror})") from None
+        write_arch(arch, args.out, metadata=meta)
+        print(f"wrote {args.out}", file=sys.stderr)
+    else:
+        emit_json({**arch.to_dict(), "metadata": meta})
+    return 0
+
+
+# ---------------------------------------------------------------------------- plot-limit
+def add_plot_limit_parser(subparsers):
+    p = subparsers.add_parser(
+        "plot-limit", help="figure of the collapse mechanism and line of thrust (paper Fig. 3)")
+    add_geometry_options(p)
+    p.add_argument("--out", metavar="FILE.png", default="limit.png",
+                   help="image to write (default limit.png)")
+    p.add_argument("--direction", choices=("l", "r", "both"), default="both",
+                   help="mechanism M_l, M_r or both panels (default both)")
+    p.add_argument("--dpi", type=positive_float, default=150, help="resolution (default 150)")
+    p.set_defaults(func=run_plot_limit)
+    return p
+
+
+def run_plot_limit(args) -> int:
+    from ..limit import limit_analysis
+    from ..plots import save_limit_figure
+
+    arch = arch_from_args(args)
+    result = limit_analysis(arch, verify=True)
+    dirs = ("l", "r") if args.direction == "both" else (args.direction,)
+    path = save_limit_figure(result, args.out, directions=dirs, dpi=int(args.dpi))
+    print(f"k_l = {result.k_l:.4f}, k_r = {result.k_r:.4f}; wrote {path}")
+    return 0

@@ -1,0 +1,189 @@
+"""Option groups shared by several subcommands, and their conversion to library objects."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..errors import ArchInputError
+from ._parser import CLIError, _int, finite_float
+
+#: Defaults of the nominal-geometry flags: Oppenheim's arch (R [m], embrace [deg], t [m], n, kg/m^3).
+#: Spelled out rather than taken from archrock.geometry so that --help needs no numpy.
+GEOMETRY_DEFAULTS = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7,
+                     "density": 2000.0}
+
+
+# ---------------------------------------------------------------------------- arch
+def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add the arch options: --radius --embrace --thickness --voussoirs --density (a nominal
+    arch; defaults: Oppenheim's arch) or --geometry FILE (a JSON geometry file)."""
+    d = GEOMETRY_DEFAULTS
+    g = parser.add_argument_group(
+        "arch geometry", "a nominal arch (defaults: Oppenheim's arch) or --geometry FILE")
+    # Defaults are None so that arch_from_args can tell given flags from defaults.
+    g.add_argument("--radius", type=finite_float, metavar="R",
+                   help=f"mean radius [m], > 0 (default {d['radius']:g})")
+    g.add_argument("--embrace", type=finite_float, metavar="DEG",
+                   help=f"angle of embrace [deg], 0 < embrace < 360 (default {d['embrace']:g})")
+    g.add_argument("--thickness", type=finite_float, metavar="T",
+                   help=f"thickness [m], 0 < t < 2 R (default {d['thickness']:g})")
+    g.add_argument("--voussoirs", type=_int, metavar="N",
+                   help=f"number of voussoirs, >= 3 (default {d['voussoirs']})")
+    g.add_argument("--density", type=finite_float, metavar="RHO",
+                   help=f"density [kg/m^3], > 0 (default {d['density']:g}; cancels from k)")
+    g.add_argument("--geometry", metavar="FILE",
+                   help="JSON geometry file (voussoirs from the left springing); "
+                        "excludes the flags above")
+    return parser
+
+
+def arch_from_args(args: argparse.Namespace):
+    """The :class:`~archrock.geometry.Arch` described by the options of
+    :func:`add_geometry_options` (raises ArchInputError / CLIError on bad input)."""
+    from ..geometry import nominal_arch
+
+    flags = ("radius", "embrace", "thickness", "voussoirs", "density")
+    given = [f for f in flags if getattr(args, f, None) is not None]
+    if getattr(args, "geometry", None):
+        if given:
+            raise CLIError(f"--geometry: cannot be combined with "
+                           f"{', '.join('--' + f for f in given)}; the file holds the whole geometry")
+        from ..files import read_arch
+
+        return read_arch(args.geometry)
+    vals = {f: (getattr(args, f, None) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f])
+            for f in flags}
+    is_oppenheim = not given or all(vals[f] == GEOMETRY_DEFAULTS[f] for f in flags)
+    return nominal_arch(radius=vals["radius"], embrace_deg=vals["embrace"], thickness=vals["thickness"],
+                        voussoirs=vals["voussoirs"], density=vals["density"],
+                        name="Oppenheim" if is_oppenheim else "nominal")
+
+
+# ---------------------------------------------------------------------------- random arches
+def add_spread_options(p: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add --spread-span, --spread-thickness, --spread-radius (METHOD section 1 widths)."""
+    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
+                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
+    p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
+                   help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
+    p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
+                   help="half-width of the radii as a fraction of t, 0 <= s_R < 1 (default 0.05)")
+    return p
+
+
+def spreads(args: argparse.Namespace) -> dict:
+    """The spreads of :func:`add_spread_options` as keyword arguments of the library."""
+    return {"spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
+            "spread_radius": args.spread_radius}
+
+
+# ---------------------------------------------------------------------------- ground motion
+def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) -> argparse.ArgumentParser:
+    """Add the ground-motion options: --pulse KIND --amplitude A_G --pulse-duration S, or
+    --record FILE [--units U] [--scale F]."""
+    g = parser.add_argument_group(
+        "ground motion", "an idealised pulse (amplitude in g, positive toward +x) or a record")
+    g.add_argument("--pulse", metavar="KIND",
+                   help="oppenheim (a for t_p, -a/2 for 2 t_p: the paper's), rectangular, "
+                        "half-sine, one-sine or ricker")
+    g.add_argument("--amplitude", type=finite_float, metavar="A_G", default=None,
+                   help="pulse amplitude [g], sign = direction (paper: -1)")
+    g.add_argument("--pulse-duration", type=finite_float, metavar="S", default=None,
+                   help="pulse duration t_p [s] (ricker: its period) (paper: 0.2)")
+    g.add_argument("--record", metavar="FILE",
+                   help="accelerogram: PEER .AT2 (g) or two-column 'time accel' text file")
+    g.add_argument("--units", choices=("g", "m/s2", "cm/s2"), default=None,
+                   help="units of a two-column record (default g)")
+    g.add_argument("--scale", type=finite_float, default=1.0, metavar="F",
+                   help="scale factor applied to the record (default 1)")
+    parser.set_defaults(_motion_required=required)
+    return parser
+
+
+def motion_from_args(args: argparse.Namespace):
+    """The GroundMotion described by :func:`add_motion_options`, or None if none was given."""
+    from ..groundmotion import load_record, pulse
+
+    has_pulse = any(getattr(args, f, None) is not None for f in ("pulse", "amplitude", "pulse_duration"))
+    if getattr(args, "record", None):
+        if has_pulse:
+            raise CLIError("--record: cannot be combined with --pulse/--amplitude/--pulse-duration")
+        motion = load_record(args.record, units=args.units)
+        return motion.scaled(args.scale) if args.scale != 1.0 else motion
+    for flag, given in (("--units", args.units is not None), ("--scale", args.scale != 1.0)):
+        if given and has_pulse:
+            raise CLIError(f"{flag}: applies to --record only; a pulse's amplitude is in g")
+    if not has_pulse:
+        if getattr(args, "_motion_required", False):
+            raise CLIError("ground motion: give --pulse KIND --amplitude A_G --pulse-duration S "
+                           "or --record FILE")
+        return None
+    kind = args.pulse or "oppenheim"
+    if args.amplitude is None or args.pulse_duration is None:
+        raise CLIError("--amplitude and --pulse-duration: both are needed with a pulse "
+                       "(e.g. --pulse oppenheim --amplitude -1 --pulse-duration 0.2)")
+    return pulse(kind, args.amplitude, args.pulse_duration)
+
+
+# ---------------------------------------------------------------------------- impact
+def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add the impact group, with one meaning in every command (archrock.impact.ImpactSpec):
+    --impact MODEL, --cv X, --literal-cv, --impact-on arch|nominal."""
+    g = parser.add_argument_group(
+        "impact", "the impact law at each closing of the mechanism. Default: the paper's practice, "
+                  "the 'paper' model on the nominal arch and its c_v fixed on every random arch "
+                  "(one arch alone: the 'paper' model on it)")
+    g.add_argument("--impact", choices=("paper", "momentum", "least-loss", "nominal-paper"),
+                   default=None,
+                   help="paper: De Lorenzis et al.'s five equations (refused where they create "
+                        "energy); momentum: energy-consistent projection; least-loss: momentum, "
+                        "opening the mechanism that keeps the most energy (Bisegna et al. 2023); "
+                        "evaluated on each arch unless --impact-on nominal (nominal-paper: "
+                        "archrock 0.1.0's name for --impact paper --impact-on nominal)")
+    g.add_argument("--impact-on", choices=("arch", "nominal"), default=None,
+                   help="evaluate --impact on each arch (default when --impact is given) or once "
+                        "on the nominal arch, its c_v then fixed on every arch")
+    g.add_argument("--cv", type=finite_float, default=None, metavar="CV",
+                   help="fixed coefficient of restitution, 0 < cv <= 1 (kinetic energy x cv^2)")
+    g.add_argument("--literal-cv", action="store_true",
+                   help="apply the fixed c_v (--cv, or the nominal arch's) to the rates "
+                        "literally (may gain energy on irregular arches)")
+    return parser
+
+
+def impact_spec_from_args(args: argparse.Namespace):
+    """The :class:`~archrock.impact.ImpactSpec` of the impact options (the same in every
+    command)."""
+    from ..impact import PAPER_PRACTICE, ImpactSpec
+
+    if args.cv is not None and args.impact is not None:
+        raise CLIError("--cv: cannot be combined with --impact; choose one")
+    on = getattr(args, "impact_on", None)
+    if args.cv is not None:
+        if on is not None:
+            raise CLIError("--impact-on: applies to --impact MODEL; a given --cv is the same on "
+                           "every arch")
+        return ImpactSpec.fixed(args.cv, literal=args.literal_cv)
+    if args.impact is None:
+        if on is not None:
+            raise CLIError("--impact-on: needs --impact MODEL")
+        return ImpactSpec.parse(PAPER_PRACTICE, literal=args.literal_cv)
+    spec = ImpactSpec.parse(args.impact)
+    if on is not None:
+        if args.impact == "nominal-paper" and on != "nominal":
+            raise CLIError("--impact-on: nominal-paper is evaluated on the nominal arch")
+        spec = ImpactSpec(spec.model, on=on)
+    if args.literal_cv:
+        if spec.on != "nominal":
+            raise CLIError("--literal-cv: applies to a fixed c_v (--cv, or a model evaluated on "
+                           "the nominal arch); cannot be combined with --impact on each arch")
+        spec = ImpactSpec(spec.model, literal=True, on="nominal")
+    return spec
+
+
+def model_from_args(args: argparse.Namespace, arch=None):
+    """The prepared DynamicModel (limit analysis, mechanisms, impact law) of one arch."""
+    from ..response import prepare
+
+    arch = arch_from_args(args) if arch is None else arch
+    return prepare(arch, impact_spec_from_args(args))

@@ -1,0 +1,19 @@
+"""``archrock paper``: reproduce the paper's results into a folder."""
+
+from __future__ import annotations
+
+
+def add_paper_parser(subparsers):
+    p = subparsers.add_parser(
+        "paper", help="reproduce the paper's results into a folder (figures + summary.json)")
+    p.add_argument("--out", metavar="DIR", default="paper-out",
+                   help="output folder (default paper-out)")
+    p.set_defaults(func=run_paper)
+    return p
+
+
+def run_paper(args) -> int:
+    from ..study import run_paper_study
+
+    run_paper_study(args.out, progress=print)
+    return 0

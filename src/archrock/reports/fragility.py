@@ -1,0 +1,45 @@
+"""Reports of a fragility study: IDA curves, multiple stripes and their lognormal fits."""
+
+from __future__ import annotations
+
+from ._common import format_failed, impact_summary
+
+__all__ = ["fragility_summary", "format_fragility"]
+
+
+def fragility_summary(ida_result, stripes, *, arch_name: str, records, n_arches: int, impact,
+                      cv: float | None = None) -> dict:
+    """JSON-ready summary (the ``archrock fragility --json`` object) of an IDAResult and a
+    StripeResult over ``records`` (GroundMotion) and ``n_arches`` analysed arches."""
+    return {"arch": arch_name, "records": [r.name for r in records],
+            "n_arches": n_arches, "im": "pga_g",
+            "impact": impact_summary(impact, cv),
+            "ida": ida_result.to_dict(),
+            "stripes": stripes.to_dict()}
+
+
+def format_fragility(ida_result, stripes, *, arch_name: str, n_records: int, n_arches: int,
+                     n_requested: int) -> str:
+    """Readable report: first collapse per record and arch, both fits, stripe counts.
+    n_requested: random arches asked for (for the line on those left out)."""
+    lines = [f"{arch_name}: {n_records} record(s) x {n_arches} arch(es); IM = PGA [g]"]
+    lines += format_failed(ida_result.failed, n_requested)
+    for c in ida_result.curves:
+        fc = "never" if c.first_im is None else f"{c.first_im:.4f} g (scale {c.first_scale:.4f})"
+        sa = ", ".join(f"{s:g}" for s in c.survivals_above) or "-"
+        lines.append(f"  arch {c.arch} {c.record[:40]:<40} first collapse {fc}; "
+                     f"survives above at scales {sa}")
+        if c.note:
+            lines.append(f"    ({c.note})")
+    for name, r in (("IDA", ida_result), ("stripes", stripes)):
+        if r.fit is None or r.fit_error:
+            lines.append(f"{name}: {'no fit' if r.fit is None else 'note'} ({r.fit_error})")
+        if r.fit is not None:
+            ci = "" if r.fit.theta_ci is None else (
+                f" [{r.fit.theta_ci[0]:.3f}, {r.fit.theta_ci[1]:.3f}], beta CI "
+                f"[{r.fit.beta_ci[0]:.2f}, {r.fit.beta_ci[1]:.2f}]")
+            lines.append(f"{name}: {r.fit.method} theta = {r.fit.theta:.4f} g{ci}, "
+                         f"beta = {r.fit.beta:.3f}")
+    lines.append("stripes: " + ", ".join(f"{x:.3f} g {z}/{n}" for x, z, n in
+                                         zip(stripes.levels, stripes.collapses, stripes.trials)))
+    return "\n".join(lines)

@@ -1,0 +1,22 @@
+"""Report of one rocking response: the arch, the motion, the impact law and the outcome."""
+
+from __future__ import annotations
+
+__all__ = ["format_response"]
+
+
+def format_response(result, model, motion) -> str:
+    """Readable summary of a ResponseResult of ``model`` under ``motion``."""
+    imp = result.impacts
+    law = model.impact
+    outcome = (f"COLLAPSED at t = {result.t_collapse:.3f} s" if result.collapsed else
+               ("at rest" if result.status == "rest" else "still rocking at the end of the run"))
+    return "\n".join([
+        f"arch: {model.arch.name}; k_l = {model.k_l:.4f}, k_r = {model.k_r:.4f}",
+        f"ground motion: {motion.name} (duration {motion.duration:g} s, PGA {motion.pga_g:.3f} g)",
+        f"impact: {law.model}; rate ratio l->r {law.l_to_r:.4f}, r->l {law.r_to_l:.4f} "
+        f"(energy ratio {law.energy_l_to_r:.4f}, {law.energy_r_to_l:.4f})",
+        f"outcome: {outcome}; peak rotation {result.peak:.4f} rad; {len(imp)} impacts"
+        + (f" (first at {imp[0]:.3f} s)" if imp else "")
+        + (f"; passed the unstable position at {result.t_unstable:.3f} s" if result.t_unstable else ""),
+    ])
