@@ -7,13 +7,14 @@ import pandas as pd
 import pytest
 
 from archrock.ensemble import (COLUMNS, EnsembleConfig, EnsembleConfigMismatch, run_batch,
-                               run_ensemble, pulse_description, sample_arch)
+                               run_ensemble, sample_arch)
 from archrock.errors import ArchInputError
 from archrock.fragility import collapse_probability
 from archrock.geometry import oppenheim_arch
+from archrock.groundmotion import PulseSpec
 from archrock.limit import limit_analysis
 
-PULSE = pulse_description("oppenheim", -1.0, 0.2)
+PULSE = PulseSpec("oppenheim", -1.0, 0.2)
 
 
 def config(**kw):
@@ -260,9 +261,9 @@ def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
     pytest.importorskip("distributed")
     import time
 
-    import archrock.ensemble as ens
+    from archrock.ensemble import executors
 
-    monkeypatch.setattr(ens, "SCHEDULER_TIMEOUT_S", 1.0)
+    monkeypatch.setattr(executors, "SCHEDULER_TIMEOUT_S", 1.0)
     address = f"127.0.0.1:{_unused_port()}"
     t0 = time.perf_counter()
     with pytest.raises(ArchInputError, match=f"scheduler: cannot connect to '{address}'"):
@@ -275,9 +276,9 @@ def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
 
 
 def test_event_table_overflow_is_flagged_not_failed(base, monkeypatch):
-    import archrock.ensemble as ens
+    from archrock.ensemble import compute
 
-    monkeypatch.setattr(ens, "MAX_EVENTS", 8)
+    monkeypatch.setattr(compute, "MAX_EVENTS", 8)
     res = run_ensemble(config(), progress=False)
     df, ref = res.frame, base.frame
     over = df["events_truncated"].to_numpy()
@@ -356,7 +357,7 @@ def test_resume_recomputes_a_copied_batch(base, written, capsys):
 
 
 def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch):
-    import archrock.ensemble as ens
+    from archrock.ensemble import store
 
     other = written.parent / "other"
     run_ensemble(config(seed=12), out_dir=other, progress=False)
@@ -365,7 +366,7 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     # right metadata, wrong index column
     df = pd.read_parquet(batches / "batch-00003.parquet")
     df["index"] = df["index"] + 1
-    ens._write_batch(written, 3, df, config())
+    store.write_batch(written, 3, df, config())
     # no metadata at all: written by older code
     pd.read_parquet(batches / "batch-00000.parquet").to_parquet(batches / "batch-00000.parquet",
                                                                 index=False)
@@ -377,7 +378,7 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     assert "index" in why["3"]
     assert err.count("recomputing batch") == 3
     # the package's sources changed: every batch is recomputed, and said so
-    monkeypatch.setattr(ens, "_code_digest", lambda: "0" * 64)
+    monkeypatch.setattr(store, "_code_digest", lambda: "0" * 64)
     res, err = _resume(written, capsys)
     assert res.timing["computed_batches"] == [0, 1, 2, 3]
     assert set(res.timing["recomputed_batches"].values()) == {"written by other archrock code"}

@@ -732,14 +732,14 @@ def add_ensemble_parser(subparsers):
 
 
 def _ensemble_motion(args):
-    from .ensemble import pulse_description, record_description
+    from .groundmotion import PulseSpec, RecordSpec
 
     motion = motion_from_args(args)  # validates the options (one-line errors)
     if motion is None:
         return None
     if args.record:
-        return record_description(args.record, args.units, args.scale)
-    return pulse_description(args.pulse or "oppenheim", args.amplitude, args.pulse_duration)
+        return RecordSpec.from_file(args.record, args.units, args.scale)
+    return PulseSpec(args.pulse or "oppenheim", args.amplitude, args.pulse_duration)
 
 
 def _ensemble_num(x, spec: str) -> str:
