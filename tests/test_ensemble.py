@@ -1,5 +1,6 @@
 """Monte Carlo ensembles: nominal limit, reproducibility across executors, resume, summary."""
 
+import hashlib
 import json
 
 import numpy as np
@@ -178,10 +179,25 @@ def test_nominal_paper_impact_is_the_papers_cv():
     ({"samples": 0}, "samples"), ({"spread_span": -0.1}, "spread span"),
     ({"spread_radius": 1.0}, "spread radius"), ({"batch_size": 0}, "batch size"),
     ({"impact": "fixed", "cv": 0.0}, "cv"), ({"impact": "elastic"}, "impact"),
+    ({"motion": "oppenheim"}, "motion: 'oppenheim'; allowed None, a PulseSpec or RecordSpec"),
+    ({"motion": {"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0, "duration": -0.2}},
+     "pulse duration"),
 ])
 def test_bad_configuration(kw, field):
     with pytest.raises(ArchInputError, match=field):
         config(**kw)
+
+
+def test_motion_specification_serialises_as_the_manifests_dict():
+    c = config()
+    d = c.to_dict()
+    assert d["motion"] == {"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0, "duration": 0.2}
+    # a dict (as read from a manifest) becomes the specification; the round trip is exact
+    assert config(motion=d["motion"]).motion == PULSE
+    assert EnsembleConfig.from_dict(json.loads(c.to_json())) == c
+    # the configuration's hash (batch provenance) is the one written before the specifications
+    assert hashlib.sha256(c.to_json().encode()).hexdigest() == (
+        "42737ea36f887831e3fdca5bac0f38355b31e996048d870d5ea1939f11451c20")
 
 
 def test_bad_workers():
