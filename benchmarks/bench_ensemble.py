@@ -26,11 +26,12 @@ import numpy as np
 
 
 def _config(samples, seed=0):
-    from archrock.ensemble import EnsembleConfig, pulse_description
+    from archrock.ensemble import EnsembleConfig
     from archrock.geometry import oppenheim_arch
+    from archrock.groundmotion import PulseSpec
 
     return EnsembleConfig.from_arch(oppenheim_arch(), samples=samples, seed=seed, batch_size=500,
-                                    motion=pulse_description("oppenheim", -1.0, 0.2),
+                                    motion=PulseSpec("oppenheim", -1.0, 0.2),
                                     impact="fixed", cv=0.8754)
 
 
@@ -46,10 +47,9 @@ def _timed(config, **kw):
 def naive(config, n):
     """prepare + respond arch by arch for the first n samples; returns (seconds, rows)."""
     from archrock.ensemble import sample_arch
-    from archrock.ensemble import motion_from_description
     from archrock.response import prepare, respond
 
-    motion = motion_from_description(config.motion)
+    motion = config.motion.build()
     arches = [sample_arch(config, i) for i in range(n)]
     prepare(arches[0], 0.8754)  # warm-up (compiled kernels)
     rows = []

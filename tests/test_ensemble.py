@@ -1,5 +1,6 @@
 """Monte Carlo ensembles: nominal limit, reproducibility across executors, resume, summary."""
 
+import hashlib
 import json
 
 import numpy as np
@@ -7,13 +8,14 @@ import pandas as pd
 import pytest
 
 from archrock.ensemble import (COLUMNS, EnsembleConfig, EnsembleConfigMismatch, run_batch,
-                               run_ensemble, pulse_description, sample_arch)
+                               run_ensemble, sample_arch)
 from archrock.errors import ArchInputError
 from archrock.fragility import collapse_probability
 from archrock.geometry import oppenheim_arch
+from archrock.groundmotion import PulseSpec
 from archrock.limit import limit_analysis
 
-PULSE = pulse_description("oppenheim", -1.0, 0.2)
+PULSE = PulseSpec("oppenheim", -1.0, 0.2)
 
 
 def config(**kw):
@@ -177,10 +179,25 @@ def test_nominal_paper_impact_is_the_papers_cv():
     ({"samples": 0}, "samples"), ({"spread_span": -0.1}, "spread span"),
     ({"spread_radius": 1.0}, "spread radius"), ({"batch_size": 0}, "batch size"),
     ({"impact": "fixed", "cv": 0.0}, "cv"), ({"impact": "elastic"}, "impact"),
+    ({"motion": "oppenheim"}, "motion: 'oppenheim'; allowed None, a PulseSpec or RecordSpec"),
+    ({"motion": {"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0, "duration": -0.2}},
+     "pulse duration"),
 ])
 def test_bad_configuration(kw, field):
     with pytest.raises(ArchInputError, match=field):
         config(**kw)
+
+
+def test_motion_specification_serialises_as_the_manifests_dict():
+    c = config()
+    d = c.to_dict()
+    assert d["motion"] == {"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0, "duration": 0.2}
+    # a dict (as read from a manifest) becomes the specification; the round trip is exact
+    assert config(motion=d["motion"]).motion == PULSE
+    assert EnsembleConfig.from_dict(json.loads(c.to_json())) == c
+    # the configuration's hash (batch provenance) is the one written before the specifications
+    assert hashlib.sha256(c.to_json().encode()).hexdigest() == (
+        "42737ea36f887831e3fdca5bac0f38355b31e996048d870d5ea1939f11451c20")
 
 
 def test_bad_workers():
@@ -260,9 +277,9 @@ def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
     pytest.importorskip("distributed")
     import time
 
-    import archrock.ensemble as ens
+    from archrock.ensemble import executors
 
-    monkeypatch.setattr(ens, "SCHEDULER_TIMEOUT_S", 1.0)
+    monkeypatch.setattr(executors, "SCHEDULER_TIMEOUT_S", 1.0)
     address = f"127.0.0.1:{_unused_port()}"
     t0 = time.perf_counter()
     with pytest.raises(ArchInputError, match=f"scheduler: cannot connect to '{address}'"):
@@ -275,9 +292,9 @@ def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
 
 
 def test_event_table_overflow_is_flagged_not_failed(base, monkeypatch):
-    import archrock.ensemble as ens
+    from archrock.ensemble import compute
 
-    monkeypatch.setattr(ens, "MAX_EVENTS", 8)
+    monkeypatch.setattr(compute, "MAX_EVENTS", 8)
     res = run_ensemble(config(), progress=False)
     df, ref = res.frame, base.frame
     over = df["events_truncated"].to_numpy()
@@ -356,7 +373,7 @@ def test_resume_recomputes_a_copied_batch(base, written, capsys):
 
 
 def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch):
-    import archrock.ensemble as ens
+    from archrock.ensemble import store
 
     other = written.parent / "other"
     run_ensemble(config(seed=12), out_dir=other, progress=False)
@@ -365,7 +382,7 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     # right metadata, wrong index column
     df = pd.read_parquet(batches / "batch-00003.parquet")
     df["index"] = df["index"] + 1
-    ens._write_batch(written, 3, df, config())
+    store.write_batch(written, 3, df, config())
     # no metadata at all: written by older code
     pd.read_parquet(batches / "batch-00000.parquet").to_parquet(batches / "batch-00000.parquet",
                                                                 index=False)
@@ -377,7 +394,7 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     assert "index" in why["3"]
     assert err.count("recomputing batch") == 3
     # the package's sources changed: every batch is recomputed, and said so
-    monkeypatch.setattr(ens, "_code_digest", lambda: "0" * 64)
+    monkeypatch.setattr(store, "_code_digest", lambda: "0" * 64)
     res, err = _resume(written, capsys)
     assert res.timing["computed_batches"] == [0, 1, 2, 3]
     assert set(res.timing["recomputed_batches"].values()) == {"written by other archrock code"}

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import hashlib
 import importlib.resources
 import importlib.util
+import json
 import re
 from pathlib import Path
 
@@ -14,9 +16,12 @@ from archrock.errors import ArchInputError
 from archrock.groundmotion import (
     G,
     GroundMotion,
+    PulseSpec,
+    RecordSpec,
     from_samples,
     half_sine_pulse,
     load_record,
+    motion_spec_from_dict,
     oppenheim_pulse,
     one_sine_pulse,
     pulse,
@@ -371,3 +376,86 @@ def test_typo_in_first_data_line_is_an_error_not_a_header(tmp_path):
     f.write_text("0 1O\n0.01 0.2\n")
     with pytest.raises(ArchInputError, match="line 1: '1O' is not a number"):
         read_two_column(f)
+
+
+# ---- serialisable specifications ---------------------------------------------------------------
+
+
+def same_motion(a, b):
+    return (np.array_equal(a.times, b.times) and np.array_equal(a.accel, b.accel)
+            and a.name == b.name and a.source == b.source)
+
+
+@pytest.mark.parametrize("kind, amplitude, duration", [
+    ("oppenheim", -1.0, 0.2), ("half_sine", 0.3, 0.5), ("Ricker", -0.25, 0.4)])
+def test_pulse_spec_round_trip_and_build(kind, amplitude, duration):
+    spec = PulseSpec(kind, amplitude, duration)
+    d = spec.to_dict()
+    # the keys of the ensemble descriptions written before the specifications
+    assert d == {"type": "pulse", "kind": kind, "amplitude_g": amplitude, "duration": duration}
+    assert PulseSpec.from_dict(d) == spec and motion_spec_from_dict(d) == spec
+    assert motion_spec_from_dict(json.loads(json.dumps(d))) == spec
+    assert same_motion(spec.build(), pulse(kind, amplitude, duration))
+    assert spec.build() is spec.build()  # cached
+    assert str(duration) in spec.describe() and "pulse" in spec.describe()
+
+
+def test_record_spec_round_trip_build_and_checksum(tmp_path):
+    p = write(tmp_path, "rec.txt", "0 0\n0.01 0.1\n0.02 -0.2\n0.03 0\n")
+    spec = RecordSpec.from_file(p, units="m/s2", scale=2.0)
+    assert Path(spec.path).is_absolute()
+    assert spec.sha256 == hashlib.sha256(p.read_bytes()).hexdigest()
+    d = spec.to_dict()
+    assert d == {"type": "record", "path": str(p.resolve()), "units": "m/s2", "scale": 2.0,
+                 "sha256": spec.sha256}
+    assert RecordSpec.from_dict(d) == spec and motion_spec_from_dict(json.loads(json.dumps(d))) == spec
+    assert same_motion(spec.build(), load_record(p, "m/s2").scaled(2.0))
+    assert "rec.txt" in spec.describe()
+    plain = RecordSpec.from_file(p)
+    assert plain.units is None and plain.scale == 1.0
+    assert same_motion(plain.build(), load_record(p))
+    # a changed file is refused, even with the parsed record in the cache
+    p.write_text("0 0\n0.01 0.5\n0.02 0\n")
+    with raises("record sha256: .*the file has changed") as exc:
+        spec.build()
+    one_line(exc)
+    with raises("record sha256"):
+        RecordSpec.from_dict(d)
+    p.unlink()
+    with raises("record path: .*file not found") as exc:
+        spec.build()
+    one_line(exc)
+    with raises("record path"):
+        RecordSpec.from_file(p)
+
+
+@pytest.mark.parametrize("make, field", [
+    (lambda: PulseSpec("square", -1.0, 0.2), "pulse kind"),
+    (lambda: PulseSpec(None, -1.0, 0.2), "pulse kind"),
+    (lambda: PulseSpec("oppenheim", float("nan"), 0.2), "pulse amplitude"),
+    (lambda: PulseSpec("oppenheim", True, 0.2), "pulse amplitude"),
+    (lambda: PulseSpec("oppenheim", -1.0, 0.0), "pulse duration"),
+    (lambda: PulseSpec.from_dict({"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0}),
+     "motion duration: missing"),
+    (lambda: PulseSpec.from_dict({"type": "record", "kind": "oppenheim"}), "motion type"),
+    (lambda: PulseSpec.from_dict({"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0,
+                                  "duration": 0.2, "period": 1}), r"unknown field\(s\) \['period'\]"),
+    (lambda: motion_spec_from_dict({"type": "wave"}), "motion: .*allowed a dict with type"),
+    (lambda: motion_spec_from_dict(None), "motion: None"),
+])
+def test_spec_bad_fields_are_named(make, field):
+    with raises(field) as exc:
+        make()
+    one_line(exc)
+
+
+def test_record_spec_bad_fields_are_named(tmp_path):
+    p = write(tmp_path, "rec.txt", "0 0\n1 1\n")
+    good = {"path": str(p), "units": None, "scale": 1.0, "sha256": RecordSpec.from_file(p).sha256}
+    for change, field in (({"units": "ft/s2"}, "record units"), ({"scale": float("inf")}, "record scale"),
+                          ({"sha256": "abc"}, "record sha256"), ({"path": 3}, "record path")):
+        with raises(field) as exc:
+            RecordSpec(**{**good, **change})
+        one_line(exc)
+    with raises("units: 'm/s2' for rec.AT2"):
+        RecordSpec.from_file(at2(tmp_path, "NPTS= 10 DT= 0.01 SEC"), units="m/s2")

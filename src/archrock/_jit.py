@@ -23,11 +23,19 @@ except ImportError:  # pragma: no cover - exercised when numba is absent
     HAVE_NUMBA = False
 
 
-def _package_digest() -> str:
+def _package_digest(root=None) -> str:
+    """sha256 of every ``*.py`` file under the package folder (or ``root``), subpackages included.
+
+    Files are taken in the order of their relative paths written with '/', so the digest is the
+    same on every platform; each path and length is hashed before the contents, so moving code
+    between files changes it too.
+    """
+    base = Path(__file__).parent if root is None else Path(root)
     h = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
-        h.update(path.name.encode())
-        h.update(path.read_bytes())
+    for rel in sorted(p.relative_to(base).as_posix() for p in base.rglob("*.py")):
+        data = (base / rel).read_bytes()
+        h.update(f"{rel}\0{len(data)}\0".encode())
+        h.update(data)
     return h.hexdigest()
 
 

@@ -71,10 +71,11 @@ def add_spread_options(p: argparse.ArgumentParser) -> argparse.ArgumentParser:
     return p
 
 
-def spreads(args: argparse.Namespace) -> dict:
-    """The spreads of :func:`add_spread_options` as keyword arguments of the library."""
-    return {"spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
-            "spread_radius": args.spread_radius}
+def spreads(args: argparse.Namespace):
+    """The :class:`~archrock.sampling.Spreads` of :func:`add_spread_options`."""
+    from ..sampling import Spreads
+
+    return Spreads(args.spread_span, args.spread_thickness, args.spread_radius)
 
 
 # ---------------------------------------------------------------------------- ground motion
@@ -100,16 +101,16 @@ def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) 
     return parser
 
 
-def motion_from_args(args: argparse.Namespace):
-    """The GroundMotion described by :func:`add_motion_options`, or None if none was given."""
-    from ..groundmotion import load_record, pulse
+def motion_spec_from_args(args: argparse.Namespace):
+    """The PulseSpec / RecordSpec described by :func:`add_motion_options`, or None if none was
+    given (a record's file is read and checksummed)."""
+    from ..groundmotion import PulseSpec, RecordSpec
 
     has_pulse = any(getattr(args, f, None) is not None for f in ("pulse", "amplitude", "pulse_duration"))
     if getattr(args, "record", None):
         if has_pulse:
             raise CLIError("--record: cannot be combined with --pulse/--amplitude/--pulse-duration")
-        motion = load_record(args.record, units=args.units)
-        return motion.scaled(args.scale) if args.scale != 1.0 else motion
+        return RecordSpec.from_file(args.record, args.units, args.scale)
     for flag, given in (("--units", args.units is not None), ("--scale", args.scale != 1.0)):
         if given and has_pulse:
             raise CLIError(f"{flag}: applies to --record only; a pulse's amplitude is in g")
@@ -118,11 +119,16 @@ def motion_from_args(args: argparse.Namespace):
             raise CLIError("ground motion: give --pulse KIND --amplitude A_G --pulse-duration S "
                            "or --record FILE")
         return None
-    kind = args.pulse or "oppenheim"
     if args.amplitude is None or args.pulse_duration is None:
         raise CLIError("--amplitude and --pulse-duration: both are needed with a pulse "
                        "(e.g. --pulse oppenheim --amplitude -1 --pulse-duration 0.2)")
-    return pulse(kind, args.amplitude, args.pulse_duration)
+    return PulseSpec(args.pulse or "oppenheim", args.amplitude, args.pulse_duration)
+
+
+def motion_from_args(args: argparse.Namespace):
+    """The GroundMotion described by :func:`add_motion_options`, or None if none was given."""
+    spec = motion_spec_from_args(args)
+    return None if spec is None else spec.build()
 
 
 # ---------------------------------------------------------------------------- impact

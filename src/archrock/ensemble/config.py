@@ -1,0 +1,123 @@
+"""The configuration of an ensemble: everything that determines its results, JSON-serialisable.
+
+Its JSON (``to_json``, sorted keys) is hashed into each batch file's provenance and stored in the
+manifest, so a field's serialised form must not change without a format change.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import json
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..errors import ArchInputError
+from ..geometry import Arch
+from ..groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
+from ..impact import PAPER_PRACTICE, ImpactSpec
+from ..sampling import METHOD_SPREADS, ArchSampler, Spreads
+
+__all__ = ["EnsembleConfig"]
+
+
+def int_field(name, value, lo):
+    """``value`` as an int >= ``lo``, or ArchInputError naming the field ``name``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise ArchInputError(f"{name}: {value!r}; allowed an integer >= {lo}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class EnsembleConfig:
+    """Everything that determines an ensemble's results (JSON-serialisable).
+
+    nominal: the nominal geometry as ``Arch.to_dict()``; samples >= 1; seed >= 0; spreads: a
+    :class:`~archrock.sampling.Spreads` (or its dict): sample i is arch i of
+    ``ArchSampler(nominal, spreads, seed)``, the same arch as in ``curves`` and ``fragility``;
+    batch_size >= 1: samples per batch, the unit of work, of parallelism and of resumption (the
+    draws do not depend on it); motion: None (limit analysis only), a
+    :class:`~archrock.groundmotion.PulseSpec` or :class:`~archrock.groundmotion.RecordSpec`, or
+    the dict of one (``to_dict()``, as in a manifest), kept as the specification; impact: an
+    :class:`~archrock.impact.ImpactSpec` (or what ``ImpactSpec.parse`` reads; default the paper's
+    practice, the 'paper' model's c_v of the nominal arch fixed on every sample); dt [s]: RK4
+    step; t_free [s]: free motion allowed after the ground motion; tabulate: the RK4 kernel reads
+    the equation's coefficients from spline tables (as ``respond``'s default; ~1e-9 relative,
+    about 3x faster) instead of the exact loop closure.
+    """
+
+    nominal: dict
+    samples: int = 1000
+    seed: int = 0
+    spreads: Spreads | dict = METHOD_SPREADS
+    batch_size: int = 500
+    motion: PulseSpec | RecordSpec | dict | None = None
+    impact: ImpactSpec | dict | str | None = PAPER_PRACTICE
+    dt: float = 2e-3
+    t_free: float = 60.0
+    tabulate: bool = True
+
+    def __post_init__(self):
+        if isinstance(self.nominal, Arch):
+            object.__setattr__(self, "nominal", self.nominal.to_dict())
+        Arch.from_dict(self.nominal)  # validates
+        object.__setattr__(self, "samples", int_field("samples", self.samples, 1))
+        object.__setattr__(self, "seed", int_field("seed", self.seed, 0))
+        object.__setattr__(self, "batch_size", int_field("batch size", self.batch_size, 1))
+        object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
+        object.__setattr__(self, "impact", ImpactSpec.parse(self.impact))
+        for name in ("dt", "t_free"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
+                raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0 s")
+            object.__setattr__(self, name, float(v))
+        if not isinstance(self.tabulate, bool):
+            raise ArchInputError(f"tabulate: {self.tabulate!r}; allowed true or false")
+        motion = self.motion
+        if isinstance(motion, dict):
+            motion = motion_spec_from_dict(motion)  # checked as it is built
+        elif motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):
+            raise ArchInputError(f"motion: {motion!r}; allowed None, a PulseSpec or RecordSpec, "
+                                 "or the dict of one")
+        object.__setattr__(self, "motion", motion)
+
+    @classmethod
+    def from_arch(cls, nominal: Arch, **kwargs) -> "EnsembleConfig":
+        return cls(nominal.to_dict(), **kwargs)
+
+    @cached_property
+    def sampler(self) -> ArchSampler:
+        """The sampler of this ensemble's random arches."""
+        return ArchSampler(Arch.from_dict(self.nominal, name="nominal"), self.spreads, self.seed)
+
+    @property
+    def n_batches(self) -> int:
+        return -(-self.samples // self.batch_size)
+
+    def batch_range(self, b: int) -> tuple[int, int]:
+        """(first sample index, number of samples) of batch b."""
+        start = b * self.batch_size
+        return start, min(self.batch_size, self.samples - start)
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict; the motion as its specification's dict (the manifests' format)."""
+        d = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        d["nominal"] = copy.deepcopy(self.nominal)
+        d["motion"] = None if self.motion is None else self.motion.to_dict()
+        d["spreads"] = self.spreads.to_dict()
+        d["impact"] = self.impact.to_dict()
+        return d
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "EnsembleConfig":
+        names = {f.name for f in dataclasses.fields(cls)}
+        unknown = set(data) - names
+        if unknown:
+            raise ArchInputError(f"ensemble configuration: unknown field(s) {sorted(unknown)}")
+        return cls(**data)

@@ -1,0 +1,107 @@
+"""Run (or resume) an ensemble: the batches missing from the output folder are computed, the
+others loaded, and the per-sample tables joined into an :class:`EnsembleResult`."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from ..errors import ArchInputError
+from ..geometry import Arch
+from .config import EnsembleConfig, int_field
+from .executors import execute
+from .progress import Progress
+from .store import Manifest, batch_path, read_batch, write_batch
+from .summary import EnsembleResult
+
+__all__ = ["run_ensemble"]
+
+
+def _nominal_info(config: EnsembleConfig) -> dict:
+    from ..batch import mechanism_label
+    from ..limit import kinematic_multipliers_batch
+
+    arch = Arch.from_dict(config.nominal)
+    k_l, k_r, i_l, i_r = kinematic_multipliers_batch(arch.spans[None], arch.radii[None],
+                                                     arch.thicknesses[None])
+    return {"k_l": float(k_l[0]), "k_r": float(k_r[0]), "mech_l": mechanism_label(arch.n, int(i_l[0])),
+            "mech_r": mechanism_label(arch.n, int(i_r[0]))}
+
+
+def _impact_info(config: EnsembleConfig) -> dict:
+    """The impact spec as given, as applied to the samples, and in words (manifest, summary)."""
+    applied = config.impact.resolved(config.sampler.nominal)
+    return {**config.impact.to_dict(), "applied": applied.to_dict(),
+            "description": config.impact.describe()
+            + (f": c_v = {applied.cv:.6g}" if applied is not config.impact else "")}
+
+
+def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, scheduler=None,
+                 progress: bool = True) -> EnsembleResult:
+    """Run (or resume) an ensemble.
+
+    out_dir: folder for the batches and manifest (None: nothing written); workers: 1 runs
+    in-process (numba parallel loop), > 1 a local process pool over batches; scheduler: address
+    of a Dask scheduler (or a ``distributed.Client``), which takes precedence over ``workers``;
+    progress: a progress bar on stderr.
+    """
+    import pandas as pd
+
+    if not isinstance(config, EnsembleConfig):
+        raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
+    workers = int_field("workers", workers, 1)
+    t_start = time.perf_counter()
+    impact = _impact_info(config)
+    nominal = _nominal_info(config)
+    out = Path(out_dir) if out_dir is not None else None
+    manifest = Manifest(out, config, impact, nominal) if out is not None else None
+    frames: dict[int, object] = {}
+    batch_timings: dict[int, dict] = {}
+    todo = []
+    recomputed: dict[int, str] = {}
+    bar = Progress(config.samples, progress)
+    try:
+        for b in range(config.n_batches):
+            nb = config.batch_range(b)[1]
+            df, why = read_batch(out, b, config) if out is not None else (None, None)
+            if df is not None:
+                frames[b] = df
+                manifest.batch_done(b, nb, {}, computed=False)
+                bar.update(nb)
+            else:
+                todo.append(b)
+                if why is not None:
+                    recomputed[b] = why
+                    manifest.run["recomputed"][str(b)] = why
+                    bar.note(f"ensemble: recomputing batch {b}: "
+                             f"{batch_path(out, b).name} {why}")
+        if manifest is not None:
+            manifest.save()
+
+        def finished(b, df, timings):
+            frames[b] = df
+            batch_timings[b] = timings
+            if out is not None:
+                write_batch(out, b, df, config)
+                manifest.batch_done(b, len(df), timings, computed=True)
+                manifest.save()
+            bar.update(len(df))
+
+        executor = execute(config, todo, finished, workers, scheduler)
+    finally:
+        bar.close()
+        if manifest is not None:
+            manifest.finish(complete=len(frames) == config.n_batches)
+    frame = pd.concat([frames[b] for b in sorted(frames)], ignore_index=True)
+    wall = time.perf_counter() - t_start
+    computed = sorted(batch_timings)
+    n_computed = int(sum(config.batch_range(b)[1] for b in computed))
+    timing = {"wall_s": wall, "executor": executor, "workers": workers,
+              "computed_batches": computed, "loaded_batches": sorted(set(frames) - set(computed)),
+              "recomputed_batches": {str(b): why for b, why in sorted(recomputed.items())},
+              "computed_samples": n_computed,
+              "samples_per_s": n_computed / wall if n_computed and wall > 0 else None,
+              "prepare_s": float(sum(t["prepare_s"] for t in batch_timings.values())),
+              "response_s": float(sum(t["response_s"] for t in batch_timings.values()))}
+    return EnsembleResult(config, frame, nominal, impact, timing,
+                          str(out) if out is not None else None)

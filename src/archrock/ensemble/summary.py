@@ -1,0 +1,132 @@
+"""The result of an ensemble and its summary statistics.
+
+Definitions used by :meth:`EnsembleResult.summary`:
+
+* k statistics and the "as far as RA-x" shares over the samples whose limit analysis found a
+  standing arch (finite k_l, k_r > 0): samples that failed there (invalid geometry, no
+  mechanism, "cannot stand") are left out; samples that failed later (four-link model, impact
+  law) keep their valid k.  std is the sample standard deviation (ddof = 1; None for one sample).
+* response statistics over the samples whose response was integrated; ``peak_rad`` only over
+  those that did not collapse (a collapsed sample's ``peak`` column is its rotation limit).
+* p_collapse over the samples whose response was integrated (status rest, collapsed or moving),
+  with the Wilson score interval (:func:`archrock.fragility.collapse_probability`).
+* "as far from nominal as RA-x" (RA-1: k_l = 0.4111, k_r = 0.3104; RA-2: k_l = 0.3946,
+  k_r = 0.3501, the paper's random arches): with k0_l, k0_r the nominal arch's multipliers,
+  ``k_l``: |k_l - k0_l| >= |k_l(RA) - k0_l|; ``k_r``: the same for k_r; ``either`` / ``both``:
+  one of / both conditions; ``asymmetry``: |k_l - k_r| >= |k_l(RA) - k_r(RA)|.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .. import published
+from .config import EnsembleConfig
+
+__all__ = ["EnsembleResult", "PAPER_RANDOM_ARCHES"]
+
+#: The paper's random arches (plausibility figures, METHOD section 2).
+PAPER_RANDOM_ARCHES = published.RANDOM_ARCHES
+
+
+def _stats(x: np.ndarray) -> dict:
+    x = np.asarray(x, float)
+    x = x[np.isfinite(x)]
+    if x.size == 0:
+        return {"mean": None, "std": None, "min": None, "q05": None, "median": None, "q95": None,
+                "max": None, "count": 0}
+    q = np.quantile(x, [0.05, 0.5, 0.95])
+    return {"mean": float(x.mean()), "std": float(x.std(ddof=1)) if x.size > 1 else None,
+            "min": float(x.min()), "q05": float(q[0]), "median": float(q[1]), "q95": float(q[2]),
+            "max": float(x.max()), "count": int(x.size)}
+
+
+def _reason(text: str) -> str:
+    return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "#", text.split(" (")[0])
+
+
+@dataclass
+class EnsembleResult:
+    """Result of :func:`~archrock.ensemble.run.run_ensemble`: the per-sample table and how it was obtained.
+
+    frame: one row per sample (columns :data:`~archrock.ensemble.compute.COLUMNS`), sorted by index; nominal: k_l, k_r and
+    mechanisms of the nominal arch; impact: the resolved impact law; timing: wall time and
+    batches computed / loaded from ``out_dir``.
+    """
+
+    config: EnsembleConfig
+    frame: object
+    nominal: dict
+    impact: dict
+    timing: dict = field(default_factory=dict)
+    out_dir: str | None = None
+
+    def summary(self, confidence: float = 0.95) -> dict:
+        """JSON-ready summary (definitions in the module docstring)."""
+        from ..fragility import collapse_probability
+
+        df = self.frame
+        kl_all, kr_all = df["k_l"].to_numpy(), df["k_r"].to_numpy()
+        # a standing arch by limit analysis (k <= 0: "cannot stand", a failed sample)
+        with np.errstate(invalid="ignore"):
+            k_ok = np.isfinite(kl_all) & np.isfinite(kr_all) & (kl_all > 0) & (kr_all > 0)
+        kl, kr = df["k_l"].to_numpy()[k_ok], df["k_r"].to_numpy()[k_ok]
+        failed = df[df["error"] != ""]
+        reasons: dict[str, int] = {}
+        for e in failed["error"]:
+            reasons[_reason(e)] = reasons.get(_reason(e), 0) + 1
+        hinges = {}
+        for col, name in (("mech_l", "M_l"), ("mech_r", "M_r")):
+            vc = df.loc[df[col] != "", col].value_counts()
+            hinges[name] = {str(k): int(v) for k, v in vc.items()}
+        k0l, k0r = self.nominal["k_l"], self.nominal["k_r"]
+        far = {}
+        for name, (ral, rar) in PAPER_RANDOM_ARCHES.items():
+            dl = np.abs(kl - k0l) >= abs(ral - k0l)
+            dr = np.abs(kr - k0r) >= abs(rar - k0r)
+            asym = np.abs(kl - kr) >= abs(ral - rar)
+            share = (lambda m: float(m.mean()) if m.size else None)
+            far[name] = {"k_l_ref": ral, "k_r_ref": rar, "k_l": share(dl), "k_r": share(dr),
+                         "either": share(dl | dr), "both": share(dl & dr), "asymmetry": share(asym)}
+        out = {
+            "samples": int(len(df)),
+            "seed": self.config.seed,
+            "spreads": {"span": self.config.spreads.span,
+                        "thickness": self.config.spreads.thickness,
+                        "radius": self.config.spreads.radius},
+            "nominal": self.nominal,
+            "k_l": _stats(kl), "k_r": _stats(kr),
+            "k_min": _stats(np.minimum(kl, kr)),
+            "hinge_patterns": hinges,
+            "as_far_as": far,
+            "failed": {"count": int(len(failed)), "reasons": reasons},
+            "impact": self.impact,
+            "motion": None if self.config.motion is None else self.config.motion.to_dict(),
+            "p_collapse": None,
+            "response": None,
+            "timing": self.timing,
+        }
+        if self.config.motion is not None:
+            ran = df[df["status"].isin(["rest", "collapsed", "moving"])]
+            n, k = int(len(ran)), int(ran["collapsed"].sum())
+            if n:
+                p, lo, hi = collapse_probability(k, n, confidence, "wilson")
+                out["p_collapse"] = {"p": p, "low": lo, "high": hi, "confidence": confidence,
+                                     "method": "wilson", "collapses": k, "trials": n}
+            col = ran[ran["collapsed"]]
+            out["response"] = {
+                "status": {str(k_): int(v) for k_, v in ran["status"].value_counts().items()},
+                "activated": float((ran["n_activations"] > 0).mean()) if n else None,
+                "peak_rad": _stats(ran.loc[~ran["collapsed"], "peak"].to_numpy()),
+                "n_impacts": _stats(ran["n_impacts"].to_numpy()),
+                "events_truncated": int(ran["events_truncated"].sum()),
+                "t_collapse_s": _stats(col["t_collapse"].to_numpy()),
+                "t_unstable_s": _stats(ran["t_unstable"].to_numpy()),
+                "unstable_but_survived": int((np.isfinite(ran["t_unstable"].to_numpy())
+                                              & ~ran["collapsed"].to_numpy()).sum()),
+            }
+        return out
+

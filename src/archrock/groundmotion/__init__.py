@@ -1,0 +1,45 @@
+"""Ground motions: horizontal ground acceleration histories xg''(t) (METHOD section 3).
+
+Conventions: SI units (s, m/s^2); ``accel`` is positive toward +x (to the right), the same x as
+the arch geometry.  Amplitudes passed to the pulse constructors are in g (multiples of ``G``) and
+may be negative: the paper's forcing is Oppenheim's pulse with a = -1 g, t_p = 0.20 s.
+
+A :class:`GroundMotion` is a piecewise-linear history through its samples.  A time may appear
+twice in a row to encode a step (a jump in acceleration); the history is right-continuous there
+(at the repeated time the later value applies).  Before t = 0 and after the last sample the
+acceleration is 0.  So a record whose last sample is nonzero drops to 0 just after its end; the
+pulse constructors end their histories with an explicit 0 where the drop matters.
+
+Modules: :mod:`.motion` (the model, :func:`from_samples`), :mod:`.pulses` (idealised pulses),
+:mod:`.records` (two-column and PEER NGA ``.AT2`` files), :mod:`.spec` (serialisable
+specifications that rebuild a motion: :class:`PulseSpec`, :class:`RecordSpec`).  Every bad input
+raises :class:`archrock.errors.ArchInputError` with a one-line message naming the field.
+"""
+
+from ..units import G  # re-exported: the package's gravity constant [m/s^2]
+from .motion import UNITS, GroundMotion, from_samples
+from .pulses import (PULSE_KINDS, half_sine_pulse, one_sine_pulse, oppenheim_pulse, pulse,
+                     pulse_kind, rectangular_pulse, ricker_pulse)
+from .records import load_record, read_at2, read_two_column
+from .spec import PulseSpec, RecordSpec, motion_spec_from_dict
+
+__all__ = [
+    "G",
+    "UNITS",
+    "PULSE_KINDS",
+    "GroundMotion",
+    "oppenheim_pulse",
+    "rectangular_pulse",
+    "half_sine_pulse",
+    "one_sine_pulse",
+    "ricker_pulse",
+    "pulse",
+    "pulse_kind",
+    "from_samples",
+    "read_two_column",
+    "read_at2",
+    "load_record",
+    "PulseSpec",
+    "RecordSpec",
+    "motion_spec_from_dict",
+]

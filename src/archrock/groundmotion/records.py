@@ -1,0 +1,188 @@
+"""Readers of recorded ground motions: two-column text files and PEER NGA ``.AT2`` files.
+
+Every bad file raises :class:`archrock.errors.ArchInputError` with a one-line message naming the
+file, the line and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ArchInputError
+from ..units import G
+from .motion import GroundMotion, _unit_factor
+
+__all__ = ["read_two_column", "read_at2", "load_record"]
+
+
+def _short(text: str, limit: int = 60) -> str:
+    """repr of a text snippet for a one-line message (repr escapes newlines)."""
+    text = text.strip()
+    if len(text) > limit:
+        text = text[:limit] + "..."
+    return repr(text)
+
+
+def _read_lines(path) -> tuple[Path, list[str]]:
+    if not isinstance(path, (str, Path)) and not hasattr(path, "__fspath__"):
+        raise ArchInputError(f"record path: {path!r}; allowed a file path")
+    p = Path(path)
+    if not p.is_file():
+        what = "is not a file" if p.exists() else "file not found"
+        raise ArchInputError(f"record {p}: {what}; allowed an existing readable file")
+    try:
+        text = p.read_text(encoding="utf-8", errors="strict")
+    except UnicodeDecodeError:
+        try:
+            text = p.read_text(encoding="latin-1")  # old headers may hold accented site names
+        except OSError as exc:
+            raise ArchInputError(f"record {p}: cannot read ({exc.strerror}); allowed a readable file") from None
+    except OSError as exc:
+        raise ArchInputError(f"record {p}: cannot read ({exc.strerror}); allowed a readable file") from None
+    if "\x00" in text:
+        raise ArchInputError(f"record {p}: binary data; allowed a text file")
+    return p, text.splitlines()  # splitlines handles the CRLF endings of PEER files
+
+
+def _number(p: Path, lineno: int, token: str) -> float:
+    try:
+        x = float(token)
+    except ValueError:
+        raise ArchInputError(f"record {p.name}: line {lineno}: {_short(token)} is not a number") from None
+    if not math.isfinite(x):
+        raise ArchInputError(f"record {p.name}: line {lineno}: {token!r} is not finite; allowed finite numbers")
+    return x
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMotion:
+    """Read "time accel" rows (whitespace- or comma-separated) into a GroundMotion.
+
+    '#' starts a comment (whole line or trailing); blank lines are skipped; the first non-comment
+    line may be a non-numeric header.  Times [s] must be >= 0 and increasing; one time may appear
+    twice in a row (a step).  If the first time is > 0, a zero sample (0, 0) is prepended, so the
+    record ramps from 0 to its first value.  ``units`` in UNITS, converted to m/s^2.
+    """
+    factor = _unit_factor(units)
+    p, lines = _read_lines(path)
+    ts: list[float] = []
+    acs: list[float] = []
+    linenos: list[int] = []
+    seen_first = False
+    for lineno, raw in enumerate(lines, start=1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        tokens = line.replace(",", " ").replace(";", " ").split()
+        if not seen_first:
+            seen_first = True
+            if not any(_is_number(tok) for tok in tokens):
+                continue  # a header line such as "time, accel" (a line with a number is data)
+        if len(tokens) != 2:
+            raise ArchInputError(
+                f"record {p.name}: line {lineno}: {len(tokens)} columns; allowed 2 (time accel)"
+            )
+        t = _number(p, lineno, tokens[0])
+        a = _number(p, lineno, tokens[1])
+        if not ts and t < 0.0:
+            raise ArchInputError(f"record {p.name}: line {lineno}: time {t:g} s; allowed >= 0 s")
+        if ts and t < ts[-1]:
+            raise ArchInputError(
+                f"record {p.name}: line {lineno}: time {t:g} s after {ts[-1]:g} s; allowed increasing times"
+            )
+        if len(ts) >= 2 and t == ts[-1] == ts[-2]:
+            raise ArchInputError(
+                f"record {p.name}: line {lineno}: time {t:g} s a third time; allowed at most 2 equal times (a step)"
+            )
+        ts.append(t)
+        acs.append(a)
+        linenos.append(lineno)
+    if not ts:
+        raise ArchInputError(f"record {p.name}: empty record (no 'time accel' rows); allowed >= 2 samples")
+    if ts[0] > 0.0:
+        ts.insert(0, 0.0)
+        acs.insert(0, 0.0)
+    if len(ts) < 2:
+        raise ArchInputError(f"record {p.name}: 1 sample; allowed >= 2 samples")
+    return GroundMotion(
+        np.array(ts), np.array(acs) * factor, name if name is not None else p.stem,
+        f"{p} (two-column, {units})",
+    )
+
+
+_NGA_HEADER = re.compile(r"NPTS\s*=\s*(\S+?)\s*,?\s*DT\s*=\s*(\S+?)\s*,?\s*(SEC\b.*)?$", re.IGNORECASE)
+_OLD_HEADER = re.compile(r"^\s*(\S+)\s+(\S+)\s+NPTS\s*,?\s*DT\b", re.IGNORECASE)
+
+
+def read_at2(path) -> GroundMotion:
+    """Read a PEER NGA ``.AT2`` acceleration file (values in g) into a GroundMotion [m/s^2].
+
+    Four header lines; the 4th is ``NPTS=  5000, DT=   .0100 SEC,`` (NGA-West2; commas and case
+    optional) or ``  4000    0.00500    NPTS, DT`` (older files).  Then NPTS values in free format.
+    The value count must equal NPTS.  Samples at t = k DT, k = 0..NPTS-1.
+    """
+    p, lines = _read_lines(path)
+    expected = "'NPTS= n, DT= dt SEC' (NGA-West2) or 'n dt NPTS, DT' (older PEER)"
+    if len(lines) < 4:
+        raise ArchInputError(
+            f"record {p.name}: missing header ({len(lines)} lines); allowed 4 header lines, the 4th {expected}"
+        )
+    kind = lines[2].upper()
+    m_units = re.search(r"UNITS\s+OF\s+(\S+)", kind)
+    if "VELOCITY" in kind or "DISPLACEMENT" in kind or (
+        m_units and m_units.group(1).strip(".,;:") not in ("G", "G'S")
+    ):
+        raise ArchInputError(f"record {p.name}: line 3: {_short(lines[2])}; allowed an acceleration record in g")
+    head = lines[3].strip()
+    m = _NGA_HEADER.search(head) or _OLD_HEADER.match(head)
+    if m is None:
+        raise ArchInputError(f"record {p.name}: line 4: header {_short(head)}; allowed {expected}")
+    npts_tok, dt_tok = m.group(1), m.group(2)
+    try:
+        npts = int(npts_tok)
+    except ValueError:
+        raise ArchInputError(f"record {p.name}: line 4: NPTS {npts_tok!r}; allowed an integer >= 2") from None
+    dt = _number(p, 4, dt_tok)
+    if dt <= 0.0:
+        raise ArchInputError(f"record {p.name}: line 4: DT {dt:g} s; allowed > 0 s")
+    if npts < 2:
+        what = "empty record, " if npts <= 0 else ""
+        raise ArchInputError(f"record {p.name}: line 4: {what}NPTS {npts}; allowed an integer >= 2")
+    values: list[float] = []
+    for lineno, raw in enumerate(lines[4:], start=5):
+        for tok in raw.split():
+            values.append(_number(p, lineno, tok))
+    if len(values) != npts:
+        few = "fewer" if len(values) < npts else "more"
+        raise ArchInputError(
+            f"record {p.name}: NPTS: header says {npts} but {len(values)} values found ({few}); "
+            "allowed exactly NPTS values"
+        )
+    t = np.arange(npts) * dt
+    acc = np.array(values) * G
+    title = lines[1].strip()
+    return GroundMotion(t, acc, title or p.stem, f"{p} (PEER AT2, g, NPTS={npts}, DT={dt:g} s)")
+
+
+def load_record(path, units: str | None = None) -> GroundMotion:
+    """Read a record by suffix: ``.AT2`` (any case) -> :func:`read_at2` (units must be g or None),
+    anything else -> :func:`read_two_column` with ``units`` (default 'g')."""
+    if not isinstance(path, (str, Path)) and not hasattr(path, "__fspath__"):
+        raise ArchInputError(f"record path: {path!r}; allowed a file path")
+    p = Path(path)
+    if p.suffix.lower() == ".at2":
+        if units is not None and units != "g":
+            raise ArchInputError(f"units: {units!r} for {p.name}; allowed 'g' (PEER .AT2 values are in g)")
+        return read_at2(p)
+    return read_two_column(p, units="g" if units is None else units)
