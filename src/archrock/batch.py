@@ -32,7 +32,7 @@ from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError
 from .geometry import perturb_voussoirs, sector_properties
 from .groundmotion import G, GroundMotion
-from .limit import candidate_hinges, kinematic_multipliers_batch
+from .limit import _mechanism_from_candidate, candidate_hinges, kinematic_multipliers_batch
 from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficient_table, coefficients, dead_point, mechanism_geo,
                         rest_rate, rotation_limit, table_range, unstable_rotation)
 
@@ -71,9 +71,8 @@ def check_geometries(spans, radii, thick) -> np.ndarray:
 
 def mechanism_label(n: int, candidate: int) -> str:
     """Compact label of a kinematic candidate: joints from the left springing with their edge,
-    e.g. '0i-3e-5i-7e' (i = intrados, e = extrados)."""
-    joints, edges = candidate_hinges(n, candidate)
-    return "-".join(f"{j}{'ie'[e]}" for j, e in zip(joints, edges))
+    e.g. '0i-3e-5i-7e' (i = intrados, e = extrados): :attr:`archrock.limit.Mechanism.label`."""
+    return _mechanism_from_candidate(n, candidate, "l", math.nan).label
 
 
 # ---------------------------------------------------------------------------- compiled geometry
