@@ -466,6 +466,14 @@ def run_respond(args) -> int:
     print(f"outcome: {outcome}; peak rotation {res.peak:.4f} rad; {len(imp)} impacts"
           + (f" (first at {imp[0]:.3f} s)" if imp else "")
           + (f"; passed the unstable position at {res.t_unstable:.3f} s" if res.t_unstable else ""))
+    opened = res.mechanisms_opened()
+    if opened:
+        # distinct mechanisms in order of first opening; rows 0/1 are the limit mechanisms
+        first = list(dict.fromkeys((row, lab) for _, row, lab in opened))
+        names = [f"{('M_l', 'M_r')[row]} {lab}" if row < 2 else
+                 f"{lab} ({model.mechanism(row).direction})" for row, lab in first]
+        print(f"mechanisms opened ({len(opened)} times, {len(first)} distinct): {names[0]}"
+              + (", then " + ", ".join(names[1:]) if len(names) > 1 else ""))
     for f in (args.plot, args.animate):
         if f:
             print(f"wrote {f}")
