@@ -12,8 +12,8 @@ parallel loop of the single-response kernel :func:`archrock.kernel.simulate_chai
   models "paper" and "momentum" go through :func:`archrock.impact.impact_law` arch by arch, and
   "least-loss" builds each arch's chain of mechanisms with :func:`archrock.response.prepare`.
   Every arch carries its chain (padded to the batch's longest; the paper's alternation is the
-  two rows M_l, M_r).  Arches that cannot be used (invalid geometry, no mechanism, an impact model that creates energy)
-  are not dropped: their ``error`` holds the reason.
+  two rows M_l, M_r).  Arches that cannot be used (invalid geometry, no mechanism, an impact
+  model that creates energy) are not dropped: their ``error`` holds the reason.
 * :func:`simulate_batch` integrates one ground motion for every prepared arch with a numba
   ``prange`` loop over arches (no output samples, ``n_out = 1``), returning per-arch summaries:
   status, peak, t_collapse, t_unstable, number of impacts and of activations, and whether the
@@ -454,8 +454,9 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
             np.ascontiguousarray(p.chain_direction, dtype=float),
             np.ascontiguousarray(p.chain_next, dtype=np.int64),
             np.ascontiguousarray(p.chain_ratio, dtype=float), p.v_rest, run, times, accel, G,
-            float(dt), float(t_free), int(max_events), res["status"], res["peak"], res["t_collapse"],
-            res["t_unstable"], res["n_impacts"], res["n_activations"], res["n_events"])
+            float(dt), float(t_free), int(max_events), res["status"], res["peak"],
+            res["t_collapse"], res["t_unstable"], res["n_impacts"], res["n_activations"],
+            res["n_events"])
     if HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:
