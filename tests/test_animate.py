@@ -60,3 +60,38 @@ def test_response_figure(tmp_path, collapsing):
 
     path = save_response_figure([collapsing], tmp_path / "r.png", labels=["RA-2 type"])
     assert path.stat().st_size > 10_000
+
+
+def test_displaced_outlines_take_chain_rows():
+    """A chain row, its FourLink and (for rows 0/1) 'l'/'r' draw the same thing; least-loss's
+    row 2 (0e-2i-5e-7i) is not M_r."""
+    from archrock.plots import displaced_hinges, displaced_outlines
+
+    model = prepare(geometry.oppenheim_arch(), "least-loss")
+    mechs = model.chain[0]
+    for row, letter in ((0, "l"), (1, "r")):
+        a = displaced_outlines(model, row, 0.05)
+        for b in (displaced_outlines(model, letter, 0.05), displaced_outlines(model, mechs[row], 0.05)):
+            assert all(np.array_equal(x, y) for x, y in zip(a, b))
+    r2, mr = displaced_outlines(model, 2, 0.05), displaced_outlines(model, "r", 0.05)
+    assert not all(np.allclose(x, y) for x, y in zip(r2, mr))
+    rest = displaced_outlines(model, "rest", 0.0)
+    assert all(np.array_equal(x, y) for x, y in zip(rest, displaced_outlines(model, -1, 0.05)))
+    # the hinges drawn for row 2 are its own: joints 0e, 2i, 5e, 7i at phi = 0
+    arch = model.arch
+    want = {tuple(np.round(arch.joint_point(h.joint, h.edge), 9)) for h in mechs[2].mechanism.hinges}
+    got = {tuple(np.round(p, 9)) for p in displaced_hinges(model, 2, 0.0)}
+    assert got == want and mechs[2].mechanism.label == "0e-2i-5e-7i"
+    assert displaced_hinges(model, -1, 0.1).shape == (0, 2)
+    with pytest.raises(ArchInputError, match="mechanism row"):
+        displaced_outlines(model, 7, 0.05)
+
+
+def test_least_loss_animation(tmp_path):
+    from archrock.animate import animate_response
+
+    model = prepare(geometry.oppenheim_arch(), "least-loss")
+    res = respond(model, gm.oppenheim_pulse(-1.0, 0.2), t_end=1.0)
+    path = animate_response(res, tmp_path / "ll.gif", max_frames=4, dpi=30)
+    with PIL.open(path) as im:
+        assert im.n_frames == 4

@@ -1,24 +1,35 @@
 """Batch preparation and the parallel response loop against the one-arch path (response.prepare /
 response.respond)."""
 
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from archrock.batch import (check_geometries, mechanism_label, perturb, prepare_batch,
+import archrock
+
+from archrock.batch import (check_geometries, mechanism_label, prepare_batch,
                             simulate_batch)
 from archrock.errors import ArchInputError
-from archrock.geometry import Arch, oppenheim_arch, random_spans_thicknesses_radii
+from archrock.geometry import (Arch, oppenheim_arch, perturb_voussoirs, random_arch,
+                               random_spans_thicknesses_radii)
 from archrock.groundmotion import oppenheim_pulse
 from archrock.response import prepare, respond
 
 CV = 0.8754
+STATUS = {0: "rest", 1: "collapsed", 2: "moving"}
 
 
 @pytest.fixture(scope="module")
 def sample():
     nom = oppenheim_arch()
     u = np.random.default_rng(2).uniform(-1, 1, size=(12, 3, nom.n))
-    spans, thick, radii = perturb(nom.spans, nom.thicknesses, nom.radii, u, 0.1, 0.1, 0.05)
+    spans, thick, radii = perturb_voussoirs(nom.spans, nom.thicknesses, nom.radii, u, 0.1, 0.1, 0.05)
     return nom, u, spans, thick, radii
 
 
@@ -98,7 +109,7 @@ def test_simulate_batch_equals_respond(sample):
 def test_paper_impact_energy_gain_is_recorded_not_used():
     nom = oppenheim_arch()
     u = np.random.default_rng(3).uniform(-1, 1, size=(200, 3, nom.n))
-    spans, thick, radii = perturb(nom.spans, nom.thicknesses, nom.radii, u, 0.1, 0.1, 0.05)
+    spans, thick, radii = perturb_voussoirs(nom.spans, nom.thicknesses, nom.radii, u, 0.1, 0.1, 0.05)
     pb = prepare_batch(spans, radii, thick, impact="paper")
     bad = ~pb.ok
     assert bad.sum() >= 1
@@ -156,3 +167,91 @@ def test_event_table_overflow_keeps_the_outcome(sample):
     np.testing.assert_array_equal(small["n_impacts"][~over], full["n_impacts"][~over])
     serial = simulate_batch(pb, motion, max_events=8, parallel=False)
     np.testing.assert_array_equal(serial["events_truncated"], over)
+
+
+# ------------------------------------------------------------------------- chains of mechanisms
+@pytest.fixture(scope="module")
+def ten_arches():
+    arches = [random_arch(seed=s) for s in range(10)]
+    return arches, [np.array([getattr(a, k) for a in arches]) for k in ("spans", "radii", "thicknesses")]
+
+
+def test_two_row_chain_arrays(sample):
+    nom, _, spans, thick, radii = sample
+    pb = prepare_batch(spans, radii, thick, impact="fixed", cv=CV)
+    assert pb.chain_geo.shape == (len(pb), 2, pb.geo_l.shape[1])
+    assert np.all(pb.n_mechanisms == 2)
+    np.testing.assert_array_equal(pb.chain_geo[:, 1], pb.geo_r)
+    np.testing.assert_array_equal(pb.chain_ratio, np.column_stack([pb.c_l_to_r, pb.c_r_to_l]))
+    np.testing.assert_array_equal(pb.chain_next, [[1, 0]] * len(pb))
+
+
+def test_least_loss_batch_equals_respond(ten_arches):
+    """The batch runs each arch's least-loss chain exactly as respond(prepare(arch, 'least-loss'))
+    does: same outcomes, peaks, collapse times and impact counts."""
+    arches, (spans, radii, thick) = ten_arches
+    pb = prepare_batch(spans, radii, thick, arches[0].density, impact="least-loss")
+    assert pb.ok.all()
+    assert set(pb.n_mechanisms.tolist()) <= {3, 4} and pb.chain_geo.shape[1] == 4
+    models = [prepare(arch, "least-loss") for arch in arches]
+    for b, model in enumerate(models):
+        assert pb.mech_l[b] == model.labels[0] and pb.mech_r[b] == model.labels[1]
+        assert pb.n_mechanisms[b] == len(model.chain[0])
+    statuses = set()
+    # the paper's pulse (all recover) and a longer one (collapses after an impact too)
+    for motion in (oppenheim_pulse(-1.0, 0.2), oppenheim_pulse(-1.0, 0.4)):
+        res = simulate_batch(pb, motion)
+        for b, model in enumerate(models):
+            r = respond(model, motion)
+            statuses.add((r.status, min(len(r.impacts), 1)))
+            assert STATUS[int(res["status"][b])] == r.status
+            assert res["peak"][b] == pytest.approx(r.peak, abs=1e-9)
+            assert res["n_impacts"][b] == len(r.impacts)
+            if r.collapsed:
+                assert res["t_collapse"][b] == pytest.approx(r.t_collapse, abs=1e-9)
+            else:
+                assert np.isnan(res["t_collapse"][b])
+    # recoveries, collapses before any impact and collapses in a mechanism opened by an impact
+    assert statuses == {("rest", 1), ("collapsed", 0), ("collapsed", 1)}
+
+
+def test_batch_without_numba_agrees(ten_arches):
+    """ARCHROCK_NO_NUMBA=1 runs the pure-Python loop over the same chains: the same numbers."""
+    script = textwrap.dedent("""
+        import json, numpy as np
+        from archrock.batch import prepare_batch, simulate_batch
+        from archrock.geometry import random_arch
+        from archrock.groundmotion import oppenheim_pulse
+        arches = [random_arch(seed=s) for s in (0, 4, 1)]
+        args = [np.array([getattr(a, k) for a in arches]) for k in ("spans", "radii", "thicknesses")]
+        out = {}
+        for imp in ("least-loss", "fixed"):
+            pb = prepare_batch(*args, arches[0].density, impact=imp, cv=0.8754)
+            r = simulate_batch(pb, oppenheim_pulse(-1.0, 0.4))
+            out[imp] = {k: np.asarray(r[k]).tolist() for k in ("status", "peak", "n_impacts")}
+        print(json.dumps(out))
+    """)
+    env = {**os.environ, "ARCHROCK_NO_NUMBA": "1",
+           "PYTHONPATH": os.pathsep.join([str(Path(archrock.__file__).parents[1]),
+                                          os.environ.get("PYTHONPATH", "")])}
+    proc = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    pure = json.loads(proc.stdout)
+    arches, _ = ten_arches
+    sel = [0, 4, 1]
+    args = [np.array([getattr(arches[s], k) for s in sel]) for k in ("spans", "radii", "thicknesses")]
+    for imp in ("least-loss", "fixed"):
+        pb = prepare_batch(*args, arches[0].density, impact=imp, cv=0.8754)
+        r = simulate_batch(pb, oppenheim_pulse(-1.0, 0.4))
+        assert pure[imp]["status"] == r["status"].tolist()
+        assert pure[imp]["n_impacts"] == r["n_impacts"].tolist()
+        np.testing.assert_allclose(pure[imp]["peak"], r["peak"], rtol=1e-12)
+    assert pure["least-loss"]["status"] == [1, 1, 0]
+
+
+def test_mechanism_label_is_the_mechanism_label():
+    from archrock.limit import _mechanism_from_candidate
+
+    for c in (0, 17, 400, 1000):
+        assert mechanism_label(7, c) == _mechanism_from_candidate(7, c, "r", 0.3).label

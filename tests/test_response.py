@@ -431,3 +431,89 @@ def test_least_loss_chain_mirrors():
     r, rm = respond(m, motion), respond(mm, motion.mirrored())
     assert rm.status == r.status
     assert np.allclose(rm.response, -r.response, atol=1e-9, equal_nan=True)
+
+
+# ------------------------------------------------------------------------- mechanisms named
+@pytest.mark.parametrize("integrator", ["fast", "reference"])
+def test_least_loss_events_name_the_open_mechanism(integrator):
+    """After the first impact least-loss opens 0e-2i-5e-7i (row 2), not M_r: the events, their
+    dicts and the per-sample rows say so, for both integrators."""
+    m = prepare(geometry.oppenheim_arch(), "least-loss")
+    r = respond(m, gm.oppenheim_pulse(-1.0, 0.2), integrator=integrator)
+    act, first = r.events[0], r.events[1]
+    assert (act.kind, act.row_before, act.row_after) == ("activation", -1, 0)
+    assert act.mechanism_before is None and act.mechanism_after == "0i-3e-5i-7e"
+    assert first.kind == "impact" and (first.before, first.after) == ("l", "r")
+    assert (first.row_before, first.row_after) == (0, 2)
+    assert (first.mechanism_before, first.mechanism_after) == ("0i-3e-5i-7e", "0e-2i-5e-7i")
+    assert r.events[2].mechanism_after == "0i-2e-5i-7e"
+    d = r.to_dict(samples=False)
+    assert d["events"][1]["mechanism_after"] == "0e-2i-5e-7i" and d["events"][1]["row_after"] == 2
+    assert [c["label"] for c in d["chain"]] == ["0i-3e-5i-7e", "0e-2i-4e-7i", "0e-2i-5e-7i",
+                                                "0i-2e-5i-7e"]
+    assert [c["opens"] for c in d["chain"]] == [2, 3, 3, 2]
+    assert d["chain"][2]["hinges"][1] == {"joint": 2, "edge": "intrados"}
+    assert d["chain"][0]["rate_ratio"] == pytest.approx(m.impact.l_to_r, rel=1e-15)
+    # every event's direction letter is its row's direction
+    mechs = m.chain[0]
+    for e in r.events:
+        assert e.before == ("rest" if e.row_before < 0 else mechs[e.row_before].direction)
+        assert e.after == ("rest" if e.row_after < 0 else mechs[e.row_after].direction)
+    _check_rows(r)
+
+
+def _check_rows(r):
+    """Response.rows agrees with the events and with the sign of the response."""
+    mechs = r.model.chain[0]
+    rows = r.rows
+    assert rows.shape == r.time.shape and rows.dtype.kind == "i"
+    for e0, e1 in zip(r.events, r.events[1:] + (None,)):
+        inside = (r.time > e0.time) & (r.time < (e1.time if e1 else np.inf))
+        want = -1 if e0.kind == "collapse" else e0.row_after
+        assert np.all(rows[inside] == want)
+    before = r.time < r.events[0].time if r.events else np.ones(r.time.size, bool)
+    assert np.all(rows[before] == -1)
+    sign = np.array([0.0] + [1.0 if fl.direction == "l" else -1.0 for fl in mechs])[rows + 1]
+    moving = np.isfinite(r.response) & (np.abs(r.response) > 1e-9)
+    assert np.all(sign[moving] * r.response[moving] > 0)
+    assert np.all(rows[~np.isfinite(r.response)] == -1)
+
+
+def test_paper_alternation_names_the_limit_mechanisms(paper_case):
+    r = paper_case
+    assert r.events[0].mechanism_after == "0i-3e-5i-7e"
+    for e in r.events[1:]:
+        if e.kind == "impact" and e.after != "rest":
+            assert {e.mechanism_before, e.mechanism_after} == {"0i-3e-5i-7e", "0e-2i-4e-7i"}
+            assert {e.row_before, e.row_after} == {0, 1}
+    d = r.to_dict(samples=False)
+    assert [(c["row"], c["direction"], c["label"], c["opens"]) for c in d["chain"]] == [
+        (0, "l", "0i-3e-5i-7e", 1), (1, "r", "0e-2i-4e-7i", 0)]
+    # the paper's numbers are unchanged
+    assert r.impacts[:3] == pytest.approx([0.6012004, 2.2293557, 3.3706334], abs=2e-6)
+    _check_rows(r)
+    assert set(np.unique(r.rows)) == {0, 1}
+
+
+def test_rows_after_collapse():
+    model = prepare(geometry.random_arch(seed=315), 0.8753811790524912)
+    r = respond(model, gm.oppenheim_pulse(-1.0, 0.2), t_end=3.0)
+    assert r.collapsed
+    _check_rows(r)
+    assert r.rows_at(r.t_collapse) == -1 and r.rows_at(r.t_collapse - 1e-6) >= 0
+    assert np.all(r.rows_at([-1.0, 0.0]) == [-1, 0])
+
+
+def test_cli_respond_names_the_mechanisms(capsys):
+    import json
+
+    from archrock.cli import main
+
+    argv = ["respond", "--impact", "least-loss", "--pulse", "oppenheim", "--amplitude", "-1",
+            "--pulse-duration", "0.2", "--t-end", "1"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "mechanisms opened" in out and "M_l 0i-3e-5i-7e, then 0e-2i-5e-7i (r)" in out
+    assert main(argv + ["--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["events"][1]["mechanism_after"] == "0e-2i-5e-7i" and len(d["chain"]) == 4

@@ -1,7 +1,9 @@
 """Animation of the arch's mechanism moving through a response (GIF or MP4, matplotlib).
 
 Each frame draws every voussoir moved rigidly with its link at the response's rotation
-(exact four-bar kinematics), with the ground motion and the signed response below it.
+(exact four-bar kinematics) in the mechanism of the chain actually open then (from the
+response's events, :meth:`archrock.response.Response.rows_at`), with its four hinges, and the
+ground motion and the signed response below it.
 Displacements are drawn to scale unless ``exaggerate`` says otherwise.
 """
 
@@ -25,8 +27,8 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     fps: frames per second; speed: simulated seconds per real second; exaggerate: factor on
     the drawn rotations (1 = to scale); max_frames caps the file size.
     """
-    from .plots import (STYLE, displaced_outlines, draw_displaced, new_figure, plot_ground_motion,
-                        voussoir_bounds)
+    from .plots import (STYLE, displaced_hinges, displaced_outlines, draw_displaced, new_figure,
+                        plot_ground_motion, voussoir_bounds)
 
     path = Path(path)
     if path.suffix.lower() not in (".gif", ".mp4"):
@@ -47,6 +49,13 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
         held[~finite] = held[last[-1]] if last.size else 0.0
     n_frames = min(max_frames, max(2, int(t[-1] * fps / speed)))
     frame_t = np.linspace(0.0, t[-1], n_frames)
+    frame_rows = response.rows_at(frame_t)
+    if response.collapsed and response.t_collapse is not None:
+        # hold the collapsing mechanism, as the rotation is held
+        last = [e for e in response.events if e.kind == "collapse"][-1].row_before
+        frame_rows[frame_t >= response.t_collapse] = last
+    mechs = model.chain[0]
+    labels = model.labels
     fig, axes = new_figure(2, 1, figsize=(6.4, 6.0), height_ratios=(2.2, 1.0))
     ax_arch, ax_resp = axes[0][0], axes[1][0]
     pts = voussoir_bounds(model.arch)
@@ -70,6 +79,8 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     ax_arch.set_ylim(min(pts[:, 1].min(), 0.0) - pad, pts[:, 1].max() + pad)
     ax_arch.axhline(0.0, color=STYLE["ground"], lw=1.0)
     patches = draw_displaced(ax_arch, model, "rest", 0.0)
+    hinge_marks, = ax_arch.plot([], [], "o", ms=6, mfc="white", mec=STYLE["hinge"], mew=1.6,
+                                zorder=5)
     title = ax_arch.set_title("", fontsize=9)
     # lay the figure out once; frames then only move the voussoirs (no relayout, no clearing)
     fig.canvas.draw()
@@ -79,14 +90,19 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
         tk = frame_t[k]
         val = float(np.interp(tk, t, held))
         collapsed = response.collapsed and response.t_collapse is not None and tk >= response.t_collapse
-        mode = "l" if val > 0 else ("r" if val < 0 else "rest")
-        for patch, outline in zip(patches, displaced_outlines(model, mode, abs(val) * exaggerate)):
+        row = int(frame_rows[k])
+        # the signed response is +phi for an 'l' mechanism, -phi for 'r'; a frame interpolated
+        # across an impact may carry the old sign for a moment: the new mechanism is then closed
+        rot = 0.0 if row < 0 else max(0.0, (1.0 if mechs[row].direction == "l" else -1.0) * val)
+        for patch, outline in zip(patches, displaced_outlines(model, row, rot * exaggerate)):
             patch.set_xy(outline)
-        state = "COLLAPSED" if collapsed else {"l": "M_l open", "r": "M_r open", "rest": "at rest"}[mode]
+        hinge_marks.set_data(*displaced_hinges(model, row, rot * exaggerate).T)
+        name = "" if row < 0 else (f"M_{mechs[row].direction} " if row < 2 else "") + labels[row]
+        state = ("COLLAPSED " + name) if collapsed else (f"{name} open" if row >= 0 else "at rest")
         title.set_text(f"t = {tk:5.2f} s   phi = {val:+.4f} rad   {state}"
                        + (f"   (rotations x{exaggerate:g})" if exaggerate != 1 else ""))
         marker.set_data([tk], [val])
-        return [*patches, title, marker]
+        return [*patches, hinge_marks, title, marker]
 
     anim = FuncAnimation(fig, draw, frames=n_frames, blit=False)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -1,17 +1,18 @@
 """Many arches at once: batch preparation (limit analysis -> four-link models -> impact law) and a
-parallel loop of the single-response kernel :func:`archrock.kernel.simulate`.
+parallel loop of the single-response kernel :func:`archrock.kernel.simulate_chain`.
 
-* :func:`perturb` maps uniform draws to the spans, thicknesses and radii of a batch of random
-  arches (the formula of :func:`archrock.geometry.random_spans_thicknesses_radii`, vectorised).
+* the random arches themselves come from :class:`archrock.sampling.ArchSampler`.
 * :func:`prepare_batch` does for a whole batch what :func:`archrock.response.prepare` does for one
   arch: limit analysis of all arches at once (:func:`archrock.limit.kinematic_multipliers_batch`),
   then, per arch, the flat four-link vectors ``geo`` of M_l and M_r (the same numbers as
   ``four_link(arch, mechanism).geo``), the unstable rotations, the rotation limits
   (``FourLink.default_limit``), ``v_rest`` and the impact law.  The geometric part is compiled by
   numba (about 0.1 ms per arch instead of about 4 ms through ``prepare``); the per-geometry impact
-  models "paper" and "momentum" go through :func:`archrock.impact.impact_law` arch by arch.
-  Arches that cannot be used (invalid geometry, no mechanism, an impact model that creates energy)
-  are not dropped: their ``error`` holds the reason.
+  models "paper" and "momentum" go through :func:`archrock.impact.impact_law` arch by arch, and
+  "least-loss" builds each arch's chain of mechanisms with :func:`archrock.response.prepare`.
+  Every arch carries its chain (padded to the batch's longest; the paper's alternation is the
+  two rows M_l, M_r).  Arches that cannot be used (invalid geometry, no mechanism, an impact
+  model that creates energy) are not dropped: their ``error`` holds the reason.
 * :func:`simulate_batch` integrates one ground motion for every prepared arch with a numba
   ``prange`` loop over arches (no output samples, ``n_out = 1``), returning per-arch summaries:
   status, peak, t_collapse, t_unstable, number of impacts and of activations, and whether the
@@ -29,14 +30,15 @@ import numpy as np
 
 from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
-from .errors import ArchInputError
-from .geometry import perturb_voussoirs, sector_properties
+from .errors import ArchInputError, ArchrockError
+from .impact import ImpactSpec
+from .geometry import sector_properties
 from .groundmotion import G, GroundMotion
-from .limit import candidate_hinges, kinematic_multipliers_batch
+from .limit import _mechanism_from_candidate, candidate_hinges, kinematic_multipliers_batch
 from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficient_table, coefficients, dead_point, mechanism_geo,
                         rest_rate, rotation_limit, table_range, unstable_rotation)
 
-__all__ = ["PreparedBatch", "perturb", "check_geometries", "prepare_batch", "simulate_batch",
+__all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch",
            "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
 
 #: status codes of :func:`simulate_batch` (those of the kernel, plus -1 not run / failed).
@@ -48,7 +50,6 @@ ST_NOT_RUN = -1
 MAX_EVENTS = 4096
 
 # ---------------------------------------------------------------------------- random geometry
-perturb = perturb_voussoirs  # the random-arch formula, batch of draws (B, 3, n) -> (B, n)
 
 
 def check_geometries(spans, radii, thick) -> np.ndarray:
@@ -71,9 +72,8 @@ def check_geometries(spans, radii, thick) -> np.ndarray:
 
 def mechanism_label(n: int, candidate: int) -> str:
     """Compact label of a kinematic candidate: joints from the left springing with their edge,
-    e.g. '0i-3e-5i-7e' (i = intrados, e = extrados)."""
-    joints, edges = candidate_hinges(n, candidate)
-    return "-".join(f"{j}{'ie'[e]}" for j, e in zip(joints, edges))
+    e.g. '0i-3e-5i-7e' (i = intrados, e = extrados): :attr:`archrock.limit.Mechanism.label`."""
+    return _mechanism_from_candidate(n, candidate, "l", math.nan).label
 
 
 # ---------------------------------------------------------------------------- compiled geometry
@@ -115,10 +115,17 @@ class PreparedBatch:
 
     error: '' for usable arches, otherwise the reason (such arches are not integrated).
     mech_l / mech_r: compact hinge labels ('0i-3e-5i-7e'); geo_l / geo_r (B, 21): flat four-link
-    vectors; phi_unstable_* / phi_limit_* [rad]; c_l_to_r / c_r_to_l: impact rate ratios;
-    v_rest [rad/s]; table_l / table_r (B, 2): the
+    vectors; phi_unstable_* / phi_limit_* [rad]; c_l_to_r / c_r_to_l: impact rate ratios out of
+    M_l / M_r; v_rest [rad/s]; table_l / table_r (B, 2): the
     range [start, top] of phi [rad] of the spline tables of M, L, F, P used by the fast kernel
     (as FourLink.tabulated(phi_limit)); seconds: time spent preparing.
+
+    The chain of mechanisms that the kernel runs (as ``DynamicModel.chain``), padded to R >= 2
+    rows (rows 0 and 1: M_l and M_r, opened from rest): chain_geo (B, R, 21), chain_limit and
+    chain_unstable (B, R) [rad], chain_direction (B, R) (+1 for direction l, -1 for r),
+    chain_next (B, R) (row opened when the row closes), chain_ratio (B, R) (its rate ratio),
+    chain_table (B, R, 2) (spline-table ranges [rad]), n_mechanisms (B,) (rows used; 0 for an
+    unusable arch).  Left out, they are built from the two-row fields (the paper's alternation).
     """
 
     k_l: np.ndarray
@@ -138,6 +145,28 @@ class PreparedBatch:
     table_l: np.ndarray = None
     table_r: np.ndarray = None
     seconds: dict = field(default_factory=dict)
+    chain_geo: np.ndarray = None
+    chain_limit: np.ndarray = None
+    chain_unstable: np.ndarray = None
+    chain_direction: np.ndarray = None
+    chain_next: np.ndarray = None
+    chain_ratio: np.ndarray = None
+    chain_table: np.ndarray = None
+    n_mechanisms: np.ndarray = None
+
+    def __post_init__(self):
+        if self.chain_geo is None:
+            B = self.k_l.size
+            tab_l = np.full((B, 2), np.nan) if self.table_l is None else self.table_l
+            tab_r = np.full((B, 2), np.nan) if self.table_r is None else self.table_r
+            self.chain_geo = np.ascontiguousarray(np.stack([self.geo_l, self.geo_r], axis=1))
+            self.chain_limit = np.column_stack([self.phi_limit_l, self.phi_limit_r])
+            self.chain_unstable = np.column_stack([self.phi_unstable_l, self.phi_unstable_r])
+            self.chain_direction = np.tile(np.array([1.0, -1.0]), (B, 1))
+            self.chain_next = np.tile(np.array([1, 0], dtype=np.int64), (B, 1))
+            self.chain_ratio = np.column_stack([self.c_l_to_r, self.c_r_to_l])
+            self.chain_table = np.ascontiguousarray(np.stack([tab_l, tab_r], axis=1))
+            self.n_mechanisms = np.where(self.error == "", 2, 0).astype(np.int64)
 
     @property
     def ok(self) -> np.ndarray:
@@ -147,27 +176,28 @@ class PreparedBatch:
         return int(self.k_l.size)
 
 
-def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact="fixed",
-                  cv: float | None = None) -> PreparedBatch:
+def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=None,
+                  cv: float | None = None, *, nominal=None) -> PreparedBatch:
     """Limit analysis, four-link models, rotation limits and impact law of a batch of arches.
 
-    spans [rad], radii [m], thicknesses [m]: arrays (B, n) with the same n.  impact: "fixed"
-    (with ``cv``, applied energy-consistently: c = cv sqrt(M_old(0)/M_new(0)), METHOD section 4),
-    a number (same), "paper" or "momentum" (per geometry, through
-    :func:`archrock.impact.impact_law`; a geometry on which "paper" creates energy gets an error
-    instead of a law).
+    spans [rad], radii [m], thicknesses [m]: arrays (B, n) with the same n.  impact: an
+    :class:`~archrock.impact.ImpactSpec` or what ``ImpactSpec.parse`` reads (with ``cv``), as
+    for :func:`archrock.response.prepare`: a fixed c_v (applied energy-consistently, c = cv
+    sqrt(M_old(0)/M_new(0)), or to the rates with ``literal``, METHOD section 4), "paper" or
+    "momentum" (per geometry, through :func:`archrock.impact.impact_law`; a geometry on which
+    "paper" creates energy gets an error instead of a law), or "least-loss" (each arch's chain of
+    mechanisms from ``archrock.response.prepare(arch, "least-loss")``, arch by arch in Python:
+    about 0.1 s each).  A spec evaluated on the nominal arch needs ``nominal`` (an Arch).
     """
     t0 = time.perf_counter()
     spans = np.ascontiguousarray(np.atleast_2d(spans), dtype=float)
     radii = np.ascontiguousarray(np.atleast_2d(radii), dtype=float)
     thick = np.ascontiguousarray(np.atleast_2d(thicknesses), dtype=float)
-    if isinstance(impact, (int, float)) and not isinstance(impact, bool):
-        impact, cv = "fixed", float(impact)
-    if impact not in ("fixed", "paper", "momentum"):
-        raise ArchInputError(f"impact: {impact!r}; allowed 'fixed' (with cv), 'paper', 'momentum' "
-                             f"or a number")
-    if impact == "fixed" and (cv is None or not math.isfinite(cv) or not 0.0 < cv <= 1.0):
-        raise ArchInputError(f"cv: {cv!r}; allowed 0 < cv <= 1")
+    spec = ImpactSpec.parse(impact, cv=cv).resolved(nominal)
+    if spec.on == "nominal":
+        raise ArchInputError("nominal: the impact is evaluated on the nominal arch; give it "
+                             "(nominal=Arch) or resolve the spec first")
+    impact, cv = spec.model, spec.cv
     B, n = spans.shape
     error = check_geometries(spans, radii, thick)
     ok = error == ""
@@ -237,18 +267,25 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact="fi
     t2 = time.perf_counter()
     c_lr = np.full(B, np.nan)
     c_rl = np.full(B, np.nan)
-    if impact == "fixed":
+    if impact == "fixed" and spec.literal:
+        c_lr[ok] = c_rl[ok] = cv
+    elif impact == "fixed":
         ratio = np.sqrt(out["m0_l"] / out["m0_r"])
         c_lr[ok] = cv * ratio[ok]
         c_rl[ok] = cv / ratio[ok]
-    else:
+    elif impact != "least-loss":
         _impact_per_arch(impact, spans, radii, thick, density, k_l, k_r, cand_l, cand_r, ok,
                          c_lr, c_rl, error)
         ok = error == ""
+    chain = {}
+    if impact == "least-loss":
+        chain = _least_loss_per_arch(spans, radii, thick, density, ok, c_lr, c_rl, out["v_rest"],
+                                     error)
     t3 = time.perf_counter()
     return PreparedBatch(k_l, k_r, mech_l, mech_r, geo_l, geo_r, out["phu_l"], out["phu_r"],
                          out["lim_l"], out["lim_r"], c_lr, c_rl, out["v_rest"], error,
-                         tab_l, tab_r, {"limit": t1 - t0, "four_link": t2 - t1, "impact": t3 - t2})
+                         tab_l, tab_r, {"limit": t1 - t0, "four_link": t2 - t1, "impact": t3 - t2},
+                         **chain)
 
 
 def _impact_per_arch(model, spans, radii, thick, density, k_l, k_r, cand_l, cand_r, ok,
@@ -270,27 +307,74 @@ def _impact_per_arch(model, spans, radii, thick, density, k_l, k_r, cand_l, cand
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 law = impact_law(ml, mr, model)
-        except ArchInputError as exc:
+        except ArchrockError as exc:
             error[b] = " ".join(str(exc).split())
             continue
         c_lr[b], c_rl[b] = law.l_to_r, law.r_to_l
 
 
+def _least_loss_per_arch(spans, radii, thick, density, ok, c_lr, c_rl, v_rest, error) -> dict:
+    """Chain arrays of the least-loss law, arch by arch through response.prepare (the same chain,
+    four-link vectors, limits and v_rest as the one-arch path); failures recorded in ``error``."""
+    import warnings
+
+    from .geometry import Arch
+    from .response import prepare
+
+    B = spans.shape[0]
+    chains = {}
+    for b in np.flatnonzero(ok):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                model = prepare(Arch(spans[b], radii[b], thick[b], density), "least-loss")
+        except (ArchrockError, ZeroDivisionError, FloatingPointError) as exc:
+            error[b] = "least-loss chain: " + " ".join(str(exc).split())
+            continue
+        chains[b] = model.chain
+        c_lr[b], c_rl[b] = model.impact.l_to_r, model.impact.r_to_l
+        v_rest[b] = model.v_rest
+    R = max([2] + [len(c[0]) for c in chains.values()])
+    arr = {"chain_geo": np.full((B, R, GEO_SIZE), np.nan), "chain_limit": np.full((B, R), np.nan),
+           "chain_unstable": np.full((B, R), np.nan), "chain_direction": np.zeros((B, R)),
+           "chain_next": np.zeros((B, R), dtype=np.int64), "chain_ratio": np.full((B, R), np.nan),
+           "chain_table": np.full((B, R, 2), np.nan),
+           "n_mechanisms": np.zeros(B, dtype=np.int64)}
+    for b, (mechs, lims, trans) in chains.items():
+        arr["n_mechanisms"][b] = len(mechs)
+        for j, (fl, lim, (nxt, c)) in enumerate(zip(mechs, lims, trans)):
+            arr["chain_geo"][b, j] = fl.geo
+            arr["chain_limit"][b, j] = lim
+            arr["chain_unstable"][b, j] = fl.phi_unstable
+            arr["chain_direction"][b, j] = 1.0 if fl.direction == "l" else -1.0
+            arr["chain_next"][b, j] = nxt
+            arr["chain_ratio"][b, j] = c
+            # the range of FourLink.tabulated(lim), which the one-arch fast integrator reads
+            arr["chain_table"][b, j] = table_range(fl.geo, lim, fl.phi_dead)
+    return arr
+
+
 # ---------------------------------------------------------------------------- batch kernel
 @maybe_njit
-def _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l, lim_r,
-                  phu_l, phu_r, v_rest, times, accel, g, dt, t_free, max_events, status, peak,
-                  t_col, t_uns, n_imp, n_act, n_ev):
-    """Integrate arch b and write its summary into the output arrays (shared by both loops)."""
+def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
+                  v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns,
+                  n_imp, n_act, n_ev):
+    """Integrate arch b over its chain and write its summary into the output arrays (shared by
+    both loops)."""
+    R = n_rows[b]
     if n_tab > 0:
-        gl = coefficient_table(geo_l[b], tab_l[b, 0], tab_l[b, 1], n_tab)
-        gr = coefficient_table(geo_r[b], tab_r[b, 0], tab_r[b, 1], n_tab)
+        first = coefficient_table(geos[b, 0], tabs[b, 0, 0], tabs[b, 0, 1], n_tab)
+        rows = np.zeros((R, first.size))
+        rows[0] = first
+        for j in range(1, R):
+            rows[j] = coefficient_table(geos[b, j], tabs[b, j, 0], tabs[b, j, 1], n_tab)
     else:
-        gl = geo_l[b].copy()
-        gr = geo_r[b].copy()
-    _, ev, ne, st, _, pk, tc, tu = K.simulate(
-        gl, gr, k_l[b], k_r[b], c_lr[b], c_rl[b], lim_l[b], lim_r[b], phu_l[b],
-        phu_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free, max_events)
+        rows = geos[b, :R].copy()
+    # kernel modes are rows + 1 (0 = rest)
+    _, ev, ne, st, _, pk, tc, tu = K.simulate_chain(
+        rows, lims[b, :R].copy(), phus[b, :R].copy(), dirs[b, :R].copy(), nexts[b, :R] + 1,
+        ratios[b, :R].copy(), k_l[b], k_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free,
+        max_events)
     m = min(ne, max_events)
     ni = 0
     na = 0
@@ -308,26 +392,26 @@ def _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, li
     n_ev[b] = ne
 
 
-def _simulate_loop_py(geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l, lim_r,
-                      phu_l, phu_r, v_rest, run, times, accel, g, dt, t_free, max_events, status,
-                      peak, t_col, t_uns, n_imp, n_act, n_ev):
-    for b in range(geo_l.shape[0]):
+def _simulate_loop_py(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
+                      v_rest, run, times, accel, g, dt, t_free, max_events, status, peak, t_col,
+                      t_uns, n_imp, n_act, n_ev):
+    for b in range(geos.shape[0]):
         if run[b]:
-            _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l,
-                          lim_r, phu_l, phu_r, v_rest, times, accel, g, dt, t_free, max_events,
-                          status, peak, t_col, t_uns, n_imp, n_act, n_ev)
+            _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
+                          v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col,
+                          t_uns, n_imp, n_act, n_ev)
 
 
 if HAVE_NUMBA:
     @maybe_njit(parallel=True)
-    def _simulate_loop_nb(geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l, lim_r,
-                          phu_l, phu_r, v_rest, run, times, accel, g, dt, t_free, max_events,
-                          status, peak, t_col, t_uns, n_imp, n_act, n_ev):
-        for b in numba.prange(geo_l.shape[0]):
+    def _simulate_loop_nb(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
+                          v_rest, run, times, accel, g, dt, t_free, max_events, status, peak,
+                          t_col, t_uns, n_imp, n_act, n_ev):
+        for b in numba.prange(geos.shape[0]):
             if run[b]:
-                _simulate_one(b, geo_l, geo_r, tab_l, tab_r, n_tab, k_l, k_r, c_lr, c_rl, lim_l,
-                              lim_r, phu_l, phu_r, v_rest, times, accel, g, dt, t_free,
-                              max_events, status, peak, t_col, t_uns, n_imp, n_act, n_ev)
+                _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts,
+                              ratios, v_rest, times, accel, g, dt, t_free, max_events, status,
+                              peak, t_col, t_uns, n_imp, n_act, n_ev)
 
     _simulate_loop_serial = maybe_njit(_simulate_loop_py)
 else:  # pragma: no cover - without numba
@@ -361,12 +445,19 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
            "n_events": np.zeros(B, dtype=np.int64)}
     times = np.ascontiguousarray(motion.times, dtype=float)
     accel = np.ascontiguousarray(motion.accel, dtype=float)
-    args = (prepared.geo_l, prepared.geo_r, prepared.table_l, prepared.table_r,
-            int(table_intervals) if tabulate else 0, prepared.k_l, prepared.k_r, prepared.c_l_to_r,
-            prepared.c_r_to_l, prepared.phi_limit_l, prepared.phi_limit_r, prepared.phi_unstable_l,
-            prepared.phi_unstable_r, prepared.v_rest, run, times, accel, G, float(dt),
-            float(t_free), int(max_events), res["status"], res["peak"], res["t_collapse"],
-            res["t_unstable"], res["n_impacts"], res["n_activations"], res["n_events"])
+    p = prepared
+    run = run & (p.n_mechanisms >= 2)
+    args = (np.ascontiguousarray(p.chain_geo, dtype=float),
+            np.ascontiguousarray(p.chain_table, dtype=float), p.n_mechanisms.astype(np.int64),
+            int(table_intervals) if tabulate else 0, p.k_l, p.k_r,
+            np.ascontiguousarray(p.chain_limit, dtype=float),
+            np.ascontiguousarray(p.chain_unstable, dtype=float),
+            np.ascontiguousarray(p.chain_direction, dtype=float),
+            np.ascontiguousarray(p.chain_next, dtype=np.int64),
+            np.ascontiguousarray(p.chain_ratio, dtype=float), p.v_rest, run, times, accel, G,
+            float(dt), float(t_free), int(max_events), res["status"], res["peak"],
+            res["t_collapse"], res["t_unstable"], res["n_impacts"], res["n_activations"],
+            res["n_events"])
     if HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:

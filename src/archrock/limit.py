@@ -71,6 +71,12 @@ class Mechanism:
     def joints(self) -> tuple[int, ...]:
         return tuple(h.joint for h in self.hinges)
 
+    @property
+    def label(self) -> str:
+        """Compact hinge label, joints from the left springing with their edge (i = intrados,
+        e = extrados), e.g. '0i-3e-5i-7e'."""
+        return "-".join(f"{h.joint}{h.edge[0]}" for h in sorted(self.hinges, key=lambda h: h.joint))
+
     def mirrored(self, n: int) -> "Mechanism":
         """The same mechanism on the mirror image of an n-voussoir arch."""
         hinges = tuple(Hinge(n - h.joint, h.edge) for h in reversed(self.hinges))

@@ -396,8 +396,10 @@ class FourLink:
 
     # -- equation of motion
     def coefficients(self, phi: float):
-        """(M, L, F, P) at rotation phi [rad]."""
-        return coefficients(phi, self.geo)
+        """(M, L, F, P) at rotation phi [rad], Python floats (numpy scalars without numba would
+        leak into JSON output)."""
+        M, L, F, P = coefficients(phi, self.geo)
+        return float(M), float(L), float(F), float(P)
 
     def static_multiplier(self) -> float:
         """xg''/g at which phi = 0 is in equilibrium: F(0)/P(0) (= -k_l for M_l, +k_r for M_r)."""

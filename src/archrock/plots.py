@@ -38,6 +38,8 @@ __all__ = [
     "plot_response",
     "save_response_figure",
     "draw_displaced",
+    "displaced_outlines",
+    "displaced_hinges",
 ]
 
 HINGE_LABELS = ("A", "B", "C", "D")
@@ -334,16 +336,36 @@ def save_response_figure(responses, path, labels=None, dpi: int = 150):
     return save_figure(fig, path, dpi=dpi)
 
 
-def displaced_outlines(model, mode: str, phi: float) -> list[np.ndarray]:
-    """Outline (m, 2) [m] of every voussoir with mechanism ``mode`` ('l', 'r' or 'rest') open by
-    rotation phi [rad]: each voussoir of a link moves rigidly with its link (exact four-bar
-    kinematics); voussoirs outside the mechanism stay still."""
+def _open_mechanism(model, mode):
+    """The FourLink that ``mode`` names (None at rest): a FourLink, a row of the model's chain
+    (int, -1 = rest), 'l' / 'r' (rows 0 / 1: M_l / M_r) or 'rest'."""
+    from .mechanism import FourLink
+
+    if mode is None or isinstance(mode, FourLink):
+        return mode
+    if isinstance(mode, str):
+        if mode == "rest":
+            return None
+        return model.mechanism(mode)
+    if isinstance(mode, (int, np.integer)) and not isinstance(mode, bool):
+        return None if mode == -1 else model.mechanism(int(mode))
+    raise ArchInputError(f"mode: {mode!r}; allowed a FourLink, a chain row (int, -1 = rest), "
+                         f"'l', 'r' or 'rest'")
+
+
+def displaced_outlines(model, mode, phi: float) -> list[np.ndarray]:
+    """Outline (m, 2) [m] of every voussoir with mechanism ``mode`` open by rotation phi [rad]
+    (phi >= 0 in the mechanism's own coordinate): each voussoir of a link moves rigidly with
+    its link (exact four-bar kinematics); voussoirs outside the mechanism stay still.
+
+    mode: a FourLink, a row of ``model.chain`` (int; -1 = rest; e.g. ``response.rows[k]``),
+    or 'l' / 'r' (M_l / M_r, rows 0 / 1) or 'rest'."""
     from .mechanism import configuration
 
     arch = model.arch
     outlines = [voussoir_outline(arch, i) for i in range(arch.n)]
-    if mode in ("l", "r") and phi > 0:
-        fl = model.mechanism(mode)
+    fl = _open_mechanism(model, mode)
+    if fl is not None and phi > 0:
         bx, by, cx, cy, th1, th2, th3, _ = configuration(phi, fl.geo)
         (ax0, ay0), (b0x, b0y), _, (dx, dy) = fl.points
         refs = (((ax0, ay0), (ax0, ay0), th1), ((b0x, b0y), (bx, by), th2), ((dx, dy), (dx, dy), th3))
@@ -354,7 +376,22 @@ def displaced_outlines(model, mode: str, phi: float) -> list[np.ndarray]:
     return outlines
 
 
-def draw_displaced(ax, model, mode: str, phi: float, **kwargs):
+def displaced_hinges(model, mode, phi: float) -> np.ndarray:
+    """Hinge points A, B, C, D (4, 2) [m] of mechanism ``mode`` (as in
+    :func:`displaced_outlines`) open by rotation phi [rad]; empty (0, 2) at rest."""
+    from .mechanism import configuration
+
+    fl = _open_mechanism(model, mode)
+    if fl is None:
+        return np.zeros((0, 2))
+    pts = np.array(fl.points, dtype=float)
+    if phi > 0:
+        bx, by, cx, cy, *_ = configuration(phi, fl.geo)
+        pts[1], pts[2] = (bx, by), (cx, cy)
+    return pts
+
+
+def draw_displaced(ax, model, mode, phi: float, **kwargs):
     """Draw the arch displaced as in :func:`displaced_outlines`; returns the voussoir patches
     (update them with ``patch.set_xy`` to animate without redrawing the axes)."""
     from matplotlib.patches import Polygon

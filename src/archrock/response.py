@@ -89,8 +89,33 @@ class DynamicModel:
     def phi_unstable_r(self) -> float:
         return self.mech_r.phi_unstable
 
-    def mechanism(self, mode: str) -> FourLink:
+    def mechanism(self, mode: str | int) -> FourLink:
+        """The mechanism of chain row ``mode`` (an int; rows 0 and 1 are M_l and M_r), or of
+        direction 'l' / 'r' (the limit mechanisms M_l / M_r)."""
+        if isinstance(mode, (int, np.integer)) and not isinstance(mode, bool):
+            mechs = self.chain[0]
+            if not 0 <= mode < len(mechs):
+                raise ArchInputError(f"mechanism row: {mode!r}; allowed 0..{len(mechs) - 1}")
+            return mechs[int(mode)]
+        if mode not in ("l", "r"):
+            raise ArchInputError(f"mechanism: {mode!r}; allowed 'l', 'r' or a chain row "
+                                 f"0..{len(self.chain[0]) - 1}")
         return self.mech_l if mode == "l" else self.mech_r
+
+    @property
+    def labels(self) -> list[str]:
+        """Compact hinge label of every row of the chain ('0i-3e-5i-7e', ...)."""
+        return [_label(fl) for fl in self.chain[0]]
+
+    def chain_dicts(self) -> list[dict]:
+        """The chain as plain data: per row its direction, hinges, label, rotation limit and
+        unstable rotation [rad], the row it opens at its closing and the rate ratio."""
+        mechs, lims, trans = self.chain
+        return [{"row": j, "direction": fl.direction,
+                 "hinges": [h.to_dict() for h in fl.mechanism.hinges] if fl.mechanism else [],
+                 "label": _label(fl), "phi_limit": float(lim), "phi_unstable": fl.phi_unstable,
+                 "opens": int(n), "rate_ratio": float(c)}
+                for j, (fl, lim, (n, c)) in enumerate(zip(mechs, lims, trans))]
 
     @cached_property
     def tables(self) -> tuple[np.ndarray, ...]:
@@ -98,6 +123,10 @@ class DynamicModel:
         of the chain (M_l, M_r, extra...)."""
         mechs, lims, _ = self.chain
         return tuple(fl.tabulated(lim) for fl, lim in zip(mechs, lims))
+
+
+def _label(fl: FourLink) -> str:
+    return fl.mechanism.label if fl.mechanism is not None else f"M_{fl.direction}"
 
 
 def prepare(arch: Arch, impact=None, *, cv: float | None = None,
@@ -172,9 +201,11 @@ def _prepare_least_loss(arch, lim, m_l, m_r, limit_factor) -> DynamicModel:
 
 class Event(NamedTuple):
     """A discrete event: kind in {activation, impact, rest, collapse, unstable}; time [s];
-    mechanisms before/after ('l', 'r' or 'rest'); rates [rad/s] before/after, each in its own
+    directions before/after ('l', 'r' or 'rest'); rates [rad/s] before/after, each in its own
     mechanism's coordinate (an impact's rate before is negative: the joints are closing);
-    energy_ratio: for an impact, kinetic energy after / before (0 when the arch comes to rest)."""
+    energy_ratio: for an impact, kinetic energy after / before (0 when the arch comes to rest);
+    row_before/row_after: the open mechanism's row of :attr:`DynamicModel.chain` (-1 at rest);
+    mechanism_before/mechanism_after: its hinge label ('0e-2i-5e-7i'; None at rest)."""
 
     kind: str
     time: float
@@ -183,11 +214,17 @@ class Event(NamedTuple):
     rate_before: float
     rate_after: float
     energy_ratio: float | None = None
+    row_before: int = -1
+    row_after: int = -1
+    mechanism_before: str | None = None
+    mechanism_after: str | None = None
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "time": self.time, "before": self.before, "after": self.after,
                 "rate_before": self.rate_before, "rate_after": self.rate_after,
-                "energy_ratio": self.energy_ratio}
+                "energy_ratio": self.energy_ratio, "row_before": self.row_before,
+                "row_after": self.row_after, "mechanism_before": self.mechanism_before,
+                "mechanism_after": self.mechanism_after}
 
 
 @dataclass(frozen=True, eq=False)
@@ -228,6 +265,28 @@ class Response:
     def impacts_before_collapse(self) -> int:
         return len(self.impacts) if self.collapsed else 0
 
+    def rows_at(self, t) -> np.ndarray:
+        """Row of :attr:`DynamicModel.chain` open at time(s) ``t`` [s]: the row after the last
+        event at or before t; -1 at rest and from the collapse on (int array shaped like t)."""
+        t = np.asarray(t, dtype=float)
+        ev_t = np.array([e.time for e in self.events], dtype=float)
+        ev_row = np.array([-1 if e.kind == "collapse" else e.row_after for e in self.events]
+                          + [-1], dtype=np.int64)
+        # index -1 (before the first event) picks the trailing -1: at rest
+        return ev_row[np.searchsorted(ev_t, t, side="right") - 1]
+
+    @cached_property
+    def rows(self) -> np.ndarray:
+        """Row of the chain open at each output sample (:meth:`rows_at` of ``time``)."""
+        rows = self.rows_at(self.time)
+        rows.setflags(write=False)
+        return rows
+
+    def mechanisms_opened(self) -> list[tuple[float, int, str]]:
+        """(time [s], row, label) of every mechanism opened (activations and impacts)."""
+        return [(e.time, e.row_after, e.mechanism_after) for e in self.events
+                if e.kind in ("activation", "impact") and e.row_after >= 0]
+
     def to_dict(self, samples: bool = True) -> dict:
         d = {
             "collapsed": self.collapsed,
@@ -245,6 +304,7 @@ class Response:
                             "energy_r_to_l": self.model.impact.energy_r_to_l},
             "phi_limit": {"l": self.model.phi_limit_l, "r": self.model.phi_limit_r},
             "phi_unstable": {"l": self.model.phi_unstable_l, "r": self.model.phi_unstable_r},
+            "chain": self.model.chain_dicts(),
             "events": [e.to_dict() for e in self.events],
             "integrator": self.integrator,
             "settings": self.settings,
@@ -313,8 +373,11 @@ def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=
     m0 = [fl.coefficients(0.0)[0] for fl in mechs]
     gain = {(j + 1, n + 1): c * c * m0[n] / m0[j] for j, (n, c) in enumerate(trans)}
     name = {0: "rest", **{j + 1: fl.direction for j, fl in enumerate(mechs)}}
+    label = {0: None, **{j + 1: lab for j, lab in enumerate(model.labels)}}
+    # kernel modes are chain rows + 1 (0 = rest)
     events = tuple(Event(_KIND_NAME[int(k)], t, name[int(b)], name[int(a)], rb, ra,
-                         gain.get((int(b), int(a)), 0.0) if k == K.EV_IMPACT else None)
+                         gain.get((int(b), int(a)), 0.0) if k == K.EV_IMPACT else None,
+                         int(b) - 1, int(a) - 1, label[int(b)], label[int(a)])
                    for k, t, b, a, rb, ra in ev[:n_ev].tolist())
     return Response(model, motion, np.arange(n_out) * dt_out, out, events,
                     {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}[int(status)],
