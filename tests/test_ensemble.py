@@ -13,13 +13,19 @@ from archrock.errors import ArchInputError
 from archrock.fragility import collapse_probability
 from archrock.geometry import oppenheim_arch
 from archrock.groundmotion import PulseSpec
+from archrock.impact import ImpactSpec
+from archrock.sampling import METHOD_SPREADS, ArchSampler, Spreads
 from archrock.limit import limit_analysis
 
 PULSE = PulseSpec("oppenheim", -1.0, 0.2)
 
 
 def config(**kw):
-    base = dict(samples=40, batch_size=10, seed=11, motion=PULSE, impact="fixed", cv=0.8754)
+    """An ensemble configuration; spread_* and impact/cv keywords become Spreads / ImpactSpec."""
+    spreads = {k: kw.pop(k) for k in list(kw) if k.startswith("spread_")}
+    impact = ImpactSpec.parse(kw.pop("impact", "fixed"), cv=kw.pop("cv", 0.8754))
+    base = dict(samples=40, batch_size=10, seed=11, motion=PULSE, impact=impact,
+                spreads=Spreads.from_dict({**METHOD_SPREADS.to_dict(), **spreads}))
     base.update(kw)
     return EnsembleConfig.from_arch(oppenheim_arch(), **base)
 
@@ -171,14 +177,15 @@ def test_paper_impact_failures_are_counted():
 
 def test_nominal_paper_impact_is_the_papers_cv():
     res = run_ensemble(config(samples=3, impact="nominal-paper", cv=None), progress=False)
-    assert res.impact["cv"] == pytest.approx(0.8754, abs=5e-5)
+    assert res.impact["applied"]["cv"] == pytest.approx(0.8754, abs=5e-5)
+    assert res.impact["model"] == "paper" and res.impact["on"] == "nominal"
     assert res.frame["c_l_to_r"].tolist() != [] and np.isfinite(res.frame["c_l_to_r"]).all()
 
 
 @pytest.mark.parametrize("kw, field", [
     ({"samples": 0}, "samples"), ({"spread_span": -0.1}, "spread span"),
     ({"spread_radius": 1.0}, "spread radius"), ({"batch_size": 0}, "batch size"),
-    ({"impact": "fixed", "cv": 0.0}, "cv"), ({"impact": "elastic"}, "impact"),
+    ({"impact": "fixed", "cv": 0.0}, "cv"), ({"impact": "elastic"}, "impact model"),
     ({"motion": "oppenheim"}, "motion: 'oppenheim'; allowed None, a PulseSpec or RecordSpec"),
     ({"motion": {"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0, "duration": -0.2}},
      "pulse duration"),
@@ -195,9 +202,10 @@ def test_motion_specification_serialises_as_the_manifests_dict():
     # a dict (as read from a manifest) becomes the specification; the round trip is exact
     assert config(motion=d["motion"]).motion == PULSE
     assert EnsembleConfig.from_dict(json.loads(c.to_json())) == c
-    # the configuration's hash (batch provenance) is the one written before the specifications
+    # the configuration's hash (batch provenance) is pinned: a change of a field's serialised
+    # form invalidates every stored batch, so it must be deliberate (and bump store.FORMAT)
     assert hashlib.sha256(c.to_json().encode()).hexdigest() == (
-        "42737ea36f887831e3fdca5bac0f38355b31e996048d870d5ea1939f11451c20")
+        "752ea31c1cdc51dfcc1b68757ec11ab5ea014a3de3a820561b0f11c71fe48ed8")
 
 
 def test_bad_workers():
@@ -235,7 +243,8 @@ def test_cli_pulse_out_resume_and_plot(capsys, tmp_path):
     assert code == 0, err
     s = json.loads(out)
     assert s["p_collapse"]["trials"] == 12 and 0 <= s["p_collapse"]["p"] <= 1
-    assert s["impact"] == {"model": "fixed", "cv": 0.8754, "source": s["impact"]["source"]}
+    assert s["impact"]["model"] == "fixed" and s["impact"]["cv"] == 0.8754
+    assert s["impact"]["applied"] == s["impact"]["applied"] | {"model": "fixed", "cv": 0.8754}
     assert (tmp_path / "k.png").stat().st_size > 5000
     code, out2, err = cli(capsys, *args)
     s2 = json.loads(out2)
@@ -415,3 +424,28 @@ def test_tmp_files_of_live_processes_are_kept(written):
     assert mine.exists() and not dead.exists()
     manifest = json.loads((written / "manifest.json").read_text())
     assert manifest["runs"][-1]["removed_tmp"] == ["manifest.json.tmp-99999999"]
+
+
+def test_sample_i_is_the_same_arch_in_ensemble_curves_and_fragility(base):
+    """One sampler: the same seed and index give the same arch in every study, whatever the
+    batch size (0.1.0 drew three different arches for i > 0)."""
+    from archrock.curves import collapse_amplitude, ensemble_curve
+    from archrock.ida import random_models
+
+    cfg = base.config
+    other = config(batch_size=7)
+    models = random_models(oppenheim_arch(), 6, seed=cfg.seed, spreads=cfg.spreads)
+    for i in (0, 3, 5):
+        arch = sample_arch(cfg, i)
+        assert np.array_equal(arch.spans, sample_arch(other, i).spans)
+        assert np.array_equal(arch.spans, models[i].arch.spans)
+        assert np.array_equal(arch.thicknesses, models[i].arch.thicknesses)
+        assert np.array_equal(arch.spans, ArchSampler(oppenheim_arch(), cfg.spreads, cfg.seed).arch(i).spans)
+        row = base.frame.iloc[i]
+        assert row["k_l"] == models[i].k_l and row["k_r"] == models[i].k_r
+    band = ensemble_curve(oppenheim_arch(), 2, cfg.seed, cfg.spreads, durations=[0.5], n_scan=10,
+                          a_max=2.0)
+    for i in (0, 1):
+        direct = collapse_amplitude(models[i], 0.5, n_scan=10, a_max=2.0).amplitude
+        assert band.amplitudes[i, 0] == (np.inf if direct is None else direct)
+    assert base.frame["k_l"].tolist() == run_ensemble(other, progress=False).frame["k_l"].tolist()
