@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._records import readonly_arrays
 from .errors import ArchInputError
 from .geometry import Arch
 from .groundmotion import pulse, pulse_kind
@@ -156,6 +157,9 @@ class CollapseAmplitude:
     scan_collapsed: np.ndarray = field(repr=False)
     n_responses: int = 0
 
+    def __post_init__(self):
+        readonly_arrays(self)
+
     def to_dict(self) -> dict:
         return {
             "duration": self.duration, "kind": self.kind, "sign": self.sign,
@@ -277,6 +281,9 @@ class CollapseCurve:
     k_r: float = float("nan")
     cv: tuple[float, float] | None = None
 
+    def __post_init__(self):
+        readonly_arrays(self)
+
     def to_dict(self, scan: bool = False) -> dict:
         pts = []
         for p in self.points:
@@ -348,6 +355,9 @@ class EnsembleCurve:
     failed: tuple = ()
     samples: tuple = ()
     n_requested: int = 0
+
+    def __post_init__(self):
+        readonly_arrays(self)
 
     def to_dict(self) -> dict:
         def f(v):

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._records import readonly_arrays
 from .errors import ArchInputError, FitError
 from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripes_mle,
                         first_collapse)
@@ -157,6 +158,9 @@ class IDACurve:
     max_im: float
     below_grid: bool = False
     safe_scale: float | None = None
+
+    def __post_init__(self):
+        readonly_arrays(self)
 
     @property
     def note(self) -> str | None:
@@ -307,6 +311,9 @@ class StripeResult:
     records: tuple[str, ...] = ()
     arches: tuple[int, ...] = ()
     failed: tuple = ()
+
+    def __post_init__(self):
+        readonly_arrays(self)
 
     @property
     def fractions(self) -> np.ndarray:

@@ -28,6 +28,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 from ._jit import HAVE_NUMBA, maybe_njit
+from ._records import readonly_arrays
 from .errors import ArchInputError, CannotStandError, NoMechanismError
 from .geometry import Arch, sector_properties
 
@@ -55,6 +56,10 @@ class Hinge:
         return {"joint": int(self.joint), "edge": self.edge}
 
 
+#: Hinge labels from the leading side of a mechanism (METHOD section 3).
+HINGE_LABELS = ("A", "B", "C", "D")
+
+
 @dataclass(frozen=True)
 class Mechanism:
     """A four-hinge collapse mechanism; hinges ordered from the left springing.
@@ -76,6 +81,14 @@ class Mechanism:
         """Compact hinge label, joints from the left springing with their edge (i = intrados,
         e = extrados), e.g. '0i-3e-5i-7e'."""
         return "-".join(f"{h.joint}{h.edge[0]}" for h in sorted(self.hinges, key=lambda h: h.joint))
+
+    def labelled(self) -> list[tuple[str, Hinge]]:
+        """(label, hinge) pairs: A..D from the mechanism's leading side (METHOD section 3): for
+        M_l, A is the leftmost hinge; for M_r, A is the rightmost."""
+        hinges = list(self.hinges)
+        if self.direction == "r":
+            hinges = hinges[::-1]
+        return list(zip(HINGE_LABELS, hinges))
 
     def mirrored(self, n: int) -> "Mechanism":
         """The same mechanism on the mirror image of an n-voussoir arch."""
@@ -103,6 +116,9 @@ class ThrustLine:
     points: np.ndarray
     forces: np.ndarray
     polyline: np.ndarray
+
+    def __post_init__(self):
+        readonly_arrays(self)
 
     def eccentricity_margin(self, arch: Arch) -> float:
         """Smallest distance [m] from the crossing points to the ends of the contact surfaces."""
@@ -623,6 +639,9 @@ class MinimumThickness:
     ratio: float
     thicknesses: np.ndarray
     iterations: int
+
+    def __post_init__(self):
+        readonly_arrays(self)
 
 
 def _stands(arch: Arch) -> bool:

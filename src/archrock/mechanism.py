@@ -24,6 +24,7 @@ from functools import cached_property
 import numpy as np
 
 from ._jit import maybe_njit
+from ._records import readonly_arrays
 from .errors import ArchInputError
 from .geometry import Arch
 from .limit import EDGES, Mechanism
@@ -382,6 +383,9 @@ class FourLink:
     link_voussoirs: tuple = ()
     mechanism: Mechanism | None = None
     arch: Arch | None = field(default=None, repr=False)
+
+    def __post_init__(self):
+        readonly_arrays(self)
 
     @cached_property
     def geo(self) -> np.ndarray:

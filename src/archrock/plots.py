@@ -23,8 +23,6 @@ from .errors import ArchInputError
 from .geometry import Arch
 
 __all__ = [
-    "HINGE_LABELS",
-    "hinge_labels",
     "voussoir_outline",
     "voussoir_bounds",
     "label_joint",
@@ -42,7 +40,6 @@ __all__ = [
     "displaced_hinges",
 ]
 
-HINGE_LABELS = ("A", "B", "C", "D")
 
 # Colours shared by every figure so that later figures look like Fig. 3.
 STYLE = {
@@ -148,15 +145,6 @@ def _draw_support(ax, arch: Arch, j: int, zorder: float):
                          hatch="////", linewidth=0.6, zorder=zorder - 0.1))
 
 
-def hinge_labels(mechanism) -> list[tuple[str, object]]:
-    """(label, hinge) pairs: A..D from the mechanism's leading side (METHOD section 3):
-    for M_l, A is the leftmost hinge; for M_r, A is the rightmost."""
-    hinges = list(mechanism.hinges)
-    if mechanism.direction == "r":
-        hinges = hinges[::-1]
-    return list(zip(HINGE_LABELS, hinges))
-
-
 def draw_hinges(ax, arch: Arch, mechanism, *, color: str | None = None, labels: bool = True,
                 zorder: float = 5.0):
     """Mark the four hinges of ``mechanism`` and label them A, B, C, D.
@@ -167,7 +155,7 @@ def draw_hinges(ax, arch: Arch, mechanism, *, color: str | None = None, labels: 
     _require_matplotlib()
     col = STYLE["hinge"] if color is None else color
     size = float(np.mean(arch.radii))
-    for label, h in hinge_labels(mechanism):
+    for label, h in mechanism.labelled():
         x, y = arch.joint_point(h.joint, h.edge)
         ax.plot([x], [y], "o", ms=8, mfc="white", mec=col, mew=2.0, zorder=zorder)
         if labels:
@@ -219,7 +207,7 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
                 va="top", fontsize=9, color="#444444")
 
     seq = ", ".join(f"{lab} = {h.joint}{'i' if h.edge == 'intrados' else 'e'}"
-                    for lab, h in hinge_labels(mech))
+                    for lab, h in mech.labelled())
     ax.set_title(f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
                  f"hinges (joint, i = intrados / e = extrados): {seq}", fontsize=10)
     ax.set_xlabel("x [m]")

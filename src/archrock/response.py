@@ -28,7 +28,8 @@ from scipy.integrate import solve_ivp
 
 from . import kernel as K
 from ._jit import HAVE_NUMBA
-from .errors import ArchInputError
+from ._records import readonly_arrays
+from .errors import ArchInputError, LimitExceededError
 from .geometry import Arch
 from .groundmotion import G, GroundMotion
 from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
@@ -250,6 +251,9 @@ class Response:
     integrator: str
     settings: dict = field(default_factory=dict, repr=False)
 
+    def __post_init__(self):
+        readonly_arrays(self)
+
     @property
     def collapsed(self) -> bool:
         return self.status == "collapsed"
@@ -368,7 +372,7 @@ def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=
         raise ArchInputError(f"integrator: {integrator!r}; allowed 'fast' or 'reference'")
     out, ev, n_ev, status, t_final, peak, t_col, t_uns = res
     if n_ev > max_events:
-        raise ArchInputError(f"max_events: more than {max_events} events; raise max_events")
+        raise LimitExceededError(f"max_events: more than {max_events} events; raise max_events")
     mechs, _, trans = model.chain
     m0 = [fl.coefficients(0.0)[0] for fl in mechs]
     gain = {(j + 1, n + 1): c * c * m0[n] / m0[j] for j, (n, c) in enumerate(trans)}

@@ -172,7 +172,7 @@ def _limit_step(out: Path, progress: Callable[[str], None]) -> dict:
     """Fig. 3: Oppenheim's arch, collapse hinges and line of thrust."""
     from .geometry import oppenheim_arch
     from .limit import limit_analysis
-    from .plots import hinge_labels, save_limit_figure
+    from .plots import save_limit_figure
 
     result = limit_analysis(oppenheim_arch(), verify=True)
     progress(f"Oppenheim's arch: k_l = {result.k_l:.4f}, k_r = {result.k_r:.4f} "
@@ -191,7 +191,7 @@ def _limit_step(out: Path, progress: Callable[[str], None]) -> dict:
         "static_k_l": result.static_k_l,
         "static_k_r": result.static_k_r,
         "discrepancy": result.discrepancy,
-        "hinges": {d: [{"label": lab, **h.to_dict()} for lab, h in hinge_labels(result.mechanism(d))]
+        "hinges": {d: [{"label": lab, **h.to_dict()} for lab, h in result.mechanism(d).labelled()]
                    for d in ("l", "r")},
         "figure": FIG3_NAME,
     }

@@ -9,10 +9,11 @@ import math
 import sys
 from typing import Callable
 
-from ..errors import ArchInputError
+from ..errors import ArchInputError, ArchrockError, GeometryOutcome
 
 PROG = "archrock"
 EXIT_USAGE = 2  # bad input: same status as argparse's own errors
+EXIT_OUTCOME = 3  # valid input, no answer of the kind asked (archrock.errors.ArchrockError)
 _OPTIONAL_MODULES = {"matplotlib", "PIL", "pandas", "pyarrow", "tqdm", "numba", "dask", "distributed"}
 
 #: name -> add_<name>_parser(subparsers), in the order shown by --help (filled by archrock.cli).
@@ -108,7 +109,9 @@ def new_parser() -> argparse.ArgumentParser:
 
 def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
     """Parse ``argv`` and run the chosen subcommand; returns the exit status (0 ok, 2 bad input,
-    1 missing optional dependency)."""
+    3 a valid input with no answer of the kind asked (archrock.errors.GeometryOutcome: the arch
+    cannot stand, no mechanism opens), an impact model that cannot be applied, a fit that cannot
+    be identified or a computation limit, 1 missing optional dependency)."""
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse: --help/--version (0) or a usage error (2)
@@ -120,6 +123,12 @@ def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
         msg = " ".join(str(exc).split())
         print(f"{PROG}: error: {msg}", file=sys.stderr)
         return EXIT_USAGE
+    except ArchrockError as exc:
+        # a physical outcome or a limit of the method, not a mistake in the input: said as such
+        msg = " ".join(str(exc).split())
+        kind = "outcome" if isinstance(exc, GeometryOutcome) else "error"
+        print(f"{PROG}: {kind}: {msg}", file=sys.stderr)
+        return EXIT_OUTCOME
     except ImportError as exc:
         # only a missing optional extra is a user-facing condition; anything else is a bug
         root = (getattr(exc, "name", None) or "").split(".")[0]

@@ -48,7 +48,7 @@ def _reason(text: str) -> str:
     return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "#", text.split(" (")[0])
 
 
-@dataclass
+@dataclass(frozen=True)
 class EnsembleResult:
     """Result of :func:`~archrock.ensemble.run.run_ensemble`: the per-sample table and how it was obtained.
 

@@ -9,13 +9,6 @@ import numpy as np
 __all__ = ["limit_summary", "format_limit_table"]
 
 
-def _labelled(mechanism):
-    # plots imports matplotlib only inside its drawing functions, so this stays light
-    from ..plots import hinge_labels
-
-    return hinge_labels(mechanism)
-
-
 def limit_summary(result, min_thickness=None) -> dict:
     """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object)."""
     d = result.to_dict()
@@ -26,7 +19,7 @@ def limit_summary(result, min_thickness=None) -> dict:
         **d,
         "hinge_labels": {
             # A..D from the mechanism's leading side (A leftmost for M_l, rightmost for M_r)
-            dirn: [{"label": lab, **h.to_dict()} for lab, h in _labelled(result.mechanism(dirn))]
+            dirn: [{"label": lab, **h.to_dict()} for lab, h in result.mechanism(dirn).labelled()]
             for dirn in ("l", "r")
         },
         "geometry": result.arch.to_dict(),
@@ -63,7 +56,7 @@ def format_limit_table(result, min_thickness=None) -> str:
         k = result.k_l if dirn == "l" else result.k_r
         ks = result.static_k_l if dirn == "l" else result.static_k_r
         kss = f"{ks:13.4f}" if ks is not None else f"{'-':>13}"
-        hinges = ", ".join(f"{lab}: {h.joint} {h.edge}" for lab, h in _labelled(mech))
+        hinges = ", ".join(f"{lab}: {h.joint} {h.edge}" for lab, h in mech.labelled())
         lines.append(f"  M_{dirn}        {k:13.4f}  {kss}  {hinges}")
     lines.append(f"  k = min(k_l, k_r) = {result.k:.4f}")
     if result.discrepancy is not None:

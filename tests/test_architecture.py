@@ -1,0 +1,80 @@
+"""The layers of docs/architecture.md: no module imports from a layer above its own."""
+
+import ast
+from pathlib import Path
+
+import archrock
+
+ROOT = Path(archrock.__file__).parent
+
+#: top-level module or package -> layer (docs/architecture.md)
+LAYER = {
+    "errors": 0, "units": 0, "published": 0, "_jit": 0, "_records": 0,
+    "geometry": 1, "sampling": 1, "files": 1,
+    "limit": 2,
+    "mechanism": 3,
+    "impact": 4, "groundmotion": 4,
+    "kernel": 5, "response": 5, "batch": 5, "population": 5,
+    "ensemble": 6, "curves": 6, "fragility": 6, "ida": 6,
+    "reports": 7, "plots": 7, "animate": 7, "cli": 7, "study": 7, "__main__": 7,
+}
+#: same layer, kept apart: neither may import the other
+APART = {("impact", "groundmotion"), ("groundmotion", "impact")}
+
+
+def _top(module_path: Path) -> str:
+    rel = module_path.relative_to(ROOT)
+    return rel.parts[0].removesuffix(".py")
+
+
+def _imported_tops(path: Path) -> set[str]:
+    """Top-level archrock modules imported anywhere in ``path`` (also inside functions)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = path.relative_to(ROOT).parts[:-1]  # subpackage of this file, () at the top
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level == 0:
+                if node.module and node.module.split(".")[0] == "archrock":
+                    parts = node.module.split(".")[1:]
+                    out.add(parts[0] if parts else None)
+                continue
+            base = package[:len(package) - (node.level - 1)] if node.level > 1 else package
+            parts = list(base) + (node.module.split(".") if node.module else [])
+            if parts:
+                out.add(parts[0])
+            else:  # "from . import x": x are top-level modules
+                out.update(a.name for a in node.names)
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.split(".")[0] == "archrock" and "." in a.name:
+                    out.add(a.name.split(".")[1])
+    out.discard(None)
+    return out
+
+
+def test_every_module_has_a_layer():
+    tops = {_top(p) for p in ROOT.rglob("*.py") if p.name != "__init__.py" or p.parent != ROOT}
+    assert tops <= set(LAYER), sorted(tops - set(LAYER))
+
+
+def test_no_import_runs_back_up():
+    bad = []
+    for path in sorted(ROOT.rglob("*.py")):
+        if path == ROOT / "__init__.py":
+            continue  # the lazy namespace re-exports every layer by name
+        own = _top(path)
+        for other in _imported_tops(path):
+            if other == own:
+                continue
+            if LAYER[other] > LAYER[own] or (own, other) in APART:
+                bad.append(f"{path.relative_to(ROOT)} (layer {LAYER[own]}) imports {other} "
+                           f"(layer {LAYER[other]})")
+    assert not bad, "\n".join(bad)
+
+
+def test_the_check_sees_relative_and_nested_imports(tmp_path):
+    """The checker itself: a function-level relative import from a subpackage is seen."""
+    p = ROOT / "ensemble" / "run.py"
+    assert "geometry" in _imported_tops(p) and "ensemble" in _imported_tops(p)
+    assert "response" in _imported_tops(ROOT / "batch.py")  # imported inside a function
