@@ -29,10 +29,11 @@ def _config(samples, seed=0):
     from archrock.ensemble import EnsembleConfig
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import PulseSpec
+    from archrock.impact import ImpactSpec
 
     return EnsembleConfig.from_arch(oppenheim_arch(), samples=samples, seed=seed, batch_size=500,
                                     motion=PulseSpec("oppenheim", -1.0, 0.2),
-                                    impact="fixed", cv=0.8754)
+                                    impact=ImpactSpec.fixed(0.8754))
 
 
 def _timed(config, **kw):
