@@ -2,16 +2,10 @@
 response.respond)."""
 
 import json
-import os
-import subprocess
-import sys
 import textwrap
-from pathlib import Path
 
 import numpy as np
 import pytest
-
-import archrock
 
 from archrock.batch import (check_geometries, mechanism_label, prepare_batch,
                             simulate_batch)
@@ -215,7 +209,7 @@ def test_least_loss_batch_equals_respond(ten_arches):
     assert statuses == {("rest", 1), ("collapsed", 0), ("collapsed", 1)}
 
 
-def test_batch_without_numba_agrees(ten_arches):
+def test_batch_without_numba_agrees(ten_arches, without_numba):
     """ARCHROCK_NO_NUMBA=1 runs the pure-Python loop over the same chains: the same numbers."""
     script = textwrap.dedent("""
         import json, numpy as np
@@ -232,13 +226,7 @@ def test_batch_without_numba_agrees(ten_arches):
             out[imp] = {k: np.asarray(r[k]).tolist() for k in ("status", "peak", "n_impacts")}
         print(json.dumps(out))
     """)
-    env = {**os.environ, "ARCHROCK_NO_NUMBA": "1",
-           "PYTHONPATH": os.pathsep.join([str(Path(archrock.__file__).parents[1]),
-                                          os.environ.get("PYTHONPATH", "")])}
-    proc = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True,
-                          timeout=600)
-    assert proc.returncode == 0, proc.stderr
-    pure = json.loads(proc.stdout)
+    pure = json.loads(without_numba("-c", script))
     arches, _ = ten_arches
     sel = [0, 4, 1]
     args = [np.array([getattr(arches[s], k) for s in sel]) for k in ("spans", "radii", "thicknesses")]

@@ -339,28 +339,16 @@ def test_tabulated_coefficients_match_exact(seed):
         assert fast_coefficients(2 * lim, tab) == fl.coefficients(2 * lim)
 
 
-def test_coefficients_are_python_floats_without_numba():
+def test_coefficients_are_python_floats_without_numba(without_numba):
     """FourLink.coefficients gives Python floats with and without numba (numpy scalars broke
     JSON output in the pure-Python mode)."""
     import json
-    import os
-    import subprocess
-    import sys
-    from pathlib import Path
-
-    import archrock
 
     script = ("import json; from archrock import geometry, limit, mechanism, _jit; "
               "a = geometry.oppenheim_arch(); r = limit.limit_analysis(a, verify=False); "
               "c = mechanism.four_link(a, r.mechanism_l).coefficients(0.01); "
               "print(json.dumps([_jit.HAVE_NUMBA, [type(v).__name__ for v in c], list(c)]))")
-    env = {**os.environ, "ARCHROCK_NO_NUMBA": "1",
-           "PYTHONPATH": os.pathsep.join([str(Path(archrock.__file__).parents[1]),
-                                          os.environ.get("PYTHONPATH", "")])}
-    proc = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True,
-                          timeout=300)
-    assert proc.returncode == 0, proc.stderr
-    have_numba, types, values = json.loads(proc.stdout)
+    have_numba, types, values = json.loads(without_numba("-c", script, timeout=300))
     assert not have_numba and types == ["float"] * 4
     a = geometry.oppenheim_arch()
     here = four_link(a, limit.limit_analysis(a, verify=False).mechanism_l).coefficients(0.01)

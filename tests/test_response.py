@@ -519,29 +519,18 @@ def test_cli_respond_names_the_mechanisms(capsys):
     assert d["events"][1]["mechanism_after"] == "0e-2i-5e-7i" and len(d["chain"]) == 4
 
 
-def test_no_numba_path_gives_the_same_response_and_types():
+def test_no_numba_path_gives_the_same_response_and_types(without_numba):
     """ARCHROCK_NO_NUMBA=1 (the README's optional numba) gives the same respond --json, numbers
     and JSON types alike, as the compiled path, and limit analysis the same multipliers."""
     import contextlib
     import io
     import json
-    import os
-    import subprocess
-    import sys
-    from pathlib import Path
 
-    import archrock
     from archrock.cli import main
 
     argv = ["respond", "--pulse", "oppenheim", "--amplitude", "-1.1", "--pulse-duration", "0.3",
             "--impact", "least-loss", "--json", "--t-end", "1.5", "--dt-out", "0.05"]
-    env = {**os.environ, "ARCHROCK_NO_NUMBA": "1",
-           "PYTHONPATH": os.pathsep.join([str(Path(archrock.__file__).parents[1]),
-                                          os.environ.get("PYTHONPATH", "")])}
-    proc = subprocess.run([sys.executable, "-m", "archrock", *argv], env=env, capture_output=True,
-                          text=True, timeout=600)
-    assert proc.returncode == 0, proc.stderr
-    pure = json.loads(proc.stdout)
+    pure = json.loads(without_numba("-m", "archrock", *argv))
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
         assert main(argv) == 0
