@@ -290,10 +290,12 @@ def test_collapse_independent_of_limit():
         if r2.collapsed:
             assert r2.t_unstable is not None
             assert r2.t_unstable == pytest.approx(r3.t_unstable, abs=1e-7)
-            assert r2.t_unstable <= r2.t_collapse < r3.t_collapse
+            # the collapse time is the last passage of phi_u: the limit moves only t_limit
+            assert r2.t_unstable <= r2.t_collapse < r2.t_limit < r3.t_limit
+            assert r2.t_collapse == pytest.approx(r3.t_collapse, abs=1e-7)
             # the fast kernel's spline tables span each model's own limit: same to ~1e-9 s
             assert np.allclose(r2.impacts, r3.impacts, rtol=0, atol=1e-7)
-            if r2.t_collapse < r2.time[-1]:
+            if r2.t_limit < r2.time[-1]:
                 assert np.isnan(r2.response[-1])
     assert respond(m2, gm.oppenheim_pulse(-1.4, 0.3)).collapsed
     assert not respond(m2, gm.oppenheim_pulse(-1.54, 0.3)).collapsed
@@ -469,7 +471,7 @@ def _check_rows(r):
     assert rows.shape == r.time.shape and rows.dtype.kind == "i"
     for e0, e1 in zip(r.events, r.events[1:] + (None,)):
         inside = (r.time > e0.time) & (r.time < (e1.time if e1 else np.inf))
-        want = -1 if e0.kind == "collapse" else e0.row_after
+        want = -1 if e0.kind == "limit" else e0.row_after
         assert np.all(rows[inside] == want)
     before = r.time < r.events[0].time if r.events else np.ones(r.time.size, bool)
     assert np.all(rows[before] == -1)
@@ -500,7 +502,9 @@ def test_rows_after_collapse():
     r = respond(model, gm.oppenheim_pulse(-1.0, 0.2), t_end=3.0)
     assert r.collapsed
     _check_rows(r)
-    assert r.rows_at(r.t_collapse) == -1 and r.rows_at(r.t_collapse - 1e-6) >= 0
+    # the mechanism stays open from the collapse (the last passage of phi_u) to the limit
+    assert r.rows_at(r.t_limit) == -1 and r.rows_at(r.t_limit - 1e-6) >= 0
+    assert r.rows_at(r.t_collapse) >= 0
     assert np.all(r.rows_at([-1.0, 0.0]) == [-1, 0])
 
 

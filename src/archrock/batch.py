@@ -15,7 +15,9 @@ parallel loop of the single-response kernel :func:`archrock.kernel.simulate_chai
   model that creates energy) are not dropped: their ``error`` holds the reason.
 * :func:`simulate_batch` integrates one ground motion for every prepared arch with a numba
   ``prange`` loop over arches (no output samples, ``n_out = 1``), returning per-arch summaries:
-  status, peak, t_collapse, t_unstable, number of impacts and of activations, and whether the
+  status, peak, t_collapse (the last upward passage of phi_u before the rotation limit), t_limit
+  (when the limit, a numerical stop, was reached), t_unstable (the first passage of phi_u), number
+  of impacts and of activations, and whether the
   event table overflowed (``events_truncated``: the outcome is still complete, only the impact
   and activation counts are then lower bounds).  Without numba the same loop runs in Python.
 """
@@ -358,7 +360,7 @@ def _least_loss_per_arch(spans, radii, thick, density, ok, c_lr, c_rl, v_rest, e
 @maybe_njit
 def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                   v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns,
-                  n_imp, n_act, n_ev):
+                  t_lim, n_imp, n_act, n_ev):
     """Integrate arch b over its chain and write its summary into the output arrays (shared by
     both loops)."""
     R = n_rows[b]
@@ -371,7 +373,7 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
     else:
         rows = geos[b, :R].copy()
     # kernel modes are rows + 1 (0 = rest)
-    _, ev, ne, st, _, pk, tc, tu = K.simulate_chain(
+    _, ev, ne, st, tf, pk, tc, tu = K.simulate_chain(
         rows, lims[b, :R].copy(), phus[b, :R].copy(), dirs[b, :R].copy(), nexts[b, :R] + 1,
         ratios[b, :R].copy(), k_l[b], k_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free,
         max_events)
@@ -387,6 +389,7 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
     peak[b] = pk
     t_col[b] = tc
     t_uns[b] = tu
+    t_lim[b] = tf if st == K.ST_COLLAPSED else -1.0
     n_imp[b] = ni
     n_act[b] = na
     n_ev[b] = ne
@@ -394,24 +397,24 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
 
 def _simulate_loop_py(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                       v_rest, run, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                      t_uns, n_imp, n_act, n_ev):
+                      t_uns, t_lim, n_imp, n_act, n_ev):
     for b in range(geos.shape[0]):
         if run[b]:
             _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                           v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                          t_uns, n_imp, n_act, n_ev)
+                          t_uns, t_lim, n_imp, n_act, n_ev)
 
 
 if HAVE_NUMBA:
     @maybe_njit(parallel=True)
     def _simulate_loop_nb(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                           v_rest, run, times, accel, g, dt, t_free, max_events, status, peak,
-                          t_col, t_uns, n_imp, n_act, n_ev):
+                          t_col, t_uns, t_lim, n_imp, n_act, n_ev):
         for b in numba.prange(geos.shape[0]):
             if run[b]:
                 _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts,
                               ratios, v_rest, times, accel, g, dt, t_free, max_events, status,
-                              peak, t_col, t_uns, n_imp, n_act, n_ev)
+                              peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev)
 
     _simulate_loop_serial = maybe_njit(_simulate_loop_py)
 else:  # pragma: no cover - without numba
@@ -425,7 +428,9 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     free motion after the record at most ``t_free`` [s]).
 
     Returns a dict of arrays (B,): status (0 rest, 1 collapsed, 2 still moving, -1 not run:
-    unusable arch), peak [rad], t_collapse and t_unstable [s] (NaN if never), n_impacts,
+    unusable arch), peak [rad], t_collapse [s] (the last upward passage of the unstable position
+    before the rotation limit, independent of the limit), t_limit [s] (when the limit, a
+    numerical stop, was reached), t_unstable [s] (its first passage) (each NaN if never), n_impacts,
     n_activations, events_truncated (more than ``max_events`` events: status, peak and times are
     still exact, n_impacts and n_activations are lower bounds); plus 'seconds'.
     ``tabulate``: the kernel reads M, L, F, P from natural cubic splines on ``table_intervals``
@@ -440,7 +445,8 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     B = len(prepared)
     run = np.ascontiguousarray(prepared.ok)
     res = {"status": np.full(B, ST_NOT_RUN, dtype=np.int64), "peak": np.full(B, np.nan),
-           "t_collapse": np.full(B, np.nan), "t_unstable": np.full(B, np.nan),
+           "t_collapse": np.full(B, np.nan), "t_limit": np.full(B, np.nan),
+           "t_unstable": np.full(B, np.nan),
            "n_impacts": np.zeros(B, dtype=np.int64), "n_activations": np.zeros(B, dtype=np.int64),
            "n_events": np.zeros(B, dtype=np.int64)}
     times = np.ascontiguousarray(motion.times, dtype=float)
@@ -456,13 +462,13 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
             np.ascontiguousarray(p.chain_next, dtype=np.int64),
             np.ascontiguousarray(p.chain_ratio, dtype=float), p.v_rest, run, times, accel, G,
             float(dt), float(t_free), int(max_events), res["status"], res["peak"],
-            res["t_collapse"], res["t_unstable"], res["n_impacts"], res["n_activations"],
-            res["n_events"])
+            res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_impacts"],
+            res["n_activations"], res["n_events"])
     if HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:
         _simulate_loop_py(*args)
-    for key in ("t_collapse", "t_unstable"):
+    for key in ("t_collapse", "t_limit", "t_unstable"):
         res[key][res[key] < 0] = np.nan
     res["events_truncated"] = res.pop("n_events") > int(max_events)
     res["seconds"] = time.perf_counter() - t0

@@ -2,7 +2,9 @@
 
 One function, :func:`simulate`, runs the whole response: rest, activation by the paper's
 eq. (1), motion in M_l or M_r, impacts at phi = 0 with a rate ratio per direction, rest again,
-collapse at the rotation limit.  The ground motion is piecewise linear (steps encoded by
+collapse.  The collapse time is physical: the last upward passage of the open mechanism's
+unstable position phi_u (F = 0) before the rotation limit, after which phi never comes back
+below phi_u; the limit (well past phi_u) is only where the integration stops (t_limit).  The ground motion is piecewise linear (steps encoded by
 repeated times); steps never straddle a sample time, so the forcing is smooth inside a step.
 The state machine mirrors the reference integrator in :mod:`archrock.response`, which uses
 scipy's adaptive solver instead.
@@ -18,7 +20,9 @@ from ._jit import maybe_njit
 from .mechanism import fast_coefficients
 
 # event kinds (column 0 of the event table)
-EV_ACTIVATION, EV_IMPACT, EV_REST, EV_COLLAPSE, EV_UNSTABLE = 1, 2, 3, 4, 5
+# EV_COLLAPSE: the last upward passage of phi_u before the limit; EV_LIMIT: the limit reached
+# (the end of the run); EV_UNSTABLE: the first passage of phi_u
+EV_ACTIVATION, EV_IMPACT, EV_REST, EV_COLLAPSE, EV_UNSTABLE, EV_LIMIT = 1, 2, 3, 4, 5, 6
 # status codes
 ST_REST, ST_COLLAPSED, ST_MOVING = 0, 1, 2
 #: step multiplier in the free motion after the ground motion
@@ -163,7 +167,10 @@ def simulate(geo_l, geo_r, k_l, k_r, c_lr, c_rl, lim_l, lim_r, phu_l, phu_r, v_r
     """Run one response with the two limit mechanisms.  Modes: 0 rest, 1 M_l open, 2 M_r open.
 
     Returns (out, events, n_events, status, t_final, peak, t_collapse, t_unstable):
-    out[k] = signed response at k dt_out (+phi in M_l, -phi in M_r, NaN after collapse);
+    out[k] = signed response at k dt_out (+phi in M_l, -phi in M_r, NaN once the rotation limit
+    is reached); t_collapse [s]: the last upward passage of phi_u before the limit (-1 if no
+    collapse); t_unstable [s]: the first passage of phi_u (-1 if never); after a collapse
+    t_final is when the limit was reached;
     events rows (kind, time, mode before, mode after, rate before, rate after);
     status 0 at rest, 1 collapsed, 2 still moving at t_motion_end + t_free.
     """
@@ -200,6 +207,10 @@ def simulate_chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, time
     peak = 0.0
     t_collapse = -1.0
     t_unstable = -1.0
+    # last upward passage of the open mechanism's phi_u: every arc starts at phi = 0 < phi_u,
+    # so at the limit it is in the arc that reaches it
+    t_up = -1.0
+    w_up = 0.0
     status = ST_REST
     thr_l = -k_l * g
     thr_r = k_r * g
@@ -263,16 +274,25 @@ def simulate_chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, time
             t = times[i + 1]
             continue
         p1, w1 = _rk4(phi, w, t, h, i, times, accel, geo, g)
+        if phi < phu <= p1:
+            # an upward passage of phi_u inside this step (also when it reaches the limit too)
+            hu = _locate(phi, w, t, h, i, times, accel, geo, g, phu, False)
+            t_up = t + hu
+            w_up = _rk4(phi, w, t, hu, i, times, accel, geo, g)[1]
+            if t_unstable < 0:
+                t_unstable = t_up
+                n_ev = _add_event(ev, n_ev, EV_UNSTABLE, t_up, mode, mode, w_up, w_up)
         if p1 >= lim:
             hc = _locate(phi, w, t, h, i, times, accel, geo, g, lim, False)
             p1, w1 = _rk4(phi, w, t, hc, i, times, accel, geo, g)
             k_out = _fill(out, dt_out, t, t + hc, phi, w, p1, w1, sign, k_out)
             t = t + hc
-            if t_unstable < 0:
-                t_unstable = t
-            t_collapse = t
+            # the collapse became certain at the last upward passage of phi_u; the limit
+            # (a numerical stop) only ends the run
+            t_collapse = t_up if t_up >= 0 else t
             peak = max(peak, lim)
-            n_ev = _add_event(ev, n_ev, EV_COLLAPSE, t, mode, mode, w1, 0.0)
+            n_ev = _add_event(ev, n_ev, EV_COLLAPSE, t_collapse, mode, mode, w_up, w_up)
+            n_ev = _add_event(ev, n_ev, EV_LIMIT, t, mode, mode, w1, 0.0)
             k_out = _fill_value(out, dt_out, 1e300, np.nan, k_out)
             status = ST_COLLAPSED
             break
@@ -297,10 +317,6 @@ def simulate_chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, time
                 w = w_plus
             continue
         k_out = _fill(out, dt_out, t, t + h, phi, w, p1, w1, sign, k_out)
-        if t_unstable < 0 and p1 >= phu:
-            hu = _locate(phi, w, t, h, i, times, accel, geo, g, phu, False)
-            t_unstable = t + hu
-            n_ev = _add_event(ev, n_ev, EV_UNSTABLE, t_unstable, mode, mode, w, w)
         if w > 0.0 and w1 <= 0.0:
             peak = max(peak, _hermite_max(h, phi, w, p1, w1))
         t = t + h

@@ -11,8 +11,12 @@ many ground motions); :func:`respond` integrates one ground motion with either
 Both follow the same rules (METHOD sections 3-4): the arch starts from rest when
 xg''/g <= -k_l (M_l) or xg''/g >= k_r (M_r); when phi returns to 0 the joints close (an impact)
 and the opposite mechanism opens with the rate given by the impact law; a post-impact rate below
-``v_rest`` means the arch is at rest again (no endless chattering); it collapses when phi reaches
-the rotation limit.  Integration continues after the ground motion until rest or collapse.
+``v_rest`` means the arch is at rest again (no endless chattering).  The collapse time is the
+last upward passage of the open mechanism's unstable position phi_u (F = 0) before phi reaches
+the rotation limit: from then on the arch never comes back below phi_u.  The limit itself, well
+past phi_u, is only where the integration stops (``t_limit``), so ``limit_factor`` moves
+``t_limit`` but not ``t_collapse``.  Integration continues after the ground motion until rest or
+the limit.
 The signed response is +phi while M_l is open, -phi while M_r is open and 0 at rest.
 """
 
@@ -41,15 +45,16 @@ __all__ = ["DynamicModel", "Event", "Response", "prepare", "respond"]
 _MODE_NAME = {0: "rest", 1: "l", 2: "r"}
 MAX_SAMPLES = 10_000_000  # output samples of one response (80 MB)
 _KIND_NAME = {K.EV_ACTIVATION: "activation", K.EV_IMPACT: "impact", K.EV_REST: "rest",
-              K.EV_COLLAPSE: "collapse", K.EV_UNSTABLE: "unstable"}
+              K.EV_COLLAPSE: "collapse", K.EV_UNSTABLE: "unstable", K.EV_LIMIT: "limit"}
 
 
 @dataclass(frozen=True, eq=False)
 class DynamicModel:
     """Everything about an arch's dynamics that does not depend on the ground motion.
 
-    phi_limit_* [rad]: rotation limits for collapse; phi_unstable_* [rad]: unstable positions
-    (F = 0); v_rest [rad/s]: post-impact rates below it end the motion.
+    phi_limit_* [rad]: rotation limits, where the integration of a collapse stops (past them the
+    collapse is certain; its time is the last passage of phi_unstable); phi_unstable_* [rad]:
+    unstable positions (F = 0); v_rest [rad/s]: post-impact rates below it end the motion.
     """
 
     arch: Arch
@@ -201,7 +206,9 @@ def _prepare_least_loss(arch, lim, m_l, m_r, limit_factor) -> DynamicModel:
 
 
 class Event(NamedTuple):
-    """A discrete event: kind in {activation, impact, rest, collapse, unstable}; time [s];
+    """A discrete event: kind in {activation, impact, rest, unstable, collapse, limit}; time [s]
+    (unstable: first upward passage of phi_u; collapse: the last one, after which phi never
+    returns below phi_u; limit: the rotation limit reached, the end of the run);
     directions before/after ('l', 'r' or 'rest'); rates [rad/s] before/after, each in its own
     mechanism's coordinate (an impact's rate before is negative: the joints are closing);
     energy_ratio: for an impact, kinetic energy after / before (0 when the arch comes to rest);
@@ -232,10 +239,13 @@ class Event(NamedTuple):
 class Response:
     """Result of :func:`respond`: what happened and how it was computed.
 
-    time, response: the signed response (+phi in M_l, -phi in M_r, 0 at rest, NaN after
-    collapse) [rad] sampled every ``dt_out`` up to ``t_end``; peak: max phi over the whole run
-    [rad]; t_collapse / t_unstable [s] (None if never); t_final [s]: when the run ended;
-    status: 'rest', 'collapsed' or 'moving' (still rocking when the free-motion cap ran out).
+    time, response: the signed response (+phi in M_l, -phi in M_r, 0 at rest, NaN from the
+    rotation limit) [rad] sampled every ``dt_out`` up to ``t_end``; peak: max phi over the whole
+    run [rad]; t_collapse [s]: the last upward passage of the unstable position phi_u before the
+    rotation limit (None without collapse), which the limit does not move; t_unstable [s]: the
+    first passage of phi_u (None if never; the arch may come back); t_final [s]: when the run
+    ended (at rest, or :attr:`t_limit` after a collapse); status: 'rest', 'collapsed' or
+    'moving' (still rocking when the free-motion cap ran out).
     """
 
     model: DynamicModel = field(repr=False)
@@ -259,6 +269,12 @@ class Response:
         return self.status == "collapsed"
 
     @property
+    def t_limit(self) -> float | None:
+        """When phi reached the rotation limit [s] (None without collapse): a numerical stop
+        after :attr:`t_collapse`, which moves with ``prepare(..., limit_factor=...)``."""
+        return self.t_final if self.collapsed else None
+
+    @property
     def impacts(self) -> list[float]:
         return [e.time for e in self.events if e.kind == "impact"]
 
@@ -271,10 +287,11 @@ class Response:
 
     def rows_at(self, t) -> np.ndarray:
         """Row of :attr:`DynamicModel.chain` open at time(s) ``t`` [s]: the row after the last
-        event at or before t; -1 at rest and from the collapse on (int array shaped like t)."""
+        event at or before t; -1 at rest and from the rotation limit on, where the response is
+        NaN (int array shaped like t)."""
         t = np.asarray(t, dtype=float)
         ev_t = np.array([e.time for e in self.events], dtype=float)
-        ev_row = np.array([-1 if e.kind == "collapse" else e.row_after for e in self.events]
+        ev_row = np.array([-1 if e.kind == "limit" else e.row_after for e in self.events]
                           + [-1], dtype=np.int64)
         # index -1 (before the first event) picks the trailing -1: at rest
         return ev_row[np.searchsorted(ev_t, t, side="right") - 1]
@@ -296,6 +313,7 @@ class Response:
             "collapsed": self.collapsed,
             "status": self.status,
             "t_collapse": self.t_collapse,
+            "t_limit": self.t_limit,
             "t_unstable": self.t_unstable,
             "t_final": self.t_final,
             "peak": self.peak,
@@ -439,6 +457,8 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
 
     t, mode, phi, w = 0.0, 0, 0.0, 0.0
     peak, t_col, t_uns, status = 0.0, -1.0, -1.0, K.ST_REST
+    # last upward passage of the open mechanism's phi_u (each arc starts at phi = 0 < phi_u)
+    t_up, w_up = -1.0, 0.0
     while True:
         if mode == 0:
             act = first_activation(t)
@@ -485,10 +505,13 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
             sol = solve_ivp(rhs, (t0, t1), [phi, w], method="DOP853", rtol=rtol, atol=atol,
                             events=(close, limit_ev, unstable_ev, turning), dense_output=True,
                             first_step=min(1e-4, (t1 - t0) / 2))
-            if t_uns < 0 and sol.t_events[2].size:
-                t_uns = float(sol.t_events[2][0])
-                ev.append((K.EV_UNSTABLE, t_uns, mode, mode, float(sol.y_events[2][0][1]),
-                           float(sol.y_events[2][0][1])))
+            if sol.t_events[2].size:
+                if t_uns < 0:
+                    t_uns = float(sol.t_events[2][0])
+                    ev.append((K.EV_UNSTABLE, t_uns, mode, mode, float(sol.y_events[2][0][1]),
+                               float(sol.y_events[2][0][1])))
+                # the last upward passage so far (events past a terminal one are not listed)
+                t_up, w_up = float(sol.t_events[2][-1]), float(sol.y_events[2][-1][1])
             # the true maximum is at a turning point (phi' = 0), not at a solver node
             peak = max(peak, float(np.max(sol.y[0])),
                        max((float(y[0]) for y in sol.y_events[3]), default=0.0))
@@ -509,11 +532,13 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
             status = K.ST_MOVING
             break
         if ended == "collapse":
-            t_col = t
+            # certain since the last upward passage of phi_u; the limit only ends the run
+            t_col = t_up if t_up >= 0 else t
             if t_uns < 0:
-                t_uns = t
+                t_uns = t_col
             peak = max(peak, lim)
-            ev.append((K.EV_COLLAPSE, t, mode, mode, w, 0.0))
+            ev.append((K.EV_COLLAPSE, t_col, mode, mode, w_up, w_up))
+            ev.append((K.EV_LIMIT, t, mode, mode, w, 0.0))
             fill(t, np.inf, None, 1.0, np.nan)
             status = K.ST_COLLAPSED
             break

@@ -25,10 +25,13 @@ from .config import EnsembleConfig
 
 __all__ = ["COLUMNS", "run_batch", "sample_arch"]
 
-#: Columns of a batch's table (one row per sample).
+#: Columns of a batch's table (one row per sample).  Times [s]: t_collapse, the last upward
+#: passage of the unstable position before the rotation limit (the physical collapse time, which
+#: the limit does not move); t_limit, when the limit (a numerical stop) was reached; t_unstable,
+#: the first passage of the unstable position (NaN if never).
 COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
-           "status", "peak", "t_collapse", "t_unstable", "n_impacts", "n_activations", "events_truncated",
-           "error"]
+           "status", "peak", "t_collapse", "t_limit", "t_unstable", "n_impacts", "n_activations",
+           "events_truncated", "error"]
 
 
 def sample_arch(config: EnsembleConfig, index: int) -> Arch:
@@ -66,7 +69,7 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
         sim_seconds = res["seconds"]
     else:
         res = {"peak": np.full(nb, np.nan), "t_collapse": np.full(nb, np.nan),
-               "t_unstable": np.full(nb, np.nan), "n_impacts": np.zeros(nb, dtype=np.int64),
+               "t_limit": np.full(nb, np.nan), "t_unstable": np.full(nb, np.nan), "n_impacts": np.zeros(nb, dtype=np.int64),
                "n_activations": np.zeros(nb, dtype=np.int64),
                "events_truncated": np.zeros(nb, dtype=bool)}
         status = np.where(error == "", "limit-only", "failed").astype(object)
@@ -79,7 +82,8 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
         "c_l_to_r": pb.c_l_to_r, "c_r_to_l": pb.c_r_to_l,
         "collapsed": status == "collapsed",
         "status": status.astype(str),
-        "peak": res["peak"], "t_collapse": res["t_collapse"], "t_unstable": res["t_unstable"],
+        "peak": res["peak"], "t_collapse": res["t_collapse"], "t_limit": res["t_limit"],
+        "t_unstable": res["t_unstable"],
         "n_impacts": res["n_impacts"].astype(np.int64),
         "n_activations": res["n_activations"].astype(np.int64),
         "events_truncated": res["events_truncated"].astype(bool),

@@ -30,7 +30,9 @@ __all__ = ["EnsembleConfigMismatch", "Manifest", "batch_path", "read_batch", "wr
            "MANIFEST", "FORMAT", "PROVENANCE_KEY"]
 
 MANIFEST = "manifest.json"
-FORMAT = "archrock-ensemble/2"  # 2: spreads and impact as objects; draws by ArchSampler
+# 2: spreads and impact as objects; draws by ArchSampler.  3: t_collapse is the last passage of
+# the unstable position (no longer the rotation limit), t_limit a new column
+FORMAT = "archrock-ensemble/3"
 PROVENANCE_KEY = b"archrock.ensemble"
 
 

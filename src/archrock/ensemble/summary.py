@@ -123,7 +123,9 @@ class EnsembleResult:
                 "peak_rad": _stats(ran.loc[~ran["collapsed"], "peak"].to_numpy()),
                 "n_impacts": _stats(ran["n_impacts"].to_numpy()),
                 "events_truncated": int(ran["events_truncated"].sum()),
+                # the last passage of the unstable position; t_limit: the numerical stop
                 "t_collapse_s": _stats(col["t_collapse"].to_numpy()),
+                "t_limit_s": _stats(col["t_limit"].to_numpy()),
                 "t_unstable_s": _stats(ran["t_unstable"].to_numpy()),
                 "unstable_but_survived": int((np.isfinite(ran["t_unstable"].to_numpy())
                                               & ~ran["collapsed"].to_numpy()).sum()),
