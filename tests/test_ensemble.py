@@ -69,7 +69,10 @@ def test_frame_columns_and_values(base):
     assert df["collapsed"].tolist() == (df["status"] == "collapsed").tolist()
     col = df[df["collapsed"]]
     assert (col["t_collapse"] >= col["t_unstable"]).all()
+    # the collapse (last passage of phi_u) comes before the numerical stop at the limit
+    assert (col["t_limit"] > col["t_collapse"]).all()
     assert df.loc[~df["collapsed"], "t_collapse"].isna().all()
+    assert df.loc[~df["collapsed"], "t_limit"].isna().all()
 
 
 def test_summary_numbers(base):

@@ -317,6 +317,86 @@ def test_collapse_on_random_arches_independent_of_limit():
     assert found >= 1
 
 
+#: collapses of several kinds: (arch, impact, motion, direction of the collapsing mechanism,
+#: impacts before it, chain row of the collapsing mechanism)
+RA2_CV = 0.8753811790524885  # the nominal arch's c_v, applied to the RA-2 type arch (the paper)
+COLLAPSES = [
+    ("seed 315", RA2_CV, ("oppenheim", -1.0, 0.2), "r", 1, 1),   # RA-2 type: 2nd half cycle
+    ("seed 0", "paper", ("oppenheim", 1.0, 0.2), "l", 1, 0),
+    ("seed 7", "paper", ("oppenheim", -1.0, 0.3), "l", 2, 0),     # after two impacts
+    ("nominal", "paper", ("oppenheim", -1.4, 0.3), "r", 1, 1),
+    ("nominal", "paper", ("oppenheim", 2.0, 0.3), "r", 0, 1),     # before any impact
+    ("seed 0", "least-loss", ("oppenheim", 1.3, 0.3), "l", 1, 2),  # a least-loss mechanism
+    ("seed 2", "least-loss", ("oppenheim", 1.6, 0.3), "r", 0, 1),
+]
+
+
+def _collapse_case(name, impact, motion):
+    arch = (geometry.oppenheim_arch() if name == "nominal"
+            else geometry.random_arch(seed=int(name.split()[1])))
+    return arch, impact, gm.pulse(*motion)
+
+
+@pytest.mark.parametrize("case", COLLAPSES, ids=lambda c: f"{c[0]}-{c[1]}-{c[2][1]:+g}g-{c[2][2]}s")
+def test_collapse_time_does_not_move_with_the_limit(case):
+    """t_collapse is the last upward passage of phi_u before the rotation limit: the same to
+    1e-6 s for limit factors 1.5, 2, 2.5 and the default, while t_limit (the numerical stop)
+    moves; the reference integrator and the batch kernel agree."""
+    from archrock.batch import prepare_batch, simulate_batch
+
+    name, impact, motion_args, direction, n_impacts, row = case
+    arch, impact, motion = _collapse_case(name, impact, motion_args)
+    runs = {f: respond(prepare(arch, impact, limit_factor=f), motion)
+            for f in (1.5, 2.0, 2.5, None)}
+    default = runs[None]
+    assert all(r.collapsed for r in runs.values())
+    col = [e for e in default.events if e.kind == "collapse"]
+    assert len(col) == 1 and col[0].time == default.t_collapse
+    assert (col[0].before, col[0].row_before, len(default.impacts)) == (direction, row, n_impacts)
+    # the collapse event is an upward passage of phi_u, the last before the limit event
+    assert default.events[-1].kind == "limit" and default.events[-1].time == default.t_limit
+    assert col[0].rate_before > 0
+    for f, r in runs.items():
+        assert r.t_collapse == pytest.approx(default.t_collapse, abs=1e-6), f
+        assert r.t_unstable <= r.t_collapse < r.t_limit == r.t_final
+        assert r.to_dict(samples=False)["t_limit"] == r.t_limit
+    limits = [runs[f].t_limit for f in (1.5, 2.0, 2.5)]
+    assert limits[0] < limits[1] < limits[2]
+    assert default.t_limit - default.t_collapse > 0.05  # the limit is well past the collapse
+    # after the collapse phi stays above phi_u up to the limit, in the collapsing mechanism
+    phu = default.model.mechanism(row).phi_unstable
+    after = (default.time > default.t_collapse + 1e-3) & (default.time < default.t_limit)
+    sign = 1.0 if direction == "l" else -1.0
+    assert np.all(sign * default.response[after] > phu)
+    # the reference integrator (DOP853, a non-terminal event) finds the same passage
+    ref = respond(prepare(arch, impact), motion, integrator="reference")
+    assert ref.t_collapse == pytest.approx(default.t_collapse, abs=1e-6)
+    assert ref.t_limit == pytest.approx(default.t_limit, abs=1e-5)
+    # the batch kernel reports the same times as the single-arch respond
+    pb = prepare_batch(arch.spans[None], arch.radii[None], arch.thicknesses[None], arch.density,
+                       impact=impact)
+    res = simulate_batch(pb, motion)
+    assert res["status"][0] == kernel.ST_COLLAPSED
+    assert res["t_collapse"][0] == pytest.approx(default.t_collapse, abs=1e-9)
+    assert res["t_limit"][0] == pytest.approx(default.t_limit, abs=1e-9)
+    assert res["t_unstable"][0] == pytest.approx(default.t_unstable, abs=1e-9)
+
+
+def test_ra2_collapse_time_without_numba(without_numba):
+    """The pure-Python kernel finds the same collapse and limit times as the compiled one."""
+    import json
+
+    script = ("import json; from archrock import geometry, groundmotion as gm; "
+              "from archrock.response import prepare, respond; "
+              f"m = prepare(geometry.random_arch(seed=315), {RA2_CV!r}, limit_factor=1.5); "
+              "r = respond(m, gm.oppenheim_pulse(-1.0, 0.2), t_end=0.5); "
+              "print(json.dumps([r.t_collapse, r.t_limit, r.t_unstable]))")
+    pure = json.loads(without_numba("-c", script))
+    r = respond(prepare(geometry.random_arch(seed=315), RA2_CV, limit_factor=1.5),
+                gm.oppenheim_pulse(-1.0, 0.2), t_end=0.5)
+    assert pure == pytest.approx([r.t_collapse, r.t_limit, r.t_unstable], abs=1e-9)
+
+
 def test_nonmonotonic_collapse_in_amplitude(nominal):
     """Oppenheim's arch under Oppenheim's pulse with t_p = 0.3 s: collapses at 1.48 g,
     survives 1.50-1.58 g (passing the unstable position and coming back), collapses at 1.60 g."""
