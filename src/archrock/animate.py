@@ -50,10 +50,11 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     n_frames = min(max_frames, max(2, int(t[-1] * fps / speed)))
     frame_t = np.linspace(0.0, t[-1], n_frames)
     frame_rows = response.rows_at(frame_t)
-    if response.collapsed and response.t_collapse is not None:
-        # hold the collapsing mechanism, as the rotation is held
-        last = [e for e in response.events if e.kind == "collapse"][-1].row_before
-        frame_rows[frame_t >= response.t_collapse] = last
+    if response.collapsed:
+        # from the rotation limit on (NaN response) hold the collapsing mechanism, as the
+        # rotation is held
+        last = [e for e in response.events if e.kind == "limit"][-1].row_before
+        frame_rows[frame_t >= response.t_limit] = last
     mechs = model.chain[0]
     labels = model.labels
     fig, axes = new_figure(2, 1, figsize=(6.4, 6.0), height_ratios=(2.2, 1.0))
@@ -64,8 +65,8 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     ax_resp.plot(t, phi, color="#1f77b4", lw=1.2)
     ax_resp.axhline(0.0, color="#999999", lw=0.6)
     ax_resp.set_xlim(0, t[-1])
-    ax_resp.set_xlabel("time t [s]")
-    ax_resp.set_ylabel("phi [rad]")
+    ax_resp.set_xlabel("$t$ [s]")
+    ax_resp.set_ylabel(r"$\phi$ [rad]")
     marker, = ax_resp.plot([], [], "o", color="#c0392b")
     ax_g = ax_resp.twinx()
     plot_ground_motion(response.motion, ax_g, t_end=t[-1])

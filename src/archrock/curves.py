@@ -136,7 +136,9 @@ class CollapseAmplitude:
     amplitude: first collapse |a| [g] (None if no collapse up to ``a_max``); the signed amplitude
     is ``sign * amplitude``.  bracket: (last survival, first collapse) after bisection, |a| [g],
     hi - lo <= tol.  mode: 'before first impact' or 'after N impacts' at the first collapse;
-    t_collapse [s] there.  windows: survival windows above the first collapse, (lo, hi) in |a| [g]:
+    t_collapse [s] there: the last upward passage of the unstable position before the rotation
+    limit (:attr:`archrock.response.Response.t_collapse`; the limit, a numerical stop, does not
+    move it).  windows: survival windows above the first collapse, (lo, hi) in |a| [g]:
     lo is the smallest and hi the largest surviving amplitude found (edges bisected to ``tol``;
     hi = a_max when the arch still survives at a_max).  threshold: activation threshold |a| [g]
     (k_l for sign -1, k_r for sign +1).  scan_amplitudes / scan_collapsed: the grid and outcomes.

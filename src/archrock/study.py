@@ -37,8 +37,9 @@ SPREADS = published.METHOD_SPREADS
 def find_random_arches(cv: float, n_seeds: int = 1000, t_window: float = 3.0,
                        near: float = 0.02):
     """Seeds of a recovering arch (at least two impacts within ``t_window``) nearest RA-1 and of
-    an arch failing in the second half cycle (collapse in M_r after exactly one impact, within
-    ``t_window``) nearest RA-2, distances measured in the (k_l, k_r) plane.
+    an arch failing in the second half cycle (collapse in M_r after exactly one impact, falling
+    to the rotation limit within ``t_window``, so that Fig. 4 shows the fall) nearest RA-2,
+    distances measured in the (k_l, k_r) plane.
 
     Also counts, for the arches within ``near`` of RA-1's and of RA-2's (k_l, k_r), how many
     collapse: the paper's geometries are unpublished, so this says how typical its outcomes are.
@@ -63,8 +64,10 @@ def find_random_arches(cv: float, n_seeds: int = 1000, t_window: float = 3.0,
                 counts[key][0] += res.collapsed
                 counts[key][1] += 1
         impacts = [e for e in res.events if e.kind == "impact" and e.time < (res.t_collapse or math.inf)]
+        # the fall itself must be within the figure's window: the limit reached, not only the
+        # collapse (the last passage of phi_u) begun
         second_half = (res.collapsed and len(impacts) == 1 and res.events[-1].before == "r"
-                       and res.t_collapse <= t_window)
+                       and res.t_limit <= t_window)
         if res.collapsed and not second_half:
             continue
         # RA-1 type: recovers "after subsequent impacts" (paper 5.2), seen within the window
@@ -108,14 +111,16 @@ def _dynamics_step(out: Path, progress: Callable[[str], None]) -> dict:
             continue
         seed, model, res = found[key]
         progress(f"{key} type: seed {seed}, k_l = {model.k_l:.4f}, k_r = {model.k_r:.4f}; "
-                 + (f"collapses at {res.t_collapse:.3f} s after {len(res.impacts)} impact(s)"
+                 + (f"collapses at {res.t_collapse:.2f} s (last passage of the unstable position; "
+                    f"rotation limit at {res.t_limit:.2f} s) after {len(res.impacts)} impact(s)"
                     if res.collapsed else f"recovers ({len(res.impacts)} impacts)"))
         (out / f"{key.lower()}_geometry.json").write_text(
             json.dumps(model.arch.to_dict(), indent=2) + "\n", encoding="utf-8")
         responses.append(res)
         labels.append(f"{key} type (seed {seed})")
         rows[key] = {"seed": seed, "k_l": model.k_l, "k_r": model.k_r, "collapsed": res.collapsed,
-                     "t_collapse": res.t_collapse, "impacts": res.impacts[:5], "peak": res.peak,
+                     "t_collapse": res.t_collapse, "t_limit": res.t_limit,
+                     "t_unstable": res.t_unstable, "impacts": res.impacts[:5], "peak": res.peak,
                      "mechanism_l": model.limit.mechanism_l.to_dict(),
                      "mechanism_r": model.limit.mechanism_r.to_dict(),
                      "restitution": model.impact.to_dict(),
@@ -149,7 +154,9 @@ def _table(summary: dict) -> str:
                                 ("RA-2", PAPER_RA2, "fails in the second half cycle after an impact")):
         if key in ra:
             r = ra[key]
-            ours = ("collapses at %.2f s after %d impact(s)" % (r["t_collapse"], len(r["impacts"]))
+            ours = ("collapses at %.2f s after %d impact(s) (last passage of the unstable "
+                    "position; the rotation limit, a numerical stop, at %.2f s)"
+                    % (r["t_collapse"], len(r["impacts"]), r["t_limit"])
                     if r["collapsed"] else "recovers")
             lines.append(f"| {key}: k_l, k_r; response | {kl:.4f}, {kr:.4f}; {fate} | "
                          f"{r['k_l']:.4f}, {r['k_r']:.4f} (seed {r['seed']}); {ours} |")

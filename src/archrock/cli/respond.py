@@ -25,8 +25,13 @@ def add_respond_parser(subparsers):
     p.add_argument("--limit-factor", type=finite_float, default=None, metavar="F",
                    help="collapse rotation limit as a multiple of the unstable rotation (> 1)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="write a figure of the motion and response")
-    p.add_argument("--animate", metavar="FILE.gif", help="write an animation of the mechanism")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="write a figure of the motion and response; it runs to --t-end or, when "
+                        "the run ends later (at rest, or at the rotation limit after a collapse), "
+                        "to that end plus 5%%, but at most to 2 x --t-end or 10 s after the ground "
+                        "motion, whichever is later")
+    p.add_argument("--animate", metavar="FILE.gif",
+                   help="write an animation of the mechanism (same time span as --plot)")
     p.set_defaults(func=run_respond)
     return p
 
@@ -40,14 +45,24 @@ def run_respond(args) -> int:
     if args.limit_factor is not None:
         model = prepare(model.arch, model.impact, limit_factor=args.limit_factor, limit=model.limit)
     res = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out, integrator=args.integrator)
+    shown = res
+    if args.plot or args.animate:
+        from ..plots import figure_t_end
+
+        # the figures show the run to rest or collapse, also past --t-end (capped); the JSON and
+        # the report keep --t-end.  The run itself does not depend on the output window.
+        t_fig = figure_t_end(res, args.t_end)
+        if t_fig > res.time[-1]:
+            shown = respond(model, motion, t_end=t_fig, dt_out=args.dt_out,
+                            integrator=args.integrator)
     if args.plot:
         from ..plots import save_response_figure
 
-        save_response_figure([res], args.plot, labels=[model.arch.name])
+        save_response_figure([shown], args.plot, labels=[model.arch.name])
     if args.animate:
         from ..animate import animate_response
 
-        animate_response(res, args.animate)
+        animate_response(shown, args.animate)
     if args.json:
         emit_json(res.to_dict())
         return 0

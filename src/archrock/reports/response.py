@@ -9,7 +9,10 @@ def format_response(result, model, motion) -> str:
     """Readable summary of a ResponseResult of ``model`` under ``motion``."""
     imp = result.impacts
     law = model.impact
-    outcome = (f"COLLAPSED at t = {result.t_collapse:.3f} s" if result.collapsed else
+    # the collapse time is the last passage of the unstable position; the limit is where the
+    # integration stopped (it moves with the limit factor, the collapse time does not)
+    outcome = (f"COLLAPSED at t = {result.t_collapse:.3f} s (last passage of the unstable "
+               f"position; rotation limit reached at {result.t_limit:.3f} s)" if result.collapsed else
                ("at rest" if result.status == "rest" else "still rocking at the end of the run"))
     lines = [
         f"arch: {model.arch.name}; k_l = {model.k_l:.4f}, k_r = {model.k_r:.4f}",
@@ -18,7 +21,8 @@ def format_response(result, model, motion) -> str:
         f"(energy ratio {law.energy_l_to_r:.4f}, {law.energy_r_to_l:.4f})",
         f"outcome: {outcome}; peak rotation {result.peak:.4f} rad; {len(imp)} impacts"
         + (f" (first at {imp[0]:.3f} s)" if imp else "")
-        + (f"; passed the unstable position at {result.t_unstable:.3f} s" if result.t_unstable else ""),
+        + (f"; first passed the unstable position at {result.t_unstable:.3f} s"
+           if result.t_unstable is not None else ""),
     ]
     opened = result.mechanisms_opened()
     if opened:
