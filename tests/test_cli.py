@@ -320,6 +320,43 @@ def test_respond_report_is_what_the_command_prints(capsys):
     assert out.startswith("arch: Oppenheim; k_l = 0.3700") and "outcome: " in out
 
 
+def test_respond_figures_run_to_the_collapse_past_t_end(capsys, tmp_path, monkeypatch):
+    """--plot and --animate draw the run to its end (the rotation limit here, 0.66 s) although
+    --t-end is 0.3 s; the JSON keeps --t-end and reports t_collapse beside t_limit."""
+    pytest.importorskip("matplotlib")
+    import archrock.animate
+    import archrock.plots
+
+    seen = {}
+    monkeypatch.setattr(archrock.plots, "save_response_figure",
+                        lambda rs, path, labels=None: seen.setdefault("plot", rs[0]))
+    monkeypatch.setattr(archrock.animate, "animate_response",
+                        lambda r, path: seen.setdefault("animate", r))
+    d = run_json(capsys, "respond", "--pulse", "oppenheim", "--amplitude", "-2",
+                 "--pulse-duration", "0.3", "--t-end", "0.3", "--json",
+                 "--plot", str(tmp_path / "r.png"), "--animate", str(tmp_path / "r.gif"))
+    assert d["collapsed"] and d["time"][-1] == pytest.approx(0.3)
+    assert d["t_collapse"] == pytest.approx(0.34033348, abs=1e-6) and d["t_limit"] > 0.6
+    for r in (seen["plot"], seen["animate"]):
+        assert r.time[-1] >= d["t_limit"] and r.time[-1] == pytest.approx(1.05 * d["t_limit"], abs=0.01)
+        assert r.t_collapse == d["t_collapse"] and np.isnan(r.response[-1])
+
+
+def test_figure_t_end_is_capped():
+    from types import SimpleNamespace
+
+    from archrock.plots import figure_t_end
+
+    def fake(t_final, duration=0.6, t_end=3.0):
+        return SimpleNamespace(time=np.array([0.0, t_end]), t_final=t_final,
+                               motion=SimpleNamespace(duration=duration))
+    assert figure_t_end(fake(2.0)) == 3.0                       # ended inside the window
+    assert figure_t_end(fake(4.0)) == pytest.approx(4.2)        # to the end, plus 5 %
+    assert figure_t_end(fake(60.6)) == pytest.approx(10.6)      # free rocking: 10 s past the motion
+    assert figure_t_end(fake(60.6), t_end=8.0) == 16.0          # or 2 x t_end
+    assert figure_t_end(fake(60.6, duration=40.0)) == 50.0      # a record: 10 s past its end
+
+
 @pytest.mark.parametrize("samples", [0, 2])
 def test_curves_reports_are_what_the_command_prints(capsys, samples):
     from archrock.curves import collapse_curve, ensemble_curve

@@ -3,7 +3,10 @@
 Each frame draws every voussoir moved rigidly with its link at the response's rotation
 (exact four-bar kinematics) in the mechanism of the chain actually open then (from the
 response's events, :meth:`archrock.response.Response.rows_at`), with its four hinges, and the
-ground motion and the signed response below it.
+ground motion and the signed response below it, over the response's samples (``archrock
+respond --animate`` samples to rest or to the rotation limit, past --t-end).  Frames from the
+collapse (the last passage of the unstable position) on say COLLAPSED; from the rotation limit
+on, where the response ends, the last computed position is held.
 Displacements are drawn to scale unless ``exaggerate`` says otherwise.
 """
 

@@ -23,7 +23,9 @@ def add_respond_parser(subparsers):
     p.add_argument("--integrator", choices=("fast", "reference"), default="fast",
                    help="fast: RK4 + events (numba); reference: scipy DOP853 (default fast)")
     p.add_argument("--limit-factor", type=finite_float, default=None, metavar="F",
-                   help="collapse rotation limit as a multiple of the unstable rotation (> 1)")
+                   help="rotation limit as a multiple of the unstable rotation (> 1): where the "
+                        "integration of a collapse stops (t_limit); the collapse time, the last "
+                        "passage of the unstable rotation, does not depend on it")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png",
                    help="write a figure of the motion and response; it runs to --t-end or, when "
