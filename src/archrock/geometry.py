@@ -231,9 +231,13 @@ class Arch:
                     self.name)
 
     def is_symmetric(self, tol: float = 1e-12) -> bool:
+        """Whether the arch is its own mirror image: spans to ``tol`` rad, radii and thicknesses
+        to ``tol`` times the mean radius (relative, so the answer does not depend on units)."""
         m = self.mirrored()
-        return bool(np.allclose(self.spans, m.spans, atol=tol) and np.allclose(self.radii, m.radii, atol=tol)
-                    and np.allclose(self.thicknesses, m.thicknesses, atol=tol))
+        size = float(np.mean(self.radii))
+        return bool(np.allclose(self.spans, m.spans, rtol=0.0, atol=tol)
+                    and np.allclose(self.radii, m.radii, rtol=0.0, atol=tol * size)
+                    and np.allclose(self.thicknesses, m.thicknesses, rtol=0.0, atol=tol * size))
 
     # ------------------------------------------------------------------ serialisation
     def to_dict(self) -> dict:

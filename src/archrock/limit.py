@@ -35,7 +35,7 @@ from .geometry import Arch, sector_properties
 __all__ = [
     "Hinge", "Mechanism", "ThrustLine", "LimitResult", "MinimumThickness",
     "limit_analysis", "kinematic_mechanisms", "kinematic_multipliers_batch",
-    "static_multiplier", "thrust_line", "minimum_thickness", "EDGES",
+    "static_multiplier", "thrust_line", "minimum_thickness", "length_scale", "EDGES",
 ]
 
 EDGES = ("intrados", "extrados")
@@ -202,9 +202,26 @@ def _active_candidates(n: int):
     return idx, pt, pair, sign
 
 
+def length_scale(radii) -> np.ndarray:
+    """Reference length [m] of each arch: the power of two nearest its mean radius, shape
+    (..., 1) for radii (..., n).
+
+    Limit analysis works on lengths divided by it, so that its tolerances are relative to the
+    arch's size (a multiplier cannot depend on the units).  A power of two makes the division
+    exact: the nondimensional numbers are those of the same arch in metres, bit for bit, when
+    its size is a power of two away.
+    """
+    radii = np.asarray(radii, float)
+    mean = np.mean(radii, axis=-1, keepdims=True)
+    return np.ldexp(1.0, np.round(np.log2(mean)).astype(np.int64))
+
+
 def _batch_sums(spans, radii, thick):
-    """Prefix sums of weight and first moments (weights normalised to total 1), joint points."""
-    p = sector_properties(spans, radii, thick)
+    """Prefix sums of weight and first moments (weights normalised to total 1), joint points;
+    lengths divided by :func:`length_scale` (nondimensional, so that the enumeration's absolute
+    thresholds on work and determinants mean the same at any size)."""
+    ref = length_scale(radii)
+    p = sector_properties(spans, radii / ref, thick / ref)
     w = p["area"] / p["area"].sum(axis=-1, keepdims=True)
     g = p["centroid"]
     zero = np.zeros(w.shape[:-1] + (1,))
@@ -525,13 +542,17 @@ def kinematic_mechanisms(arch: Arch) -> tuple[Mechanism, Mechanism]:
 # ---------------------------------------------------------------------------- static
 def _statics(arch: Arch, direction: str):
     """Rows expressing the normal force N_j and moment M_j about O at each joint as linear
-    functions of x = [F0x, F0y, M0, lambda]: N = A_N x + b_N, M = A_M x + b_M (unit total weight,
-    lengths in metres)."""
+    functions of x = [F0x, F0y, M0, lambda]: N = A_N x + b_N, M = A_M x + b_M, nondimensional:
+    forces per unit total weight W, moments per W L with L = :func:`length_scale` (the linear
+    program's tolerances are absolute, so a size in metres would change its verdict).
+    Returns the rows, the contact radii r_in / L, r_out / L of the joints, and
+    (cw, cwx, cwy, d, L)."""
     if direction not in DIRECTIONS:
         raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
     d = 1.0 if direction == "l" else -1.0
+    ref = float(length_scale(arch.radii)[0])
     w = arch.areas / arch.areas.sum()
-    g = arch.centroids
+    g = arch.centroids / ref
     zero = np.zeros(1)
     cw = np.concatenate([zero, np.cumsum(w)])
     cwx = np.concatenate([zero, np.cumsum(w * g[:, 0])])
@@ -545,7 +566,16 @@ def _statics(arch: Arch, direction: str):
     # M_j = M0 - cwx - d lam cwy
     A_M = np.column_stack([np.zeros(nj), np.zeros(nj), np.ones(nj), -d * cwy])
     b_M = -cwx
-    return A_N, b_N, A_M, b_M, (cw, cwx, cwy, d)
+    r_in, r_out = arch.contact_inner / ref, arch.contact_outer / ref
+    return A_N, b_N, A_M, b_M, r_in, r_out, (cw, cwx, cwy, d, ref)
+
+
+def _thrust_constraints(A_N, b_N, A_M, b_M, r_in, r_out):
+    """(A_ub, b_ub): r_in N <= -M <= r_out N at every joint (the thrust crosses the joint
+    inside its contact surface, in compression), as r_in N + M <= 0 and -M - r_out N <= 0."""
+    A_ub = np.vstack([r_in[:, None] * A_N + A_M, -A_M - r_out[:, None] * A_N])
+    b_ub = np.concatenate([-(r_in * b_N + b_M), b_M + r_out * b_N])
+    return A_ub, b_ub
 
 
 def static_multiplier(arch: Arch, direction: str) -> tuple[float, ThrustLine]:
@@ -554,11 +584,8 @@ def static_multiplier(arch: Arch, direction: str) -> tuple[float, ThrustLine]:
     Constraints: r_in_j N_j <= -M_j <= r_out_j N_j at every joint (the thrust crosses the joint
     inside its contact surface, in compression).
     """
-    A_N, b_N, A_M, b_M, _ = _statics(arch, direction)
-    r_in, r_out = arch.contact_inner[:, None], arch.contact_outer[:, None]
-    # r_in N + M <= 0 and -M - r_out N <= 0
-    A_ub = np.vstack([r_in * A_N + A_M, -A_M - r_out * A_N])
-    b_ub = np.concatenate([-(arch.contact_inner * b_N + b_M), b_M + arch.contact_outer * b_N])
+    A_N, b_N, A_M, b_M, r_in, r_out, _ = _statics(arch, direction)
+    A_ub, b_ub = _thrust_constraints(A_N, b_N, A_M, b_M, r_in, r_out)
     res = linprog(c=[0, 0, 0, -1.0], A_ub=A_ub, b_ub=b_ub, bounds=[(None, None)] * 4, method="highs")
     if res.status != 0:
         raise CannotStandError(
@@ -568,10 +595,11 @@ def static_multiplier(arch: Arch, direction: str) -> tuple[float, ThrustLine]:
 
 
 def _thrust_from_x(arch: Arch, direction: str, x: np.ndarray) -> ThrustLine:
-    A_N, b_N, A_M, b_M, (cw, _, _, d) = _statics(arch, direction)
+    """The line of thrust of the nondimensional redundants x (see :func:`_statics`), in metres."""
+    A_N, b_N, A_M, b_M, _, _, (cw, _, _, d, ref) = _statics(arch, direction)
     N = A_N @ x + b_N
     M = A_M @ x + b_M
-    radii = -M / N
+    radii = -M / N * ref
     psi = arch.joint_angles
     pts = np.column_stack([radii * np.cos(psi), radii * np.sin(psi)])
     lam = x[3]
@@ -599,10 +627,10 @@ def thrust_line(arch: Arch, mechanism: Mechanism) -> ThrustLine:
     Solves the four conditions 'the thrust passes through hinge h' for the three redundants and
     lambda; the lambda found this way is a third, independent value of the multiplier.
     """
-    A_N, b_N, A_M, b_M, _ = _statics(arch, mechanism.direction)
+    A_N, b_N, A_M, b_M, r_in, r_out, _ = _statics(arch, mechanism.direction)
     rows, rhs = [], []
     for h in mechanism.hinges:
-        r = arch.contact_inner[h.joint] if h.edge == "intrados" else arch.contact_outer[h.joint]
+        r = r_in[h.joint] if h.edge == "intrados" else r_out[h.joint]
         rows.append(A_M[h.joint] + r * A_N[h.joint])
         rhs.append(-(b_M[h.joint] + r * b_N[h.joint]))
     x = np.linalg.solve(np.array(rows), np.array(rhs))
@@ -645,12 +673,21 @@ class MinimumThickness:
 
 
 def _stands(arch: Arch) -> bool:
-    A_N, b_N, A_M, b_M, _ = _statics(arch, "l")
-    r_in, r_out = arch.contact_inner[:, None], arch.contact_outer[:, None]
-    A_ub = np.vstack([r_in * A_N + A_M, -A_M - r_out * A_N])[:, :3]
-    b_ub = np.concatenate([-(arch.contact_inner * b_N + b_M), b_M + arch.contact_outer * b_N])
-    res = linprog(c=[0, 0, 0], A_ub=A_ub, b_ub=b_ub, bounds=[(None, None)] * 3, method="highs")
-    return res.status == 0
+    """Whether a line of thrust fits inside the arch under self-weight alone.
+
+    Maximises the smallest moment margin s (per W L, nondimensional as in :func:`_statics`) of
+    r_in N <= -M - s and -M + s <= r_out N; the arch stands when s >= 0.  Deciding on the sign
+    of an optimum rather than on the solver's feasibility verdict makes the bisection of
+    :func:`minimum_thickness` independent of the LP's absolute feasibility tolerance (~1e-7),
+    which otherwise moved the minimum thickness by ~1e-6 with the arch's size.
+    """
+    A_N, b_N, A_M, b_M, r_in, r_out, _ = _statics(arch, "l")
+    A_ub, b_ub = _thrust_constraints(A_N, b_N, A_M, b_M, r_in, r_out)
+    A_ub = np.column_stack([A_ub[:, :3], np.ones(A_ub.shape[0])])
+    # s <= 1 keeps the program bounded; any s >= 0 is enough to stand
+    res = linprog(c=[0, 0, 0, -1.0], A_ub=A_ub, b_ub=b_ub,
+                  bounds=[(None, None)] * 3 + [(None, 1.0)], method="highs")
+    return res.status == 0 and res.x[3] >= 0.0
 
 
 def minimum_thickness(arch: Arch, tol: float = 1e-7) -> MinimumThickness:

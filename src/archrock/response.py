@@ -40,7 +40,8 @@ from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
 from .limit import LimitResult, limit_analysis
 from .mechanism import FourLink, four_link, rest_rate
 
-__all__ = ["DynamicModel", "Event", "Response", "prepare", "respond"]
+__all__ = ["DynamicModel", "Event", "Response", "prepare", "respond", "default_steps",
+           "time_scale"]
 
 _MODE_NAME = {0: "rest", 1: "l", 2: "r"}
 MAX_SAMPLES = 10_000_000  # output samples of one response (80 MB)
@@ -337,6 +338,23 @@ class Response:
         return d
 
 
+#: RK4 step [s] and free-motion cap [s] of 0.1.0, kept for arches of a metre and more.
+DEFAULT_DT, DEFAULT_T_FREE = 2e-3, 60.0
+
+
+def time_scale(arch: Arch) -> float:
+    """sqrt(R/g) [s] for the mean radius R: times of similar arches scale with it."""
+    return math.sqrt(float(np.mean(arch.radii)) / G)
+
+
+def default_steps(arch: Arch) -> tuple[float, float]:
+    """(dt, t_free) [s] for ``arch``: 2e-3 s and 60 s, but dt at most T/100 and t_free at least
+    50 T with T = :func:`time_scale` (a step of 2e-3 s is a whole rocking arc of a 1 mm arch,
+    and 60 s is a few free arcs of a 1 km one); unchanged for 0.4 m <= R <= 14 m."""
+    T = time_scale(arch)
+    return min(DEFAULT_DT, T / 100.0), max(DEFAULT_T_FREE, 50.0 * T)
+
+
 def _check_times(t_end, dt_out, dt, t_free):
     for name, v in (("t_end", t_end), ("dt_out", dt_out), ("dt", dt), ("t_free", t_free)):
         if not isinstance(v, (int, float)) or isinstance(v, bool) or not math.isfinite(v) or v <= 0:
@@ -350,20 +368,26 @@ def _check_times(t_end, dt_out, dt, t_free):
 
 def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=None,
             cv: float | None = None, t_end: float = 3.0, dt_out: float = 0.005,
-            integrator: str = "fast", dt: float = 2e-3, t_free: float = 60.0,
+            integrator: str = "fast", dt: float | None = None, t_free: float | None = None,
             rtol: float = 1e-10, atol: float = 1e-12, max_events: int = 100_000,
             tabulate: bool = True) -> Response:
     """Response of an arch (or a prepared :class:`DynamicModel`) to ``motion``.
 
     t_end [s]: end of the sampled output (the outcome covers the whole ground motion and the free
     motion after it, at most ``t_free`` seconds); dt_out [s]: output sampling; dt [s]: RK4 step
-    of the fast integrator; rtol/atol: tolerances of the reference integrator; tabulate: the fast
+    of the fast integrator.  Default dt and t_free (None) follow the arch's size (see
+    :func:`default_steps`): 2e-3 s and 60 s for arches of metres and more, as in 0.1.0, a step
+    at most T/100 and a free motion at least 50 T for T = sqrt(R/g).
+    rtol/atol: tolerances of the reference integrator; tabulate: the fast
     integrator reads M, L, F, P from spline tables (relative error ~1e-9) instead of the exact
     loop closure (the reference always uses the exact one).
     """
     model = arch_or_model if isinstance(arch_or_model, DynamicModel) else prepare(arch_or_model, impact, cv=cv)
     if not isinstance(motion, GroundMotion):
         raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
+    dt0, t_free0 = default_steps(model.arch)
+    dt = dt0 if dt is None else dt
+    t_free = t_free0 if t_free is None else t_free
     _check_times(t_end, dt_out, dt, t_free)
     n_out = int(math.floor(t_end / dt_out + 1e-9)) + 1
     times = np.ascontiguousarray(motion.times, dtype=float)

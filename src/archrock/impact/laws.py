@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ArchInputError, EnergyGainError, ImpactModelError
+from ..limit import length_scale
 from ..mechanism import FourLink
 from .spec import IMPACT_MODELS
 
@@ -108,11 +109,20 @@ def paper_rate_ratio(old: FourLink, new: FourLink) -> float:
     at C*).  Pre-impact rate phi'- = -1 (closing).
     """
     arch = old.arch
+    # nondimensional: masses / total mass, lengths / the arch's reference length (a power of
+    # two, exact), so that the five equations (momenta ~ m L, angular momenta ~ m L^2, impulses)
+    # have the same numbers, and the same pivots, at any size and density
+    ref = float(length_scale(arch.radii)[0])
+    mass_ref = float(np.ldexp(1.0, int(round(math.log2(float(np.sum(arch.masses)))))))
     v, w = old.voussoir_field()
     vn, wn = new.voussoir_field()
-    m, inertia, g = arch.masses, arch.inertias, arch.centroids
+    v, vn = v / ref, vn / ref
+    m = arch.masses / mass_ref
+    inertia = arch.inertias / (mass_ref * ref * ref)
+    g = arch.centroids / ref
     opposite = {"intrados": "extrados", "extrados": "intrados"}
-    a_s, b_s, c_s, d_s = (arch.joint_point(h.joint, opposite[h.edge]) for h in _ordered_hinges(old))
+    a_s, b_s, c_s, d_s = (arch.joint_point(h.joint, opposite[h.edge]) / ref
+                          for h in _ordered_hinges(old))
     l1, l2, l3 = (np.asarray(ix, dtype=int) for ix in old.link_voussoirs)
     pre = -1.0
 
