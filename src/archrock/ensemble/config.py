@@ -19,6 +19,7 @@ from ..errors import ArchInputError
 from ..geometry import Arch
 from ..groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
 from ..impact import PAPER_PRACTICE, ImpactSpec
+from ..response import default_steps
 from ..sampling import METHOD_SPREADS, ArchSampler, Spreads
 
 __all__ = ["EnsembleConfig"]
@@ -44,7 +45,8 @@ class EnsembleConfig:
     the dict of one (``to_dict()``, as in a manifest), kept as the specification; impact: an
     :class:`~archrock.impact.ImpactSpec` (or what ``ImpactSpec.parse`` reads; default the paper's
     practice, the 'paper' model's c_v of the nominal arch fixed on every sample); dt [s]: RK4
-    step; t_free [s]: free motion allowed after the ground motion; tabulate: the RK4 kernel reads
+    step; t_free [s]: free motion allowed after the ground motion (both by default from the nominal
+    arch's size, :func:`archrock.response.default_steps`); tabulate: the RK4 kernel reads
     the equation's coefficients from spline tables (as ``respond``'s default; ~1e-9 relative,
     about 3x faster) instead of the exact loop closure.
     """
@@ -56,8 +58,8 @@ class EnsembleConfig:
     batch_size: int = 500
     motion: PulseSpec | RecordSpec | dict | None = None
     impact: ImpactSpec | dict | str | None = PAPER_PRACTICE
-    dt: float = 2e-3
-    t_free: float = 60.0
+    dt: float | None = None
+    t_free: float | None = None
     tabulate: bool = True
 
     def __post_init__(self):
@@ -69,7 +71,12 @@ class EnsembleConfig:
         object.__setattr__(self, "batch_size", int_field("batch size", self.batch_size, 1))
         object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
         object.__setattr__(self, "impact", ImpactSpec.parse(self.impact))
+        # default steps follow the nominal arch's size (response.default_steps): 2e-3 s and 60 s
+        # for arches of 0.4-14 m, so configurations (and their hashes) of such arches are 0.1.0's
+        steps = dict(zip(("dt", "t_free"), default_steps(Arch.from_dict(self.nominal))))
         for name in ("dt", "t_free"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, steps[name])
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
                 raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0 s")

@@ -40,8 +40,10 @@ def format_limit_table(result, min_thickness=None) -> str:
     arch = result.arch
     lines = [f"Arch: {arch.name}, {arch.n} voussoirs, embrace {math.degrees(arch.embrace):.4f} deg, "
              f"density {arch.density:g} kg/m^3"]
-    uniform = (np.ptp(arch.spans) < 1e-12 and np.ptp(arch.radii) < 1e-12
-               and np.ptp(arch.thicknesses) < 1e-12)
+    # relative to the arch's size: the wording must not depend on the units
+    ref = float(np.mean(arch.radii))
+    uniform = (np.ptp(arch.spans) < 1e-12 and np.ptp(arch.radii) < 1e-12 * ref
+               and np.ptp(arch.thicknesses) < 1e-12 * ref)
     if uniform:
         lines.append(f"  regular: R = {arch.radii[0]:g} m, t = {arch.thicknesses[0]:g} m, "
                      f"span = {math.degrees(arch.spans[0]):.4f} deg each")
