@@ -508,33 +508,54 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
 # ---------------------------------------------------------------------------- ensembles
 def plot_multiplier_histograms(df, path: str | os.PathLike, dpi: int = 150,
                                reference: dict | None = None) -> Path:
-    """Histograms of k_l and k_r over an ensemble (a DataFrame with columns k_l, k_r, as from
-    :func:`archrock.ensemble.run_ensemble`); optional ``reference`` {label: (k_l, k_r)} marks
-    e.g. the nominal arch and the paper's RA-1 / RA-2.  Writes ``path`` and returns it."""
+    """Histograms of k_l and k_r over the standing arches of an ensemble (a DataFrame with
+    columns k_l, k_r and, if present, error, as from :func:`archrock.ensemble.run_ensemble`);
+    the samples not shown are counted by reason under the panels.  Optional ``reference``
+    {label: (k_l, k_r)} marks e.g. the nominal arch and the paper's RA-1 / RA-2.  Writes
+    ``path`` and returns it."""
+    from matplotlib.ticker import MaxNLocator
+
+    from .population import LEFT_OUT, left_out_outcome
+
     try:
-        kl = np.asarray(df["k_l"], float)
-        kr = np.asarray(df["k_r"], float)
+        kl_all = np.asarray(df["k_l"], float)
+        kr_all = np.asarray(df["k_r"], float)
     except (KeyError, TypeError, ValueError):
         raise ArchInputError("df: expected a table with numeric columns 'k_l' and 'k_r'") from None
-    kl, kr = kl[np.isfinite(kl)], kr[np.isfinite(kr)]
-    if kl.size == 0 or kr.size == 0:
-        raise ArchInputError("df: no finite k_l / k_r to plot")
-    fig, axes = new_figure(1, 2, figsize=(10.0, 4.0), sharey=True)
+    # the summary's rule: k statistics over standing arches (finite k_l, k_r > 0) only
+    with np.errstate(invalid="ignore"):
+        shown = np.isfinite(kl_all) & np.isfinite(kr_all) & (kl_all > 0) & (kr_all > 0)
+    kl, kr = kl_all[shown], kr_all[shown]
+    if kl.size == 0:
+        raise ArchInputError("df: no standing arch (finite k_l, k_r > 0) to plot")
+    errors = np.asarray(df["error"], dtype=object) if "error" in df else np.full(len(kl_all), "")
+    hidden = dict.fromkeys(LEFT_OUT, 0)
+    for e, ok, kl_i, kr_i in zip(errors, shown, kl_all, kr_all):
+        if not ok:  # a k <= 0 without a recorded reason cannot stand all the same
+            hidden["cannot_stand" if not e and np.isfinite(kl_i) and np.isfinite(kr_i)
+                   else left_out_outcome(str(e))] += 1
+    fig, axes = new_figure(1, 2, figsize=(10.0, 4.3), sharey=True)
     lo = float(min(kl.min(), kr.min()))
     hi = float(max(kl.max(), kr.max()))
     if hi - lo < 1e-9:
         lo, hi = lo - 0.01, hi + 0.01
     bins = np.linspace(lo, hi, 41)
     colors = ("#1f4e9c", "#c0392b", "#2e8b57", "#8e44ad")
-    for ax, values, name in ((axes[0, 0], kl, "k_l"), (axes[0, 1], kr, "k_r")):
-        ax.hist(values, bins=bins, color="#9bb7d4", edgecolor="#4a6d94", lw=0.4)
-        ax.set_xlabel(f"${name[0]}_{name[2]}$ [g]")
-        ax.set_title(f"{name}: mean {values.mean():.4f}, std {values.std(ddof=1) if values.size > 1 else 0.0:.4f} "
-                     f"(n = {values.size})", fontsize=9)
+    for ax, values, name in ((axes[0, 0], kl, "l"), (axes[0, 1], kr, "r")):
+        ax.hist(values, bins=bins, color="#9bb7d4", edgecolor="#4a6d94", lw=0.4,
+                label=f"standing arches (n = {values.size})")
+        ax.set_xlabel(f"$k_{name}$ [g]")
+        std = f"{values.std(ddof=1):.4f}" if values.size > 1 else "n/a (one sample)"
+        ax.set_title(f"$k_{name}$: mean {values.mean():.4f}, std {std} (n = {values.size})",
+                     fontsize=9)
         for (label, ks), c in zip((reference or {}).items(), colors):
-            ax.axvline(ks[0] if name == "k_l" else ks[1], color=c, lw=1.2, ls="--", label=label)
+            ax.axvline(ks[0] if name == "l" else ks[1], color=c, lw=1.2, ls="--", label=label)
         ax.grid(True, alpha=0.3)
-        if reference:
-            ax.legend(fontsize=8, frameon=False)
+        ax.legend(fontsize=8, frameon=False)
+        ax.yaxis.set_major_locator(MaxNLocator(integer=True))  # counts of samples
     axes[0, 0].set_ylabel("samples")
+    n_hidden = int((~shown).sum())
+    why = ", ".join(f"{LEFT_OUT[k].split(' (')[0]} {v}" for k, v in hidden.items() if v)
+    fig.suptitle(f"{shown.sum()} of {len(kl_all)} samples shown"
+                 + (f"; not shown: {n_hidden} ({why})" if n_hidden else ""), fontsize=9)
     return save_figure(fig, path, dpi=dpi)
