@@ -21,7 +21,7 @@ from .response import DynamicModel, prepare
 from .sampling import ArchSampler
 
 __all__ = ["PreparedArches", "prepare_many", "prepare_sample", "LEFT_OUT", "left_out_outcome",
-           "count_left_out"]
+           "count_left_out", "left_out_summary"]
 
 #: Why an arch of a study has no response, in report order (keys of every summary's counts).
 LEFT_OUT = {
@@ -58,6 +58,16 @@ def count_left_out(reasons) -> dict:
     for r in reasons:
         counts[left_out_outcome(r if isinstance(r, str) else r[1])] += 1
     return counts
+
+
+def left_out_summary(failed, usable: int, what: str) -> dict:
+    """JSON statement of the arches a study left out: count, counts by reason, and the rule
+    that ``what`` (e.g. "quantiles") is over the ``usable`` arches only."""
+    return {"count": len(failed), "by_reason": count_left_out(failed), "usable": int(usable),
+            "rule": f"{what} over the {usable} usable arch{'es' if usable != 1 else ''} only; the "
+                    f"{len(failed)} left out are "
+                    f"not counted (an arch that cannot stand under its own weight is not counted "
+                    f"as a collapse)"}
 
 
 @dataclass(frozen=True, eq=False)
