@@ -238,6 +238,20 @@ def test_ensemble_leaves_out_unusable_arches_and_says_which():
     assert e.amplitudes[0, 0] == direct.amplitude
     d = e.to_dict()
     assert d["failed"][0][0] == 0 and d["n_failed"] == 2 and d["samples"] == [1]
+    # the quantiles are over the one usable arch: its counts by reason, and no zero-width band
+    assert d["left_out"]["count"] == 2 and d["left_out"]["usable"] == 1
+    assert d["left_out"]["by_reason"]["cannot_stand"] == d["left_out"]["by_reason"]["invalid_draw"] == 1
+    assert "over the 1 usable arch only" in d["left_out"]["rule"]
+    assert d["bands_g"] is None and d["band_note"] == "not estimated: one usable arch"
+    assert np.isnan(e.bands).all()
+    from archrock.impact import ImpactSpec
+    from archrock.reports import format_curves
+
+    text = format_curves(e.nominal, e, arch_name="Oppenheim", pulse="oppenheim", sign=-1,
+                         impact=ImpactSpec.parse(None), cv=e.cv)
+    assert "quantile bands: n/a (not estimated: one usable arch)" in text
+    assert ("2 left out (invalid draw 1, cannot stand under its own weight 1), not counted: an "
+            "arch that cannot stand is not counted as a collapse") in text
     # no usable arch at all: a clear error naming a sample
     with pytest.raises(ArchInputError, match=r"^samples: none of the 4 random arches is usable \(sample 0"):
         ensemble_curve(nominal, 4, seed=1, spreads=WILD, durations=[0.2], a_max=3.0, n_scan=5)

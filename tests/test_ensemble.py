@@ -347,6 +347,106 @@ def test_summary_leaves_out_arches_that_cannot_stand_and_collapsed_peaks(base):
 def test_one_sample_has_no_std():
     s = run_ensemble(config(samples=1, motion=None), progress=False).summary()
     assert s["k_l"]["count"] == 1 and s["k_l"]["std"] is None and s["k_l"]["mean"] is not None
+    # nor a 5-95% range: one value would print as a zero-width one
+    assert s["k_l"]["q05"] is None and s["k_l"]["q95"] is None and "one sample" in s["k_l"]["note"]
+    assert s["k_l"]["median"] == s["k_l"]["mean"] == s["k_l"]["min"]
+    from archrock.reports import format_ensemble
+
+    out = format_ensemble(s, "Oppenheim")
+    assert "std n/a (one sample), 5-95% n/a (one sample)" in out
+    assert s["outcomes"]["counts"]["limit_only"] == 1 and s["p_failure"] is None
+
+
+def _with_outcomes(base):
+    """The base frame with sample 0 unable to stand, 1 an invalid draw, 2 no mechanism and 3 an
+    impact law that creates energy (the messages of batch.prepare_batch)."""
+    from archrock.ensemble import EnsembleResult
+
+    df = base.frame.copy()
+    errors = ["limit analysis: the arch cannot stand (k_l = -0.05, k_r = 0.2)",
+              "geometry: two neighbouring voussoirs do not overlap radially",
+              "limit analysis: no admissible four-hinge mechanism",
+              "impact l_to_r: the 'paper' model creates energy on this geometry (kinetic energy "
+              "ratio 1.2, rate ratio 0.9); use --impact momentum or a fixed --cv"]
+    for i, e in enumerate(errors):
+        df.loc[i, ["error", "status", "mech_l", "mech_r"]] = [e, "failed", "", ""]
+        df.loc[i, "collapsed"] = False
+    df.loc[0, ["k_l", "k_r"]] = [-0.05, 0.2]
+    df.loc[[1, 2], ["k_l", "k_r"]] = np.nan
+    return df, EnsembleResult(base.config, df, base.nominal, base.impact, base.timing).summary()
+
+
+def test_summary_counts_every_outcome_over_all_samples(base):
+    df, s = _with_outcomes(base)
+    oc = s["outcomes"]
+    assert oc["samples"] == 40
+    assert oc["counts"] == {"invalid_draw": 1, "cannot_stand": 1, "no_mechanism": 1,
+                            "four_link_not_applicable": 0, "impact_not_applicable": 1,
+                            "other": 0, "integrated": 36}
+    assert sum(oc["counts"].values()) == 40
+    assert oc["shares"]["cannot_stand"] == 1 / 40 and oc["shares"]["integrated"] == 36 / 40
+    ran = df.iloc[4:]
+    assert oc["integrated"] == {k: int((ran["status"] == k).sum())
+                                for k in ("rest", "collapsed", "moving")}
+    assert sum(oc["integrated"].values()) == 36
+
+
+def test_p_collapse_is_conditional_and_p_failure_counts_cannot_stand(base):
+    df, s = _with_outcomes(base)
+    k = int(df.iloc[4:]["collapsed"].sum())
+    pc, pf = s["p_collapse"], s["p_failure"]
+    # conditional, as before: over the 36 integrated samples only
+    assert (pc["collapses"], pc["trials"]) == (k, 36) and pc["p"] == pytest.approx(k / 36)
+    assert "conditional" in pc["rule"]
+    # cannot stand = failed: (1 + k) / (1 + 36); invalid draw, no mechanism, impact left out
+    assert (pf["failures"], pf["cannot_stand"], pf["collapses"], pf["trials"]) == (k + 1, 1, k, 37)
+    p, lo, hi = collapse_probability(k + 1, 37, 0.95, "wilson")
+    assert (pf["p"], pf["low"], pf["high"]) == pytest.approx((p, lo, hi), rel=1e-12)
+    assert "cannot stand counted as failed" in pf["rule"]
+    from archrock.reports import format_ensemble
+
+    out = format_ensemble(s, "Oppenheim")
+    assert f"P(collapse | integrated) = {k / 36:.4f}" in out and f"({k} collapsed of 36," in out
+    assert (f"P(failure), cannot stand counted as failed = {(k + 1) / 37:.4f}" in out
+            and f"(1 cannot stand + {k} collapsed of 37," in out)
+    for line in ("invalid draw: 1 (2.5%)", "cannot stand: 1 (2.5%)", "no mechanism: 1 (2.5%)",
+                 "impact model not applicable: 1 (2.5%)", "integrated: 36 (90.0%)"):
+        assert f"  {line}" in out
+
+
+def test_no_integrated_sample_gives_no_probability_and_says_why(base):
+    from archrock.ensemble import EnsembleResult
+
+    df = base.frame.copy()
+    df["error"] = "geometry: two neighbouring voussoirs do not overlap radially"
+    df["status"], df["collapsed"] = "failed", False
+    df[["k_l", "k_r"]] = np.nan
+    s = EnsembleResult(base.config, df, base.nominal, base.impact, base.timing).summary()
+    for key in ("p_collapse", "p_failure"):
+        assert s[key]["p"] is None and s[key]["low"] is None and s[key]["trials"] == 0
+        assert "cannot be estimated" in s[key]["note"]
+    assert s["k_l"]["count"] == 0 and s["k_l"]["note"] == "no sample"
+    from archrock.reports import format_ensemble
+
+    assert "P(collapse | integrated) = n/a (no trials" in format_ensemble(s, "Oppenheim")
+
+
+def test_histograms_say_how_many_samples_are_not_shown(base, tmp_path, monkeypatch):
+    from archrock import plots
+
+    df, _ = _with_outcomes(base)
+    figs = []
+    real = plots.save_figure
+    monkeypatch.setattr(plots, "save_figure", lambda fig, path, dpi: figs.append(fig) or
+                        real(fig, path, dpi))
+    plots.plot_multiplier_histograms(df, tmp_path / "k.png")
+    title = figs[0]._suptitle.get_text()
+    # the impact failure keeps its k and is shown; the other three are not
+    assert title.startswith("37 of 40 samples shown; not shown: 3 (")
+    assert "invalid draw 1" in title and "cannot stand under its own weight 1" in title
+    assert "no four-hinge mechanism 1" in title
+    ax = figs[0].axes[0]
+    assert sum(p.get_height() for p in ax.patches) == 37
 
 
 # ---------------------------------------------------------------------------- provenance of batches

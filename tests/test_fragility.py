@@ -387,3 +387,31 @@ def test_input_errors_and_fit_errors_are_told_apart(fit, args, cls):
     with pytest.raises(ArchrockError) as info:
         fit(*args)
     assert type(info.value) is cls
+
+
+def test_bootstrap_of_stripes_that_cannot_vary_gives_no_interval():
+    # one analysis per stripe, not separated (rocking is not monotonic): a fit exists, but
+    # Binomial(1, 0 or 1) resamples are the data itself; a zero-width interval would be false
+    x, n, z = [0.5, 0.7, 0.9, 1.0, 1.2, 1.4], [1] * 6, [0, 0, 1, 1, 0, 1]
+    f = bootstrap_fit(fit_stripes_mle, x, n, z, n_boot=50, seed=0)
+    assert f.theta == fit_stripes_mle(x, n, z).theta
+    assert f.theta_ci is None and f.beta_ci is None and "one analysis per stripe" in f.ci_note
+    assert f.to_dict()["theta_ci"] is None and f.to_dict()["ci_note"] == f.ci_note
+    # several analyses per stripe, each stripe all-or-nothing: no interval either
+    f = bootstrap_fit(fit_stripes_mle, x, [4] * 6, [0, 0, 4, 4, 0, 4], n_boot=50, seed=0)
+    assert f.theta_ci is None and "all-collapse or all-survive" in f.ci_note
+    # a stripe that can vary: an interval of positive width, no note
+    f = bootstrap_fit(fit_stripes_mle, x, [4] * 6, [0, 1, 2, 2, 3, 4], n_boot=50, seed=0)
+    assert f.theta_ci[0] < f.theta_ci[1] and f.ci_note is None
+
+
+def test_one_record_cannot_give_a_fragility():
+    with pytest.raises(FitError, match="one value"):
+        fit_ida_moments([0.4])
+    with pytest.raises(FitError, match="one value"):
+        bootstrap_fit(fit_ida_moments, [0.4], n_boot=10)
+
+
+def test_collapse_probability_of_no_trials_says_it_cannot_be_estimated():
+    with pytest.raises(ArchInputError, match="trials: 0; a collapse probability cannot be estimated"):
+        collapse_probability(0, 0)

@@ -219,5 +219,37 @@ def test_unusable_random_arches_are_left_out_and_reported():
     assert res.to_dict()["failed"][1][0] == 2
     st = msa([rec], models, [0.5, 1.0])
     assert st.arches == (1,) and st.failed == models.failed and st.trials.tolist() == [1, 1]
+    for d in (res.to_dict(), st.to_dict()):
+        assert d["left_out"]["count"] == 2 and d["left_out"]["usable"] == 1
+        assert d["left_out"]["by_reason"]["cannot_stand"] == 1
+        assert d["left_out"]["by_reason"]["invalid_draw"] == 1
+    assert res.to_dict()["n_arches"] == res.to_dict()["n_records"] == 1
     with pytest.raises(ArchInputError, match="^samples: none of the 4"):
         random_models(oppenheim_arch(), 4, seed=1, spreads=wild)
+
+
+def test_one_record_on_one_arch_gives_no_interval(small, records):
+    from archrock.reports import format_fragility
+
+    # noise 1 on the small arch: collapses 0 0 0 1 1 1 0 1 1 1 1 (not monotonic, so a fit exists)
+    levels = [0.5, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.6, 1.8]
+    st = msa(records[:1], small, levels, n_boot=20, seed=1)
+    assert st.collapses.tolist() == [0, 0, 0, 1, 1, 1, 0, 1, 1, 1, 1]
+    assert st.fit is not None and st.fit.theta_ci is None and st.fit.beta_ci is None
+    assert "one analysis per stripe" in st.fit.ci_note
+    assert st.to_dict()["fit"]["ci_note"] == st.fit.ci_note
+    res = ida(records[:1], small, [1.0, 2.0, 3.0], n_boot=20)
+    assert res.fit is None and "one value (one record)" in res.fit_error
+    text = format_fragility(res, st, arch_name="small", n_records=1, n_arches=1, n_requested=0)
+    assert "IDA: no fit (collapse_intensities: one value (one record)" in text
+    assert "CI n/a (not estimated: one analysis per stripe (one record on one arch)" in text
+
+
+def test_one_record_on_many_arches_says_what_the_interval_covers(records):
+    models = random_models(nominal_arch(radius=2.0, thickness=0.3), 2, seed=5)
+    st = msa(records[:1], models, np.geomspace(0.3, 2.5, 7), n_boot=30, seed=1)
+    # measured: collapses 0 0 1 2 1 2 2 of 2; the interval exists, over arches only
+    assert st.collapses.tolist() == [0, 0, 1, 2, 1, 2, 2]
+    lo, hi = st.fit.theta_ci
+    assert lo < st.fit.theta < hi
+    assert st.fit.ci_note == "one record: the interval covers the scatter between arches under this record only"

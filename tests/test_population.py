@@ -32,3 +32,28 @@ def test_prepare_many_leaves_out_outcomes_only():
         prepare_many(["not an arch"])
     with pytest.raises(ArchInputError, match="^samples: none of the 2 arches"):
         prepare_many([nominal_arch(10.0, 180.0, 0.8, 12)] * 2, impact=ImpactSpec("paper"))
+
+
+def test_left_out_outcome_reads_the_reasons_of_studies_and_batches():
+    from archrock.population import LEFT_OUT, count_left_out, left_out_outcome
+
+    s = ArchSampler(oppenheim_arch(), Spreads(0.1, 0.99, 0.99), seed=27)
+    many = prepare_many(s, 3)
+    # the messages of prepare (through UNUSABLE_ARCH) ...
+    assert [left_out_outcome(why) for _, why in many.failed] == ["cannot_stand", "invalid_draw"]
+    # ... and of batch.prepare_batch
+    cases = {"geometry: a voussoir span is <= 0": "invalid_draw",
+             "limit analysis: no admissible four-hinge mechanism": "no_mechanism",
+             "limit analysis: the arch cannot stand (k_l = -0.1, k_r = 0.2)": "cannot_stand",
+             "four-link model: degenerate four-bar (division by zero)": "four_link_not_applicable",
+             "mechanism M_l 0i-3e-5i-7e: the hinges are aligned (singular four-bar)":
+                 "four_link_not_applicable",
+             "impact r_to_l: the 'paper' model gives a negative rate ratio -0.1 on this geometry":
+                 "impact_not_applicable",
+             "least-loss chain: impact: singular": "impact_not_applicable",
+             "something new": "other"}
+    for why, key in cases.items():
+        assert left_out_outcome(why) == key, why
+    counts = count_left_out(many.failed)
+    assert list(counts) == list(LEFT_OUT) and counts["cannot_stand"] == counts["invalid_draw"] == 1
+    assert sum(counts.values()) == 2

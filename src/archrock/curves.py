@@ -38,7 +38,7 @@ from .errors import ArchInputError
 from .geometry import Arch
 from .groundmotion import pulse, pulse_kind
 from .impact import ImpactSpec
-from .population import prepare_sample
+from .population import left_out_summary, prepare_sample
 from .response import DynamicModel, prepare, respond
 from .sampling import ArchSampler, Spreads
 
@@ -335,13 +335,14 @@ class EnsembleCurve:
     """Quantile bands of the first collapse amplitude over random arches.
 
     durations [s]; quantiles (levels); bands[q_index, d_index] [g] (inf where the quantile lies
-    among arches that did not collapse up to a_max); amplitudes[row, d_index] [g] (inf: no
+    among arches that did not collapse up to a_max; NaN: not estimated, see band_note); amplitudes[row, d_index] [g] (inf: no
     collapse), one row per usable arch, row i being sample ``samples[i]``; nominal: the nominal
     arch's curve; seed, spreads (:class:`~archrock.sampling.Spreads`), impact (the
     :class:`~archrock.impact.ImpactSpec` as given) and cv (the fixed c_v applied to the random
     arches, None for a per-arch law) as used.  n_samples: usable arches (the quantiles are over
     them); n_requested: arches drawn; failed: (sample index, reason) of each drawn arch that could
-    not be analysed (e.g. it cannot stand), left out of the quantiles.
+    not be analysed (e.g. it cannot stand), left out of the quantiles.  band_note: why the
+    bands are not estimated (one usable arch: bands all NaN), None otherwise.
     """
 
     durations: np.ndarray
@@ -357,6 +358,7 @@ class EnsembleCurve:
     failed: tuple = ()
     samples: tuple = ()
     n_requested: int = 0
+    band_note: str | None = None
 
     def __post_init__(self):
         readonly_arrays(self)
@@ -367,7 +369,10 @@ class EnsembleCurve:
         return {
             "durations": self.durations.tolist(),
             "quantiles": list(self.quantiles),
-            "bands_g": [[f(v) for v in row] for row in self.bands],
+            # null inside: no collapse up to a_max; null as a whole: not estimated (band_note)
+            "bands_g": None if self.band_note else [[f(v) for v in row] for row in self.bands],
+            "band_note": self.band_note,
+            "left_out": left_out_summary(self.failed, self.n_samples, "the quantiles are"),
             "amplitudes_g": [[f(v) for v in row] for row in self.amplitudes],
             "n_samples": self.n_samples, "n_requested": self.n_requested,
             "samples": list(self.samples), "n_failed": len(self.failed),
@@ -442,6 +447,9 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     with np.errstate(invalid="ignore"):
         bands = np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
                          a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
+    note = None
+    if samples == 1:  # every quantile of one arch is its value: a band of zero width
+        bands, note = np.full_like(bands, np.nan), "not estimated: one usable arch"
     return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
                          sampler.seed, sampler.spreads, spec, resolved.cv, samples,
-                         failed, kept, requested)
+                         failed, kept, requested, note)

@@ -117,6 +117,8 @@ class FragilityFit:
         (None unless produced by :func:`bootstrap_fit`).
     n_boot, n_boot_failed: bootstrap resamples requested, and those excluded because the
         resampled data could not identify a fit (None without bootstrap).
+    ci_note: why an interval asked for is None (it cannot be estimated: the resamples cannot
+        vary), or what it covers; None otherwise.
     """
 
     theta: float
@@ -129,6 +131,7 @@ class FragilityFit:
     confidence: float | None = None
     n_boot: int | None = None
     n_boot_failed: int | None = None
+    ci_note: str | None = None
 
     def __post_init__(self):
         if not (math.isfinite(self.theta) and self.theta > 0):
@@ -168,6 +171,7 @@ class FragilityFit:
             "confidence": opt(self.confidence, float),
             "n_boot": opt(self.n_boot, int),
             "n_boot_failed": opt(self.n_boot_failed, int),
+            "ci_note": self.ci_note,
         }
 
 
@@ -225,7 +229,7 @@ def fit_ida_moments(collapse_intensities, *, censored: str = "error",
     """Fragility from IDA first-collapse intensities (one per record, > 0, units of the IM).
 
     censored="error" (default): method of moments, ln theta = mean(ln x), beta = std(ln x, ddof=1)
-    (Baker 2015 eq. 3-4).  A record that never collapsed (np.inf or nan) raises ArchInputError:
+    (Baker 2015 eq. 3-4).  A record that never collapsed (np.inf or nan) raises FitError:
     dropping it would bias theta low, so the choice is left to the caller.
 
     censored="mle": maximum likelihood with right-censoring; a record that never collapsed up to
@@ -248,7 +252,10 @@ def fit_ida_moments(collapse_intensities, *, censored: str = "error",
                 f"collapse_intensities: {int(survived.sum())} of {n} records never collapsed (inf/nan); "
                 "use censored='mle' with max_intensity, or analyse them to higher intensity")
         lnx = np.log(x)
-        if n < 2 or np.ptp(lnx) == 0:
+        if n < 2:
+            raise FitError("collapse_intensities: one value (one record): beta cannot be "
+                           "estimated; need at least 2 distinct values")
+        if np.ptp(lnx) == 0:
             raise FitError("collapse_intensities: need at least 2 distinct values to estimate beta")
         lt, b = float(np.mean(lnx)), float(np.std(lnx, ddof=1))
         ll = float(np.sum(-math.log(b) - _LOG_SQRT_2PI - 0.5 * ((lnx - lt) / b) ** 2))
@@ -371,7 +378,10 @@ def bootstrap_fit(fit_function, *data, n_boot: int = 200, confidence: float = 0.
 
     The point estimate is the fit of the original data.  Resamples that cannot identify a fit
     (e.g. all stripes resampled to 0/1) are excluded and counted in ``n_boot_failed``; more than
-    half failing raises ArchInputError.  ``seed`` (int or numpy SeedSequence) makes the result
+    half failing raises FitError.  An interval that cannot be estimated is None, with the reason
+    in ``ci_note``: stripes that are each all-collapse or all-survive (e.g. one analysis per
+    stripe) cannot vary under resampling, and a percentile interval of zero width means the
+    resamples did not vary.  ``seed`` (int or numpy SeedSequence) makes the result
     reproducible; ``confidence`` is the two-sided level (0.9 -> 5th and 95th percentiles).
     """
     n_boot = _count("n_boot", n_boot, 2, ">= 2")
@@ -395,6 +405,12 @@ def bootstrap_fit(fit_function, *data, n_boot: int = 200, confidence: float = 0.
             raise ArchInputError("data: fit_stripes_mle takes (intensities, trials, collapses) and no options")
         x, n, z = _stripes_data(*data)
         base = fit_stripes_mle(x, n, z)
+        if np.all((z == 0) | (z == n)):  # Binomial(n, 0 or 1) resamples are the data itself
+            why = ("one analysis per stripe (one record on one arch)" if np.all(n == 1)
+                   else "every stripe is all-collapse or all-survive")
+            return replace(base, confidence=conf, n_boot=n_boot, n_boot_failed=0,
+                           ci_note=f"not estimated: {why}, so resampling within stripes "
+                                   f"cannot vary")
 
         def resample(rng):
             return fit_stripes_mle(x, n, rng.binomial(n, z / n))
@@ -415,10 +431,15 @@ def bootstrap_fit(fit_function, *data, n_boot: int = 200, confidence: float = 0.
         raise FitError(f"data: {failed} of {n_boot} bootstrap resamples cannot identify a fit; "
                              "too few records or collapses for a confidence interval")
     q = [(1.0 - conf) / 2.0, (1.0 + conf) / 2.0]
-    tci = np.quantile(thetas, q)
-    bci = np.quantile(betas, q)
-    return replace(base, theta_ci=(float(tci[0]), float(tci[1])), beta_ci=(float(bci[0]), float(bci[1])),
-                   confidence=conf, n_boot=n_boot, n_boot_failed=failed)
+    tci = tuple(float(v) for v in np.quantile(thetas, q))
+    bci = tuple(float(v) for v in np.quantile(betas, q))
+    # a zero-width percentile interval says the resamples did not vary, not that theta is known
+    flat = [name for name, ci in (("theta", tci), ("beta", bci)) if ci[0] == ci[1]]
+    note = (f"{' and '.join(flat)} interval not estimated: the bootstrap resamples do not vary"
+            if flat else None)
+    return replace(base, theta_ci=None if "theta" in flat else tci,
+                   beta_ci=None if "beta" in flat else bci, confidence=conf, n_boot=n_boot,
+                   n_boot_failed=failed, ci_note=note)
 
 
 # --------------------------------------------------------------------------- single stripe
@@ -431,7 +452,11 @@ def collapse_probability(collapses: int, trials: int, confidence: float = 0.95,
     degenerate; equals scipy.stats.binomtest(k, n).proportion_ci(confidence, method="wilson").
     method="clopper-pearson": exact interval from beta quantiles, coverage >= nominal
     (conservative); equals binomtest(...).proportion_ci(method="exact").
+    No trials raise ArchInputError: there is no probability to estimate (callers report None).
     """
+    if not isinstance(trials, bool) and trials == 0:
+        raise ArchInputError("trials: 0; a collapse probability cannot be estimated from no "
+                             "trials (allowed an integer >= 1)")
     n = _count("trials", trials, 1, ">= 1")
     k = _count("collapses", collapses, 0, "between 0 and trials")
     if k > n:

@@ -23,7 +23,7 @@ paper's practice: the paper model's c_v of the nominal arch fixed on every arch)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -35,7 +35,7 @@ from .curves import bisect_boundary
 from .geometry import Arch
 from .groundmotion import G, GroundMotion
 from .impact import ImpactSpec
-from .population import PreparedArches, prepare_many
+from .population import PreparedArches, left_out_summary, prepare_many
 from .response import DynamicModel, prepare, respond
 from .sampling import ArchSampler, Spreads
 
@@ -211,21 +211,36 @@ class IDAResult:
                 "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
                 "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error,
                 "n_curves": len(self.curves), "n_censored": self.n_censored,
+                "n_arches": len({c.arch for c in self.curves}),
+                "n_records": len({c.record for c in self.curves}),
                 "failed": [list(x) for x in self.failed],
+                "left_out": left_out_summary(self.failed, len({c.arch for c in self.curves}),
+                                             "the fit and its interval are"),
                 "curves": [c.to_dict() for c in self.curves]}
 
 
-def _fit(func, *data, n_boot, seed, confidence, **kw):
+def _fit(func, *data, n_boot, seed, confidence, n_records, **kw):
     note = None
     if n_boot and n_boot > 0:
         try:
-            return bootstrap_fit(func, *data, n_boot=n_boot, confidence=confidence, seed=seed, **kw), None
+            fit = bootstrap_fit(func, *data, n_boot=n_boot, confidence=confidence, seed=seed, **kw)
         except FitError as exc:  # the point fit may still exist; say why there is no band
             note = f"no bootstrap band: {exc}"
+        else:
+            if n_records == 1 and fit.theta_ci is not None:
+                # the resampled unit is the (record, arch) pair: with one record the band
+                # says nothing about other records
+                fit = replace(fit, ci_note="one record: the interval covers the scatter between "
+                                          "arches under this record only")
+            return fit, None
     try:
-        return func(*data, **kw), note
+        fit = func(*data, **kw)
     except FitError as exc:
         return None, str(exc)
+    if note is not None:
+        fit = replace(fit, confidence=confidence, n_boot=n_boot,
+                      ci_note="not estimated: " + note[len("no bootstrap band: "):])
+    return fit, note
 
 
 def safe_scale(model: DynamicModel, record: GroundMotion) -> float:
@@ -285,9 +300,11 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
     if np.any(np.isinf(x)):
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
-                        censored="mle", max_intensity=np.array([c.max_im for c in curves]))
+                        n_records=len(recs), censored="mle",
+                        max_intensity=np.array([c.max_im for c in curves]))
     else:
-        fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence)
+        fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
+                        n_records=len(recs))
     return IDAResult(curves, im, fit, err, failed)
 
 
@@ -325,6 +342,8 @@ class StripeResult:
                 "levels": self.levels.tolist(), "trials": self.trials.tolist(),
                 "collapses": self.collapses.tolist(), "records": list(self.records),
                 "arches": list(self.arches), "failed": [list(x) for x in self.failed],
+                "left_out": left_out_summary(self.failed, len(self.arches),
+                                             "the stripes, the fit and its interval are"),
                 "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error}
 
 
@@ -343,7 +362,8 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
                 out[i, j, k] = _collapsed(m, r, float(x / _im_factor(r, im)), dt, t_free)
     trials = np.full(lv.size, len(ms) * len(recs))
     coll = out.reshape(lv.size, -1).sum(axis=1)
-    fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed, confidence=confidence)
+    fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed,
+                    confidence=confidence, n_records=len(recs))
     return StripeResult(lv, trials, coll, out, im, fit, err, tuple(r.name for r in recs),
                         tuple(ids), failed)
 

@@ -457,70 +457,101 @@ def draw_displaced(ax, model, mode, phi: float, **kwargs):
 _MODE_MARKERS = {"before first impact": ("o", "#c0392b"), "after impacts": ("s", "#1f4e9c")}
 
 
+def _plural(n: int, one: str, many: str | None = None) -> str:
+    return f"{n} {one if n == 1 else (many or one + 's')}"
+
+
+def _n_arches(n: int, n_requested: int, left_out: int) -> str:
+    """'n = 20 random arches (3 of 23 left out)' for a legend or title."""
+    extra = f" ({left_out} of {n_requested} left out: not counted)" if left_out else ""
+    return f"$n$ = {n} random arch{'es' if n != 1 else ''}{extra}"
+
+
 def plot_collapse_curve(curve, path: str | os.PathLike | None = None, band=None, *, ax=None,
                         title: str | None = None, dpi: int = 120):
     """Collapse-acceleration curve: first collapse amplitude |a| [g] against t_p [s].
 
-    curve: :class:`archrock.curves.CollapseCurve`; markers by collapse mode (before the first
-    impact / after impacts), survival windows above the first collapse as vertical bars, the
-    static multiplier k as a dashed line.  band: an :class:`archrock.curves.EnsembleCurve` (its
-    outer quantiles shaded, its median dashed).  Writes ``path`` when given; returns the figure.
+    curve: :class:`archrock.curves.CollapseCurve` (the nominal arch when a band is given);
+    markers by collapse mode (before the first impact / after impacts), survival windows above
+    the first collapse as vertical bars, the static multiplier k as a dotted line.  band: an
+    :class:`archrock.curves.EnsembleCurve` (its outer quantiles shaded, its median dashed, over
+    its usable arches, n in the legend; a band that cannot be estimated is said so).  Every
+    line has a legend entry.  Writes ``path`` when given; returns the figure.
     """
     fig = None
     if ax is None:
-        fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
+        fig, axes = new_figure(1, 1, figsize=(6.4, 4.4))
         ax = axes[0][0]
     d = np.asarray(curve.durations, dtype=float)
     a = np.asarray(curve.amplitudes, dtype=float)
     if band is not None:
         b = np.asarray(band.bands, dtype=float)
         q = band.quantiles
-        top = np.where(np.isfinite(b[-1]), b[-1], np.nan)
-        ax.fill_between(band.durations, b[0], top, color="#9bb7d4", alpha=0.45, lw=0,
-                        label=f"{q[0]:g}-{q[-1]:g} quantiles, {band.n_samples} random arches")
-        if len(q) >= 3:
-            mid = len(q) // 2
-            ax.plot(band.durations, b[mid], "--", color="#1f4e9c", lw=1.0,
-                    label=f"{q[mid]:g} quantile")
-    ax.plot(d, a, "-", color="#444444", lw=1.0, zorder=2)
+        n_txt = _n_arches(band.n_samples, band.n_requested, len(band.failed))
+        if band.band_note:  # nothing to shade: say so rather than draw a zero-width band
+            ax.plot([], [], " ", label=f"quantile band n/a ({band.band_note})")
+            if len(band.amplitudes) == 1:
+                one = np.where(np.isfinite(band.amplitudes[0]), band.amplitudes[0], np.nan)
+                ax.plot(band.durations, one, "--", color="#1f4e9c", lw=1.0,
+                        label=f"random arch {band.samples[0]}: first collapse $|a|$, {n_txt}")
+        else:
+            top = np.where(np.isfinite(b[-1]), b[-1], np.nan)  # inf: no collapse up to a_max
+            ax.fill_between(band.durations, b[0], top, color="#9bb7d4", alpha=0.45, lw=0,
+                            label=f"$q_{{{q[0]:g}}}$ to $q_{{{q[-1]:g}}}$ of random arches, "
+                                  f"{n_txt}")
+            if len(q) >= 3:
+                mid = len(q) // 2
+                ax.plot(band.durations, b[mid], "--", color="#1f4e9c", lw=1.0,
+                        label=f"$q_{{{q[mid]:g}}}$ of random arches")
+    name = "nominal arch" if band is not None else "arch"
+    ax.plot(d, a, "-", color="#444444", lw=1.0, zorder=2, label=f"{name}: first collapse $|a|$")
     for key, (marker, color) in _MODE_MARKERS.items():
         sel = np.array([(m == key) if key == "before first impact" else
                         (m is not None and m.startswith("after")) for m in curve.modes])
         if sel.any():
             ax.plot(d[sel], a[sel], marker, color=color, ms=6, zorder=3,
-                    label=f"collapse {key}")
+                    label=f"{name}: collapse {key}")
     first = True
     for tp, wins in zip(d, curve.windows):
         for lo, hi in wins:
             ax.plot([tp, tp], [lo, hi], color="#27ae60", lw=3.0, alpha=0.8, zorder=2,
-                    label="survival above first collapse" if first else None)
+                    label=f"{name}: survival above first collapse" if first else None)
             first = False
-    k = curve.k_l if curve.points and curve.points[0].sign < 0 else curve.k_r
+    sign = curve.points[0].sign if curve.points else -1
+    k = curve.k_l if sign < 0 else curve.k_r
     if math.isfinite(k):
-        ax.axhline(k, color="#777777", ls=":", lw=1.0, label=f"static multiplier k = {k:.3f}")
+        ax.axhline(k, color="#777777", ls=":", lw=1.0,
+                   label=f"static multiplier $k_{'l' if sign < 0 else 'r'}$ = {k:.3f} g")
     ax.set_xlabel("pulse duration $t_p$ [s]")
-    ax.set_ylabel("first collapse amplitude |a| [g]")
+    ax.set_ylabel("first collapse amplitude $|a|$ [g]")
     if title:
         ax.set_title(title, fontsize=10)
     ax.set_xlim(0, max(d) * 1.05)
     ax.set_ylim(0, None)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, frameon=False)
+    ax.legend(fontsize=7.5, frameon=False)
     if fig is not None and path is not None:
         save_figure(fig, path, dpi=dpi)
     return fig if fig is not None else ax.figure
 
 
 def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, ida=None, ax=None,
-                   im_label: str = "PGA [g]", dpi: int = 120):
-    """Lognormal fragility P(collapse | IM): the fitted curve, its bootstrap band (the curves at
-    the ends of the theta and beta intervals, when the fit carries them), observed stripe
-    fractions (an :class:`archrock.ida.StripeResult`) and IDA first collapses (an
-    :class:`archrock.ida.IDAResult`, as an empirical CDF).  Writes ``path``; returns the figure."""
+                   im_label: str | None = None, dpi: int = 120):
+    """Lognormal fragility P(collapse | IM): the fitted curve, its bootstrap band (the
+    curves at the ends of the theta and beta intervals, when the fit carries them; an interval
+    that cannot be estimated is said so), observed stripe fractions (an
+    :class:`archrock.ida.StripeResult`) and IDA first collapses (an
+    :class:`archrock.ida.IDAResult`, as an empirical CDF over its curves).  The title states the
+    records and arches; im_label defaults to the IM of the results.  Writes ``path``; returns
+    the figure."""
     fig = None
     if ax is None:
-        fig, axes = new_figure(1, 1, figsize=(6.0, 4.0))
+        fig, axes = new_figure(1, 1, figsize=(6.4, 4.4))
         ax = axes[0][0]
+    im = getattr(stripes, "im", None) or getattr(ida, "im", None) or "pga"
+    unit = "g" if im == "pga" else ""
+    if im_label is None:
+        im_label = "PGA of the scaled record [g]" if im == "pga" else "scale factor [-]"
     xs = []
     if stripes is not None:
         xs.append(np.asarray(stripes.levels, dtype=float))
@@ -542,23 +573,46 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
                 curves = [ndtr((lnx - math.log(t)) / b) for t in fit.theta_ci for b in fit.beta_ci]
             ax.fill_between(x, np.min(curves, axis=0), np.max(curves, axis=0), color="#9bb7d4",
                             alpha=0.5, lw=0, label=f"{fit.confidence:.0%} bootstrap band")
+        elif fit.ci_note:  # asked for but not estimated: no zero-width band
+            import textwrap
+
+            ax.plot([], [], " ", label=textwrap.fill(f"bootstrap band n/a: {fit.ci_note}", 55))
         ax.plot(x, fit.probability(x), color="#1f4e9c", lw=1.6,
-                label=f"{fit.method}: theta = {fit.theta:.3g}, beta = {fit.beta:.2f}")
+                label=f"{fit.method} fit: $\\theta$ = {fit.theta:.3g} {unit}, "
+                      f"$\\beta$ = {fit.beta:.2f} ($n$ = "
+                      + (_plural(fit.n_records, 'analysis', 'analyses') if fit.method == "mle"
+                         else _plural(fit.n_records, 'curve')) + ")")
     if stripes is not None:
         ax.plot(stripes.levels, stripes.collapses / stripes.trials, "o", color="#c0392b",
-                label="observed stripe fractions")
+                label=f"stripes: collapsed fraction of {_plural(int(stripes.trials[0]), 'analysis', 'analyses')}")
     if ida is not None:
         f = np.sort(ida.first_ims)
         n = f.size
         fin = np.isfinite(f)
-        ax.step(f[fin], (np.arange(n)[fin] + 1) / n, where="post", color="#444444", lw=1.0,
-                label="IDA first collapses (empirical)")
+        # from P = 0 at the first collapse, so that one curve still draws its jump
+        ax.step(np.r_[f[fin][:1], f[fin]], np.r_[0.0, (np.arange(n)[fin] + 1) / n][:fin.sum() + 1],
+                where="post", color="#444444", lw=1.0,
+                label=f"IDA first collapses, empirical ($n$ = {_plural(n, 'curve')}, "
+                      f"{n - int(fin.sum())} never)")
     ax.set_xlabel(im_label)
-    ax.set_ylabel("P(collapse)")
+    ax.set_ylabel("$P(\\mathrm{collapse} \\mid \\mathrm{IM})$")
     ax.set_xlim(0, x_hi)
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, frameon=False, loc="lower right")
+    ax.legend(fontsize=7.5, frameon=False, loc="lower right")
+    src = stripes if stripes is not None else None
+    if src is not None:
+        n_rec, n_arch, failed = len(src.records), len(src.arches), len(src.failed)
+    elif ida is not None:
+        n_rec = len({c.record for c in ida.curves})
+        n_arch, failed = len({c.arch for c in ida.curves}), len(ida.failed)
+    else:
+        n_rec = n_arch = failed = None
+    if n_rec is not None:
+        ax.set_title(f"{n_rec} record{'s' if n_rec != 1 else ''} $\\times$ {n_arch} "
+                     f"arch{'es' if n_arch != 1 else ''}"
+                     + (f" ({failed} more arch{'es' if failed != 1 else ''} left out: not counted)"
+                        if failed else ""), fontsize=9)
     if fig is not None and path is not None:
         save_figure(fig, path, dpi=dpi)
     return fig if fig is not None else ax.figure
@@ -567,33 +621,54 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
 # ---------------------------------------------------------------------------- ensembles
 def plot_multiplier_histograms(df, path: str | os.PathLike, dpi: int = 150,
                                reference: dict | None = None) -> Path:
-    """Histograms of k_l and k_r over an ensemble (a DataFrame with columns k_l, k_r, as from
-    :func:`archrock.ensemble.run_ensemble`); optional ``reference`` {label: (k_l, k_r)} marks
-    e.g. the nominal arch and the paper's RA-1 / RA-2.  Writes ``path`` and returns it."""
+    """Histograms of k_l and k_r over the standing arches of an ensemble (a DataFrame with
+    columns k_l, k_r and, if present, error, as from :func:`archrock.ensemble.run_ensemble`);
+    the samples not shown are counted by reason under the panels.  Optional ``reference``
+    {label: (k_l, k_r)} marks e.g. the nominal arch and the paper's RA-1 / RA-2.  Writes
+    ``path`` and returns it."""
+    from matplotlib.ticker import MaxNLocator
+
+    from .population import LEFT_OUT, left_out_outcome
+
     try:
-        kl = np.asarray(df["k_l"], float)
-        kr = np.asarray(df["k_r"], float)
+        kl_all = np.asarray(df["k_l"], float)
+        kr_all = np.asarray(df["k_r"], float)
     except (KeyError, TypeError, ValueError):
         raise ArchInputError("df: expected a table with numeric columns 'k_l' and 'k_r'") from None
-    kl, kr = kl[np.isfinite(kl)], kr[np.isfinite(kr)]
-    if kl.size == 0 or kr.size == 0:
-        raise ArchInputError("df: no finite k_l / k_r to plot")
-    fig, axes = new_figure(1, 2, figsize=(10.0, 4.0), sharey=True)
+    # the summary's rule: k statistics over standing arches (finite k_l, k_r > 0) only
+    with np.errstate(invalid="ignore"):
+        shown = np.isfinite(kl_all) & np.isfinite(kr_all) & (kl_all > 0) & (kr_all > 0)
+    kl, kr = kl_all[shown], kr_all[shown]
+    if kl.size == 0:
+        raise ArchInputError("df: no standing arch (finite k_l, k_r > 0) to plot")
+    errors = np.asarray(df["error"], dtype=object) if "error" in df else np.full(len(kl_all), "")
+    hidden = dict.fromkeys(LEFT_OUT, 0)
+    for e, ok, kl_i, kr_i in zip(errors, shown, kl_all, kr_all):
+        if not ok:  # a k <= 0 without a recorded reason cannot stand all the same
+            hidden["cannot_stand" if not e and np.isfinite(kl_i) and np.isfinite(kr_i)
+                   else left_out_outcome(str(e))] += 1
+    fig, axes = new_figure(1, 2, figsize=(10.0, 4.3), sharey=True)
     lo = float(min(kl.min(), kr.min()))
     hi = float(max(kl.max(), kr.max()))
     if hi - lo < 1e-9:
         lo, hi = lo - 0.01, hi + 0.01
     bins = np.linspace(lo, hi, 41)
     colors = ("#1f4e9c", "#c0392b", "#2e8b57", "#8e44ad")
-    for ax, values, name in ((axes[0, 0], kl, "k_l"), (axes[0, 1], kr, "k_r")):
-        ax.hist(values, bins=bins, color="#9bb7d4", edgecolor="#4a6d94", lw=0.4)
-        ax.set_xlabel(f"${name[0]}_{name[2]}$ [g]")
-        ax.set_title(f"{name}: mean {values.mean():.4f}, std {values.std(ddof=1) if values.size > 1 else 0.0:.4f} "
-                     f"(n = {values.size})", fontsize=9)
+    for ax, values, name in ((axes[0, 0], kl, "l"), (axes[0, 1], kr, "r")):
+        ax.hist(values, bins=bins, color="#9bb7d4", edgecolor="#4a6d94", lw=0.4,
+                label=f"standing arches (n = {values.size})")
+        ax.set_xlabel(f"$k_{name}$ [g]")
+        std = f"{values.std(ddof=1):.4f}" if values.size > 1 else "n/a (one sample)"
+        ax.set_title(f"$k_{name}$: mean {values.mean():.4f}, std {std} (n = {values.size})",
+                     fontsize=9)
         for (label, ks), c in zip((reference or {}).items(), colors):
-            ax.axvline(ks[0] if name == "k_l" else ks[1], color=c, lw=1.2, ls="--", label=label)
+            ax.axvline(ks[0] if name == "l" else ks[1], color=c, lw=1.2, ls="--", label=label)
         ax.grid(True, alpha=0.3)
-        if reference:
-            ax.legend(fontsize=8, frameon=False)
+        ax.legend(fontsize=8, frameon=False)
+        ax.yaxis.set_major_locator(MaxNLocator(integer=True))  # counts of samples
     axes[0, 0].set_ylabel("samples")
+    n_hidden = int((~shown).sum())
+    why = ", ".join(f"{LEFT_OUT[k].split(' (')[0]} {v}" for k, v in hidden.items() if v)
+    fig.suptitle(f"{shown.sum()} of {len(kl_all)} samples shown"
+                 + (f"; not shown: {n_hidden} ({why})" if n_hidden else ""), fontsize=9)
     return save_figure(fig, path, dpi=dpi)

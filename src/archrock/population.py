@@ -11,6 +11,7 @@ other error is a real error and stops the study.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from .errors import UNUSABLE_ARCH, ArchInputError
@@ -19,7 +20,54 @@ from .impact import ImpactSpec
 from .response import DynamicModel, prepare
 from .sampling import ArchSampler
 
-__all__ = ["PreparedArches", "prepare_many", "prepare_sample"]
+__all__ = ["PreparedArches", "prepare_many", "prepare_sample", "LEFT_OUT", "left_out_outcome",
+           "count_left_out", "left_out_summary"]
+
+#: Why an arch of a study has no response, in report order (keys of every summary's counts).
+LEFT_OUT = {
+    "invalid_draw": "invalid draw (not a valid arch, e.g. neighbouring voussoirs do not overlap)",
+    "cannot_stand": "cannot stand under its own weight (k <= 0)",
+    "no_mechanism": "no four-hinge mechanism (sliding or crushing governs)",
+    "four_link_not_applicable": "four-link model not applicable (degenerate mechanism)",
+    "impact_not_applicable": "impact model not applicable (it would create energy, or singular)",
+    "other": "other",
+}
+
+# Reasons are the messages of batch.prepare_batch and of the errors of UNUSABLE_ARCH; the first
+# pattern that matches wins (a least-loss chain failure is an impact-model failure).
+_PATTERNS = (
+    ("impact_not_applicable", r"^(least-loss chain:|impact\b)"),
+    ("invalid_draw", r"^geometry:|not a valid arch"),
+    ("cannot_stand", r"cannot stand|does not stand"),
+    ("no_mechanism", r"four-hinge mechanism"),
+    ("four_link_not_applicable", r"^four-link model:|^mechanism "),
+)
+
+
+def left_out_outcome(reason: str) -> str:
+    """The key of :data:`LEFT_OUT` for the reason an arch was left out."""
+    for key, pattern in _PATTERNS:
+        if re.search(pattern, reason):
+            return key
+    return "other"
+
+
+def count_left_out(reasons) -> dict:
+    """{key of :data:`LEFT_OUT`: count} over reasons (strings) or (index, reason) pairs."""
+    counts = dict.fromkeys(LEFT_OUT, 0)
+    for r in reasons:
+        counts[left_out_outcome(r if isinstance(r, str) else r[1])] += 1
+    return counts
+
+
+def left_out_summary(failed, usable: int, what: str) -> dict:
+    """JSON statement of the arches a study left out: count, counts by reason, and the rule
+    that ``what`` (e.g. "quantiles") is over the ``usable`` arches only."""
+    return {"count": len(failed), "by_reason": count_left_out(failed), "usable": int(usable),
+            "rule": f"{what} over the {usable} usable arch{'es' if usable != 1 else ''} only; the "
+                    f"{len(failed)} left out are "
+                    f"not counted (an arch that cannot stand under its own weight is not counted "
+                    f"as a collapse)"}
 
 
 @dataclass(frozen=True, eq=False)

@@ -2,14 +2,24 @@
 
 Definitions used by :meth:`EnsembleResult.summary`:
 
+* outcomes: every sample has exactly one, counted and shared over ALL samples: "invalid_draw",
+  "cannot_stand", "no_mechanism", "four_link_not_applicable", "impact_not_applicable", "other"
+  (the reasons of :data:`archrock.population.LEFT_OUT`), then "integrated" (status rest,
+  collapsed or moving) or, without a ground motion, "limit_only".
 * k statistics and the "as far as RA-x" shares over the samples whose limit analysis found a
   standing arch (finite k_l, k_r > 0): samples that failed there (invalid geometry, no
   mechanism, "cannot stand") are left out; samples that failed later (four-link model, impact
-  law) keep their valid k.  std is the sample standard deviation (ddof = 1; None for one sample).
+  law) keep their valid k.  std is the sample standard deviation (ddof = 1); with one sample
+  std, q05 and q95 are None (not estimated, ``note`` says so).
 * response statistics over the samples whose response was integrated; ``peak_rad`` only over
   those that did not collapse (a collapsed sample's ``peak`` column is its rotation limit).
-* p_collapse over the samples whose response was integrated (status rest, collapsed or moving),
-  with the Wilson score interval (:func:`archrock.fragility.collapse_probability`).
+* p_collapse, conditional: collapses / integrated samples, with the Wilson score interval
+  (:func:`archrock.fragility.collapse_probability`); p, low, high None (``note`` says why) when
+  no sample was integrated; p_collapse and p_failure are None without a ground motion.
+* p_failure, cannot stand counted as failed: (cannot stand + collapsed) / (cannot stand +
+  integrated), Wilson interval.  An arch that cannot stand under its own weight has failed; the
+  samples whose outcome under the motion is unknown (invalid draw, no mechanism, a model not
+  applicable) are in neither count.
 * "as far from nominal as RA-x" (RA-1: k_l = 0.4111, k_r = 0.3104; RA-2: k_l = 0.3946,
   k_r = 0.3501, the paper's random arches): with k0_l, k0_r the nominal arch's multipliers,
   ``k_l``: |k_l - k0_l| >= |k_l(RA) - k0_l|; ``k_r``: the same for k_r; ``either`` / ``both``:
@@ -24,9 +34,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import published
+from ..population import LEFT_OUT, left_out_outcome
 from .config import EnsembleConfig
 
-__all__ = ["EnsembleResult", "PAPER_RANDOM_ARCHES"]
+__all__ = ["EnsembleResult", "PAPER_RANDOM_ARCHES", "P_COLLAPSE_RULE", "P_FAILURE_RULE"]
+
+#: How the two probabilities of the summary are counted (also in its JSON, ``rule``).
+P_COLLAPSE_RULE = ("conditional: collapsed / integrated samples; samples without a response "
+                   "(cannot stand, invalid draw, no mechanism, model not applicable) left out")
+P_FAILURE_RULE = ("cannot stand counted as failed: (cannot stand + collapsed) / (cannot stand + "
+                  "integrated); samples whose outcome is unknown (invalid draw, no mechanism, "
+                  "model not applicable) left out")
+INTEGRATED = ("rest", "collapsed", "moving")
 
 #: The paper's random arches (plausibility figures, METHOD section 2).
 PAPER_RANDOM_ARCHES = published.RANDOM_ARCHES
@@ -37,11 +56,48 @@ def _stats(x: np.ndarray) -> dict:
     x = x[np.isfinite(x)]
     if x.size == 0:
         return {"mean": None, "std": None, "min": None, "q05": None, "median": None, "q95": None,
-                "max": None, "count": 0}
+                "max": None, "count": 0, "note": "no sample"}
     q = np.quantile(x, [0.05, 0.5, 0.95])
-    return {"mean": float(x.mean()), "std": float(x.std(ddof=1)) if x.size > 1 else None,
-            "min": float(x.min()), "q05": float(q[0]), "median": float(q[1]), "q95": float(q[2]),
-            "max": float(x.max()), "count": int(x.size)}
+    one = x.size == 1  # a spread of one sample is not estimated (it would read as zero)
+    return {"mean": float(x.mean()), "std": None if one else float(x.std(ddof=1)),
+            "min": float(x.min()), "q05": None if one else float(q[0]), "median": float(q[1]),
+            "q95": None if one else float(q[2]), "max": float(x.max()), "count": int(x.size),
+            "note": "one sample: std and 5-95% range not estimated" if one else None}
+
+
+def _wilson(k: int, trials: int, confidence: float, rule: str, **counts) -> dict:
+    """A probability with its Wilson interval; p, low, high None (and a note) with no trials."""
+    from ..fragility import collapse_probability
+
+    out = {"p": None, "low": None, "high": None, "confidence": confidence, "method": "wilson",
+           **counts, "trials": trials, "rule": rule, "note": None}
+    if trials:
+        out["p"], out["low"], out["high"] = collapse_probability(k, trials, confidence,
+                                                                 "wilson")
+    else:
+        out["note"] = "no trials: the probability cannot be estimated"
+    return out
+
+
+def _outcomes(df, motion: bool) -> dict:
+    """Counts and shares of each sample's one outcome over all samples."""
+    n = int(len(df))
+    counts = dict.fromkeys(LEFT_OUT, 0)
+    status = df["status"].to_numpy()
+    for e in df.loc[df["error"] != "", "error"]:
+        counts[left_out_outcome(e)] += 1
+    # no error but not integrated either (not expected): counted, not lost
+    counts["other"] += int(((df["error"] == "") & ~df["status"].isin(
+        INTEGRATED if motion else ("limit-only",))).sum())
+    done = "integrated" if motion else "limit_only"
+    counts[done] = int(np.isin(status, INTEGRATED if motion else ("limit-only",)).sum())
+    out = {"samples": n,
+           "rule": "each sample has exactly one outcome; shares over all samples",
+           "counts": counts,
+           "shares": {k: (v / n if n else None) for k, v in counts.items()}}
+    if motion:
+        out["integrated"] = {k: int((status == k).sum()) for k in INTEGRATED}
+    return out
 
 
 def _reason(text: str) -> str:
@@ -66,8 +122,6 @@ class EnsembleResult:
 
     def summary(self, confidence: float = 0.95) -> dict:
         """JSON-ready summary (definitions in the module docstring)."""
-        from ..fragility import collapse_probability
-
         df = self.frame
         kl_all, kr_all = df["k_l"].to_numpy(), df["k_r"].to_numpy()
         # a standing arch by limit analysis (k <= 0: "cannot stand", a failed sample)
@@ -103,19 +157,21 @@ class EnsembleResult:
             "hinge_patterns": hinges,
             "as_far_as": far,
             "failed": {"count": int(len(failed)), "reasons": reasons},
+            "outcomes": _outcomes(df, self.config.motion is not None),
             "impact": self.impact,
             "motion": None if self.config.motion is None else self.config.motion.to_dict(),
             "p_collapse": None,
+            "p_failure": None,
             "response": None,
             "timing": self.timing,
         }
         if self.config.motion is not None:
-            ran = df[df["status"].isin(["rest", "collapsed", "moving"])]
+            ran = df[df["status"].isin(INTEGRATED)]
             n, k = int(len(ran)), int(ran["collapsed"].sum())
-            if n:
-                p, lo, hi = collapse_probability(k, n, confidence, "wilson")
-                out["p_collapse"] = {"p": p, "low": lo, "high": hi, "confidence": confidence,
-                                     "method": "wilson", "collapses": k, "trials": n}
+            out["p_collapse"] = _wilson(k, n, confidence, P_COLLAPSE_RULE, collapses=k)
+            cs = out["outcomes"]["counts"]["cannot_stand"]
+            out["p_failure"] = _wilson(cs + k, cs + n, confidence, P_FAILURE_RULE,
+                                       failures=cs + k, cannot_stand=cs, collapses=k)
             col = ran[ran["collapsed"]]
             out["response"] = {
                 "status": {str(k_): int(v) for k_, v in ran["status"].value_counts().items()},

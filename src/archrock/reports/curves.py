@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from ._common import format_failed, impact_summary
+from ._common import format_failed, format_left_out, impact_summary
 
 __all__ = ["curves_summary", "format_curves"]
 
@@ -43,9 +43,13 @@ def format_curves(curve, band=None, *, arch_name: str, pulse: str, sign: int, im
         a = "none" if p.amplitude is None else f"{p.amplitude:.4f}"
         qs = ""
         if band is not None:
-            qs = " ".join(("inf" if not math.isfinite(v) else f"{v:.3f}").rjust(7)
-                          for v in band.bands[:, i]) + " "
+            qs = " ".join(("n/a" if math.isnan(v) else "inf" if not math.isfinite(v)
+                           else f"{v:.3f}").rjust(7) for v in band.bands[:, i]) + " "
         lines.append(f"{p.duration:8.3f} {a:>12}  {qs}{(p.mode or '-'):<22} {_fmt_windows(p.windows)}")
     if band is not None:
+        lines.append(format_left_out(band.to_dict()["left_out"], "quantiles (inf: no collapse "
+                                     "up to a_max)"))
+        if band.band_note:
+            lines.append(f"quantile bands: n/a ({band.band_note})")
         lines += format_failed(band.failed, band.n_requested)
     return "\n".join(lines)

@@ -10,6 +10,34 @@ def _num(x, spec: str) -> str:
     return "-" if x is None else format(x, spec)
 
 
+_OUTCOME_TEXT = {"invalid_draw": "invalid draw", "cannot_stand": "cannot stand",
+                 "no_mechanism": "no mechanism",
+                 "four_link_not_applicable": "four-link model not applicable",
+                 "impact_not_applicable": "impact model not applicable", "other": "other",
+                 "integrated": "integrated", "limit_only": "limit analysis only"}
+
+
+def _p_line(name: str, pc: dict, counts: str) -> str:
+    if pc["p"] is None:
+        return f"{name} = n/a ({pc['note']})"
+    return (f"{name} = {pc['p']:.4f} [{pc['low']:.4f}, {pc['high']:.4f}] "
+            f"({counts} of {pc['trials']}, {pc['confidence']:.0%} Wilson)")
+
+
+def _outcome_lines(oc: dict) -> list[str]:
+    """One line per outcome that occurred (all samples; shares of all)."""
+    n = oc["samples"]
+    lines = [f"outcomes of all {n} samples (each sample has one):"]
+    for key, count in oc["counts"].items():
+        if count or key in ("cannot_stand", "integrated"):
+            extra = ""
+            if key == "integrated":
+                extra = " (" + ", ".join(f"{k} {v}" for k, v in oc["integrated"].items()) + ")"
+            share = "-" if oc["shares"][key] is None else f"{oc['shares'][key]:.1%}"
+            lines.append(f"  {_OUTCOME_TEXT.get(key, key)}: {count} ({share}){extra}")
+    return lines
+
+
 def format_ensemble(summary: dict, arch_name: str) -> str:
     """Readable report of ``EnsembleResult.summary()`` for random arches around ``arch_name``:
     multipliers, distance from the paper's random arches, hinge patterns, P(collapse), timing."""
@@ -18,11 +46,17 @@ def format_ensemble(summary: dict, arch_name: str) -> str:
              f"spreads {sp['span']:g}/{sp['thickness']:g}/{sp['radius']:g})",
              f"nominal: k_l = {summary['nominal']['k_l']:.4f}, "
              f"k_r = {summary['nominal']['k_r']:.4f}"]
+    oc = summary.get("outcomes")
+    if oc is not None:
+        lines += _outcome_lines(oc)
     for name in ("k_l", "k_r"):
         s = summary[name]
         if s["mean"] is not None:
-            lines.append(f"{name}: mean {s['mean']:.4f}, std {_num(s['std'], '.4f')}, 5-95% "
-                         f"[{s['q05']:.4f}, {s['q95']:.4f}]")
+            rng = ("n/a (one sample)" if s["q05"] is None
+                   else f"[{s['q05']:.4f}, {s['q95']:.4f}]")
+            lines.append(f"{name} (standing arches, n = {s['count']}): mean {s['mean']:.4f}, "
+                         f"std {'n/a (one sample)' if s['std'] is None else format(s['std'], '.4f')}"
+                         f", 5-95% {rng}")
     for name, far in summary["as_far_as"].items():
         f3 = {k: _num(far[k], ".3f") for k in ("k_l", "k_r", "either", "asymmetry")}
         lines.append(f"as far from nominal as {name}: k_l {f3['k_l']}, k_r {f3['k_r']}, "
@@ -31,8 +65,13 @@ def format_ensemble(summary: dict, arch_name: str) -> str:
         lines.append(f"{m} hinges: " + ", ".join(f"{k} {v}" for k, v in list(counts.items())[:4]))
     pc = summary["p_collapse"]
     if pc is not None:
-        lines.append(f"P(collapse) = {pc['p']:.4f} [{pc['low']:.4f}, {pc['high']:.4f}] "
-                     f"({pc['collapses']}/{pc['trials']}, {pc['confidence']:.0%} Wilson)")
+        lines.append(_p_line("P(collapse | integrated)", pc, f"{pc['collapses']} collapsed")
+                     + "; conditional: arches without a response left out")
+    pf = summary.get("p_failure")
+    if pf is not None:
+        lines.append(_p_line("P(failure), cannot stand counted as failed", pf,
+                             f"{pf['cannot_stand']} cannot stand + {pf['collapses']} collapsed")
+                     + "; invalid draws, no mechanism, model not applicable left out")
     if summary["failed"]["count"]:
         lines.append(f"failed samples: {summary['failed']['count']} "
                      + "; ".join(f"{k}: {v}" for k, v in summary["failed"]["reasons"].items()))

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._common import format_failed, impact_summary
+from ._common import format_ci, format_failed, format_left_out, impact_summary
 
 __all__ = ["fragility_summary", "format_fragility"]
 
@@ -31,15 +31,13 @@ def format_fragility(ida_result, stripes, *, arch_name: str, n_records: int, n_a
                      f"survives above at scales {sa}")
         if c.note:
             lines.append(f"    ({c.note})")
+    lines.append(format_left_out(ida_result.to_dict()["left_out"], "IDA, stripes and fits"))
     for name, r in (("IDA", ida_result), ("stripes", stripes)):
-        if r.fit is None or r.fit_error:
-            lines.append(f"{name}: {'no fit' if r.fit is None else 'note'} ({r.fit_error})")
-        if r.fit is not None:
-            ci = "" if r.fit.theta_ci is None else (
-                f" [{r.fit.theta_ci[0]:.3f}, {r.fit.theta_ci[1]:.3f}], beta CI "
-                f"[{r.fit.beta_ci[0]:.2f}, {r.fit.beta_ci[1]:.2f}]")
-            lines.append(f"{name}: {r.fit.method} theta = {r.fit.theta:.4f} g{ci}, "
-                         f"beta = {r.fit.beta:.3f}")
+        if r.fit is None:
+            lines.append(f"{name}: no fit ({r.fit_error})")
+        else:
+            lines.append(f"{name}: {r.fit.method} theta = {r.fit.theta:.4f} g, "
+                         f"beta = {r.fit.beta:.3f} (n = {r.fit.n_records}){format_ci(r.fit)}")
     lines.append("stripes: " + ", ".join(f"{x:.3f} g {z}/{n}" for x, z, n in
                                          zip(stripes.levels, stripes.collapses, stripes.trials)))
     return "\n".join(lines)
