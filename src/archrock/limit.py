@@ -228,10 +228,23 @@ def _enumerate_sums(cw, cwx, cwy, px, py, cand=None):
     pxf = px.reshape(B, -1)
     pyf = py.reshape(B, -1)
     take = np.take
-    Ax, Ay = take(pxf, pt[0], axis=1), take(pyf, pt[0], axis=1)
-    Bx, By = take(pxf, pt[1], axis=1), take(pyf, pt[1], axis=1)
-    Cx, Cy = take(pxf, pt[2], axis=1), take(pyf, pt[2], axis=1)
-    Dx, Dy = take(pxf, pt[3], axis=1), take(pyf, pt[3], axis=1)
+    points = [(take(pxf, pt[h], axis=1), take(pyf, pt[h], axis=1)) for h in range(4)]
+    # prefix-sum differences for every joint pair, flattened (B, m*m)
+    dW = (cw[:, None, :] - cw[:, :, None]).reshape(B, -1)
+    dX = (cwx[:, None, :] - cwx[:, :, None]).reshape(B, -1)
+    dY = (cwy[:, None, :] - cwy[:, :, None]).reshape(B, -1)
+    links = [(take(dW, pair[k], axis=1), take(dX, pair[k], axis=1), take(dY, pair[k], axis=1))
+             for k in range(3)]
+    return _virtual_work(points, links, sign)
+
+
+def _virtual_work(points, links, sign):
+    """Multipliers (lam_l, lam_r) of four-hinge candidates from their hinge points
+    [(Ax, Ay), .., (Dx, Dy)], the weight sums of their three links [(W, X, Y) per link] and the
+    edge signs (4, K).  The one place the arithmetic lives: the full enumeration and the
+    static-guided search call it, so both give bit-identical multipliers for a candidate."""
+    (Ax, Ay), (Bx, By), (Cx, Cy), (Dx, Dy) = points
+    (W1, X1, Y1), (W2, X2, Y2), (W3, X3, Y3) = links
     # omega1 = 1; loop closure  w2 (C-B) + w3 (D-C) = -(B-A)
     u2x, u2y = Cx - Bx, Cy - By
     u3x, u3y = Dx - Cx, Dy - Cy
@@ -253,14 +266,6 @@ def _enumerate_sums(cw, cwx, cwy, px, py, cand=None):
     neg = (q0 < nthr) & (q1 < nthr) & (q2 < nthr) & (q3 < nthr)
     sigma = np.where(pos, 1.0, -1.0)
     admissible = ok & (pos | neg)
-
-    # prefix-sum differences for every joint pair, flattened (B, m*m)
-    dW = (cw[:, None, :] - cw[:, :, None]).reshape(B, -1)
-    dX = (cwx[:, None, :] - cwx[:, :, None]).reshape(B, -1)
-    dY = (cwy[:, None, :] - cwy[:, :, None]).reshape(B, -1)
-    W1, X1, Y1 = take(dW, pair[0], axis=1), take(dX, pair[0], axis=1), take(dY, pair[0], axis=1)
-    W2, X2, Y2 = take(dW, pair[1], axis=1), take(dX, pair[1], axis=1), take(dY, pair[1], axis=1)
-    W3, X3, Y3 = take(dW, pair[2], axis=1), take(dX, pair[2], axis=1), take(dY, pair[2], axis=1)
     # velocity of B on link 1 (rotation w1 = 1 about A): k x (B - A)
     vBx, vBy = -(By - Ay), (Bx - Ax)
     work_x = (-(Y1 - W1 * Ay)
