@@ -488,6 +488,10 @@ def enumeration_estimate(n: int, arches: int = 1) -> dict:
             "backend": backend, "bytes": per_arch * _NUMPY_BYTES_PER_CANDIDATE if backend == "numpy" else 0}
 
 
+def _seconds(x: float) -> str:
+    return f"{x:.0f}" if x >= 10 else f"{x:.2g}"
+
+
 def _say(msg: str) -> None:
     print(f"archrock limit analysis: {msg}", file=sys.stderr, flush=True)
 
@@ -507,12 +511,12 @@ def _full_enumeration(spans, radii, thick, chunk, max_seconds, why=""):
     if est["seconds"] > max_seconds:
         raise LimitExceededError(
             f"limit analysis: {why}the full enumeration of {what} would take about "
-            f"{est['seconds']:.0f} s with {est['backend']} (bound {max_seconds:g} s); pass "
+            f"{_seconds(est['seconds'])} s with {est['backend']} (bound {max_seconds:g} s); pass "
             f"max_seconds={math.ceil(2 * est['seconds'])} to run it anyway, or use method='auto' "
             "(the static-guided search)")
     progress = est["seconds"] > _PROGRESS_SECONDS
     if progress:
-        _say(f"{why}full enumeration of {what}, about {est['seconds']:.0f} s with {est['backend']}")
+        _say(f"{why}full enumeration of {what}, about {_seconds(est['seconds'])} s with {est['backend']}")
     t0 = time.perf_counter()
     if _NUMBA_ENABLED:
         try:
@@ -631,7 +635,7 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     estimate = B * (_GUIDED_SECONDS[0] + _GUIDED_SECONDS[1] * n)
     progress = estimate > _PROGRESS_SECONDS
     if progress:
-        _say(f"static-guided search on {B} arches of {n} voussoirs, about {estimate:.0f} s")
+        _say(f"static-guided search on {B} arches of {n} voussoirs, about {_seconds(estimate)} s")
     t0 = last = time.perf_counter()
     for b in range(B):
         k_l[b], k_r[b], i_l[b], i_r[b] = _guided_arch(spans[b], radii[b], thick[b], max_seconds)
