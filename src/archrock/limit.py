@@ -722,7 +722,10 @@ def _guided_arch(spans, radii, thick, max_seconds):
     lp = {}
     for d in DIRECTIONS:
         try:
-            lp[d] = static_multiplier(arch, d)
+            # a joint with no force across it (N = M = 0: the springing lifts off) has no
+            # crossing radius (NaN): it touches no edge, and no mechanism can be confirmed
+            with np.errstate(invalid="ignore", divide="ignore"):
+                lp[d] = static_multiplier(arch, d)
         except CannotStandError:
             lp[d] = None
     if lp["l"] is None and lp["r"] is None and not _stands(arch):
