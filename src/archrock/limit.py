@@ -15,6 +15,12 @@ Two independent methods:
   set ARCHROCK_NO_NUMBA=1 to use numpy only).
 * static: a linear program on the three redundant reactions at the left springing and lambda:
   maximise lambda with the line of thrust inside every joint's contact surface.
+
+Above ENUMERATION_MAX_VOUSSOIRS voussoirs the enumeration (O(n^4)) gives way to the
+static-guided search: the hinges are read where the static optimum's line of thrust touches the
+edges, and the mechanism is accepted when its kinematic multiplier equals the static one (the two
+limit theorems); otherwise wider neighbourhoods, and last the full enumeration, whose work is
+estimated before it starts (LimitExceededError beyond ``max_seconds``).
 """
 
 from __future__ import annotations
