@@ -12,6 +12,11 @@ R = 10 m, embrace 157.5 deg, t = 1.5 m) with n = 7 and n = 20 voussoirs it measu
 
 then prints the rates, the speed-up ratios and the largest |kinematic - static| difference.
 Target: >= 5000 arches/s at n = 7 through the production path.
+
+Many voussoirs (``--large``, default 100 200 500 1000): ``limit.limit_analysis`` of the nominal
+arch (the static-guided search above ``limit.ENUMERATION_MAX_VOUSSOIRS``), its kinematic part
+alone, and the full enumeration (``method="enumeration"``) where its estimate is below
+``--enum-max-seconds`` (default 60), as ratios in the same run; static = kinematic is checked.
 """
 
 from __future__ import annotations
@@ -99,6 +104,10 @@ def main(argv=None) -> int:
     ap.add_argument("--lp-arches", type=int, default=300, help="arches through linprog (default 300)")
     ap.add_argument("--no-numba", action="store_true", help="use the numpy enumeration only")
     ap.add_argument("--seed", type=int, default=2017)
+    ap.add_argument("--large", type=int, nargs="*", default=[100, 200, 500, 1000],
+                    help="voussoir counts of the many-voussoir timings (none: skip them)")
+    ap.add_argument("--enum-max-seconds", type=float, default=60.0,
+                    help="run the full enumeration where its estimate is below this (s)")
     args = ap.parse_args(argv)
 
     backend = "numba kernel" if limit._NUMBA_ENABLED else "numpy (vectorised, blocked)"
@@ -122,7 +131,43 @@ def main(argv=None) -> int:
           f"({rows[0]['batch']:.0f} arches/s)")
     agree = all(r["diff_lp"] < 1e-6 and r["diff_single"] == 0.0 for r in rows)
     print(f"kinematic and static agree within 1e-6: {'yes' if agree else 'NO'}")
+    if args.large:
+        agree &= bench_large(args.large, args.enum_max_seconds)
     return 0 if agree else 1
+
+
+def bench_large(counts, enum_max_seconds: float) -> bool:
+    """Many voussoirs: static-guided search against the full enumeration, same run."""
+    print(f"\nmany voussoirs (R = 10 m, 157.5 deg, t = 1.5 m); the guided search above "
+          f"n = {limit.ENUMERATION_MAX_VOUSSOIRS}")
+    print(f"{'n':>6} {'limit_analysis':>15} {'kinematic':>10} {'enumeration':>14} "
+          f"{'enum/kin':>9} {'|kin-static|':>13}  mechanism M_l")
+    ok = True
+    for n in counts:
+        arch = nominal_arch(10.0, 157.5, 1.5, n)
+        limit.limit_analysis(arch)  # warm-up
+        t_la = 1.0 / best_rate(lambda: limit.limit_analysis(arch), 1, 3)
+        t_kin = 1.0 / best_rate(lambda: limit.kinematic_mechanisms(arch), 1, 3)
+        res = limit.limit_analysis(arch)
+        diff = max(abs(res.k_l - res.static_k_l), abs(res.k_r - res.static_k_r))
+        ok &= diff <= 1e-9
+        est = limit.enumeration_estimate(n)
+        if est["seconds"] <= enum_max_seconds and (limit._NUMBA_ENABLED or n <= limit._NUMPY_MAX_VOUSSOIRS):
+            t0 = time.perf_counter()
+            full = limit.kinematic_mechanisms(arch, method="enumeration", max_seconds=enum_max_seconds * 2)
+            t_en = time.perf_counter() - t0
+            same = full == (res.mechanism_l, res.mechanism_r)
+            ok &= same
+            enum = f"{t_en:10.2f} s" + ("" if same else " DIFFERENT")
+            ratio = f"{t_en / t_kin:8.0f}x"
+        else:
+            enum = f"~{est['seconds']:8.0f} s*"
+            ratio = f"~{est['seconds'] / t_kin:7.0f}x"
+        print(f"{n:6d} {t_la * 1e3:12.1f} ms {t_kin * 1e3:7.1f} ms {enum:>14} {ratio:>9} "
+              f"{diff:13.1e}  {res.mechanism_l.label}")
+    print("  * estimated (enumeration_estimate), not run")
+    print(f"static = kinematic (1e-9) and guided = enumerated where run: {'yes' if ok else 'NO'}")
+    return ok
 
 
 if __name__ == "__main__":

@@ -9,7 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from archrock import limit
-from archrock.errors import ArchInputError, CannotStandError
+from archrock.errors import ArchInputError, CannotStandError, LimitExceededError
 from archrock.geometry import Arch, nominal_arch, oppenheim_arch, random_arch
 from archrock.limit import Hinge, Mechanism
 
@@ -252,21 +252,25 @@ def test_result_serialises():
 
 
 def test_many_voussoirs_without_building_the_candidate_list():
-    """120 voussoirs: 14 C(121, 4) = 124 million candidates are enumerated in loops (numba) or
-    refused with a clear error (numpy only); the result still matches the static LP."""
+    """120 voussoirs: the static-guided search (with or without numba) finds the mechanism that
+    the full enumeration of 14 C(121, 4) = 124 million candidates finds (numba: loops, no list);
+    the result still matches the static LP."""
     from archrock import _jit
     from archrock.geometry import nominal_arch
     from archrock.limit import limit_analysis
 
     arch = nominal_arch(10.0, 157.5, 1.5, 120)
-    if not _jit.HAVE_NUMBA:
-        with pytest.raises(ArchInputError, match="voussoirs: 120"):
-            limit_analysis(arch)
-        return
     res = limit_analysis(arch)
     assert res.discrepancy < 1e-9
     assert res.k_l == pytest.approx(0.353407, abs=2e-6)
     assert res.mechanism_l.joints == (1, 45, 89, 120)
+    if _jit.HAVE_NUMBA:
+        full = limit_analysis(arch, method="enumeration")
+        assert (full.k_l, full.k_r) == (res.k_l, res.k_r)
+        assert (full.mechanism_l, full.mechanism_r) == (res.mechanism_l, res.mechanism_r)
+    else:
+        with pytest.raises(LimitExceededError, match="voussoirs"):
+            limit_analysis(arch, method="enumeration")
 
 
 def test_candidate_hinges_unranks_the_candidate_list():

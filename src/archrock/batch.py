@@ -210,9 +210,11 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=Non
     if ok.any():
         kl, kr, il, ir = kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok])
         k_l[ok], k_r[ok], cand_l[ok], cand_r[ok] = kl, kr, il, ir
-    for b in np.flatnonzero(ok & ~(np.isfinite(k_l) & np.isfinite(k_r))):
+    # +inf: no mechanism loads that direction; -inf (many voussoirs, static-guided search): no
+    # line of thrust at any horizontal load, so the arch cannot stand
+    for b in np.flatnonzero(ok & ((k_l == np.inf) | (k_r == np.inf))):
         error[b] = "limit analysis: no admissible four-hinge mechanism"
-    for b in np.flatnonzero(ok & np.isfinite(k_l) & np.isfinite(k_r) & ((k_l <= 0) | (k_r <= 0))):
+    for b in np.flatnonzero(ok & (k_l < np.inf) & (k_r < np.inf) & ((k_l <= 0) | (k_r <= 0))):
         error[b] = f"limit analysis: the arch cannot stand (k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})"
     ok = error == ""
     t1 = time.perf_counter()

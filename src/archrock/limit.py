@@ -15,11 +15,19 @@ Two independent methods:
   set ARCHROCK_NO_NUMBA=1 to use numpy only).
 * static: a linear program on the three redundant reactions at the left springing and lambda:
   maximise lambda with the line of thrust inside every joint's contact surface.
+
+Above ENUMERATION_MAX_VOUSSOIRS voussoirs the enumeration (O(n^4)) gives way to the
+static-guided search: the hinges are read where the static optimum's line of thrust touches the
+edges, and the mechanism is accepted when its kinematic multiplier equals the static one (the two
+limit theorems); otherwise wider neighbourhoods, and last the full enumeration, whose work is
+estimated before it starts (LimitExceededError beyond ``max_seconds``).
 """
 
 from __future__ import annotations
 
 import math
+import sys
+import time
 from dataclasses import dataclass, field
 from functools import lru_cache
 from itertools import combinations
@@ -29,13 +37,15 @@ from scipy.optimize import linprog
 
 from ._jit import HAVE_NUMBA, maybe_njit
 from ._records import readonly_arrays
-from .errors import ArchInputError, CannotStandError, NoMechanismError
+from .errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
 from .geometry import Arch, sector_properties
 
 __all__ = [
     "Hinge", "Mechanism", "ThrustLine", "LimitResult", "MinimumThickness",
     "limit_analysis", "kinematic_mechanisms", "kinematic_multipliers_batch",
-    "static_multiplier", "thrust_line", "minimum_thickness", "length_scale", "EDGES",
+    "static_multiplier", "thrust_line", "minimum_thickness", "length_scale",
+    "enumeration_estimate", "EDGES", "METHODS", "ENUMERATION_MAX_VOUSSOIRS",
+    "MAX_ENUMERATION_SECONDS",
 ]
 
 EDGES = ("intrados", "extrados")
@@ -245,10 +255,23 @@ def _enumerate_sums(cw, cwx, cwy, px, py, cand=None):
     pxf = px.reshape(B, -1)
     pyf = py.reshape(B, -1)
     take = np.take
-    Ax, Ay = take(pxf, pt[0], axis=1), take(pyf, pt[0], axis=1)
-    Bx, By = take(pxf, pt[1], axis=1), take(pyf, pt[1], axis=1)
-    Cx, Cy = take(pxf, pt[2], axis=1), take(pyf, pt[2], axis=1)
-    Dx, Dy = take(pxf, pt[3], axis=1), take(pyf, pt[3], axis=1)
+    points = [(take(pxf, pt[h], axis=1), take(pyf, pt[h], axis=1)) for h in range(4)]
+    # prefix-sum differences for every joint pair, flattened (B, m*m)
+    dW = (cw[:, None, :] - cw[:, :, None]).reshape(B, -1)
+    dX = (cwx[:, None, :] - cwx[:, :, None]).reshape(B, -1)
+    dY = (cwy[:, None, :] - cwy[:, :, None]).reshape(B, -1)
+    links = [(take(dW, pair[k], axis=1), take(dX, pair[k], axis=1), take(dY, pair[k], axis=1))
+             for k in range(3)]
+    return _virtual_work(points, links, sign)
+
+
+def _virtual_work(points, links, sign):
+    """Multipliers (lam_l, lam_r) of four-hinge candidates from their hinge points
+    [(Ax, Ay), .., (Dx, Dy)], the weight sums of their three links [(W, X, Y) per link] and the
+    edge signs (4, K).  The one place the arithmetic lives: the full enumeration and the
+    static-guided search call it, so both give bit-identical multipliers for a candidate."""
+    (Ax, Ay), (Bx, By), (Cx, Cy), (Dx, Dy) = points
+    (W1, X1, Y1), (W2, X2, Y2), (W3, X3, Y3) = links
     # omega1 = 1; loop closure  w2 (C-B) + w3 (D-C) = -(B-A)
     u2x, u2y = Cx - Bx, Cy - By
     u3x, u3y = Dx - Cx, Dy - Cy
@@ -270,14 +293,6 @@ def _enumerate_sums(cw, cwx, cwy, px, py, cand=None):
     neg = (q0 < nthr) & (q1 < nthr) & (q2 < nthr) & (q3 < nthr)
     sigma = np.where(pos, 1.0, -1.0)
     admissible = ok & (pos | neg)
-
-    # prefix-sum differences for every joint pair, flattened (B, m*m)
-    dW = (cw[:, None, :] - cw[:, :, None]).reshape(B, -1)
-    dX = (cwx[:, None, :] - cwx[:, :, None]).reshape(B, -1)
-    dY = (cwy[:, None, :] - cwy[:, :, None]).reshape(B, -1)
-    W1, X1, Y1 = take(dW, pair[0], axis=1), take(dX, pair[0], axis=1), take(dY, pair[0], axis=1)
-    W2, X2, Y2 = take(dW, pair[1], axis=1), take(dX, pair[1], axis=1), take(dY, pair[1], axis=1)
-    W3, X3, Y3 = take(dW, pair[2], axis=1), take(dX, pair[2], axis=1), take(dY, pair[2], axis=1)
     # velocity of B on link 1 (rotation w1 = 1 about A): k x (B - A)
     vBx, vBy = -(By - Ay), (Bx - Ax)
     work_x = (-(Y1 - W1 * Ay)
@@ -318,21 +333,24 @@ if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see arc
     _NUMBA_ENABLED = True
 
     @maybe_njit(nogil=True)
-    def _numba_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r):
+    def _numba_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, ja0, ja1, rank0):
         """Nested loops over joint quadruples a < b < c < d and the 14 hinge-edge patterns
         that can be admissible, in the order of _candidates(n) (candidate index = rank of
-        the quadruple * 16 + pattern): no candidate list is built, so memory stays O(n)."""
+        the quadruple * 16 + pattern): no candidate list is built, so memory stays O(n).
+        Only first joints ja0 <= a < ja1 (rank0: rank of the first such quadruple), starting
+        from the best values already in k_*, i_*: calls over consecutive ranges of a give the
+        result of one call over all, and a long enumeration can report its progress."""
         B = cw.shape[0]
         m = cw.shape[1]
         tol = 1e-9
         tiny = 1e-14
         for b in range(B):
-            best_l = np.inf
-            best_r = np.inf
-            arg_l = 0
-            arg_r = 0
-            rank = -1
-            for ja in range(m):
+            best_l = k_l[b]
+            best_r = k_r[b]
+            arg_l = i_l[b]
+            arg_r = i_r[b]
+            rank = rank0 - 1
+            for ja in range(ja0, ja1):
                 for jb in range(ja + 1, m):
                     W1 = cw[b, jb] - cw[b, ja]
                     X1 = cwx[b, jb] - cwx[b, ja]
@@ -436,40 +454,151 @@ def _disable_numba() -> None:
 _BLOCK_ELEMENTS = 16_384
 # The numpy enumeration keeps index arrays of all candidates (14 C(n+1, 4)): 2 GB at n = 60.
 _NUMPY_MAX_VOUSSOIRS = 48
+# ... about this many bytes per candidate (cached candidate list and gather indices).
+_NUMPY_BYTES_PER_CANDIDATE = 170
+
+#: Up to this many voussoirs, ``method="auto"`` enumerates every candidate (0.1.0's results,
+#: bit for bit); above it, the static-guided search.  Measured on one core: the numba
+#: enumeration takes 3 ms per arch at n = 30, 10 ms at 40, 41 ms at 48 and grows as n^4 (50 s
+#: at 300); the guided search takes about 5 ms at n = 40 (two LPs), 20 ms at 100.  Above 40 the
+#: search is faster with numba; without numba it is faster from n ~ 20, but one threshold for
+#: both keeps the two paths' results identical.
+ENUMERATION_MAX_VOUSSOIRS = 40
+#: Ways of finding the mechanisms: "auto" (enumeration up to ENUMERATION_MAX_VOUSSOIRS, the
+#: guided search above), "enumeration" (every candidate, with a work estimate), "guided".
+METHODS = ("auto", "enumeration", "guided")
+#: Default bound [s] on the estimated time of a full enumeration; beyond it LimitExceededError.
+MAX_ENUMERATION_SECONDS = 300.0
+# Candidates per second of the enumeration on one core (measured 1.0-1.4e8 with numba for
+# n >= 20, 1.1-1.5e7 with numpy), rounded down so that estimates err on the long side.
+_ENUMERATION_RATE = {"numba": 8e7, "numpy": 1e7}
+# Seconds per arch of the guided search: a + b n (measured ~4 ms at n = 40, ~0.1 s at 1000).
+_GUIDED_SECONDS = (5e-3, 1e-4)
+# Work estimated above this many seconds prints progress lines on stderr.
+_PROGRESS_SECONDS = 5.0
+# A joint touches the line of thrust when its gap to an edge is below this fraction of its
+# contact width: HiGHS's vertex puts the active joints at ~1e-12, while the neighbours of a
+# hinge on a 1000-voussoir arch are ~1e-5 away.
+_TOUCH_TOL = 1e-7
+# The chosen mechanism's multiplier must equal the static one to this, relative (|lambda| >= 1)
+# or absolute (|lambda| < 1): the two limit theorems bracket the collapse multiplier.
+_CONFIRM_RTOL = 1e-9
+# Neighbourhoods tried after the touching joints alone: every joint within k of a contact,
+# hinges at both edges.
+_WIDEN = (1, 2, 4)
+# A neighbourhood with more candidates than this goes to the full enumeration instead.
+_GUIDED_MAX_CANDIDATES = 2_000_000
 
 
-def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = None):
-    """Collapse multipliers of a batch of arches with the same number of voussoirs.
+def _check_method(method, max_seconds):
+    if method not in METHODS:
+        raise ArchInputError(f"method: {method!r}; allowed {', '.join(map(repr, METHODS))}")
+    if max_seconds is not None:
+        try:
+            ok = float(max_seconds) > 0 and math.isfinite(float(max_seconds))
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            raise ArchInputError(f"max_seconds: {max_seconds!r}; allowed a number > 0 (seconds)")
+    return MAX_ENUMERATION_SECONDS if max_seconds is None else float(max_seconds)
 
-    spans [rad], radii [m], thicknesses [m]: arrays (B, n). Returns (k_l, k_r, cand_l, cand_r)
-    where cand_* index into the candidate list of :func:`_candidates` (joint quadruple, edges).
-    ``chunk``: arches per block of the vectorised (numpy) enumeration (default: sized to stay in
-    cache); it does not change the results.
-    """
-    spans, radii, thick = _validate_batch(spans, radii, thicknesses)
+
+def enumeration_estimate(n: int, arches: int = 1) -> dict:
+    """Work of the full enumeration of ``arches`` arches of ``n`` voussoirs: candidates,
+    estimated seconds on one core with the current backend, and memory for numpy [bytes]."""
+    per_arch = 14 * math.comb(n + 1, 4)
+    backend = "numba" if _NUMBA_ENABLED else "numpy"
+    return {"candidates": per_arch * arches, "seconds": per_arch * arches / _ENUMERATION_RATE[backend],
+            "backend": backend, "bytes": per_arch * _NUMPY_BYTES_PER_CANDIDATE if backend == "numpy" else 0}
+
+
+def _seconds(x: float) -> str:
+    return f"{x:.0f}" if x >= 10 else f"{x:.2g}"
+
+
+def _say(msg: str) -> None:
+    print(f"archrock limit analysis: {msg}", file=sys.stderr, flush=True)
+
+
+def _full_enumeration(spans, radii, thick, chunk, max_seconds, why=""):
+    """Every candidate of every arch (validated (B, n) arrays), after estimating the work:
+    refused beyond ``max_seconds``, with progress lines on stderr when it will take a while."""
+    B, n = spans.shape
+    est = enumeration_estimate(n, B)
+    what = (f"{est['candidates']:.3g} candidate mechanisms ({B} arch{'es' if B > 1 else ''} "
+            f"of {n} voussoirs)")
+    if est["backend"] == "numpy" and n > _NUMPY_MAX_VOUSSOIRS:
+        raise LimitExceededError(
+            f"limit analysis: {why}the full enumeration without numba holds every candidate in "
+            f"memory: {what}, about {est['bytes'] / 1e9:.1f} GB (allowed n <= {_NUMPY_MAX_VOUSSOIRS}); "
+            "install the 'fast' extra (numba), or use method='auto' (the static-guided search)")
+    if est["seconds"] > max_seconds:
+        raise LimitExceededError(
+            f"limit analysis: {why}the full enumeration of {what} would take about "
+            f"{_seconds(est['seconds'])} s with {est['backend']} (bound {max_seconds:g} s); pass "
+            f"max_seconds={math.ceil(2 * est['seconds'])} to run it anyway, or use method='auto' "
+            "(the static-guided search)")
+    progress = est["seconds"] > _PROGRESS_SECONDS
+    if progress:
+        _say(f"{why}full enumeration of {what}, about {_seconds(est['seconds'])} s with {est['backend']}")
+    t0 = time.perf_counter()
+    if _NUMBA_ENABLED:
+        try:
+            out = _enumerate_numba(spans, radii, thick, progress, t0)
+        except Exception:  # noqa: BLE001 - a kernel that cannot compile here: use numpy
+            _disable_numba()
+            return _full_enumeration(spans, radii, thick, chunk, max_seconds, why)
+    else:
+        out = _enumerate_numpy(spans, radii, thick, chunk, progress, t0)
+    if progress:
+        _say(f"full enumeration done in {time.perf_counter() - t0:.1f} s")
+    return out
+
+
+def _enumerate_numba(spans, radii, thick, progress, t0):
+    B, n = spans.shape
+    m = n + 1
+    k_l = np.full(B, np.inf)
+    k_r = np.full(B, np.inf)
+    i_l = np.zeros(B, dtype=np.int64)
+    i_r = np.zeros(B, dtype=np.int64)
+    cw, cwx, cwy, px, py, _ = _batch_sums(spans, radii, thick)
+    pxf = np.ascontiguousarray(px.reshape(B, -1))
+    pyf = np.ascontiguousarray(py.reshape(B, -1))
+    if not progress:
+        _numba_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, 0, m, 0)
+        return k_l, k_r, i_l, i_r
+    # one arch at a time, the first joints in ranges of about a tenth of the work each
+    total = math.comb(m, 4)
+    for b in range(B):
+        sl = slice(b, b + 1)
+        ja = 0
+        while ja < m - 3:
+            done = total - math.comb(m - ja, 4)  # rank of the first quadruple with joint ja
+            end = ja + 1
+            while end < m - 3 and total - math.comb(m - end, 4) - done < total / 10:
+                end += 1
+            _numba_kernel(cw[sl], cwx[sl], cwy[sl], pxf[sl], pyf[sl], k_l[sl], k_r[sl],
+                          i_l[sl], i_r[sl], ja, end, done)
+            ja = end
+            frac = (b + (total - math.comb(m - ja, 4)) / total) / B
+            _say(f"full enumeration {100 * frac:.0f}% ({time.perf_counter() - t0:.0f} s)")
+    return k_l, k_r, i_l, i_r
+
+
+def _enumerate_numpy(spans, radii, thick, chunk, progress, t0):
     B, n = spans.shape
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)
     i_r = np.empty(B, dtype=np.int64)
-    if _NUMBA_ENABLED:
-        cw, cwx, cwy, px, py, _ = _batch_sums(spans, radii, thick)
-        try:
-            _numba_kernel(cw, cwx, cwy, np.ascontiguousarray(px.reshape(B, -1)),
-                          np.ascontiguousarray(py.reshape(B, -1)), k_l, k_r, i_l, i_r)
-            return k_l, k_r, i_l, i_r
-        except Exception:  # noqa: BLE001 - a kernel that cannot compile here: use numpy
-            _disable_numba()
-    if n > _NUMPY_MAX_VOUSSOIRS:
-        raise ArchInputError(
-            f"voussoirs: {n}; without numba the enumeration holds every candidate in memory, "
-            f"allowed <= {_NUMPY_MAX_VOUSSOIRS} (install the 'fast' extra for more)")
     idx, pt, pair, sign = _active_candidates(n)
     K = len(idx)
     if chunk is None:
         chunk = max(1, _BLOCK_ELEMENTS // K)
     # candidates per sub-block when a single arch already exceeds the block size
     cstep = K if chunk > 1 else max(_BLOCK_ELEMENTS // 2, 1)
+    last = t0
     for s in range(0, B, chunk):
         e = min(B, s + chunk)
         cw, cwx, cwy, px, py, _ = _batch_sums(spans[s:e], radii[s:e], thick[s:e])
@@ -492,11 +621,157 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
             best_r = np.where(better_r, v_r, best_r)
             arg_l = np.where(better_l, a_l + c0, arg_l)
             arg_r = np.where(better_r, a_r + c0, arg_r)
+            if progress and time.perf_counter() - last > 0.1 * _PROGRESS_SECONDS:
+                last = time.perf_counter()
+                frac = (s + (e - s) * c1 / K) / B
+                _say(f"full enumeration {100 * frac:.0f}% ({last - t0:.0f} s)")
         k_l[s:e] = best_l
         k_r[s:e] = best_r
         i_l[s:e] = np.where(np.isfinite(best_l), idx[arg_l], 0)
         i_r[s:e] = np.where(np.isfinite(best_r), idx[arg_r], 0)
     return k_l, k_r, i_l, i_r
+
+
+def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = None,
+                                method: str = "auto", max_seconds: float | None = None):
+    """Collapse multipliers of a batch of arches with the same number of voussoirs.
+
+    spans [rad], radii [m], thicknesses [m]: arrays (B, n). Returns (k_l, k_r, cand_l, cand_r)
+    where cand_* index into the candidate list of :func:`_candidates` (joint quadruple, edges).
+    ``method``: one of :data:`METHODS`; "auto" enumerates every candidate up to
+    :data:`ENUMERATION_MAX_VOUSSOIRS` voussoirs and runs the static-guided search above.
+    ``max_seconds``: bound on the estimated time of a full enumeration (default
+    :data:`MAX_ENUMERATION_SECONDS`), beyond which it raises LimitExceededError.
+    ``chunk``: arches per block of the vectorised (numpy) enumeration (default: sized to stay in
+    cache); it does not change the results.
+    A multiplier is inf where no mechanism loads that direction, and -inf (both directions)
+    where the guided search finds no line of thrust at any horizontal load (cannot stand).
+    """
+    spans, radii, thick = _validate_batch(spans, radii, thicknesses)
+    max_seconds = _check_method(method, max_seconds)
+    B, n = spans.shape
+    if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
+        return _full_enumeration(spans, radii, thick, chunk, max_seconds)
+    k_l = np.empty(B)
+    k_r = np.empty(B)
+    i_l = np.empty(B, dtype=np.int64)
+    i_r = np.empty(B, dtype=np.int64)
+    estimate = B * (_GUIDED_SECONDS[0] + _GUIDED_SECONDS[1] * n)
+    progress = estimate > _PROGRESS_SECONDS
+    if progress:
+        _say(f"static-guided search on {B} arches of {n} voussoirs, about {_seconds(estimate)} s")
+    t0 = last = time.perf_counter()
+    for b in range(B):
+        k_l[b], k_r[b], i_l[b], i_r[b] = _guided_arch(spans[b], radii[b], thick[b], max_seconds)
+        if progress and time.perf_counter() - last > 0.1 * _PROGRESS_SECONDS:
+            last = time.perf_counter()
+            _say(f"static-guided search {b + 1}/{B} arches ({last - t0:.0f} s)")
+    return k_l, k_r, i_l, i_r
+
+
+# ---------------------------------------------------------------------------- static-guided search
+def _candidate_index(n: int, joints, edges) -> np.ndarray:
+    """Indices in the order of :func:`_candidates` of candidates given by their joints (K, 4),
+    increasing, and edges (K, 4): the inverse of :func:`candidate_hinges`, vectorised."""
+    j = np.asarray(joints, dtype=np.int64)
+    e = np.asarray(edges, dtype=np.int64)
+    m = n + 1
+    x = m - 1 - j  # combinations after a quadruple, counted by its complement (combinadic)
+    after = (x[:, 0] * (x[:, 0] - 1) * (x[:, 0] - 2) * (x[:, 0] - 3) // 24
+             + x[:, 1] * (x[:, 1] - 1) * (x[:, 1] - 2) // 6
+             + x[:, 2] * (x[:, 2] - 1) // 2 + x[:, 3])
+    rank = math.comb(m, 4) - 1 - after
+    return rank * 16 + (e[:, 0] << 3 | e[:, 1] << 2 | e[:, 2] << 1 | e[:, 3])
+
+
+_PATTERNS = np.array([[(p >> k) & 1 for k in (3, 2, 1, 0)] for p in range(16)], dtype=np.int64)
+
+
+def _best_in_pool(sums, n: int, allowed: np.ndarray, direction: str):
+    """Smallest multiplier, and its candidate index, over every candidate whose four hinges are
+    allowed ((n+1, 2) bool over joints and edges); ties go to the first candidate in the
+    enumeration's order, as there.  None when no candidate is admissible or there are too many."""
+    pool = np.flatnonzero(allowed.any(axis=1))
+    if pool.size < 4 or math.comb(pool.size, 4) * 16 > _GUIDED_MAX_CANDIDATES:
+        return None
+    quads = np.array(list(combinations(pool.tolist(), 4)), dtype=np.int64)
+    # the 14 edge patterns that can be admissible, each hinge at an allowed edge
+    ok = np.all(allowed[quads[:, None, :], _PATTERNS[None, :, :]], axis=-1)
+    ok[:, [0, 15]] = False
+    qi, pi = np.nonzero(ok)
+    jq, eq = quads[qi], _PATTERNS[pi]
+    cw, cwx, cwy, px, py = (a[0] for a in sums)
+    points = [(px[jq[:, h], eq[:, h]], py[jq[:, h], eq[:, h]]) for h in range(4)]
+    links = [(cw[jq[:, k + 1]] - cw[jq[:, k]], cwx[jq[:, k + 1]] - cwx[jq[:, k]],
+              cwy[jq[:, k + 1]] - cwy[jq[:, k]]) for k in range(3)]
+    lam_l, lam_r = _virtual_work(points, links, _EDGE_SIGN[eq].T)
+    lam = lam_l if direction == "l" else lam_r
+    if lam.size == 0 or not np.isfinite(lam.min()):
+        return None
+    best = np.flatnonzero(lam == lam.min())
+    idx = _candidate_index(n, jq[best], eq[best])
+    return float(lam[best[0]]), int(idx.min())
+
+
+def _search(arch: Arch, sums, direction: str, lam: float, thrust: ThrustLine):
+    """The mechanism of the static solution: candidates from the joints where its line of
+    thrust touches an edge, then from wider neighbourhoods, until one's kinematic multiplier
+    equals the static one.  Returns (multiplier, candidate index) or None."""
+    width = arch.contact_outer - arch.contact_inner
+    gap = np.column_stack([(thrust.radii - arch.contact_inner) / width,
+                           (arch.contact_outer - thrust.radii) / width])  # intrados, extrados
+    touch = gap <= _TOUCH_TOL
+    tol = _CONFIRM_RTOL * max(1.0, abs(lam))
+    contacts = np.flatnonzero(touch.any(axis=1))
+    pools = [touch]
+    for k in _WIDEN:
+        near = np.zeros(arch.n + 1, dtype=bool)
+        for j in contacts:
+            near[max(0, j - k):j + k + 1] = True
+        pools.append(np.column_stack([near, near]))
+    for allowed in pools:
+        found = _best_in_pool(sums, arch.n, allowed, direction)
+        # by the kinematic theorem found[0] >= the collapse multiplier >= lam (static theorem),
+        # so equality confirms it is the collapse mechanism
+        if found is not None and abs(found[0] - lam) <= tol:
+            return found
+    return None
+
+
+def _guided_arch(spans, radii, thick, max_seconds):
+    """(k_l, k_r, cand_l, cand_r) of one arch by the static-guided search, the full enumeration
+    (within ``max_seconds``) where the search cannot confirm its mechanism."""
+    arch = Arch(spans, radii, thick)
+    sums = _batch_sums(spans[None], radii[None], thick[None])[:5]
+    lp = {}
+    for d in DIRECTIONS:
+        try:
+            # a joint with no force across it (N = M = 0: the springing lifts off) has no
+            # crossing radius (NaN): it touches no edge, and no mechanism can be confirmed
+            with np.errstate(invalid="ignore", divide="ignore"):
+                lp[d] = static_multiplier(arch, d)
+        except CannotStandError:
+            lp[d] = None
+    if lp["l"] is None and lp["r"] is None and not _stands(arch):
+        # no line of thrust at any horizontal load: the arch cannot stand, and there is no
+        # static multiplier to confirm a mechanism with
+        return -np.inf, -np.inf, 0, 0
+    out, full = [], None
+    for d in DIRECTIONS:
+        if lp[d] is None:
+            # the LP is feasible (it stands, or the other direction solved) but unbounded: by
+            # duality no admissible mechanism loads this direction
+            out.append((np.inf, 0))
+            continue
+        found = _search(arch, sums, d, *lp[d])
+        if found is None:
+            if full is None:
+                full = _full_enumeration(
+                    spans[None], radii[None], thick[None], None, max_seconds,
+                    why=f"the static-guided search could not confirm the mechanism ({d}); ")
+            found = (full[0][0], full[2][0]) if d == "l" else (full[1][0], full[3][0])
+        out.append(found)
+    return out[0][0], out[1][0], out[0][1], out[1][1]
 
 
 def candidate_hinges(n: int, idx: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
@@ -526,10 +801,18 @@ def _mechanism_from_candidate(n: int, idx: int, direction: str, k: float) -> Mec
     return Mechanism(direction, hinges, float(k))
 
 
-def kinematic_mechanisms(arch: Arch) -> tuple[Mechanism, Mechanism]:
-    """The governing mechanisms (M_l, M_r) of one arch by kinematic enumeration."""
+def kinematic_mechanisms(arch: Arch, method: str = "auto",
+                         max_seconds: float | None = None) -> tuple[Mechanism, Mechanism]:
+    """The governing mechanisms (M_l, M_r) of one arch: by kinematic enumeration, or by the
+    static-guided search for many voussoirs (``method``, ``max_seconds``: see
+    :func:`kinematic_multipliers_batch`)."""
     k_l, k_r, i_l, i_r = kinematic_multipliers_batch(arch.spans[None], arch.radii[None],
-                                                     arch.thicknesses[None])
+                                                     arch.thicknesses[None], method=method,
+                                                     max_seconds=max_seconds)
+    if k_l[0] == -np.inf:
+        raise CannotStandError(
+            "arch: no line of thrust fits inside the arch under any horizontal load; it cannot "
+            "stand (increase the thickness)")
     if not (np.isfinite(k_l[0]) and np.isfinite(k_r[0])):
         raise NoMechanismError(
             "arch: no four-hinge mechanism can open under horizontal forces (the arch is too flat "
@@ -637,11 +920,17 @@ def thrust_line(arch: Arch, mechanism: Mechanism) -> ThrustLine:
     return _thrust_from_x(arch, mechanism.direction, x)
 
 
-def limit_analysis(arch: Arch, verify: bool = True) -> LimitResult:
-    """k_l, k_r, their mechanisms and thrust lines; ``verify`` adds the static LP cross-check."""
+def limit_analysis(arch: Arch, verify: bool = True, method: str = "auto",
+                   max_seconds: float | None = None) -> LimitResult:
+    """k_l, k_r, their mechanisms and thrust lines; ``verify`` adds the static LP cross-check.
+
+    ``method``: "auto" (full enumeration up to :data:`ENUMERATION_MAX_VOUSSOIRS` voussoirs, the
+    static-guided search above), "enumeration" or "guided"; ``max_seconds`` bounds a full
+    enumeration's estimated time (see :func:`kinematic_multipliers_batch`).
+    """
     if not isinstance(arch, Arch):
         raise ArchInputError(f"arch: expected an Arch, got {type(arch).__name__}")
-    m_l, m_r = kinematic_mechanisms(arch)
+    m_l, m_r = kinematic_mechanisms(arch, method, max_seconds)
     if m_l.multiplier <= 0 or m_r.multiplier <= 0:
         raise CannotStandError(
             f"arch: it cannot stand under its own weight (k_l = {m_l.multiplier:.4g}, "
@@ -652,7 +941,11 @@ def limit_analysis(arch: Arch, verify: bool = True) -> LimitResult:
         s_l, _ = static_multiplier(arch, "l")
         s_r, _ = static_multiplier(arch, "r")
         disc = max(abs(s_l - m_l.multiplier), abs(s_r - m_r.multiplier))
-    return LimitResult(arch, m_l.multiplier, m_r.multiplier, m_l, m_r, th_l, th_r, s_l, s_r, disc)
+    guided = method == "guided" or (method == "auto" and arch.n > ENUMERATION_MAX_VOUSSOIRS)
+    how = ("static-guided four-hinge search (kinematic = static LP multiplier, HiGHS)" if guided
+           else "kinematic enumeration (vectorised)")
+    return LimitResult(arch, m_l.multiplier, m_r.multiplier, m_l, m_r, th_l, th_r, s_l, s_r, disc,
+                       method=f"{how}, checked by static LP (HiGHS)")
 
 
 # ---------------------------------------------------------------------------- minimum thickness
