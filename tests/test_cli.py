@@ -405,3 +405,42 @@ def test_ensemble_report_is_what_the_command_prints(capsys):
     # the last line is the wall time, which differs run to run
     assert out.splitlines()[:-1] == format_ensemble(summary, "Oppenheim").splitlines()[:-1]
     assert out.splitlines()[-1].startswith("time: ")
+
+
+# ---------------------------------------------------------------------------- edges: parsing
+@pytest.mark.parametrize("argv", [["limit", "--bogus"], ["limit", "--voussoirs", "x"],
+                                  ["respond", "--amplitude"], ["curves", "--sign", "2"]])
+def test_argparse_errors_are_one_line_without_usage(capsys, argv):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("archrock: error: "), err
+    assert "usage" not in err
+
+
+def test_negative_numbers_in_any_spelling_are_values(capsys):
+    """-5e-1 is a number, -1,2 a list: argparse took both for options ("expected one argument")."""
+    d = run_json(capsys, "respond", "--pulse", "rectangular", "--amplitude", "-4e-1",
+                 "--pulse-duration", "1e-1", "--json")
+    assert d["status"] == "rest"  # 0.4 g is above k = 0.37: it rocks and comes back
+    code, _, err = run(capsys, "curves", "--durations", "-1,2")
+    assert code == 2 and err.strip() == "archrock: error: durations: '-1,2'; allowed numbers > 0"
+    code, _, err = run(capsys, "curves", "--durations", "-.5:1:3")
+    assert code == 2 and "durations" in err and "expected one argument" not in err
+
+
+def test_json_writes_null_for_non_finite_values():
+    import io
+
+    from archrock.cli._parser import emit_json
+
+    buf = io.StringIO()
+    emit_json({"a": float("nan"), "b": [np.inf, np.float64(-np.inf), np.float32(1.5)],
+               "c": np.array([1.0, np.nan]), "d": np.int64(3), "e": (np.nan,)}, buf)
+    assert json.loads(buf.getvalue()) == {"a": None, "b": [None, None, 1.5], "c": [1.0, None],
+                                          "d": 3, "e": [None]}
+
+
+def test_ensemble_of_one_sample_prints_strict_json(capsys):
+    """The std of one sample is undefined: null, not NaN (which is not JSON)."""
+    d = run_json(capsys, "ensemble", "--samples", "1", "--json", "--no-progress")
+    assert d["samples"] == 1
