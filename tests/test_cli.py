@@ -444,3 +444,39 @@ def test_ensemble_of_one_sample_prints_strict_json(capsys):
     """The std of one sample is undefined: null, not NaN (which is not JSON)."""
     d = run_json(capsys, "ensemble", "--samples", "1", "--json", "--no-progress")
     assert d["samples"] == 1
+
+
+# ---------------------------------------------------------------------------- edges: output files
+RESPOND_PULSE = ["respond", "--pulse", "oppenheim", "--amplitude", "-1", "--pulse-duration", "0.2"]
+
+
+@pytest.mark.parametrize("argv, fragment", [
+    (RESPOND_PULSE + ["--plot", "r.nope"], "format '.nope' cannot be written"),
+    (RESPOND_PULSE + ["--animate", "r.png"], "allowed extensions .gif or .mp4"),
+    (["plot-limit", "--out", "l.abc"], "format '.abc' cannot be written"),
+    (["plot-limit", "--out", "l.png", "--dpi", "1e7"], "dpi"),
+    (["plot-limit", "--out", "l.png", "--dpi", "0.5"], "dpi"),
+    (["curves", "--durations", "0.2", "--plot", "c.qqq"], "cannot be written"),
+    (["fragility", "--records", "none.txt", "--plot", "f.zz"], "cannot be written"),
+    (["ensemble", "--samples", "2", "--plot", "e.q"], "cannot be written"),
+    (["ensemble", "--samples", "2", "--out", ""], "--out: ''"),
+    (["random-arch", "--out", " "], "--out: ' '"),
+    (["paper", "--out", ""], "--out: ''"),
+])
+def test_bad_output_files_are_refused_before_any_work(capsys, tmp_path, monkeypatch, argv, fragment):
+    pytest.importorskip("matplotlib")
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == "", err
+    assert err.count("\n") == 1 and err.startswith("archrock: error: ") and fragment in err
+    assert list(tmp_path.iterdir()) == []  # nothing written, nothing computed into a folder
+
+
+def test_figure_to_a_folder_is_refused_and_no_extension_gets_png(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    code, _, err = run(capsys, "plot-limit", "--out", str(tmp_path))
+    assert code == 2 and "is a folder" in err
+    code, out, err = run(capsys, "plot-limit", "--out", str(tmp_path / "adir"))
+    assert code == 0, err
+    assert out.strip().endswith(f"wrote {tmp_path / 'adir.png'}")  # the file really written
+    assert (tmp_path / "adir.png").read_bytes()[:4] == b"\x89PNG"

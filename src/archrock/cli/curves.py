@@ -7,7 +7,7 @@ import sys
 from ..errors import ArchInputError
 from ._parser import _int, emit_json, non_negative_int, positive_float
 from .options import (add_geometry_options, add_impact_options, add_spread_options,
-                      arch_from_args, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, impact_spec_from_args, spreads)
 
 
 def add_curves_parser(subparsers):
@@ -47,6 +47,7 @@ def run_curves(args) -> int:
     from ..reports.curves import curves_summary, format_curves
     from ..response import prepare
 
+    plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
     durations = parse_range(args.durations, "durations")
     if args.n_scan < 2:
@@ -62,10 +63,10 @@ def run_curves(args) -> int:
         curve = band.nominal
     else:
         curve = collapse_curve(prepare(nominal, impact), durations, **kw)
-    if args.plot:
+    if plot:
         from ..plots import plot_collapse_curve
 
-        plot_collapse_curve(curve, args.plot, band=band,
+        plot_collapse_curve(curve, plot, band=band,
                             title=f"{nominal.name}: {args.pulse} pulse, sign {args.sign:+d}")
     about = dict(arch_name=nominal.name, pulse=args.pulse, sign=args.sign,
                  impact=impact, cv=impact.resolved(nominal).cv)
@@ -73,6 +74,6 @@ def run_curves(args) -> int:
         emit_json(curves_summary(curve, band, **about))
         return 0
     print(format_curves(curve, band, **about))
-    if args.plot:
-        print(f"wrote {args.plot}", file=sys.stderr)
+    if plot:
+        print(f"wrote {plot}", file=sys.stderr)
     return 0

@@ -5,8 +5,8 @@ from __future__ import annotations
 from ..errors import ArchInputError
 from ._parser import _int, emit_json
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      add_spread_options, arch_from_args, impact_spec_from_args,
-                      motion_spec_from_args, spreads)
+                      add_spread_options, arch_from_args, figure_arg, folder_arg,
+                      impact_spec_from_args, motion_spec_from_args, spreads)
 
 
 def add_ensemble_parser(subparsers):
@@ -47,26 +47,27 @@ def run_ensemble_cmd(args) -> int:
 
     if args.workers < 1:
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
+    out, plot = folder_arg(args.out), figure_arg(args.plot)
     nominal = arch_from_args(args)
     config = EnsembleConfig.from_arch(nominal, samples=args.samples, seed=args.seed,
                                       batch_size=args.batch_size,
                                       motion=motion_spec_from_args(args), spreads=spreads(args),
                                       impact=impact_spec_from_args(args))
-    result = run_ensemble(config, out_dir=args.out, workers=args.workers,
+    result = run_ensemble(config, out_dir=out, workers=args.workers,
                           scheduler=args.scheduler, progress=not args.no_progress)
     summary = result.summary()
-    if args.plot:
+    if plot:
         from ..plots import plot_multiplier_histograms
 
         ref = {"nominal": (summary["nominal"]["k_l"], summary["nominal"]["k_r"]),
                **PAPER_RANDOM_ARCHES}
-        plot_multiplier_histograms(result.frame, args.plot, reference=ref)
+        plot = plot_multiplier_histograms(result.frame, plot, reference=ref)
     if args.json:
         emit_json(summary)
         return 0
     print(format_ensemble(summary, nominal.name))
-    if args.out:
-        print(f"results in {args.out}")
-    if args.plot:
-        print(f"wrote {args.plot}")
+    if out:
+        print(f"results in {out}")
+    if plot:
+        print(f"wrote {plot}")
     return 0

@@ -7,7 +7,7 @@ import sys
 from ..errors import ArchInputError
 from ._parser import emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_spread_options,
-                      arch_from_args, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, impact_spec_from_args, spreads)
 
 
 def add_fragility_parser(subparsers):
@@ -48,6 +48,7 @@ def run_fragility(args) -> int:
 
     if args.bootstrap == 1:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
+    plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
     records = [load_record(f, units=args.units) for f in args.records]
     scales = parse_range(args.scales, "scales")
@@ -59,10 +60,10 @@ def run_fragility(args) -> int:
     levels = (parse_range(args.levels, "levels") if args.levels
               else default_stripe_levels(res_ida, scales, records))
     res_msa = msa(records, models, levels, n_boot=boot, seed=args.seed)
-    if args.plot:
+    if plot:
         from ..plots import plot_fragility
 
-        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, args.plot,
+        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, plot,
                        ida=res_ida)
     if args.json:
         emit_json(fragility_summary(res_ida, res_msa, arch_name=nominal.name, records=records,
@@ -71,6 +72,6 @@ def run_fragility(args) -> int:
         return 0
     print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
                            n_arches=len(models), n_requested=args.samples))
-    if args.plot:
-        print(f"wrote {args.plot}", file=sys.stderr)
+    if plot:
+        print(f"wrote {plot}", file=sys.stderr)
     return 0
