@@ -480,3 +480,112 @@ def test_figure_to_a_folder_is_refused_and_no_extension_gets_png(capsys, tmp_pat
     assert code == 0, err
     assert out.strip().endswith(f"wrote {tmp_path / 'adir.png'}")  # the file really written
     assert (tmp_path / "adir.png").read_bytes()[:4] == b"\x89PNG"
+
+
+# ---------------------------------------------------------------------------- edges: work, signals
+@pytest.mark.parametrize("argv, fragment", [
+    (["ensemble", "--samples", str(10**12), "--no-progress"], "ensemble: about 1e+12 arches"),
+    (["curves", "--durations", "0.2", "--n-scan", str(10**9)], "curves: about 1e+09 responses"),
+    (["curves", "--durations", "0.2,0.3", "--samples", str(10**7)], "reduce --n-scan"),
+])
+def test_work_beyond_the_bound_is_refused_up_front_with_exit_3(capsys, argv, fragment):
+    code, out, err = run(capsys, *argv)
+    assert code == 3 and out == ""
+    assert err.count("\n") == 1 and fragment in err and "estimated" in err and "allowed up to" in err
+
+
+def test_fragility_bounds_scales_bootstrap_and_warns(capsys, tmp_path, monkeypatch):
+    rec = tmp_path / "r.txt"
+    rec.write_text("".join(f"{k * 0.01:.2f} {0.3 * np.sin(k / 8):.5f}\n" for k in range(300)))
+    code, _, err = run(capsys, "fragility", "--records", str(rec), "--scales", "0.1:300:5")
+    assert code == 2 and "scales: 300 x record 'r': PGA 90 g; allowed at most 20 g" in err
+    code, _, err = run(capsys, "fragility", "--records", str(rec), "--scales", "0.5:1:2",
+                       "--bootstrap", str(10**10))
+    assert code == 3 and "bootstrap: about 1e+10 fits" in err and "reduce --bootstrap" in err
+    import archrock.work as work
+
+    monkeypatch.setattr(work, "WARN_WORK_S", 0.0)  # every run warns: one line on stderr
+    code, _, err = run(capsys, "curves", "--durations", "0.2", "--n-scan", "5", "--no-progress")
+    assert code == 0 and err.startswith("archrock: warning: curves: about ") and err.count("\n") == 1
+
+
+def test_cv_without_a_motion_is_refused_where_it_cannot_matter(capsys):
+    for flag in (["--cv", "0.8"], ["--impact", "momentum"], ["--literal-cv"]):
+        code, _, err = run(capsys, "ensemble", "--samples", "2", *flag)
+        assert code == 2 and f"{flag[0]}: unused without a ground motion" in err
+
+
+def _children(pid):
+    kids = []
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                if int((d / "stat").read_text().rsplit(")", 1)[1].split()[1]) == pid:
+                    kids.append(int(d.name))
+            except (OSError, IndexError, ValueError):
+                pass
+    return kids
+
+
+ENSEMBLE_LONG = ["-m", "archrock", "ensemble", "--samples", "200000", "--batch-size", "2000",
+                 "--pulse", "oppenheim", "--amplitude", "-1", "--pulse-duration", "0.2",
+                 "--no-progress"]
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
+def test_pool_workers_die_with_a_killed_parent():
+    import signal
+    import time
+
+    pytest.importorskip("pandas")
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).parents[1] / "src"))
+    proc = subprocess.Popen([sys.executable, *ENSEMBLE_LONG, "--workers", "2"], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 60
+        while len(kids := _children(proc.pid)) < 2 and time.monotonic() < deadline:
+            time.sleep(0.2)
+        assert len(kids) >= 2, "the pool did not start"
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait()
+        deadline = time.monotonic() + 10
+        alive = kids
+        while alive and time.monotonic() < deadline:
+            time.sleep(0.2)
+            alive = [k for k in kids if Path(f"/proc/{k}").exists()
+                     and "Z" not in (Path(f"/proc/{k}/stat").read_text().rsplit(")", 1)[1].split()[:1])]
+        assert not alive, f"workers outlived their parent: {alive}"
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+
+
+def test_ctrl_c_in_ensemble_says_what_was_kept_and_exits_130(tmp_path):
+    import signal
+    import time
+
+    pytest.importorskip("pandas")
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).parents[1] / "src"))
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, *ENSEMBLE_LONG, "--out", str(out)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not list((out / "batches").glob("*.parquet")) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    kept = len(list((out / "batches").glob("*.parquet")))
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert f"archrock: interrupted; {kept} of 100 batches kept in {out}; the same command resumes" in err
+
+
+def test_interrupted_ensemble_without_out_says_nothing_was_kept(capsys, monkeypatch):
+    import archrock.ensemble as ens
+
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(ens, "run_ensemble", interrupted)
+    code, out, err = run(capsys, "ensemble", "--samples", "3", "--no-progress")
+    assert code == 130 and out == ""
+    assert err == "archrock: interrupted; nothing was kept (give --out DIR to keep finished batches and resume)\n"

@@ -37,6 +37,8 @@ def add_curves_parser(subparsers):
     p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress on stderr (shown for runs estimated above a few seconds)")
     p.add_argument("--plot", metavar="FILE.png", help="write the curve (with bands) to a figure")
     p.set_defaults(func=run_curves)
     return p
@@ -59,7 +61,8 @@ def run_curves(args) -> int:
     band = None
     if args.samples > 0:
         band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,
-                              impact=impact, workers=args.workers, **kw)
+                              impact=impact, workers=args.workers,
+                              progress=not args.no_progress, **kw)
         curve = band.nominal
     else:
         curve = collapse_curve(prepare(nominal, impact), durations, **kw)

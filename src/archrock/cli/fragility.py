@@ -34,6 +34,8 @@ def add_fragility_parser(subparsers):
     p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
                    help="bootstrap resamples for confidence bands (0 = none, or >= 2; default 200)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress on stderr (shown for runs estimated above a few seconds)")
     p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
     p.set_defaults(func=run_fragility)
     return p
@@ -56,10 +58,12 @@ def run_fragility(args) -> int:
     models = (random_models(nominal, args.samples, args.seed, spreads(args), impact)
               if args.samples > 0 else [prepare(nominal, impact)])
     boot = args.bootstrap
-    res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed)
+    res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed,
+                  progress=not args.no_progress)
     levels = (parse_range(args.levels, "levels") if args.levels
               else default_stripe_levels(res_ida, scales, records))
-    res_msa = msa(records, models, levels, n_boot=boot, seed=args.seed)
+    res_msa = msa(records, models, levels, n_boot=boot, seed=args.seed,
+                  progress=not args.no_progress)
     if plot:
         from ..plots import plot_fragility
 
