@@ -95,3 +95,29 @@ def test_least_loss_animation(tmp_path):
     path = animate_response(res, tmp_path / "ll.gif", max_frames=4, dpi=30)
     with PIL.open(path) as im:
         assert im.n_frames == 4
+
+
+def test_unwritable_animation_and_folders_are_input_errors(tmp_path, collapsing):
+    """PIL's and the OS's errors become one ArchInputError naming the file, not a traceback."""
+    from archrock.animate import animate_response, animation_path
+
+    with pytest.raises(ArchInputError, match="is a folder"):
+        animation_path(tmp_path)
+    (tmp_path / "ro").mkdir()
+    (tmp_path / "ro" / "x.gif").mkdir()  # a folder with an animation's name
+    with pytest.raises(ArchInputError, match="x.gif"):
+        animate_response(collapsing, tmp_path / "ro" / "x.gif", max_frames=2, dpi=20)
+
+
+def test_figures_refuse_unknown_formats_and_bound_the_pixel_count(tmp_path):
+    from archrock.plots import MAX_FIGURE_PIXELS, figure_path, new_figure, save_figure
+
+    assert figure_path(tmp_path / "f") == tmp_path / "f.png"
+    with pytest.raises(ArchInputError, match="cannot be written"):
+        figure_path(tmp_path / "f.xyz")
+    fig, _ = new_figure(figsize=(10.0, 5.0))
+    top = int((MAX_FIGURE_PIXELS / 50.0) ** 0.5)
+    with pytest.raises(ArchInputError, match=f"allowed 10 to {top}"):
+        save_figure(fig, tmp_path / "big.png", dpi=top + 1)
+    assert save_figure(fig, tmp_path / "small", dpi=20) == tmp_path / "small.png"
+    assert (tmp_path / "small.png").is_file() and not (tmp_path / "big.png").exists()

@@ -442,3 +442,187 @@ def test_ensemble_report_is_what_the_command_prints(capsys):
     # the last line is the wall time, which differs run to run
     assert out.splitlines()[:-1] == format_ensemble(summary, "Oppenheim").splitlines()[:-1]
     assert out.splitlines()[-1].startswith("time: ")
+
+
+# ---------------------------------------------------------------------------- edges: parsing
+@pytest.mark.parametrize("argv", [["limit", "--bogus"], ["limit", "--voussoirs", "x"],
+                                  ["respond", "--amplitude"], ["curves", "--sign", "2"]])
+def test_argparse_errors_are_one_line_without_usage(capsys, argv):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("archrock: error: "), err
+    assert "usage" not in err
+
+
+def test_negative_numbers_in_any_spelling_are_values(capsys):
+    """-5e-1 is a number, -1,2 a list: argparse took both for options ("expected one argument")."""
+    d = run_json(capsys, "respond", "--pulse", "rectangular", "--amplitude", "-4e-1",
+                 "--pulse-duration", "1e-1", "--json")
+    assert d["status"] == "rest"  # 0.4 g is above k = 0.37: it rocks and comes back
+    code, _, err = run(capsys, "curves", "--durations", "-1,2")
+    assert code == 2 and err.strip() == "archrock: error: durations: '-1,2'; allowed numbers > 0"
+    code, _, err = run(capsys, "curves", "--durations", "-.5:1:3")
+    assert code == 2 and "durations" in err and "expected one argument" not in err
+
+
+def test_json_writes_null_for_non_finite_values():
+    import io
+
+    from archrock.cli._parser import emit_json
+
+    buf = io.StringIO()
+    emit_json({"a": float("nan"), "b": [np.inf, np.float64(-np.inf), np.float32(1.5)],
+               "c": np.array([1.0, np.nan]), "d": np.int64(3), "e": (np.nan,)}, buf)
+    assert json.loads(buf.getvalue()) == {"a": None, "b": [None, None, 1.5], "c": [1.0, None],
+                                          "d": 3, "e": [None]}
+
+
+def test_ensemble_of_one_sample_prints_strict_json(capsys):
+    """The std of one sample is undefined: null, not NaN (which is not JSON)."""
+    d = run_json(capsys, "ensemble", "--samples", "1", "--json", "--no-progress")
+    assert d["samples"] == 1
+
+
+# ---------------------------------------------------------------------------- edges: output files
+RESPOND_PULSE = ["respond", "--pulse", "oppenheim", "--amplitude", "-1", "--pulse-duration", "0.2"]
+
+
+@pytest.mark.parametrize("argv, fragment", [
+    (RESPOND_PULSE + ["--plot", "r.nope"], "format '.nope' cannot be written"),
+    (RESPOND_PULSE + ["--animate", "r.png"], "allowed extensions .gif or .mp4"),
+    (["plot-limit", "--out", "l.abc"], "format '.abc' cannot be written"),
+    (["plot-limit", "--out", "l.png", "--dpi", "1e7"], "dpi"),
+    (["plot-limit", "--out", "l.png", "--dpi", "0.5"], "dpi"),
+    (["curves", "--durations", "0.2", "--plot", "c.qqq"], "cannot be written"),
+    (["fragility", "--records", "none.txt", "--plot", "f.zz"], "cannot be written"),
+    (["ensemble", "--samples", "2", "--plot", "e.q"], "cannot be written"),
+    (["ensemble", "--samples", "2", "--out", ""], "--out: ''"),
+    (["random-arch", "--out", " "], "--out: ' '"),
+    (["paper", "--out", ""], "--out: ''"),
+])
+def test_bad_output_files_are_refused_before_any_work(capsys, tmp_path, monkeypatch, argv, fragment):
+    pytest.importorskip("matplotlib")
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == "", err
+    assert err.count("\n") == 1 and err.startswith("archrock: error: ") and fragment in err
+    assert list(tmp_path.iterdir()) == []  # nothing written, nothing computed into a folder
+
+
+def test_figure_to_a_folder_is_refused_and_no_extension_gets_png(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    code, _, err = run(capsys, "plot-limit", "--out", str(tmp_path))
+    assert code == 2 and "is a folder" in err
+    code, out, err = run(capsys, "plot-limit", "--out", str(tmp_path / "adir"))
+    assert code == 0, err
+    assert out.strip().endswith(f"wrote {tmp_path / 'adir.png'}")  # the file really written
+    assert (tmp_path / "adir.png").read_bytes()[:4] == b"\x89PNG"
+
+
+# ---------------------------------------------------------------------------- edges: work, signals
+@pytest.mark.parametrize("argv, fragment", [
+    (["ensemble", "--samples", str(10**12), "--no-progress"], "ensemble: about 1e+12 arches"),
+    (["curves", "--durations", "0.2", "--n-scan", str(10**9)], "curves: about 1e+09 responses"),
+    (["curves", "--durations", "0.2,0.3", "--samples", str(10**7)], "reduce --n-scan"),
+])
+def test_work_beyond_the_bound_is_refused_up_front_with_exit_3(capsys, argv, fragment):
+    code, out, err = run(capsys, *argv)
+    assert code == 3 and out == ""
+    assert err.count("\n") == 1 and fragment in err and "estimated" in err and "allowed up to" in err
+
+
+def test_fragility_bounds_scales_bootstrap_and_warns(capsys, tmp_path, monkeypatch):
+    rec = tmp_path / "r.txt"
+    rec.write_text("".join(f"{k * 0.01:.2f} {0.3 * np.sin(k / 8):.5f}\n" for k in range(300)))
+    code, _, err = run(capsys, "fragility", "--records", str(rec), "--scales", "0.1:300:5")
+    assert code == 2 and "scales: 300 x record 'r': PGA 90 g; allowed at most 20 g" in err
+    code, _, err = run(capsys, "fragility", "--records", str(rec), "--scales", "0.5:1:2",
+                       "--bootstrap", str(10**10))
+    assert code == 3 and "bootstrap: about 1e+10 fits" in err and "reduce --bootstrap" in err
+    import archrock.work as work
+
+    monkeypatch.setattr(work, "WARN_WORK_S", 0.0)  # every run warns: one line on stderr
+    code, _, err = run(capsys, "curves", "--durations", "0.2", "--n-scan", "5", "--no-progress")
+    assert code == 0 and err.startswith("archrock: warning: curves: about ") and err.count("\n") == 1
+
+
+def test_cv_without_a_motion_is_refused_where_it_cannot_matter(capsys):
+    for flag in (["--cv", "0.8"], ["--impact", "momentum"], ["--literal-cv"]):
+        code, _, err = run(capsys, "ensemble", "--samples", "2", *flag)
+        assert code == 2 and f"{flag[0]}: unused without a ground motion" in err
+
+
+def _children(pid):
+    kids = []
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                if int((d / "stat").read_text().rsplit(")", 1)[1].split()[1]) == pid:
+                    kids.append(int(d.name))
+            except (OSError, IndexError, ValueError):
+                pass
+    return kids
+
+
+ENSEMBLE_LONG = ["-m", "archrock", "ensemble", "--samples", "200000", "--batch-size", "2000",
+                 "--pulse", "oppenheim", "--amplitude", "-1", "--pulse-duration", "0.2",
+                 "--no-progress"]
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
+def test_pool_workers_die_with_a_killed_parent():
+    import signal
+    import time
+
+    pytest.importorskip("pandas")
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).parents[1] / "src"))
+    proc = subprocess.Popen([sys.executable, *ENSEMBLE_LONG, "--workers", "2"], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 60
+        while len(kids := _children(proc.pid)) < 2 and time.monotonic() < deadline:
+            time.sleep(0.2)
+        assert len(kids) >= 2, "the pool did not start"
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait()
+        deadline = time.monotonic() + 10
+        alive = kids
+        while alive and time.monotonic() < deadline:
+            time.sleep(0.2)
+            alive = [k for k in kids if Path(f"/proc/{k}").exists()
+                     and "Z" not in (Path(f"/proc/{k}/stat").read_text().rsplit(")", 1)[1].split()[:1])]
+        assert not alive, f"workers outlived their parent: {alive}"
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+
+
+def test_ctrl_c_in_ensemble_says_what_was_kept_and_exits_130(tmp_path):
+    import signal
+    import time
+
+    pytest.importorskip("pandas")
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).parents[1] / "src"))
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, *ENSEMBLE_LONG, "--out", str(out)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not list((out / "batches").glob("*.parquet")) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    kept = len(list((out / "batches").glob("*.parquet")))
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert f"archrock: interrupted; {kept} of 100 batches kept in {out}; the same command resumes" in err
+
+
+def test_interrupted_ensemble_without_out_says_nothing_was_kept(capsys, monkeypatch):
+    import archrock.ensemble as ens
+
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(ens, "run_ensemble", interrupted)
+    code, out, err = run(capsys, "ensemble", "--samples", "3", "--no-progress")
+    assert code == 130 and out == ""
+    assert err == "archrock: interrupted; nothing was kept (give --out DIR to keep finished batches and resume)\n"

@@ -300,3 +300,12 @@ def test_cli_fragility_bootstrap_one_is_refused(capsys, tmp_path):
     assert capsys.readouterr().err.startswith("archrock: error: bootstrap: 1; allowed 0")
     assert main(["fragility", "--records", str(f), "--scales", "0.1:3:1"]) == 2
     assert capsys.readouterr().err.startswith("archrock: error: scales:")
+
+
+def test_scan_beyond_the_work_bound_or_20_g_is_refused_before_any_response(nominal_model):
+    from archrock.errors import LimitExceededError
+
+    with pytest.raises(LimitExceededError, match=r"curves: about 1e\+09 responses, estimated"):
+        collapse_curve(nominal_model, [0.2], n_scan=10**9)
+    with pytest.raises(ArchInputError, match=r"a_max: 50.0; .*<= 20 g"):
+        collapse_amplitude(nominal_model, 0.2, a_max=50.0)

@@ -336,9 +336,9 @@ def test_load_record_dispatch(tmp_path):
     with raises(r"units: 'cm/s2' for lower\.at2; allowed 'g'") as e:
         load_record(p, units="cm/s2")
     one_line(e)
-    q = write(tmp_path, "rec.dat", "0 0\n1 100\n")
-    assert load_record(q).pga == pytest.approx(100 * G)
-    assert load_record(q, units="cm/s2").pga == pytest.approx(1.0)
+    q = write(tmp_path, "rec.dat", "0 0\n1 2\n")
+    assert load_record(q).pga == pytest.approx(2 * G)
+    assert load_record(q, units="cm/s2").pga == pytest.approx(0.02)
     with raises(r"units: 'gal'"):
         load_record(q, units="gal")
     with raises(r"record .*none\.AT2: file not found"):
@@ -459,3 +459,74 @@ def test_record_spec_bad_fields_are_named(tmp_path):
         one_line(exc)
     with raises("units: 'm/s2' for rec.AT2"):
         RecordSpec.from_file(at2(tmp_path, "NPTS= 10 DT= 0.01 SEC"), units="m/s2")
+
+
+# ---- plausibility: what cannot be meant is refused, the suspicious warned about ---------------
+def _sampled(tmp_path, name, values, dt=0.01):
+    rows = "".join(f"{k * dt:.6g} {float(v)!r}\n" for k, v in enumerate(values))
+    return write(tmp_path, name, rows)
+
+
+def _wave(n=200, peak=0.3):
+    v = np.sin(np.linspace(0, 12, n))
+    return [float(x) for x in peak * v / np.abs(v).max()]
+
+
+def test_record_in_cm_per_s2_read_as_g_is_refused_with_the_units_remedy(tmp_path):
+    from archrock.groundmotion import MAX_PGA_G
+
+    p = _sampled(tmp_path, "cms.txt", _wave(peak=250.0))
+    with raises(r"record cms\.txt: PGA 250 g; allowed at most 20 g \(units\? .*--units cm/s2") as e:
+        load_record(p)
+    one_line(e)
+    assert load_record(p, units="cm/s2").pga_g == pytest.approx(250 / 100 / G)
+    assert MAX_PGA_G == 20.0
+
+
+def test_suspicious_records_warn_once_with_the_field(tmp_path):
+    with pytest.warns(UserWarning, match=r"ms\.txt: PGA 6 g is above .* --units m/s2"):
+        load_record(_sampled(tmp_path, "ms.txt", _wave(peak=6.0)))
+    with pytest.warns(UserWarning, match=r"slow\.txt: time step 0\.07 s .* coarser than 0\.05 s"):
+        load_record(_sampled(tmp_path, "slow.txt", _wave(), dt=0.07))
+    rows = _sampled(tmp_path, "step.txt", _wave()).read_text().splitlines()
+    rows[30] = rows[29].split()[0] + " 0.123"  # a repeated time with a new value: a step
+    with pytest.warns(UserWarning, match=r"step\.txt: line 31: time 0\.29 s repeats"):
+        load_record(write(tmp_path, "step.txt", "\n".join(rows) + "\n"))
+
+
+@pytest.mark.parametrize("edit, match", [
+    (lambda r: r.__setitem__(5, r[4]), r"line 6: time 0\.04 s repeats line 5 with the same value"),
+    (lambda r: r.__setitem__(5, "0.02 0.1"), r"line 6: time 0\.02 s after 0\.04 s"),
+    (lambda r: r.__setitem__(5, "0.05 NaN"), r"line 6: 'NaN' is not finite"),
+])
+def test_records_that_cannot_be_meant_are_refused(tmp_path, edit, match):
+    rows = _sampled(tmp_path, "r.txt", _wave()).read_text().splitlines()
+    edit(rows)
+    with raises(match) as e:
+        load_record(write(tmp_path, "r.txt", "\n".join(rows) + "\n"))
+    one_line(e)
+
+
+def test_record_sampled_every_second_is_refused_but_a_corner_list_is_not(tmp_path):
+    with raises(r"sec\.txt: time step 1 s \(line 2\); allowed at most 0\.1 s \(times in ms"):
+        load_record(_sampled(tmp_path, "sec.txt", _wave(40), dt=1.0))
+    with raises(r"DT 0\.5 s|time step 0\.5 s"):
+        read_at2(at2(tmp_path, "NPTS= 10 DT= 0.5 SEC"))
+    # a few corners describe a piecewise-linear motion: long intervals are meant
+    assert load_record(write(tmp_path, "tri.txt", "0 0\n0.5 0.4\n1 0\n")).duration == 1.0
+
+
+def test_scaled_records_and_pulses_are_bounded(tmp_path):
+    from archrock.groundmotion import PulseSpec, RecordSpec, pulse
+
+    p = _sampled(tmp_path, "g.txt", _wave())
+    with raises(r"g\.txt scaled by 1e\+06: PGA 3e\+05 g; allowed at most 20 g \(is the scale"):
+        RecordSpec.from_file(p, scale=1e6)
+    with pytest.warns(UserWarning, match="scaled by 20: PGA 6 g"):
+        RecordSpec.from_file(p, scale=20)
+    for kind in ("oppenheim", "ricker"):
+        with raises(r"pulse amplitude: -1e\+09 g; allowed at most 20 g"):
+            pulse(kind, -1e9, 0.2)
+    with raises("pulse amplitude"):
+        PulseSpec("oppenheim", 25.0, 0.2)
+    assert pulse("oppenheim", -20.0, 0.2).pga_g == pytest.approx(20.0)

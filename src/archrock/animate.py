@@ -20,7 +20,25 @@ import numpy as np
 
 from .errors import ArchInputError
 
-__all__ = ["animate_response"]
+__all__ = ["animate_response", "animation_path"]
+
+#: Animation formats: Pillow writes GIF, ffmpeg (if installed) MP4.
+ANIMATION_SUFFIXES = (".gif", ".mp4")
+
+
+def animation_path(path: str | os.PathLike) -> Path:
+    """``path`` as an animation file, checked before any work is done (extension .gif or
+    .mp4, not a folder)."""
+    text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
+    if not text or not text.strip():
+        raise ArchInputError(f"animation file: {path!r}; allowed a file name such as motion.gif")
+    p = Path(text)
+    if text.endswith(("/", os.sep)) or p.is_dir():
+        raise ArchInputError(f"animation file {text!r}: is a folder; allowed a file name such as "
+                             f"{(p / 'motion.gif').as_posix()!r}")
+    if p.suffix.lower() not in ANIMATION_SUFFIXES:
+        raise ArchInputError(f"animation file {text!r}: allowed extensions .gif or .mp4")
+    return p
 
 
 def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: float = 1.0,
@@ -33,9 +51,7 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     from .plots import (STYLE, displaced_hinges, displaced_outlines, draw_displaced, new_figure,
                         plot_ground_motion, voussoir_bounds)
 
-    path = Path(path)
-    if path.suffix.lower() not in (".gif", ".mp4"):
-        raise ArchInputError(f"animation file {str(path)!r}: allowed extensions .gif or .mp4")
+    path = animation_path(path)
     for name, v in (("fps", fps), ("speed", speed), ("exaggerate", exaggerate)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0")
@@ -113,7 +129,9 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     writer = PillowWriter(fps=fps) if path.suffix.lower() == ".gif" else FFMpegWriter(fps=fps)
     try:
         anim.save(str(path), writer=writer, dpi=dpi)
-    except (FileNotFoundError, RuntimeError) as exc:
-        raise ArchInputError(f"animation file {str(path)!r}: cannot write ({exc}); "
-                             f"use .gif if ffmpeg is not installed") from None
+    except (OSError, RuntimeError, ValueError) as exc:
+        # OSError: an unwritable place (PIL/ffmpeg); RuntimeError/FileNotFoundError: no ffmpeg
+        hint = "; use .gif if ffmpeg is not installed" if path.suffix.lower() == ".mp4" else ""
+        why = getattr(exc, "strerror", None) or " ".join(str(exc).split())
+        raise ArchInputError(f"animation file {str(path)!r}: cannot write ({why}){hint}") from None
     return path

@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import math
 import os
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -36,11 +35,12 @@ import numpy as np
 from ._records import readonly_arrays
 from .errors import ArchInputError
 from .geometry import Arch
-from .groundmotion import pulse, pulse_kind
+from .groundmotion import MAX_PGA_G, pulse, pulse_kind
 from .impact import ImpactSpec
 from .population import left_out_summary, prepare_sample
 from .response import DynamicModel, prepare, respond
 from .sampling import ArchSampler, Spreads
+from .work import PROGRESS_S, check_work, response_cost_s
 
 __all__ = [
     "CollapseAmplitude",
@@ -215,9 +215,9 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
     n_scan = _check_int("n_scan", n_scan, 2)
     thr = float(model.k_l if sign < 0 else model.k_r)
     a_max = _check_real("a_max", a_max, None, f"a finite number > the activation threshold {thr:.4f} g")
-    if a_max <= thr * (1 + 1e-6):
+    if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
         raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation threshold "
-                             f"{thr:.4f} g")
+                             f"{thr:.4f} g and <= {MAX_PGA_G:g} g")
     count = [0]
     cache: dict[float, object] = {}
 
@@ -315,12 +315,30 @@ def _durations(durations) -> np.ndarray:
     return d
 
 
+def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: int = 1) -> float:
+    """Estimated seconds of the curves of ``arches`` x ``durations`` (work bound, module
+    :mod:`archrock.work`): a scan of n_scan responses plus its bisections per duration."""
+    n_scan = _check_int("n_scan", n_scan, 2)
+    a_max = _check_real("a_max", a_max, 0.0, "a finite number > 0 g")
+    tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")
+    per_curve = n_scan + 3 * max(1, math.ceil(math.log2(max(a_max / tol, 2.0))))
+    return check_work("curves", arches * durations * per_curve, "responses", response_cost_s(),
+                      "reduce --n-scan (150 resolves the windows), the durations or --samples",
+                      workers)
+
+
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
                    literal_cv: bool = False, dt: float = 2e-3) -> CollapseCurve:
-    """:func:`collapse_amplitude` for each of ``durations`` [s]."""
+    """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
+    of :mod:`archrock.work`."""
     model = _model(model, impact, cv, literal_cv)
     d = _durations(durations)
+    _check_curve_work(1, d.size, n_scan, a_max, tol)
+    return _curve(model, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+
+
+def _curve(model, d, kind, sign, *, a_max, n_scan, tol, dt) -> CollapseCurve:
     pts = tuple(collapse_amplitude(model, float(tp), kind, sign, a_max=a_max, n_scan=n_scan, tol=tol,
                                    dt=dt) for tp in d)
     amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in pts])
@@ -388,14 +406,15 @@ def _one_sample(job):
     model, why = prepare_sample(sampler, index, impact)
     if model is None:
         return None, why
-    curve = collapse_curve(model, durations, **kwargs)
+    curve = _curve(model, durations, **kwargs)
     return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf), None
 
 
 def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
-                   tol: float = 1e-3, dt: float = 2e-3, workers: int = 1) -> EnsembleCurve:
+                   tol: float = 1e-3, dt: float = 2e-3, workers: int = 1,
+                   progress: bool = False) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
     Arch i is sample i of :class:`~archrock.sampling.ArchSampler` (nominal, spreads, seed): the
@@ -407,7 +426,9 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     (:data:`archrock.errors.UNUSABLE_ARCH`: it cannot stand, voussoirs do not overlap, ...) is left
     out and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv: apply a
     fixed c_v to the rates literally instead of energy-consistently (METHOD section 4).
-    workers > 1 runs arches in a process pool.
+    workers > 1 runs arches in a process pool (workers die with this process).  The work is
+    estimated first and refused beyond the bound of :mod:`archrock.work`; ``progress`` shows
+    the arches done on stderr when the estimate exceeds a few seconds.
     """
     if not isinstance(nominal, Arch):
         raise ArchInputError(f"nominal: expected an Arch, got {type(nominal).__name__}")
@@ -418,16 +439,31 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     if q.ndim != 1 or q.size == 0 or np.any(~np.isfinite(q)) or np.any((q < 0) | (q > 1)):
         raise ArchInputError(f"quantiles: {quantiles!r}; allowed numbers between 0 and 1")
     d = _durations(durations)
+    est = _check_curve_work(samples + 1, d.size, n_scan, a_max, tol, workers)
     spec = ImpactSpec.parse(impact, literal=literal_cv)
     resolved = spec.resolved(nominal)
     kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
     nominal_curve = collapse_curve(prepare(nominal, spec), d, **kwargs)
     jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
-    if workers == 1:
-        rows = [_one_sample(j) for j in jobs]
-    else:
-        with ProcessPoolExecutor(max_workers=min(workers, os.cpu_count() or 1)) as ex:
-            rows = list(ex.map(_one_sample, jobs))
+    from .ensemble.progress import Progress
+
+    bar = Progress(samples, bool(progress) and est > PROGRESS_S, desc="curves", unit="arch")
+    try:
+        if workers == 1:
+            rows = []
+            for j in jobs:
+                rows.append(_one_sample(j))
+                bar.update(1)
+        else:
+            from .ensemble.executors import worker_pool
+
+            with worker_pool(min(workers, os.cpu_count() or 1)) as ex:
+                rows = []
+                for row in ex.map(_one_sample, jobs):
+                    rows.append(row)
+                    bar.update(1)
+    finally:
+        bar.close()
     failed = tuple((i, why) for i, (_, why) in enumerate(rows) if why is not None)
     kept = tuple(i for i, (row, _) in enumerate(rows) if row is not None)
     if not kept:

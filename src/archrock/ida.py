@@ -33,11 +33,13 @@ from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripe
                         first_collapse)
 from .curves import bisect_boundary
 from .geometry import Arch
-from .groundmotion import G, GroundMotion
+from .groundmotion import G, GroundMotion, check_pga
 from .impact import ImpactSpec
 from .population import PreparedArches, left_out_summary, prepare_many
 from .response import DynamicModel, prepare, respond
 from .sampling import ArchSampler, Spreads
+from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
+                   response_cost_s)
 
 __all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "ida_curve", "msa",
            "random_models", "safe_scale", "IM_KINDS"]
@@ -123,6 +125,25 @@ def random_models(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads |
         raise ArchInputError(f"samples: {samples!r}; allowed an integer >= 1")
     sampler = ArchSampler(nominal, Spreads.from_dict(spreads), seed)
     return prepare_many(sampler, int(samples), ImpactSpec.parse(impact, literal=literal_cv))
+
+
+def _check_analyses(what, recs, n_models, per_pair, n_boot, fit_s) -> float:
+    """Estimated seconds of ``per_pair`` responses for each (record, arch) and the bootstrap
+    (work bound of :mod:`archrock.work`)."""
+    runs = n_models * len(recs) * per_pair
+    each = response_cost_s(float(np.mean([r.duration for r in recs])))
+    est = check_work(what, runs, "responses", each,
+                     "reduce the scale factors or levels, the records or --samples")
+    if n_boot:  # the responses' estimate alone decides the progress bar
+        check_work(f"{what} bootstrap", n_boot, "fits", fit_s,
+                          "reduce --bootstrap (200 give the 90% band to a few %)", kernel=False)
+    return est
+
+
+def _progress(what, total, est, progress):
+    from .ensemble.progress import Progress
+
+    return Progress(total, bool(progress) and est > PROGRESS_S, desc=what, unit="analysis")
 
 
 def _collapsed(model, record, scale, dt, t_free) -> bool:
@@ -290,13 +311,31 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
 
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
-        seed=0, confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0) -> IDAResult:
-    """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid ``scales``."""
+        seed=0, confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0,
+        progress: bool = False) -> IDAResult:
+    """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
+    ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
+    (:mod:`archrock.work`); ``progress``: the curves done on stderr for a long run."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
-    curves = tuple(ida_curve(m, r, scales, im=im, tol=tol, arch_index=j, dt=dt, t_free=t_free)
-                   for j, m in zip(ids, ms) for r in recs)
+    s = _grid("scales", scales)
+    top = max(recs, key=lambda r: r.pga)
+    check_pga(float(s[-1]) * top.pga_g, f"scales: {s[-1]:g} x record {top.name!r}",
+              "reduce the largest scale factor", warn=False)
+    bisect_steps = 2 + math.ceil(math.log2(1.0 / tol)) if isinstance(tol, float) and 0 < tol < 1 else 12
+    est = _check_analyses("ida", recs, len(ms), s.size + bisect_steps, n_boot, FIT_MOMENTS_S)
+    bar = _progress("ida", len(ms) * len(recs), est, progress)
+    curves = []
+    try:
+        for j, m in zip(ids, ms):
+            for r in recs:
+                curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
+                                        t_free=t_free))
+                bar.update(1)
+    finally:
+        bar.close()
+    curves = tuple(curves)
     x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
     if np.any(np.isinf(x)):
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
@@ -348,18 +387,28 @@ class StripeResult:
 
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
-        confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0) -> StripeResult:
+        confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0,
+        progress: bool = False) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
-    level / its PGA in g); stripes fitted by maximum likelihood."""
+    level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
+    beyond the work bound (:mod:`archrock.work`); ``progress`` as :func:`ida`."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
     lv = _grid("levels", levels)
+    top = max(float(x / _im_factor(r, im)) * r.pga_g for x in lv[-1:] for r in recs)
+    check_pga(top, f"levels: {lv[-1]:g}", "reduce the top level", warn=False)
+    est = _check_analyses("msa", recs, len(ms), lv.size, n_boot, FIT_MLE_S)
+    bar = _progress("msa", lv.size * len(ms) * len(recs), est, progress)
     out = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
-    for i, x in enumerate(lv):
-        for j, m in enumerate(ms):
-            for k, r in enumerate(recs):
-                out[i, j, k] = _collapsed(m, r, float(x / _im_factor(r, im)), dt, t_free)
+    try:
+        for i, x in enumerate(lv):
+            for j, m in enumerate(ms):
+                for k, r in enumerate(recs):
+                    out[i, j, k] = _collapsed(m, r, float(x / _im_factor(r, im)), dt, t_free)
+                    bar.update(1)
+    finally:
+        bar.close()
     trials = np.full(lv.size, len(ms) * len(recs))
     coll = out.reshape(lv.size, -1).sum(axis=1)
     fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed,

@@ -33,6 +33,8 @@ __all__ = [
     "new_figure",
     "save_figure",
     "figure_t_end",
+    "figure_path",
+    "MAX_FIGURE_PIXELS",
     "plot_ground_motion",
     "plot_response",
     "save_response_figure",
@@ -239,9 +241,48 @@ def new_figure(nrows: int = 1, ncols: int = 1, figsize=(7.0, 4.6), **kwargs):
     return fig, axes
 
 
+#: Largest figure written, width x height in pixels. Agg holds 4 bytes a pixel in memory, so
+#: 50 Mpx is 200 MB; a full-page print at 600 dpi is about 35 Mpx. Above it a huge --dpi would
+#: exhaust memory (or hit Agg's 2^23-pixel side limit with a traceback).
+MAX_FIGURE_PIXELS = 50_000_000
+#: Smallest resolution: below it text is unreadable and a figure may round to zero pixels.
+MIN_DPI = 10
+
+
+def figure_path(path: str | os.PathLike) -> Path:
+    """The file a figure written to ``path`` lands in, checked before any work is done: the
+    extension names a format matplotlib can write (no extension: '.png' is added, as
+    matplotlib itself would do), and the path is not a folder."""
+    _require_matplotlib()
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
+    if not text or not text.strip():
+        raise ArchInputError(f"figure file: {path!r}; allowed a file name such as fig.png")
+    p = Path(text)
+    if text.endswith(("/", os.sep)) or p.is_dir():
+        raise ArchInputError(f"figure file: {text!r} is a folder; allowed a file name such as "
+                             f"{(p / 'fig.png').as_posix()!r}")
+    formats = FigureCanvasBase.get_supported_filetypes()
+    if not p.suffix:
+        return p.with_name(p.name + ".png")
+    if p.suffix[1:].lower() not in formats:
+        raise ArchInputError(f"figure file: {text!r}: format {p.suffix!r} cannot be written; "
+                             f"allowed extensions {', '.join('.' + f for f in sorted(formats))}")
+    return p
+
+
 def save_figure(fig, path: str | os.PathLike, dpi: int = 150) -> Path:
-    """Write ``fig`` to ``path`` (format from the extension); parent folders are created."""
-    p = Path(path)
+    """Write ``fig`` to ``path`` (format from the extension, '.png' when there is none; parent
+    folders are created) and return the path written. The pixel count is bounded
+    (:data:`MAX_FIGURE_PIXELS`)."""
+    p = figure_path(path)
+    w, h = fig.get_size_inches()
+    if not (isinstance(dpi, (int, float)) and math.isfinite(dpi)) or dpi < MIN_DPI \
+            or w * h * dpi * dpi > MAX_FIGURE_PIXELS:
+        top = int(math.sqrt(MAX_FIGURE_PIXELS / (w * h)))
+        raise ArchInputError(f"dpi: {dpi!r}; allowed {MIN_DPI} to {top} for this "
+                             f"{w:g} x {h:g} in figure (at most {MAX_FIGURE_PIXELS:,} pixels)")
     try:
         p.parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(p, dpi=dpi)

@@ -6,7 +6,9 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
+import warnings
 from typing import Callable
 
 from ..errors import ArchInputError, ArchrockError, GeometryOutcome
@@ -14,6 +16,7 @@ from ..errors import ArchInputError, ArchrockError, GeometryOutcome
 PROG = "archrock"
 EXIT_USAGE = 2  # bad input: same status as argparse's own errors
 EXIT_OUTCOME = 3  # valid input, no answer of the kind asked (archrock.errors.ArchrockError)
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a command stopped by Ctrl-C
 _OPTIONAL_MODULES = {"matplotlib", "PIL", "pandas", "pyarrow", "tqdm", "numba", "dask", "distributed"}
 
 #: name -> add_<name>_parser(subparsers), in the order shown by --help (filled by archrock.cli).
@@ -24,12 +27,25 @@ class CLIError(Exception):
     """A command-line problem that is not an arch-input problem (e.g. conflicting options)."""
 
 
+# A value that starts with '-' and then reads as a number or a list/range of numbers
+# ("-5e-1", "-1,2", "-1:0:5"). argparse's own pattern knows only "-5" and "-0.5", so it took
+# "--amplitude -5e-1" for an option and said "expected one argument". No archrock option
+# starts with '-' followed by a digit or '.', so this cannot hide an option.
+_NEGATIVE_VALUE = re.compile(r"^-\.?\d[\d.eE+\-,:]*$")
+
+
 class _Parser(argparse.ArgumentParser):
-    """ArgumentParser whose errors read ``archrock: error: <message>`` (exit status 2)."""
+    """ArgumentParser whose errors read ``archrock: error: <message>`` (exit status 2), one
+    line without the usage block (README), and which takes negative numbers in any spelling
+    (``-5e-1``, ``-1,2``) as values."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_VALUE
 
     def error(self, message):  # noqa: D401 - argparse API
-        self.print_usage(sys.stderr)
-        self.exit(EXIT_USAGE, f"{PROG}: error: {message}\n")
+        msg = " ".join(str(message).split())
+        self.exit(EXIT_USAGE, f"{PROG}: error: {msg}\n")
 
 
 def subcommand(name: str):
@@ -79,10 +95,32 @@ def _int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
 
 
+def json_safe(obj):
+    """``obj`` with every non-finite float (NaN, inf; numpy's too) replaced by None, so that
+    it is strict JSON: an undefined statistic (the std of one sample, a fit with no collapse)
+    reads null rather than breaking the output."""
+    if isinstance(obj, dict):
+        return {k: json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [json_safe(v) for v in obj]
+    if hasattr(obj, "tolist") and hasattr(obj, "dtype"):  # numpy scalar or array
+        return json_safe(obj.tolist())
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj
+
+
 def emit_json(obj, out=None) -> None:
-    """Print ``obj`` as one JSON document (strict: NaN/inf refused) on stdout."""
+    """Print ``obj`` as one JSON document on stdout; NaN/inf are written as null
+    (:func:`json_safe`), never as the non-standard ``NaN`` token."""
     out = sys.stdout if out is None else out
-    out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
+    out.write(json.dumps(json_safe(obj), indent=2, allow_nan=False) + "\n")
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None):
+    """Library warnings on the command line: ``archrock: warning: <message>``, one line."""
+    print(f"{PROG}: warning: {' '.join(str(message).split())}",
+          file=sys.stderr if file is None else file)
 
 
 # ---------------------------------------------------------------------------- top level
@@ -117,7 +155,14 @@ def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
     except SystemExit as exc:  # argparse: --help/--version (0) or a usage error (2)
         return int(exc.code) if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_USAGE)
     try:
-        return int(args.func(args) or 0)
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")  # each distinct warning once, not hidden
+            warnings.showwarning = _one_line_warning
+            return int(args.func(args) or 0)
+    except KeyboardInterrupt:
+        # a command with something to say about what was kept catches it itself (ensemble)
+        print(f"{PROG}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except (ArchInputError, CLIError) as exc:
         # one line, no traceback: the message names the field and the allowed range
         msg = " ".join(str(exc).split())

@@ -7,7 +7,7 @@ import sys
 from ..errors import ArchInputError
 from ._parser import _int, emit_json, non_negative_int, positive_float
 from .options import (add_geometry_options, add_impact_options, add_spread_options,
-                      arch_from_args, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, impact_spec_from_args, spreads)
 
 
 def add_curves_parser(subparsers):
@@ -37,6 +37,8 @@ def add_curves_parser(subparsers):
     p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress on stderr (shown for runs estimated above a few seconds)")
     p.add_argument("--plot", metavar="FILE.png", help="write the curve (with bands) to a figure")
     p.set_defaults(func=run_curves)
     return p
@@ -47,6 +49,7 @@ def run_curves(args) -> int:
     from ..reports.curves import curves_summary, format_curves
     from ..response import prepare
 
+    plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
     durations = parse_range(args.durations, "durations")
     if args.n_scan < 2:
@@ -58,14 +61,15 @@ def run_curves(args) -> int:
     band = None
     if args.samples > 0:
         band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,
-                              impact=impact, workers=args.workers, **kw)
+                              impact=impact, workers=args.workers,
+                              progress=not args.no_progress, **kw)
         curve = band.nominal
     else:
         curve = collapse_curve(prepare(nominal, impact), durations, **kw)
-    if args.plot:
+    if plot:
         from ..plots import plot_collapse_curve
 
-        plot_collapse_curve(curve, args.plot, band=band,
+        plot_collapse_curve(curve, plot, band=band,
                             title=f"{nominal.name}: {args.pulse} pulse, sign {args.sign:+d}")
     about = dict(arch_name=nominal.name, pulse=args.pulse, sign=args.sign,
                  impact=impact, cv=impact.resolved(nominal).cv)
@@ -73,6 +77,6 @@ def run_curves(args) -> int:
         emit_json(curves_summary(curve, band, **about))
         return 0
     print(format_curves(curve, band, **about))
-    if args.plot:
-        print(f"wrote {args.plot}", file=sys.stderr)
+    if plot:
+        print(f"wrote {plot}", file=sys.stderr)
     return 0

@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 from ..errors import ArchInputError
-from ._parser import _int, emit_json
+import sys
+from pathlib import Path
+
+from ._parser import EXIT_INTERRUPTED, PROG, CLIError, _int, emit_json
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      add_spread_options, arch_from_args, impact_spec_from_args,
-                      motion_spec_from_args, spreads)
+                      add_spread_options, arch_from_args, figure_arg, folder_arg,
+                      impact_spec_from_args, motion_spec_from_args, spreads)
 
 
 def add_ensemble_parser(subparsers):
@@ -41,32 +44,53 @@ def add_ensemble_parser(subparsers):
     return p
 
 
+def _kept(out, n_batches: int) -> str:
+    """What an interrupted run leaves: the finished batches in --out, which a re-run resumes."""
+    if out is None:
+        return "nothing was kept (give --out DIR to keep finished batches and resume)"
+    kept = len(list((Path(out) / "batches").glob("*.parquet")))
+    return (f"{kept} of {n_batches} batches kept in {out}; the same command resumes from them")
+
+
 def run_ensemble_cmd(args) -> int:
     from ..ensemble import PAPER_RANDOM_ARCHES, EnsembleConfig, run_ensemble
     from ..reports.ensemble import format_ensemble
 
     if args.workers < 1:
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
+    out, plot = folder_arg(args.out), figure_arg(args.plot)
     nominal = arch_from_args(args)
+    motion = motion_spec_from_args(args)
+    given = [f for f, v in (("--cv", args.cv), ("--impact", args.impact),
+                            ("--impact-on", args.impact_on),
+                            ("--literal-cv", args.literal_cv or None)) if v is not None]
+    if motion is None and given:
+        # without a motion nothing impacts: the option would be silently ignored
+        raise CLIError(f"{given[0]}: unused without a ground motion (the ensemble is then limit "
+                       f"analysis only); give --pulse ... or --record FILE, or drop {given[0]}")
     config = EnsembleConfig.from_arch(nominal, samples=args.samples, seed=args.seed,
                                       batch_size=args.batch_size,
-                                      motion=motion_spec_from_args(args), spreads=spreads(args),
+                                      motion=motion, spreads=spreads(args),
                                       impact=impact_spec_from_args(args))
-    result = run_ensemble(config, out_dir=args.out, workers=args.workers,
-                          scheduler=args.scheduler, progress=not args.no_progress)
+    try:
+        result = run_ensemble(config, out_dir=out, workers=args.workers,
+                              scheduler=args.scheduler, progress=not args.no_progress)
+    except KeyboardInterrupt:
+        print(f"{PROG}: interrupted; " + _kept(out, config.n_batches), file=sys.stderr)
+        return EXIT_INTERRUPTED
     summary = result.summary()
-    if args.plot:
+    if plot:
         from ..plots import plot_multiplier_histograms
 
         ref = {"nominal": (summary["nominal"]["k_l"], summary["nominal"]["k_r"]),
                **PAPER_RANDOM_ARCHES}
-        plot_multiplier_histograms(result.frame, args.plot, reference=ref)
+        plot = plot_multiplier_histograms(result.frame, plot, reference=ref)
     if args.json:
         emit_json(summary)
         return 0
     print(format_ensemble(summary, nominal.name))
-    if args.out:
-        print(f"results in {args.out}")
-    if args.plot:
-        print(f"wrote {args.plot}")
+    if out:
+        print(f"results in {out}")
+    if plot:
+        print(f"wrote {plot}")
     return 0

@@ -7,7 +7,7 @@ import sys
 from ..errors import ArchInputError
 from ._parser import emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_spread_options,
-                      arch_from_args, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, impact_spec_from_args, spreads)
 
 
 def add_fragility_parser(subparsers):
@@ -34,6 +34,8 @@ def add_fragility_parser(subparsers):
     p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
                    help="bootstrap resamples for confidence bands (0 = none, or >= 2; default 200)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress on stderr (shown for runs estimated above a few seconds)")
     p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
     p.set_defaults(func=run_fragility)
     return p
@@ -48,6 +50,7 @@ def run_fragility(args) -> int:
 
     if args.bootstrap == 1:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
+    plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
     records = [load_record(f, units=args.units) for f in args.records]
     scales = parse_range(args.scales, "scales")
@@ -55,14 +58,16 @@ def run_fragility(args) -> int:
     models = (random_models(nominal, args.samples, args.seed, spreads(args), impact)
               if args.samples > 0 else [prepare(nominal, impact)])
     boot = args.bootstrap
-    res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed)
+    res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed,
+                  progress=not args.no_progress)
     levels = (parse_range(args.levels, "levels") if args.levels
               else default_stripe_levels(res_ida, scales, records))
-    res_msa = msa(records, models, levels, n_boot=boot, seed=args.seed)
-    if args.plot:
+    res_msa = msa(records, models, levels, n_boot=boot, seed=args.seed,
+                  progress=not args.no_progress)
+    if plot:
         from ..plots import plot_fragility
 
-        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, args.plot,
+        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, plot,
                        ida=res_ida)
     if args.json:
         emit_json(fragility_summary(res_ida, res_msa, arch_name=nominal.name, records=records,
@@ -71,6 +76,6 @@ def run_fragility(args) -> int:
         return 0
     print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
                            n_arches=len(models), n_requested=args.samples))
-    if args.plot:
-        print(f"wrote {args.plot}", file=sys.stderr)
+    if plot:
+        print(f"wrote {plot}", file=sys.stderr)
     return 0

@@ -6,7 +6,8 @@ import sys
 from pathlib import Path
 
 from ._parser import CLIError, emit_json, non_negative_int, positive_float
-from .options import add_geometry_options, add_spread_options, arch_from_args
+from .options import (add_geometry_options, add_spread_options, arch_from_args, figure_arg,
+                      folder_arg)
 
 
 # ---------------------------------------------------------------------------- limit
@@ -55,13 +56,14 @@ def add_random_arch_parser(subparsers):
 def run_random_arch(args) -> int:
     from ..geometry import random_arch
 
+    out = folder_arg(args.out, "--out", "a file name (omit --out for stdout)")
     nominal = arch_from_args(args)
     arch = random_arch(nominal, seed=args.seed, spread_span=args.spread_span,
                        spread_thickness=args.spread_thickness, spread_radius=args.spread_radius)
     meta = {"generator": "archrock random-arch", "seed": args.seed, "nominal": nominal.name,
             "spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
             "spread_radius": args.spread_radius}
-    if args.out:
+    if out:
         from ..files import write_arch
 
         try:
@@ -84,7 +86,8 @@ def add_plot_limit_parser(subparsers):
                    help="image to write (default limit.png)")
     p.add_argument("--direction", choices=("l", "r", "both"), default="both",
                    help="mechanism M_l, M_r or both panels (default both)")
-    p.add_argument("--dpi", type=positive_float, default=150, help="resolution (default 150)")
+    p.add_argument("--dpi", type=positive_float, default=150,
+                   help="resolution, dots per inch (default 150; at most 50 million pixels)")
     p.set_defaults(func=run_plot_limit)
     return p
 
@@ -93,9 +96,10 @@ def run_plot_limit(args) -> int:
     from ..limit import limit_analysis
     from ..plots import save_limit_figure
 
+    out = figure_arg(args.out)
     arch = arch_from_args(args)
     result = limit_analysis(arch, verify=True)
     dirs = ("l", "r") if args.direction == "both" else (args.direction,)
-    path = save_limit_figure(result, args.out, directions=dirs, dpi=int(args.dpi))
+    path = save_limit_figure(result, out, directions=dirs, dpi=args.dpi)
     print(f"k_l = {result.k_l:.4f}, k_r = {result.k_r:.4f}; wrote {path}")
     return 0

@@ -12,6 +12,36 @@ GEOMETRY_DEFAULTS = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "vousso
                      "density": 2000.0}
 
 
+# ---------------------------------------------------------------------------- output files
+def figure_arg(path):
+    """The file a --plot/--out figure option will write (None if not given), checked before
+    any work: a format matplotlib writes, not a folder ('.png' added without an extension)."""
+    if path is None:
+        return None
+    from ..plots import figure_path
+
+    return figure_path(path)
+
+
+def animation_arg(path):
+    """The file of --animate (None if not given), checked before any work (.gif or .mp4)."""
+    if path is None:
+        return None
+    from ..animate import animation_path
+
+    return animation_path(path)
+
+
+def folder_arg(path, flag: str = "--out", what: str = "a folder name"):
+    """An output folder (or file) option: None if not given; an empty name is refused (it
+    would silently mean the current folder, or nothing, depending on the command)."""
+    if path is None:
+        return None
+    if not path.strip():
+        raise CLIError(f"{flag}: {path!r}; allowed {what}")
+    return path
+
+
 # ---------------------------------------------------------------------------- arch
 def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     """Add the arch options: --radius --embrace --thickness --voussoirs --density (a nominal

@@ -15,5 +15,7 @@ def add_paper_parser(subparsers):
 def run_paper(args) -> int:
     from ..study import run_paper_study
 
-    run_paper_study(args.out, progress=print)
+    from .options import folder_arg
+
+    run_paper_study(folder_arg(args.out), progress=print)
     return 0

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ._parser import emit_json, finite_float, positive_float
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      model_from_args, motion_from_args)
+                      animation_arg, figure_arg, model_from_args, motion_from_args)
 
 
 def add_respond_parser(subparsers):
@@ -42,13 +42,14 @@ def run_respond(args) -> int:
     from ..reports.response import format_response
     from ..response import prepare, respond
 
+    plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     motion = motion_from_args(args)
     model = model_from_args(args)
     if args.limit_factor is not None:
         model = prepare(model.arch, model.impact, limit_factor=args.limit_factor, limit=model.limit)
     res = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out, integrator=args.integrator)
     shown = res
-    if args.plot or args.animate:
+    if plot or animation:
         from ..plots import figure_t_end
 
         # the figures show the run to rest or collapse, also past --t-end (capped); the JSON and
@@ -57,19 +58,19 @@ def run_respond(args) -> int:
         if t_fig > res.time[-1]:
             shown = respond(model, motion, t_end=t_fig, dt_out=args.dt_out,
                             integrator=args.integrator)
-    if args.plot:
+    if plot:
         from ..plots import save_response_figure
 
-        save_response_figure([shown], args.plot, labels=[model.arch.name])
-    if args.animate:
+        plot = save_response_figure([shown], plot, labels=[model.arch.name])
+    if animation:
         from ..animate import animate_response
 
-        animate_response(shown, args.animate)
+        animation = animate_response(shown, animation)
     if args.json:
         emit_json(res.to_dict())
         return 0
     print(format_response(res, model, motion))
-    for f in (args.plot, args.animate):
+    for f in (plot, animation):
         if f:
             print(f"wrote {f}")
     return 0

@@ -7,11 +7,20 @@ own random stream).
 
 from __future__ import annotations
 
+import contextlib
+import os
+import signal
+import threading
+import time
+
 from ..errors import ArchInputError
 from .compute import run_batch
 from .config import EnsembleConfig
 
-__all__ = ["SCHEDULER_TIMEOUT_S", "execute"]
+__all__ = ["SCHEDULER_TIMEOUT_S", "execute", "worker_pool"]
+
+#: How often [s] a pool worker checks that its parent is alive (it exits when the parent dies).
+PARENT_CHECK_S = 0.5
 
 #: seconds to wait for a Dask scheduler given by address before giving up with an ArchInputError.
 SCHEDULER_TIMEOUT_S = 10.0
@@ -39,11 +48,48 @@ def _run_batch_task(config_dict: dict, b: int):
     return b, *run_batch(config_dict, b, parallel=False)
 
 
-def _run_process_pool(cfg_dict, todo, workers, finished):
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+def _watch_parent(parent: int) -> None:
+    while True:
+        time.sleep(PARENT_CHECK_S)
+        if os.getppid() != parent:  # re-parented: the parent died (kill -9, OOM killer)
+            os._exit(1)
 
-    with ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context("spawn")) as pool:
+
+def _worker_init(parent: int) -> None:
+    """Pool worker set-up: Ctrl-C is the parent's to handle (it stops the pool; workers would
+    only print tracebacks), and a watchdog thread ends the worker if the parent dies, which a
+    process pool does not do by itself."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+
+
+@contextlib.contextmanager
+def worker_pool(workers: int, spawn: bool = False):
+    """A ProcessPoolExecutor of ``workers`` whose workers die with this process; on an error or
+    Ctrl-C in the caller the pending tasks are cancelled and the workers stopped at once."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    ctx = mp.get_context("spawn") if spawn else None
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_init,
+                               initargs=(os.getpid(),))
+    try:
+        yield pool
+    except BaseException:
+        procs = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for p in procs:  # a running task is not cancelled by shutdown: stop its worker
+            if p.is_alive():
+                p.terminate()
+        raise
+    else:
+        pool.shutdown(wait=True)
+
+
+def _run_process_pool(cfg_dict, todo, workers, finished):
+    from concurrent.futures import as_completed
+
+    with worker_pool(workers, spawn=True) as pool:
         futs = [pool.submit(_run_batch_task, cfg_dict, b) for b in todo]
         for fut in as_completed(futs):
             finished(*fut.result())

@@ -9,21 +9,24 @@ __all__ = ["Progress"]
 
 
 class Progress:
-    """Samples done out of ``total``: a tqdm bar on stderr, or a line a second without tqdm;
-    silent unless ``enabled``."""
+    """Units done out of ``total``: a tqdm bar on stderr, or a line a second without tqdm;
+    silent unless ``enabled``. ``desc`` names the study, ``unit`` what is counted (the
+    ensemble's samples by default; curves' arches, fragility's analyses)."""
 
-    def __init__(self, total: int, enabled: bool):
+    def __init__(self, total: int, enabled: bool, desc: str = "ensemble", unit: str = "arch"):
         self.bar = None
         self.enabled = enabled
         self.total = total
         self.done = 0
         self.last = 0.0
+        self.desc = desc
+        self.plural = "samples" if desc == "ensemble" else unit + "s"
         if not enabled:
             return
         try:
             from tqdm import tqdm
 
-            self.bar = tqdm(total=total, unit="arch", desc="ensemble", file=sys.stderr,
+            self.bar = tqdm(total=total, unit=unit, desc=desc, file=sys.stderr,
                             dynamic_ncols=True)
         except ImportError:
             self.bar = None
@@ -36,7 +39,8 @@ class Progress:
             self.bar.update(n)
         elif time.monotonic() - self.last > 1.0 or self.done == self.total:
             self.last = time.monotonic()
-            print(f"ensemble: {self.done}/{self.total} samples", file=sys.stderr, flush=True)
+            print(f"{self.desc}: {self.done}/{self.total} {self.plural}", file=sys.stderr,
+                  flush=True)
 
     def note(self, text: str):
         """A line of progress output (above the bar)."""

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..errors import ArchInputError
 from ..geometry import Arch
+from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
 from .config import EnsembleConfig, int_field
 from .executors import execute
 from .progress import Progress
@@ -36,6 +37,20 @@ def _impact_info(config: EnsembleConfig) -> dict:
             + (f": c_v = {applied.cv:.6g}" if applied is not config.impact else "")}
 
 
+def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
+    """Estimated seconds of the whole ensemble (before resuming: a bound on what is left)."""
+    each = SAMPLE_LIMIT_S
+    if config.motion is not None:
+        each = SAMPLE_RESPONSE_S + (RECORD_RESPONSE_S_PER_S * config.motion.build().duration
+                                    if config.motion.to_dict()["type"] == "record" else 0.0)
+    import os
+
+    cores = workers if workers > 1 else (os.cpu_count() or 1)  # in-process: numba threads
+    return check_work("ensemble", config.samples, "arches", each,
+                      "reduce --samples (10,000 give P(collapse) to about 1%), or run on a Dask "
+                      "cluster (--scheduler)", cores)
+
+
 def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, scheduler=None,
                  progress: bool = True) -> EnsembleResult:
     """Run (or resume) an ensemble.
@@ -50,6 +65,7 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
     if not isinstance(config, EnsembleConfig):
         raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
     workers = int_field("workers", workers, 1)
+    _check_ensemble_work(config, workers if scheduler is None else 1)
     t_start = time.perf_counter()
     impact = _impact_info(config)
     nominal = _nominal_info(config)

@@ -13,11 +13,14 @@ pulse constructors end their histories with an explicit 0 where the drop matters
 Modules: :mod:`.motion` (the model, :func:`from_samples`), :mod:`.pulses` (idealised pulses),
 :mod:`.records` (two-column and PEER NGA ``.AT2`` files), :mod:`.spec` (serialisable
 specifications that rebuild a motion: :class:`PulseSpec`, :class:`RecordSpec`).  Every bad input
-raises :class:`archrock.errors.ArchInputError` with a one-line message naming the field.
+raises :class:`archrock.errors.ArchInputError` with a one-line message naming the field; a PGA
+above :data:`MAX_PGA_G` or a record sampled more coarsely than :data:`MAX_RECORD_DT_S` cannot be
+meant and is refused, above :data:`WARN_PGA_G` / :data:`WARN_RECORD_DT_S` a warning is issued.
 """
 
 from ..units import G  # re-exported: the package's gravity constant [m/s^2]
-from .motion import UNITS, GroundMotion, from_samples
+from .motion import (MAX_PGA_G, MAX_RECORD_DT_S, UNITS, WARN_PGA_G, WARN_RECORD_DT_S,
+                     GroundMotion, check_pga, from_samples)
 from .pulses import (PULSE_KINDS, half_sine_pulse, one_sine_pulse, oppenheim_pulse, pulse,
                      pulse_kind, rectangular_pulse, ricker_pulse)
 from .records import load_record, read_at2, read_two_column
@@ -26,6 +29,11 @@ from .spec import PulseSpec, RecordSpec, motion_spec_from_dict
 __all__ = [
     "G",
     "UNITS",
+    "MAX_PGA_G",
+    "WARN_PGA_G",
+    "MAX_RECORD_DT_S",
+    "WARN_RECORD_DT_S",
+    "check_pga",
     "PULSE_KINDS",
     "GroundMotion",
     "oppenheim_pulse",

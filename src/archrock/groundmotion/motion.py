@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import bisect
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,7 +17,8 @@ import numpy as np
 from ..errors import ArchInputError
 from ..units import G
 
-__all__ = ["UNITS", "GroundMotion", "from_samples"]
+__all__ = ["UNITS", "GroundMotion", "from_samples", "MAX_PGA_G", "WARN_PGA_G",
+           "MAX_RECORD_DT_S", "WARN_RECORD_DT_S", "check_pga"]
 
 
 #: Accepted acceleration units and their factor to m/s^2.
@@ -25,6 +27,36 @@ UNITS = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}
 # A query time this close to a step time counts as the step time, so that e.g. t = 0.6 is "at"
 # the step 3 * 0.2 = 0.6000000000000001 of Oppenheim's pulse (relative to max(1 s, duration)).
 _STEP_SNAP_REL = 1e-12
+
+
+# Plausibility of a ground motion. Thresholds in one place; the readers, the pulses and the
+# studies that scale motions refuse what cannot be meant and warn about the suspicious.
+
+#: Largest ground acceleration accepted [g]. The strongest horizontal PGAs ever recorded are
+#: about 3-4 g; 20 g is no earthquake but a mistake (a record in cm/s^2 read as g gives
+#: hundreds of g, a stray --scale 1e6 millions), and far beyond it the fixed-step rocking
+#: kernel breaks down (division by zero near 1e6 g).
+MAX_PGA_G = 20.0
+#: Above this PGA [g] a warning: beyond the strongest records, so probably a units or scale
+#: slip, though a deliberate stress test is possible.
+WARN_PGA_G = 3.0
+#: Largest sampling interval [s] of a sampled record. Strong-motion records are sampled at
+#: 0.005-0.02 s; at 0.1 s (10 Hz) the pulses that rock an arch (0.1-1 s) are not resolved, and
+#: a larger step usually means times in the wrong unit (ms, samples) or a decimated file.
+MAX_RECORD_DT_S = 0.1
+#: Above this interval [s] a warning: coarser than any strong-motion archive distributes.
+WARN_RECORD_DT_S = 0.05
+
+
+def check_pga(pga_g: float, what: str, cause: str, warn: bool = True) -> None:
+    """Refuse a PGA above :data:`MAX_PGA_G` (ArchInputError naming ``what``, the value and the
+    likely ``cause``) and warn above :data:`WARN_PGA_G` (with ``warn``)."""
+    if not pga_g <= MAX_PGA_G:
+        raise ArchInputError(f"{what}: PGA {pga_g:.4g} g; allowed at most {MAX_PGA_G:g} g "
+                             f"({cause})")
+    if warn and pga_g > WARN_PGA_G:
+        warnings.warn(f"{what}: PGA {pga_g:.4g} g is above the strongest records "
+                      f"(about {WARN_PGA_G:g} g); {cause}", stacklevel=3)
 
 
 # --------------------------------------------------------------------------------------------

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import ArchInputError
 from ..units import G
-from .motion import GroundMotion, _count, _positive, _real
+from .motion import MAX_PGA_G, GroundMotion, _count, _positive, _real
 
 __all__ = ["PULSE_KINDS", "oppenheim_pulse", "rectangular_pulse", "half_sine_pulse",
            "one_sine_pulse", "ricker_pulse", "pulse", "pulse_kind"]
@@ -21,13 +21,23 @@ PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 _MIN_SAMPLES = 4  # smallest number of intervals for the sampled pulses
 
 
+def _amplitude(value) -> float:
+    """A pulse amplitude [g]: finite and at most MAX_PGA_G in size (no pulse above it can be
+    meant, and the rocking kernel breaks down far above it)."""
+    ag = _real("pulse amplitude", value, "g")
+    if abs(ag) > MAX_PGA_G:
+        raise ArchInputError(f"pulse amplitude: {ag:g} g; allowed at most {MAX_PGA_G:g} g in "
+                             f"size (the strongest earthquakes reach about 3-4 g)")
+    return ag
+
+
 def oppenheim_pulse(amplitude_g: float = -1.0, duration: float = 0.2) -> GroundMotion:
     """Oppenheim's idealised pulse (the paper's forcing, a = -1 g, t_p = 0.2 s).
 
     xg'' = a on [0, t_p), -a/2 on [t_p, 3 t_p), 0 from 3 t_p on; encoded exactly with steps:
     times [0, t_p, t_p, 3 t_p, 3 t_p], accel [a, a, -a/2, -a/2, 0].  Zero net velocity change.
     """
-    ag = _real("pulse amplitude", amplitude_g, "g")
+    ag = _amplitude(amplitude_g)
     a = ag * G
     tp = _positive("pulse duration", duration)
     t = [0.0, tp, tp, 3.0 * tp, 3.0 * tp]
@@ -40,7 +50,7 @@ def oppenheim_pulse(amplitude_g: float = -1.0, duration: float = 0.2) -> GroundM
 
 def rectangular_pulse(amplitude_g: float, duration: float) -> GroundMotion:
     """xg'' = a on [0, t_p), 0 from t_p on (times [0, t_p, t_p], accel [a, a, 0])."""
-    ag = _real("pulse amplitude", amplitude_g, "g")
+    ag = _amplitude(amplitude_g)
     a = ag * G
     tp = _positive("pulse duration", duration)
     return GroundMotion(
@@ -54,7 +64,7 @@ def half_sine_pulse(amplitude_g: float, duration: float, samples_per_pulse: int 
 
     Velocity change 2 a t_p / pi.
     """
-    ag = _real("pulse amplitude", amplitude_g, "g")
+    ag = _amplitude(amplitude_g)
     a = ag * G
     tp = _positive("pulse duration", duration)
     n = _count("samples per pulse", samples_per_pulse, _MIN_SAMPLES)
@@ -69,7 +79,7 @@ def one_sine_pulse(amplitude_g: float, duration: float, samples_per_pulse: int =
 
     Zero net velocity change; ``samples_per_pulse`` intervals.
     """
-    ag = _real("pulse amplitude", amplitude_g, "g")
+    ag = _amplitude(amplitude_g)
     a = ag * G
     tp = _positive("pulse duration", duration)
     n = _count("samples per pulse", samples_per_pulse, _MIN_SAMPLES)
@@ -88,7 +98,7 @@ def ricker_pulse(amplitude_g: float, period: float, samples: int = 600) -> Groun
     below 1e-8 |a| at t = 0 and t = 2 t0, so it starts and ends (set exactly to 0 there) without
     a noticeable jump.  Sampled with ``samples`` intervals (even, so t0 is a sample) on [0, 2 t0].
     """
-    ag = _real("pulse amplitude", amplitude_g, "g")
+    ag = _amplitude(amplitude_g)
     a = ag * G
     T = _positive("pulse period", period)
     n = _count("samples", samples, _MIN_SAMPLES)

@@ -8,13 +8,20 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import ArchInputError
 from ..units import G
-from .motion import GroundMotion, _unit_factor
+from .motion import (MAX_RECORD_DT_S, WARN_RECORD_DT_S, GroundMotion, _unit_factor,
+                     check_pga)
+
+#: A two-column file with at least this many rows and no steps is a sampled record, whose time
+#: step is checked; fewer rows (or steps) describe a piecewise-linear motion by its corners,
+#: where long intervals are meant.
+MIN_SAMPLED_ROWS = 20
 
 __all__ = ["read_two_column", "read_at2", "load_record"]
 
@@ -56,6 +63,37 @@ def _number(p: Path, lineno: int, token: str) -> float:
     if not math.isfinite(x):
         raise ArchInputError(f"record {p.name}: line {lineno}: {token!r} is not finite; allowed finite numbers")
     return x
+
+
+def _units_cause(pga_g: float, units: str) -> str:
+    """The likely cause of an implausible PGA read in ``units``, with the remedy: the units in
+    which the same numbers would be a plausible PGA (0.005-3 g)."""
+    if units != "g":
+        return f"units? the values were read as {units}; is the file scaled?"
+    value = pga_g  # the largest number in the file
+    fits = [u for u, per_g in (("m/s2", G), ("cm/s2", 100 * G)) if 0.005 <= value / per_g <= 3.0]
+    if not fits:
+        return "units? the values were read as g"
+    return (f"units? if the values are in {' or '.join(fits)}, give "
+            + " or ".join(f"--units {u}" for u in fits))
+
+
+def _check_record(p: Path, motion: GroundMotion, units: str, lineno_of=None) -> None:
+    """Refuse or warn about a record that cannot be meant (PGA, time step; module constants
+    of :mod:`.motion`). ``lineno_of(i)``: the file line of sample i, for the message."""
+    pga_g = motion.pga / G
+    check_pga(pga_g, f"record {p.name}", _units_cause(pga_g, units))
+    dt = np.diff(motion.times)
+    i = int(np.argmax(dt))
+    where = f" (line {lineno_of(i + 1)})" if lineno_of is not None else ""
+    cause = ("times in ms or in samples? a sampled accelerogram has a step of 0.005-0.02 s"
+             if dt[i] >= 1.0 else "a record this coarse misses the pulses that rock an arch")
+    if dt[i] > MAX_RECORD_DT_S:
+        raise ArchInputError(f"record {p.name}: time step {dt[i]:g} s{where}; allowed at most "
+                             f"{MAX_RECORD_DT_S:g} s ({cause})")
+    if dt[i] > WARN_RECORD_DT_S:
+        warnings.warn(f"record {p.name}: time step {dt[i]:g} s{where} is coarser than "
+                      f"{WARN_RECORD_DT_S:g} s; {cause}", stacklevel=3)
 
 
 def _is_number(token: str) -> bool:
@@ -110,15 +148,34 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
         linenos.append(lineno)
     if not ts:
         raise ArchInputError(f"record {p.name}: empty record (no 'time accel' rows); allowed >= 2 samples")
+    ts_file, acs_file = list(ts), list(acs)
     if ts[0] > 0.0:
         ts.insert(0, 0.0)
         acs.insert(0, 0.0)
     if len(ts) < 2:
         raise ArchInputError(f"record {p.name}: 1 sample; allowed >= 2 samples")
-    return GroundMotion(
+    motion = GroundMotion(
         np.array(ts), np.array(acs) * factor, name if name is not None else p.stem,
         f"{p} (two-column, {units})",
     )
+    steps = [i for i in range(1, len(linenos)) if ts_file[i] == ts_file[i - 1]]
+    dup = [i for i in steps if acs_file[i] == acs_file[i - 1]]
+    if dup:  # a step to the same value is no step: a row written twice
+        i = dup[0]
+        raise ArchInputError(f"record {p.name}: line {linenos[i]}: time {ts_file[i]:g} s repeats "
+                             f"line {linenos[i - 1]} with the same value; allowed increasing times "
+                             f"(a time twice only for a step to a new value)")
+    if len(linenos) >= MIN_SAMPLED_ROWS and steps:
+        # a corner list may step; a sampled record has no repeated time: an export slip
+        warnings.warn(f"record {p.name}: line {linenos[steps[0]]}: time {ts_file[steps[0]]:g} s "
+                      f"repeats the line before (read as a step) in a record of {len(linenos)} "
+                      f"rows; a sampled record has no repeated times", stacklevel=2)
+    if len(linenos) >= MIN_SAMPLED_ROWS and not steps:
+        off = len(ts) - len(linenos)  # 1 if a zero sample was put in front
+        _check_record(p, motion, units, lambda i: linenos[max(i - off, 0)])
+    else:
+        check_pga(motion.pga / G, f"record {p.name}", _units_cause(motion.pga / G, units))
+    return motion
 
 
 _NGA_HEADER = re.compile(r"NPTS\s*=\s*(\S+?)\s*,?\s*DT\s*=\s*(\S+?)\s*,?\s*(SEC\b.*)?$", re.IGNORECASE)
@@ -172,7 +229,9 @@ def read_at2(path) -> GroundMotion:
     t = np.arange(npts) * dt
     acc = np.array(values) * G
     title = lines[1].strip()
-    return GroundMotion(t, acc, title or p.stem, f"{p} (PEER AT2, g, NPTS={npts}, DT={dt:g} s)")
+    motion = GroundMotion(t, acc, title or p.stem, f"{p} (PEER AT2, g, NPTS={npts}, DT={dt:g} s)")
+    _check_record(p, motion, "g (PEER .AT2)")
+    return motion
 
 
 def load_record(path, units: str | None = None) -> GroundMotion:

@@ -17,7 +17,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..errors import ArchInputError
-from .motion import UNITS, GroundMotion, _positive, _real
+from .motion import UNITS, GroundMotion, _positive, _real, check_pga
 from .pulses import pulse, pulse_kind
 from .records import load_record
 
@@ -153,7 +153,11 @@ def _build_pulse(spec: PulseSpec) -> GroundMotion:
 @lru_cache(maxsize=8)
 def _build_record(spec: RecordSpec) -> GroundMotion:
     motion = load_record(spec.path, spec.units)
-    return motion.scaled(spec.scale) if spec.scale != 1.0 else motion
+    if spec.scale == 1.0:
+        return motion
+    check_pga(abs(spec.scale) * motion.pga_g, f"record {Path(spec.path).name} scaled by "
+              f"{spec.scale:g}", "is the scale factor meant? --scale multiplies the values")
+    return motion.scaled(spec.scale)
 
 
 def _file_sha256(path) -> str:
