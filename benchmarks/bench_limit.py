@@ -2,7 +2,7 @@
 
 Run:  python benchmarks/bench_limit.py [--arches N] [--lp-arches N] [--no-numba]
 
-For random arches (METHOD spreads s_a = 0.1, s_t = 0.1, s_R = 0.05 around a nominal arch with
+For random arches (default spreads s_a = 0.1, s_t = 0.1, s_R = 0.05 around a nominal arch with
 R = 10 m, embrace 157.5 deg, t = 1.5 m) with n = 7 and n = 20 voussoirs it measures, on one core:
 
 * the production path: ``limit.kinematic_multipliers_batch`` on the whole batch (arches/s);

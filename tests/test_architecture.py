@@ -78,3 +78,24 @@ def test_the_check_sees_relative_and_nested_imports(tmp_path):
     p = ROOT / "ensemble" / "run.py"
     assert "geometry" in _imported_tops(p) and "ensemble" in _imported_tops(p)
     assert "response" in _imported_tops(ROOT / "batch.py")  # imported inside a function
+
+
+def test_code_and_docs_cite_only_what_users_have():
+    """The package and its docs cite docs/*.md, never the project's private METHOD.md, and every
+    'docs/method.md, <Section>' cited names a section that exists there."""
+    import re
+
+    repo = ROOT.parents[1]
+    texts = {p: p.read_text(encoding="utf-8") for p in
+             [*ROOT.rglob("*.py"), *(repo / "docs").glob("*.md"), repo / "README.md"]}
+    sections = set(re.findall(r"^## (\w[\w -]*?)(?: \(|$)", (repo / "docs" / "method.md").read_text(
+        encoding="utf-8"), flags=re.M))
+    bad = []
+    for path, text in texts.items():
+        if re.search(r"\bMETHOD(?!S\b)", text):
+            bad.append(f"{path.name}: cites METHOD")
+        for m in re.finditer(r"docs/method\.md, ", text):
+            cited = text[m.end():m.end() + 40]
+            if not any(cited.startswith(sec) for sec in sections):
+                bad.append(f"{path.name}: docs/method.md has no section {cited!r}")
+    assert not bad, "\n".join(bad)

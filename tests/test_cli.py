@@ -17,7 +17,7 @@ from archrock.geometry import random_arch
 from archrock.limit import limit_analysis, minimum_thickness
 
 OPPENHEIM_FLAGS = ["--radius", "10", "--embrace", "157.5", "--thickness", "1.5", "--voussoirs", "7"]
-# Fig. 3 of the paper / METHOD section 2: hinges ordered from the left springing.
+# Fig. 3 of the paper / docs/method.md, Limit analysis: hinges ordered from the left springing.
 HINGES_L = [{"joint": 0, "edge": "intrados"}, {"joint": 3, "edge": "extrados"},
             {"joint": 5, "edge": "intrados"}, {"joint": 7, "edge": "extrados"}]
 # M_r is the mirror image of M_l on a symmetric arch (joint j -> 7 - j).

@@ -14,7 +14,7 @@ from archrock.fragility import collapse_probability
 from archrock.geometry import oppenheim_arch
 from archrock.groundmotion import PulseSpec
 from archrock.impact import ImpactSpec
-from archrock.sampling import METHOD_SPREADS, ArchSampler, Spreads
+from archrock.sampling import DEFAULT_SPREADS, ArchSampler, Spreads
 from archrock.limit import limit_analysis
 
 PULSE = PulseSpec("oppenheim", -1.0, 0.2)
@@ -25,7 +25,7 @@ def config(**kw):
     spreads = {k: kw.pop(k) for k in list(kw) if k.startswith("spread_")}
     impact = ImpactSpec.parse(kw.pop("impact", "fixed"), cv=kw.pop("cv", 0.8754))
     base = dict(samples=40, batch_size=10, seed=11, motion=PULSE, impact=impact,
-                spreads=Spreads.from_dict({**METHOD_SPREADS.to_dict(), **spreads}))
+                spreads=Spreads.from_dict({**DEFAULT_SPREADS.to_dict(), **spreads}))
     base.update(kw)
     return EnsembleConfig.from_arch(oppenheim_arch(), **base)
 

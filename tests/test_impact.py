@@ -115,7 +115,7 @@ def test_fixed_cv_literal_reading(randoms):
         warned = any(issubclass(w.category, EnergyGainWarning) for w in rec)
         assert warned == gains
         gained += gains
-    assert gained >= 1  # the METHOD spreads do produce literal energy gains
+    assert gained >= 1  # the default spreads do produce literal energy gains
 
 
 def test_fixed_cv_literal_warns_on_gain():
@@ -172,7 +172,7 @@ def test_paper_energy_guard(seed, direction, ratio):
 
 
 def test_paper_model_fine_on_method_spreads(randoms):
-    # with the METHOD spreads (0.1/0.1/0.05) the paper model loses energy on every arch tried
+    # with the default spreads (0.1/0.1/0.05) the paper model loses energy on every arch tried
     for ml, mr in randoms:
         law = impact_law(ml, mr, "paper")
         assert 0 < law.energy_l_to_r < 1 and 0 < law.energy_r_to_l < 1

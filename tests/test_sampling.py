@@ -5,11 +5,11 @@ import pytest
 
 from archrock.errors import ArchInputError, InvalidSampleError
 from archrock.geometry import nominal_arch, oppenheim_arch, perturb_voussoirs
-from archrock.sampling import BLOCK, METHOD_SPREADS, ArchSampler, Spreads
+from archrock.sampling import BLOCK, DEFAULT_SPREADS, ArchSampler, Spreads
 
 
 def test_sample_is_independent_of_how_the_draws_are_cut():
-    s = ArchSampler(oppenheim_arch(), METHOD_SPREADS, seed=3)
+    s = ArchSampler(oppenheim_arch(), DEFAULT_SPREADS, seed=3)
     whole = s.uniforms(0, 2 * BLOCK + 7)
     for start, count in ((0, 1), (BLOCK - 2, 5), (BLOCK, 3), (2 * BLOCK + 3, 4), (17, 900)):
         assert np.array_equal(s.uniforms(start, count), whole[start:start + count])
@@ -47,7 +47,7 @@ def test_spreads_and_sampler_refuse_bad_fields():
         Spreads.from_dict({"spread_rise": 0.1})
     with pytest.raises(ArchInputError, match="^seed"):
         ArchSampler(oppenheim_arch(), seed=-1)
-    assert Spreads.from_dict(METHOD_SPREADS.to_dict()) == METHOD_SPREADS
+    assert Spreads.from_dict(DEFAULT_SPREADS.to_dict()) == DEFAULT_SPREADS
 
 
 def test_invalid_draw_is_a_geometry_outcome():

@@ -185,7 +185,7 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=Non
     spans [rad], radii [m], thicknesses [m]: arrays (B, n) with the same n.  impact: an
     :class:`~archrock.impact.ImpactSpec` or what ``ImpactSpec.parse`` reads (with ``cv``), as
     for :func:`archrock.response.prepare`: a fixed c_v (applied energy-consistently, c = cv
-    sqrt(M_old(0)/M_new(0)), or to the rates with ``literal``, METHOD section 4), "paper" or
+    sqrt(M_old(0)/M_new(0)), or to the rates with ``literal``, docs/method.md, Impact), "paper" or
     "momentum" (per geometry, through :func:`archrock.impact.impact_law`; a geometry on which
     "paper" creates energy gets an error instead of a law), or "least-loss" (each arch's chain of
     mechanisms from ``archrock.response.prepare(arch, "least-loss")``, arch by arch in Python:

@@ -7,7 +7,7 @@ M_l at |a| > k_l; +1: it opens M_r at |a| > k_r), find the first collapse amplit
 Oppenheim, rectangular, half-sine and one-sine pulses the main lobe is the first push; the Ricker
 pulse's first lobe has the opposite sign (-0.446 a) and precedes its main lobe a.
 
-Collapse is **not** monotonic in the amplitude (a stronger pulse can be survived, METHOD section 3),
+Collapse is **not** monotonic in the amplitude (a stronger pulse can be survived, docs/curves.md),
 so :func:`collapse_amplitude` does not bisect blindly:
 
 1. scan |a| on a geometric grid of ``n_scan`` points from just above the activation threshold
@@ -200,7 +200,7 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
 
     model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``/
     ``literal_cv`` as :func:`~archrock.response.prepare` reads them; default the paper's model
-    on that arch; ``literal_cv=True`` applies a fixed c_v to the rates, METHOD section 4); a prepared
+    on that arch; ``literal_cv=True`` applies a fixed c_v to the rates, docs/method.md, Impact); a prepared
     model carries its own impact law, so ``impact``/``cv``/``literal_cv`` are refused with it.
     sign: -1 or +1, the sign of the amplitude a (of the main lobe; for the Ricker pulse not the
     first push, module doc).
@@ -420,12 +420,12 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     Arch i is sample i of :class:`~archrock.sampling.ArchSampler` (nominal, spreads, seed): the
     same arch as sample i of ``ensemble`` and ``fragility``; results do not depend on ``workers``.
     spreads: a :class:`~archrock.sampling.Spreads` or a dict with keys spread_span,
-    spread_thickness, spread_radius (default the METHOD spreads).  impact: an ImpactSpec or what
+    spread_thickness, spread_radius (default the default spreads).  impact: an ImpactSpec or what
     ``ImpactSpec.parse`` reads; None = the paper's practice (the "paper" model on the nominal
     arch, its c_v fixed on every random arch).  An arch with no answer under the model
     (:data:`archrock.errors.UNUSABLE_ARCH`: it cannot stand, voussoirs do not overlap, ...) is left
     out and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv: apply a
-    fixed c_v to the rates literally instead of energy-consistently (METHOD section 4).
+    fixed c_v to the rates literally instead of energy-consistently (docs/method.md, Impact).
     workers > 1 runs arches in a process pool (workers die with this process).  The work is
     estimated first and refused beyond the bound of :mod:`archrock.work`; ``progress`` shows
     the arches done on stderr when the estimate exceeds a few seconds.

@@ -1,4 +1,4 @@
-"""Statistics of fragility: lognormal fragility functions fitted to collapse data (METHOD section 6).
+"""Statistics of fragility: lognormal fragility functions fitted to collapse data (docs/method.md, Ensembles).
 
 Model (Baker 2015, Earthquake Spectra 31): P(collapse | IM = x) = Phi(ln(x / theta) / beta), with
 ``theta`` the median collapse capacity (same units as the intensity measure: a scale factor, PGA

@@ -1,6 +1,6 @@
 """Arch geometry: circular voussoir arches, nominal or irregular.
 
-Conventions (METHOD section 1): centre O at the origin, x to the right, y up, SI units
+Conventions (docs/method.md, Geometry): centre O at the origin, x to the right, y up, SI units
 (m, kg per metre of depth).  Voussoirs are numbered 0..n-1 from the left springing, joints
 0..n; joint j lies on the radial line at polar angle ``psi_j`` and voussoir i lies between
 joints i and i+1.  Voussoir i is an annular sector of span ``alpha_i`` (rad), mean radius
@@ -310,7 +310,7 @@ def perturb_voussoirs(spans0, thick0, radii0, u, spread_span: float, spread_thic
     """Map uniform draws ``u`` (shape (..., 3, n), on [-1, 1]) to (spans, thicknesses, radii),
     each (..., n), around per-voussoir values spans0 [rad], thick0 [m], radii0 [m] (shape (n,)).
 
-    span_i = s0_i (1 + s_a U), t_i = t0_i (1 + s_t U), R_i = R0_i + s_R t0_i U (METHOD section 1),
+    span_i = s0_i (1 + s_a U), t_i = t0_i (1 + s_t U), R_i = R0_i + s_R t0_i U (docs/method.md, Geometry),
     then the spans rescaled to add up to the nominal embrace.  One draw or a batch of draws.
     """
     spans0, thick0, radii0 = (np.asarray(a, float) for a in (spans0, thick0, radii0))

@@ -8,7 +8,7 @@ meaningful for a single record, or records normalised beforehand).
   first collapse (refined by bisection between the last survival below it and it; when the lowest
   grid scale already collapses, between :func:`safe_scale`, where the record cannot activate the
   arch, and it) and report the survivals above it (:func:`archrock.fragility.first_collapse`): rocking collapse is chaotic in the
-  scale factor (METHOD section 6).  Fragility: :func:`~archrock.fragility.fit_ida_moments` on the
+  scale factor (docs/method.md, Ensembles).  Fragility: :func:`~archrock.fragility.fit_ida_moments` on the
   first-collapse intensities; when some (record, arch) pairs never collapse up to the top of the
   grid, they enter as right-censored at their highest analysed IM (``censored="mle"``).
 * :func:`msa` -- at each IM level, run every record (scaled to that level) on every arch, count
@@ -117,7 +117,7 @@ def random_models(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads |
 
     impact: an ImpactSpec or what ``ImpactSpec.parse`` reads; None = the paper's practice (the
     "paper" model's c_v of the nominal arch, fixed on every arch); literal_cv: apply a fixed c_v
-    to the rates literally (METHOD section 4).  Arches with no answer under the model (it cannot
+    to the rates literally (docs/method.md, Impact).  Arches with no answer under the model (it cannot
     stand, the draw is not an arch, ...) are left out and listed in ``failed`` of the result;
     ArchInputError only when no arch is usable.
     """

@@ -66,7 +66,7 @@ class Hinge:
         return {"joint": int(self.joint), "edge": self.edge}
 
 
-#: Hinge labels from the leading side of a mechanism (METHOD section 3).
+#: Hinge labels from the leading side of a mechanism (docs/method.md, Four-link equation).
 HINGE_LABELS = ("A", "B", "C", "D")
 
 
@@ -93,7 +93,7 @@ class Mechanism:
         return "-".join(f"{h.joint}{h.edge[0]}" for h in sorted(self.hinges, key=lambda h: h.joint))
 
     def labelled(self) -> list[tuple[str, Hinge]]:
-        """(label, hinge) pairs: A..D from the mechanism's leading side (METHOD section 3): for
+        """(label, hinge) pairs: A..D from the mechanism's leading side (docs/method.md, Four-link equation): for
         M_l, A is the leftmost hinge; for M_r, A is the rightmost."""
         hinges = list(self.hinges)
         if self.direction == "r":

@@ -3,7 +3,7 @@
 Once activated, the arch moves as a single-degree-of-freedom four-bar linkage: the ground,
 link 1 (voussoirs between hinges A and B, pivoting on ground hinge A), link 2 (between B and C)
 and link 3 (between C and D, pivoting on ground hinge D).  A is the hinge on the mechanism's
-leading side: for M_l the leftmost hinge, for M_r the rightmost one (METHOD section 3).
+leading side: for M_l the leftmost hinge, for M_r the rightmost one (docs/method.md, Four-link equation).
 
 The Lagrangian coordinate phi is the rotation of link AB, signed so that phi >= 0 while the
 mechanism is open.  Lagrange's equation reads

@@ -8,7 +8,7 @@ many ground motions); :func:`respond` integrates one ground motion with either
   by numba when installed), or
 * ``integrator="reference"``: scipy's adaptive DOP853 with event location at tight tolerances.
 
-Both follow the same rules (METHOD sections 3-4): the arch starts from rest when
+Both follow the same rules (docs/method.md, Response and Impact): the arch starts from rest when
 xg''/g <= -k_l (M_l) or xg''/g >= k_r (M_r); when phi returns to 0 the joints close (an impact)
 and the opposite mechanism opens with the rate given by the impact law; a post-impact rate below
 ``v_rest`` means the arch is at rest again (no endless chattering).  The collapse time is the

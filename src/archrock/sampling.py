@@ -2,7 +2,7 @@
 
 Random arch i of a study is a function of (nominal arch, spreads, seed, i) alone, whichever
 command draws it (``ensemble``, ``curves``, ``fragility``), however the work is cut into batches
-and however many workers run it.  The draws follow METHOD section 1 (see
+and however many workers run it.  The draws follow docs/method.md, Geometry (see
 :func:`archrock.geometry.perturb_voussoirs`): for each voussoir, independent U on [-1, 1] for the
 span, the thickness and the radius.
 
@@ -23,7 +23,7 @@ from . import published
 from .errors import ArchInputError, InvalidSampleError
 from .geometry import Arch, perturb_voussoirs
 
-__all__ = ["Spreads", "ArchSampler", "BLOCK", "METHOD_SPREADS"]
+__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS"]
 
 #: Samples per random stream.
 BLOCK = 500
@@ -72,8 +72,8 @@ class Spreads:
         return cls(**{keys[k]: v for k, v in data.items()})
 
 
-#: The spreads that give multipliers spread like the paper's RA-1 and RA-2 (METHOD section 1).
-METHOD_SPREADS = Spreads.from_dict(published.METHOD_SPREADS)
+#: The spreads that give multipliers spread like the paper's RA-1 and RA-2 (docs/method.md, Geometry).
+DEFAULT_SPREADS = Spreads.from_dict(published.DEFAULT_SPREADS)
 
 
 def _seed(seed) -> int:
@@ -87,7 +87,7 @@ class ArchSampler:
     """Random arches around ``nominal`` with ``spreads``, reproducible from ``seed``."""
 
     nominal: Arch
-    spreads: Spreads = METHOD_SPREADS
+    spreads: Spreads = DEFAULT_SPREADS
     seed: int = 0
 
     def __post_init__(self):

@@ -90,7 +90,7 @@ def arch_from_args(args: argparse.Namespace):
 
 # ---------------------------------------------------------------------------- random arches
 def add_spread_options(p: argparse.ArgumentParser) -> argparse.ArgumentParser:
-    """Add --spread-span, --spread-thickness, --spread-radius (METHOD section 1 widths)."""
+    """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths)."""
     p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
                    help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
     p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",

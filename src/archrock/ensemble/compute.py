@@ -1,6 +1,6 @@
 """One batch of an ensemble: draw its random arches, analyse them and tabulate the results.
 
-Each sample is an irregular arch (METHOD section 1: span_i = (alpha/n)(1 + s_a U),
+Each sample is an irregular arch (docs/method.md, Geometry: span_i = (alpha/n)(1 + s_a U),
 t_i = t (1 + s_t U), R_i = R + s_R t U, spans rescaled to the embrace) whose collapse multipliers
 k_l, k_r and mechanisms are found by limit analysis and, under a ground motion, whose response is
 integrated to rest or collapse (:mod:`archrock.batch`).

@@ -20,7 +20,7 @@ from ..geometry import Arch
 from ..groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
 from ..impact import PAPER_PRACTICE, ImpactSpec
 from ..response import default_steps
-from ..sampling import METHOD_SPREADS, ArchSampler, Spreads
+from ..sampling import DEFAULT_SPREADS, ArchSampler, Spreads
 
 __all__ = ["EnsembleConfig"]
 
@@ -54,7 +54,7 @@ class EnsembleConfig:
     nominal: dict
     samples: int = 1000
     seed: int = 0
-    spreads: Spreads | dict = METHOD_SPREADS
+    spreads: Spreads | dict = DEFAULT_SPREADS
     batch_size: int = 500
     motion: PulseSpec | RecordSpec | dict | None = None
     impact: ImpactSpec | dict | str | None = PAPER_PRACTICE

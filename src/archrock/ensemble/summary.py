@@ -47,7 +47,7 @@ P_FAILURE_RULE = ("cannot stand counted as failed: (cannot stand + collapsed) / 
                   "model not applicable) left out")
 INTEGRATED = ("rest", "collapsed", "moving")
 
-#: The paper's random arches (plausibility figures, METHOD section 2).
+#: The paper's random arches (plausibility figures, docs/verification.md).
 PAPER_RANDOM_ARCHES = published.RANDOM_ARCHES
 
 

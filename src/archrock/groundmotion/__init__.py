@@ -1,4 +1,4 @@
-"""Ground motions: horizontal ground acceleration histories xg''(t) (METHOD section 3).
+"""Ground motions: horizontal ground acceleration histories xg''(t) (docs/method.md, Response).
 
 Conventions: SI units (s, m/s^2); ``accel`` is positive toward +x (to the right), the same x as
 the arch geometry.  Amplitudes passed to the pulse constructors are in g (multiples of ``G``) and

@@ -1,4 +1,4 @@
-"""The ground-motion model: a horizontal ground acceleration history xg''(t) (METHOD section 3).
+"""The ground-motion model: a horizontal ground acceleration history xg''(t) (docs/method.md, Response).
 
 Conventions: SI units (s, m/s^2); ``accel`` is positive toward +x (to the right), the same x as
 the arch geometry.  A time may appear twice in a row to encode a step; the history is

@@ -1,7 +1,7 @@
 """Impact of the arch at phi = 0: the old mechanism closes, the opposite one opens.
 
 Every model reduces to a rate ratio per direction, c = phi'+ / |phi'-|, each rate in its own
-mechanism's coordinate (METHOD section 4):
+mechanism's coordinate (docs/method.md, Impact):
 
 * ``"paper"`` (De Lorenzis, DeJong, Ochsendorf 2007, as used by the paper): five momentum
   equations written on the old links, impulses at the closing points A*, B*, C*, D* (the
