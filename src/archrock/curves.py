@@ -195,7 +195,7 @@ def bisect_boundary(test, lo, hi, lo_val, tol, relative=False):
 def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: int = -1, *,
                        a_max: float = 10.0, n_scan: int = 150, tol: float = 1e-3,
                        impact=None, cv: float | None = None, literal_cv: bool = False,
-                       dt: float = 2e-3) -> CollapseAmplitude:
+                       dt: float | None = None) -> CollapseAmplitude:
     """First collapse amplitude [g] of a ``kind`` pulse of duration ``duration`` [s] (module doc).
 
     model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``/
@@ -205,7 +205,8 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
     sign: -1 or +1, the sign of the amplitude a (of the main lobe; for the Ricker pulse not the
     first push, module doc).
     a_max [g]: top of the scan; n_scan: grid points (geometric spacing); tol [g]: bisection
-    tolerance; dt [s]: RK4 step of the fast integrator.
+    tolerance; dt [s]: RK4 step of the fast integrator (default: from the arch's size,
+    :func:`archrock.response.default_steps`).
     """
     model = _model(model, impact, cv, literal_cv)
     kind = pulse_kind(kind)
@@ -329,7 +330,7 @@ def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: 
 
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
-                   literal_cv: bool = False, dt: float = 2e-3) -> CollapseCurve:
+                   literal_cv: bool = False, dt: float | None = None) -> CollapseCurve:
     """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
     of :mod:`archrock.work`."""
     model = _model(model, impact, cv, literal_cv)
@@ -413,7 +414,7 @@ def _one_sample(job):
 def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
-                   tol: float = 1e-3, dt: float = 2e-3, workers: int = 1,
+                   tol: float = 1e-3, dt: float | None = None, workers: int = 1,
                    progress: bool = False) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 

@@ -276,7 +276,8 @@ def safe_scale(model: DynamicModel, record: GroundMotion) -> float:
 
 
 def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "pga", tol: float = 1e-3,
-              arch_index: int = 0, dt: float = 2e-3, t_free: float = 60.0) -> IDACurve:
+              arch_index: int = 0, dt: float | None = None,
+              t_free: float | None = None) -> IDACurve:
     """One IDA curve (see :class:`IDACurve`); tol: relative bisection tolerance on the scale."""
     s = _grid("scales", scales)
     im = _im(im)
@@ -311,7 +312,7 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
 
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
-        seed=0, confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0,
+        seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
         progress: bool = False) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
@@ -387,7 +388,7 @@ class StripeResult:
 
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
-        confidence: float = 0.9, dt: float = 2e-3, t_free: float = 60.0,
+        confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
         progress: bool = False) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
