@@ -597,6 +597,7 @@ def test_pool_workers_die_with_a_killed_parent():
             proc.kill()
 
 
+@pytest.mark.slow  # a real SIGINT into a running ensemble: timing-dependent on a loaded machine
 def test_ctrl_c_in_ensemble_says_what_was_kept_and_exits_130(tmp_path):
     import signal
     import time
@@ -614,6 +615,25 @@ def test_ctrl_c_in_ensemble_says_what_was_kept_and_exits_130(tmp_path):
     kept = len(list((out / "batches").glob("*.parquet")))
     assert proc.returncode == 130 and "Traceback" not in err
     assert f"archrock: interrupted; {kept} of 100 batches kept in {out}; the same command resumes" in err
+
+
+def test_interrupted_ensemble_with_out_counts_the_kept_batches(capsys, monkeypatch, tmp_path):
+    import archrock.ensemble as ens
+
+    out = tmp_path / "run"
+
+    def interrupted(config, out_dir=None, **kw):
+        (out / "batches").mkdir(parents=True)
+        for b in (0, 1):  # two batches finished before the Ctrl-C
+            (out / "batches" / f"batch-{b:05d}.parquet").write_bytes(b"")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(ens, "run_ensemble", interrupted)
+    code, _, err = run(capsys, "ensemble", "--samples", "12", "--batch-size", "4", "--out",
+                       str(out), "--no-progress")
+    assert code == 130
+    assert err == (f"archrock: interrupted; 2 of 3 batches kept in {out}; the same command "
+                   f"resumes from them\n")
 
 
 def test_interrupted_ensemble_without_out_says_nothing_was_kept(capsys, monkeypatch):

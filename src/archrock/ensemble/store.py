@@ -89,6 +89,10 @@ def write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
+    # pyarrow's own SIGINT handling can swallow a Ctrl-C that arrives while it writes (the run
+    # then goes on to the end); Python's handler must see it so the ensemble stops and says
+    # which batches it kept
+    pa.enable_signal_handlers(False)
     path = batch_path(out, b)
     tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
     table = pa.Table.from_pandas(df, preserve_index=False)
