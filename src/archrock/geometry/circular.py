@@ -1,4 +1,5 @@
-"""Arch geometry: circular voussoir arches, nominal or irregular.
+"""Circular voussoir arches, nominal or irregular: the circular family of :class:`VoussoirArch`,
+with exact annular-sector formulas.
 
 Conventions (docs/method.md, Geometry): centre O at the origin, x to the right, y up, SI units
 (m, kg per metre of depth).  Voussoirs are numbered 0..n-1 from the left springing, joints
@@ -15,8 +16,8 @@ from functools import cached_property
 
 import numpy as np
 
-from .errors import ArchInputError
-from .units import G
+from ..errors import ArchInputError
+from .base import DEFAULT_DENSITY, Load, VoussoirArch, _check_scalar, _finite_array, _loads
 
 __all__ = [
     "Arch",
@@ -24,39 +25,13 @@ __all__ = [
     "oppenheim_arch",
     "random_arch",
     "OPPENHEIM",
+    "sector_properties",
+    "perturb_voussoirs",
+    "random_spans_thicknesses_radii",
 ]
 
 #: Nominal parameters of Oppenheim's arch (1992): R [m], embrace [deg], t [m], n.
 OPPENHEIM = {"radius": 10.0, "embrace_deg": 157.5, "thickness": 1.5, "voussoirs": 7}
-
-DEFAULT_DENSITY = 2000.0  # kg/m^3; cancels from multipliers and from the equation of motion
-
-
-def _finite_array(name: str, values, *, ndim: int = 1) -> np.ndarray:
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise ArchInputError(f"{name}: expected numbers, got {values!r}") from None
-    if arr.ndim != ndim:
-        raise ArchInputError(f"{name}: expected a {ndim}-d list of numbers, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ArchInputError(f"{name}: every value must be a finite number (got NaN or infinity)")
-    return arr
-
-
-def _check_scalar(name: str, value, lo: float | None = None, hi: float | None = None,
-                  lo_open: bool = True, hi_open: bool = True, allowed: str = "") -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ArchInputError(f"{name}: expected a number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ArchInputError(f"{name}: must be a finite number, got {value!r}")
-    bad = (lo is not None and (v <= lo if lo_open else v < lo)) or (
-        hi is not None and (v >= hi if hi_open else v > hi))
-    if bad:
-        raise ArchInputError(f"{name}: {v:g} is out of range; allowed {allowed}")
-    return v
 
 
 def sector_properties(spans, radii, thicknesses) -> dict:
@@ -86,11 +61,12 @@ def sector_properties(spans, radii, thicknesses) -> dict:
 
 
 @dataclass(frozen=True, eq=False)
-class Arch:
+class Arch(VoussoirArch):
     """A circular voussoir arch, described voussoir by voussoir from the left springing.
 
     spans: angular span of each voussoir [rad]; radii: mean radius [m]; thicknesses [m];
-    density [kg/m^3] (mass per metre of depth = density * area).
+    density [kg/m^3] (mass per metre of depth = density * area); loads: :class:`Load` objects
+    (or their dicts), masses attached to voussoirs.
     """
 
     spans: np.ndarray
@@ -98,6 +74,7 @@ class Arch:
     thicknesses: np.ndarray
     density: float = DEFAULT_DENSITY
     name: str = field(default="arch", compare=False)
+    loads: tuple = ()
 
     def __post_init__(self):
         spans = _finite_array("spans", self.spans)
@@ -130,6 +107,7 @@ class Arch:
         object.__setattr__(self, "radii", radii)
         object.__setattr__(self, "thicknesses", thick)
         object.__setattr__(self, "density", density)
+        object.__setattr__(self, "loads", _loads(self.loads, n))
         inner, outer = self.contact_inner, self.contact_outer
         if np.any(outer <= inner):
             j = int(np.argmax(outer <= inner))
@@ -178,57 +156,68 @@ class Arch:
         """Radius of the extrados end of each joint's contact surface [m], joints 0..n."""
         return self._props["r_out"]
 
-    def joint_point(self, joint: int, edge: str) -> np.ndarray:
-        """Coordinates [m] of the intrados or extrados end of a joint's contact surface."""
-        if edge not in ("intrados", "extrados"):
-            raise ArchInputError(f"edge: {edge!r}; allowed 'intrados' or 'extrados'")
-        if not 0 <= joint <= self.n:
-            raise ArchInputError(f"joint: {joint}; allowed 0..{self.n}")
-        r = self.contact_inner[joint] if edge == "intrados" else self.contact_outer[joint]
-        psi = self.joint_angles[joint]
-        return np.array([r * math.cos(psi), r * math.sin(psi)])
+    @cached_property
+    def joint_points(self) -> np.ndarray:
+        """(n+1, 2, 2): intrados and extrados ends of each joint's contact surface [m]."""
+        r = np.stack([self.contact_inner, self.contact_outer], axis=-1)
+        psi = self.joint_angles
+        pts = np.stack([r * np.cos(psi)[:, None], r * np.sin(psi)[:, None]], axis=-1)
+        pts.setflags(write=False)
+        return pts
 
-    # ------------------------------------------------------------------ mass properties
+    # ------------------------------------------------------------------ masonry regions
     @property
     def areas(self) -> np.ndarray:
         """Area of each voussoir [m^2]."""
         return self._props["area"]
 
-    @cached_property
-    def masses(self) -> np.ndarray:
-        """Mass of each voussoir per metre of depth [kg/m]."""
-        return self.density * self.areas
-
     @property
-    def centroids(self) -> np.ndarray:
-        """Centroid of each voussoir, shape (n, 2) [m] (exact annular sector)."""
+    def area_centroids(self) -> np.ndarray:
+        """Centroid of each voussoir's annular sector, shape (n, 2) [m] (exact)."""
         return self._props["centroid"]
 
-    @cached_property
-    def inertias(self) -> np.ndarray:
-        """Polar moment of inertia of each voussoir about its centroid [kg m^2 / m]."""
-        return self.density * self._props["polar"]
+    @property
+    def area_polar(self) -> np.ndarray:
+        """Polar moment of area of each voussoir about its centroid [m^4] (exact)."""
+        return self._props["polar"]
 
     @property
-    def weights(self) -> np.ndarray:
-        """Weight of each voussoir per metre of depth [N/m] (g = units.G)."""
-        return self.masses * G
+    def size(self) -> float:
+        """The mean radius [m]."""
+        return float(np.mean(self.radii))
+
+    def outline(self, i: int, points_per_rad: float = 60.0) -> np.ndarray:
+        """Boundary polygon of voussoir i: intrados arc from its left joint to its right one,
+        then the extrados arc back [m]."""
+        psi = self.joint_angles
+        m = max(4, int(math.ceil(points_per_rad * self.spans[i])))
+        ang = np.linspace(psi[i], psi[i + 1], m)
+        ri, ro = self.intrados_radii[i], self.extrados_radii[i]
+        inner = np.column_stack([ri * np.cos(ang), ri * np.sin(ang)])
+        outer = np.column_stack([ro * np.cos(ang[::-1]), ro * np.sin(ang[::-1])])
+        return np.vstack([inner, outer])
 
     # ------------------------------------------------------------------ transformations
     def mirrored(self) -> "Arch":
         """The mirror image about the vertical axis through O (voussoir order reversed)."""
+        n = self.n
+        loads = tuple(Load(n - 1 - ld.voussoir, ld.mass, ld.mirrored()) for ld in self.loads)
         return Arch(self.spans[::-1].copy(), self.radii[::-1].copy(), self.thicknesses[::-1].copy(),
-                    self.density, name=f"{self.name} (mirrored)")
+                    self.density, name=f"{self.name} (mirrored)", loads=loads)
 
     def scaled(self, factor: float) -> "Arch":
-        """The same proportions, every length multiplied by ``factor``."""
+        """The same proportions, every length multiplied by ``factor`` (loads: masses by
+        factor^2, like the voussoirs')."""
         f = _check_scalar("factor", factor, 0.0, None, allowed="> 0")
-        return Arch(self.spans.copy(), self.radii * f, self.thicknesses * f, self.density, self.name)
+        loads = tuple(Load(ld.voussoir, ld.mass * f * f, (ld.at[0] * f, ld.at[1] * f))
+                      for ld in self.loads)
+        return Arch(self.spans.copy(), self.radii * f, self.thicknesses * f, self.density,
+                    self.name, loads)
 
     def with_thickness_factor(self, factor: float) -> "Arch":
-        """Every voussoir thickness multiplied by ``factor`` (radii and spans unchanged)."""
+        """Every voussoir thickness multiplied by ``factor`` (radii, spans and loads unchanged)."""
         return Arch(self.spans.copy(), self.radii.copy(), self.thicknesses * factor, self.density,
-                    self.name)
+                    self.name, self.loads)
 
     def is_symmetric(self, tol: float = 1e-12) -> bool:
         """Whether the arch is its own mirror image: spans to ``tol`` rad, radii and thicknesses
@@ -237,7 +226,8 @@ class Arch:
         size = float(np.mean(self.radii))
         return bool(np.allclose(self.spans, m.spans, rtol=0.0, atol=tol)
                     and np.allclose(self.radii, m.radii, rtol=0.0, atol=tol * size)
-                    and np.allclose(self.thicknesses, m.thicknesses, rtol=0.0, atol=tol * size))
+                    and np.allclose(self.thicknesses, m.thicknesses, rtol=0.0, atol=tol * size)
+                    and (not self.loads or super().is_symmetric()))
 
     # ------------------------------------------------------------------ serialisation
     def to_dict(self) -> dict:
@@ -248,6 +238,7 @@ class Arch:
                 for a, r, t in zip(self.spans, self.radii, self.thicknesses)
             ],
             "density": self.density,
+            **({"loads": [ld.to_dict() for ld in self.loads]} if self.loads else {}),
         }
 
     @classmethod
@@ -275,11 +266,16 @@ class Arch:
         density = data.get("density", DEFAULT_DENSITY)
         if isinstance(density, bool) or not isinstance(density, (int, float)):
             raise ArchInputError(f"density: expected a number, got {density!r}")
-        return cls(np.radians(spans), np.array(radii), np.array(thick), float(density), name=name)
+        loads = data.get("loads", ())
+        if not isinstance(loads, (list, tuple)):
+            raise ArchInputError("loads: expected a list of {voussoir, mass, at} objects")
+        return cls(np.radians(spans), np.array(radii), np.array(thick), float(density), name=name,
+                   loads=tuple(Load.from_dict(ld, i) for i, ld in enumerate(loads)))
 
     def __repr__(self) -> str:
         return (f"Arch(name={self.name!r}, n={self.n}, embrace={math.degrees(self.embrace):.4g} deg, "
-                f"R={np.round(self.radii, 4).tolist()}, t={np.round(self.thicknesses, 4).tolist()})")
+                f"R={np.round(self.radii, 4).tolist()}, t={np.round(self.thicknesses, 4).tolist()}"
+                + (f", loads={len(self.loads)}" if self.loads else "") + ")")
 
 
 def nominal_arch(radius: float = 10.0, embrace_deg: float = 157.5, thickness: float = 1.5,

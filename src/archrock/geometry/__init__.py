@@ -1,0 +1,34 @@
+"""Arch geometry: a chain of rigid voussoirs between two abutments.
+
+* :mod:`~archrock.geometry.base` -- :class:`VoussoirArch`, what every arch provides downstream
+  (joint contact segments, mass properties with loads, outlines), and :class:`Load`;
+* :mod:`~archrock.geometry.circular` -- :class:`Arch`, circular voussoir arches (exact annular
+  sectors), nominal or irregular;
+* :mod:`~archrock.geometry.polygon` -- :class:`PolygonArch`, voussoirs of any shape as polygons.
+
+:func:`arch_from_dict` reads either geometry format.
+"""
+
+from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties
+from .circular import (OPPENHEIM, Arch, nominal_arch, oppenheim_arch, perturb_voussoirs,
+                       random_arch, random_spans_thicknesses_radii, sector_properties)
+from .polygon import FACE_TOLERANCE, PolygonArch, as_polygon
+
+__all__ = ["VoussoirArch", "Arch", "PolygonArch", "Load", "nominal_arch", "oppenheim_arch",
+           "random_arch", "perturb_voussoirs", "random_spans_thicknesses_radii",
+           "sector_properties", "polygon_properties", "as_polygon", "arch_from_dict", "OPPENHEIM",
+           "DEFAULT_DENSITY", "FACE_TOLERANCE"]
+
+
+def arch_from_dict(data, name: str = "arch") -> VoussoirArch:
+    """An arch from either JSON geometry format: voussoirs with span_deg/radius/thickness (a
+    circular :class:`Arch`) or with intrados/extrados polylines (a :class:`PolygonArch`)."""
+    from ..errors import ArchInputError
+
+    vs = data.get("voussoirs") if isinstance(data, dict) else None
+    if isinstance(vs, list) and vs and all(isinstance(v, dict) and "intrados" in v for v in vs):
+        return PolygonArch.from_dict(data, name=name)
+    if isinstance(vs, list) and vs and any(isinstance(v, dict) and "intrados" in v for v in vs):
+        raise ArchInputError("voussoirs: mixes polyline voussoirs (intrados/extrados) with "
+                             "circular ones (span_deg/radius/thickness); allowed one form")
+    return Arch.from_dict(data, name=name)

@@ -1,0 +1,246 @@
+"""What every arch is, whatever its shape: a chain of n >= 3 rigid voussoirs between two abutments.
+
+Voussoir i (0..n-1, from the left springing) is a plane region; joint j (0..n) is the contact
+segment between voussoirs j-1 and j (a springing joint is its voussoir's own face), with an
+intrados end and an extrados end, where hinges form.  Downstream (limit analysis, the four-link
+model, impacts, plots) uses only this interface (:class:`VoussoirArch`):
+
+* ``joint_points`` (n+1, 2, 2): [joint, edge (0 intrados, 1 extrados), (x, y)] [m];
+* ``areas`` [m^2], ``area_centroids`` (n, 2) [m], ``area_polar`` [m^4] of the masonry;
+* ``masses`` [kg/m], ``centroids`` (n, 2) [m], ``inertias`` [kg m^2/m]: each voussoir with its
+  loads (:class:`Load`, masses rigidly attached to it), as one rigid body;
+* ``outline(i)``: the boundary polygon of voussoir i (for figures);
+* ``size`` [m]: a length that scales with the arch (nondimensional computations divide by it).
+
+Conventions: x to the right, y up, SI units, masses per metre of arch depth.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..errors import ArchInputError
+from ..units import G
+
+__all__ = ["VoussoirArch", "Load", "polygon_properties", "DEFAULT_DENSITY"]
+
+DEFAULT_DENSITY = 2000.0  # kg/m^3; cancels from multipliers and from the equation of motion
+EDGE_NAMES = ("intrados", "extrados")
+
+
+def _finite_array(name: str, values, *, ndim: int = 1) -> np.ndarray:
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ArchInputError(f"{name}: expected numbers, got {values!r}") from None
+    if arr.ndim != ndim:
+        raise ArchInputError(f"{name}: expected a {ndim}-d list of numbers, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ArchInputError(f"{name}: every value must be a finite number (got NaN or infinity)")
+    return arr
+
+
+def _check_scalar(name: str, value, lo: float | None = None, hi: float | None = None,
+                  lo_open: bool = True, hi_open: bool = True, allowed: str = "") -> float:
+    if isinstance(value, bool):
+        raise ArchInputError(f"{name}: expected a number, got {value!r}")
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ArchInputError(f"{name}: expected a number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise ArchInputError(f"{name}: must be a finite number, got {value!r}")
+    bad = (lo is not None and (v <= lo if lo_open else v < lo)) or (
+        hi is not None and (v >= hi if hi_open else v > hi))
+    if bad:
+        raise ArchInputError(f"{name}: {v:g} is out of range; allowed {allowed}")
+    return v
+
+
+def polygon_properties(points) -> tuple[float, np.ndarray, float]:
+    """(area [m^2], centroid (2,) [m], polar moment of area about the centroid [m^4]) of a simple
+    polygon given by its vertices in order (either orientation; not closed)."""
+    p = np.asarray(points, float)
+    x, y = p[:, 0], p[:, 1]
+    x1, y1 = np.roll(x, -1), np.roll(y, -1)
+    # shift to the first vertex: the same formulas, far better conditioned for distant polygons
+    x0, y0 = x[0], y[0]
+    x, y, x1, y1 = x - x0, y - y0, x1 - x0, y1 - y0
+    cross = x * y1 - x1 * y
+    a = 0.5 * cross.sum()
+    if a == 0.0:
+        return 0.0, np.array([x0, y0]), 0.0
+    cx = ((x + x1) * cross).sum() / (6.0 * a)
+    cy = ((y + y1) * cross).sum() / (6.0 * a)
+    j0 = (cross * (x * x + x * x1 + x1 * x1 + y * y + y * y1 + y1 * y1)).sum() / 12.0
+    area = abs(a)
+    polar = abs(j0) - area * (cx * cx + cy * cy)
+    return area, np.array([cx + x0, cy + y0]), polar
+
+
+@dataclass(frozen=True)
+class Load:
+    """A mass [kg per metre of depth] rigidly attached to voussoir ``voussoir`` at point ``at``
+    (x, y) [m]: its weight enters the limit analysis, its horizontal inertia the multiplier, its
+    mass and position the equation of motion and the impacts (a point mass: no own inertia)."""
+
+    voussoir: int
+    mass: float
+    at: tuple[float, float]
+
+    def __post_init__(self):
+        if isinstance(self.voussoir, bool) or not isinstance(self.voussoir, (int, np.integer)):
+            raise ArchInputError(f"load voussoir: {self.voussoir!r}; allowed an integer index")
+        object.__setattr__(self, "voussoir", int(self.voussoir))
+        mass = _check_scalar("load mass", self.mass, 0.0, None, lo_open=False,
+                             allowed=">= 0 kg per metre of depth")
+        object.__setattr__(self, "mass", mass)
+        at = _finite_array("load at", self.at)
+        if at.shape != (2,):
+            raise ArchInputError(f"load at: {self.at!r}; allowed a point [x, y] in metres")
+        object.__setattr__(self, "at", (float(at[0]), float(at[1])))
+
+    def to_dict(self) -> dict:
+        return {"voussoir": self.voussoir, "mass": self.mass, "at": list(self.at)}
+
+    @classmethod
+    def from_dict(cls, data, index: int = 0) -> "Load":
+        if not isinstance(data, dict) or set(data) - {"voussoir", "mass", "at"} or not {
+                "voussoir", "mass", "at"} <= set(data):
+            raise ArchInputError(f"loads[{index}]: expected an object with voussoir, mass, at")
+        return cls(data["voussoir"], data["mass"], tuple(data["at"]) if isinstance(
+            data["at"], (list, tuple)) else data["at"])
+
+    def mirrored(self) -> tuple[float, float]:
+        return (-self.at[0], self.at[1])
+
+
+def _loads(loads, n: int) -> tuple:
+    out = []
+    for i, ld in enumerate(loads or ()):
+        ld = ld if isinstance(ld, Load) else Load.from_dict(ld, i)
+        if not 0 <= ld.voussoir < n:
+            raise ArchInputError(f"loads[{i}].voussoir: {ld.voussoir}; allowed 0..{n - 1} "
+                                 f"(the arch has {n} voussoirs)")
+        out.append(ld)
+    return tuple(out)
+
+
+class VoussoirArch(ABC):
+    """The interface of every arch (module docstring).  Subclasses are frozen dataclasses with
+    ``density``, ``name`` and ``loads`` fields and provide the masonry's geometry."""
+
+    # ------------------------------------------------------------------ provided by the shape
+    @property
+    @abstractmethod
+    def n(self) -> int:
+        """Number of voussoirs."""
+
+    @property
+    @abstractmethod
+    def joint_points(self) -> np.ndarray:
+        """(n+1, 2, 2): intrados and extrados ends of each joint's contact segment [m]."""
+
+    @property
+    @abstractmethod
+    def areas(self) -> np.ndarray:
+        """Area of each voussoir [m^2]."""
+
+    @property
+    @abstractmethod
+    def area_centroids(self) -> np.ndarray:
+        """Centroid of each voussoir's region (n, 2) [m]."""
+
+    @property
+    @abstractmethod
+    def area_polar(self) -> np.ndarray:
+        """Polar moment of area of each voussoir about its centroid [m^4]."""
+
+    @abstractmethod
+    def outline(self, i: int) -> np.ndarray:
+        """Boundary polygon (k, 2) [m] of voussoir i (for figures)."""
+
+    @property
+    @abstractmethod
+    def size(self) -> float:
+        """A length [m] proportional to the arch (the mean radius of a circular arch)."""
+
+    @abstractmethod
+    def mirrored(self) -> "VoussoirArch":
+        """The mirror image about x = 0 (voussoir order reversed)."""
+
+    @abstractmethod
+    def scaled(self, factor: float) -> "VoussoirArch":
+        """Every length multiplied by ``factor`` (loads scaled by factor^2: same proportions)."""
+
+    @abstractmethod
+    def to_dict(self) -> dict:
+        """The JSON geometry format (docs/geometry.md)."""
+
+    # ------------------------------------------------------------------ derived, shared
+    def joint_point(self, joint: int, edge: str) -> np.ndarray:
+        """Coordinates [m] of the intrados or extrados end of a joint's contact segment."""
+        if edge not in EDGE_NAMES:
+            raise ArchInputError(f"edge: {edge!r}; allowed 'intrados' or 'extrados'")
+        if isinstance(joint, bool) or not 0 <= joint <= self.n:
+            raise ArchInputError(f"joint: {joint!r}; allowed 0..{self.n}")
+        return self.joint_points[int(joint), EDGE_NAMES.index(edge)].copy()
+
+    @cached_property
+    def _mass_properties(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        m = self.density * np.asarray(self.areas, float)
+        c = np.array(self.area_centroids, float)
+        inertia = self.density * np.asarray(self.area_polar, float)
+        if not self.loads:
+            out = (m.copy(), c, inertia.copy())
+        else:
+            mm, cc, ii = m.copy(), c.copy(), inertia.copy()
+            for i in range(self.n):
+                own = [ld for ld in self.loads if ld.voussoir == i and ld.mass > 0]
+                if not own:
+                    continue
+                ms = np.array([m[i]] + [ld.mass for ld in own])
+                ps = np.array([c[i]] + [ld.at for ld in own])
+                total = ms.sum()
+                g = (ms[:, None] * ps).sum(axis=0) / total
+                ii[i] = inertia[i] + float((ms * ((ps - g) ** 2).sum(axis=1)).sum())
+                mm[i], cc[i] = total, g
+            out = (mm, cc, ii)
+        for arr in out:
+            arr.setflags(write=False)
+        return out
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Mass of each voussoir with its loads [kg per metre of depth]."""
+        return self._mass_properties[0]
+
+    @property
+    def centroids(self) -> np.ndarray:
+        """Mass centre of each voussoir with its loads (n, 2) [m]."""
+        return self._mass_properties[1]
+
+    @property
+    def inertias(self) -> np.ndarray:
+        """Polar moment of inertia of each voussoir with its loads about its mass centre
+        [kg m^2 per metre of depth]."""
+        return self._mass_properties[2]
+
+    @property
+    def weights(self) -> np.ndarray:
+        """Weight of each voussoir with its loads [N/m] (g = units.G)."""
+        return self.masses * G
+
+    def is_symmetric(self, tol: float = 1e-9) -> bool:
+        """Whether the arch equals its mirror image (joint points and mass properties, lengths
+        relative to :attr:`size`)."""
+        m = self.mirrored()
+        s = self.size
+        return bool(np.allclose(self.joint_points, m.joint_points, rtol=0, atol=tol * s)
+                    and np.allclose(self.centroids, m.centroids, rtol=0, atol=tol * s)
+                    and np.allclose(self.masses, m.masses, rtol=tol, atol=0))
