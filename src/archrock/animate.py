@@ -1,7 +1,7 @@
 """Animation of the arch's mechanism moving through a response (GIF or MP4, matplotlib).
 
-Each frame draws every voussoir moved rigidly with its link at the response's rotation
-(exact four-bar kinematics) in the mechanism of the chain actually open then (from the
+Each frame draws every voussoir (its outline, any arch shape) moved rigidly with its link at
+the response's rotation (exact four-bar kinematics) in the mechanism of the chain actually open then (from the
 response's events, :meth:`archrock.response.Response.rows_at`), with its four hinges, and the
 ground motion and the signed response below it, over the response's samples (``archrock
 respond --animate`` samples to rest or to the rotation limit, past --t-end).  Frames from the
@@ -49,7 +49,7 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     the drawn rotations (1 = to scale); max_frames caps the file size.
     """
     from .plots import (STYLE, displaced_hinges, displaced_outlines, draw_displaced, new_figure,
-                        plot_ground_motion, voussoir_bounds)
+                        plot_ground_motion)
 
     path = animation_path(path)
     for name, v in (("fps", fps), ("speed", speed), ("exaggerate", exaggerate)):
@@ -78,7 +78,8 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     labels = model.labels
     fig, axes = new_figure(2, 1, figsize=(6.4, 6.0), height_ratios=(2.2, 1.0))
     ax_arch, ax_resp = axes[0][0], axes[1][0]
-    pts = voussoir_bounds(model.arch)
+    # axis limits from the voussoirs' own outlines: any arch shape
+    pts = np.vstack([model.arch.outline(i) for i in range(model.arch.n)])
     pad = 0.1 * np.ptp(pts[:, 0])
 
     ax_resp.plot(t, phi, color="#1f77b4", lw=1.2)

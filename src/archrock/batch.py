@@ -178,6 +178,29 @@ class PreparedBatch:
         return int(self.k_l.size)
 
 
+_NOT_CIRCULAR = ("the batch path takes circular arches only, as arrays (B, n) of spans, radii "
+                 "and thicknesses; prepare an arch of another shape (PolygonArch) with "
+                 "archrock.response.prepare, one arch at a time")
+
+
+def _circular_rows(name: str, values) -> np.ndarray:
+    """``values`` as a contiguous float array (B, n); anything else (arch objects, polylines of
+    polygon voussoirs) is refused with a clear message instead of a numpy error."""
+    from .geometry import VoussoirArch
+
+    items = values if isinstance(values, (list, tuple)) else [values]
+    if any(isinstance(v, VoussoirArch) for v in items):
+        raise ArchInputError(f"{name}: got an arch object; {_NOT_CIRCULAR}")
+    try:
+        arr = np.ascontiguousarray(np.atleast_2d(values), dtype=float)
+    except (TypeError, ValueError):
+        raise ArchInputError(f"{name}: expected numbers; {_NOT_CIRCULAR}") from None
+    if arr.ndim != 2:
+        raise ArchInputError(f"{name}: shape {arr.shape} (points of polygon voussoirs?); "
+                             f"{_NOT_CIRCULAR}")
+    return arr
+
+
 def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=None,
                   cv: float | None = None, *, nominal=None) -> PreparedBatch:
     """Limit analysis, four-link models, rotation limits and impact law of a batch of arches.
@@ -190,11 +213,12 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=Non
     "paper" creates energy gets an error instead of a law), or "least-loss" (each arch's chain of
     mechanisms from ``archrock.response.prepare(arch, "least-loss")``, arch by arch in Python:
     about 0.1 s each).  A spec evaluated on the nominal arch needs ``nominal`` (an Arch).
+    Circular arches only: polygon data (PolygonArch objects, polylines) is refused with an
+    :class:`~archrock.errors.ArchInputError`.
     """
     t0 = time.perf_counter()
-    spans = np.ascontiguousarray(np.atleast_2d(spans), dtype=float)
-    radii = np.ascontiguousarray(np.atleast_2d(radii), dtype=float)
-    thick = np.ascontiguousarray(np.atleast_2d(thicknesses), dtype=float)
+    spans, radii, thick = (_circular_rows(name, v) for name, v in (
+        ("spans", spans), ("radii", radii), ("thicknesses", thicknesses)))
     spec = ImpactSpec.parse(impact, cv=cv).resolved(nominal)
     if spec.on == "nominal":
         raise ArchInputError("nominal: the impact is evaluated on the nominal arch; give it "

@@ -26,7 +26,7 @@ import numpy as np
 from ._jit import maybe_njit
 from ._records import readonly_arrays
 from .errors import ArchInputError
-from .geometry import Arch
+from .geometry import VoussoirArch
 from .limit import EDGES, Mechanism
 from .units import G
 
@@ -382,7 +382,7 @@ class FourLink:
     link_inertias: np.ndarray
     link_voussoirs: tuple = ()
     mechanism: Mechanism | None = None
-    arch: Arch | None = field(default=None, repr=False)
+    arch: VoussoirArch | None = field(default=None, repr=False)
 
     def __post_init__(self):
         readonly_arrays(self)
@@ -461,17 +461,25 @@ class FourLink:
         return tab
 
 
-def four_link(arch: Arch, mechanism: Mechanism) -> FourLink:
-    """The four-link model of ``mechanism`` on ``arch`` (links are rigid unions of voussoirs)."""
+def four_link(arch: VoussoirArch, mechanism: Mechanism) -> FourLink:
+    """The four-link model of ``mechanism`` on ``arch``, an arch of any shape: links are rigid
+    unions of voussoirs, hinges the ends of the joints' contact segments
+    (``arch.joint_points``), link masses, centroids and inertias those of the voussoirs with
+    their loads (``arch.masses``, ``centroids``, ``inertias``)."""
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch (Arch, PolygonArch), got "
+                             f"{type(arch).__name__}")
     if mechanism.direction not in ("l", "r"):
         raise ArchInputError(f"mechanism.direction: {mechanism.direction!r}; allowed 'l' or 'r'")
     hinges = sorted(mechanism.hinges, key=lambda h: h.joint)
     joints = [h.joint for h in hinges]
     if len(set(joints)) != 4 or joints[0] < 0 or joints[-1] > arch.n:
         raise ArchInputError(f"mechanism.hinges: need 4 distinct joints in 0..{arch.n}, got {joints}")
-    radii = np.column_stack([arch.contact_inner, arch.contact_outer])
-    px = radii * np.cos(arch.joint_angles)[:, None]
-    py = radii * np.sin(arch.joint_angles)[:, None]
+    # (n+1, 2) per coordinate: [joint, edge]; for a circular arch the very numbers r cos(psi),
+    # r sin(psi) it always used, so its models are unchanged to the bit
+    pts = arch.joint_points
+    px = np.ascontiguousarray(pts[:, :, 0])
+    py = np.ascontiguousarray(pts[:, :, 1])
     edges = np.array([EDGES.index(h.edge) for h in hinges], dtype=np.int64)
     geo = np.empty(GEO_SIZE)
     code = mechanism_geo(px, py, arch.masses, np.ascontiguousarray(arch.centroids), arch.inertias,

@@ -34,7 +34,7 @@ from . import kernel as K
 from ._jit import HAVE_NUMBA
 from ._records import readonly_arrays
 from .errors import ArchInputError, LimitExceededError
-from .geometry import Arch
+from .geometry import VoussoirArch
 from .groundmotion import G, GroundMotion
 from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
 from .limit import LimitResult, limit_analysis
@@ -58,7 +58,7 @@ class DynamicModel:
     unstable positions (F = 0); v_rest [rad/s]: post-impact rates below it end the motion.
     """
 
-    arch: Arch
+    arch: VoussoirArch
     limit: LimitResult
     mech_l: FourLink
     mech_r: FourLink
@@ -136,10 +136,10 @@ def _label(fl: FourLink) -> str:
     return fl.mechanism.label if fl.mechanism is not None else f"M_{fl.direction}"
 
 
-def prepare(arch: Arch, impact=None, *, cv: float | None = None,
+def prepare(arch: VoussoirArch, impact=None, *, cv: float | None = None,
             literal_cv: bool = False, limit_factor: float | None = None,
-            limit: LimitResult | None = None, nominal: Arch | None = None) -> DynamicModel:
-    """Limit analysis, four-link models and impact law of ``arch``.
+            limit: LimitResult | None = None, nominal: VoussoirArch | None = None) -> DynamicModel:
+    """Limit analysis, four-link models and impact law of ``arch`` (any :class:`VoussoirArch`).
 
     impact: an :class:`~archrock.impact.ImpactSpec`, or what :meth:`ImpactSpec.parse` reads: a
     model name ("paper", "momentum", "fixed" with ``cv``, "least-loss": the momentum law, each
@@ -149,7 +149,14 @@ def prepare(arch: Arch, impact=None, *, cv: float | None = None,
     rates.  nominal: the study's nominal arch, on which a spec with ``on='nominal'`` is evaluated.
     limit_factor: rotation limit as a multiple of the unstable rotation (default: halfway to
     the four-bar's dead point, at most 2.5 times the unstable rotation); must be > 1.
+    limit: the limit analysis of this very arch (skips computing it again).
     """
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch (Arch, PolygonArch), got "
+                             f"{type(arch).__name__}")
+    if limit is not None and not _same_arch(limit.arch, arch):
+        raise ArchInputError("limit: it is the limit analysis of another arch; give the one of "
+                             "this arch (or none: prepare computes it)")
     if isinstance(impact, ImpactLaw):
         spec = None
     else:
@@ -166,6 +173,15 @@ def prepare(arch: Arch, impact=None, *, cv: float | None = None,
     pl_l, pl_r = _rotation_limit(m_l, limit_factor), _rotation_limit(m_r, limit_factor)
     v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
+
+
+def _same_arch(a, b) -> bool:
+    """Whether two arches have the same contact segments and mass properties."""
+    if a is b:
+        return True
+    return (type(a) is type(b) and a.n == b.n
+            and all(np.array_equal(getattr(a, k), getattr(b, k))
+                    for k in ("joint_points", "masses", "centroids", "inertias")))
 
 
 def _rotation_limit(fl: FourLink, limit_factor: float | None) -> float:
@@ -342,12 +358,13 @@ class Response:
 DEFAULT_DT, DEFAULT_T_FREE = 2e-3, 60.0
 
 
-def time_scale(arch: Arch) -> float:
-    """sqrt(R/g) [s] for the mean radius R: times of similar arches scale with it."""
-    return math.sqrt(float(np.mean(arch.radii)) / G)
+def time_scale(arch: VoussoirArch) -> float:
+    """sqrt(R/g) [s] for R the arch's size (``arch.size``: the mean radius of a circular arch):
+    times of similar arches scale with it."""
+    return math.sqrt(float(arch.size) / G)
 
 
-def default_steps(arch: Arch) -> tuple[float, float]:
+def default_steps(arch: VoussoirArch) -> tuple[float, float]:
     """(dt, t_free) [s] for ``arch``: 2e-3 s and 60 s, but dt at most T/100 and t_free at least
     50 T with T = :func:`time_scale` (a step of 2e-3 s is a whole rocking arc of a 1 mm arch,
     and 60 s is a few free arcs of a 1 km one); unchanged for 0.4 m <= R <= 14 m."""
@@ -366,7 +383,7 @@ def _check_times(t_end, dt_out, dt, t_free):
                              f"output samples; allowed at most {MAX_SAMPLES:,} (raise dt_out)")
 
 
-def respond(arch_or_model: Arch | DynamicModel, motion: GroundMotion, *, impact=None,
+def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *, impact=None,
             cv: float | None = None, t_end: float = 3.0, dt_out: float = 0.005,
             integrator: str = "fast", dt: float | None = None, t_free: float | None = None,
             rtol: float = 1e-10, atol: float = 1e-12, max_events: int = 100_000,

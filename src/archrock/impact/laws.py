@@ -24,7 +24,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ArchInputError, EnergyGainError, ImpactModelError
-from ..limit import length_scale
 from ..mechanism import FourLink
 from .spec import IMPACT_MODELS
 
@@ -66,6 +65,12 @@ class ImpactLaw:
         return {"model": self.model, "l_to_r": self.l_to_r, "r_to_l": self.r_to_l,
                 "energy_l_to_r": self.energy_l_to_r, "energy_r_to_l": self.energy_r_to_l,
                 "cv": self.cv, "literal": self.literal}
+
+
+def _reference_length(arch) -> float:
+    """The power of two nearest the arch's size [m] (as :func:`archrock.limit.length_scale`:
+    the mean radius of a circular arch, so its numbers are unchanged): dividing by it is exact."""
+    return float(np.ldexp(1.0, int(np.round(np.log2(float(arch.size))))))
 
 
 def _m0(fl: FourLink) -> float:
@@ -110,9 +115,9 @@ def paper_rate_ratio(old: FourLink, new: FourLink) -> float:
     """
     arch = old.arch
     # nondimensional: masses / total mass, lengths / the arch's reference length (a power of
-    # two, exact), so that the five equations (momenta ~ m L, angular momenta ~ m L^2, impulses)
+    # two near its size, exact), so that the five equations (momenta ~ m L, angular momenta ~ m L^2, impulses)
     # have the same numbers, and the same pivots, at any size and density
-    ref = float(length_scale(arch.radii)[0])
+    ref = _reference_length(arch)
     mass_ref = float(np.ldexp(1.0, int(round(math.log2(float(np.sum(arch.masses)))))))
     v, w = old.voussoir_field()
     vn, wn = new.voussoir_field()
