@@ -1,6 +1,8 @@
 """Limit analysis of voussoir arches under horizontal loads (Heyman's hypotheses).
 
-Loads: the weight W_i at each voussoir centroid plus a horizontal force lambda*W_i.
+Any :class:`~archrock.geometry.VoussoirArch`: only its joint contact segments, voussoir masses
+(with their loads) and mass centres enter.  Loads: the weight W_i at each voussoir's mass centre
+plus a horizontal force lambda*W_i there.
 Direction 'l' means forces toward +x (mechanism M_l, activated by xg''/g <= -k_l, paper eq. 1);
 direction 'r' means forces toward -x (M_r, activated by xg''/g >= k_r).
 
@@ -14,7 +16,9 @@ Two independent methods:
   extra a compiled kernel runs the same arithmetic candidate by candidate (identical results;
   set ARCHROCK_NO_NUMBA=1 to use numpy only).
 * static: a linear program on the three redundant reactions at the left springing and lambda:
-  maximise lambda with the line of thrust inside every joint's contact surface.
+  maximise lambda with the line of thrust inside every joint's contact segment, in compression
+  (radial joints of a circular arch without loads keep 0.1.0's form, bit for bit; every other
+  arch the general joint-line form, :class:`_JointLineStatics`).
 
 Above ENUMERATION_MAX_VOUSSOIRS voussoirs the enumeration (O(n^4)) gives way to the
 static-guided search: the hinges are read where the static optimum's line of thrust touches the
@@ -38,12 +42,12 @@ from scipy.optimize import linprog
 from ._jit import HAVE_NUMBA, maybe_njit
 from ._records import readonly_arrays
 from .errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
-from .geometry import Arch, sector_properties
+from .geometry import Arch, VoussoirArch, sector_properties
 
 __all__ = [
     "Hinge", "Mechanism", "ThrustLine", "LimitResult", "MinimumThickness",
     "limit_analysis", "kinematic_mechanisms", "kinematic_multipliers_batch",
-    "static_multiplier", "thrust_line", "minimum_thickness", "length_scale",
+    "static_multiplier", "thrust_line", "minimum_thickness", "length_scale", "arch_sums",
     "enumeration_estimate", "EDGES", "METHODS", "ENUMERATION_MAX_VOUSSOIRS",
     "MAX_ENUMERATION_SECONDS",
 ]
@@ -114,25 +118,42 @@ class Mechanism:
 class ThrustLine:
     """Line of thrust at a given multiplier, for one direction of the horizontal loads.
 
-    radii: radius [m] at which the thrust crosses each joint 0..n (radial joints);
-    points: those crossing points (n+1, 2) [m]; forces: resultant transmitted across each joint
-    by the part on its left, per unit total weight (n+1, 2); polyline: the funicular polygon
-    (joint crossings and the vertices on the load lines), for drawing.
+    points: where the thrust crosses each joint 0..n (n+1, 2) [m]; fractions: the same
+    crossings as fractions of each joint's contact segment (0 at its intrados end, 1 at its
+    extrados end); radii: their radii [m] on a circular arch's radial joints (None for other
+    arches); forces: resultant transmitted across each joint by the part on its left, per unit
+    total weight (n+1, 2); polyline: the funicular polygon (joint crossings and the vertices on
+    the load lines), for drawing.
     """
 
     direction: str
     multiplier: float
-    radii: np.ndarray
+    radii: np.ndarray | None
     points: np.ndarray
     forces: np.ndarray
     polyline: np.ndarray
+    fractions: np.ndarray
 
     def __post_init__(self):
         readonly_arrays(self)
 
-    def eccentricity_margin(self, arch: Arch) -> float:
-        """Smallest distance [m] from the crossing points to the ends of the contact surfaces."""
-        return float(np.min(np.minimum(self.radii - arch.contact_inner, arch.contact_outer - self.radii)))
+    def margins(self, arch: VoussoirArch, relative: bool = False) -> np.ndarray:
+        """Distance from each crossing to the nearer end of its contact segment: [m], or as a
+        fraction of the segment's length (``relative``; 0.5 at its middle)."""
+        f = self.fractions
+        near = np.minimum(f, 1.0 - f)
+        if relative:
+            return near
+        jp = np.asarray(arch.joint_points, float)
+        return near * np.hypot(*(jp[:, 1] - jp[:, 0]).T)
+
+    def eccentricity_margin(self, arch: VoussoirArch, relative: bool = False) -> float:
+        """Smallest distance [m] from the crossing points to the ends of the contact surfaces
+        (negative: outside), or the smallest fraction of a contact length (``relative``)."""
+        if self.radii is not None and isinstance(arch, Arch) and not relative:
+            return float(np.min(np.minimum(self.radii - arch.contact_inner,
+                                           arch.contact_outer - self.radii)))
+        return float(np.min(self.margins(arch, relative)))
 
 
 @dataclass(frozen=True)
@@ -143,7 +164,7 @@ class LimitResult:
     (None when not checked); ``discrepancy`` is the largest |kinematic - static| difference.
     """
 
-    arch: Arch = field(repr=False)
+    arch: VoussoirArch = field(repr=False)
     k_l: float
     k_r: float
     mechanism_l: Mechanism
@@ -169,10 +190,17 @@ class LimitResult:
             "mechanism_l": self.mechanism_l.to_dict(), "mechanism_r": self.mechanism_r.to_dict(),
             "static_k_l": self.static_k_l, "static_k_r": self.static_k_r,
             "discrepancy": self.discrepancy, "method": self.method,
-            "thrust_l": {"radii": self.thrust_l.radii.tolist()},
-            "thrust_r": {"radii": self.thrust_r.radii.tolist()},
+            "thrust_l": _thrust_dict(self.thrust_l),
+            "thrust_r": _thrust_dict(self.thrust_r),
             "arch": self.arch.to_dict(),
         }
+
+
+def _thrust_dict(th: ThrustLine) -> dict:
+    """Crossing points [m] of every arch, and radii [m] where the joints are radial."""
+    out = {} if th.radii is None else {"radii": th.radii.tolist()}
+    out["points"] = th.points.tolist()
+    return out
 
 
 # ---------------------------------------------------------------------------- kinematic
@@ -243,6 +271,58 @@ def _batch_sums(spans, radii, thick):
     px = r * c[..., None]
     py = r * s[..., None]
     return cw, cwx, cwy, px, py, p
+
+
+def _reference_length(arch: VoussoirArch) -> float:
+    """:func:`length_scale` of an arch's :attr:`~VoussoirArch.size` [m] (for a circular arch
+    its mean radius, as in 0.1.0)."""
+    return float(length_scale(np.array([arch.size]))[0])
+
+
+# An arch whose points lie farther than this many sizes from the origin (surveyed coordinates)
+# is analysed about the midpoint of its springings: moments about a distant origin would lose
+# digits to cancellation (and the LP's absolute tolerances would mean less).
+_FAR_ORIGIN_SIZES = 8.0
+
+
+def _origin(arch: VoussoirArch) -> np.ndarray:
+    """The point [m] about which moments are taken: (0, 0) unless the arch is far from it."""
+    jp = np.asarray(arch.joint_points, float)
+    if isinstance(arch, Arch) or np.max(np.abs(jp)) <= _FAR_ORIGIN_SIZES * arch.size:
+        return np.zeros(2)
+    return 0.25 * (jp[0, 0] + jp[0, 1] + jp[-1, 0] + jp[-1, 1])
+
+
+def _weights_centroids(arch: VoussoirArch):
+    """Weights per unit total weight (n,) and their points of application (n, 2) [m]: the
+    voussoirs' areas and centroids without loads (density cancels: the same numbers as 0.1.0),
+    their masses and mass centres with loads."""
+    if arch.loads:
+        m = np.asarray(arch.masses, float)
+        return m / m.sum(), np.asarray(arch.centroids, float)
+    a = np.asarray(arch.areas, float)
+    return a / a.sum(), np.asarray(arch.area_centroids, float)
+
+
+def arch_sums(arch: VoussoirArch):
+    """(cw, cwx, cwy, px, py) of any arch as a batch of one, the enumeration's input: prefix
+    sums of the weights (with loads, total 1) and of their first moments, (1, n+1); joint points
+    (1, n+1, 2 edges); lengths divided by the reference length (a power of two near
+    ``arch.size``), about :func:`_origin`.  For a circular arch without loads these are
+    :func:`_batch_sums`'s arrays, bit for bit (dividing by a power of two is exact)."""
+    ref = _reference_length(arch)
+    origin = _origin(arch)
+    w, g = _weights_centroids(arch)
+    jp = np.asarray(arch.joint_points, float)
+    if origin.any():
+        g, jp = g - origin, jp - origin
+    g = g / ref
+    zero = np.zeros(1)
+    cw = np.concatenate([zero, np.cumsum(w)])
+    cwx = np.concatenate([zero, np.cumsum(w * g[:, 0])])
+    cwy = np.concatenate([zero, np.cumsum(w * g[:, 1])])
+    px, py = jp[..., 0] / ref, jp[..., 1] / ref
+    return cw[None], cwx[None], cwy[None], px[None], py[None]
 
 
 def _enumerate_sums(cw, cwx, cwy, px, py, cand=None):
@@ -428,6 +508,11 @@ if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see arc
             i_r[b] = arg_r
 
 
+def _circular_sums_of(spans, radii, thick):
+    """``sums_of`` for :func:`_full_enumeration` from the circular parameters (B, n)."""
+    return lambda s, e: _batch_sums(spans[s:e], radii[s:e], thick[s:e])[:5]
+
+
 def _validate_batch(spans, radii, thick):
     spans = np.atleast_2d(np.asarray(spans, float))
     radii = np.atleast_2d(np.asarray(radii, float))
@@ -520,10 +605,11 @@ def _say(msg: str) -> None:
     print(f"archrock limit analysis: {msg}", file=sys.stderr, flush=True)
 
 
-def _full_enumeration(spans, radii, thick, chunk, max_seconds, why=""):
-    """Every candidate of every arch (validated (B, n) arrays), after estimating the work:
-    refused beyond ``max_seconds``, with progress lines on stderr when it will take a while."""
-    B, n = spans.shape
+def _full_enumeration(sums_of, B, n, chunk, max_seconds, why=""):
+    """Every candidate of B arches of n voussoirs, after estimating the work: refused beyond
+    ``max_seconds``, with progress lines on stderr when it will take a while.  ``sums_of(s, e)``
+    gives the prefix sums and joint points (cw, cwx, cwy, px, py) of arches s..e-1: from the
+    circular parameters (:func:`_batch_sums`) or from any arch (:func:`arch_sums`)."""
     est = enumeration_estimate(n, B)
     what = (f"{est['candidates']:.3g} candidate mechanisms ({B} arch{'es' if B > 1 else ''} "
             f"of {n} voussoirs)")
@@ -544,25 +630,24 @@ def _full_enumeration(spans, radii, thick, chunk, max_seconds, why=""):
     t0 = time.perf_counter()
     if _NUMBA_ENABLED:
         try:
-            out = _enumerate_numba(spans, radii, thick, progress, t0)
+            out = _enumerate_numba(sums_of, B, n, progress, t0)
         except Exception:  # noqa: BLE001 - a kernel that cannot compile here: use numpy
             _disable_numba()
-            return _full_enumeration(spans, radii, thick, chunk, max_seconds, why)
+            return _full_enumeration(sums_of, B, n, chunk, max_seconds, why)
     else:
-        out = _enumerate_numpy(spans, radii, thick, chunk, progress, t0)
+        out = _enumerate_numpy(sums_of, B, n, chunk, progress, t0)
     if progress:
         _say(f"full enumeration done in {time.perf_counter() - t0:.1f} s")
     return out
 
 
-def _enumerate_numba(spans, radii, thick, progress, t0):
-    B, n = spans.shape
+def _enumerate_numba(sums_of, B, n, progress, t0):
     m = n + 1
     k_l = np.full(B, np.inf)
     k_r = np.full(B, np.inf)
     i_l = np.zeros(B, dtype=np.int64)
     i_r = np.zeros(B, dtype=np.int64)
-    cw, cwx, cwy, px, py, _ = _batch_sums(spans, radii, thick)
+    cw, cwx, cwy, px, py = sums_of(0, B)
     pxf = np.ascontiguousarray(px.reshape(B, -1))
     pyf = np.ascontiguousarray(py.reshape(B, -1))
     if not progress:
@@ -586,8 +671,7 @@ def _enumerate_numba(spans, radii, thick, progress, t0):
     return k_l, k_r, i_l, i_r
 
 
-def _enumerate_numpy(spans, radii, thick, chunk, progress, t0):
-    B, n = spans.shape
+def _enumerate_numpy(sums_of, B, n, chunk, progress, t0):
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)
@@ -601,7 +685,7 @@ def _enumerate_numpy(spans, radii, thick, chunk, progress, t0):
     last = t0
     for s in range(0, B, chunk):
         e = min(B, s + chunk)
-        cw, cwx, cwy, px, py, _ = _batch_sums(spans[s:e], radii[s:e], thick[s:e])
+        cw, cwx, cwy, px, py = sums_of(s, e)
         rows = np.arange(e - s)
         best_l = np.full(e - s, np.inf)
         best_r = np.full(e - s, np.inf)
@@ -651,7 +735,7 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     max_seconds = _check_method(method, max_seconds)
     B, n = spans.shape
     if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
-        return _full_enumeration(spans, radii, thick, chunk, max_seconds)
+        return _full_enumeration(_circular_sums_of(spans, radii, thick), B, n, chunk, max_seconds)
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)
@@ -713,13 +797,17 @@ def _best_in_pool(sums, n: int, allowed: np.ndarray, direction: str):
     return float(lam[best[0]]), int(idx.min())
 
 
-def _search(arch: Arch, sums, direction: str, lam: float, thrust: ThrustLine):
+def _search(arch: VoussoirArch, sums, direction: str, lam: float, thrust: ThrustLine):
     """The mechanism of the static solution: candidates from the joints where its line of
     thrust touches an edge, then from wider neighbourhoods, until one's kinematic multiplier
     equals the static one.  Returns (multiplier, candidate index) or None."""
-    width = arch.contact_outer - arch.contact_inner
-    gap = np.column_stack([(thrust.radii - arch.contact_inner) / width,
-                           (arch.contact_outer - thrust.radii) / width])  # intrados, extrados
+    if _radial(arch):
+        # 0.1.0's arithmetic, so that the touching joints are decided on the same numbers
+        width = arch.contact_outer - arch.contact_inner
+        gap = np.column_stack([(thrust.radii - arch.contact_inner) / width,
+                               (arch.contact_outer - thrust.radii) / width])  # intrados, extrados
+    else:
+        gap = np.column_stack([thrust.fractions, 1.0 - thrust.fractions])
     touch = gap <= _TOUCH_TOL
     tol = _CONFIRM_RTOL * max(1.0, abs(lam))
     contacts = np.flatnonzero(touch.any(axis=1))
@@ -739,10 +827,18 @@ def _search(arch: Arch, sums, direction: str, lam: float, thrust: ThrustLine):
 
 
 def _guided_arch(spans, radii, thick, max_seconds):
-    """(k_l, k_r, cand_l, cand_r) of one arch by the static-guided search, the full enumeration
-    (within ``max_seconds``) where the search cannot confirm its mechanism."""
+    """(k_l, k_r, cand_l, cand_r) of one circular arch (its parameters (n,)) by the
+    static-guided search, the full enumeration (within ``max_seconds``) where the search cannot
+    confirm its mechanism."""
     arch = Arch(spans, radii, thick)
-    sums = _batch_sums(spans[None], radii[None], thick[None])[:5]
+    sums_of = _circular_sums_of(spans[None], radii[None], thick[None])
+    return _guided(arch, sums_of(0, 1), lambda why: _full_enumeration(
+        sums_of, 1, arch.n, None, max_seconds, why))
+
+
+def _guided(arch: VoussoirArch, sums, full):
+    """(k_l, k_r, cand_l, cand_r) of any arch given its sums (a batch of one) by the
+    static-guided search; ``full(why)`` runs the full enumeration where it cannot confirm."""
     lp = {}
     for d in DIRECTIONS:
         try:
@@ -756,7 +852,7 @@ def _guided_arch(spans, radii, thick, max_seconds):
         # no line of thrust at any horizontal load: the arch cannot stand, and there is no
         # static multiplier to confirm a mechanism with
         return -np.inf, -np.inf, 0, 0
-    out, full = [], None
+    out, enumerated = [], None
     for d in DIRECTIONS:
         if lp[d] is None:
             # the LP is feasible (it stands, or the other direction solved) but unbounded: by
@@ -765,11 +861,11 @@ def _guided_arch(spans, radii, thick, max_seconds):
             continue
         found = _search(arch, sums, d, *lp[d])
         if found is None:
-            if full is None:
-                full = _full_enumeration(
-                    spans[None], radii[None], thick[None], None, max_seconds,
-                    why=f"the static-guided search could not confirm the mechanism ({d}); ")
-            found = (full[0][0], full[2][0]) if d == "l" else (full[1][0], full[3][0])
+            if enumerated is None:
+                enumerated = full(
+                    f"the static-guided search could not confirm the mechanism ({d}); ")
+            e = enumerated
+            found = (e[0][0], e[2][0]) if d == "l" else (e[1][0], e[3][0])
         out.append(found)
     return out[0][0], out[1][0], out[0][1], out[1][1]
 
@@ -801,96 +897,207 @@ def _mechanism_from_candidate(n: int, idx: int, direction: str, k: float) -> Mec
     return Mechanism(direction, hinges, float(k))
 
 
-def kinematic_mechanisms(arch: Arch, method: str = "auto",
+def kinematic_mechanisms(arch: VoussoirArch, method: str = "auto",
                          max_seconds: float | None = None) -> tuple[Mechanism, Mechanism]:
-    """The governing mechanisms (M_l, M_r) of one arch: by kinematic enumeration, or by the
+    """The governing mechanisms (M_l, M_r) of any arch: by kinematic enumeration, or by the
     static-guided search for many voussoirs (``method``, ``max_seconds``: see
-    :func:`kinematic_multipliers_batch`)."""
-    k_l, k_r, i_l, i_r = kinematic_multipliers_batch(arch.spans[None], arch.radii[None],
-                                                     arch.thicknesses[None], method=method,
-                                                     max_seconds=max_seconds)
-    if k_l[0] == -np.inf:
+    :func:`kinematic_multipliers_batch`).  Works on :func:`arch_sums` (weights with loads)."""
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    max_seconds = _check_method(method, max_seconds)
+    n = arch.n
+    sums = arch_sums(arch)
+
+    def full(why=""):
+        return _full_enumeration(lambda s, e: sums, 1, n, None, max_seconds, why)
+
+    if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
+        (k_l,), (k_r,), (i_l,), (i_r,) = full()
+    else:
+        k_l, k_r, i_l, i_r = _guided(arch, sums, full)
+    if k_l == -np.inf:
         raise CannotStandError(
             "arch: no line of thrust fits inside the arch under any horizontal load; it cannot "
             "stand (increase the thickness)")
-    if not (np.isfinite(k_l[0]) and np.isfinite(k_r[0])):
+    if not (np.isfinite(k_l) and np.isfinite(k_r)):
         raise NoMechanismError(
             "arch: no four-hinge mechanism can open under horizontal forces (the arch is too flat "
             "or too thick to hinge); sliding or crushing governs, which limit analysis under "
             "Heyman's hypotheses does not cover")
-    return (_mechanism_from_candidate(arch.n, int(i_l[0]), "l", k_l[0]),
-            _mechanism_from_candidate(arch.n, int(i_r[0]), "r", k_r[0]))
+    return (_mechanism_from_candidate(n, int(i_l), "l", k_l),
+            _mechanism_from_candidate(n, int(i_r), "r", k_r))
 
 
 # ---------------------------------------------------------------------------- static
-def _statics(arch: Arch, direction: str):
-    """Rows expressing the normal force N_j and moment M_j about O at each joint as linear
-    functions of x = [F0x, F0y, M0, lambda]: N = A_N x + b_N, M = A_M x + b_M, nondimensional:
-    forces per unit total weight W, moments per W L with L = :func:`length_scale` (the linear
-    program's tolerances are absolute, so a size in metres would change its verdict).
-    Returns the rows, the contact radii r_in / L, r_out / L of the joints, and
-    (cw, cwx, cwy, d, L)."""
-    if direction not in DIRECTIONS:
-        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
-    d = 1.0 if direction == "l" else -1.0
-    ref = float(length_scale(arch.radii)[0])
-    w = arch.areas / arch.areas.sum()
-    g = arch.centroids / ref
-    zero = np.zeros(1)
-    cw = np.concatenate([zero, np.cumsum(w)])
-    cwx = np.concatenate([zero, np.cumsum(w * g[:, 0])])
-    cwy = np.concatenate([zero, np.cumsum(w * g[:, 1])])
-    psi = arch.joint_angles
-    s, c = np.sin(psi), np.cos(psi)
-    nj = psi.size
-    # F_j = (F0x + d lam cw, F0y - cw);  N_j = F_j . (sin psi, -cos psi)
-    A_N = np.column_stack([s, -c, np.zeros(nj), d * cw * s])
-    b_N = c * cw
-    # M_j = M0 - cwx - d lam cwy
-    A_M = np.column_stack([np.zeros(nj), np.zeros(nj), np.ones(nj), -d * cwy])
-    b_M = -cwx
-    r_in, r_out = arch.contact_inner / ref, arch.contact_outer / ref
-    return A_N, b_N, A_M, b_M, r_in, r_out, (cw, cwx, cwy, d, ref)
+# Unknowns x = [F0x, F0y, M0, lambda] (nondimensional: forces per total weight W, moments per
+# W L, L = the reference length): the force F_0 and moment M_0 (about the origin) that the left
+# abutment transmits to voussoir 0, and the multiplier.  Across joint j the part on its left
+# transmits F_j = (F0x + d lambda cw_j, F0y - cw_j) and M_j = M0 - cwx_j - d lambda cwy_j, with
+# cw, cwx, cwy the prefix sums of w, w x_G, w y_G (d = +1 for 'l', -1 for 'r'); the resultant's
+# line of action is the set of points X with X x F_j = M_j.
+
+def _radial(arch) -> bool:
+    """Whether the static program takes 0.1.0's radial form (circular arch, no loads), whose
+    numbers stay bit for bit those of 0.1.0; every other arch takes the joint-line form."""
+    return isinstance(arch, Arch) and not arch.loads
 
 
-def _thrust_constraints(A_N, b_N, A_M, b_M, r_in, r_out):
-    """(A_ub, b_ub): r_in N <= -M <= r_out N at every joint (the thrust crosses the joint
-    inside its contact surface, in compression), as r_in N + M <= 0 and -M - r_out N <= 0."""
-    A_ub = np.vstack([r_in[:, None] * A_N + A_M, -A_M - r_out[:, None] * A_N])
-    b_ub = np.concatenate([-(r_in * b_N + b_M), b_M + r_out * b_N])
-    return A_ub, b_ub
+class _Statics:
+    """The static program of one arch and direction: ``A_ub x <= b_ub`` (rows 0..n: the
+    intrados end of each joint, rows n+1..2n+1: the extrados end) keeps the thrust inside every
+    contact segment in compression; :meth:`hinge` gives 'the thrust passes through this end'."""
+
+    def __init__(self, arch: VoussoirArch, direction: str):
+        if direction not in DIRECTIONS:
+            raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+        self.arch = arch
+        self.d = 1.0 if direction == "l" else -1.0
+        self.ref = _reference_length(arch)
+
+    def hinge(self, joint: int, edge: str):
+        """(row, rhs): the thrust passes through the ``edge`` end of ``joint``."""
+        k = (self.arch.n + 1) * EDGES.index(edge) + joint
+        return self.A_ub[k], self.b_ub[k]
+
+    def forces(self, x):
+        return np.column_stack([x[0] + self.d * x[3] * self.cw, x[1] - self.cw])
 
 
-def static_multiplier(arch: Arch, direction: str) -> tuple[float, ThrustLine]:
+class _RadialStatics(_Statics):
+    """Radial joints of a circular arch: the normal force N_j = F_j . (sin psi_j, -cos psi_j)
+    and the moment M_j about O; the thrust crosses joint j at radius r = -M_j / N_j, and
+    r_in N <= -M <= r_out N (0.1.0's arithmetic, unchanged)."""
+
+    def __init__(self, arch: Arch, direction: str):
+        super().__init__(arch, direction)
+        d, ref = self.d, self.ref
+        w = arch.areas / arch.areas.sum()
+        g = arch.centroids / ref
+        zero = np.zeros(1)
+        cw = np.concatenate([zero, np.cumsum(w)])
+        cwx = np.concatenate([zero, np.cumsum(w * g[:, 0])])
+        cwy = np.concatenate([zero, np.cumsum(w * g[:, 1])])
+        psi = arch.joint_angles
+        s, c = np.sin(psi), np.cos(psi)
+        nj = psi.size
+        # F_j = (F0x + d lam cw, F0y - cw);  N_j = F_j . (sin psi, -cos psi)
+        self.A_N = np.column_stack([s, -c, np.zeros(nj), d * cw * s])
+        self.b_N = c * cw
+        # M_j = M0 - cwx - d lam cwy
+        self.A_M = np.column_stack([np.zeros(nj), np.zeros(nj), np.ones(nj), -d * cwy])
+        self.b_M = -cwx
+        self.r_in, self.r_out = arch.contact_inner / ref, arch.contact_outer / ref
+        self.cw = cw
+        A_N, b_N, A_M, b_M = self.A_N, self.b_N, self.A_M, self.b_M
+        r_in, r_out = self.r_in, self.r_out
+        # r_in N + M <= 0 and -M - r_out N <= 0
+        self.A_ub = np.vstack([r_in[:, None] * A_N + A_M, -A_M - r_out[:, None] * A_N])
+        self.b_ub = np.concatenate([-(r_in * b_N + b_M), b_M + r_out * b_N])
+
+    def hinge(self, joint: int, edge: str):
+        r = self.r_in[joint] if edge == "intrados" else self.r_out[joint]
+        return self.A_M[joint] + r * self.A_N[joint], -(self.b_M[joint] + r * self.b_N[joint])
+
+    def crossings(self, x):
+        """(radii [m], points (n+1, 2) [m], fractions along the contact segments)."""
+        arch = self.arch
+        N = self.A_N @ x + self.b_N
+        M = self.A_M @ x + self.b_M
+        radii = -M / N * self.ref
+        psi = arch.joint_angles
+        pts = np.column_stack([radii * np.cos(psi), radii * np.sin(psi)])
+        frac = (radii - arch.contact_inner) / (arch.contact_outer - arch.contact_inner)
+        return radii, pts, frac
+
+
+class _JointLineStatics(_Statics):
+    """Any joint line: contact segment [P_in, P_out] of length L_j, u = (P_out - P_in) / L_j,
+    the compressive normal nu = (u_y, -u_x) (u turned clockwise: along the arch, from the left
+    part into the right one), N_j = F_j . nu.  m_j = P_in x F_j - M_j is the moment of the
+    resultant about P_in, clockwise positive: m_j = t N_j for a crossing at distance t from
+    P_in, so the thrust crosses inside the segment in compression iff 0 <= m_j <= L_j N_j."""
+
+    def __init__(self, arch: VoussoirArch, direction: str):
+        super().__init__(arch, direction)
+        d, ref = self.d, self.ref
+        origin = _origin(arch)
+        w, g = _weights_centroids(arch)
+        g = (g - origin) / ref
+        P = (np.asarray(arch.joint_points, float) - origin) / ref
+        zero = np.zeros(1)
+        cw = np.concatenate([zero, np.cumsum(w)])
+        cwx = np.concatenate([zero, np.cumsum(w * g[:, 0])])
+        cwy = np.concatenate([zero, np.cumsum(w * g[:, 1])])
+        px, py = P[:, 0, 0], P[:, 0, 1]
+        e = P[:, 1] - P[:, 0]
+        L = np.hypot(e[:, 0], e[:, 1])
+        nux, nuy = e[:, 1] / L, -e[:, 0] / L
+        nj = L.size
+        A_N = np.column_stack([nux, nuy, np.zeros(nj), d * cw * nux])
+        b_N = -nuy * cw
+        # m = px F_y - py F_x - M
+        A_m = np.column_stack([-py, px, -np.ones(nj), d * (cwy - py * cw)])
+        b_m = cwx - px * cw
+        self.cw, self.A_N, self.b_N, self.A_m, self.b_m = cw, A_N, b_N, A_m, b_m
+        # -m <= 0 (intrados end) and m - L N <= 0 (extrados end)
+        self.A_ub = np.vstack([-A_m, A_m - L[:, None] * A_N])
+        self.b_ub = np.concatenate([b_m, L * b_N - b_m])
+        self.L = L
+
+    def crossings(self, x):
+        arch = self.arch
+        N = self.A_N @ x + self.b_N
+        m = self.A_m @ x + self.b_m
+        frac = m / (self.L * N)
+        jp = np.asarray(arch.joint_points, float)
+        pts = jp[:, 0] + frac[:, None] * (jp[:, 1] - jp[:, 0])
+        radii = None
+        if isinstance(arch, Arch):  # radial joints: the crossing radius, for existing users
+            radii = arch.contact_inner + frac * (arch.contact_outer - arch.contact_inner)
+        return radii, pts, frac
+
+
+def _statics(arch: VoussoirArch, direction: str, form: str = "auto") -> _Statics:
+    """The static program of ``arch`` for ``direction``; ``form``: "radial" (circular arches
+    only), "joint-line" (any arch) or "auto" (radial for circular arches without loads)."""
+    if form == "auto":
+        form = "radial" if _radial(arch) else "joint-line"
+    if form == "radial":
+        if not isinstance(arch, Arch):
+            raise ArchInputError(f"form: 'radial' needs a circular Arch, got {type(arch).__name__}")
+        return _RadialStatics(arch, direction)
+    if form != "joint-line":
+        raise ArchInputError(f"form: {form!r}; allowed 'auto', 'radial' or 'joint-line'")
+    return _JointLineStatics(arch, direction)
+
+
+def static_multiplier(arch: VoussoirArch, direction: str,
+                      form: str = "auto") -> tuple[float, ThrustLine]:
     """Maximum multiplier by the static linear program, and its line of thrust.
 
-    Constraints: r_in_j N_j <= -M_j <= r_out_j N_j at every joint (the thrust crosses the joint
-    inside its contact surface, in compression).
+    Constraints: at every joint the thrust crosses the contact segment, in compression
+    (docs/method.md, Limit analysis); ``form``: see :func:`_statics` (the default is right).
     """
-    A_N, b_N, A_M, b_M, r_in, r_out, _ = _statics(arch, direction)
-    A_ub, b_ub = _thrust_constraints(A_N, b_N, A_M, b_M, r_in, r_out)
-    res = linprog(c=[0, 0, 0, -1.0], A_ub=A_ub, b_ub=b_ub, bounds=[(None, None)] * 4, method="highs")
+    st = _statics(arch, direction, form)
+    res = linprog(c=[0, 0, 0, -1.0], A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 4,
+                  method="highs")
     if res.status != 0:
         raise CannotStandError(
             f"arch: no line of thrust fits inside the arch for direction {direction!r} "
             f"(linear program status {res.status}: {res.message}); the arch cannot stand")
-    return float(res.x[3]), _thrust_from_x(arch, direction, res.x)
+    return float(res.x[3]), _thrust_from_x(st, res.x)
 
 
-def _thrust_from_x(arch: Arch, direction: str, x: np.ndarray) -> ThrustLine:
-    """The line of thrust of the nondimensional redundants x (see :func:`_statics`), in metres."""
-    A_N, b_N, A_M, b_M, _, _, (cw, _, _, d, ref) = _statics(arch, direction)
-    N = A_N @ x + b_N
-    M = A_M @ x + b_M
-    radii = -M / N * ref
-    psi = arch.joint_angles
-    pts = np.column_stack([radii * np.cos(psi), radii * np.sin(psi)])
+def _thrust_from_x(st: _Statics, x: np.ndarray) -> ThrustLine:
+    """The line of thrust of the nondimensional redundants x (see :class:`_Statics`), in metres."""
+    arch = st.arch
+    radii, pts, frac = st.crossings(x)
     lam = x[3]
-    forces = np.column_stack([x[0] + d * lam * cw, x[1] - cw])
+    forces = st.forces(x)
     # funicular polygon: from each joint crossing along F_i to the load line of voussoir i
     poly = [pts[0]]
     g = arch.centroids
-    load = np.array([d * lam, -1.0])
+    load = np.array([st.d * lam, -1.0])
     for i in range(arch.n):
         f = forces[i]
         # solve pts[i] + s f = g_i + u load
@@ -901,35 +1108,34 @@ def _thrust_from_x(arch: Arch, direction: str, x: np.ndarray) -> ThrustLine:
         except np.linalg.LinAlgError:
             pass
         poly.append(pts[i + 1])
-    return ThrustLine(direction, float(lam), radii, pts, forces, np.array(poly))
+    return ThrustLine("l" if st.d > 0 else "r", float(lam), radii, pts, forces, np.array(poly),
+                      frac)
 
 
-def thrust_line(arch: Arch, mechanism: Mechanism) -> ThrustLine:
+def thrust_line(arch: VoussoirArch, mechanism: Mechanism, form: str = "auto") -> ThrustLine:
     """Line of thrust through the four hinges of ``mechanism`` (equilibrium at collapse).
 
     Solves the four conditions 'the thrust passes through hinge h' for the three redundants and
     lambda; the lambda found this way is a third, independent value of the multiplier.
     """
-    A_N, b_N, A_M, b_M, r_in, r_out, _ = _statics(arch, mechanism.direction)
-    rows, rhs = [], []
-    for h in mechanism.hinges:
-        r = r_in[h.joint] if h.edge == "intrados" else r_out[h.joint]
-        rows.append(A_M[h.joint] + r * A_N[h.joint])
-        rhs.append(-(b_M[h.joint] + r * b_N[h.joint]))
+    st = _statics(arch, mechanism.direction, form)
+    rows, rhs = zip(*(st.hinge(h.joint, h.edge) for h in mechanism.hinges))
     x = np.linalg.solve(np.array(rows), np.array(rhs))
-    return _thrust_from_x(arch, mechanism.direction, x)
+    return _thrust_from_x(st, x)
 
 
-def limit_analysis(arch: Arch, verify: bool = True, method: str = "auto",
+def limit_analysis(arch: VoussoirArch, verify: bool = True, method: str = "auto",
                    max_seconds: float | None = None) -> LimitResult:
-    """k_l, k_r, their mechanisms and thrust lines; ``verify`` adds the static LP cross-check.
+    """k_l, k_r, their mechanisms and thrust lines of any arch; ``verify`` adds the static LP
+    cross-check.
 
     ``method``: "auto" (full enumeration up to :data:`ENUMERATION_MAX_VOUSSOIRS` voussoirs, the
     static-guided search above), "enumeration" or "guided"; ``max_seconds`` bounds a full
     enumeration's estimated time (see :func:`kinematic_multipliers_batch`).
     """
-    if not isinstance(arch, Arch):
-        raise ArchInputError(f"arch: expected an Arch, got {type(arch).__name__}")
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch (Arch, PolygonArch), got "
+                             f"{type(arch).__name__}")
     m_l, m_r = kinematic_mechanisms(arch, method, max_seconds)
     if m_l.multiplier <= 0 or m_r.multiplier <= 0:
         raise CannotStandError(
@@ -949,56 +1155,91 @@ def limit_analysis(arch: Arch, verify: bool = True, method: str = "auto",
 
 
 # ---------------------------------------------------------------------------- minimum thickness
+# Largest thickness factor tried on an arch family (circular arches stop at t = 2 R).
+_MAX_THICKNESS_FACTOR = 64.0
+
+
 @dataclass(frozen=True)
 class MinimumThickness:
     """Smallest thickness scale at which the arch stands under its own weight.
 
-    factor: multiplier of every voussoir thickness; ratio: the resulting mean t/R.
+    factor: multiplier of every voussoir thickness; ratio: the resulting mean t/R (circular
+    arches; for other families the mean thickness / size where the family has ``thicknesses``,
+    else None); thicknesses [m] (None where the family has none).
     """
 
     factor: float
-    ratio: float
-    thicknesses: np.ndarray
+    ratio: float | None
+    thicknesses: np.ndarray | None
     iterations: int
 
     def __post_init__(self):
         readonly_arrays(self)
 
 
-def _stands(arch: Arch) -> bool:
+def _stands(arch: VoussoirArch) -> bool:
     """Whether a line of thrust fits inside the arch under self-weight alone.
 
-    Maximises the smallest moment margin s (per W L, nondimensional as in :func:`_statics`) of
-    r_in N <= -M - s and -M + s <= r_out N; the arch stands when s >= 0.  Deciding on the sign
+    Maximises the smallest moment margin s (per W L, nondimensional as in :class:`_Statics`) of
+    the joint conditions A_ub x + s <= b_ub; the arch stands when s >= 0.  Deciding on the sign
     of an optimum rather than on the solver's feasibility verdict makes the bisection of
     :func:`minimum_thickness` independent of the LP's absolute feasibility tolerance (~1e-7),
     which otherwise moved the minimum thickness by ~1e-6 with the arch's size.
     """
-    A_N, b_N, A_M, b_M, r_in, r_out, _ = _statics(arch, "l")
-    A_ub, b_ub = _thrust_constraints(A_N, b_N, A_M, b_M, r_in, r_out)
-    A_ub = np.column_stack([A_ub[:, :3], np.ones(A_ub.shape[0])])
+    st = _statics(arch, "l")
+    A_ub = np.column_stack([st.A_ub[:, :3], np.ones(st.A_ub.shape[0])])
     # s <= 1 keeps the program bounded; any s >= 0 is enough to stand
-    res = linprog(c=[0, 0, 0, -1.0], A_ub=A_ub, b_ub=b_ub,
+    res = linprog(c=[0, 0, 0, -1.0], A_ub=A_ub, b_ub=st.b_ub,
                   bounds=[(None, None)] * 3 + [(None, 1.0)], method="highs")
     return res.status == 0 and res.x[3] >= 0.0
 
 
-def minimum_thickness(arch: Arch, tol: float = 1e-7) -> MinimumThickness:
+def minimum_thickness(arch: VoussoirArch, tol: float = 1e-7) -> MinimumThickness:
     """Minimum thickness under self-weight alone (multiplier = 0), by bisection on a common
-    thickness factor with the static feasibility LP (lambda = 0)."""
-    max_factor = float(np.min(2 * arch.radii / arch.thicknesses)) * (1 - 1e-9)
+    thickness factor with the static feasibility LP (lambda = 0).  Needs an arch that can vary
+    its thickness (``with_thickness_factor``: circular arches, families); a surveyed
+    :class:`~archrock.geometry.PolygonArch` cannot (ArchInputError)."""
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    if isinstance(arch, Arch):
+        max_factor = float(np.min(2 * arch.radii / arch.thicknesses)) * (1 - 1e-9)
+    elif callable(getattr(arch, "with_thickness_factor", None)):
+        max_factor = _MAX_THICKNESS_FACTOR
+    else:
+        raise ArchInputError(
+            f"arch: the thickness cannot be varied for a surveyed polygon arch "
+            f"({type(arch).__name__} has no with_thickness_factor); minimum thickness needs a "
+            f"circular arch or an arch family")
+
+    def stands(f):
+        try:
+            a = arch.with_thickness_factor(f)
+        except ArchInputError:  # thicker than the family allows
+            return None
+        return _stands(a)
+
     lo, hi = 1e-6, min(1.0, max_factor)
-    while not _stands(arch.with_thickness_factor(hi)):
-        if hi >= max_factor:
+    while True:
+        ok = stands(hi)
+        if ok:
+            break
+        if ok is None or hi >= max_factor:
             raise CannotStandError("arch: it does not stand under its own weight at any thickness")
         hi = min(2 * hi, max_factor)
     it = 0
     while hi - lo > tol * hi:
         mid = 0.5 * (lo + hi)
-        if _stands(arch.with_thickness_factor(mid)):
+        if stands(mid):
             hi = mid
         else:
             lo = mid
         it += 1
-    t = arch.thicknesses * hi
-    return MinimumThickness(hi, float(np.mean(t / arch.radii)), t, it)
+    if isinstance(arch, Arch):
+        t = arch.thicknesses * hi
+        return MinimumThickness(hi, float(np.mean(t / arch.radii)), t, it)
+    thin = arch.with_thickness_factor(hi)
+    t = getattr(thin, "thicknesses", None)
+    if t is None:
+        return MinimumThickness(hi, None, None, it)
+    t = np.array(t, float)
+    return MinimumThickness(hi, float(np.mean(t)) / thin.size, t, it)

@@ -1,4 +1,9 @@
-"""Reports of a limit analysis: the ``archrock limit --json`` object and the readable table."""
+"""Reports of a limit analysis: the ``archrock limit --json`` object and the readable table.
+
+Circular arches are described by their voussoirs' spans, radii and thicknesses; any other arch
+(a :class:`~archrock.geometry.PolygonArch`, a family) by each voussoir's area, mass and mass
+centre.  Loads attached to voussoirs are listed for both.
+"""
 
 from __future__ import annotations
 
@@ -6,15 +11,32 @@ import math
 
 import numpy as np
 
+from ..geometry import Arch
+
 __all__ = ["limit_summary", "format_limit_table"]
+
+
+def _voussoir_properties(arch) -> list[dict]:
+    """Area [m^2] of each voussoir's masonry, mass [kg/m] and mass centre [m] with its loads."""
+    return [{"area": float(a), "mass": float(m), "centroid": [float(c[0]), float(c[1])]}
+            for a, m, c in zip(arch.areas, arch.masses, arch.centroids)]
 
 
 def limit_summary(result, min_thickness=None) -> dict:
     """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object)."""
+    arch = result.arch
     d = result.to_dict()
     d.pop("arch", None)
+    if isinstance(arch, Arch):
+        units = {"k": "g (horizontal load / weight)", "span_deg": "deg", "radius": "m",
+                 "thickness": "m", "density": "kg/m^3"}
+    else:
+        units = {"k": "g (horizontal load / weight)", "intrados": "m", "extrados": "m",
+                 "density": "kg/m^3", "area": "m^2", "mass": "kg/m", "centroid": "m"}
+    if arch.loads:
+        units.update({"load mass": "kg/m", "load at": "m"})
     out = {
-        "arch": result.arch.name,
+        "arch": arch.name,
         "k": result.k,
         **d,
         "hinge_labels": {
@@ -22,22 +44,21 @@ def limit_summary(result, min_thickness=None) -> dict:
             dirn: [{"label": lab, **h.to_dict()} for lab, h in result.mechanism(dirn).labelled()]
             for dirn in ("l", "r")
         },
-        "geometry": result.arch.to_dict(),
-        "units": {"k": "g (horizontal load / weight)", "span_deg": "deg", "radius": "m",
-                  "thickness": "m", "density": "kg/m^3"},
+        "geometry": arch.to_dict(),
+        **({} if isinstance(arch, Arch) else {"voussoirs": _voussoir_properties(arch)}),
+        "units": units,
     }
     if min_thickness is not None:
+        t = min_thickness.thicknesses
         out["min_thickness"] = {
             "factor": min_thickness.factor,
             "ratio_t_over_R": min_thickness.ratio,
-            "thicknesses": [float(t) for t in min_thickness.thicknesses],
+            "thicknesses": None if t is None else [float(x) for x in t],
         }
     return out
 
 
-def format_limit_table(result, min_thickness=None) -> str:
-    """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check."""
-    arch = result.arch
+def _circular_lines(arch) -> list[str]:
     lines = [f"Arch: {arch.name}, {arch.n} voussoirs, embrace {math.degrees(arch.embrace):.4f} deg, "
              f"density {arch.density:g} kg/m^3"]
     # relative to the arch's size: the wording must not depend on the units
@@ -51,6 +72,28 @@ def format_limit_table(result, min_thickness=None) -> str:
         lines.append("  voussoir  span [deg]  radius [m]  thickness [m]")
         for i, (a, r, t) in enumerate(zip(arch.spans, arch.radii, arch.thicknesses)):
             lines.append(f"  {i:8d}  {math.degrees(a):10.4f}  {r:10.4f}  {t:13.4f}")
+    return lines
+
+
+def _general_lines(arch) -> list[str]:
+    lines = [f"Arch: {arch.name}, {arch.n} voussoirs ({type(arch).__name__}), "
+             f"size {arch.size:.6g} m, density {arch.density:g} kg/m^3",
+             "  voussoir   area [m^2]  mass [kg/m]  mass centre x [m]  y [m]"
+             + ("  (mass and centre with loads)" if arch.loads else "")]
+    # rounding noise (1e-15 of the size) on a symmetric arch's axis prints as 0
+    cents = np.where(np.abs(arch.centroids) < 1e-12 * arch.size, 0.0, arch.centroids)
+    for i, (a, m, c) in enumerate(zip(arch.areas, arch.masses, cents)):
+        lines.append(f"  {i:8d}  {a:11.5g}  {m:11.5g}  {c[0]:17.6g}  {c[1]:.6g}")
+    return lines
+
+
+def format_limit_table(result, min_thickness=None) -> str:
+    """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check."""
+    arch = result.arch
+    lines = _circular_lines(arch) if isinstance(arch, Arch) else _general_lines(arch)
+    for ld in arch.loads:
+        lines.append(f"  load: {ld.mass:g} kg/m on voussoir {ld.voussoir} at "
+                     f"({ld.at[0]:g}, {ld.at[1]:g}) m")
     lines += ["", "Limit analysis (horizontal forces = multiplier x weight; Heyman's hypotheses)",
               "  mechanism  k (kinematic)  k (static LP)  hinges A-D (joint edge)"]
     for dirn in ("l", "r"):
@@ -65,8 +108,11 @@ def format_limit_table(result, min_thickness=None) -> str:
         verdict = "agree" if result.discrepancy < 1e-6 else "DISAGREE"
         lines.append(f"  LP check: max |kinematic - static| = {result.discrepancy:.2e} ({verdict})")
     if min_thickness is not None:
+        ratio = ("" if min_thickness.ratio is None
+                 else f", mean t/R = {min_thickness.ratio:.4f}" if isinstance(arch, Arch)
+                 else f", mean t / size = {min_thickness.ratio:.4f}")
         lines.append(f"  minimum thickness under self-weight: factor {min_thickness.factor:.4f} "
-                     f"of the given thicknesses, mean t/R = {min_thickness.ratio:.4f}")
+                     f"of the given thicknesses{ratio}")
     lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
                  "M_r: by xg''/g >= k_r, forces toward -x)")
     return "\n".join(lines)
