@@ -162,8 +162,9 @@ def test_fill_over_a_semicircle():
     assert total == pytest.approx(exact, rel=1e-4)
     assert len(arch.loads) == 6 and len(arch.fill_regions) == 6
     assert arch.is_symmetric(1e-7)
-    # the crown voussoirs carry the least fill
-    assert arch.loads[2].mass < min(arch.loads[0].mass, arch.loads[1].mass)
+    # the voussoir left of the crown: its extrados from 120 to 90 deg, x from -Re/2 to 0
+    crown = quad(lambda x: level - math.sqrt(re**2 - x**2), -re / 2, 0)[0]
+    assert arch.loads[2].mass == pytest.approx(rho * crown, rel=1e-4)
     # a level below the crown's extrados: those voussoirs get none
     low = family_arch("circular", 10.0, 5.0, 1.0, 6, fill={"level": 3.0, "density": rho})
     assert {ld.voussoir for ld in low.loads} == {0, 5}
