@@ -212,3 +212,17 @@ def test_family_arch_is_a_polygon_arch_that_round_trips():
     back = PolygonArch.from_dict(arch.to_dict())
     np.testing.assert_array_equal(back.joint_points, arch.joint_points)
     np.testing.assert_allclose(back.masses, arch.masses, rtol=1e-14)
+
+
+def test_every_family_is_drawn_with_its_fill_and_loads(tmp_path):
+    pytest.importorskip("matplotlib")
+    from archrock.plots import draw_arch, new_figure, save_figure, voussoir_bounds
+
+    fig, axes = new_figure(1, len(SHAPES), figsize=(3.0 * len(SHAPES), 3))
+    for ax, shape in zip(axes[0], SHAPES):
+        arch = family_arch(shape, S, RISE[shape], 0.6, 7, exact=False,
+                           fill={"level": RISE[shape] + 1.0, "density": 1800.0})
+        patches = draw_arch(ax, arch, label_joints=True)
+        assert len(patches) == 7
+        assert voussoir_bounds(arch)[:, 1].max() == pytest.approx(RISE[shape] + 1.0)
+    assert save_figure(fig, tmp_path / "families.png").stat().st_size > 10_000
