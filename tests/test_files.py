@@ -106,3 +106,52 @@ def test_write_to_missing_folder_names_the_file(tmp_path):
     target = tmp_path / "no" / "such" / "dir" / "a.json"
     with pytest.raises(ArchInputError, match=r"a\.json: cannot write"):
         write_arch(oppenheim_arch(), target)
+
+
+# ---------------------------------------------------------------------------- polygon format, loads
+def test_polygon_format_round_trip_with_loads(tmp_path):
+    from archrock.geometry import PolygonArch, family_arch
+
+    a = family_arch("pointed", 12.0, 8.0, 0.9, 7, loads=[{"voussoir": 5, "mass": 8000.0,
+                                                         "at": [4.0, 7.0]}],
+                    fill={"level": 9.0, "density": 1800.0}, name="p")
+    p = write_arch(a, tmp_path / "pointed.json", metadata={"shape": "pointed"})
+    raw = json.loads(p.read_text())
+    assert set(raw["voussoirs"][0]) == {"intrados", "extrados"}
+    assert raw["loads"][0] == {"voussoir": 5, "mass": 8000.0, "at": [4.0, 7.0]}
+    b = read_arch(p)
+    assert isinstance(b, PolygonArch) and b.name == "pointed"
+    np.testing.assert_array_equal(b.joint_points, a.joint_points)
+    np.testing.assert_array_equal(b.masses, a.masses)
+    np.testing.assert_array_equal(b.centroids, a.centroids)
+    assert b.loads == a.loads
+
+
+def test_documented_polygon_format(tmp_path):
+    data = {"voussoirs": [{"intrados": [[-5, 0], [-4, 3]], "extrados": [[-6, 0], [-5, 4]]},
+                          {"intrados": [[-4, 3], [4, 3]], "extrados": [[-5, 4], [5, 4]]},
+                          {"intrados": [[4, 3], [5, 0]], "extrados": [[5, 4], [6, 0]]}],
+            "density": 2000, "loads": [{"voussoir": 1, "mass": 8000.0, "at": [0.0, 5.0]}]}
+    arch = read_arch(_write(tmp_path, "box.json", data))
+    assert arch.n == 3 and arch.masses[1] == pytest.approx(2000 * 9 + 8000)  # a 1 m trapezoid, 8 to 10 m
+    np.testing.assert_array_equal(arch.joint_points[1], [[-4, 3], [-5, 4]])
+
+
+def test_loads_in_the_circular_format_round_trip(tmp_path):
+    from archrock.geometry import Arch, Load
+
+    a = oppenheim_arch()
+    a = Arch(a.spans, a.radii, a.thicknesses, a.density, "loaded", (Load(3, 5000.0, (0.0, 11.5)),))
+    b = read_arch(write_arch(a, tmp_path / "l.json"))
+    assert isinstance(b, Arch) and b.loads == a.loads
+    np.testing.assert_array_equal(b.masses, a.masses)
+
+
+def test_bad_polygon_file_names_file_and_field(tmp_path):
+    data = {"voussoirs": [{"intrados": [[0, 0]], "extrados": [[0, 1], [1, 1]]}] * 3}
+    with pytest.raises(ArchInputError, match=r"bad\.json: voussoirs\[0\]\.intrados"):
+        read_arch(_write(tmp_path, "bad.json", data))
+    with pytest.raises(ArchInputError, match="mixes"):
+        read_arch(_write(tmp_path, "mix.json", {"voussoirs": [
+            {"intrados": [[0, 0], [1, 0]], "extrados": [[0, 1], [1, 1]]},
+            {"span_deg": 10, "radius": 1, "thickness": 0.1}]}))

@@ -1,10 +1,17 @@
 """Reading and writing arch geometry files (JSON).
 
-Format, voussoirs ordered from the left springing (spans in degrees, lengths in metres,
-density in kg/m^3, optional)::
+Two formats (docs/geometry.md), voussoirs ordered from the left springing, lengths in metres,
+density in kg/m^3 (optional), loads optional in both ([kg per metre of depth] at [x, y])::
 
     {"voussoirs": [{"span_deg": 22.5, "radius": 10.0, "thickness": 1.5}, ...],
-     "density": 2000}
+     "density": 2000, "loads": [{"voussoir": 3, "mass": 8000.0, "at": [0.0, 11.0]}]}
+
+a circular :class:`~archrock.geometry.Arch` (spans in degrees), or::
+
+    {"voussoirs": [{"intrados": [[x, y], ...], "extrados": [[x, y], ...]}, ...],
+     "density": 2000, "loads": [{"voussoir": 5, "mass": 8000.0, "at": [6.0, 9.0]}]}
+
+a :class:`~archrock.geometry.PolygonArch` (each line from left to right).
 
 Every error is an :class:`~archrock.errors.ArchInputError` whose one-line message names the
 file and the offending field.
@@ -17,13 +24,14 @@ import os
 from pathlib import Path
 
 from .errors import ArchInputError
-from .geometry import Arch
+from .geometry import VoussoirArch, arch_from_dict
 
 __all__ = ["read_arch", "write_arch"]
 
 
-def read_arch(path: str | os.PathLike) -> Arch:
-    """Read an arch from a JSON geometry file (see module docstring); name = file stem."""
+def read_arch(path: str | os.PathLike) -> VoussoirArch:
+    """Read an arch from a JSON geometry file of either format (module docstring); name = file
+    stem."""
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8")
@@ -37,7 +45,7 @@ def read_arch(path: str | os.PathLike) -> Arch:
         raise ArchInputError(f"{p}: cannot read the geometry file ({exc.strerror or exc})") from None
     try:
         # NaN/Infinity tokens (not JSON, but Python writes them) are parsed here and refused
-        # by Arch.from_dict, whose message names the voussoir and field that hold them.
+        # by the arch's from_dict, whose message names the voussoir and field that hold them.
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise ArchInputError(
@@ -45,22 +53,23 @@ def read_arch(path: str | os.PathLike) -> Arch:
     except RecursionError:
         raise ArchInputError(f"{p}: invalid JSON: nested too deeply") from None
     try:
-        return Arch.from_dict(data, name=p.stem)
+        return arch_from_dict(data, name=p.stem)
     except ArchInputError as exc:
         raise ArchInputError(f"{p}: {exc}") from None
 
 
-def write_arch(arch: Arch, path: str | os.PathLike, metadata: dict | None = None) -> Path:
-    """Write ``arch`` as a JSON geometry file; ``metadata`` (JSON-serialisable) is stored
+def write_arch(arch: VoussoirArch, path: str | os.PathLike, metadata: dict | None = None) -> Path:
+    """Write ``arch`` (circular or polygon) as a JSON geometry file; ``metadata`` (JSON-serialisable) is stored
     under the key ``"metadata"`` and ignored by :func:`read_arch`. Returns the path."""
-    if not isinstance(arch, Arch):
-        raise ArchInputError(f"arch: expected an Arch, got {type(arch).__name__}")
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected an arch (Arch or PolygonArch), got "
+                             f"{type(arch).__name__}")
     p = Path(path)
     data = arch.to_dict()
     if metadata:
         data["metadata"] = metadata
     # repr-precision floats: read_arch(write_arch(a)) reproduces the arch to the last bit of
-    # radius/thickness (spans go through degrees, exact to ~1e-16 rad).
+    # radius/thickness and of polygon points (spans go through degrees, exact to ~1e-16 rad).
     text = json.dumps(data, indent=2, allow_nan=False) + "\n"
     try:
         p.write_text(text, encoding="utf-8")

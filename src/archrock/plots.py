@@ -52,6 +52,8 @@ STYLE = {
     "thrust": "#c0392b",
     "hinge": "#1f4e9c",
     "ground": "#777777",
+    "fill": "#d9cfa6",
+    "load": "#7d3c98",
 }
 
 
@@ -63,26 +65,29 @@ def _require_matplotlib():
 
 
 # ---------------------------------------------------------------------------- building blocks
-def voussoir_outline(arch: Arch, i: int, points_per_rad: float = 60.0) -> np.ndarray:
-    """Closed outline (m, 2) [m] of voussoir ``i``: extrados arc, joint i+1, intrados arc, joint i.
+def voussoir_outline(arch, i: int, points_per_rad: float = 60.0) -> np.ndarray:
+    """Closed outline (m, 2) [m] of voussoir ``i`` of any arch (``arch.outline(i)``, first
+    point repeated at the end); a circular arch's arcs with ``points_per_rad`` points a radian.
 
-    Uses the voussoir's own radius and thickness, so irregular arches are drawn as they are.
+    Uses the voussoir's own shape, so irregular arches are drawn as they are.
     """
-    psi = arch.joint_angles
-    a0, a1 = psi[i], psi[i + 1]  # a0 > a1: joints are numbered from the left
-    m = max(4, int(math.ceil(abs(a0 - a1) * points_per_rad)))
-    t = np.linspace(a0, a1, m)
-    ri, ro = arch.intrados_radii[i], arch.extrados_radii[i]
-    outer = np.column_stack([ro * np.cos(t), ro * np.sin(t)])
-    inner = np.column_stack([ri * np.cos(t[::-1]), ri * np.sin(t[::-1])])
-    return np.vstack([outer, inner, outer[:1]])
+    out = arch.outline(i, points_per_rad) if isinstance(arch, Arch) else arch.outline(i)
+    return np.vstack([out, out[:1]])
 
 
-def draw_arch(ax, arch: Arch, *, facecolor: str | None = None, edgecolor: str | None = None,
+def _face(arch, j: int):
+    """(intrados end, extrados end, unit vector from the first to the second) of joint j."""
+    p0, p1 = (np.asarray(q, float) for q in arch.joint_points[j])
+    d = p1 - p0
+    return p0, p1, d / max(float(np.hypot(*d)), 1e-300)
+
+
+def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None = None,
               alpha: float = 1.0, joints: bool = True, ground: bool = True,
-              label_joints=False, zorder: float = 1.0):
-    """Draw the voussoirs (annular sectors) and, optionally, the joint contact surfaces,
-    the springing supports and the joint numbers 0..n. Sets an equal aspect ratio.
+              label_joints=False, loads: bool = True, zorder: float = 1.0):
+    """Draw the voussoirs of any arch and, optionally, the joint contact segments, the
+    springing supports, the joint numbers 0..n and the loads (markers, area ~ mass) with the
+    fill above the extrados where the arch has one.  Sets an equal aspect ratio.
 
     ``label_joints``: False, True (numbers outside the extrados) or a collection of joints
     whose numbers go inside the intrados instead (to keep clear of extrados hinge labels).
@@ -94,21 +99,24 @@ def draw_arch(ax, arch: Arch, *, facecolor: str | None = None, edgecolor: str | 
 
     face = STYLE["voussoir_face"] if facecolor is None else facecolor
     edge = STYLE["voussoir_edge"] if edgecolor is None else edgecolor
+    if loads:
+        for region in getattr(arch, "fill_regions", ()) or ():
+            if region is not None:
+                ax.add_patch(Polygon(region, closed=True, facecolor=STYLE["fill"], edgecolor="none",
+                                     alpha=0.8 * alpha, zorder=zorder - 0.2))
     patches = []
     for i in range(arch.n):
         poly = Polygon(voussoir_outline(arch, i), closed=True, facecolor=face, edgecolor=edge,
                        linewidth=0.8, alpha=alpha, zorder=zorder)
         ax.add_patch(poly)
         patches.append(poly)
-    psi = arch.joint_angles
     if joints:
-        # The contact surface of a joint is the overlap of its neighbours' radial extents;
-        # draw that part darker so steps between irregular voussoirs stay visible.
+        # The contact segment of a joint is the overlap of its neighbours' faces; draw that
+        # part darker so steps between irregular voussoirs stay visible.
         for j in range(arch.n + 1):
-            c, s = math.cos(psi[j]), math.sin(psi[j])
-            r0, r1 = arch.contact_inner[j], arch.contact_outer[j]
-            ax.plot([r0 * c, r1 * c], [r0 * s, r1 * s], color=STYLE["joint"], lw=1.4,
-                    solid_capstyle="butt", zorder=zorder + 0.1)
+            (x0, y0), (x1, y1) = arch.joint_points[j]
+            ax.plot([x0, x1], [y0, y1], color=STYLE["joint"], lw=1.4, solid_capstyle="butt",
+                    zorder=zorder + 0.1)
     if ground:
         for j in (0, arch.n):
             _draw_support(ax, arch, j, zorder)
@@ -116,57 +124,84 @@ def draw_arch(ax, arch: Arch, *, facecolor: str | None = None, edgecolor: str | 
         inside = set(label_joints) if isinstance(label_joints, (set, frozenset, list, tuple)) else set()
         for j in range(arch.n + 1):
             label_joint(ax, arch, j, inside=j in inside, zorder=zorder + 0.2)
+    if loads and arch.loads:
+        fill = {id(ld) for ld in _fill_loads(arch)}
+        m_max = max(ld.mass for ld in arch.loads) or 1.0
+        for k, ld in enumerate(arch.loads):
+            is_fill = id(ld) in fill
+            ax.plot([ld.at[0]], [ld.at[1]], "v" if not is_fill else "o",
+                    ms=4.0 + 8.0 * math.sqrt(ld.mass / m_max), mfc=STYLE["load"],
+                    mec="white", mew=0.6, alpha=0.9, zorder=zorder + 3,
+                    label=None if k else "loads (area ~ mass)")
     ax.set_aspect("equal")
     ax.autoscale_view()
     return patches
 
 
-def label_joint(ax, arch: Arch, j: int, inside: bool = False, zorder: float = 1.2):
-    """Write the number of joint ``j`` just outside the extrados (or inside the intrados)."""
-    psi = arch.joint_angles[j]
-    gap = 0.06 * float(np.mean(arch.radii))
-    r = arch.contact_inner[j] - gap if inside else arch.contact_outer[j] + gap
-    ax.text(r * math.cos(psi), r * math.sin(psi), str(j), ha="center", va="center",
-            fontsize=8, color="#555555", zorder=zorder)
+def _fill_loads(arch) -> list:
+    """The loads of an arch that stand for its fill (a FamilyArch's loads after the user's)."""
+    recipe = getattr(arch, "recipe", None)
+    if not recipe or not recipe.get("fill"):
+        return []
+    return list(arch.loads[len(recipe.get("loads", ())):])
 
 
-def _draw_support(ax, arch: Arch, j: int, zorder: float):
+def label_joint(ax, arch, j: int, inside: bool = False, zorder: float = 1.2):
+    """Write the number of joint ``j`` just beyond its extrados end (or its intrados end),
+    along the joint's face."""
+    p0, p1, u = _face(arch, j)
+    gap = 0.06 * arch.size
+    x, y = p0 - gap * u if inside else p1 + gap * u
+    ax.text(x, y, str(j), ha="center", va="center", fontsize=8, color="#555555", zorder=zorder)
+
+
+def _draw_support(ax, arch, j: int, zorder: float):
     """Hatched strip under a springing joint (the ground the end voussoir rests on)."""
     from matplotlib.patches import Polygon
 
-    psi = arch.joint_angles[j]
-    c, s = math.cos(psi), math.sin(psi)
-    r0, r1 = arch.contact_inner[j], arch.contact_outer[j]
-    p0, p1 = np.array([r0 * c, r0 * s]), np.array([r1 * c, r1 * s])
-    # outward normal of the springing face, pointing away from the arch
-    normal = np.array([-s, c]) if j == 0 else np.array([s, -c])
-    depth = 0.3 * (r1 - r0)
-    # widen the strip a little beyond the contact surface, as a support block
-    along = (p1 - p0) / np.linalg.norm(p1 - p0) * 0.15 * (r1 - r0)
+    p0, p1, u = _face(arch, j)
+    width = float(np.hypot(*(p1 - p0)))
+    # normal of the springing face, pointing away from its voussoir
+    normal = np.array([-u[1], u[0]])
+    own = arch.area_centroids[0 if j == 0 else arch.n - 1]
+    if normal @ (own - p0) > 0:
+        normal = -normal
+    depth = 0.3 * width
+    # widen the strip a little beyond the contact segment, as a support block
+    along = u * 0.15 * width
     pts = np.array([p0 - along, p1 + along, p1 + along + depth * normal, p0 - along + depth * normal])
     ax.add_patch(Polygon(pts, closed=True, facecolor="white", edgecolor=STYLE["ground"],
                          hatch="////", linewidth=0.6, zorder=zorder - 0.1))
 
 
-def draw_hinges(ax, arch: Arch, mechanism, *, color: str | None = None, labels: bool = True,
+def draw_hinges(ax, arch, mechanism, *, color: str | None = None, labels: bool = True,
                 zorder: float = 5.0):
     """Mark the four hinges of ``mechanism`` and label them A, B, C, D.
 
-    Labels sit on the side of the edge away from the masonry (inside the intrados, outside
-    the extrados) so they never cover the voussoirs.
+    Labels sit on the side of the edge away from the masonry (beyond the intrados or the
+    extrados end, along the joint's face) so they never cover the voussoirs.
     """
     _require_matplotlib()
     col = STYLE["hinge"] if color is None else color
-    size = float(np.mean(arch.radii))
     for label, h in mechanism.labelled():
         x, y = arch.joint_point(h.joint, h.edge)
         ax.plot([x], [y], "o", ms=8, mfc="white", mec=col, mew=2.0, zorder=zorder)
         if labels:
-            r = math.hypot(x, y)
-            out = 1.0 if h.edge == "extrados" else -1.0
-            off = 0.075 * size * out
-            ax.text(x + off * x / r, y + off * y / r, label, ha="center", va="center",
+            _, _, u = _face(arch, h.joint)
+            off = 0.075 * arch.size * (1.0 if h.edge == "extrados" else -1.0)
+            ax.text(x + off * u[0], y + off * u[1], label, ha="center", va="center",
                     fontsize=12, fontweight="bold", color=col, zorder=zorder + 0.1)
+
+
+def _thrust_points(thrust, arch) -> np.ndarray:
+    """Where the line of thrust crosses each joint (n+1, 2) [m]: ``thrust.points`` (any arch),
+    else from its radii on the radial joints of a circular arch."""
+    pts = getattr(thrust, "points", None)
+    if pts is not None:
+        return np.asarray(pts, float)
+    psi = arch.joint_angles
+    r = np.asarray(thrust.radii, float)
+    return np.column_stack([r * np.cos(psi), r * np.sin(psi)])
 
 
 # ---------------------------------------------------------------------------- limit analysis
@@ -192,21 +227,26 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
     # joint numbers go inside where an extrados hinge label sits outside, and vice versa
     ext = {h.joint for h in mech.hinges if h.edge == "extrados"}
     draw_arch(ax, arch, label_joints=ext if label_joints else False)
-    poly = thrust.polyline
+    poly = getattr(thrust, "polyline", None)
+    pts = _thrust_points(thrust, arch)
+    poly = pts if poly is None else poly
     ax.plot(poly[:, 0], poly[:, 1], "-", color=STYLE["thrust"], lw=1.6, zorder=4,
             label="line of thrust at collapse")
-    ax.plot(thrust.points[:, 0], thrust.points[:, 1], ".", color=STYLE["thrust"], ms=4, zorder=4)
+    ax.plot(pts[:, 0], pts[:, 1], ".", color=STYLE["thrust"], ms=4, zorder=4)
     draw_hinges(ax, arch, mech)
 
-    size = float(np.max(arch.extrados_radii))
+    bounds = voussoir_bounds(arch)
+    (xmin, ymin), (xmax, ymax) = bounds.min(axis=0), bounds.max(axis=0)
+    size = 0.5 * max(xmax - xmin, ymax - ymin)
+    xc = 0.5 * (xmin + xmax)
     if show_loads:
         # Direction of the horizontal forces lambda*W (toward +x for M_l, -x for M_r).
         sgn = 1.0 if direction == "l" else -1.0
-        y0 = 0.25 * size
-        x0 = -0.18 * size * sgn
+        y0 = ymin + 0.25 * (ymax - ymin)
+        x0 = xc - 0.18 * size * sgn
         ax.annotate("", xy=(x0 + 0.36 * size * sgn, y0), xytext=(x0, y0),
                     arrowprops=dict(arrowstyle="-|>", color="#444444", lw=1.5))
-        ax.text(0.0, y0 - 0.07 * size, rf"$\lambda W$, $\lambda = k_{direction}$", ha="center",
+        ax.text(xc, y0 - 0.07 * size, rf"$\lambda W$, $\lambda = k_{direction}$", ha="center",
                 va="top", fontsize=9, color="#444444")
 
     seq = ", ".join(f"{lab} = {h.joint}{'i' if h.edge == 'intrados' else 'e'}"
@@ -217,16 +257,18 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
     ax.set_ylabel("y [m]")
     ax.legend(loc="lower center", fontsize=8, frameon=False)
     pad = 0.12 * size
-    ax.set_xlim(-size - pad, size + pad)
-    ymin = float(np.min(voussoir_bounds(arch)[:, 1]))
-    ax.set_ylim(min(ymin, 0.0) - 0.2 * size, size + pad)
+    ax.set_xlim(xmin - pad, xmax + pad)
+    ax.set_ylim(min(ymin, 0.0) - 0.2 * size, ymax + pad)
     ax.grid(True, lw=0.3, alpha=0.4)
     return ax
 
 
-def voussoir_bounds(arch: Arch) -> np.ndarray:
-    """All outline points of all voussoirs, (m, 2) [m] (for axis limits)."""
-    return np.vstack([voussoir_outline(arch, i, points_per_rad=10.0) for i in range(arch.n)])
+def voussoir_bounds(arch) -> np.ndarray:
+    """All outline points of all voussoirs (and of the fill, if any), (m, 2) [m] (for axis
+    limits)."""
+    pts = [voussoir_outline(arch, i, points_per_rad=10.0) for i in range(arch.n)]
+    pts += [r for r in getattr(arch, "fill_regions", ()) or () if r is not None]
+    return np.vstack(pts)
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, figsize=(7.0, 4.6), **kwargs):

@@ -10,6 +10,10 @@ from ._parser import CLIError, _int, finite_float
 #: Spelled out rather than taken from archrock.geometry so that --help needs no numpy.
 GEOMETRY_DEFAULTS = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7,
                      "density": 2000.0}
+#: The arch families and joint kinds (archrock.geometry.SHAPES / JOINTS, spelled out for --help
+#: without numpy; tests/test_cli.py checks they agree).
+SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
+JOINTS = ("normal", "vertical")
 
 
 # ---------------------------------------------------------------------------- output files
@@ -44,45 +48,85 @@ def folder_arg(path, flag: str = "--out", what: str = "a folder name"):
 
 # ---------------------------------------------------------------------------- arch
 def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
-    """Add the arch options: --radius --embrace --thickness --voussoirs --density (a nominal
-    arch; defaults: Oppenheim's arch) or --geometry FILE (a JSON geometry file)."""
+    """Add the arch options: a circular arch (--radius --embrace), an arch of a family
+    (--shape --span --rise, --thickness-crown, --joints), both with --thickness --voussoirs
+    --density (defaults: Oppenheim's arch), or --geometry FILE (a JSON geometry file)."""
     d = GEOMETRY_DEFAULTS
     g = parser.add_argument_group(
-        "arch geometry", "a nominal arch (defaults: Oppenheim's arch) or --geometry FILE")
+        "arch geometry", "a circular arch (defaults: Oppenheim's arch), an arch of a family "
+                         "(--shape, --span, --rise of the centreline) or --geometry FILE")
     # Defaults are None so that arch_from_args can tell given flags from defaults.
     g.add_argument("--radius", type=finite_float, metavar="R",
                    help=f"mean radius [m], > 0 (default {d['radius']:g})")
     g.add_argument("--embrace", type=finite_float, metavar="DEG",
                    help=f"angle of embrace [deg], 0 < embrace < 360 (default {d['embrace']:g})")
+    g.add_argument("--shape", choices=SHAPES, metavar="SHAPE",
+                   help=f"arch family: {', '.join(SHAPES)} (with --span and --rise; "
+                        f"docs/geometry.md)")
+    g.add_argument("--span", type=finite_float, metavar="S",
+                   help="span of the centreline between its springings [m], > 0")
+    g.add_argument("--rise", type=finite_float, metavar="F",
+                   help="rise of the centreline's crown above its springings [m] (circular: "
+                        "0 < F <= S; pointed: F > S/2; three-centred: F <= S/2)")
     g.add_argument("--thickness", type=finite_float, metavar="T",
-                   help=f"thickness [m], 0 < t < 2 R (default {d['thickness']:g})")
+                   help=f"thickness [m], 0 < t < 2 R (default {d['thickness']:g}); "
+                        f"with --shape: normal to the centreline, at the springings")
+    g.add_argument("--thickness-crown", type=finite_float, metavar="T_C",
+                   help="with --shape: thickness at the crown [m] (linear from --thickness at "
+                        "the springings; default: constant)")
+    g.add_argument("--joints", choices=JOINTS,
+                   help="with --shape: joints normal to the centreline (default) or vertical")
     g.add_argument("--voussoirs", type=_int, metavar="N",
                    help=f"number of voussoirs, >= 3 (default {d['voussoirs']})")
     g.add_argument("--density", type=finite_float, metavar="RHO",
                    help=f"density [kg/m^3], > 0 (default {d['density']:g}; cancels from k)")
     g.add_argument("--geometry", metavar="FILE",
-                   help="JSON geometry file (voussoirs from the left springing); "
-                        "excludes the flags above")
+                   help="JSON geometry file, circular or polygon voussoirs (from the left "
+                        "springing); excludes the flags above")
     return parser
 
 
 def arch_from_args(args: argparse.Namespace):
-    """The :class:`~archrock.geometry.Arch` described by the options of
-    :func:`add_geometry_options` (raises ArchInputError / CLIError on bad input)."""
+    """The arch described by the options of :func:`add_geometry_options`: a circular
+    :class:`~archrock.geometry.Arch`, or a family's (the exact Arch for a circular one with
+    normal joints and constant thickness, else a FamilyArch); raises ArchInputError / CLIError
+    on bad input."""
     from ..geometry import nominal_arch
 
-    flags = ("radius", "embrace", "thickness", "voussoirs", "density")
+    circ = ("radius", "embrace")
+    fam = ("shape", "span", "rise", "thickness_crown", "joints")
+    common = ("thickness", "voussoirs", "density")
+    flags = circ + fam + common
     given = [f for f in flags if getattr(args, f, None) is not None]
+    flag = {f: "--" + f.replace("_", "-") for f in flags}
     if getattr(args, "geometry", None):
         if given:
             raise CLIError(f"--geometry: cannot be combined with "
-                           f"{', '.join('--' + f for f in given)}; the file holds the whole geometry")
+                           f"{', '.join(flag[f] for f in given)}; the file holds the whole geometry")
         from ..files import read_arch
 
         return read_arch(args.geometry)
+    family = [f for f in fam if f in given]
+    if family:
+        both = [f for f in circ if f in given]
+        if both:
+            raise CLIError(f"{flag[both[0]]}: cannot be combined with {flag[family[0]]}; give "
+                           f"--radius/--embrace (circular) or --shape/--span/--rise")
+        shape = getattr(args, "shape", None) or "circular"
+        missing = [flag[f] for f in ("span", "rise") if getattr(args, f, None) is None]
+        if missing:
+            raise CLIError(f"{' and '.join(missing)}: needed with {flag[family[0]]} (the span "
+                           f"and rise of the {shape} arch's centreline, in metres)")
+        from ..geometry import family_arch
+
+        val = {f: getattr(args, f) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f]
+               for f in common}
+        return family_arch(shape, args.span, args.rise, val["thickness"], val["voussoirs"],
+                           thickness_crown=args.thickness_crown, joints=args.joints or "normal",
+                           density=val["density"], name=shape)
     vals = {f: (getattr(args, f, None) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f])
-            for f in flags}
-    is_oppenheim = not given or all(vals[f] == GEOMETRY_DEFAULTS[f] for f in flags)
+            for f in circ + common}
+    is_oppenheim = not given or all(vals[f] == GEOMETRY_DEFAULTS[f] for f in circ + common)
     return nominal_arch(radius=vals["radius"], embrace_deg=vals["embrace"], thickness=vals["thickness"],
                         voussoirs=vals["voussoirs"], density=vals["density"],
                         name="Oppenheim" if is_oppenheim else "nominal")

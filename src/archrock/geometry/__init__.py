@@ -4,7 +4,9 @@
   (joint contact segments, mass properties with loads, outlines), and :class:`Load`;
 * :mod:`~archrock.geometry.circular` -- :class:`Arch`, circular voussoir arches (exact annular
   sectors), nominal or irregular;
-* :mod:`~archrock.geometry.polygon` -- :class:`PolygonArch`, voussoirs of any shape as polygons.
+* :mod:`~archrock.geometry.polygon` -- :class:`PolygonArch`, voussoirs of any shape as polygons;
+* :mod:`~archrock.geometry.families` -- :func:`family_arch`: circular, pointed, elliptical,
+  three-centred, parabolic and catenary arches from span, rise and thickness.
 
 :func:`arch_from_dict` reads either geometry format.
 """
@@ -12,11 +14,13 @@
 from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties
 from .circular import (OPPENHEIM, Arch, nominal_arch, oppenheim_arch, perturb_voussoirs,
                        random_arch, random_spans_thicknesses_radii, sector_properties)
+from .families import JOINTS, SHAPES, FamilyArch, family_arch
 from .polygon import FACE_TOLERANCE, PolygonArch, as_polygon
 
 __all__ = ["VoussoirArch", "Arch", "PolygonArch", "Load", "nominal_arch", "oppenheim_arch",
            "random_arch", "perturb_voussoirs", "random_spans_thicknesses_radii",
-           "sector_properties", "polygon_properties", "as_polygon", "arch_from_dict", "OPPENHEIM",
+           "sector_properties", "polygon_properties", "as_polygon",
+           "family_arch", "FamilyArch", "SHAPES", "JOINTS", "arch_from_dict", "OPPENHEIM",
            "DEFAULT_DENSITY", "FACE_TOLERANCE"]
 
 

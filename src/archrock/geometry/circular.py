@@ -336,6 +336,9 @@ def random_arch(nominal: Arch | None = None, seed=None, spread_span: float = 0.1
     Reproducible from ``seed`` (an int or a numpy SeedSequence) or a given ``rng``.
     """
     nominal = oppenheim_arch() if nominal is None else nominal
+    if not isinstance(nominal, Arch):
+        raise ArchInputError(f"nominal: a {type(nominal).__name__}; random arches of the circular "
+                             f"family only in this version (a circular Arch)")
     s_a = _check_spread("spread_span", spread_span, 1.0)
     s_t = _check_spread("spread_thickness", spread_thickness, 1.0)
     s_r = _check_spread("spread_radius", spread_radius, 1.0)
