@@ -2,7 +2,9 @@
 
 The Python API in one namespace, in the order data flows (docs/architecture.md):
 
-* geometry: :class:`Arch`, :func:`nominal_arch`, :func:`oppenheim_arch`, :func:`random_arch`;
+* geometry: :class:`VoussoirArch` (every arch), :class:`Arch` (circular), :class:`PolygonArch`
+  (any shape), :func:`family_arch` (pointed, elliptical, ...), :class:`Load`,
+  :func:`nominal_arch`, :func:`oppenheim_arch`, :func:`random_arch`;
   irregular arches of a study: :class:`ArchSampler`, :class:`Spreads`;
 * limit analysis: :func:`limit_analysis`, :func:`minimum_thickness`;
 * ground motion: :class:`GroundMotion`, :func:`pulse`, :func:`oppenheim_pulse`,
@@ -24,7 +26,8 @@ _EXPORTS = {
     "errors": ("ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
                "NoMechanismError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
                "FitError", "LimitExceededError"),
-    "geometry": ("Arch", "nominal_arch", "oppenheim_arch", "random_arch"),
+    "geometry": ("Arch", "PolygonArch", "VoussoirArch", "Load", "family_arch", "nominal_arch",
+                 "oppenheim_arch", "random_arch", "as_polygon", "arch_from_dict"),
     "sampling": ("ArchSampler", "Spreads"),
     "limit": ("limit_analysis", "minimum_thickness"),
     "groundmotion": ("GroundMotion", "pulse", "oppenheim_pulse", "load_record", "PulseSpec",
