@@ -13,6 +13,13 @@ R = 10 m, embrace 157.5 deg, t = 1.5 m) with n = 7 and n = 20 voussoirs it measu
 then prints the rates, the speed-up ratios and the largest |kinematic - static| difference.
 Target: >= 5000 arches/s at n = 7 through the production path.
 
+Polygon and family arches (``--polygon-arches``, default 200): ``limit.limit_analysis`` one arch
+at a time of the circular arches (Oppenheim's, and random arches at n = 7) against the same arches
+as polygons (``geometry.as_polygon(arch, 20)``: 20 points per intrados and extrados line), and of a
+pointed family arch (n = 12); arches/s and the polygon/circular ratio in the same run (target: the
+polygon path within a factor 2 of the circular one).  Each timed call gets a fresh arch object, so
+cached joints and mass properties are paid for.
+
 Many voussoirs (``--large``, default 100 200 500 1000): ``limit.limit_analysis`` of the nominal
 arch (the static-guided search above ``limit.ENUMERATION_MAX_VOUSSOIRS``), its kinematic part
 alone, and the full enumeration (``method="enumeration"``) where its estimate is below
@@ -36,7 +43,10 @@ if "--no-numba" in sys.argv:
 import numpy as np  # noqa: E402
 
 from archrock import limit  # noqa: E402
-from archrock.geometry import Arch, nominal_arch, random_spans_thicknesses_radii  # noqa: E402
+from archrock.geometry import (Arch, as_polygon, family_arch, nominal_arch,  # noqa: E402
+                               oppenheim_arch, random_spans_thicknesses_radii)
+
+TARGET_POLYGON_RATIO = 2.0
 
 TARGET_N7 = 5000.0
 
@@ -104,6 +114,8 @@ def main(argv=None) -> int:
     ap.add_argument("--lp-arches", type=int, default=300, help="arches through linprog (default 300)")
     ap.add_argument("--no-numba", action="store_true", help="use the numpy enumeration only")
     ap.add_argument("--seed", type=int, default=2017)
+    ap.add_argument("--polygon-arches", type=int, default=200,
+                    help="arches per polygon/family timing (default 200; 0: skip)")
     ap.add_argument("--large", type=int, nargs="*", default=[100, 200, 500, 1000],
                     help="voussoir counts of the many-voussoir timings (none: skip them)")
     ap.add_argument("--enum-max-seconds", type=float, default=60.0,
@@ -131,9 +143,64 @@ def main(argv=None) -> int:
           f"({rows[0]['batch']:.0f} arches/s)")
     agree = all(r["diff_lp"] < 1e-6 and r["diff_single"] == 0.0 for r in rows)
     print(f"kinematic and static agree within 1e-6: {'yes' if agree else 'NO'}")
+    if args.polygon_arches:
+        agree &= bench_polygon(args.polygon_arches, args.seed)
     if args.large:
         agree &= bench_large(args.large, args.enum_max_seconds)
     return 0 if agree else 1
+
+
+def _rate_fresh(make, count: int, repeat: int = 3, built: bool = False) -> tuple[float, list]:
+    """limit_analysis of ``count`` fresh arches from ``make(b)`` (built before the clock
+    starts, or inside it with ``built``), best of ``repeat``: arches/s, and the results of the
+    last pass."""
+    best, res = np.inf, None
+    for _ in range(repeat):
+        arches = list(range(count)) if built else [make(b) for b in range(count)]
+        t0 = time.perf_counter()
+        res = [limit.limit_analysis(make(a) if built else a) for a in arches]
+        best = min(best, time.perf_counter() - t0)
+    return count / best, res
+
+
+def bench_polygon(count: int, seed: int) -> bool:
+    """One arch at a time: circular arches against the same arches as polygons; a family arch."""
+    print(f"\npolygon arches: limit_analysis one arch at a time ({count} fresh arches per "
+          f"timing), circular Arch against as_polygon(arch, 20)")
+    opp = oppenheim_arch()
+    spans, radii, thick = make_batch(7, count, seed + 101)
+    rand = [Arch(spans[b], radii[b], thick[b]) for b in range(count)]
+    cases = [("Oppenheim (n = 7)", lambda b: Arch(opp.spans, opp.radii, opp.thicknesses),
+              lambda b: as_polygon(opp, 20)),
+             ("random, n = 7", lambda b: Arch(rand[b].spans, rand[b].radii, rand[b].thicknesses),
+              lambda b: as_polygon(rand[b], 20))]
+    limit.limit_analysis(as_polygon(opp, 20))  # warm-up
+    ok = True
+    print(f"{'arches':>20} {'circular':>12} {'polygon':>12} {'circ/poly':>10} "
+          f"{'+ as_polygon':>13} {'circ/poly':>10} {'max |dk|':>10}")
+    for label, circ, poly in cases:
+        rc, res_c = _rate_fresh(circ, count)
+        rp, res_p = _rate_fresh(poly, count)
+        rpb, _ = _rate_fresh(poly, count, built=True)
+        dk = max(max(abs(a.k_l - b.k_l), abs(a.k_r - b.k_r)) for a, b in zip(res_c, res_p))
+        ratio = rc / rp
+        ok &= ratio <= TARGET_POLYGON_RATIO
+        print(f"{label:>20} {rc:8.0f} /s {rp:8.0f} /s {ratio:9.2f}x {rpb:9.0f} /s "
+              f"{rc / rpb:9.2f}x {dk:10.1e}")
+    print("  (polygon: the arch built before the clock; + as_polygon: built inside it, with the "
+          "checks of its outlines; dk: the 20-point polygons against the exact sectors)")
+    pointed = family_arch("pointed", 10.0, 7.0, 1.0, 12)
+    fam = pointed.to_dict()
+    from archrock.geometry import PolygonArch
+
+    rf, _ = _rate_fresh(lambda b: PolygonArch.from_dict(fam), count)
+    rb, _ = _rate_fresh(lambda b: family_arch("pointed", 10.0, 7.0, 1.0, 12), max(count // 10, 5), 1)
+    n_pts = len(pointed.outline(0))
+    print(f"  pointed family arch (S = 10, F = 7, t = 1 m, n = 12; {n_pts} outline points per "
+          f"voussoir): {rf:.0f} arches/s; with family_arch's construction: {rb:.1f} arches/s")
+    print(f"polygon path within {TARGET_POLYGON_RATIO:g}x of the circular one: "
+          f"{'yes' if ok else 'NO'}")
+    return ok
 
 
 def bench_large(counts, enum_max_seconds: float) -> bool:
