@@ -302,7 +302,7 @@ class FamilyArch(PolygonArch):
             raise ArchInputError(f"family: unknown key(s) {sorted(unknown)}; allowed "
                                  f"{', '.join(sorted(allowed))}")
         r["loads"] = tuple(r.get("loads") or ())
-        if name is not None and r.get("name") is None:
+        if name is not None:  # as PolygonArch.from_dict: the reader's name wins
             r["name"] = name
         arch = family_arch(**r, exact=False)
         return arch
@@ -686,7 +686,10 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
                     lengths[i - 1], lengths[i])))
                 hi = big_l if i == n - 1 else (big_l if widen else min(big_l, s_div[i + 1] + 0.5 * min(
                     lengths[i], lengths[i + 1])))
-                pts = _sample_offset(line, te, lo, hi, side, ppr, crown)
+                try:
+                    pts = _sample_offset(line, te, lo, hi, side, ppr, crown)
+                except IndexError:  # a range ending just past a pointed crown: widen it
+                    continue
                 left = (0, pts[0]) if i == 0 else _cut(pts, c[i], d[i], c[i] + side * d[i])
                 right = (len(pts) - 2, pts[-1]) if i == n - 1 else \
                     _cut(pts, c[i + 1], d[i + 1], c[i + 1] + side * d[i + 1])
