@@ -34,9 +34,10 @@ from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError, ArchrockError
 from .impact import ImpactSpec
-from .geometry import sector_properties
+from .geometry import Arch, sector_properties
 from .groundmotion import G, GroundMotion
-from .limit import _mechanism_from_candidate, candidate_hinges, kinematic_multipliers_batch
+from .limit import (_mechanism_from_candidate, candidate_hinges, kinematic_multipliers_arches,
+                    kinematic_multipliers_batch)
 from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficient_table, coefficients, dead_point, mechanism_geo,
                         rest_rate, rotation_limit, table_range, unstable_rotation)
 
@@ -178,9 +179,9 @@ class PreparedBatch:
         return int(self.k_l.size)
 
 
-_NOT_CIRCULAR = ("the batch path takes circular arches only, as arrays (B, n) of spans, radii "
-                 "and thicknesses; prepare an arch of another shape (PolygonArch) with "
-                 "archrock.response.prepare, one arch at a time")
+_NOT_CIRCULAR = ("the array form takes circular arches only, as arrays (B, n) of spans, radii "
+                 "and thicknesses; give arches of any shape as one sequence of VoussoirArch "
+                 "objects alone: prepare_batch(arches)")
 
 
 def _circular_rows(name: str, values) -> np.ndarray:
@@ -201,11 +202,27 @@ def _circular_rows(name: str, values) -> np.ndarray:
     return arr
 
 
-def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=None,
+def _is_arch_sequence(values) -> bool:
+    from .geometry import VoussoirArch
+
+    if isinstance(values, VoussoirArch):
+        return True
+    return isinstance(values, (list, tuple)) and len(values) > 0 and all(
+        isinstance(v, (VoussoirArch, ArchrockError)) for v in values)
+
+
+def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, impact=None,
                   cv: float | None = None, *, nominal=None) -> PreparedBatch:
     """Limit analysis, four-link models, rotation limits and impact law of a batch of arches.
 
-    spans [rad], radii [m], thicknesses [m]: arrays (B, n) with the same n.  impact: an
+    Either spans [rad], radii [m], thicknesses [m]: arrays (B, n) with the same n (circular
+    arches), or ``spans`` alone a sequence of B arches of any shape (:class:`VoussoirArch`) with
+    the same n: an entry may be an :class:`~archrock.errors.ArchrockError` instead (e.g. the
+    ``InvalidSampleError`` of :meth:`archrock.sampling.ArchSampler.arches`), which becomes that
+    row's error.  Arches are analysed by :func:`archrock.limit.kinematic_multipliers_arches`
+    (the enumeration over their stacked sums, or the guided search above 40 voussoirs); their
+    joint points, masses, centroids and inertias (with loads) feed the same compiled four-link
+    loop, and ``density`` is then unused (each arch has its own).  impact: an
     :class:`~archrock.impact.ImpactSpec` or what ``ImpactSpec.parse`` reads (with ``cv``), as
     for :func:`archrock.response.prepare`: a fixed c_v (applied energy-consistently, c = cv
     sqrt(M_old(0)/M_new(0)), or to the rates with ``literal``, docs/method.md, Impact), "paper" or
@@ -213,10 +230,14 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=Non
     "paper" creates energy gets an error instead of a law), or "least-loss" (each arch's chain of
     mechanisms from ``archrock.response.prepare(arch, "least-loss")``, arch by arch in Python:
     about 0.1 s each).  A spec evaluated on the nominal arch needs ``nominal`` (an Arch).
-    Circular arches only: polygon data (PolygonArch objects, polylines) is refused with an
-    :class:`~archrock.errors.ArchInputError`.
+    Arch objects together with radii/thicknesses arrays, or polylines as arrays, are refused with
+    an :class:`~archrock.errors.ArchInputError`.
     """
     t0 = time.perf_counter()
+    if radii is None and thicknesses is None and _is_arch_sequence(spans):
+        return _prepare_arches(spans, impact, cv, nominal, t0)
+    if radii is None or thicknesses is None:
+        raise ArchInputError(f"radii, thicknesses: needed with arrays of spans; {_NOT_CIRCULAR}")
     spans, radii, thick = (_circular_rows(name, v) for name, v in (
         ("spans", spans), ("radii", radii), ("thicknesses", thicknesses)))
     spec = ImpactSpec.parse(impact, cv=cv).resolved(nominal)
@@ -256,6 +277,82 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=Non
     mass = np.ascontiguousarray(density * p["area"])
     cen = np.ascontiguousarray(p["centroid"])
     inert = np.ascontiguousarray(density * p["polar"])
+    return _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec,
+                   lambda b: Arch(spans[b], radii[b], thick[b], density), t0, t1)
+
+
+def _spec(impact, cv, nominal):
+    spec = ImpactSpec.parse(impact, cv=cv).resolved(nominal)
+    if spec.on == "nominal":
+        raise ArchInputError("nominal: the impact is evaluated on the nominal arch; give it "
+                             "(nominal=Arch) or resolve the spec first")
+    return spec
+
+
+def _limit_errors(k_l, k_r, ok, error):
+    """Rows whose multipliers say the arch has no mechanism or cannot stand (as the circular
+    path words them)."""
+    for b in np.flatnonzero(ok & ((k_l == np.inf) | (k_r == np.inf))):
+        error[b] = "limit analysis: no admissible four-hinge mechanism"
+    for b in np.flatnonzero(ok & (k_l < np.inf) & (k_r < np.inf) & ((k_l <= 0) | (k_r <= 0))):
+        error[b] = f"limit analysis: the arch cannot stand (k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})"
+
+
+def _prepare_arches(arches, impact, cv, nominal, t0) -> PreparedBatch:
+    """prepare_batch of a sequence of arches of any shape (see there)."""
+    from .geometry import VoussoirArch
+
+    items = [arches] if isinstance(arches, VoussoirArch) else list(arches)
+    spec = _spec(impact, cv, nominal)
+    B = len(items)
+    good = [b for b, a in enumerate(items) if isinstance(a, VoussoirArch)]
+    if not good:
+        n = 3
+    else:
+        n = items[good[0]].n
+        if any(items[b].n != n for b in good):
+            raise ArchInputError("arches: different numbers of voussoirs; allowed one n per batch")
+    error = np.full(B, "", dtype=object)
+    for b, a in enumerate(items):
+        if not isinstance(a, VoussoirArch):
+            why = " ".join(str(a).split())
+            error[b] = why if why.startswith("geometry:") else "geometry: " + why
+    ok = error == ""
+    k_l = np.full(B, np.nan)
+    k_r = np.full(B, np.nan)
+    cand_l = np.zeros(B, dtype=np.int64)
+    cand_r = np.zeros(B, dtype=np.int64)
+    if ok.any():
+        kl, kr, il, ir = kinematic_multipliers_arches([items[b] for b in good])
+        k_l[ok], k_r[ok], cand_l[ok], cand_r[ok] = kl, kr, il, ir
+    _limit_errors(k_l, k_r, ok, error)
+    ok = error == ""
+    t1 = time.perf_counter()
+    safe = np.flatnonzero(ok)[0] if ok.any() else None
+    if safe is None:  # nothing to prepare: a harmless circular stand-in for the loop's shapes
+        from .geometry import nominal_arch
+
+        stand_in = nominal_arch(10.0, 157.5, 1.5, n)
+    else:
+        stand_in = items[safe]
+    rows = [items[b] if ok[b] else stand_in for b in range(B)]
+    jp = np.stack([np.asarray(a.joint_points, float) for a in rows])
+    px = np.ascontiguousarray(jp[..., 0])
+    py = np.ascontiguousarray(jp[..., 1])
+    mass = np.ascontiguousarray(np.stack([np.asarray(a.masses, float) for a in rows]))
+    cen = np.ascontiguousarray(np.stack([np.asarray(a.centroids, float) for a in rows]))
+    inert = np.ascontiguousarray(np.stack([np.asarray(a.inertias, float) for a in rows]))
+    return _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec,
+                   lambda b: items[b], t0, t1)
+
+
+def _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec, arch_of, t0,
+            t1) -> PreparedBatch:
+    """The four-link models, rotation limits, tables and impact law of a batch whose limit
+    analysis is done (both paths); ``arch_of(b)`` the arch object of row b."""
+    impact, cv = spec.model, spec.cv
+    B = error.size
+    ok = error == ""
     # hinges of each arch's two mechanisms, unranked from the candidate indices (the candidate
     # list itself is never built: 14 C(n+1, 4) entries)
     hinges = {c: candidate_hinges(n, c) for c in set(cand_l.tolist()) | set(cand_r.tolist())}
@@ -302,12 +399,12 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=Non
         c_lr[ok] = cv * ratio[ok]
         c_rl[ok] = cv / ratio[ok]
     elif impact != "least-loss":
-        _impact_per_arch(impact, spans, radii, thick, density, k_l, k_r, cand_l, cand_r, ok,
+        _impact_per_arch(impact, arch_of, n, k_l, k_r, cand_l, cand_r, ok,
                          c_lr, c_rl, error)
         ok = error == ""
     chain = {}
     if impact == "least-loss":
-        chain = _least_loss_per_arch(spans, radii, thick, density, ok, c_lr, c_rl, out["v_rest"],
+        chain = _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, out["v_rest"],
                                      error)
     t3 = time.perf_counter()
     return PreparedBatch(k_l, k_r, mech_l, mech_r, geo_l, geo_r, out["phu_l"], out["phu_r"],
@@ -316,20 +413,17 @@ def prepare_batch(spans, radii, thicknesses, density: float = 2000.0, impact=Non
                          **chain)
 
 
-def _impact_per_arch(model, spans, radii, thick, density, k_l, k_r, cand_l, cand_r, ok,
-                     c_lr, c_rl, error):
+def _impact_per_arch(model, arch_of, n, k_l, k_r, cand_l, cand_r, ok, c_lr, c_rl, error):
     """'paper' / 'momentum' impact laws arch by arch (Python objects); failures recorded."""
     import warnings
 
-    from .geometry import Arch
     from .impact import impact_law
     from .limit import _mechanism_from_candidate
     from .mechanism import four_link
 
-    n = spans.shape[1]
     for b in np.flatnonzero(ok):
         try:
-            arch = Arch(spans[b], radii[b], thick[b], density)
+            arch = arch_of(b)
             ml = four_link(arch, _mechanism_from_candidate(n, int(cand_l[b]), "l", k_l[b]))
             mr = four_link(arch, _mechanism_from_candidate(n, int(cand_r[b]), "r", k_r[b]))
             with warnings.catch_warnings():
@@ -341,21 +435,19 @@ def _impact_per_arch(model, spans, radii, thick, density, k_l, k_r, cand_l, cand
         c_lr[b], c_rl[b] = law.l_to_r, law.r_to_l
 
 
-def _least_loss_per_arch(spans, radii, thick, density, ok, c_lr, c_rl, v_rest, error) -> dict:
+def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
     """Chain arrays of the least-loss law, arch by arch through response.prepare (the same chain,
     four-link vectors, limits and v_rest as the one-arch path); failures recorded in ``error``."""
     import warnings
 
-    from .geometry import Arch
     from .response import prepare
 
-    B = spans.shape[0]
     chains = {}
     for b in np.flatnonzero(ok):
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                model = prepare(Arch(spans[b], radii[b], thick[b], density), "least-loss")
+                model = prepare(arch_of(b), "least-loss")
         except (ArchrockError, ZeroDivisionError, FloatingPointError) as exc:
             error[b] = "least-loss chain: " + " ".join(str(exc).split())
             continue

@@ -34,7 +34,7 @@ import numpy as np
 
 from ._records import readonly_arrays
 from .errors import ArchInputError
-from .geometry import Arch
+from .geometry import Arch, VoussoirArch
 from .groundmotion import MAX_PGA_G, pulse, pulse_kind
 from .impact import ImpactSpec
 from .population import left_out_summary, prepare_sample
@@ -431,8 +431,8 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     estimated first and refused beyond the bound of :mod:`archrock.work`; ``progress`` shows
     the arches done on stderr when the estimate exceeds a few seconds.
     """
-    if not isinstance(nominal, Arch):
-        raise ArchInputError(f"nominal: expected an Arch, got {type(nominal).__name__}")
+    if not isinstance(nominal, VoussoirArch):
+        raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
     samples = _check_int("samples", samples, 1)
     workers = _check_int("workers", workers, 1)
     sampler = ArchSampler(nominal, Spreads.from_dict(spreads), seed)

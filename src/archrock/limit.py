@@ -47,6 +47,7 @@ from .geometry import Arch, VoussoirArch, sector_properties
 __all__ = [
     "Hinge", "Mechanism", "ThrustLine", "LimitResult", "MinimumThickness",
     "limit_analysis", "kinematic_mechanisms", "kinematic_multipliers_batch",
+    "kinematic_multipliers_arches",
     "static_multiplier", "thrust_line", "minimum_thickness", "length_scale", "arch_sums",
     "enumeration_estimate", "EDGES", "METHODS", "ENUMERATION_MAX_VOUSSOIRS",
     "MAX_ENUMERATION_SECONDS",
@@ -750,6 +751,36 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
         if progress and time.perf_counter() - last > 0.1 * _PROGRESS_SECONDS:
             last = time.perf_counter()
             _say(f"static-guided search {b + 1}/{B} arches ({last - t0:.0f} s)")
+    return k_l, k_r, i_l, i_r
+
+
+def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: float | None = None):
+    """:func:`kinematic_multipliers_batch` for arches of any shape with the same number of
+    voussoirs (a sequence of :class:`VoussoirArch`): their :func:`arch_sums` stacked into one
+    enumeration (n <= :data:`ENUMERATION_MAX_VOUSSOIRS` with "auto"), or arch by arch the
+    static-guided search of :func:`kinematic_mechanisms`.  Each row is that arch's
+    ``kinematic_mechanisms`` result, bit for bit.  Returns (k_l, k_r, cand_l, cand_r)."""
+    max_seconds = _check_method(method, max_seconds)
+    arches = list(arches)
+    if not arches or not all(isinstance(a, VoussoirArch) for a in arches):
+        raise ArchInputError("arches: expected a non-empty sequence of VoussoirArch objects")
+    n = arches[0].n
+    if any(a.n != n for a in arches):
+        raise ArchInputError("arches: different numbers of voussoirs; allowed one n per batch")
+    B = len(arches)
+    sums = [arch_sums(a) for a in arches]
+    if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
+        stacked = tuple(np.ascontiguousarray(np.concatenate([sm[k] for sm in sums]))
+                        for k in range(5))
+        return _full_enumeration(lambda s, e: tuple(a[s:e] for a in stacked), B, n, None,
+                                 max_seconds)
+    k_l = np.empty(B)
+    k_r = np.empty(B)
+    i_l = np.empty(B, dtype=np.int64)
+    i_r = np.empty(B, dtype=np.int64)
+    for b, (arch, sm) in enumerate(zip(arches, sums)):
+        k_l[b], k_r[b], i_l[b], i_r[b] = _guided(arch, sm, lambda why, sm=sm: _full_enumeration(
+            lambda s, e: sm, 1, n, None, max_seconds, why))
     return k_l, k_r, i_l, i_r
 
 

@@ -33,7 +33,7 @@ def add_curves_parser(subparsers):
     p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
                    help="random arches for quantile bands (0 = nominal only, default)")
     p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    add_spread_options(p)
+    add_spread_options(p, tilt=True)
     p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")

@@ -29,7 +29,7 @@ def add_fragility_parser(subparsers):
     p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
                    help="random arches (0 = the nominal arch only, default)")
     p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    add_spread_options(p)
+    add_spread_options(p, tilt=True)
     add_impact_options(p)
     p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
                    help="bootstrap resamples for confidence bands (0 = none, or >= 2; default 200)")

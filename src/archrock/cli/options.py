@@ -133,14 +133,20 @@ def arch_from_args(args: argparse.Namespace):
 
 
 # ---------------------------------------------------------------------------- random arches
-def add_spread_options(p: argparse.ArgumentParser) -> argparse.ArgumentParser:
-    """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths)."""
+def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False) -> argparse.ArgumentParser:
+    """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths),
+    and with ``tilt`` --spread-tilt (joint tilt of family arches, degrees)."""
     p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
                    help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
     p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
                    help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
     p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
                    help="half-width of the radii as a fraction of t, 0 <= s_R < 1 (default 0.05)")
+    if tilt:
+        p.add_argument("--spread-tilt", type=finite_float, default=0.0, metavar="DEG",
+                       help="half-width of the tilt of each interior joint [deg] about its "
+                            "centreline point, 0 <= tilt < 45 (default 0); an arch of a family "
+                            "(--shape ...) other than the exact circular Arch")
     return p
 
 
@@ -148,7 +154,8 @@ def spreads(args: argparse.Namespace):
     """The :class:`~archrock.sampling.Spreads` of :func:`add_spread_options`."""
     from ..sampling import Spreads
 
-    return Spreads(args.spread_span, args.spread_thickness, args.spread_radius)
+    return Spreads(args.spread_span, args.spread_thickness, args.spread_radius,
+                   getattr(args, "spread_tilt", 0.0))
 
 
 # ---------------------------------------------------------------------------- ground motion

@@ -20,7 +20,6 @@ import numpy as np
 
 from ..batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, prepare_batch, simulate_batch
 from ..errors import ArchInputError
-from ..geometry import Arch
 from .config import EnsembleConfig
 
 __all__ = ["COLUMNS", "run_batch", "sample_arch"]
@@ -34,7 +33,7 @@ COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_
            "events_truncated", "error"]
 
 
-def sample_arch(config: EnsembleConfig, index: int) -> Arch:
+def sample_arch(config: EnsembleConfig, index: int):
     """The random arch of sample ``index`` (0-based) of the ensemble, rebuilt from the seed."""
     if isinstance(index, bool) or int(index) != index or not 0 <= index < config.samples:
         raise ArchInputError(f"index: {index!r}; allowed 0..{config.samples - 1}")
@@ -55,9 +54,12 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
         raise ArchInputError(f"batch: {b}; allowed 0..{cfg.n_batches - 1}")
     sampler = cfg.sampler
     start, nb = cfg.batch_range(b)
-    spans, thick, radii = sampler.draw(start, nb)
-    pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
-                       impact=cfg.impact.resolved(sampler.nominal))
+    if sampler.circular:
+        spans, thick, radii = sampler.draw(start, nb)
+        pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
+                           impact=cfg.impact.resolved(sampler.nominal))
+    else:  # any other family: the arches themselves (invalid draws carry their reason)
+        pb = prepare_batch(sampler.arches(start, nb), impact=cfg.impact.resolved(sampler.nominal))
     motion = cfg.motion.build() if cfg.motion is not None else None
     error = pb.error.copy()
     if motion is not None:

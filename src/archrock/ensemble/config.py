@@ -16,7 +16,7 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from ..geometry import Arch
+from ..geometry import Arch, VoussoirArch, arch_from_dict
 from ..groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
 from ..impact import PAPER_PRACTICE, ImpactSpec
 from ..response import default_steps
@@ -36,7 +36,8 @@ def int_field(name, value, lo):
 class EnsembleConfig:
     """Everything that determines an ensemble's results (JSON-serialisable).
 
-    nominal: the nominal geometry as ``Arch.to_dict()``; samples >= 1; seed >= 0; spreads: a
+    nominal: the nominal geometry as ``Arch.to_dict()`` or a family arch's ``FamilyArch.to_dict()``
+    (with its recipe under "family"; an arch object is turned into its dict); samples >= 1; seed >= 0; spreads: a
     :class:`~archrock.sampling.Spreads` (or its dict): sample i is arch i of
     ``ArchSampler(nominal, spreads, seed)``, the same arch as in ``curves`` and ``fragility``;
     batch_size >= 1: samples per batch, the unit of work, of parallelism and of resumption (the
@@ -63,17 +64,27 @@ class EnsembleConfig:
     tabulate: bool = True
 
     def __post_init__(self):
-        if isinstance(self.nominal, Arch):
+        if isinstance(self.nominal, VoussoirArch):
+            if not isinstance(self.nominal, Arch) and getattr(self.nominal, "recipe", None) is None:
+                raise ArchInputError(
+                    f"nominal: {self.nominal.name!r} is a polygon arch without a family (e.g. "
+                    f"surveyed): it cannot be perturbed; allowed a circular Arch or an arch of "
+                    f"family_arch")
             object.__setattr__(self, "nominal", self.nominal.to_dict())
-        Arch.from_dict(self.nominal)  # validates
+        arch = arch_from_dict(self.nominal)  # validates
+        if not isinstance(arch, Arch) and getattr(arch, "recipe", None) is None:
+            raise ArchInputError("nominal: polygon voussoirs without a family recipe (e.g. a "
+                                 "surveyed arch) cannot be perturbed; allowed a circular arch or "
+                                 "a family arch's dict (with its 'family' recipe)")
         object.__setattr__(self, "samples", int_field("samples", self.samples, 1))
         object.__setattr__(self, "seed", int_field("seed", self.seed, 0))
         object.__setattr__(self, "batch_size", int_field("batch size", self.batch_size, 1))
         object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
+        ArchSampler(arch, self.spreads, self.seed)  # the nominal and spreads can be sampled
         object.__setattr__(self, "impact", ImpactSpec.parse(self.impact))
         # default steps follow the nominal arch's size (response.default_steps): 2e-3 s and 60 s
         # for arches of 0.4-14 m, so configurations (and their hashes) of such arches are 0.1.0's
-        steps = dict(zip(("dt", "t_free"), default_steps(Arch.from_dict(self.nominal))))
+        steps = dict(zip(("dt", "t_free"), default_steps(arch)))
         for name in ("dt", "t_free"):
             if getattr(self, name) is None:
                 object.__setattr__(self, name, steps[name])
@@ -92,13 +103,13 @@ class EnsembleConfig:
         object.__setattr__(self, "motion", motion)
 
     @classmethod
-    def from_arch(cls, nominal: Arch, **kwargs) -> "EnsembleConfig":
+    def from_arch(cls, nominal: VoussoirArch, **kwargs) -> "EnsembleConfig":
         return cls(nominal.to_dict(), **kwargs)
 
     @cached_property
     def sampler(self) -> ArchSampler:
         """The sampler of this ensemble's random arches."""
-        return ArchSampler(Arch.from_dict(self.nominal, name="nominal"), self.spreads, self.seed)
+        return ArchSampler(arch_from_dict(self.nominal, name="nominal"), self.spreads, self.seed)
 
     @property
     def n_batches(self) -> int:

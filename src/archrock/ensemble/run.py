@@ -7,7 +7,7 @@ import time
 from pathlib import Path
 
 from ..errors import ArchInputError
-from ..geometry import Arch
+from ..geometry import Arch, arch_from_dict
 from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
 from .config import EnsembleConfig, int_field
 from .executors import execute
@@ -22,7 +22,13 @@ def _nominal_info(config: EnsembleConfig) -> dict:
     from ..batch import mechanism_label
     from ..limit import kinematic_multipliers_batch
 
-    arch = Arch.from_dict(config.nominal)
+    arch = arch_from_dict(config.nominal)
+    if not isinstance(arch, Arch):
+        from ..limit import kinematic_mechanisms
+
+        m_l, m_r = kinematic_mechanisms(arch)
+        return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
+                "mech_r": m_r.label}
     k_l, k_r, i_l, i_r = kinematic_multipliers_batch(arch.spans[None], arch.radii[None],
                                                      arch.thicknesses[None])
     return {"k_l": float(k_l[0]), "k_r": float(k_r[0]), "mech_l": mechanism_label(arch.n, int(i_l[0])),

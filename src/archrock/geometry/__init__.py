@@ -8,7 +8,8 @@
 * :mod:`~archrock.geometry.families` -- :func:`family_arch`: circular, pointed, elliptical,
   three-centred, parabolic and catenary arches from span, rise and thickness.
 
-:func:`arch_from_dict` reads either geometry format.
+:func:`arch_from_dict` reads either geometry format (a family arch's dict, with its recipe
+under ``"family"``, is rebuilt as the :class:`FamilyArch`).
 """
 
 from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties
@@ -26,8 +27,13 @@ __all__ = ["VoussoirArch", "Arch", "PolygonArch", "Load", "nominal_arch", "oppen
 
 def arch_from_dict(data, name: str = "arch") -> VoussoirArch:
     """An arch from either JSON geometry format: voussoirs with span_deg/radius/thickness (a
-    circular :class:`Arch`) or with intrados/extrados polylines (a :class:`PolygonArch`)."""
+    circular :class:`Arch`) or with intrados/extrados polylines (a :class:`PolygonArch`; a
+    :class:`FamilyArch` rebuilt from its recipe when the dict holds one under ``"family"``, as
+    ``FamilyArch.to_dict`` writes)."""
     from ..errors import ArchInputError
+
+    if isinstance(data, dict) and data.get("family") is not None:
+        return FamilyArch.from_recipe(data["family"], name=name)
 
     vs = data.get("voussoirs") if isinstance(data, dict) else None
     if isinstance(vs, list) and vs and all(isinstance(v, dict) and "intrados" in v for v in vs):

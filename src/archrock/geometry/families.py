@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -43,7 +44,7 @@ from ..errors import ArchInputError
 from .base import DEFAULT_DENSITY, Load, _check_scalar, polygon_properties
 from .polygon import PolygonArch
 
-__all__ = ["family_arch", "FamilyArch", "SHAPES", "JOINTS", "centreline"]
+__all__ = ["family_arch", "FamilyArch", "SHAPES", "JOINTS", "centreline", "perturb_family"]
 
 SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
 JOINTS = ("normal", "vertical")
@@ -272,6 +273,53 @@ class FamilyArch(PolygonArch):
         r["loads"] = tuple(Load(ld.voussoir, ld.mass * f * f, (ld.at[0] * f, ld.at[1] * f))
                            for ld in r["loads"])
         return family_arch(**r, exact=False)
+
+    def to_dict(self) -> dict:
+        """The polygon geometry format with the family's recipe under ``"family"`` (shape,
+        span, rise, thicknesses, voussoirs, joints, density, user loads, fill, name,
+        points_per_rad): :func:`~archrock.geometry.arch_from_dict` rebuilds the FamilyArch from
+        it (the polylines stay for readers that only know polygons)."""
+        d = super().to_dict()
+        if self.recipe is not None:
+            r = dict(self.recipe)
+            r["loads"] = [ld.to_dict() for ld in r["loads"]]
+            r["fill"] = None if r["fill"] is None else dict(r["fill"])
+            d["family"] = r
+        return d
+
+    @classmethod
+    def from_recipe(cls, recipe: dict, name: str | None = None) -> "FamilyArch":
+        """Rebuild a family arch from its recipe (``to_dict()["family"]``)."""
+        if not isinstance(recipe, dict) or not {"shape", "span", "rise", "thickness",
+                                                 "voussoirs"} <= set(recipe):
+            raise ArchInputError(f"family: {recipe!r}; allowed an object with shape, span, rise, "
+                                 f"thickness, voussoirs (and the optional family_arch arguments)")
+        r = dict(recipe)
+        allowed = {"shape", "span", "rise", "thickness", "voussoirs", "thickness_crown", "joints",
+                   "density", "loads", "fill", "name", "points_per_rad"}
+        unknown = set(r) - allowed
+        if unknown:
+            raise ArchInputError(f"family: unknown key(s) {sorted(unknown)}; allowed "
+                                 f"{', '.join(sorted(allowed))}")
+        r["loads"] = tuple(r.get("loads") or ())
+        if name is not None:  # as PolygonArch.from_dict: the reader's name wins
+            r["name"] = name
+        arch = family_arch(**r, exact=False)
+        return arch
+
+    @cached_property
+    def _frame(self):
+        """(centreline, thickness function t(s)) of the recipe, for :func:`perturb_family`."""
+        r = self.recipe
+        line = centreline(r["shape"], r["span"], r["rise"])
+        t0 = r["thickness"]
+        tc = t0 if r["thickness_crown"] is None else r["thickness_crown"]
+        big_l = line.length
+
+        def thick(s):
+            s = np.asarray(s, float)
+            return t0 + (tc - t0) * (1.0 - np.abs(2.0 * s / big_l - 1.0))
+        return line, thick
 
     def __repr__(self) -> str:
         r = self.recipe
@@ -552,3 +600,114 @@ def _fill(extr, fill):
         regions.append(poly)
         loads.append(Load(i, rho * area, (mx / area, my / area)))
     return tuple(regions), tuple(loads)
+
+
+# ---------------------------------------------------------------------------- irregular arches
+def _cut(poly, c, d, near):
+    """Where the polyline ``poly`` (k, 2) crosses the line through ``c`` along ``d``: (segment
+    index k, point) of the crossing nearest ``near``, or None."""
+    f = d[0] * (poly[:, 1] - c[1]) - d[1] * (poly[:, 0] - c[0])
+    k = np.flatnonzero((f[:-1] * f[1:] <= 0) & ((f[:-1] != 0) | (f[1:] != 0)))
+    if k.size == 0:
+        return None
+    den = f[k] - f[k + 1]
+    w = np.where(den != 0, f[k] / np.where(den != 0, den, 1.0), 0.0)
+    q = poly[k] + w[:, None] * (poly[k + 1] - poly[k])
+    j = int(np.argmin(np.hypot(q[:, 0] - near[0], q[:, 1] - near[1])))
+    return int(k[j]), q[j]
+
+
+def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickness: float,
+                   spread_offset: float, tilt_deg: float = 0.0, name: str = "arch"):
+    """An irregular arch around a family arch, from uniform draws ``u`` (shape (3, n), or
+    (4, n) with a tilt), each on [-1, 1]; the family's counterpart of
+    :func:`~archrock.geometry.perturb_voussoirs`.
+
+    Voussoir i covers the centreline's arc length [s_i, s_i+1] with lengths
+    l_i = (L/n)(1 + s_a U0_i) rescaled to the total L; its thickness is t(s)(1 + s_t U1_i) and
+    its own centreline is offset along the normal by s_R U2_i t(s) (t(s): the nominal
+    thickness, the circular family's R_i = R + s_R t U).  Joint j (1..n-1) is the nominal
+    family's joint line at s_j (normal to the centreline, or vertical) rotated about the
+    centreline point by U3_(j-1) x ``tilt_deg``; the springing faces stay normal.  Each
+    voussoir's intrados and extrados are its offset lines (sampled as the family's) cut by its
+    two joint lines, so neighbours' faces lie on one line.  A fill is recomputed over the new
+    extrados; user loads stay where they are.
+
+    Returns a :class:`PolygonArch` (no recipe: it is not a member of the family); raises
+    :class:`~archrock.errors.ArchInputError` when the draw is not a valid arch.
+    """
+    r = nominal.recipe
+    if r is None:
+        raise ArchInputError("nominal: a polygon arch without a family recipe (e.g. a surveyed "
+                             "arch) cannot be perturbed; allowed a circular Arch or an arch of "
+                             "family_arch")
+    line, thick = nominal._frame
+    n, big_l, ppr = r["voussoirs"], line.length, r["points_per_rad"]
+    u = np.asarray(u, float)
+    if u.ndim != 2 or u.shape[0] not in (3, 4) or u.shape[1] != n:
+        raise ArchInputError(f"u: shape {u.shape}; allowed (3, {n}) or (4, {n})")
+    lengths = (big_l / n) * (1.0 + spread_length * u[0])
+    lengths = lengths * (big_l / lengths.sum())
+    if np.any(lengths <= 0):
+        raise ArchInputError("geometry: a voussoir length is <= 0")
+    s_div = np.concatenate([[0.0], np.cumsum(lengths)])
+    s_div[-1] = big_l
+    fac = 1.0 + spread_thickness * u[1]
+    off = spread_offset * u[2]
+    tilt = np.zeros(n + 1)
+    if tilt_deg and u.shape[0] == 4:
+        tilt[1:n] = math.radians(tilt_deg) * u[3, :n - 1]
+    # joint lines: centreline point c_j and direction d_j (intrados -> extrados)
+    c, tang = line.eval(s_div)
+    d = np.column_stack([-tang[:, 1], tang[:, 0]])
+    for j in range(1, n):
+        if r["joints"] == "vertical" or (line.kink and abs(s_div[j] - big_l / 2) <= 1e-12 * big_l):
+            d[j] = (0.0, 1.0)
+    cs, sn = np.cos(tilt), np.sin(tilt)
+    d = np.column_stack([cs * d[:, 0] - sn * d[:, 1], sn * d[:, 0] + cs * d[:, 1]])
+    shape, span, rise = r["shape"], r["span"], r["rise"]
+    intr, extr = [], []
+    for i in range(n):
+        lines = {}
+        for side in (-1, 1):
+            k = fac[i] + 2.0 * side * off[i]
+            if k <= 0:
+                raise ArchInputError(f"geometry: voussoir {i}'s offset exceeds half its thickness")
+
+            def te(s, k=k):
+                return thick(s) * k
+            t_mid = float(te(big_l / 2))
+
+            def crown(sd, t_mid=t_mid):
+                return _pointed_crown(span, rise, t_mid, sd)
+            piece = None
+            for widen in (False, True):
+                lo = 0.0 if i == 0 else (0.0 if widen else max(0.0, s_div[i] - 0.5 * min(
+                    lengths[i - 1], lengths[i])))
+                hi = big_l if i == n - 1 else (big_l if widen else min(big_l, s_div[i + 1] + 0.5 * min(
+                    lengths[i], lengths[i + 1])))
+                try:
+                    pts = _sample_offset(line, te, lo, hi, side, ppr, crown)
+                except IndexError:  # a range ending just past a pointed crown: widen it
+                    continue
+                left = (0, pts[0]) if i == 0 else _cut(pts, c[i], d[i], c[i] + side * d[i])
+                right = (len(pts) - 2, pts[-1]) if i == n - 1 else \
+                    _cut(pts, c[i + 1], d[i + 1], c[i + 1] + side * d[i + 1])
+                if left is not None and right is not None and left[0] <= right[0]:
+                    piece = (pts, left, right)
+                    break
+            if piece is None:
+                raise ArchInputError(f"geometry: voussoir {i}'s joints do not cut its "
+                                     f"{'intrados' if side < 0 else 'extrados'} in order")
+            pts, (kl, ql), (kr, qr) = piece
+            mid = pts[kl + 1:kr + 1]
+            tol = 1e-9 * big_l
+            if len(mid):
+                mid = mid[(np.hypot(*(mid - ql).T) > tol) & (np.hypot(*(mid - qr).T) > tol)]
+            lines[side] = np.vstack([ql, mid, qr])
+        intr.append(lines[-1])
+        extr.append(lines[1])
+    loads = tuple(r["loads"])
+    if r["fill"] is not None:
+        loads = loads + _fill(extr, r["fill"])[1]
+    return PolygonArch(tuple(intr), tuple(extr), r["density"], name, loads)
