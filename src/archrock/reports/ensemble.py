@@ -43,7 +43,8 @@ def format_ensemble(summary: dict, arch_name: str) -> str:
     multipliers, distance from the paper's random arches, hinge patterns, P(collapse), timing."""
     sp = summary["spreads"]
     lines = [f"{summary['samples']} random arches around {arch_name} (seed {summary['seed']}, "
-             f"spreads {sp['span']:g}/{sp['thickness']:g}/{sp['radius']:g})",
+             f"spreads {sp['span']:g}/{sp['thickness']:g}/{sp['radius']:g}"
+             + (f", joint tilt {sp['tilt_deg']:g} deg" if sp.get("tilt_deg") else "") + ")",
              f"nominal: k_l = {summary['nominal']['k_l']:.4f}, "
              f"k_r = {summary['nominal']['k_r']:.4f}"]
     oc = summary.get("outcomes")
