@@ -29,15 +29,11 @@ ANIMATION_SUFFIXES = (".gif", ".mp4")
 def animation_path(path: str | os.PathLike) -> Path:
     """``path`` as an animation file, checked before any work is done (extension .gif or
     .mp4, not a folder)."""
-    text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
-    if not text or not text.strip():
-        raise ArchInputError(f"animation file: {path!r}; allowed a file name such as motion.gif")
-    p = Path(text)
-    if text.endswith(("/", os.sep)) or p.is_dir():
-        raise ArchInputError(f"animation file {text!r}: is a folder; allowed a file name such as "
-                             f"{(p / 'motion.gif').as_posix()!r}")
+    from .plots import output_file
+
+    p = output_file(path, "animation file", "motion.gif")
     if p.suffix.lower() not in ANIMATION_SUFFIXES:
-        raise ArchInputError(f"animation file {text!r}: allowed extensions .gif or .mp4")
+        raise ArchInputError(f"animation file {os.fspath(path)!r}: allowed extensions .gif or .mp4")
     return p
 
 

@@ -291,6 +291,19 @@ MAX_FIGURE_PIXELS = 50_000_000
 MIN_DPI = 10
 
 
+def output_file(path, what: str, example: str) -> Path:
+    """``path`` as the name of a file to write, checked before any work: a non-empty name, not a
+    folder (``what`` names the field in the message, ``example`` a valid name)."""
+    text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
+    if not text or not text.strip():
+        raise ArchInputError(f"{what}: {path!r}; allowed a file name such as {example}")
+    p = Path(text)
+    if text.endswith(("/", os.sep)) or p.is_dir():
+        raise ArchInputError(f"{what}: {text!r} is a folder; allowed a file name such as "
+                             f"{(p / example).as_posix()!r}")
+    return p
+
+
 def figure_path(path: str | os.PathLike) -> Path:
     """The file a figure written to ``path`` lands in, checked before any work is done: the
     extension names a format matplotlib can write (no extension: '.png' is added, as
@@ -298,13 +311,8 @@ def figure_path(path: str | os.PathLike) -> Path:
     _require_matplotlib()
     from matplotlib.backend_bases import FigureCanvasBase
 
-    text = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
-    if not text or not text.strip():
-        raise ArchInputError(f"figure file: {path!r}; allowed a file name such as fig.png")
-    p = Path(text)
-    if text.endswith(("/", os.sep)) or p.is_dir():
-        raise ArchInputError(f"figure file: {text!r} is a folder; allowed a file name such as "
-                             f"{(p / 'fig.png').as_posix()!r}")
+    p = output_file(path, "figure file", "fig.png")
+    text = os.fspath(path)
     formats = FigureCanvasBase.get_supported_filetypes()
     if not p.suffix:
         return p.with_name(p.name + ".png")
