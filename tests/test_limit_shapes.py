@@ -343,3 +343,22 @@ def test_reports_of_a_loaded_polygon_arch():
         float(arch.masses[3]))
     assert "radii" not in summary["thrust_l"] and len(summary["thrust_l"]["points"]) == 8
     assert summary["k"] == res.k
+
+
+@pytest.mark.parametrize("shape, rise", [("pointed", 7.0), ("elliptical", 4.0),
+                                         ("three-centred", 3.5), ("parabolic", 5.0),
+                                         ("catenary", 5.0), ("circular", 2.5)])
+def test_static_equals_kinematic_on_irregular_arches_of_every_family(shape, rise):
+    """The limit theorems on random arches of each family (lengths, thickness, centreline offset
+    and joint tilt perturbed): static LP = kinematic enumeration."""
+    from archrock.geometry import family_arch
+    from archrock.sampling import ArchSampler, Spreads
+
+    nominal = family_arch(shape, 10.0, rise, 1.0, 9, exact=False)
+    arches = [a for a in ArchSampler(nominal, Spreads(0.1, 0.1, 0.05, tilt=3.0), 1).arches(0, 8)
+              if not isinstance(a, Exception)]
+    assert len(arches) >= 6
+    for a in arches:
+        res = limit.limit_analysis(a)
+        assert res.discrepancy < 1e-9
+        assert not np.allclose(a.joint_points, nominal.joint_points)  # really irregular
