@@ -67,10 +67,20 @@ def test_out_of_range_rise_names_the_field(capsys):
     assert code == 2 and "rise: 4 is out of range; allowed F > S/2" in err
 
 
-def test_random_arch_of_another_family_is_refused(capsys):
-    code = main(["random-arch", "--shape", "parabolic", "--span", "10", "--rise", "4"])
-    err = capsys.readouterr().err
-    assert code == 2 and "random arches of the circular family only in this version" in err
+def test_random_arch_of_another_family(capsys, tmp_path):
+    """random-arch perturbs any family arch, joint tilt included; the same seed, the same arch."""
+    from archrock.files import read_arch
+    from archrock.geometry import PolygonArch
+    from archrock.limit import limit_analysis
+
+    argv = ["random-arch", "--shape", "parabolic", "--span", "10", "--rise", "4", "--thickness",
+            "1", "--voussoirs", "9", "--seed", "5", "--spread-tilt", "3"]
+    assert main([*argv, "--out", str(tmp_path / "a.json")]) == 0
+    assert main([*argv, "--out", str(tmp_path / "b.json")]) == 0
+    capsys.readouterr()
+    a, b = read_arch(tmp_path / "a.json"), read_arch(tmp_path / "b.json")
+    assert isinstance(a, PolygonArch) and np.array_equal(a.joint_points, b.joint_points)
+    assert limit_analysis(a).discrepancy < 1e-9
 
 
 def test_random_arch_around_a_segmental_arch(capsys):

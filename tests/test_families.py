@@ -7,7 +7,8 @@ import pytest
 from scipy.integrate import quad
 
 from archrock.errors import ArchInputError
-from archrock.geometry import Arch, FamilyArch, PolygonArch, family_arch, random_arch
+from archrock.geometry import (Arch, FamilyArch, PolygonArch, family_arch, oppenheim_arch,
+                               random_arch)
 from archrock.geometry.families import SHAPES, centreline, three_centred_radii
 
 S = 10.0
@@ -202,9 +203,15 @@ def test_refusals_name_the_field(kwargs, field):
         family_arch(shape, span, rise, t, n, exact=False, **args)
 
 
-def test_random_arches_of_the_circular_family_only():
-    with pytest.raises(ArchInputError, match="circular family only"):
-        random_arch(family_arch("parabolic", 10, 5, 1, 7), seed=1)
+def test_random_arch_of_a_family_and_of_a_surveyed_polygon():
+    nominal = family_arch("parabolic", 10, 5, 1, 7)
+    a, b = random_arch(nominal, seed=1), random_arch(nominal, seed=1)
+    assert np.array_equal(a.joint_points, b.joint_points)
+    assert not np.allclose(a.joint_points, nominal.joint_points)
+    with pytest.raises(ArchInputError, match="cannot be perturbed"):
+        random_arch(PolygonArch(nominal.intrados, nominal.extrados), seed=1)
+    with pytest.raises(ArchInputError, match="^spread_tilt_deg"):
+        random_arch(oppenheim_arch(), seed=1, spread_tilt_deg=2.0)
 
 
 def test_family_arch_is_a_polygon_arch_that_round_trips():

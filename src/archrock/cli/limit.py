@@ -47,7 +47,7 @@ def add_random_arch_parser(subparsers):
     add_geometry_options(p)
     p.add_argument("--seed", type=non_negative_int, default=None,
                    help="random seed (integer >= 0); omit for a fresh draw")
-    add_spread_options(p)
+    add_spread_options(p, tilt=True)
     p.add_argument("--out", metavar="FILE", help="geometry file to write (default: stdout)")
     p.set_defaults(func=run_random_arch)
     return p
@@ -59,10 +59,12 @@ def run_random_arch(args) -> int:
     out = folder_arg(args.out, "--out", "a file name (omit --out for stdout)")
     nominal = arch_from_args(args)
     arch = random_arch(nominal, seed=args.seed, spread_span=args.spread_span,
-                       spread_thickness=args.spread_thickness, spread_radius=args.spread_radius)
+                       spread_thickness=args.spread_thickness, spread_radius=args.spread_radius,
+                       spread_tilt_deg=args.spread_tilt)
     meta = {"generator": "archrock random-arch", "seed": args.seed, "nominal": nominal.name,
             "spread_span": args.spread_span, "spread_thickness": args.spread_thickness,
-            "spread_radius": args.spread_radius}
+            "spread_radius": args.spread_radius,
+            **({"spread_tilt_deg": args.spread_tilt} if args.spread_tilt else {})}
     if out:
         from ..files import write_arch
 

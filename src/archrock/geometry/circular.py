@@ -326,24 +326,39 @@ def random_spans_thicknesses_radii(nominal: Arch, u: np.ndarray, spread_span: fl
                              spread_thickness, spread_radius)
 
 
-def random_arch(nominal: Arch | None = None, seed=None, spread_span: float = 0.1,
+def random_arch(nominal: VoussoirArch | None = None, seed=None, spread_span: float = 0.1,
                 spread_thickness: float = 0.1, spread_radius: float = 0.05,
-                rng: np.random.Generator | None = None) -> Arch:
+                rng: np.random.Generator | None = None, spread_tilt_deg: float = 0.0):
     """An irregular arch drawn around ``nominal`` (default: Oppenheim's arch).
 
-    Each voussoir's span, thickness and radius are independent uniform perturbations
-    (widths ``spread_*``, dimensionless, see :func:`random_spans_thicknesses_radii`).
-    Reproducible from ``seed`` (an int or a numpy SeedSequence) or a given ``rng``.
+    Each voussoir's span (its length along the centreline), thickness and radius (a normal
+    offset of its centreline) are independent uniform perturbations (widths ``spread_*``,
+    dimensionless, see :func:`random_spans_thicknesses_radii`); for an arch of
+    :func:`~archrock.geometry.family_arch` also each interior joint's tilt, +-``spread_tilt_deg``
+    degrees (:func:`~archrock.geometry.families.perturb_family`).  Reproducible from ``seed``
+    (an int or a numpy SeedSequence) or a given ``rng``.  A circular :class:`Arch` gives an
+    ``Arch``, a family arch a :class:`~archrock.geometry.PolygonArch`.
     """
     nominal = oppenheim_arch() if nominal is None else nominal
-    if not isinstance(nominal, Arch):
-        raise ArchInputError(f"nominal: a {type(nominal).__name__}; random arches of the circular "
-                             f"family only in this version (a circular Arch)")
     s_a = _check_spread("spread_span", spread_span, 1.0)
     s_t = _check_spread("spread_thickness", spread_thickness, 1.0)
     s_r = _check_spread("spread_radius", spread_radius, 1.0)
+    tilt = _check_scalar("spread_tilt_deg", spread_tilt_deg, 0.0, 45.0, lo_open=False,
+                         allowed="0 <= tilt < 45 deg")
     rng = np.random.default_rng(seed) if rng is None else rng
-    u = rng.uniform(-1.0, 1.0, size=(3, nominal.n))
-    spans, thick, radii = random_spans_thicknesses_radii(nominal, u, s_a, s_t, s_r)
     label = f"random (seed {seed})" if seed is not None else "random"
-    return Arch(spans, radii, thick, nominal.density, name=label)
+    if isinstance(nominal, Arch):
+        if tilt:
+            raise ArchInputError("spread_tilt_deg: the joints of a circular Arch stay radial; "
+                                 "tilt joints on family_arch('circular', ..., exact=False)")
+        u = rng.uniform(-1.0, 1.0, size=(3, nominal.n))
+        spans, thick, radii = random_spans_thicknesses_radii(nominal, u, s_a, s_t, s_r)
+        return Arch(spans, radii, thick, nominal.density, name=label)
+    from .families import FamilyArch, perturb_family
+
+    if not isinstance(nominal, FamilyArch) or nominal.recipe is None:
+        raise ArchInputError(f"nominal: a {type(nominal).__name__} without a family recipe (e.g. "
+                             f"a surveyed arch) cannot be perturbed; allowed a circular Arch or "
+                             f"an arch of family_arch")
+    u = rng.uniform(-1.0, 1.0, size=(4 if tilt else 3, nominal.n))
+    return perturb_family(nominal, u, s_a, s_t, s_r, tilt, name=label)
