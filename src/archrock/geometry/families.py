@@ -83,7 +83,11 @@ class _Piece:
         u = u0 + (s - s0) / np.maximum(self._s[k + 1] - s0, 1e-300) * (self._u[k + 1] - u0)
         for _ in range(4):
             d = self.dp(u)
-            u = u - (s0 + self._gl(u0, u) - s) / np.hypot(d[0], d[1])
+            du = (s0 + self._gl(u0, u) - s) / np.hypot(d[0], d[1])
+            u = u - du
+            # Newton from the table's guess converges quadratically: stop once at round-off
+            if u.size == 0 or float(np.max(np.abs(du))) < 1e-13:
+                break
         return np.clip(u, 0.0, 1.0)
 
 
