@@ -233,3 +233,21 @@ def test_every_family_is_drawn_with_its_fill_and_loads(tmp_path):
         assert len(patches) == 7
         assert voussoir_bounds(arch)[:, 1].max() == pytest.approx(RISE[shape] + 1.0)
     assert save_figure(fig, tmp_path / "families.png").stat().st_size > 10_000
+
+
+def test_vertical_stereotomy_minimum_thickness_is_makris_and_alexakis():
+    """Minimum thickness of a semicircular arch under its own weight with vertical joints
+    approaches t/R = 0.1095 (Makris and Alexakis 2013), above Milankovitch's 0.1075 with radial
+    joints; near the springings the verticals that miss the intrados are left out."""
+    from archrock.limit import minimum_thickness
+
+    t = 0.11  # of a centreline radius 1
+    vertical = family_arch("circular", 2.0, 1.0, t, 32, joints="vertical", exact=False)
+    radial = family_arch("circular", 2.0, 1.0, t, 32, exact=False)
+    assert vertical.n == 26 and radial.n == 32  # 3 joints left out at each springing
+    tv = minimum_thickness(vertical).factor * t
+    tr = minimum_thickness(radial).factor * t
+    assert tv == pytest.approx(0.1095, abs=2e-4)
+    assert tr == pytest.approx(0.1074, abs=3e-4) and tv > tr
+    # at n = 8 every vertical joint crosses the ring: no joint is left out
+    assert family_arch("circular", 2.0, 1.0, t, 8, joints="vertical", exact=False).n == 8

@@ -362,3 +362,21 @@ def test_static_equals_kinematic_on_irregular_arches_of_every_family(shape, rise
         res = limit.limit_analysis(a)
         assert res.discrepancy < 1e-9
         assert not np.allclose(a.joint_points, nominal.joint_points)  # really irregular
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("shape, rise, joints", [
+    ("pointed", 7.0, "normal"), ("elliptical", 4.0, "vertical"), ("three-centred", 3.5, "normal"),
+    ("parabolic", 5.0, "vertical"), ("catenary", 5.0, "normal"), ("circular", 2.5, "vertical")])
+def test_static_equals_kinematic_on_hundreds_of_irregular_arches(shape, rise, joints):
+    """The limit theorems on 60 random arches per family (360 in all), both joint kinds."""
+    from archrock.geometry import family_arch
+    from archrock.sampling import ArchSampler, Spreads
+
+    nominal = family_arch(shape, 10.0, rise, 1.0, 10, joints=joints, exact=False)
+    tilt = 2.0 if joints == "normal" else 0.0
+    arches = [a for a in ArchSampler(nominal, Spreads(0.15, 0.15, 0.1, tilt=tilt), 7).arches(0, 60)
+              if not isinstance(a, Exception)]
+    assert len(arches) >= 40
+    worst = max(limit.limit_analysis(a).discrepancy for a in arches)
+    assert worst < 1e-9

@@ -350,6 +350,11 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
     n equal voussoirs along the centreline, ``joints`` 'normal' or 'vertical', density
     [kg/m^3], ``loads`` (:class:`Load` or dicts; points in this frame), ``fill``.
 
+    Vertical joints pass through the centreline's division points; where such a vertical line
+    would miss the intrados (near steep springings) the joint is left out and the springing
+    voussoir spans it, as vertical stereotomy does (Makris and Alexakis 2013): the arch then has
+    fewer than n voussoirs (``.n``).
+
     ``fill = {"level": y [m], "density": rho [kg/m^3]}``: the fill above each voussoir's
     extrados up to y = level, cut by the vertical lines through the extrados ends of its
     joints, is carried as a :class:`Load` of that voussoir (mass rho x area at the area's
@@ -416,6 +421,8 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
 
     _check_curvature(line, thick, shape, span, rise)
     s_div = big_l * np.arange(n + 1) / n
+    if joints == "vertical":
+        s_div = _vertical_joints_that_cut(line, thick, s_div)
     intr, extr = _voussoir_lines(line, thick, s_div, joints, shape, span, rise, ppr, t_crown)
     regions, fill_loads = ((), ())
     if fill is not None:
@@ -511,6 +518,30 @@ def _vertical_cut(line, thick, x, side, sign_piece, lo, hi):
     def g(s):
         return float(_offset(line, thick, np.array([s]), side, sign_piece)[0, 0]) - x
     return brentq(g, lo, hi, xtol=1e-13 * line.length)
+
+
+def _vertical_joints_that_cut(line, thick, s_div):
+    """The division points whose vertical line crosses the whole ring: near steep springings the
+    vertical through a centreline point misses the intrados, and the springing voussoir spans it
+    (vertical stereotomy; Makris and Alexakis 2013).  Returns the kept points (ends included)."""
+    big_l = line.length
+    p, _ = line.eval(s_div)
+    keep = [0]
+    for j in range(1, len(s_div) - 1):
+        if line.kink and abs(s_div[j] - big_l / 2) < 1e-12 * big_l:
+            keep.append(j)
+            continue
+        a, b = (0.0, big_l / 2) if line.kink and s_div[j] < big_l / 2 else \
+            (big_l / 2, big_l) if line.kink else (0.0, big_l)
+        xa = _offset(line, thick, np.array([a]), -1, 1)[0, 0]
+        xb = _offset(line, thick, np.array([b]), -1, -1)[0, 0]
+        if xa < p[j, 0] < xb:
+            keep.append(j)
+    keep.append(len(s_div) - 1)
+    if len(keep) < 4:
+        raise ArchInputError("joints: fewer than 3 voussoirs keep a vertical joint that crosses "
+                             "the ring; allowed more voussoirs or joints='normal'")
+    return s_div[keep]
 
 
 def _voussoir_lines(line, thick, s_div, joints, shape, span, rise, ppr, t_crown):
@@ -628,7 +659,8 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
     :func:`~archrock.geometry.perturb_voussoirs`.
 
     Voussoir i covers the centreline's arc length [s_i, s_i+1] with lengths
-    l_i = (L/n)(1 + s_a U0_i) rescaled to the total L; its thickness is t(s)(1 + s_t U1_i) and
+    l_i = l0_i (1 + s_a U0_i) rescaled to the total L (l0_i the nominal's: L/n, or longer at a
+    springing whose vertical joints were left out); its thickness is t(s)(1 + s_t U1_i) and
     its own centreline is offset along the normal by s_R U2_i t(s) (t(s): the nominal
     thickness, the circular family's R_i = R + s_R t U).  Joint j (1..n-1) is the nominal
     family's joint line at s_j (normal to the centreline, or vertical) rotated about the
@@ -646,11 +678,16 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
                              "arch) cannot be perturbed; allowed a circular Arch or an arch of "
                              "family_arch")
     line, thick = nominal._frame
-    n, big_l, ppr = r["voussoirs"], line.length, r["points_per_rad"]
+    big_l, ppr = line.length, r["points_per_rad"]
+    # the nominal's division points (vertical joints that miss the intrados left out)
+    base = big_l * np.arange(r["voussoirs"] + 1) / r["voussoirs"]
+    if r["joints"] == "vertical":
+        base = _vertical_joints_that_cut(line, thick, base)
+    n = len(base) - 1
     u = np.asarray(u, float)
     if u.ndim != 2 or u.shape[0] not in (3, 4) or u.shape[1] != n:
         raise ArchInputError(f"u: shape {u.shape}; allowed (3, {n}) or (4, {n})")
-    lengths = (big_l / n) * (1.0 + spread_length * u[0])
+    lengths = np.diff(base) * (1.0 + spread_length * u[0])
     lengths = lengths * (big_l / lengths.sum())
     if np.any(lengths <= 0):
         raise ArchInputError("geometry: a voussoir length is <= 0")
