@@ -240,27 +240,14 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
         raise ArchInputError(f"radii, thicknesses: needed with arrays of spans; {_NOT_CIRCULAR}")
     spans, radii, thick = (_circular_rows(name, v) for name, v in (
         ("spans", spans), ("radii", radii), ("thicknesses", thicknesses)))
-    spec = ImpactSpec.parse(impact, cv=cv).resolved(nominal)
-    if spec.on == "nominal":
-        raise ArchInputError("nominal: the impact is evaluated on the nominal arch; give it "
-                             "(nominal=Arch) or resolve the spec first")
+    spec = _spec(impact, cv, nominal)
     impact, cv = spec.model, spec.cv
     B, n = spans.shape
     error = check_geometries(spans, radii, thick)
     ok = error == ""
-    k_l = np.full(B, np.nan)
-    k_r = np.full(B, np.nan)
-    cand_l = np.zeros(B, dtype=np.int64)
-    cand_r = np.zeros(B, dtype=np.int64)
-    if ok.any():
-        kl, kr, il, ir = kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok])
-        k_l[ok], k_r[ok], cand_l[ok], cand_r[ok] = kl, kr, il, ir
-    # +inf: no mechanism loads that direction; -inf (many voussoirs, static-guided search): no
-    # line of thrust at any horizontal load, so the arch cannot stand
-    for b in np.flatnonzero(ok & ((k_l == np.inf) | (k_r == np.inf))):
-        error[b] = "limit analysis: no admissible four-hinge mechanism"
-    for b in np.flatnonzero(ok & (k_l < np.inf) & (k_r < np.inf) & ((k_l <= 0) | (k_r <= 0))):
-        error[b] = f"limit analysis: the arch cannot stand (k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})"
+    k_l, k_r, cand_l, cand_r = _multipliers(
+        B, ok, lambda: kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok]))
+    _limit_errors(k_l, k_r, ok, error)
     ok = error == ""
     t1 = time.perf_counter()
     # geometry of the voussoirs (invalid rows replaced by a harmless copy of a valid one)
@@ -289,9 +276,23 @@ def _spec(impact, cv, nominal):
     return spec
 
 
+def _multipliers(B: int, ok, compute):
+    """(k_l, k_r, candidate_l, candidate_r), each (B,): ``compute()`` gives them for the usable
+    rows ``ok`` (NaN and 0 elsewhere)."""
+    k_l = np.full(B, np.nan)
+    k_r = np.full(B, np.nan)
+    cand_l = np.zeros(B, dtype=np.int64)
+    cand_r = np.zeros(B, dtype=np.int64)
+    if ok.any():
+        kl, kr, il, ir = compute()
+        k_l[ok], k_r[ok], cand_l[ok], cand_r[ok] = kl, kr, il, ir
+    return k_l, k_r, cand_l, cand_r
+
+
 def _limit_errors(k_l, k_r, ok, error):
-    """Rows whose multipliers say the arch has no mechanism or cannot stand (as the circular
-    path words them)."""
+    """Rows whose multipliers say the arch has no mechanism (+inf: nothing loads that direction)
+    or cannot stand (k <= 0; -inf from the static-guided search: no line of thrust at any
+    horizontal load)."""
     for b in np.flatnonzero(ok & ((k_l == np.inf) | (k_r == np.inf))):
         error[b] = "limit analysis: no admissible four-hinge mechanism"
     for b in np.flatnonzero(ok & (k_l < np.inf) & (k_r < np.inf) & ((k_l <= 0) | (k_r <= 0))):
@@ -318,13 +319,8 @@ def _prepare_arches(arches, impact, cv, nominal, t0) -> PreparedBatch:
             why = " ".join(str(a).split())
             error[b] = why if why.startswith("geometry:") else "geometry: " + why
     ok = error == ""
-    k_l = np.full(B, np.nan)
-    k_r = np.full(B, np.nan)
-    cand_l = np.zeros(B, dtype=np.int64)
-    cand_r = np.zeros(B, dtype=np.int64)
-    if ok.any():
-        kl, kr, il, ir = kinematic_multipliers_arches([items[b] for b in good])
-        k_l[ok], k_r[ok], cand_l[ok], cand_r[ok] = kl, kr, il, ir
+    k_l, k_r, cand_l, cand_r = _multipliers(
+        B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good]))
     _limit_errors(k_l, k_r, ok, error)
     ok = error == ""
     t1 = time.perf_counter()
