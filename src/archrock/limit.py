@@ -42,7 +42,7 @@ from scipy.optimize import linprog
 from ._jit import HAVE_NUMBA, maybe_njit
 from ._records import readonly_arrays
 from .errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
-from .geometry import Arch, VoussoirArch, sector_properties
+from .geometry import Arch, VoussoirArch, power_of_two_near, sector_properties
 
 __all__ = [
     "Hinge", "Mechanism", "ThrustLine", "LimitResult", "MinimumThickness",
@@ -251,8 +251,7 @@ def length_scale(radii) -> np.ndarray:
     its size is a power of two away.
     """
     radii = np.asarray(radii, float)
-    mean = np.mean(radii, axis=-1, keepdims=True)
-    return np.ldexp(1.0, np.round(np.log2(mean)).astype(np.int64))
+    return power_of_two_near(np.mean(radii, axis=-1, keepdims=True))
 
 
 def _batch_sums(spans, radii, thick):
@@ -272,12 +271,6 @@ def _batch_sums(spans, radii, thick):
     px = r * c[..., None]
     py = r * s[..., None]
     return cw, cwx, cwy, px, py, p
-
-
-def _reference_length(arch: VoussoirArch) -> float:
-    """:func:`length_scale` of an arch's :attr:`~VoussoirArch.size` [m] (for a circular arch
-    its mean radius, as in 0.1.0)."""
-    return float(length_scale(np.array([arch.size]))[0])
 
 
 # An arch whose points lie farther than this many sizes from the origin (surveyed coordinates)
@@ -311,7 +304,7 @@ def arch_sums(arch: VoussoirArch):
     (1, n+1, 2 edges); lengths divided by the reference length (a power of two near
     ``arch.size``), about :func:`_origin`.  For a circular arch without loads these are
     :func:`_batch_sums`'s arrays, bit for bit (dividing by a power of two is exact)."""
-    ref = _reference_length(arch)
+    ref = arch.reference_length
     origin = _origin(arch)
     w, g = _weights_centroids(arch)
     jp = np.asarray(arch.joint_points, float)
@@ -984,7 +977,7 @@ class _Statics:
             raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
         self.arch = arch
         self.d = 1.0 if direction == "l" else -1.0
-        self.ref = _reference_length(arch)
+        self.ref = arch.reference_length
 
     def hinge(self, joint: int, edge: str):
         """(row, rhs): the thrust passes through the ``edge`` end of ``joint``."""

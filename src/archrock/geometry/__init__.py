@@ -12,7 +12,7 @@
 under ``"family"``, is rebuilt as the :class:`FamilyArch`).
 """
 
-from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties
+from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties, power_of_two_near
 from .circular import (OPPENHEIM, Arch, nominal_arch, oppenheim_arch, perturb_voussoirs,
                        random_arch, random_spans_thicknesses_radii, sector_properties)
 from .families import JOINTS, SHAPES, FamilyArch, family_arch
@@ -20,7 +20,7 @@ from .polygon import FACE_TOLERANCE, PolygonArch, as_polygon
 
 __all__ = ["VoussoirArch", "Arch", "PolygonArch", "Load", "nominal_arch", "oppenheim_arch",
            "random_arch", "perturb_voussoirs", "random_spans_thicknesses_radii",
-           "sector_properties", "polygon_properties", "as_polygon",
+           "sector_properties", "polygon_properties", "power_of_two_near", "as_polygon",
            "family_arch", "FamilyArch", "SHAPES", "JOINTS", "arch_from_dict", "OPPENHEIM",
            "DEFAULT_DENSITY", "FACE_TOLERANCE"]
 

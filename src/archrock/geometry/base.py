@@ -27,7 +27,7 @@ import numpy as np
 from ..errors import ArchInputError
 from ..units import G
 
-__all__ = ["VoussoirArch", "Load", "polygon_properties", "DEFAULT_DENSITY"]
+__all__ = ["VoussoirArch", "Load", "polygon_properties", "power_of_two_near", "DEFAULT_DENSITY"]
 
 DEFAULT_DENSITY = 2000.0  # kg/m^3; cancels from multipliers and from the equation of motion
 EDGE_NAMES = ("intrados", "extrados")
@@ -60,6 +60,14 @@ def _check_scalar(name: str, value, lo: float | None = None, hi: float | None = 
     if bad:
         raise ArchInputError(f"{name}: {v:g} is out of range; allowed {allowed}")
     return v
+
+
+def power_of_two_near(x):
+    """The power of two nearest ``x`` (> 0; a number or an array): nondimensional computations
+    divide lengths and masses by it, which is exact, so an arch a power of two larger or smaller
+    gives the same numbers bit for bit."""
+    out = np.ldexp(1.0, np.round(np.log2(x)).astype(np.int64))
+    return float(out) if np.ndim(out) == 0 else out
 
 
 def polygon_properties(points) -> tuple[float, np.ndarray, float]:
@@ -183,6 +191,12 @@ class VoussoirArch(ABC):
         """The JSON geometry format (docs/geometry.md)."""
 
     # ------------------------------------------------------------------ derived, shared
+    @property
+    def reference_length(self) -> float:
+        """The power of two nearest :attr:`size` [m]: the length that nondimensional
+        computations (limit analysis, impact laws) divide by."""
+        return power_of_two_near(self.size)
+
     def joint_point(self, joint: int, edge: str) -> np.ndarray:
         """Coordinates [m] of the intrados or extrados end of a joint's contact segment."""
         if edge not in EDGE_NAMES:

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ArchInputError, EnergyGainError, ImpactModelError
+from ..geometry import power_of_two_near
 from ..mechanism import FourLink
 from .spec import IMPACT_MODELS
 
@@ -65,12 +66,6 @@ class ImpactLaw:
         return {"model": self.model, "l_to_r": self.l_to_r, "r_to_l": self.r_to_l,
                 "energy_l_to_r": self.energy_l_to_r, "energy_r_to_l": self.energy_r_to_l,
                 "cv": self.cv, "literal": self.literal}
-
-
-def _reference_length(arch) -> float:
-    """The power of two nearest the arch's size [m] (as :func:`archrock.limit.length_scale`:
-    the mean radius of a circular arch, so its numbers are unchanged): dividing by it is exact."""
-    return float(np.ldexp(1.0, int(np.round(np.log2(float(arch.size))))))
 
 
 def _m0(fl: FourLink) -> float:
@@ -117,8 +112,8 @@ def paper_rate_ratio(old: FourLink, new: FourLink) -> float:
     # nondimensional: masses / total mass, lengths / the arch's reference length (a power of
     # two near its size, exact), so that the five equations (momenta ~ m L, angular momenta ~ m L^2, impulses)
     # have the same numbers, and the same pivots, at any size and density
-    ref = _reference_length(arch)
-    mass_ref = float(np.ldexp(1.0, int(round(math.log2(float(np.sum(arch.masses)))))))
+    ref = arch.reference_length
+    mass_ref = power_of_two_near(float(np.sum(arch.masses)))
     v, w = old.voussoir_field()
     vn, wn = new.voussoir_field()
     v, vn = v / ref, vn / ref
