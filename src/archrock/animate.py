@@ -45,7 +45,7 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     the drawn rotations (1 = to scale); max_frames caps the file size.
     """
     from .plots import (STYLE, displaced_hinges, displaced_outlines, draw_displaced, new_figure,
-                        plot_ground_motion)
+                        plot_ground_motion, voussoir_bounds)
 
     path = animation_path(path)
     for name, v in (("fps", fps), ("speed", speed), ("exaggerate", exaggerate)):
@@ -74,8 +74,7 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     labels = model.labels
     fig, axes = new_figure(2, 1, figsize=(6.4, 6.0), height_ratios=(2.2, 1.0))
     ax_arch, ax_resp = axes[0][0], axes[1][0]
-    # axis limits from the voussoirs' own outlines: any arch shape
-    pts = np.vstack([model.arch.outline(i) for i in range(model.arch.n)])
+    pts = voussoir_bounds(model.arch)  # axis limits from the voussoirs' own outlines
     pad = 0.1 * np.ptp(pts[:, 0])
 
     ax_resp.plot(t, phi, color="#1f77b4", lw=1.2)

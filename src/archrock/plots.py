@@ -491,24 +491,18 @@ def _open_mechanism(model, mode):
                          f"'l', 'r' or 'rest'")
 
 
-def _closed(pts) -> np.ndarray:
-    """A polygon (k, 2) with its first point repeated at the end."""
-    pts = np.asarray(pts, dtype=float)
-    return np.vstack([pts, pts[:1]])
-
-
 def displaced_outlines(model, mode, phi: float) -> list[np.ndarray]:
     """Outline (m, 2) [m] of every voussoir with mechanism ``mode`` open by rotation phi [rad]
     (phi >= 0 in the mechanism's own coordinate): each voussoir of a link moves rigidly with
     its link (exact four-bar kinematics); voussoirs outside the mechanism stay still.  Any arch
-    shape: the outlines are ``arch.outline(i)``, closed.
+    shape: the outlines are :func:`voussoir_outline`.
 
     mode: a FourLink, a row of ``model.chain`` (int; -1 = rest; e.g. ``response.rows[k]``),
     or 'l' / 'r' (M_l / M_r, rows 0 / 1) or 'rest'."""
     from .mechanism import configuration
 
     arch = model.arch
-    outlines = [_closed(arch.outline(i)) for i in range(arch.n)]
+    outlines = [voussoir_outline(arch, i) for i in range(arch.n)]
     fl = _open_mechanism(model, mode)
     if fl is not None and phi > 0:
         bx, by, cx, cy, th1, th2, th3, _ = configuration(phi, fl.geo)
