@@ -16,7 +16,7 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from ..geometry import Arch, VoussoirArch, arch_from_dict
+from ..geometry import VoussoirArch, arch_from_dict
 from ..groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
 from ..impact import PAPER_PRACTICE, ImpactSpec
 from ..response import default_steps
@@ -65,22 +65,15 @@ class EnsembleConfig:
 
     def __post_init__(self):
         if isinstance(self.nominal, VoussoirArch):
-            if not isinstance(self.nominal, Arch) and getattr(self.nominal, "recipe", None) is None:
-                raise ArchInputError(
-                    f"nominal: {self.nominal.name!r} is a polygon arch without a family (e.g. "
-                    f"surveyed): it cannot be perturbed; allowed a circular Arch or an arch of "
-                    f"family_arch")
             object.__setattr__(self, "nominal", self.nominal.to_dict())
-        arch = arch_from_dict(self.nominal)  # validates
-        if not isinstance(arch, Arch) and getattr(arch, "recipe", None) is None:
-            raise ArchInputError("nominal: polygon voussoirs without a family recipe (e.g. a "
-                                 "surveyed arch) cannot be perturbed; allowed a circular arch or "
-                                 "a family arch's dict (with its 'family' recipe)")
+        arch = arch_from_dict(self.nominal, name="nominal")  # validates
         object.__setattr__(self, "samples", int_field("samples", self.samples, 1))
         object.__setattr__(self, "seed", int_field("seed", self.seed, 0))
         object.__setattr__(self, "batch_size", int_field("batch size", self.batch_size, 1))
         object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
-        ArchSampler(arch, self.spreads, self.seed)  # the nominal and spreads can be sampled
+        # the sampler refuses what cannot be sampled (a surveyed polygon, tilt on a circular Arch)
+        # and is kept: the cached :attr:`sampler`
+        object.__setattr__(self, "sampler", ArchSampler(arch, self.spreads, self.seed))
         object.__setattr__(self, "impact", ImpactSpec.parse(self.impact))
         # default steps follow the nominal arch's size (response.default_steps): 2e-3 s and 60 s
         # for arches of 0.4-14 m, so configurations (and their hashes) of such arches are 0.1.0's
@@ -108,7 +101,7 @@ class EnsembleConfig:
 
     @cached_property
     def sampler(self) -> ArchSampler:
-        """The sampler of this ensemble's random arches."""
+        """The sampler of this ensemble's random arches (built and checked at construction)."""
         return ArchSampler(arch_from_dict(self.nominal, name="nominal"), self.spreads, self.seed)
 
     @property
