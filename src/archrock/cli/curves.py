@@ -5,8 +5,8 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import _int, emit_json, non_negative_int, positive_float
-from .options import (add_geometry_options, add_impact_options, add_spread_options,
+from ._parser import _int, emit_json, positive_float
+from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, figure_arg, impact_spec_from_args, spreads)
 
 
@@ -30,10 +30,7 @@ def add_curves_parser(subparsers):
                    help="amplitude grid points (geometric, default 150)")
     p.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
                    help="bisection tolerance [g] (default 0.001)")
-    p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
-                   help="random arches for quantile bands (0 = nominal only, default)")
-    p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    add_spread_options(p, tilt=True)
+    add_random_arches_options(p, "random arches for quantile bands (0 = nominal only, default)")
     p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")

@@ -6,7 +6,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import emit_json, non_negative_int
-from .options import (add_geometry_options, add_impact_options, add_spread_options,
+from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, figure_arg, impact_spec_from_args, spreads)
 
 
@@ -26,10 +26,7 @@ def add_fragility_parser(subparsers):
                    help="IDA scale factors (default 0.1:3:30)")
     p.add_argument("--levels", default=None, metavar="LO:HI:N|A,B,...",
                    help="stripe PGA levels [g] (default: 8 levels around the IDA first collapses)")
-    p.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
-                   help="random arches (0 = the nominal arch only, default)")
-    p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    add_spread_options(p, tilt=True)
+    add_random_arches_options(p, "random arches (0 = the nominal arch only, default)")
     add_impact_options(p)
     p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
                    help="bootstrap resamples for confidence bands (0 = none, or >= 2; default 200)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._parser import CLIError, _int, finite_float
+from ._parser import CLIError, _int, finite_float, non_negative_int
 
 #: Defaults of the nominal-geometry flags: Oppenheim's arch (R [m], embrace [deg], t [m], n, kg/m^3).
 #: Spelled out rather than taken from archrock.geometry so that --help needs no numpy.
@@ -148,6 +148,15 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False) -> argpar
                             "centreline point, 0 <= tilt < 45 (default 0); an arch of a family "
                             "(--shape ...) other than the exact circular Arch")
     return p
+
+
+def add_random_arches_options(p: argparse.ArgumentParser,
+                              samples_help: str) -> argparse.ArgumentParser:
+    """--samples N (0: the nominal arch only), --seed and the spreads with tilt: the random arches
+    of a study (curves, fragility)."""
+    p.add_argument("--samples", type=non_negative_int, default=0, metavar="N", help=samples_help)
+    p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
+    return add_spread_options(p, tilt=True)
 
 
 def spreads(args: argparse.Namespace):
