@@ -1,0 +1,598 @@
+"""An assessment of one arch: every answer of archrock about it, in one ordered report.
+
+The report is an ordered list of *sections* (:data:`SECTIONS`).  A section is a function
+``section(context) -> Section | None``: it computes what it needs (the context caches the
+limit analysis and the prepared dynamic model, shared by all), and returns a :class:`Section`
+with a title, its content as *blocks* (paragraphs, tables, figures) and ``data``, the numbers
+behind it, which go to the report's JSON.  ``None`` leaves the section out.  Blocks are plain
+data at this layer; :mod:`archrock.reports.html` (layer 7) renders them, and draws each
+:class:`Figure` with the figure function its ``kind`` names (``reports.html.FIGURES``).
+
+Adding a section: write one function here and add it to :data:`SECTIONS`; a new kind of figure
+also needs one function in ``reports.html.FIGURES``.  Sections that use an optional part of the
+package (:func:`section_defects`, :func:`section_friction`, :func:`section_contact`) import it
+inside, and say "not available in this installation" when it does not import.
+
+Nothing here draws or writes files: :func:`assess` returns an :class:`Assessment` (sections,
+config, timings); ``reports.html`` turns it into one self-contained HTML file and its JSON.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from .codecheck import CodeCheckConfig
+from .errors import ArchInputError, ArchrockError
+from .geometry import Arch, VoussoirArch
+from .impact import PAPER_PRACTICE, ImpactSpec
+from .sampling import Spreads
+
+__all__ = ["AssessConfig", "Section", "Paragraph", "Table", "Figure", "Context", "Assessment",
+           "SECTIONS", "assess", "REFERENCES"]
+
+#: The paper and the works the report cites (in the order of first use in docs/method.md).
+REFERENCES = {
+    "paper": "Effect of geometric irregularities on the dynamic response of masonry arches "
+             "(EURODYN 2017): the method this package implements (docs/method.md).",
+    "heyman": "J. Heyman, The stone skeleton, Int. J. Solids Struct. 2 (1966) 249-279: "
+              "no tensile strength, unlimited compressive strength, no sliding.",
+    "oppenheim": "I. J. Oppenheim, The masonry arch as a four-link mechanism under base motion, "
+                 "Earthquake Eng. Struct. Dyn. 21 (1992) 1005-1017.",
+    "delorenzis": "L. De Lorenzis, M. DeJong, J. Ochsendorf, Failure of masonry arches under "
+                  "impulse base motion, Earthquake Eng. Struct. Dyn. 36 (2007) 2119-2136.",
+    "bisegna": "P. Bisegna, S. Coccia, M. Como et al. (2023): the post-impact mechanism that "
+               "keeps the most energy (least-loss law, docs/method.md).",
+    "ntc": "NTC 2018: D.M. 17 gennaio 2018, Norme tecniche per le costruzioni, par. 3.2.3 "
+           "(spectra) and 8.7.1 (existing masonry, local mechanisms).",
+    "circolare": "Circolare 21 gennaio 2019 n. 7 C.S.LL.PP., C8.7.1.2 (kinematic analysis of "
+                 "local mechanisms), C8.5.4 (confidence factors).",
+    "ec8": "EN 1998-1:2004 par. 3.2.2.2 (elastic spectrum); EN 1998-3:2005 (assessment of "
+           "existing buildings; its Annex C, masonry, gives no kinematic procedure for local "
+           "mechanisms: docs/codecheck.md).",
+    "baker": "J. W. Baker, Efficient analytical fragility function fitting using dynamic "
+             "structural analysis, Earthquake Spectra 31 (2015) 579-599.",
+}
+
+
+# ---------------------------------------------------------------------------- content blocks
+@dataclass(frozen=True)
+class Paragraph:
+    """A paragraph of plain text (escaped when rendered)."""
+
+    text: str
+
+
+@dataclass(frozen=True)
+class Table:
+    """A table: header cells and rows of cells (strings or numbers, rendered as given)."""
+
+    header: tuple
+    rows: tuple
+    caption: str = ""
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A figure to draw: ``kind`` names a function of ``reports.html.FIGURES``, which draws
+    ``payload`` (the section's own objects, not serialised)."""
+
+    kind: str
+    caption: str
+    payload: object = field(default=None, repr=False, compare=False)
+
+
+@dataclass(frozen=True)
+class Section:
+    """One section of the report: key (an identifier, the JSON key), title, blocks, data (the
+    numbers behind it, JSON-ready), headline (label, value text) pairs for the summary table,
+    and seconds, the time it took."""
+
+    key: str
+    title: str
+    blocks: tuple = ()
+    data: dict = field(default_factory=dict)
+    headline: tuple = ()
+    seconds: float = 0.0
+
+
+# ---------------------------------------------------------------------------- configuration
+@dataclass(frozen=True)
+class AssessConfig:
+    """What the assessment computes, frozen and serialisable.
+
+    impact: the impact law (:class:`ImpactSpec`); pulse_amplitude [g], pulse_duration [s]: the
+    paper's Oppenheim pulse (-1 g, 0.2 s); t_end [s]: the response window;
+    durations [s]: pulse durations of the collapse-acceleration curve; n_scan: its amplitude grid;
+    samples, seed, spreads: the irregular arches of the band (and of the fragility, if records);
+    records: accelerogram files (none: no fragility section); record_units; scales: IDA scale
+    factors; bootstrap: fragility resamples; codecheck: the code check's configuration.
+    """
+
+    impact: ImpactSpec = field(default_factory=lambda: ImpactSpec.parse(PAPER_PRACTICE))
+    pulse_amplitude: float = -1.0
+    pulse_duration: float = 0.2
+    t_end: float = 3.0
+    durations: tuple = (0.1, 0.2, 0.3, 0.5, 0.7, 1.0)
+    n_scan: int = 60
+    samples: int = 12
+    seed: int = 0
+    spreads: Spreads = field(default_factory=Spreads)
+    records: tuple = ()
+    record_units: str | None = None
+    scales: tuple = tuple(np.round(np.linspace(0.2, 3.0, 15), 6))
+    bootstrap: int = 0
+    codecheck: CodeCheckConfig = field(default_factory=CodeCheckConfig)
+
+    def __post_init__(self):
+        for name in ("pulse_amplitude", "pulse_duration", "t_end"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise ArchInputError(f"{name}: {v!r}; allowed a finite number")
+        if self.pulse_duration <= 0 or self.t_end <= 0:
+            raise ArchInputError("pulse_duration, t_end: allowed > 0 s")
+        if self.pulse_amplitude == 0:
+            raise ArchInputError("pulse_amplitude: 0; allowed a nonzero amplitude in g")
+        d = tuple(float(x) for x in self.durations)
+        if not d or any(not (math.isfinite(x) and x > 0) for x in d):
+            raise ArchInputError(f"durations: {self.durations!r}; allowed positive periods in s")
+        object.__setattr__(self, "durations", d)
+        object.__setattr__(self, "scales", tuple(float(x) for x in self.scales))
+        object.__setattr__(self, "records", tuple(str(r) for r in self.records))
+        for name, lo in (("n_scan", 2), ("samples", 0), ("seed", 0), ("bootstrap", 0)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
+                raise ArchInputError(f"{name}: {v!r}; allowed an integer >= {lo}")
+        if self.bootstrap == 1:
+            raise ArchInputError("bootstrap: 1; allowed 0 or an integer >= 2")
+        if isinstance(self.spreads, dict):
+            object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
+
+    def to_dict(self) -> dict:
+        return {"impact": self.impact.to_dict(), "pulse_amplitude": self.pulse_amplitude,
+                "pulse_duration": self.pulse_duration, "t_end": self.t_end,
+                "durations": list(self.durations), "n_scan": self.n_scan, "samples": self.samples,
+                "seed": self.seed, "spreads": self.spreads.to_dict(), "records": list(self.records),
+                "record_units": self.record_units, "scales": list(self.scales),
+                "bootstrap": self.bootstrap, "codecheck": self.codecheck.to_dict()}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "AssessConfig":
+        d = dict(d)
+        d["impact"] = ImpactSpec.from_dict(d["impact"])
+        d["spreads"] = Spreads.from_dict(d["spreads"])
+        d["codecheck"] = CodeCheckConfig.from_dict(d["codecheck"])
+        for k in ("durations", "records", "scales"):
+            d[k] = tuple(d[k])
+        return cls(**d)
+
+
+# ---------------------------------------------------------------------------- context
+@dataclass
+class Context:
+    """What the sections share: the arch, the configuration, a progress callback and a cache of
+    results computed once (the limit analysis, the dynamic model)."""
+
+    arch: VoussoirArch
+    config: AssessConfig
+    progress: Callable[[str], None] = lambda msg: None
+    cache: dict = field(default_factory=dict)
+
+    def once(self, key: str, compute: Callable):
+        if key not in self.cache:
+            self.cache[key] = compute()
+        return self.cache[key]
+
+    @property
+    def limit(self):
+        from .limit import limit_analysis
+
+        return self.once("limit", lambda: limit_analysis(self.arch, verify=True))
+
+    @property
+    def model(self):
+        from .response import prepare
+
+        return self.once("model", lambda: prepare(self.arch, self.config.impact, limit=self.limit))
+
+
+def _f(x, spec=".4f") -> str:
+    if x is None:
+        return "-"
+    if isinstance(x, float) and not math.isfinite(x):
+        return "no collapse in the scan"
+    return format(x, spec)
+
+
+# ---------------------------------------------------------------------------- sections
+def section_geometry(ctx: Context) -> Section:
+    arch = ctx.arch
+    jp = np.asarray(arch.joint_points, float)
+    xs, ys = jp[..., 0], jp[..., 1]
+    span = float(np.max(xs) - np.min(xs))
+    rise = float(np.max(ys) - np.min(ys))
+    masses = np.asarray(arch.masses, float)
+    rows = tuple((i, f"{m:.1f}", f"{c[0]:.3f}", f"{c[1]:.3f}",
+                  f"{math.hypot(*(jp[i, 1] - jp[i, 0])):.3f}")
+                 for i, (m, c) in enumerate(zip(masses, arch.centroids)))
+    kind = "circular (exact sectors)" if isinstance(arch, Arch) else type(arch).__name__
+    blocks = [Paragraph(f"{arch.name}: a {kind} arch of {arch.n} voussoirs; overall span "
+                        f"{span:.3f} m (extrados to extrados at the springings), height {rise:.3f} m, "
+                        f"mass {masses.sum():.1f} kg per metre of depth"
+                        + (f", {len(arch.loads)} attached load(s)" if arch.loads else "") + "."),
+              Figure("arch", f"{arch.name}: voussoirs and joints (joint 0 at the left springing).",
+                     arch),
+              Table(("voussoir", "mass [kg/m]", "x_G [m]", "y_G [m]", "joint i contact length [m]"),
+                    rows, "Each voussoir with its loads; joint i is its left face.")]
+    data = {"name": arch.name, "kind": kind, "voussoirs": arch.n, "span": span, "height": rise,
+            "mass": float(masses.sum()), "geometry": arch.to_dict(),
+            "units": {"span": "m", "height": "m", "mass": "kg/m"}}
+    return Section("geometry", "Geometry", tuple(blocks), data,
+                   (("voussoirs", str(arch.n)), ("mass [kg/m]", f"{masses.sum():.1f}")))
+
+
+def section_limit(ctx: Context) -> Section:
+    lim = ctx.limit
+    rows = []
+    for d in ("l", "r"):
+        m = lim.mechanism(d)
+        hinges = ", ".join(f"{lab}: joint {h.joint} {h.edge}" for lab, h in m.labelled())
+        st = lim.static_k_l if d == "l" else lim.static_k_r
+        rows.append((f"M_{d}", _f(m.multiplier, ".6f"), _f(st, ".6f"), m.label, hinges))
+    blocks = (
+        Paragraph("Horizontal forces proportional to the weight, toward +x (M_l) or -x (M_r), "
+                  "with Heyman's hypotheses; k is the smallest multiplier of the weight that "
+                  "opens a four-hinge mechanism (kinematic enumeration), checked by the static "
+                  f"theorem (a linear program): they differ by {_f(lim.discrepancy, '.1e')}. "
+                  "The arch rocks when the ground acceleration reaches -k_l g (M_l) or +k_r g (M_r)."),
+        Table(("mechanism", "k (kinematic)", "k (static LP)", "hinges", "A..D from the leading side"),
+              tuple(rows)),
+        Figure("limit", "Collapse mechanisms and lines of thrust at the collapse multipliers "
+                        "(as the paper's Fig. 3), both directions.", lim),
+    )
+    data = {"k_l": lim.k_l, "k_r": lim.k_r, "k": lim.k, "static_k_l": lim.static_k_l,
+            "static_k_r": lim.static_k_r, "discrepancy": lim.discrepancy, "method": lim.method,
+            "mechanism_l": lim.mechanism_l.to_dict(), "mechanism_r": lim.mechanism_r.to_dict(),
+            "units": {"k": "g"}}
+    return Section("limit", "Limit analysis (both directions)", blocks, data,
+                   (("k_l [g]", f"{lim.k_l:.6f}"), ("k_r [g]", f"{lim.k_r:.6f}")))
+
+
+def _optional_missing(key: str, title: str, module: str, what: str) -> Section:
+    return Section(key, title, (Paragraph(
+        f"{what}: not available in this installation (the module archrock.{module} does not "
+        f"import)."),), {"available": False, "module": f"archrock.{module}"})
+
+
+def section_friction(ctx: Context) -> Section:
+    """OPTIONAL: the friction coefficient the thrust needs (archrock.friction)."""
+    title = "Friction the thrust needs"
+    try:
+        from .friction import friction_needed
+    except ImportError:
+        return _optional_missing("friction", title, "friction",
+                                 "The friction the limit thrust needs at the joints")
+    res = friction_needed(ctx.arch)
+    vals = {d: (res[d] if not hasattr(res[d], "to_dict") else res[d].to_dict()) for d in ("l", "r")}
+
+    def num(v):
+        if isinstance(v, dict):
+            for k in ("mu", "mu_needed", "friction", "value"):
+                if k in v:
+                    return v[k]
+            return None
+        return v
+    rows = tuple((f"M_{d}", _f(num(vals[d]), ".4f") if isinstance(num(vals[d]), float) else str(num(vals[d])))
+                 for d in ("l", "r"))
+    return Section("friction", title, (
+        Paragraph("The smallest friction coefficient at the joints with which the thrust at "
+                  "collapse needs no sliding (Heyman's no-sliding hypothesis made explicit)."),
+        Table(("mechanism", "friction coefficient needed"), rows)), {"available": True, **vals})
+
+
+def section_impact(ctx: Context) -> Section:
+    from .impact import least_loss_mechanism
+    from .response import prepare
+
+    lim = ctx.limit
+    rows, data = [], {}
+    for model in ("paper", "momentum"):
+        try:
+            law = prepare(ctx.arch, model, limit=lim).impact
+        except ArchrockError as exc:
+            rows.append((model, "-", "-", f"not applicable: {exc}"))
+            data[model] = {"error": str(exc)}
+            continue
+        rows.append((model, f"{law.l_to_r:.5f}", f"{law.r_to_l:.5f}", f"{law.equivalent_cv:.5f}"))
+        data[model] = law.to_dict()
+    m = ctx.model
+    try:
+        ll = least_loss_mechanism(m.mech_l, m.mech_r)
+        data["least_loss_after_M_l"] = ll.to_dict()
+        ll_txt = (f"After an impact closing M_l, the post-impact mechanism that keeps the most "
+                  f"kinetic energy under the momentum law keeps {ll.energy_ratio:.3f} of it, "
+                  f"against {ll.limit_energy_ratio:.3f} for M_r (Bisegna et al. 2023).")
+    except ArchrockError as exc:
+        ll_txt = f"Least-loss mechanism: not found ({exc})."
+    used = ctx.config.impact
+    blocks = (Paragraph("At each impact the mechanism closes and the other opens; the rate of "
+                        "the new mechanism is c times the old (kinetic energy times c^2 on a "
+                        "symmetric arch). 'paper': De Lorenzis et al.'s five equations as the "
+                        "paper applies them; 'momentum': the energy-consistent projection of the "
+                        "momentum balance on the new motion."),
+              Table(("model", "c (M_l -> M_r)", "c (M_r -> M_l)", "equivalent c_v"), tuple(rows)),
+              Paragraph(ll_txt),
+              Paragraph(f"The response and the curves below use: {used.model}"
+                        + (f" (c_v {used.cv:g})" if used.cv else "") + f", evaluated on the "
+                        f"{'nominal arch' if used.on == 'nominal' else 'arch'}."))
+    data["used"] = used.to_dict()
+    head = ()
+    if "paper" in data and "l_to_r" in data["paper"]:
+        head = (("c_v (paper model)", f"{data['paper']['l_to_r']:.5f}"),)
+    return Section("impact", "Impact coefficients by model", blocks, data, head)
+
+
+def section_response(ctx: Context) -> Section:
+    from .groundmotion import oppenheim_pulse
+    from .response import respond
+
+    cfg = ctx.config
+    motion = oppenheim_pulse(cfg.pulse_amplitude, cfg.pulse_duration)
+    res = respond(ctx.model, motion, t_end=cfg.t_end)
+    impacts = res.impacts
+    outcome = (f"collapses (last passage of the unstable position at {res.t_collapse:.3f} s)"
+               if res.collapsed else f"does not collapse ({res.status})")
+    blocks = (Paragraph(f"Oppenheim's pulse: a = {cfg.pulse_amplitude:g} g for t_p = "
+                        f"{cfg.pulse_duration:g} s, then -a/2 for 2 t_p (the paper's forcing). "
+                        f"The arch {outcome}; peak rotation {res.peak:.4f} rad; "
+                        f"{len(impacts)} impact(s)"
+                        + (f", the first at {', '.join(f'{t:.4f}' for t in impacts[:3])} s"
+                           if impacts else "") + "."),
+              Figure("response", "Ground acceleration and the signed response (+phi in M_l, "
+                                 "-phi in M_r).", res))
+    data = res.to_dict(samples=False)
+    data["pulse"] = {"kind": "oppenheim", "amplitude_g": cfg.pulse_amplitude,
+                     "duration_s": cfg.pulse_duration}
+    return Section("response", "Response to the paper's pulse", blocks, data,
+                   (("paper pulse", "collapse" if res.collapsed else f"survives, peak {res.peak:.4f} rad"),))
+
+
+def section_curves(ctx: Context) -> Section:
+    from .curves import collapse_curve, ensemble_curve
+
+    cfg = ctx.config
+    kw = dict(kind="oppenheim", sign=-1, n_scan=cfg.n_scan)
+    band = None
+    if cfg.samples > 0 and isinstance(ctx.arch, VoussoirArch):
+        try:
+            band = ensemble_curve(ctx.arch, cfg.samples, cfg.seed, cfg.spreads, cfg.durations,
+                                  impact=cfg.impact, **kw)
+        except ArchInputError as exc:  # an arch that cannot be perturbed: nominal curve only
+            ctx.progress(f"  band over irregular arches left out: {exc}")
+    curve = band.nominal if band is not None else collapse_curve(ctx.model, cfg.durations, **kw)
+    rows = tuple((f"{d:g}", _f(float(a), ".4f"), m or "-")
+                 for d, a, m in zip(curve.durations, curve.amplitudes, curve.modes))
+    s = cfg.spreads
+    band_txt = (f"The band spans the quantiles of {band.n_samples} irregular arches (seed "
+                f"{cfg.seed}; spreads: span {s.span:g}, thickness {s.thickness:g}, radius "
+                f"{s.radius:g} t" + (f", joint tilt {s.tilt:g} deg" if s.tilt else "")
+                + ")." if band is not None else "No band: no random arches were asked for.")
+    blocks = (Paragraph("For each pulse duration, the smallest amplitude of Oppenheim's pulse "
+                        "(first push toward -x) that collapses the arch; collapse is not "
+                        "monotonic in the amplitude, so survival windows above it are drawn. "
+                        + band_txt),
+              Figure("curves", "Collapse-acceleration curve.", (curve, band)),
+              Table(("t_p [s]", "first collapse |a| [g]", "collapse mode"), rows))
+    data = {"nominal": curve.to_dict()}
+    if band is not None:
+        data["band"] = band.to_dict()
+    return Section("curves", "Collapse-acceleration curve and its band over irregular arches",
+                   blocks, data)
+
+
+def section_defects(ctx: Context) -> Section:
+    """OPTIONAL: the defect map (archrock.defectmap)."""
+    title = "Defect map: which voussoir, if damaged, costs the most capacity"
+    try:
+        from .defectmap import defect_map
+    except ImportError:
+        return _optional_missing("defects", title, "defectmap", "The defect map")
+    res = defect_map(ctx.arch)
+    data = res.to_dict() if hasattr(res, "to_dict") else {"result": repr(res)}
+    return Section("defects", title, (
+        Paragraph("Each voussoir in turn loses part of its thickness; the change of the "
+                  "collapse multipliers says where a defect matters most."),
+        Figure("defects", "Capacity lost when each voussoir is the damaged one.", res)),
+        {"available": True, **data})
+
+
+def section_fragility(ctx: Context) -> Section | None:
+    cfg = ctx.config
+    if not cfg.records:
+        return None
+    from .groundmotion import load_record
+    from .ida import default_stripe_levels, ida, msa, random_models
+
+    records = [load_record(f, units=cfg.record_units) for f in cfg.records]
+    models = (random_models(ctx.arch, cfg.samples, cfg.seed, cfg.spreads, cfg.impact)
+              if cfg.samples > 0 else [ctx.model])
+    res_ida = ida(records, models, np.array(cfg.scales), n_boot=cfg.bootstrap, seed=cfg.seed)
+    levels = default_stripe_levels(res_ida, np.array(cfg.scales), records)
+    res_msa = msa(records, models, levels, n_boot=cfg.bootstrap, seed=cfg.seed)
+    fit = res_msa.fit if res_msa.fit is not None else res_ida.fit
+    txt = (f"median collapse PGA theta = {fit.theta:.3f} g, dispersion beta = {fit.beta:.2f} "
+           f"({fit.method})" if fit is not None else "no fit could be identified")
+    blocks = (Paragraph(f"{len(records)} record(s) x {len(models)} arch(es): incremental dynamic "
+                        f"analysis (first collapse per record and arch) and multiple stripes "
+                        f"(binomial likelihood, Baker 2015); IM = PGA of the scaled record. {txt}."),
+              Figure("fragility", "Fragility curves.", (fit, res_msa, res_ida)))
+    data = {"ida": res_ida.to_dict(), "msa": res_msa.to_dict(),
+            "records": [str(r) for r in cfg.records]}
+    head = (("fragility median PGA [g]", f"{fit.theta:.3f}"),) if fit is not None else ()
+    return Section("fragility", "Fragility curves", blocks, data, head)
+
+
+def section_contact(ctx: Context) -> Section:
+    """OPTIONAL: the contact-engine check (archrock.contact, the 'dem' extra)."""
+    title = "Contact-engine check"
+    try:
+        from . import contact  # noqa: F401
+        check = getattr(contact, "contact_check", None)
+    except ImportError:
+        return _optional_missing("contact", title, "contact", "The contact-engine (pymunk) check")
+    if check is None:
+        return Section("contact", title, (Paragraph(
+            "archrock.contact imports but has no contact_check(arch) function yet; the lead wires "
+            "it here."),), {"available": False})
+    res = check(ctx.arch)
+    data = res.to_dict() if hasattr(res, "to_dict") else {"result": repr(res)}
+    return Section("contact", title, (Paragraph(
+        "The same arch run in a rigid-body contact engine, beside the four-link model."),),
+        {"available": True, **data})
+
+
+def section_codecheck(ctx: Context) -> Section:
+    from .codecheck import code_check
+    from .units import G
+
+    cfg = ctx.config.codecheck
+    res = code_check(ctx.arch, ctx.limit, cfg)
+    dirs = res.directions
+    rows = [("activation multiplier alpha_0", *[f"{c.alpha_0:.6f}" for c in dirs]),
+            ("participating mass M* [kg/m]", *[f"{c.m_star:.1f}" for c in dirs]),
+            ("mass fraction e*", *[f"{c.e_star:.4f}" for c in dirs]),
+            (f"a_0* [g] (FC = {cfg.fc:g})", *[f"{c.a0_star / G:.4f}" for c in dirs]),
+            ("d_0* [m]", *[f"{c.d0_star:.4f}" for c in dirs]),
+            (f"d_u* = {cfg.ultimate_fraction:g} d_0* [m]", *[f"{c.du_star:.4f}" for c in dirs]),
+            ("T_s [s]", *[f"{c.ts:.3f}" for c in dirs])]
+    for kind, lab in (("linear", "linear check a_0* / (Se(0)/q)"),
+                      ("nonlinear", "nonlinear check d_u* / S_De(T_s)")):
+        if all(kind in c.checks for c in dirs):
+            rows.append((lab, *[f"{c.checks[kind]['ratio']:.3f} "
+                                f"{'pass' if c.checks[kind]['passed'] else 'FAIL'}" for c in dirs]))
+    spec = cfg.spectrum
+    spec_txt = ("No site spectrum was given: the table gives the capacity only." if spec is None
+                else f"Site spectrum: {spec.kind}"
+                + (f" ({spec.source})" if spec.source else "") + f", Se(0) = {spec.pga:.3f} g.")
+    blocks = (Paragraph("The kinematic analysis of local mechanisms of the Italian code (NTC 2018 "
+                        "par. 8.7.1, Circolare 2019 C8.7.1.2), applied to the mechanisms that "
+                        "limit analysis found, the arch's springings at ground level. The capacity "
+                        "curve is the exact equilibrium of the displaced four-link mechanism; the "
+                        "code's straight line is drawn beside it. " + spec_txt
+                        + " Formulas and clauses: docs/codecheck.md."),
+              Table(("quantity", *[f"M_{c.direction}" for c in dirs]), tuple(rows)),
+              Figure("codecheck", "Capacity curves a*(d*) of both mechanisms, d_u*, d_s* and the "
+                                  "secant period; the demand S_De(T_s) when a spectrum is given.",
+                     res))
+    head = [("code check a_0* [g]", f"{min(c.a0_star for c in dirs) / G:.4f}")]
+    if res.passed is not None:
+        head.append(("code check", "pass" if res.passed else "FAIL"))
+    return Section("codecheck", "Code check: kinematic analysis (NTC 2018 / Circolare 2019)",
+                   blocks, res.to_dict(), tuple(head))
+
+
+def section_assumptions(ctx: Context) -> Section:
+    cfg = ctx.config
+    items = [
+        "Units: SI; lengths in metres, masses per metre of the arch's depth (a plane problem), "
+        "accelerations in g (9.81 m/s^2) unless marked m/s^2. x to the right, y up; joint 0 is "
+        "the left springing.",
+        "Masonry (Heyman): no tensile strength, unlimited compressive strength, no sliding at the "
+        "joints; voussoirs are rigid; hinges form at the ends of each joint's contact segment.",
+        "Loads: the weight of each voussoir (with any attached load) and a horizontal force "
+        "lambda times it, at its mass centre. M_l: forces toward +x, activated by a ground "
+        "acceleration toward -x of k_l g; M_r the mirror case.",
+        "Dynamics (Oppenheim 1992): once activated the arch moves as a single-degree-of-freedom "
+        "four-link mechanism with exact large-rotation kinematics; at each impact the other "
+        "mechanism opens with the chosen impact law; the arch collapses when the rotation "
+        "passes the unstable position for the last time before the rotation limit.",
+        f"Impact law: {cfg.impact.model} on the {cfg.impact.on} arch"
+        + (f" (c_v {cfg.impact.cv:g})" if cfg.impact.cv else "") + ".",
+        "Irregular arches: spans, thicknesses and radii of the voussoirs drawn uniformly within "
+        "the spreads around the nominal arch (docs/method.md, Geometry widths); sample i is the "
+        "same arch in every study of a seed.",
+        "Code check: the mechanism is at ground level (the springings on the ground); the code's "
+        "straight-line capacity curve is replaced by the exact curve of the four-link model "
+        "(both reported); FC divides accelerations only; EN 1998-3 has no such procedure, so only "
+        "its spectrum (EN 1998-1) can be used with it.",
+        "Not modelled: sliding, crushing, the fill and spandrels (unless given as loads), the "
+        "deformability of the piers, vertical ground motion, damping other than impacts.",
+    ]
+    refs = [f"[{k}] {v}" for k, v in REFERENCES.items()]
+    blocks = tuple(Paragraph(t) for t in items) + (Table(("reference",), tuple((r,) for r in refs),
+                                                          "References (cited as text)."),)
+    return Section("assumptions", "Assumptions, conventions and references", blocks,
+                   {"assumptions": items, "references": REFERENCES, "config": cfg.to_dict()})
+
+
+#: The report's sections in order.  Optional ones (friction, defects, contact) say so when their
+#: module is absent; fragility appears only with records.
+SECTIONS: list[Callable[[Context], Section | None]] = [
+    section_geometry, section_limit, section_friction, section_impact, section_response,
+    section_curves, section_defects, section_fragility, section_contact, section_codecheck,
+    section_assumptions,
+]
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """The result of :func:`assess`: the arch, the configuration, the sections in order and the
+    total time [s]."""
+
+    arch: VoussoirArch = field(repr=False)
+    config: AssessConfig
+    sections: tuple
+    seconds: float
+    version: str = ""
+
+    def section(self, key: str) -> Section:
+        return {s.key: s for s in self.sections}[key]
+
+    @property
+    def headline(self) -> list:
+        return [h for s in self.sections for h in s.headline]
+
+    def to_dict(self) -> dict:
+        return {"arch": self.arch.name, "archrock_version": self.version,
+                "config": self.config.to_dict(), "seconds": self.seconds,
+                "headline": [list(h) for h in self.headline],
+                "sections": {s.key: {"title": s.title, "seconds": s.seconds, "data": s.data}
+                             for s in self.sections}}
+
+
+def _version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("archrock")
+    except Exception:
+        return "unknown"
+
+
+def assess(arch: VoussoirArch, config: AssessConfig | None = None, *,
+           progress: Callable[[str], None] | None = None, sections=None) -> Assessment:
+    """Run every section of :data:`SECTIONS` (or ``sections``) on ``arch``; ``progress``
+    receives one line per section as it starts and ends."""
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    ctx = Context(arch, AssessConfig() if config is None else config,
+                  progress or (lambda msg: None))
+    out = []
+    t_all = time.perf_counter()
+    for k, func in enumerate(SECTIONS if sections is None else sections, 1):
+        name = func.__name__.removeprefix("section_")
+        ctx.progress(f"[{k}/{len(SECTIONS if sections is None else sections)}] {name} ...")
+        t0 = time.perf_counter()
+        sec = func(ctx)
+        dt = time.perf_counter() - t0
+        if sec is None:
+            ctx.progress(f"      {name}: left out")
+            continue
+        out.append(Section(sec.key, sec.title, sec.blocks, sec.data, sec.headline, round(dt, 3)))
+        ctx.progress(f"      {name}: {dt:.1f} s")
+    return Assessment(arch, ctx.config, tuple(out), round(time.perf_counter() - t_all, 3),
+                      _version())

@@ -1,0 +1,97 @@
+"""``archrock assess``: one self-contained HTML report of an arch (and its JSON, and a PDF)."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+from ._parser import CLIError, _int, non_negative_int
+from .codecheck import add_codecheck_options, codecheck_config_from_args
+from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
+                      arch_from_args, impact_spec_from_args, spreads)
+
+
+def add_assess_parser(subparsers):
+    p = subparsers.add_parser(
+        "assess", help="one self-contained HTML report of an arch: every analysis, with figures",
+        description="Geometry, limit analysis (both directions, Fig. 3), impact coefficients, "
+                    "the response to the paper's pulse, the collapse-acceleration curve with its "
+                    "band over irregular arches, fragility curves (with --records), the code "
+                    "check, and every assumption with references; written as one HTML file "
+                    "(figures embedded, no network needed) and the JSON behind it.")
+    add_geometry_options(p)
+    p.add_argument("--out", metavar="REPORT.html", default="assessment.html",
+                   help="HTML report to write (default assessment.html); the JSON goes beside "
+                        "it with the suffix .json")
+    p.add_argument("--pdf", action="store_true",
+                   help="also print the report to PDF with headless Chromium (must be on PATH)")
+    p.add_argument("--durations", default="0.1,0.2,0.3,0.5,0.7,1.0", metavar="LO:HI:N|A,B,...",
+                   help="pulse durations of the collapse-acceleration curve [s] "
+                        "(default 0.1,0.2,0.3,0.5,0.7,1.0)")
+    p.add_argument("--n-scan", type=_int, default=60, metavar="N",
+                   help="amplitude grid of the curve (default 60)")
+    add_random_arches_options(p, "random arches of the band and the fragility (default 12; 0: "
+                                 "the nominal arch only)")
+    p.set_defaults(samples=12)
+    p.add_argument("--records", nargs="+", metavar="FILE_OR_DIR", default=None,
+                   help="accelerograms (PEER .AT2 or two-column files, or folders of them) for "
+                        "the fragility section")
+    p.add_argument("--record-units", choices=("g", "m/s2", "cm/s2"), default=None,
+                   help="units of two-column records (default g)")
+    p.add_argument("--scales", default="0.2:3:15", metavar="LO:HI:N|A,B,...",
+                   help="IDA scale factors (default 0.2:3:15)")
+    p.add_argument("--bootstrap", type=non_negative_int, default=0, metavar="N",
+                   help="fragility bootstrap resamples (0 = none, default)")
+    add_impact_options(p)
+    add_codecheck_options(p)
+    p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
+    p.set_defaults(func=run_assess)
+    return p
+
+
+def _record_files(items) -> tuple:
+    from pathlib import Path
+
+    out = []
+    for item in items or ():
+        path = Path(item)
+        if path.is_dir():
+            files = sorted(f for f in path.iterdir() if f.is_file() and not f.name.startswith("."))
+            if not files:
+                raise CLIError(f"--records: the folder {item!r} holds no files")
+            out += [str(f) for f in files]
+        elif path.is_file():
+            out.append(str(path))
+        else:
+            raise CLIError(f"--records: {item!r} is neither a file nor a folder")
+    return tuple(out)
+
+
+def run_assess(args) -> int:
+    from ..assessment import AssessConfig, assess
+    from ..curves import parse_range
+    from ..reports.html import write_pdf, write_report
+
+    if not args.out.lower().endswith((".html", ".htm")):
+        raise CLIError(f"--out: {args.out!r}; allowed a file name ending in .html")
+    say = (lambda msg: None) if args.no_progress else (lambda msg: print(msg, file=sys.stderr,
+                                                                          flush=True))
+    t0 = time.perf_counter()
+    cfg = AssessConfig(
+        impact=impact_spec_from_args(args), durations=tuple(parse_range(args.durations, "durations")),
+        n_scan=args.n_scan, samples=args.samples, seed=args.seed, spreads=spreads(args),
+        records=_record_files(args.records), record_units=args.record_units,
+        scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
+        codecheck=codecheck_config_from_args(args))
+    arch = arch_from_args(args)
+    say(f"archrock assess: {arch.name}, {arch.n} voussoirs")
+    result = assess(arch, cfg, progress=say)
+    say("rendering the report ...")
+    html_path, json_path = write_report(result, args.out, progress=say)
+    print(f"wrote {html_path}")
+    print(f"wrote {json_path}")
+    if args.pdf:
+        pdf = write_pdf(html_path, html_path.with_suffix(".pdf"))
+        print(f"wrote {pdf}")
+    say(f"done in {time.perf_counter() - t0:.1f} s")
+    return 0
