@@ -142,3 +142,23 @@ def test_cli_assess(tmp_path, capsys, monkeypatch):
     assert main(["assess", "--out", str(out), "--samples", "0", "--durations", "0.5",
                  "--n-scan", "8", "--no-progress", "--pdf"]) == 3
     assert "apt-get install chromium" in capsys.readouterr().err
+
+
+def test_an_outcome_is_said_in_its_section_not_fatal():
+    """An impact law that cannot apply (the paper's equations create energy on this pointed
+    arch) leaves the dynamic sections 'Not computed: ...' and the rest of the report intact; a
+    bad input (a missing record) stops before any work."""
+    from archrock.assessment import section_limit, section_response
+    from archrock.errors import ArchInputError
+    from archrock.geometry import family_arch
+
+    arch = family_arch("pointed", 10, 7, 0.8, 12)
+    res = assess(arch, AssessConfig(durations=(0.5,), samples=0),
+                 sections=[section_limit, section_response])
+    resp = res.section("response")
+    assert resp.title == "Response to the paper's pulse"
+    assert resp.data["error_type"] == "EnergyGainError"
+    assert resp.blocks[0].text.startswith("Not computed: ") and "momentum" in resp.blocks[0].text
+    assert res.section("limit").data["k_l"] == pytest.approx(0.170820, abs=1e-6)
+    with pytest.raises(ArchInputError, match="nope"):
+        assess(arch, AssessConfig(records=("nope.AT2",)), sections=[section_limit])

@@ -194,10 +194,26 @@ class Context:
         return self.once("limit", lambda: limit_analysis(self.arch, verify=True))
 
     @property
+    def records(self) -> list:
+        """The accelerograms of the configuration, read once."""
+        from .groundmotion import load_record
+
+        return self.once("records", lambda: [load_record(f, units=self.config.record_units)
+                                             for f in self.config.records])
+
+    @property
     def model(self):
         from .response import prepare
 
         return self.once("model", lambda: prepare(self.arch, self.config.impact, limit=self.limit))
+
+
+def titled(key: str, title: str):
+    """Decorator naming a section function's key and title (used when it cannot be computed)."""
+    def mark(func):
+        func.key, func.title = key, title
+        return func
+    return mark
 
 
 def _f(x, spec=".4f") -> str:
@@ -209,6 +225,7 @@ def _f(x, spec=".4f") -> str:
 
 
 # ---------------------------------------------------------------------------- sections
+@titled('geometry', 'Geometry')
 def section_geometry(ctx: Context) -> Section:
     arch = ctx.arch
     jp = np.asarray(arch.joint_points, float)
@@ -235,6 +252,7 @@ def section_geometry(ctx: Context) -> Section:
                    (("voussoirs", str(arch.n)), ("mass [kg/m]", f"{masses.sum():.1f}")))
 
 
+@titled('limit', 'Limit analysis (both directions)')
 def section_limit(ctx: Context) -> Section:
     lim = ctx.limit
     rows = []
@@ -268,6 +286,7 @@ def _optional_missing(key: str, title: str, module: str, what: str) -> Section:
         f"import)."),), {"available": False, "module": f"archrock.{module}"})
 
 
+@titled('friction', 'Friction the thrust needs')
 def section_friction(ctx: Context) -> Section:
     """OPTIONAL: the friction coefficient the thrust needs (archrock.friction)."""
     title = "Friction the thrust needs"
@@ -294,6 +313,7 @@ def section_friction(ctx: Context) -> Section:
         Table(("mechanism", "friction coefficient needed"), rows)), {"available": True, **vals})
 
 
+@titled('impact', 'Impact coefficients by model')
 def section_impact(ctx: Context) -> Section:
     from .impact import least_loss_mechanism
     from .response import prepare
@@ -309,8 +329,8 @@ def section_impact(ctx: Context) -> Section:
             continue
         rows.append((model, f"{law.l_to_r:.5f}", f"{law.r_to_l:.5f}", f"{law.equivalent_cv:.5f}"))
         data[model] = law.to_dict()
-    m = ctx.model
     try:
+        m = ctx.model
         ll = least_loss_mechanism(m.mech_l, m.mech_r)
         data["least_loss_after_M_l"] = ll.to_dict()
         ll_txt = (f"After an impact closing M_l, the post-impact mechanism that keeps the most "
@@ -336,6 +356,7 @@ def section_impact(ctx: Context) -> Section:
     return Section("impact", "Impact coefficients by model", blocks, data, head)
 
 
+@titled('response', "Response to the paper's pulse")
 def section_response(ctx: Context) -> Section:
     from .groundmotion import oppenheim_pulse
     from .response import respond
@@ -361,6 +382,7 @@ def section_response(ctx: Context) -> Section:
                    (("paper pulse", "collapse" if res.collapsed else f"survives, peak {res.peak:.4f} rad"),))
 
 
+@titled('curves', 'Collapse-acceleration curve and its band over irregular arches')
 def section_curves(ctx: Context) -> Section:
     from .curves import collapse_curve, ensemble_curve
 
@@ -394,6 +416,7 @@ def section_curves(ctx: Context) -> Section:
                    blocks, data)
 
 
+@titled('defects', 'Defect map: which voussoir, if damaged, costs the most capacity')
 def section_defects(ctx: Context) -> Section:
     """OPTIONAL: the defect map (archrock.defectmap)."""
     title = "Defect map: which voussoir, if damaged, costs the most capacity"
@@ -410,14 +433,14 @@ def section_defects(ctx: Context) -> Section:
         {"available": True, **data})
 
 
+@titled('fragility', 'Fragility curves')
 def section_fragility(ctx: Context) -> Section | None:
     cfg = ctx.config
     if not cfg.records:
         return None
-    from .groundmotion import load_record
     from .ida import default_stripe_levels, ida, msa, random_models
 
-    records = [load_record(f, units=cfg.record_units) for f in cfg.records]
+    records = ctx.records
     models = (random_models(ctx.arch, cfg.samples, cfg.seed, cfg.spreads, cfg.impact)
               if cfg.samples > 0 else [ctx.model])
     res_ida = ida(records, models, np.array(cfg.scales), n_boot=cfg.bootstrap, seed=cfg.seed)
@@ -436,6 +459,7 @@ def section_fragility(ctx: Context) -> Section | None:
     return Section("fragility", "Fragility curves", blocks, data, head)
 
 
+@titled('contact', 'Contact-engine check')
 def section_contact(ctx: Context) -> Section:
     """OPTIONAL: the contact-engine check (archrock.contact, the 'dem' extra)."""
     title = "Contact-engine check"
@@ -455,6 +479,7 @@ def section_contact(ctx: Context) -> Section:
         {"available": True, **data})
 
 
+@titled('codecheck', 'Code check: kinematic analysis (NTC 2018 / Circolare 2019)')
 def section_codecheck(ctx: Context) -> Section:
     from .codecheck import code_check
     from .units import G
@@ -495,6 +520,7 @@ def section_codecheck(ctx: Context) -> Section:
                    blocks, res.to_dict(), tuple(head))
 
 
+@titled('assumptions', 'Assumptions, conventions and references')
 def section_assumptions(ctx: Context) -> Section:
     cfg = ctx.config
     items = [
@@ -581,13 +607,23 @@ def assess(arch: VoussoirArch, config: AssessConfig | None = None, *,
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
     ctx = Context(arch, AssessConfig() if config is None else config,
                   progress or (lambda msg: None))
+    ctx.records  # read (and check) the records before any long computation
     out = []
     t_all = time.perf_counter()
     for k, func in enumerate(SECTIONS if sections is None else sections, 1):
         name = func.__name__.removeprefix("section_")
         ctx.progress(f"[{k}/{len(SECTIONS if sections is None else sections)}] {name} ...")
         t0 = time.perf_counter()
-        sec = func(ctx)
+        try:
+            sec = func(ctx)
+        except ArchInputError:
+            raise  # a mistake in the input: the whole assessment stops with it
+        except ArchrockError as exc:  # an outcome (e.g. an impact law that cannot apply)
+            key = getattr(func, "key", name)
+            msg = " ".join(str(exc).split())
+            sec = Section(key, getattr(func, "title", name), (Paragraph(
+                f"Not computed: {msg}"),), {"error": msg, "error_type": type(exc).__name__})
+            ctx.progress(f"      {name}: not computed ({type(exc).__name__})")
         dt = time.perf_counter() - t0
         if sec is None:
             ctx.progress(f"      {name}: left out")
