@@ -50,7 +50,7 @@ def _fig_arch(arch):
 def _fig_limit(lim):
     from ..plots import new_figure, plot_limit
 
-    fig, axes = new_figure(1, 2, figsize=(11.0, 4.4))
+    fig, axes = new_figure(1, 2, figsize=(12.6, 4.6))
     for ax, d in zip(axes[0], ("l", "r")):
         plot_limit(lim, d, ax=ax)
     return fig
