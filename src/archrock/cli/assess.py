@@ -72,6 +72,9 @@ def run_assess(args) -> int:
     from ..curves import parse_range
     from ..reports.html import write_pdf, write_report
 
+    from ..plots import _require_matplotlib
+
+    _require_matplotlib()  # the figures need it: say so before minutes of work, not after
     if not args.out.lower().endswith((".html", ".htm")):
         raise CLIError(f"--out: {args.out!r}; allowed a file name ending in .html")
     say = (lambda msg: None) if args.no_progress else (lambda msg: print(msg, file=sys.stderr,
