@@ -61,6 +61,10 @@ _GOVERNS_TOL = 1e-9
 _MARGIN_TOL = 1e-10
 # Bisection of the least friction: absolute tolerance on mu.
 _MU_TOL = 1e-10
+# HiGHS's default feasibility tolerance (1e-7) would accept rows violated by up to 1e-7, i.e.
+# a margin of -1e-7 reads as 0 and the least friction comes out ~1e-7 too low: the margin
+# programs run at the tightest tolerances HiGHS takes.
+_TIGHT = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
 
 
 def check_friction(mu, name: str = "friction") -> float:
@@ -129,8 +133,9 @@ class _FrictionStatics:
     def max_lambda(self, mu: float | None):
         """(status, x): the largest lambda with friction mu (None: frictionless)."""
         A, b = self.rows(mu)
+        # frictionless: the very program of limit.static_multiplier (same numbers)
         res = linprog(c=[0, 0, 0, -1.0], A_ub=A, b_ub=b, bounds=[(None, None)] * 4,
-                      method="highs")
+                      method="highs", options={} if mu is None else _TIGHT)
         return res.status, (res.x if res.status == 0 else None)
 
     def margin(self, lam: float, mu: float | None):
@@ -142,7 +147,8 @@ class _FrictionStatics:
         A_s = np.column_stack([A[:, :3], np.ones(A.shape[0])])
         b_s = b - A[:, 3] * lam
         res = linprog(c=[0, 0, 0, -1.0], A_ub=A_s, b_ub=b_s,
-                      bounds=[(None, None)] * 3 + [(None, 1.0)], method="highs")
+                      bounds=[(None, None)] * 3 + [(None, 1.0)], method="highs",
+                      options=_TIGHT)
         if res.status != 0:
             return -math.inf, None
         return float(res.x[3]), np.append(res.x[:3], lam)
