@@ -238,12 +238,15 @@ def _tilted_polygon():
     return PolygonArch(tuple(intr), tuple(extr), 2000.0, "tilted joints")
 
 
-@pytest.mark.parametrize("case", ["oppenheim", "irregular", "pointed", "loaded", "tilted"])
+@pytest.mark.parametrize("case", ["oppenheim", "irregular", "pointed", "pointed40", "loaded",
+                                  "tilted"])
 def test_independent_voussoir_by_voussoir_lp(case):
     arch = {
         "oppenheim": oppenheim_arch,
         "irregular": lambda: _irregular(9),
         "pointed": lambda: family_arch("pointed", 10.0, 8.0, 0.8, 8),
+        # joints turning by 22.5 deg at the crown: the joint beside it needs the most friction
+        "pointed40": lambda: family_arch("pointed", 10.0, 7.0, 1.0, 40),
         "loaded": lambda: Arch(np.full(7, math.radians(22.5)), np.full(7, 10.0), np.full(7, 1.5),
                                2000.0, "loaded", (Load(2, 5000.0, (-2.0, 11.0)),)),
         "tilted": _tilted_polygon,
@@ -259,7 +262,31 @@ def test_independent_voussoir_by_voussoir_lp(case):
                                                                 abs=1e-7)
 
 
+def test_pointed_arch_needs_most_friction_beside_the_crown():
+    a = family_arch("pointed", 10.0, 7.0, 1.0, 40)
+    res = friction.friction_analysis(a, 0.6)
+    assert res.l.friction_needed == pytest.approx(0.6556, abs=1e-4)
+    assert res.l.sliding_governs and res.l.joints == (19,) and res.r.joints == (21,)
+    assert res.l.multiplier == pytest.approx(0.226762, abs=1e-6)
+
+
 # ---------------------------------------------------------------------------- outcomes and input
+def test_squat_arch_no_mechanism_without_friction():
+    """A squat arch no horizontal load can open (unbounded multiplier): no friction needed
+    (None); low friction makes it slide at a finite multiplier; high friction leaves it
+    unbounded (NoMechanismError, a physical outcome)."""
+    from archrock.errors import NoMechanismError
+
+    a = nominal_arch(10.0, 90.0, 6.0, 7)
+    assert friction.friction_needed(a) == {"l": None, "r": None}
+    res = friction.friction_analysis(a, 0.3)
+    assert 0 < res.l.multiplier < 10 and res.l.sliding_governs
+    assert res.l.ratios[list(res.l.joints)] == pytest.approx(0.3, rel=1e-6)
+    assert res.l.multiplier == pytest.approx(_voussoir_lp(a, "l", 0.3), abs=1e-7)
+    with pytest.raises(NoMechanismError, match="unbounded"):
+        friction.friction_analysis(a, 100.0)
+
+
 def test_an_arch_that_slides_under_its_own_weight_says_how_much_friction_it_needs():
     a = oppenheim_arch()
     with pytest.raises(CannotStandError, match=r"at least 0\.2063") as exc:

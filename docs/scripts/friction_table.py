@@ -66,6 +66,8 @@ print("|---|---|---|---|---|")
 for label, a in [("Oppenheim's (R = 10 m, 157.5 deg, t = 1.5 m, 7 voussoirs)", oppenheim_arch()),
                  ("pointed (S = 10 m, F = 7 m, t = 1 m, 12 voussoirs)",
                   family_arch("pointed", 10.0, 7.0, 1.0, 12)),
+                 ("pointed (S = 10 m, F = 7 m, t = 1 m, 40 voussoirs)",
+                  family_arch("pointed", 10.0, 7.0, 1.0, 40)),
                  ("semicircle (R = 10 m, t = 1.5 m, 12 voussoirs)", nominal_arch(10.0, 180.0, 1.5, 12)),
                  ("semicircle (R = 10 m, t = 1.5 m, 60 voussoirs)", nominal_arch(10.0, 180.0, 1.5, 60))]:
     res = limit_analysis(a)

@@ -43,7 +43,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 from ._records import readonly_arrays
-from .errors import ArchInputError, CannotStandError
+from .errors import ArchInputError, CannotStandError, NoMechanismError
 from .geometry import VoussoirArch
 from .limit import (DIRECTIONS, MinimumThickness, ThrustLine, _statics, _Statics, _thrust_from_x,
                     thickness_bisection)
@@ -270,7 +270,7 @@ def _state(fs: _FrictionStatics, direction: str, mu: float, lam: float, lam0: fl
     T, N = fs.shear_normal(x)
     top = float(np.max(ratios))
     joints = tuple(int(j) for j in np.flatnonzero(ratios >= top - _CRITICAL_TOL))
-    governs = lam < lam0 - _GOVERNS_TOL * max(1.0, abs(lam0))
+    governs = not math.isfinite(lam0) or lam < lam0 - _GOVERNS_TOL * max(1.0, abs(lam0))
     return FrictionDirection(direction, mu, float(lam), float(lam0), bool(governs), needed, joints,
                              ratios, T, N, _thrust_from_x(fs.st, x))
 
@@ -325,8 +325,8 @@ def friction_analysis(arch: VoussoirArch, mu: float) -> FrictionResult:
         # solved even where mu >= needed (then it returns lam0): the two stay independent checks
         status, x = fs.max_lambda(mu)
         if status == 3:  # unbounded even with friction
-            raise CannotStandError(f"arch: no mechanism loads the arch in direction {d!r} "
-                                   f"(unbounded multiplier)")
+            raise NoMechanismError(f"arch: no mechanism opens in direction {d!r} even with "
+                                   f"friction {mu:g}: the multiplier is unbounded")
         if status != 0:
             lams[d] = -math.inf
             continue
