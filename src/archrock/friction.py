@@ -59,6 +59,8 @@ _GOVERNS_TOL = 1e-9
 # Margin below which a state is taken as inadmissible in the least-friction bisection
 # (nondimensional, per W and per W L): well above HiGHS's rounding, far below any physical margin.
 _MARGIN_TOL = 1e-10
+# A multiplier whose frictionless margin is below this is beyond the limit (not rounding).
+_INADMISSIBLE = 1e-8
 # Bisection of the least friction: absolute tolerance on mu.
 _MU_TOL = 1e-10
 # HiGHS's default feasibility tolerance (1e-7) would accept rows violated by up to 1e-7, i.e.
@@ -167,8 +169,11 @@ class _FrictionStatics:
         ``mu_hi``: a friction known to be enough.  Bisection on the sign of :meth:`margin`;
         one LP suffices when the state is unique (the hint's ratio is then the answer)."""
         s0, x0 = self.margin(lam, None)
-        if s0 < -_MARGIN_TOL:
+        if s0 < -_INADMISSIBLE:
             return math.inf, None
+        # admissible with friction: the Coulomb rows cost no margin below the frictionless one
+        # where that is ~0 (lam at its limit, rounded either way), or keep it >= 0 otherwise
+        thr = min(s0, 0.0) - _MARGIN_TOL
         hi, x_hi = math.inf, x0
         for x in (x_hint, x0):
             if x is not None:
@@ -177,7 +182,7 @@ class _FrictionStatics:
                     hi, x_hi = r, x
         if mu_hi is not None and mu_hi < hi:
             s, x = self.margin(lam, mu_hi)
-            if s >= -_MARGIN_TOL:
+            if s >= thr:
                 hi, x_hi = mu_hi, x
         if not math.isfinite(hi):
             return math.inf, None
@@ -186,13 +191,13 @@ class _FrictionStatics:
         # the state is usually unique: then nothing below the hint's ratio is admissible
         lo = hi * (1 - 1e-7) - _MU_TOL
         s, x = self.margin(lam, lo)
-        if s < -_MARGIN_TOL:
+        if s < thr:
             return hi, x_hi
         hi, x_hi, lo = lo, x, 0.0
         while hi - lo > _MU_TOL:
             mid = 0.5 * (lo + hi)
             s, x = self.margin(lam, mid)
-            if s >= -_MARGIN_TOL:
+            if s >= thr:
                 hi, x_hi = mid, x
             else:
                 lo = mid
