@@ -297,14 +297,16 @@ def test_help_lists_the_subcommands_in_order(capsys):
 
 
 def test_limit_reports_are_what_the_command_prints(capsys):
+    from archrock.friction import friction_needed
     from archrock.reports import format_limit_table, limit_summary
 
     arch = arch_from_args(_geometry_args("--thickness", "1.2"))
     res, mt = limit_analysis(arch, verify=True), minimum_thickness(arch)
+    needed = friction_needed(arch)  # reported by every limit run
     code, out, _ = run(capsys, "limit", "--thickness", "1.2", "--min-thickness")
-    assert code == 0 and out == format_limit_table(res, mt) + "\n"
+    assert code == 0 and out == format_limit_table(res, mt, needed=needed) + "\n"
     assert run_json(capsys, "limit", "--thickness", "1.2", "--min-thickness", "--json") == \
-        json.loads(json.dumps(limit_summary(res, mt)))
+        json.loads(json.dumps(limit_summary(res, mt, needed=needed)))
 
 
 def test_respond_report_is_what_the_command_prints(capsys):

@@ -6,7 +6,9 @@ The Python API in one namespace, in the order data flows (docs/architecture.md):
   (any shape), :func:`family_arch` (pointed, elliptical, ...), :class:`Load`,
   :func:`nominal_arch`, :func:`oppenheim_arch`, :func:`random_arch`;
   irregular arches of a study: :class:`ArchSampler`, :class:`Spreads`;
-* limit analysis: :func:`limit_analysis`, :func:`minimum_thickness`;
+* limit analysis: :func:`limit_analysis`, :func:`minimum_thickness`; with Coulomb friction at
+  the joints: :func:`friction_analysis`, :func:`friction_needed`,
+  :func:`friction_minimum_thickness`;
 * ground motion: :class:`GroundMotion`, :func:`pulse`, :func:`oppenheim_pulse`,
   :func:`load_record`, :class:`PulseSpec`, :class:`RecordSpec`;
 * impacts: :class:`ImpactSpec`, :data:`PAPER_PRACTICE`;
@@ -30,6 +32,7 @@ _EXPORTS = {
                  "oppenheim_arch", "random_arch", "as_polygon", "arch_from_dict"),
     "sampling": ("ArchSampler", "Spreads"),
     "limit": ("limit_analysis", "minimum_thickness"),
+    "friction": ("friction_analysis", "friction_needed", "friction_minimum_thickness"),
     "groundmotion": ("GroundMotion", "pulse", "oppenheim_pulse", "load_record", "PulseSpec",
                      "RecordSpec"),
     "impact": ("ImpactSpec", "PAPER_PRACTICE"),

@@ -48,7 +48,8 @@ __all__ = [
     "Hinge", "Mechanism", "ThrustLine", "LimitResult", "MinimumThickness",
     "limit_analysis", "kinematic_mechanisms", "kinematic_multipliers_batch",
     "kinematic_multipliers_arches",
-    "static_multiplier", "thrust_line", "minimum_thickness", "length_scale", "arch_sums",
+    "static_multiplier", "thrust_line", "minimum_thickness", "thickness_bisection",
+    "length_scale", "arch_sums",
     "enumeration_estimate", "EDGES", "SEARCH_METHODS", "ENUMERATION_MAX_VOUSSOIRS",
     "MAX_ENUMERATION_SECONDS",
 ]
@@ -1224,6 +1225,17 @@ def minimum_thickness(arch: VoussoirArch, tol: float = 1e-7) -> MinimumThickness
     thickness factor with the static feasibility LP (lambda = 0).  Needs an arch that can vary
     its thickness (``with_thickness_factor``: circular arches, families); a surveyed
     :class:`~archrock.geometry.PolygonArch` cannot (ArchInputError)."""
+    return thickness_bisection(arch, _stands, tol)
+
+
+def thickness_bisection(arch: VoussoirArch, stands, tol: float = 1e-7,
+                        cannot: str = "arch: it does not stand under its own weight at any "
+                                      "thickness") -> MinimumThickness:
+    """Smallest common thickness factor f at which ``stands(arch.with_thickness_factor(f))``
+    holds, by doubling from 1 then bisection to ``tol`` (relative); ``stands`` must be monotone
+    in the thickness.  Raises CannotStandError with the message ``cannot`` when no thickness
+    the arch allows stands.  :func:`minimum_thickness` and the friction-limited minimum
+    thickness (:mod:`archrock.friction`) share it."""
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
     if isinstance(arch, Arch):
@@ -1236,25 +1248,25 @@ def minimum_thickness(arch: VoussoirArch, tol: float = 1e-7) -> MinimumThickness
             f"({type(arch).__name__} has no with_thickness_factor); minimum thickness needs a "
             f"circular arch or an arch family")
 
-    def stands(f):
+    def at(f):
         try:
             a = arch.with_thickness_factor(f)
         except ArchInputError:  # thicker than the family allows
             return None
-        return _stands(a)
+        return stands(a)
 
     lo, hi = 1e-6, min(1.0, max_factor)
     while True:
-        ok = stands(hi)
+        ok = at(hi)
         if ok:
             break
         if ok is None or hi >= max_factor:
-            raise CannotStandError("arch: it does not stand under its own weight at any thickness")
+            raise CannotStandError(cannot)
         hi = min(2 * hi, max_factor)
     it = 0
     while hi - lo > tol * hi:
         mid = 0.5 * (lo + hi)
-        if stands(mid):
+        if at(mid):
             hi = mid
         else:
             lo = mid

@@ -19,23 +19,50 @@ def add_limit_parser(subparsers):
     add_geometry_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
     p.add_argument("--min-thickness", action="store_true",
-                   help="also compute the minimum thickness under self-weight (bisection)")
+                   help="also compute the minimum thickness under self-weight (bisection); "
+                        "with --friction, the friction-limited one")
+    p.add_argument("--friction", type=positive_float, metavar="MU", default=None,
+                   help="Coulomb friction coefficient at every joint (finite, > 0): multipliers "
+                        "with friction, whether sliding governs, the joints needing most friction")
     p.set_defaults(func=run_limit)
     return p
 
 
 def run_limit(args) -> int:
+    from ..errors import CannotStandError
+    from ..friction import friction_analysis, friction_minimum_thickness, friction_needed
     from ..limit import limit_analysis, minimum_thickness
     from ..reports.limit import format_limit_table, limit_summary
 
     arch = arch_from_args(args)
     result = limit_analysis(arch, verify=True)
-    mt = minimum_thickness(arch) if args.min_thickness else None
+    mu = args.friction
+    mt = None
+    if args.min_thickness:
+        # first: where no thickness stands with this friction, that is the answer
+        mt = minimum_thickness(arch) if mu is None else friction_minimum_thickness(arch, mu)
+    try:
+        fr = friction_analysis(arch, mu) if mu is not None else None
+    except CannotStandError as exc:
+        if mt is None:
+            raise
+        raise CannotStandError(f"{exc}; with friction {mu:g} the minimum thickness is "
+                               f"{_thickness_words(arch, mt)}") from None
+    needed = None if fr is not None else friction_needed(arch)
+    extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
     if args.json:
-        emit_json(limit_summary(result, mt))
+        emit_json(limit_summary(result, mt, **extra))
     else:
-        print(format_limit_table(result, mt))
+        print(format_limit_table(result, mt, **extra))
     return 0
+
+
+def _thickness_words(arch, mt) -> str:
+    from ..geometry import Arch
+
+    what = "t/R" if isinstance(arch, Arch) else "t / size"
+    ratio = "" if mt.ratio is None else f", mean {what} = {mt.ratio:.4f}"
+    return f"factor {mt.factor:.4f} of the given thicknesses{ratio}"
 
 
 # ---------------------------------------------------------------------------- random-arch

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..geometry import Arch
 
-__all__ = ["limit_summary", "format_limit_table"]
+__all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines"]
 
 
 def _voussoir_properties(arch) -> list[dict]:
@@ -22,8 +22,12 @@ def _voussoir_properties(arch) -> list[dict]:
             for a, m, c in zip(arch.areas, arch.masses, arch.centroids)]
 
 
-def limit_summary(result, min_thickness=None) -> dict:
-    """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object)."""
+def limit_summary(result, min_thickness=None, needed=None, friction=None,
+                  min_thickness_friction=None) -> dict:
+    """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object); ``needed``
+    ({"l", "r"}, :func:`archrock.friction.friction_needed`) and ``friction`` (a
+    :class:`~archrock.friction.FrictionResult`) add the keys of :func:`friction_summary`;
+    ``min_thickness_friction``: the friction coefficient ``min_thickness`` was found with."""
     arch = result.arch
     d = result.to_dict()
     d.pop("arch", None)
@@ -54,8 +58,57 @@ def limit_summary(result, min_thickness=None) -> dict:
             "factor": min_thickness.factor,
             "ratio_t_over_R": min_thickness.ratio,
             "thicknesses": None if t is None else [float(x) for x in t],
+            "friction": min_thickness_friction,
         }
+    if needed is not None or friction is not None:
+        out.update(friction_summary(needed, friction))
     return out
+
+
+def friction_summary(needed=None, friction=None) -> dict:
+    """JSON keys of a friction analysis: ``friction_needed_l``/``_r`` (the friction the
+    no-sliding collapse needs); with a FrictionResult ``friction_mu``, ``friction_k_l``/``_r``
+    (multipliers with friction), ``sliding_governs_l``/``_r``, ``friction_joints_l``/``_r``
+    (joints where the thrust needs the most friction) and ``friction`` (the full record)."""
+    out = {}
+    if needed is None and friction is not None:
+        needed = {d: friction.direction(d).friction_needed for d in ("l", "r")}
+    if needed is not None:
+        out["friction_needed_l"] = needed["l"]
+        out["friction_needed_r"] = needed["r"]
+    if friction is not None:
+        out["friction_mu"] = friction.mu
+        for d in ("l", "r"):
+            fd = friction.direction(d)
+            out[f"friction_k_{d}"] = fd.multiplier
+            out[f"sliding_governs_{d}"] = fd.sliding_governs
+            out[f"friction_joints_{d}"] = list(fd.joints)
+        out["friction"] = friction.to_dict()
+    return out
+
+
+def friction_lines(needed=None, friction=None) -> list[str]:
+    """Readable lines of a friction analysis (see :func:`friction_summary`)."""
+    if needed is None and friction is None:
+        return []
+    if needed is None:
+        needed = {d: friction.direction(d).friction_needed for d in ("l", "r")}
+    fmt = {d: "-" if needed[d] is None else f"{needed[d]:.4f}" for d in ("l", "r")}
+    lines = ["", "Friction (Coulomb |T| <= mu N at every joint; associative: docs/friction.md)",
+             f"  friction the no-sliding collapse needs (largest |T|/N on its thrust line): "
+             f"M_l {fmt['l']}, M_r {fmt['r']}"]
+    if friction is None:
+        return lines
+    lines += [f"  with mu = {friction.mu:g}:",
+              "  mechanism  k (friction)  k (no friction)  sliding governs  "
+              "joints needing most friction (|T|/N)"]
+    for d in ("l", "r"):
+        fd = friction.direction(d)
+        joints = ", ".join(f"{j} ({fd.ratios[j]:.4f})" for j in fd.joints)
+        lines.append(f"  M_{d}        {fd.multiplier:12.4f}  {fd.frictionless:15.4f}  "
+                     f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
+    lines.append(f"  k with friction = {friction.k:.4f}")
+    return lines
 
 
 def _circular_lines(arch) -> list[str]:
@@ -87,8 +140,10 @@ def _general_lines(arch) -> list[str]:
     return lines
 
 
-def format_limit_table(result, min_thickness=None) -> str:
-    """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check."""
+def format_limit_table(result, min_thickness=None, needed=None, friction=None,
+                       min_thickness_friction=None) -> str:
+    """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check; friction
+    (:func:`friction_lines`) where given."""
     arch = result.arch
     lines = _circular_lines(arch) if isinstance(arch, Arch) else _general_lines(arch)
     for ld in arch.loads:
@@ -111,8 +166,11 @@ def format_limit_table(result, min_thickness=None) -> str:
         ratio = ("" if min_thickness.ratio is None
                  else f", mean t/R = {min_thickness.ratio:.4f}" if isinstance(arch, Arch)
                  else f", mean t / size = {min_thickness.ratio:.4f}")
-        lines.append(f"  minimum thickness under self-weight: factor {min_thickness.factor:.4f} "
-                     f"of the given thicknesses{ratio}")
+        with_mu = ("" if min_thickness_friction is None
+                   else f" with friction {min_thickness_friction:g}")
+        lines.append(f"  minimum thickness under self-weight{with_mu}: factor "
+                     f"{min_thickness.factor:.4f} of the given thicknesses{ratio}")
     lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
                  "M_r: by xg''/g >= k_r, forces toward -x)")
+    lines += friction_lines(needed, friction)
     return "\n".join(lines)
