@@ -65,6 +65,9 @@ def test_values_are_the_package_s(report):
     cc = s["codecheck"]["data"]
     assert round(cc["directions"]["l"]["alpha_0"], 6) == 0.370010 and cc["passed"] is True
     assert len(s["curves"]["data"]["band"]["samples"]) == 2
+    fr = s["friction"]["data"]  # docs/friction.md: Oppenheim's arch needs 0.4951
+    assert fr["available"] is True
+    assert round(fr["friction_needed_l"], 4) == round(fr["friction_needed_r"], 4) == 0.4951
     assert "0.370010" in text and "0.87538" in text
 
 

@@ -295,22 +295,16 @@ def section_friction(ctx: Context) -> Section:
     except ImportError:
         return _optional_missing("friction", title, "friction",
                                  "The friction the limit thrust needs at the joints")
-    res = friction_needed(ctx.arch)
-    vals = {d: (res[d] if not hasattr(res[d], "to_dict") else res[d].to_dict()) for d in ("l", "r")}
-
-    def num(v):
-        if isinstance(v, dict):
-            for k in ("mu", "mu_needed", "friction", "value"):
-                if k in v:
-                    return v[k]
-            return None
-        return v
-    rows = tuple((f"M_{d}", _f(num(vals[d]), ".4f") if isinstance(num(vals[d]), float) else str(num(vals[d])))
+    need = friction_needed(ctx.arch)  # {"l": mu or None, "r": ...}
+    rows = tuple((f"M_{d}", "no mechanism" if need[d] is None else _f(need[d], ".4f"))
                  for d in ("l", "r"))
     return Section("friction", title, (
-        Paragraph("The smallest friction coefficient at the joints with which the thrust at "
-                  "collapse needs no sliding (Heyman's no-sliding hypothesis made explicit)."),
-        Table(("mechanism", "friction coefficient needed"), rows)), {"available": True, **vals})
+        Paragraph("The smallest Coulomb friction coefficient at the joints with which the thrust "
+                  "at collapse needs no sliding (Heyman's no-sliding hypothesis made explicit; "
+                  "static LP, docs/friction.md). Joints with less friction than this slide before "
+                  "the hinge mechanism forms: run `archrock limit --friction MU`."),
+        Table(("mechanism", "friction coefficient needed"), rows)),
+        {"available": True, "friction_needed_l": need["l"], "friction_needed_r": need["r"]})
 
 
 @titled('impact', 'Impact coefficients by model')
