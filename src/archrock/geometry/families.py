@@ -421,6 +421,8 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
 
     _check_curvature(line, thick, shape, span, rise)
     s_div = big_l * np.arange(n + 1) / n
+    if line.kink:  # a joint at a pointed crown sits exactly on it, not one ulp beside it
+        s_div[np.abs(s_div - big_l / 2) < 1e-12 * big_l] = big_l / 2
     if joints == "vertical":
         s_div = _vertical_joints_that_cut(line, thick, s_div)
     intr, extr = _voussoir_lines(line, thick, s_div, joints, shape, span, rise, ppr, t_crown)
@@ -487,6 +489,13 @@ def _sample_offset(line, thick, s0, s1, side, ppr, crown):
     pts = _offset(line, thick, s, side, sign)
     if line.kink and (s1 == mid or s0 == mid):
         cp, centre = crown(side)
+        part = pts[:-1] if s1 == mid else pts[1:]
+        if not np.any(part[:, 0] * (-1 if s1 == mid else 1) > 1e-12 * line.length):
+            raise ArchInputError(
+                f"n: the joints beside the pointed crown cross each other before the "
+                f"{'intrados' if side < 0 else 'extrados'} (voussoirs too short for this "
+                f"thickness there); allowed fewer voussoirs, a thinner arch or an even number "
+                f"of voussoirs (a joint at the crown)")
         if s1 == mid:
             kept = pts[:-1][pts[:-1, 0] < -1e-12 * line.length]
             pts = np.vstack([kept, _arc_between(kept[-1], cp, centre * [-1, 1], ppr)])
