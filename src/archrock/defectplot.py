@@ -15,13 +15,18 @@ __all__ = ["plot_defect_map"]
 
 
 def _panel(ax, dmap, values, label, fmt, cmap, vmax):
+    from matplotlib import colormaps
     from matplotlib.cm import ScalarMappable
-    from matplotlib.colors import Normalize
+    from matplotlib.colors import Normalize, TwoSlopeNorm
     from matplotlib.patches import Polygon
 
     arch = dmap.arch
-    norm = Normalize(vmin=min(0.0, float(np.nanmin(values))) if np.any(np.isfinite(values)) else 0.0,
-                     vmax=vmax)
+    lo = float(np.nanmin(values)) if np.any(np.isfinite(values)) else 0.0
+    if lo < 0:  # some defects raise the capacity: gains blue, losses red, 0 white
+        cmap = colormaps["RdBu_r"]
+        norm = TwoSlopeNorm(vcenter=0.0, vmin=lo, vmax=max(vmax, 1e-12 - lo * 1e-6))
+    else:
+        norm = Normalize(vmin=0.0, vmax=vmax)
     draw_arch(ax, arch, facecolor="#f4f4f4")
     size = arch.size
     for m, i in enumerate(dmap.indices):
@@ -32,7 +37,7 @@ def _panel(ax, dmap, values, label, fmt, cmap, vmax):
             ax.add_patch(Polygon(voussoir_outline(arch, int(i)), closed=True, facecolor=colour,
                                  edgecolor=STYLE["voussoir_edge"], linewidth=0.8, zorder=1.5))
             x, y = arch.area_centroids[int(i)]
-            dark = np.isfinite(v) and norm(v) > 0.6
+            dark = np.isfinite(v) and abs(norm(v) - (0.5 if lo < 0 else 0.0)) > 0.3
             ax.text(x, y, f"{int(i)}\n{text}", ha="center", va="center", fontsize=7.5, zorder=3,
                     color="white" if dark else "black")
         else:
@@ -70,15 +75,18 @@ def plot_defect_map(dmap, path: str | os.PathLike | None = None, *, dpi: int = 1
         if what == "k":
             lab = "capacity lost, drop of min($k_l$, $k_r$)"
             title = (f"{dmap.arch.name}:\n{dmap.to_dict()['description']}\n"
-                     f"undamaged min($k_l$, $k_r$) = {dmap.k0:.4f} g; worst: {dmap.target} "
+                     f"undamaged min($k_l$, $k_r$) = {dmap.k0:.4f} g; worst: {dmap.target}"
+                     f"{'s' if len(dmap.worst_all) > 1 else ''} "
                      f"{', '.join(map(str, dmap.worst_all))}, "
                      f"-{dmap.loss.max():.4f} g ({dmap.relative_loss.max():.1%})")
         else:
             p = dmap.pulse
             lab = "drop of the first collapse amplitude"
-            title = (f"{p['kind']} pulse, $t_p$ = {p['duration']:g} s: undamaged first "
-                     f"collapse at {dmap.amplitude0:.3f} g")
+            title = (f"{p['kind']} pulse, $t_p$ = {p['duration']:g} s, sign {p['sign']:+d}: "
+                     f"undamaged first collapse at {dmap.amplitude0:.3f} g\n(negative: the "
+                     f"damaged arch needs a stronger pulse)")
         lab += " [%]" if relative else " [g]"
+        lab = ("" if np.nanmin(vals) >= 0 else "gain < 0 < ") + lab
         _panel(ax, dmap, vals, lab, "{:.1f}%" if relative else "{:.3f}", cmap, vmax)
         ax.set_title(title, fontsize=8.5)
     if path is not None:
