@@ -37,10 +37,10 @@ SUBCOMMANDS.update({
     "respond": respond.add_respond_parser,
     "curves": curves.add_curves_parser,
     "fragility": fragility.add_fragility_parser,
-    "defects": defects.add_defects_parser,
     "ensemble": ensemble.add_ensemble_parser,
     "paper": paper.add_paper_parser,
     "import-dxf": importdxf.add_import_dxf_parser,
+    "defects": defects.add_defects_parser,
 })
 
 
