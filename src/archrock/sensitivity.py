@@ -302,6 +302,6 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     return SobolResult(
         nominal.name, spreads, by, tuple(ys), tuple(names), s1, s1c, st, stc, mean, var, r2,
         int(samples), runs, int((~ok).sum()), int(seed), float(conf_level),
-        None if motion is None else motion.to_dict(),
+        None if motion is None else {**motion.to_dict(), "description": motion.describe()},
         {**spec.to_dict(), "description": spec.describe()},
         {"prepare": t1 - t0, "simulate": t2 - t1, "analyse": t3 - t2}, how)
