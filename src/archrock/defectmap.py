@@ -192,6 +192,9 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
     if isinstance(kind, Defect):
+        if value is not None or side:
+            raise ArchInputError("value, side: given with a Defect, which holds its own; give "
+                                 "one or the other")
         template = kind
     else:
         default = {"thickness": 0.7, "tilt": 5.0, "mortar": 0.3}

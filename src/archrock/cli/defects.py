@@ -3,7 +3,7 @@ costs the most capacity)."""
 
 from __future__ import annotations
 
-from ._parser import _int, emit_json, positive_float
+from ._parser import _int, emit_json, finite_float, positive_float
 from .options import add_geometry_options, add_impact_options, arch_from_args, figure_arg
 
 
@@ -21,7 +21,7 @@ def add_defects_parser(subparsers):
                    help="thickness: a voussoir keeps --value of its thickness; tilt: a joint "
                         "turns by --value degrees; mortar: a joint has no mortar over --value "
                         "of its contact (default thickness)")
-    g.add_argument("--value", type=float, default=None, metavar="X",
+    g.add_argument("--value", type=finite_float, default=None, metavar="X",
                    help="thickness: remaining fraction, 0 < X < 1 (default 0.7); tilt: degrees, "
                         "-45 < X < 45 (default 5); mortar: missing fraction, 0 < X < 1 "
                         "(default 0.3)")
