@@ -48,6 +48,8 @@ __all__ = ["SobolResult", "sobol_indices", "input_layout", "arches_from_inputs",
 GROUPINGS = ("kind", "voussoir", "input")
 #: The paper's pulse: Oppenheim's, a = -1 g, t_p = 0.2 s.
 PAPER_PULSE = PulseSpec("oppenheim", -1.0, 0.2)
+#: arches prepared and integrated at a time (a progress line after each chunk)
+_CHUNK = 4096
 
 
 def _salib():
@@ -261,26 +263,40 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     if progress:
         print(f"sensitivity: {runs} arches ({samples} x ({len(names)} groups + 2))",
               file=sys.stderr, flush=True)
-    arches = arches_from_inputs(nominal, spreads, x)
     resolved = spec.resolved(nominal)
-    if isinstance(nominal, Arch):
-        spans, thick, radii = arches
-        pb = prepare_batch(spans, radii, thick, nominal.density, impact=resolved)
-    else:
-        pb = prepare_batch(arches, impact=resolved)
-    t1 = time.perf_counter()
-    ok = pb.ok
-    k_l = np.where(ok, pb.k_l, 0.0)
-    k_r = np.where(ok, pb.k_r, 0.0)
+    built = motion.build() if motion is not None else None
+    dt, t_free = default_steps(nominal)
+    k_l, k_r = np.zeros(runs), np.zeros(runs)
+    collapse = np.ones(runs)
+    ok = np.zeros(runs, dtype=bool)
+    t_prep = t_sim = 0.0
+    # in chunks, so that a long run says how far it got
+    for start in range(0, runs, _CHUNK):
+        sl = slice(start, min(runs, start + _CHUNK))
+        ta = time.perf_counter()
+        arches = arches_from_inputs(nominal, spreads, x[sl])
+        if isinstance(nominal, Arch):
+            spans, thick, radii = arches
+            pb = prepare_batch(spans, radii, thick, nominal.density, impact=resolved)
+        else:
+            pb = prepare_batch(arches, impact=resolved)
+        tb = time.perf_counter()
+        ok[sl] = pb.ok
+        k_l[sl] = np.where(pb.ok, pb.k_l, 0.0)
+        k_r[sl] = np.where(pb.ok, pb.k_r, 0.0)
+        if built is not None:
+            res = simulate_batch(pb, built, dt=dt, t_free=t_free)
+            collapse[sl] = np.where(pb.ok, res["status"] == ST_COLLAPSED, True)
+        tc = time.perf_counter()
+        t_prep += tb - ta
+        t_sim += tc - tb
+        if progress:
+            print(f"sensitivity: {sl.stop}/{runs} arches [{tc - t0:.1f} s]", file=sys.stderr,
+                  flush=True)
     ys = {"k_l": k_l, "k_r": k_r, "k": np.minimum(k_l, k_r)}
-    if motion is not None:
-        dt, t_free = default_steps(nominal)
-        res = simulate_batch(pb, motion.build(), dt=dt, t_free=t_free)
-        ys["collapse"] = np.where(ok, res["status"] == ST_COLLAPSED, True).astype(float)
-    t2 = time.perf_counter()
-    if progress:
-        print(f"sensitivity: arches prepared in {t1 - t0:.1f} s, responses in {t2 - t1:.1f} s",
-              file=sys.stderr, flush=True)
+    if built is not None:
+        ys["collapse"] = collapse
+    t_an = time.perf_counter()
     G = len(names)
     shape = (len(ys), G)
     s1, s1c, st, stc = (np.full(shape, np.nan) for _ in range(4))
@@ -294,7 +310,7 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
             si = analyze.analyze(problem, y, calc_second_order=False, conf_level=conf_level,
                                  num_resamples=int(num_resamples), seed=int(seed))
         s1[o], s1c[o], st[o], stc[o] = si["S1"], si["S1_conf"], si["ST"], si["ST_conf"]
-    t3 = time.perf_counter()
+    t_analyse = time.perf_counter() - t_an
     how = (f"Saltelli scheme on a scrambled Sobol sequence (SALib.sample.sobol, "
            f"calc_second_order=False), {int(samples)} base samples x ({G} groups + 2) = {runs} "
            f"arches through archrock.batch; SALib.analyze.sobol with {int(num_resamples)} "
@@ -304,4 +320,4 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
         int(samples), runs, int((~ok).sum()), int(seed), float(conf_level),
         None if motion is None else {**motion.to_dict(), "description": motion.describe()},
         {**spec.to_dict(), "description": spec.describe()},
-        {"prepare": t1 - t0, "simulate": t2 - t1, "analyse": t3 - t2}, how)
+        {"prepare": t_prep, "simulate": t_sim, "analyse": t_analyse}, how)
