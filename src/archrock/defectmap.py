@@ -22,6 +22,7 @@ import numpy as np
 from ._records import readonly_arrays
 from .errors import ArchInputError, CannotStandError, GeometryOutcome
 from .geometry import Defect, VoussoirArch, apply_defect
+from .geometry.defect import defect_base
 from .limit import kinematic_mechanisms
 
 __all__ = ["DefectMap", "defect_map"]
@@ -85,8 +86,10 @@ class DefectMap:
 
     @property
     def loss(self) -> np.ndarray:
-        """Capacity lost, k0 - min(k_l, k_r) [g] (negative: the defect raised it)."""
-        return self.k0 - self.k
+        """Capacity lost, k0 - min(k_l, k_r) [g] (negative: the defect raised it; a change
+        within 1e-12 k0, round-off of an unchanged multiplier, is 0)."""
+        loss = self.k0 - self.k
+        return np.where(np.abs(loss) <= 1e-12 * self.k0, 0.0, loss)
 
     @property
     def relative_loss(self) -> np.ndarray:
@@ -220,10 +223,13 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
         pulse = {"kind": _pk(pulse_kind), "duration": float(pulse_duration), "sign": int(sign)}
 
     t0 = time.monotonic()
-    k_l0, k_r0, h_l0, h_r0 = _labels(arch)
+    # the undamaged arch in the form the defects are applied to (a circular arch's polygon for a
+    # tilt or missing mortar): the losses are then the defects' alone
+    base = defect_base(arch, template.kind)
+    k_l0, k_r0, h_l0, h_r0 = _labels(base)
     amp0 = None
     if pulse:
-        amp0 = _amplitude(arch, arch, impact, pulse, a_max, n_scan, tol)
+        amp0 = _amplitude(base, base, impact, pulse, a_max, n_scan, tol)
     k_l, k_r, amps, h_l, h_r, notes = [], [], [], [], [], []
     for m, i in enumerate(idx):
         d = template.at_index(int(i))
@@ -243,7 +249,7 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
             a = np.nan
             if not note:
                 try:
-                    a = _amplitude(damaged, arch, impact, pulse, a_max, n_scan, tol)
+                    a = _amplitude(damaged, base, impact, pulse, a_max, n_scan, tol)
                 except GeometryOutcome as exc:
                     note = str(exc)
             amps.append(a)

@@ -21,7 +21,11 @@ def _panel(ax, dmap, values, label, fmt, cmap, vmax):
     from matplotlib.patches import Polygon
 
     arch = dmap.arch
-    lo = float(np.nanmin(values)) if np.any(np.isfinite(values)) else 0.0
+    values = np.asarray(values, float).copy()
+    finite = np.isfinite(values)
+    if finite.any():  # round-off (an unchanged multiplier recomputed) is no gain nor loss
+        values[finite & (np.abs(values) <= 1e-9 * max(np.abs(values[finite]).max(), 1e-300))] = 0.0
+    lo = float(np.nanmin(values)) if finite.any() else 0.0
     if lo < 0:  # some defects raise the capacity: gains blue, losses red, 0 white
         cmap = colormaps["RdBu_r"]
         norm = TwoSlopeNorm(vcenter=0.0, vmin=lo, vmax=max(vmax, 1e-12 - lo * 1e-6))
@@ -45,8 +49,9 @@ def _panel(ax, dmap, values, label, fmt, cmap, vmax):
             ax.plot([x0, x1], [y0, y1], color=colour, lw=6, solid_capstyle="butt", zorder=2)
             u = np.array([x1 - x0, y1 - y0])
             u /= np.hypot(*u)
-            ax.text(x1 + 0.12 * size * u[0], y1 + 0.12 * size * u[1], f"{int(i)}\n{text}",
-                    ha="center", va="center", fontsize=7.5, zorder=3)
+            at = (x1 + 0.12 * size * u[0], y1 + 0.12 * size * u[1])
+            ax.text(*at, f"{int(i)}\n{text}", ha="center", va="center", fontsize=7.5, zorder=3)
+            ax.update_datalim([at, (at[0], at[1] + 0.06 * size)])  # room for the label
     sm = ScalarMappable(norm=norm, cmap=cmap)
     ax.figure.colorbar(sm, ax=ax, shrink=0.7, label=label)
     ax.set_axis_off()

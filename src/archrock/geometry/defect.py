@@ -43,7 +43,8 @@ from .base import VoussoirArch, _check_scalar
 from .circular import Arch
 from .polygon import PolygonArch, as_polygon
 
-__all__ = ["Defect", "apply_defect", "apply_defects", "DEFECT_KINDS", "parse_defect"]
+__all__ = ["Defect", "apply_defect", "apply_defects", "DEFECT_KINDS", "parse_defect",
+           "defect_base"]
 
 #: kind -> (what it damages, allowed sides, default side)
 DEFECT_KINDS = {
@@ -232,6 +233,18 @@ def _as_polygon(arch: VoussoirArch) -> PolygonArch:
         per = max(8, int(math.ceil(float(np.max(arch.spans)) / _ARC_STEP)) + 1)
         return as_polygon(arch, per)
     raise ArchInputError(f"arch: a {type(arch).__name__}; allowed an Arch or a PolygonArch")
+
+
+def defect_base(arch: VoussoirArch, kind: str) -> VoussoirArch:
+    """The undamaged arch in the form a defect of ``kind`` is applied to: ``arch`` itself, or,
+    for a tilt or missing mortar on a circular :class:`Arch`, its polygon form (so that a
+    comparison with the damaged arch sees the defect, not the polylines' ~1e-7 difference from
+    the exact sectors)."""
+    if kind not in DEFECT_KINDS:
+        raise ArchInputError(f"defect kind: {kind!r}; allowed {', '.join(DEFECT_KINDS)}")
+    if kind == "thickness" and isinstance(arch, Arch):
+        return arch
+    return _as_polygon(arch)
 
 
 def _arc_param(p: np.ndarray) -> np.ndarray:
