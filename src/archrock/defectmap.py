@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._records import readonly_arrays
-from .errors import ArchInputError, CannotStandError, GeometryOutcome
+from .errors import UNUSABLE_ARCH, ArchInputError, CannotStandError, GeometryOutcome
 from .geometry import Defect, VoussoirArch, apply_defect
 from .geometry.defect import defect_base
 from .limit import kinematic_mechanisms
@@ -240,7 +240,8 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
         except GeometryOutcome as exc:
             kl = kr = np.nan
             hl = hr = ""
-            note = f"cannot stand ({exc})" if isinstance(exc, CannotStandError) else str(exc)
+            note = "cannot stand under its own weight" if isinstance(exc, CannotStandError) \
+                else str(exc)
         k_l.append(kl)
         k_r.append(kr)
         h_l.append(hl)
@@ -250,8 +251,8 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
             if not note:
                 try:
                     a = _amplitude(damaged, base, impact, pulse, a_max, n_scan, tol)
-                except GeometryOutcome as exc:
-                    note = str(exc)
+                except UNUSABLE_ARCH as exc:  # e.g. an impact law that creates energy on it
+                    note = f"no first collapse amplitude: {exc}"
             amps.append(a)
         notes.append(note)
         if progress:
