@@ -236,3 +236,5 @@ def test_pulse_map_mirror_symmetry():
     # damage on the side the return swing (M_r) opens toward costs most: 1.29 g -> about 0.53 g
     assert minus.amplitudes[0] == pytest.approx(0.527, abs=0.01)
     assert minus.amplitude0 == pytest.approx(1.294, abs=0.01)
+    both = defect_map(a, "thickness", 0.7, indices=[0, 6], pulse_duration=0.2, sign=0, n_scan=40)
+    np.testing.assert_allclose(both.amplitudes, minus.amplitudes[0], atol=2e-3)  # the weaker side

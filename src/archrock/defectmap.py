@@ -13,6 +13,7 @@ k_r are recorded as NaN (null in JSON), ``stands`` False, and its loss is the wh
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from dataclasses import dataclass, field
@@ -168,13 +169,18 @@ def _labels(arch):
 
 
 def _amplitude(arch, nominal, impact, pulse, a_max, n_scan, tol):
+    """First collapse |a| [g] (NaN: none up to a_max); sign 0: the smaller of both signs'."""
     from .curves import collapse_amplitude
     from .response import prepare
 
     model = prepare(arch, impact, nominal=nominal)
-    res = collapse_amplitude(model, pulse["duration"], pulse["kind"], pulse["sign"], a_max=a_max,
-                             n_scan=n_scan, tol=tol)
-    return np.nan if res.amplitude is None else float(res.amplitude)
+    out = math.inf
+    for sign in ((-1, 1) if pulse["sign"] == 0 else (pulse["sign"],)):
+        res = collapse_amplitude(model, pulse["duration"], pulse["kind"], sign, a_max=a_max,
+                                 n_scan=n_scan, tol=tol)
+        if res.amplitude is not None:
+            out = min(out, float(res.amplitude))
+    return out if math.isfinite(out) else np.nan
 
 
 def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: float | None = None,
@@ -187,7 +193,8 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     or 'mortar' (value: missing depth fraction, default 0.3), or a :class:`Defect` whose kind,
     value and side are used; side: as :class:`Defect`; indices: the voussoirs (or joints)
     damaged in turn (default all); pulse_duration [s]: with it, the first collapse amplitude of
-    a ``pulse_kind`` pulse of sign ``sign`` (-1 opens M_l) on each arch, with the impact law
+    a ``pulse_kind`` pulse of sign ``sign`` (-1 opens M_l, +1 M_r, 0 both: the smaller
+    amplitude of the two) on each arch, with the impact law
     ``impact`` (an ImpactSpec or its name; default the paper's practice, evaluated on the
     undamaged arch), scanning ``n_scan`` amplitudes up to ``a_max`` [g] and bisecting to
     ``tol`` [g]; progress: one line per damaged arch on stderr.
@@ -218,8 +225,9 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
 
         if not np.isfinite(pulse_duration) or pulse_duration <= 0:
             raise ArchInputError(f"pulse_duration: {pulse_duration!r}; allowed a number > 0 s")
-        if sign not in (-1, 1):
-            raise ArchInputError(f"sign: {sign!r}; allowed -1 or +1")
+        if isinstance(sign, bool) or sign not in (-1, 0, 1):
+            raise ArchInputError(f"sign: {sign!r}; allowed -1, +1 or 0 (both: the smaller "
+                                 f"first collapse amplitude)")
         pulse = {"kind": _pk(pulse_kind), "duration": float(pulse_duration), "sign": int(sign)}
 
     t0 = time.monotonic()

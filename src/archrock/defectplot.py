@@ -87,7 +87,8 @@ def plot_defect_map(dmap, path: str | os.PathLike | None = None, *, dpi: int = 1
         else:
             p = dmap.pulse
             lab = "drop of the first collapse amplitude"
-            title = (f"{p['kind']} pulse, $t_p$ = {p['duration']:g} s, sign {p['sign']:+d}: "
+            sgn = "both signs (the smaller)" if p["sign"] == 0 else f"sign {p['sign']:+d}"
+            title = (f"{p['kind']} pulse, $t_p$ = {p['duration']:g} s, {sgn}: "
                      f"undamaged first collapse at {dmap.amplitude0:.3f} g\n(negative: the "
                      f"damaged arch needs a stronger pulse)")
         lab += " [%]" if relative else " [g]"

@@ -35,8 +35,9 @@ def add_defects_parser(subparsers):
                    help="pulse duration t_p [s] (e.g. 0.2, the paper's)")
     m.add_argument("--pulse", default="oppenheim", metavar="KIND",
                    help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
-    m.add_argument("--sign", type=_int, choices=(-1, 1), default=-1,
-                   help="sign of the amplitude: -1 (opens M_l; default) or +1")
+    m.add_argument("--sign", type=_int, choices=(-1, 0, 1), default=-1,
+                   help="sign of the amplitude: -1 (opens M_l; default), +1 (opens M_r) or 0 "
+                        "(both: the smaller first collapse amplitude of the two)")
     m.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
                    help="top of the amplitude scan [g] (default 10)")
     m.add_argument("--n-scan", type=_int, default=60, metavar="N",

@@ -30,7 +30,8 @@ def format_defects(dmap) -> str:
              + (f"; first collapse {_num(dmap.amplitude0)} g" if dmap.pulse else "")]
     if dmap.pulse:
         p = dmap.pulse
-        lines.append(f"pulse: {p['kind']}, t_p = {p['duration']:g} s, sign {p['sign']:+d}")
+        sgn = "both signs (the smaller amplitude)" if p["sign"] == 0 else f"sign {p['sign']:+d}"
+        lines.append(f"pulse: {p['kind']}, t_p = {p['duration']:g} s, {sgn}")
     head = f"{t:>8} {'k_l':>8} {'k_r':>8} {'lost [g]':>9} {'lost':>7}  {'M_l':<13} {'M_r':<13}"
     if dmap.pulse:
         head += f" {'a_first':>8} {'lost [g]':>9}"
