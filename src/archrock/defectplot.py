@@ -89,10 +89,11 @@ def plot_defect_map(dmap, path: str | os.PathLike | None = None, *, dpi: int = 1
             lab = "drop of the first collapse amplitude"
             sgn = "both signs (the smaller)" if p["sign"] == 0 else f"sign {p['sign']:+d}"
             title = (f"{p['kind']} pulse, $t_p$ = {p['duration']:g} s, {sgn}: "
-                     f"undamaged first collapse at {dmap.amplitude0:.3f} g\n(negative: the "
-                     f"damaged arch needs a stronger pulse)")
+                     f"undamaged first collapse at {dmap.amplitude0:.3f} g"
+                     + ("\n(negative: the damaged arch needs a stronger pulse)"
+                        if finite.size and finite.min() < 0 else ""))
         lab += " [%]" if relative else " [g]"
-        lab = ("" if np.nanmin(vals) >= 0 else "gain < 0 < ") + lab
+        lab = ("gain < 0 < " if finite.size and finite.min() < 0 else "") + lab
         _panel(ax, dmap, vals, lab, "{:.1f}%" if relative else "{:.3f}", cmap, vmax)
         ax.set_title(title, fontsize=8.5)
     if path is not None:
