@@ -174,6 +174,10 @@ def test_cli_defects_json_and_plot(capsys, tmp_path):
     d = json.loads(capsys.readouterr().out)
     assert d["worst"]["ties"] == [2, 4] and d["worst"]["loss"] == pytest.approx(0.108428, abs=1e-6)
     assert fig.stat().st_size > 10_000
+    from archrock.plots import plot_defect_map  # what the assessment report draws, no file
+
+    drawn = plot_defect_map(defect_map(oppenheim_arch(), "mortar", 0.3))
+    assert len(drawn.axes) == 2  # the map and its colour bar
     assert main(["defects", "--kind", "mortar", "--value", "0.3", "--from", "extrados"]) == 0
     assert "joint" in capsys.readouterr().out
 

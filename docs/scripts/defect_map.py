@@ -4,7 +4,7 @@
 import time
 
 from archrock.defectmap import defect_map
-from archrock.defectplot import plot_defect_map
+from archrock.plots import plot_defect_map
 from archrock.geometry import oppenheim_arch
 from archrock.reports.defects import format_defects
 

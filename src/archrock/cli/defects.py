@@ -74,7 +74,7 @@ def run_defects(args) -> int:
                       n_scan=args.n_scan, tol=args.tol,
                       progress=args.pulse_duration is not None and not args.no_progress)
     if plot:
-        from ..defectplot import plot_defect_map
+        from ..plots import plot_defect_map
 
         plot_defect_map(dmap, plot)
     if args.json:
