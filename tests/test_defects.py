@@ -242,3 +242,41 @@ def test_pulse_map_mirror_symmetry():
     assert minus.amplitude0 == pytest.approx(1.294, abs=0.01)
     both = defect_map(a, "thickness", 0.7, indices=[0, 6], pulse_duration=0.2, sign=0, n_scan=40)
     np.testing.assert_allclose(both.amplitudes, minus.amplitudes[0], atol=2e-3)  # the weaker side
+
+
+@pytest.mark.slow
+def test_mirror_property_on_random_arches_and_defects():
+    """Any defect on an irregular arch and its mirror image on the mirrored arch swap k_l and
+    k_r, and the kinematic multipliers equal the static ones (limit theorems)."""
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    from archrock.errors import CannotStandError
+    from archrock.geometry import random_arch
+
+    @settings(max_examples=40, deadline=None)
+    @given(seed=st.integers(0, 10_000), kind=st.sampled_from(["thickness", "tilt", "mortar"]),
+           index=st.integers(0, 7), value=st.floats(0.3, 0.95), side=st.booleans(),
+           family=st.booleans())
+    def check(seed, kind, index, value, side, family):
+        nominal = family_arch("pointed", 10.0, 7.0, 1.0, 7) if family else oppenheim_arch()
+        a = random_arch(nominal, seed=seed)
+        n = a.n
+        if kind == "thickness":
+            d = Defect.thickness(min(index, n - 1), value, "intrados" if side else "centreline")
+            m = Defect.thickness(n - 1 - d.index, value, d.side)
+        elif kind == "tilt":
+            d = Defect.tilt(index, 20 * (value - 0.6))
+            m = Defect.tilt(n - index, -d.value)
+        else:
+            d = Defect.mortar(index, value * 0.6, "extrados" if side else "intrados")
+            m = Defect.mortar(n - index, d.value, d.side)
+        try:
+            r = limit_analysis(apply_defect(a, d))
+        except CannotStandError:
+            return
+        rm = limit_analysis(apply_defect(a.mirrored(), m), verify=False)
+        assert r.k_l == pytest.approx(rm.k_r, rel=1e-7) and r.k_r == pytest.approx(rm.k_l, rel=1e-7)
+        assert r.discrepancy < 1e-7
+
+    check()
