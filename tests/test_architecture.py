@@ -16,6 +16,7 @@ LAYER = {
     "impact": 4, "groundmotion": 4,
     "kernel": 5, "response": 5, "batch": 5, "population": 5,
     "ensemble": 6, "codecheck": 6, "assessment": 6, "curves": 6, "fragility": 6, "ida": 6, "work": 6,
+    "defectmap": 6, "sensitivity": 6,
     "reports": 7, "plots": 7, "animate": 7, "cli": 7, "study": 7, "__main__": 7,
 }
 # Modules of other branches that archrock.assessment imports when present (optional report

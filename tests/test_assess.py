@@ -65,6 +65,9 @@ def test_values_are_the_package_s(report):
     cc = s["codecheck"]["data"]
     assert round(cc["directions"]["l"]["alpha_0"], 6) == 0.370010 and cc["passed"] is True
     assert len(s["curves"]["data"]["band"]["samples"]) == 2
+    # docs/defects.md: voussoirs 2 and 4 cost most, -29.3%
+    assert s["defects"]["data"]["available"] is True
+    assert "voussoir 2 and 4" in text and "-29.3%" in text
     fr = s["friction"]["data"]  # docs/friction.md: Oppenheim's arch needs 0.4951
     assert fr["available"] is True
     assert round(fr["friction_needed_l"], 4) == round(fr["friction_needed_r"], 4) == 0.4951
@@ -76,7 +79,8 @@ def test_self_contained(report):
     no stylesheet links; references are text."""
     _, text, _, _ = report
     srcs = re.findall(r'<img[^>]*\ssrc="([^"]*)"', text)
-    assert len(srcs) == text.count("<img") == 5  # arch, Fig. 3, response, curve, capacity curve
+    # arch, Fig. 3, response, curve, defect map, capacity curve
+    assert len(srcs) == text.count("<img") == 6
     for s in srcs:
         assert s.startswith("data:image/png;base64,")
         png = base64.b64decode(s.split(",", 1)[1])

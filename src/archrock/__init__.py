@@ -29,7 +29,8 @@ _EXPORTS = {
                "NoMechanismError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
                "FitError", "LimitExceededError"),
     "geometry": ("Arch", "PolygonArch", "VoussoirArch", "Load", "family_arch", "nominal_arch",
-                 "oppenheim_arch", "random_arch", "as_polygon", "arch_from_dict"),
+                 "oppenheim_arch", "random_arch", "as_polygon", "arch_from_dict", "Defect",
+                 "apply_defect"),
     "sampling": ("ArchSampler", "Spreads"),
     "limit": ("limit_analysis", "minimum_thickness"),
     "friction": ("friction_analysis", "friction_needed", "friction_minimum_thickness"),
@@ -40,6 +41,8 @@ _EXPORTS = {
     "population": ("prepare_many",),
     "curves": ("collapse_curve", "ensemble_curve"),
     "ensemble": ("EnsembleConfig", "run_ensemble"),
+    "defectmap": ("defect_map",),
+    "sensitivity": ("sobol_indices",),
 }
 _OWNER = {name: module for module, names in _EXPORTS.items() for name in names}
 

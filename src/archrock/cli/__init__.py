@@ -14,7 +14,8 @@ NaN/inf), sets ``parser.set_defaults(func=run_<name>)`` and returns the parser; 
 
 from __future__ import annotations
 
-from . import assess, codecheck, curves, ensemble, fragility, importdxf, limit, paper, respond
+from . import (assess, codecheck, curves, defects, ensemble, fragility, importdxf, limit, paper,
+               respond, sensitivity)
 from ._parser import (SUBCOMMANDS, CLIError, emit_json, finite_float, new_parser,
                       non_negative_int, positive_float, run_command, subcommand)
 from .options import (GEOMETRY_DEFAULTS, add_geometry_options, add_impact_options,
@@ -42,6 +43,8 @@ SUBCOMMANDS.update({
     "import-dxf": importdxf.add_import_dxf_parser,
     "codecheck": codecheck.add_codecheck_parser,
     "assess": assess.add_assess_parser,
+    "defects": defects.add_defects_parser,
+    "sensitivity": sensitivity.add_sensitivity_parser,
 })
 
 

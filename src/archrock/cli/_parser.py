@@ -18,7 +18,7 @@ EXIT_USAGE = 2  # bad input: same status as argparse's own errors
 EXIT_OUTCOME = 3  # valid input, no answer of the kind asked (archrock.errors.ArchrockError)
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a command stopped by Ctrl-C
 _OPTIONAL_MODULES = {"matplotlib", "PIL", "pandas", "pyarrow", "tqdm", "numba", "dask", "distributed",
-                     "ezdxf"}
+                     "ezdxf", "SALib"}
 
 #: name -> add_<name>_parser(subparsers), in the order shown by --help (filled by archrock.cli).
 SUBCOMMANDS: dict[str, Callable] = {}

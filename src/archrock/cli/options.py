@@ -83,14 +83,28 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
     g.add_argument("--geometry", metavar="FILE",
                    help="JSON geometry file, circular or polygon voussoirs (from the left "
                         "springing); excludes the flags above")
+    g.add_argument("--defect", action="append", metavar="SPEC",
+                   help="a defect applied to the arch, repeatable: VOUSSOIR:thickness=F"
+                        "[,at=intrados|extrados] (keeps F of its thickness, 0 < F < 1), "
+                        "JOINT:tilt=DEG (-45 < DEG < 45) or JOINT:mortar=F[,from=extrados] "
+                        "(no mortar over F of the contact); docs/defects.md")
     return parser
 
 
 def arch_from_args(args: argparse.Namespace):
     """The arch described by the options of :func:`add_geometry_options`: a circular
     :class:`~archrock.geometry.Arch`, or a family's (the exact Arch for a circular one with
-    normal joints and constant thickness, else a FamilyArch); raises ArchInputError / CLIError
-    on bad input."""
+    normal joints and constant thickness, else a FamilyArch), with the --defect defects applied
+    (archrock.geometry.apply_defect); raises ArchInputError / CLIError on bad input."""
+    arch = _undamaged_arch_from_args(args)
+    if getattr(args, "defect", None):
+        from ..geometry import apply_defects
+
+        arch = apply_defects(arch, args.defect)
+    return arch
+
+
+def _undamaged_arch_from_args(args: argparse.Namespace):
     from ..geometry import nominal_arch
 
     circ = ("radius", "embrace")

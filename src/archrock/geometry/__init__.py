@@ -15,6 +15,7 @@ under ``"family"``, is rebuilt as the :class:`FamilyArch`).
 from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties, power_of_two_near
 from .circular import (OPPENHEIM, Arch, nominal_arch, oppenheim_arch, perturb_voussoirs,
                        random_arch, random_spans_thicknesses_radii, sector_properties)
+from .defect import Defect, apply_defect, apply_defects
 from .families import JOINTS, SHAPES, FamilyArch, family_arch
 from .polygon import FACE_TOLERANCE, PolygonArch, as_polygon
 
@@ -22,7 +23,7 @@ __all__ = ["VoussoirArch", "Arch", "PolygonArch", "Load", "nominal_arch", "oppen
            "random_arch", "perturb_voussoirs", "random_spans_thicknesses_radii",
            "sector_properties", "polygon_properties", "power_of_two_near", "as_polygon",
            "family_arch", "FamilyArch", "SHAPES", "JOINTS", "arch_from_dict", "OPPENHEIM",
-           "DEFAULT_DENSITY", "FACE_TOLERANCE"]
+           "DEFAULT_DENSITY", "FACE_TOLERANCE", "Defect", "apply_defect", "apply_defects"]
 
 
 def arch_from_dict(data, name: str = "arch") -> VoussoirArch:

@@ -1,0 +1,86 @@
+"""``archrock defects``: the defect map of one arch (which voussoir or joint, if damaged,
+costs the most capacity)."""
+
+from __future__ import annotations
+
+from ._parser import _int, emit_json, finite_float, positive_float
+from .options import add_geometry_options, add_impact_options, arch_from_args, figure_arg
+
+
+def add_defects_parser(subparsers):
+    p = subparsers.add_parser(
+        "defects", help="defect map: the capacity lost when each voussoir (or joint) in turn "
+                        "is damaged",
+        description="Apply one defect to each voussoir (thickness) or joint (tilt, mortar) in "
+                    "turn: k_l, k_r and the hinges of each damaged arch, the capacity lost "
+                    "(drop of min(k_l, k_r)) and, with --pulse-duration, the first collapse "
+                    "amplitude of a pulse (docs/defects.md).")
+    add_geometry_options(p)
+    g = p.add_argument_group("defect", "the defect applied to each voussoir or joint in turn")
+    g.add_argument("--kind", choices=("thickness", "tilt", "mortar"), default="thickness",
+                   help="thickness: a voussoir keeps --value of its thickness; tilt: a joint "
+                        "turns by --value degrees; mortar: a joint has no mortar over --value "
+                        "of its contact (default thickness)")
+    g.add_argument("--value", type=finite_float, default=None, metavar="X",
+                   help="thickness: remaining fraction, 0 < X < 1 (default 0.7); tilt: degrees, "
+                        "-45 < X < 45 (default 5); mortar: missing fraction, 0 < X < 1 "
+                        "(default 0.3)")
+    g.add_argument("--at", choices=("centreline", "intrados", "extrados"), default=None,
+                   help="thickness: where the masonry is lost (default centreline)")
+    g.add_argument("--from", dest="from_", choices=("intrados", "extrados"), default=None,
+                   help="mortar: the face the missing depth is measured from (default intrados)")
+    m = p.add_argument_group("pulse", "with --pulse-duration: the first collapse amplitude of "
+                                      "each damaged arch (archrock curves' scan and bisection)")
+    m.add_argument("--pulse-duration", type=positive_float, default=None, metavar="S",
+                   help="pulse duration t_p [s] (e.g. 0.2, the paper's)")
+    m.add_argument("--pulse", default="oppenheim", metavar="KIND",
+                   help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
+    m.add_argument("--sign", type=_int, choices=(-1, 0, 1), default=-1,
+                   help="sign of the amplitude: -1 (opens M_l; default), +1 (opens M_r) or 0 "
+                        "(both: the smaller first collapse amplitude of the two)")
+    m.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
+                   help="top of the amplitude scan [g] (default 10)")
+    m.add_argument("--n-scan", type=_int, default=60, metavar="N",
+                   help="amplitude grid points (geometric, default 60)")
+    m.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
+                   help="bisection tolerance [g] (default 0.001)")
+    add_impact_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="write the arch coloured by the capacity lost at each voussoir or joint")
+    p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
+    p.set_defaults(func=run_defects)
+    return p
+
+
+def run_defects(args) -> int:
+    from ..defectmap import defect_map
+    from ..reports.defects import defects_summary, format_defects
+    from ._parser import CLIError
+    from .options import impact_spec_from_args
+
+    plot = figure_arg(args.plot)
+    if args.at is not None and args.kind != "thickness":
+        raise CLIError("--at: applies to --kind thickness")
+    if args.from_ is not None and args.kind != "mortar":
+        raise CLIError("--from: applies to --kind mortar")
+    if args.n_scan < 2:
+        raise CLIError(f"--n-scan: {args.n_scan}; allowed an integer >= 2")
+    arch = arch_from_args(args)
+    impact = impact_spec_from_args(args)
+    side = args.at or args.from_ or ""
+    dmap = defect_map(arch, args.kind, args.value, side, pulse_duration=args.pulse_duration,
+                      pulse_kind=args.pulse, sign=args.sign, impact=impact, a_max=args.a_max,
+                      n_scan=args.n_scan, tol=args.tol,
+                      progress=args.pulse_duration is not None and not args.no_progress)
+    if plot:
+        from ..plots import plot_defect_map
+
+        plot_defect_map(dmap, plot)
+    if args.json:
+        emit_json(defects_summary(dmap, impact))
+        return 0
+    print(format_defects(dmap))
+    if plot:
+        print(f"wrote {plot}")
+    return 0

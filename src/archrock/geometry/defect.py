@@ -1,0 +1,382 @@
+"""Local defects of one voussoir or one joint, applied to any :class:`VoussoirArch`.
+
+Three kinds (:class:`Defect`):
+
+* ``thickness``: voussoir i keeps a fraction ``value`` in (0, 1) of its thickness (``0.7``: 30%
+  lost).  ``at`` says where the masonry is lost: ``centreline`` (default: both faces move
+  toward the centreline by half the loss each), ``intrados`` (the intrados moves outward) or
+  ``extrados`` (the extrados moves inward).  Its neighbours' joints keep only the part of their
+  contact that the thinner voussoir still covers.
+* ``tilt``: joint j's line turns by ``value`` degrees, counter-clockwise positive, about the
+  mid-point of its contact segment, in (-45, 45); the two voussoirs it separates (a springing
+  joint: its one voussoir and the abutment face) are cut again along the new line.
+* ``mortar``: joint j has no mortar over a depth ``value`` in (0, 1) of its contact length,
+  measured from its ``intrados`` (default) or ``extrados`` end: the contact segment is that much
+  shorter, the masonry (masses, centroids) unchanged.
+
+A circular :class:`Arch` with a thickness defect stays an exact ``Arch`` (the damaged voussoir
+is an annular sector with a new radius and thickness); every other case gives a
+:class:`PolygonArch` (a circular arch's arcs as polylines of at most 0.002 rad per segment, so
+areas are within ~1e-7 of the sectors').  Loads (a family arch's fill included) stay on their
+voussoirs where they were.
+
+String form (:meth:`Defect.parse`, the command line's ``--defect``)::
+
+    3:thickness=0.7[,at=intrados|extrados|centreline]
+    4:tilt=5
+    2:mortar=0.2[,from=intrados|extrados]
+
+the number before the colon being the voussoir (0..n-1, from the left springing) or the joint
+(0..n).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ArchInputError
+from .base import VoussoirArch, _check_scalar
+from .circular import Arch
+from .polygon import PolygonArch, as_polygon
+
+__all__ = ["Defect", "apply_defect", "apply_defects", "DEFECT_KINDS", "parse_defect",
+           "defect_base"]
+
+#: kind -> (what it damages, allowed sides, default side)
+DEFECT_KINDS = {
+    "thickness": ("voussoir", ("centreline", "intrados", "extrados"), "centreline"),
+    "tilt": ("joint", ("",), ""),
+    "mortar": ("joint", ("intrados", "extrados"), "intrados"),
+}
+_SIDE_KEY = {"thickness": "at", "mortar": "from"}
+#: largest angle [rad] of one polyline segment when a circular arch is written as a polygon
+_ARC_STEP = 0.002
+
+
+def _allowed_value(kind: str) -> str:
+    return {"thickness": "a remaining fraction of the thickness, 0 < value < 1",
+            "tilt": "an angle in degrees, -45 < tilt < 45 (counter-clockwise positive)",
+            "mortar": "a fraction of the joint's contact length, 0 < value < 1"}[kind]
+
+
+@dataclass(frozen=True)
+class Defect:
+    """One local defect (module docstring).
+
+    kind: 'thickness' | 'tilt' | 'mortar'; index: the voussoir (thickness, 0..n-1) or joint
+    (tilt, mortar, 0..n) from the left springing; value: the remaining thickness fraction, the
+    tilt [deg] or the missing mortar depth fraction; side: for thickness where the masonry is
+    lost ('centreline', 'intrados', 'extrados'), for mortar the face the missing depth is
+    measured from ('intrados', 'extrados'); '' (the default) means the kind's default.
+    """
+
+    kind: str
+    index: int
+    value: float
+    side: str = ""
+
+    def __post_init__(self):
+        if self.kind not in DEFECT_KINDS:
+            raise ArchInputError(f"defect kind: {self.kind!r}; allowed "
+                                 f"{', '.join(DEFECT_KINDS)}")
+        what, sides, default = DEFECT_KINDS[self.kind]
+        if isinstance(self.index, bool) or not isinstance(self.index, (int, np.integer)) \
+                or self.index < 0:
+            raise ArchInputError(f"defect {what}: {self.index!r}; allowed an integer index >= 0")
+        object.__setattr__(self, "index", int(self.index))
+        if self.kind == "tilt":
+            v = _check_scalar("defect tilt", self.value, -45.0, 45.0, allowed=_allowed_value("tilt"))
+        else:
+            v = _check_scalar(f"defect {self.kind}", self.value, 0.0, 1.0,
+                              allowed=_allowed_value(self.kind))
+        object.__setattr__(self, "value", v)
+        side = self.side or default
+        if side == "centre":
+            side = "centreline"
+        if side not in sides:
+            key = _SIDE_KEY.get(self.kind, "side")
+            raise ArchInputError(f"defect {key}: {self.side!r}; allowed "
+                                 f"{', '.join(s for s in sides if s) or 'none for a tilt'}")
+        object.__setattr__(self, "side", side)
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def thickness(cls, voussoir: int, remaining: float, at: str = "centreline") -> "Defect":
+        """Voussoir ``voussoir`` keeps ``remaining`` (0..1) of its thickness, lost at ``at``."""
+        return cls("thickness", voussoir, remaining, at)
+
+    @classmethod
+    def tilt(cls, joint: int, degrees: float) -> "Defect":
+        """Joint ``joint`` turned by ``degrees`` (counter-clockwise positive)."""
+        return cls("tilt", joint, degrees)
+
+    @classmethod
+    def mortar(cls, joint: int, depth: float, side: str = "intrados") -> "Defect":
+        """Joint ``joint`` without mortar over ``depth`` (0..1) of its contact from ``side``."""
+        return cls("mortar", joint, depth, side)
+
+    # ------------------------------------------------------------------ what it damages
+    @property
+    def target(self) -> str:
+        """'voussoir' or 'joint'."""
+        return DEFECT_KINDS[self.kind][0]
+
+    def at_index(self, index: int) -> "Defect":
+        """The same defect on another voussoir or joint."""
+        return Defect(self.kind, index, self.value, self.side)
+
+    def check(self, arch: VoussoirArch) -> None:
+        """ArchInputError unless the index exists on ``arch``."""
+        hi = arch.n - 1 if self.target == "voussoir" else arch.n
+        if self.index > hi:
+            raise ArchInputError(f"defect {self.target}: {self.index}; allowed 0..{hi} (the arch "
+                                 f"has {arch.n} voussoirs, joints 0..{arch.n})")
+
+    # ------------------------------------------------------------------ text and dicts
+    def spec(self) -> str:
+        """The string form (:meth:`parse` reads it back)."""
+        s = f"{self.index}:{self.kind}={self.value:g}"
+        if self.kind in _SIDE_KEY and self.side != DEFECT_KINDS[self.kind][2]:
+            s += f",{_SIDE_KEY[self.kind]}={self.side}"
+        return s
+
+    def describe(self) -> str:
+        """Plain words, e.g. 'voussoir 3 keeps 70% of its thickness (lost about its centreline)'."""
+        if self.kind == "thickness":
+            where = "about its centreline" if self.side == "centreline" else f"at its {self.side}"
+            return (f"voussoir {self.index} keeps {self.value:.0%} of its thickness "
+                    f"({1 - self.value:.0%} lost {where})")
+        if self.kind == "tilt":
+            return f"joint {self.index} tilted by {self.value:g} deg (counter-clockwise positive)"
+        return (f"joint {self.index} without mortar over {self.value:.0%} of its contact "
+                f"from its {self.side}")
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "index": self.index, "value": self.value, "side": self.side}
+
+    @classmethod
+    def from_dict(cls, data) -> "Defect":
+        if not isinstance(data, dict) or not {"kind", "index", "value"} <= set(data) \
+                or set(data) - {"kind", "index", "value", "side"}:
+            raise ArchInputError(f"defect: {data!r}; allowed an object with kind, index, value "
+                                 f"(and side)")
+        return cls(data["kind"], data["index"], data["value"], data.get("side") or "")
+
+    @classmethod
+    def parse(cls, text: str, n: int | None = None) -> "Defect":
+        """Read ``INDEX:KIND=VALUE[,at=SIDE|from=SIDE]`` (module docstring); with ``n`` (the
+        arch's voussoirs) the index is checked too."""
+        return parse_defect(text, n)
+
+
+_SPEC = re.compile(r"^\s*([^:]*):\s*([a-z]+)\s*=\s*([^,]*)(.*)$")
+
+
+def parse_defect(text: str, n: int | None = None) -> Defect:
+    """:meth:`Defect.parse`."""
+    if not isinstance(text, str):
+        raise ArchInputError(f"defect: {text!r}; allowed a string like '3:thickness=0.7'")
+    m = _SPEC.match(text)
+    forms = ("VOUSSOIR:thickness=F[,at=intrados|extrados|centreline], JOINT:tilt=DEG or "
+             "JOINT:mortar=F[,from=intrados|extrados]")
+    if not m:
+        raise ArchInputError(f"defect: {text!r}; allowed {forms}")
+    idx_text, kind, value_text, rest = m.groups()
+    if kind not in DEFECT_KINDS:
+        raise ArchInputError(f"defect kind: {kind!r} in {text!r}; allowed {', '.join(DEFECT_KINDS)}")
+    what = DEFECT_KINDS[kind][0]
+    try:
+        index = int(idx_text.strip())
+    except ValueError:
+        raise ArchInputError(f"defect {what}: {idx_text.strip()!r} in {text!r}; allowed an "
+                             f"integer index" + (f" 0..{n - 1 if what == 'voussoir' else n}"
+                                                 if n else "")) from None
+    try:
+        value = float(value_text)
+    except ValueError:
+        raise ArchInputError(f"defect {kind}: {value_text.strip()!r} in {text!r}; allowed "
+                             f"{_allowed_value(kind)}") from None
+    side = ""
+    for part in filter(None, (p.strip() for p in rest.split(","))):
+        key, eq, val = part.partition("=")
+        want = _SIDE_KEY.get(kind)
+        if not eq or key.strip() != want:
+            raise ArchInputError(f"defect option: {part!r} in {text!r}; allowed "
+                                 + (f"{want}=..." if want else "none for a tilt"))
+        side = val.strip()
+    d = Defect(kind, index, value, side)
+    if n is not None:
+        hi = n - 1 if what == "voussoir" else n
+        if d.index > hi:
+            raise ArchInputError(f"defect {what}: {d.index} in {text!r}; allowed 0..{hi}")
+    return d
+
+
+# ---------------------------------------------------------------------------- geometry
+def _dedupe(p: np.ndarray, tol: float) -> np.ndarray:
+    """Drop points within ``tol`` of the previous kept one (polylines refuse repeated points)."""
+    keep = [0]
+    for k in range(1, len(p)):
+        if np.hypot(*(p[k] - p[keep[-1]])) > tol:
+            keep.append(k)
+    return p[keep]
+
+
+def _as_polygon(arch: VoussoirArch) -> PolygonArch:
+    if isinstance(arch, PolygonArch):
+        return arch
+    if isinstance(arch, Arch):
+        per = max(8, int(math.ceil(float(np.max(arch.spans)) / _ARC_STEP)) + 1)
+        return as_polygon(arch, per)
+    raise ArchInputError(f"arch: a {type(arch).__name__}; allowed an Arch or a PolygonArch")
+
+
+def defect_base(arch: VoussoirArch, kind: str) -> VoussoirArch:
+    """The undamaged arch in the form a defect of ``kind`` is applied to: ``arch`` itself, or,
+    for a tilt or missing mortar on a circular :class:`Arch`, its polygon form (so that a
+    comparison with the damaged arch sees the defect, not the polylines' ~1e-7 difference from
+    the exact sectors)."""
+    if kind not in DEFECT_KINDS:
+        raise ArchInputError(f"defect kind: {kind!r}; allowed {', '.join(DEFECT_KINDS)}")
+    if kind == "thickness" and isinstance(arch, Arch):
+        return arch
+    return _as_polygon(arch)
+
+
+def _arc_param(p: np.ndarray) -> np.ndarray:
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(p, axis=0).T))])
+    return s / s[-1]
+
+
+def _resample(p: np.ndarray, s: np.ndarray) -> np.ndarray:
+    u = _arc_param(p)
+    return np.column_stack([np.interp(s, u, p[:, 0]), np.interp(s, u, p[:, 1])])
+
+
+def _thinner(arch: VoussoirArch, d: Defect) -> VoussoirArch:
+    f, i = d.value, d.index
+    # new intrados at a, new extrados at b, as fractions of the way from intrados to extrados
+    a, b = {"centreline": (0.5 * (1 - f), 0.5 * (1 + f)), "intrados": (1 - f, 1.0),
+            "extrados": (0.0, f)}[d.side]
+    if isinstance(arch, Arch):  # exact: the voussoir stays an annular sector
+        t, r = arch.thicknesses.copy(), arch.radii.copy()
+        r_in = r[i] - t[i] / 2
+        r[i] = r_in + 0.5 * (a + b) * t[i]
+        t[i] = (b - a) * t[i]
+        return Arch(arch.spans.copy(), r, t, arch.density, arch.name, arch.loads)
+    poly = _as_polygon(arch)
+    p, q = poly.intrados[i], poly.extrados[i]
+    # both lines at the union of their vertices' arc-length fractions: each new point lies on
+    # the segment from an intrados point to the extrados point at the same fraction of its line
+    s = np.union1d(_arc_param(p), _arc_param(q))
+    pp, qq = _resample(p, s), _resample(q, s)
+    tol = 1e-12 * poly.size
+    intr, extr = list(poly.intrados), list(poly.extrados)
+    intr[i] = _dedupe(pp + a * (qq - pp), tol)
+    extr[i] = _dedupe(pp + b * (qq - pp), tol)
+    return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads)
+
+
+def _cut_line(line: np.ndarray, c: np.ndarray, u: np.ndarray, near: np.ndarray):
+    """(segment k, point) where the polyline crosses the line through c along u, nearest ``near``."""
+    f = u[0] * (line[:, 1] - c[1]) - u[1] * (line[:, 0] - c[0])
+    k = np.flatnonzero((f[:-1] * f[1:] <= 0) & ((f[:-1] != 0) | (f[1:] != 0)))
+    if k.size == 0:
+        return None
+    den = f[k] - f[k + 1]
+    w = np.where(den != 0, f[k] / np.where(den != 0, den, 1.0), 0.0)
+    pts = line[k] + w[:, None] * (line[k + 1] - line[k])
+    j = int(np.argmin(np.hypot(*(pts - near).T)))
+    return int(k[j]), pts[j]
+
+
+def _tilted(arch: VoussoirArch, d: Defect) -> PolygonArch:
+    poly = _as_polygon(arch)
+    n, j = poly.n, d.index
+    jp = np.asarray(poly.joint_points[j], float)
+    a, b = jp
+    length = float(np.hypot(*(b - a)))
+    mid = 0.5 * (a + b)
+    th = math.radians(d.value)
+    e = (b - a) / length
+    u = np.array([math.cos(th) * e[0] - math.sin(th) * e[1], math.sin(th) * e[0] + math.cos(th) * e[1]])
+    tol = 1e-9 * poly.size
+    intr, extr = list(poly.intrados), list(poly.extrados)
+    reach = 4.0 * length  # a springing face's line extended this far past the springing
+    for lines, near in ((intr, a), (extr, b)):
+        if j == 0 or j == n:
+            v = 0 if j == 0 else n - 1
+            p = lines[v]
+            if j == 0:
+                t = p[0] - p[1]
+                line = np.vstack([p[0] + reach * t / np.hypot(*t), p])
+            else:
+                t = p[-1] - p[-2]
+                line = np.vstack([p, p[-1] + reach * t / np.hypot(*t)])
+        else:
+            line = _dedupe(np.vstack([lines[j - 1], lines[j]]), tol)
+        hit = _cut_line(line, mid, u, near)
+        if hit is None:
+            raise ArchInputError(f"defect tilt: {d.value:g} deg at joint {j}: the tilted joint "
+                                 f"misses the voussoirs' faces; allowed a smaller tilt")
+        k, x = hit
+        left = _dedupe(np.vstack([line[:k + 1], x]), tol)
+        right = _dedupe(np.vstack([x, line[k + 1:]]), tol)
+        if len(left) < 2 or len(right) < 2:
+            raise ArchInputError(f"defect tilt: {d.value:g} deg at joint {j} cuts off a whole "
+                                 f"voussoir; allowed a smaller tilt")
+        if j == 0:
+            lines[0] = right
+        elif j == n:
+            lines[n - 1] = left
+        else:
+            lines[j - 1], lines[j] = left, right
+    try:
+        return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads)
+    except ArchInputError as exc:
+        raise ArchInputError(f"defect tilt: {d.value:g} deg at joint {j} does not give a valid "
+                             f"arch ({exc}); allowed a smaller tilt") from None
+
+
+def _unmortared(arch: VoussoirArch, d: Defect) -> PolygonArch:
+    poly = _as_polygon(arch)
+    n, j = poly.n, d.index
+    a, b = np.asarray(poly.joint_points[j], float)
+    # the end of the shortened contact segment on the damaged side
+    x = a + d.value * (b - a) if d.side == "intrados" else b - d.value * (b - a)
+    intr, extr = list(poly.intrados), list(poly.extrados)
+    lines = intr if d.side == "intrados" else extr
+    # the face that ends at x: voussoir j's left face (j < n) or voussoir n-1's right face; the
+    # old face end stays a vertex, so the outline (the masonry) does not change
+    if j < n:
+        lines[j] = np.vstack([x, lines[j]])
+    else:
+        lines[n - 1] = np.vstack([lines[n - 1], x])
+    return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads)
+
+
+def apply_defect(arch: VoussoirArch, defect: Defect | str) -> VoussoirArch:
+    """``arch`` with one defect (a :class:`Defect` or its string form; module docstring): an
+    exact :class:`Arch` for a thickness loss on a circular arch, else a :class:`PolygonArch`
+    (a family arch loses its recipe: it is no longer a member of its family).  Loads kept."""
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    d = parse_defect(defect, arch.n) if isinstance(defect, str) else defect
+    if not isinstance(d, Defect):
+        raise ArchInputError(f"defect: {defect!r}; allowed a Defect or a string like "
+                             f"'3:thickness=0.7'")
+    d.check(arch)
+    out = {"thickness": _thinner, "tilt": _tilted, "mortar": _unmortared}[d.kind](arch, d)
+    object.__setattr__(out, "name", f"{arch.name} [{d.spec()}]")
+    return out
+
+
+def apply_defects(arch: VoussoirArch, defects) -> VoussoirArch:
+    """Each defect of ``defects`` applied in turn (indices refer to ``arch``'s voussoirs)."""
+    for d in defects or ():
+        arch = apply_defect(arch, d)
+    return arch

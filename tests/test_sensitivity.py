@@ -1,0 +1,79 @@
+"""Global sensitivity (archrock.sensitivity): the map from draws to arches and Sobol indices."""
+
+import json
+
+import numpy as np
+import pytest
+
+pytest.importorskip("SALib")
+
+from archrock.cli import main  # noqa: E402
+from archrock.geometry import family_arch, oppenheim_arch  # noqa: E402
+from archrock.sampling import ArchSampler, Spreads  # noqa: E402
+from archrock.sensitivity import arches_from_inputs, input_layout, sobol_indices  # noqa: E402
+
+
+def _inputs_of(sampler, count):
+    """The sampler's own uniforms written as input rows in input_layout's order."""
+    layout = input_layout(sampler.nominal, sampler.spreads)
+    u = sampler.uniforms(0, count)
+    return np.array([[u[b, r, c] for _, _, _, r, c in layout] for b in range(count)])
+
+
+def test_the_map_is_the_samplers_circular():
+    nominal = oppenheim_arch()
+    sampler = ArchSampler(nominal, Spreads(0.1, 0.1, 0.05), seed=3)
+    spans, thick, radii = arches_from_inputs(nominal, sampler.spreads, _inputs_of(sampler, 6))
+    s2, t2, r2 = sampler.draw(0, 6)
+    assert np.array_equal(spans, s2) and np.array_equal(thick, t2) and np.array_equal(radii, r2)
+
+
+def test_the_map_is_the_samplers_family_with_tilt():
+    nominal = family_arch("pointed", 10.0, 7.0, 0.9, 8)
+    sampler = ArchSampler(nominal, Spreads(0.1, 0.1, 0.05, tilt=4.0), seed=1)
+    layout = input_layout(nominal, sampler.spreads)
+    assert [name for name, *_ in layout][-7:] == [f"tilt_{j}" for j in range(1, 8)]
+    mine = arches_from_inputs(nominal, sampler.spreads, _inputs_of(sampler, 3))
+    for a, b in zip(mine, sampler.arches(0, 3)):
+        assert np.array_equal(a.joint_points, b.joint_points)
+        assert np.array_equal(a.masses, b.masses)
+
+
+def test_thickness_alone_explains_everything_when_it_alone_varies():
+    res = sobol_indices(oppenheim_arch(), Spreads(0.0, 0.1, 0.0), 256, motion=None, seed=1)
+    for out in ("k_l", "k_r", "k"):
+        assert res.index(out, "thickness") == pytest.approx(1.0, abs=0.1)
+        assert res.index(out, "thickness", "ST") == pytest.approx(1.0, abs=0.1)
+        for g in ("span", "radius"):  # inputs with no effect: exactly zero
+            assert res.index(out, g) == 0.0 and res.index(out, g, "ST") == 0.0
+    assert res.runs == 256 * 5 and res.unusable == 0
+
+
+def test_indices_by_voussoir_are_reproducible_and_sum_sanely():
+    args = (oppenheim_arch(), Spreads(0.1, 0.1, 0.05), 128)
+    a = sobol_indices(*args, by="voussoir", motion=None, seed=4)
+    b = sobol_indices(*args, by="voussoir", motion=None, seed=4)
+    c = sobol_indices(*args, by="voussoir", motion=None, seed=5)
+    assert a.groups == tuple(f"voussoir {i}" for i in range(7))
+    assert np.array_equal(a.S1, b.S1) and np.array_equal(a.ST_conf, b.ST_conf)
+    assert not np.array_equal(a.S1, c.S1)
+    k_l = a.outputs.index("k_l")
+    # first-order effects add up to at most the whole variance (within sampling error), the
+    # total ones to at least it; a linear model cannot explain more than the additive part
+    assert 0.6 < a.sum_S1[k_l] < 1.15 and a.sum_ST[k_l] > 0.9
+    assert a.r2_linear[k_l] < a.sum_S1[k_l] + 0.15
+    # as the defect map says (tests/test_defects.py: a loss on voussoirs 4-6 lowers k_l, on
+    # 0-2 k_r), the right half drives k_l and the left half k_r, mirror images of each other
+    st = {o: [a.index(o, f"voussoir {i}", "ST") for i in range(7)] for o in ("k_l", "k_r")}
+    assert sum(st["k_l"][4:]) > 0.8 and sum(st["k_l"][:4]) < 0.2
+    assert sum(st["k_r"][:3]) > 0.8 and sum(st["k_r"][3:]) < 0.2
+
+
+def test_cli_sensitivity(capsys):
+    assert main(["sensitivity", "--samples", "32", "--limit-only", "--json", "--no-progress"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert set(d["outputs"]) == {"k_l", "k_r", "k"} and d["runs"] == 160
+    assert set(d["outputs"]["k_l"]["groups"]) == {"span", "thickness", "radius"}
+    assert main(["sensitivity", "--samples", "100"]) == 2
+    assert "power of two" in capsys.readouterr().err
+    assert main(["sensitivity", "--spread-tilt", "3", "--samples", "16"]) == 2
