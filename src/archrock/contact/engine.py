@@ -133,6 +133,39 @@ class ContactArch:
         self.steps += steps
         self.time = self.steps * self.dt
 
+    def settle(self, duration: float = 0.5) -> None:
+        """Let the arch settle under gravity for ``duration`` T (its rounded joints close by
+        about 2 x rounding x size), then stop every body and restart the clock: the settled state
+        is the reference of every rotation, sliding and drop reported."""
+        self.step(0.0, max(1, int(round(duration * self.settings.steps_per_T))))
+        for b in self.bodies:
+            b.velocity = (0.0, 0.0)
+            b.angular_velocity = 0.0
+        pos, ang, _, _ = self.state()
+        self.ref_pos, self.ref_ang = pos, ang
+        self.ref_slide = self.joint_sliding(pos, ang)
+        self.steps, self.time = 0, 0.0
+
+    def end_gaps(self, pos: np.ndarray, angles: np.ndarray) -> np.ndarray:
+        """(n+1, 2) distance [m] between the two sides' copies of each joint's intrados (0) and
+        extrados (1) end: the end that stays closed while a joint opens is its hinge."""
+        n = self.arch.n
+        c0 = self.centroids0
+        out = np.empty((n + 1, 2))
+        for j in range(n + 1):
+            for e in (0, 1):
+                m = self.joint_points[j, e]
+                sides = []
+                for v in (j - 1, j):
+                    if v < 0 or v >= n:
+                        sides.append(m)
+                        continue
+                    r = m - c0[v]
+                    ca, sa = math.cos(angles[v]), math.sin(angles[v])
+                    sides.append(pos[v] + np.array([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1]]))
+                out[j, e] = float(np.hypot(*(sides[1] - sides[0])))
+        return out
+
     # ------------------------------------------------------------------ state
     def state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(centroids (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,) [rad/s])."""
