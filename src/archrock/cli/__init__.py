@@ -14,7 +14,7 @@ NaN/inf), sets ``parser.set_defaults(func=run_<name>)`` and returns the parser; 
 
 from __future__ import annotations
 
-from . import curves, ensemble, fragility, importdxf, limit, paper, respond
+from . import curves, dem, ensemble, fragility, importdxf, limit, paper, respond, verify
 from ._parser import (SUBCOMMANDS, CLIError, emit_json, finite_float, new_parser,
                       non_negative_int, positive_float, run_command, subcommand)
 from .options import (GEOMETRY_DEFAULTS, add_geometry_options, add_impact_options,
@@ -40,6 +40,8 @@ SUBCOMMANDS.update({
     "ensemble": ensemble.add_ensemble_parser,
     "paper": paper.add_paper_parser,
     "import-dxf": importdxf.add_import_dxf_parser,
+    "dem": dem.add_dem_parser,
+    "verify": verify.add_verify_parser,
 })
 
 

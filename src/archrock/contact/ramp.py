@@ -167,7 +167,10 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
         holds.append((lo, moved))
         if not moved:
             break
-        hi, lo = lo, 0.5 * lo
+        if lo == 0.0:  # moves under gravity alone: the arch does not stand in the engine
+            hi = 0.0
+            break
+        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
     while hi - lo > tol * hi:
         mid = 0.5 * (lo + hi)
         moved = _moves(arch, settings, sign, mid, hold, threshold, thr_slide, check)
