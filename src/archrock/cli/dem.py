@@ -55,6 +55,12 @@ def add_dem_parser(subparsers):
     p.add_argument("--ramp", action="store_true",
                    help="slowly increasing ground acceleration in each direction: activation "
                         "multipliers and hinges")
+    p.add_argument("--ramp-tol", type=positive_float, default=0.005, metavar="TOL",
+                   help="--ramp: relative width of the final bracket of the multiplier "
+                        "(default 0.005)")
+    p.add_argument("--ramp-hold", type=positive_float, default=4.0, metavar="T",
+                   help="--ramp: duration of each constant-acceleration hold, in units of "
+                        "T = sqrt(size/g) (default 4)")
     p.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
                    help="end of the output window [s] (default 3); the run goes on to rest or "
                         "collapse")
@@ -97,7 +103,7 @@ def run_dem(args) -> int:
         from ..reports.contact import format_ramp, ramp_dict
 
         limit = limit_analysis(arch)
-        res = ramp(arch, settings, progress=progress)
+        res = ramp(arch, settings, progress=progress, tol=args.ramp_tol, hold=args.ramp_hold)
         if args.json:
             emit_json(ramp_dict(res, limit))
         else:

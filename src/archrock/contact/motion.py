@@ -7,10 +7,12 @@ motion have passed.  Collapse in the engine: a voussoir's mass centre has droppe
 that falls drops by metres), so the engine's collapse time is later than the four-link model's
 (the last passage of the unstable rotation).
 
-The equivalent four-link rotation: phi_l = (rotation of M_l's link 1, the voussoirs between its
-hinges A and B) / s_l, with s_l the sign of :class:`~archrock.mechanism.FourLink` (theta_1 =
+The equivalent four-link rotation: phi_l = (rotation of the voussoir of M_l's link 1 that rests
+on its ground hinge A) / s_l, with s_l the sign of :class:`~archrock.mechanism.FourLink` (theta_1 =
 s phi), likewise phi_r for M_r; the signed rotation is +phi_l where phi_l >= phi_r, else -phi_r
-(0 when both are <= 0), as ``respond``'s signed response (+phi in M_l, -phi in M_r).
+(0 when both are <= 0), as ``respond``'s signed response (+phi in M_l, -phi in M_r).  It is the four-link phi exactly
+while the engine moves in the limit mechanism; when the engine opens another one (impulsive
+pulses often put hinge B elsewhere), it is still the rotation about the springing hinge.
 """
 
 from __future__ import annotations
@@ -76,8 +78,10 @@ class ContactResponse:
 
 
 def _link1(model, direction):
+    """The voussoir of link 1 on the ground hinge A (the springing side), and the sign s."""
     fl = model.mech_l if direction == "l" else model.mech_r
-    return np.asarray(fl.link_voussoirs[0], dtype=int), float(fl.sign)
+    idx = fl.link_voussoirs[0]
+    return np.array([min(idx) if direction == "l" else max(idx)], dtype=int), float(fl.sign)
 
 
 def equivalent_rotation(model, rotations: np.ndarray) -> np.ndarray:
