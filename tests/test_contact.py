@@ -189,3 +189,16 @@ def test_ramp_agrees_with_limit_analysis_on_other_arches(arch):
         assert r.multiplier == pytest.approx(getattr(lim, f"k_{d}"), rel=0.05)
         expected = tuple(h.joint for h in sorted(lim.mechanism(d).hinges, key=lambda h: h.joint))
         assert set(expected) <= set(r.hinges)
+
+
+def test_cli_verify_agrees_where_the_models_must(capsys):
+    """Below activation nothing moves; a 4 g, 0.4 s pulse brings down all three models."""
+    assert main(["verify", "--amplitudes=-0.3,-4", "--durations", "0.4", "--steps-per-T", "150",
+                 "--iterations", "20", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    for m in ("engine", "paper", "momentum"):
+        assert d["collapsed"][m] == [[False, True]]
+        assert d["first_collapse"][m] == [4.0]
+    assert d["agreement"] == {"paper": 1.0, "momentum": 1.0}
+    assert d["cv"]["paper"] == pytest.approx(0.87538, abs=1e-5)
+    assert d["cv"]["momentum"] == pytest.approx(0.64496, abs=1e-5)
