@@ -114,7 +114,7 @@ class ContactArch:
             s = pymunk.Poly(ground, [tuple(map(float, q)) for q in quad])
             s.friction, s.elasticity = mu, e
             space.add(s)
-        # joint midpoints and tangents at rest, in each neighbour's body frame (for sliding)
+        # joint midpoints, lengths and tangents at rest (for sliding)
         mid = 0.5 * (pts[:, 0] + pts[:, 1])
         tan = pts[:, 1] - pts[:, 0]
         self.joint_tangents = tan / np.hypot(tan[:, 0], tan[:, 1])[:, None]
@@ -146,26 +146,6 @@ class ContactArch:
         self.ref_slide = self.joint_sliding(pos, ang)
         self.steps, self.time = 0, 0.0
 
-    def end_gaps(self, pos: np.ndarray, angles: np.ndarray) -> np.ndarray:
-        """(n+1, 2) distance [m] between the two sides' copies of each joint's intrados (0) and
-        extrados (1) end: the end that stays closed while a joint opens is its hinge."""
-        n = self.arch.n
-        c0 = self.centroids0
-        out = np.empty((n + 1, 2))
-        for j in range(n + 1):
-            for e in (0, 1):
-                m = self.joint_points[j, e]
-                sides = []
-                for v in (j - 1, j):
-                    if v < 0 or v >= n:
-                        sides.append(m)
-                        continue
-                    r = m - c0[v]
-                    ca, sa = math.cos(angles[v]), math.sin(angles[v])
-                    sides.append(pos[v] + np.array([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1]]))
-                out[j, e] = float(np.hypot(*(sides[1] - sides[0])))
-        return out
-
     # ------------------------------------------------------------------ state
     def state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(centroids (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,) [rad/s])."""
@@ -181,25 +161,49 @@ class ContactArch:
         th = np.concatenate([[0.0], angles, [0.0]])
         return np.diff(th)
 
-    def joint_sliding(self, pos: np.ndarray, angles: np.ndarray) -> np.ndarray:
-        """Tangential relative displacement [m] at each joint's midpoint (right side minus left
-        side, along the joint from intrados to extrados; first order in the sliding, blind to the
-        opening of a hinge)."""
+    def _end_offsets(self, pos: np.ndarray, angles: np.ndarray) -> np.ndarray:
+        """(n+1, 2, 2): right side's copy minus left side's copy of each joint's intrados (0)
+        and extrados (1) end [m] (an abutment's copy stays where it was)."""
         n = self.arch.n
         c0 = self.centroids0
-        out = np.empty(n + 1)
+        ca, sa = np.cos(angles), np.sin(angles)
+        out = np.empty((n + 1, 2, 2))
         for j in range(n + 1):
-            m = self.joint_mid[j]
-            sides = []
-            for v in (j - 1, j):
-                if v < 0 or v >= n:
-                    sides.append(m)
-                    continue
-                r = m - c0[v]
-                ca, sa = math.cos(angles[v]), math.sin(angles[v])
-                sides.append(pos[v] + np.array([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1]]))
-            out[j] = float(np.dot(sides[1] - sides[0], self.joint_tangents[j]))
+            for e in (0, 1):
+                m = self.joint_points[j, e]
+                sides = []
+                for v in (j - 1, j):
+                    if v < 0 or v >= n:
+                        sides.append(m)
+                        continue
+                    r = m - c0[v]
+                    sides.append(pos[v] + np.array([ca[v] * r[0] - sa[v] * r[1],
+                                                    sa[v] * r[0] + ca[v] * r[1]]))
+                out[j, e] = sides[1] - sides[0]
         return out
+
+    def joint_sliding(self, pos: np.ndarray, angles: np.ndarray) -> np.ndarray:
+        """Sliding [m] at each joint: the relative displacement (right side minus left side)
+        of the joint's end that is closer to closed, along the joint (intrados to extrados) as
+        turned by the mean rotation of its two sides.  At a hinge that end is the contact point,
+        so an opening joint reads only its slip; a closed joint reads the slip of both ends."""
+        n = self.arch.n
+        d = self._end_offsets(pos, angles)
+        th = np.concatenate([[0.0], angles, [0.0]])
+        mean = 0.5 * (th[:-1] + th[1:])
+        t0 = self.joint_tangents
+        tx = np.cos(mean) * t0[:, 0] - np.sin(mean) * t0[:, 1]
+        ty = np.sin(mean) * t0[:, 0] + np.cos(mean) * t0[:, 1]
+        gap = np.hypot(d[:, :, 0], d[:, :, 1])
+        end = np.argmin(gap, axis=1)
+        dd = d[np.arange(n + 1), end]
+        return dd[:, 0] * tx + dd[:, 1] * ty
+
+    def end_gaps(self, pos: np.ndarray, angles: np.ndarray) -> np.ndarray:
+        """(n+1, 2) distance [m] between the two sides' copies of each joint's intrados (0) and
+        extrados (1) end: the end that stays closed while a joint opens is its hinge."""
+        d = self._end_offsets(pos, angles)
+        return np.hypot(d[:, :, 0], d[:, :, 1])
 
     def kinetic_energy(self, vel: np.ndarray, rate: np.ndarray) -> float:
         """Kinetic energy relative to the ground [J per m of depth]."""

@@ -39,7 +39,7 @@ class ContactResponse:
 
     time (k,) [s]: output samples up to t_end; rotations (k, n) [rad]: every voussoir's
     rotation (counter-clockwise +) since settling; joint_rotations (k, n+1) [rad]; sliding
-    (k, n+1) [m]: tangential relative displacement at each joint's midpoint; phi (k,) [rad]:
+    (k, n+1) [m]: slip along each joint at its closed end (ContactArch.joint_sliding); phi (k,) [rad]:
     the equivalent signed four-link rotation; max_sliding (n+1,) [m] and peak [rad] (|phi|) over
     the whole run; status 'rest', 'collapsed' or 'moving'; t_collapse [s]: when a voussoir had
     dropped by collapse_drop x size (None without collapse); t_final [s]: end of the run."""
