@@ -465,19 +465,31 @@ def section_contact(ctx: Context) -> Section:
     """OPTIONAL: the contact-engine check (archrock.contact, the 'dem' extra)."""
     title = "Contact-engine check"
     try:
-        from . import contact  # noqa: F401
-        check = getattr(contact, "contact_check", None)
+        from .contact import import_pymunk, ramp
+        import_pymunk()  # the package imports without pymunk; the engine needs it
     except ImportError:
         return _optional_missing("contact", title, "contact", "The contact-engine (pymunk) check")
-    if check is None:
-        return Section("contact", title, (Paragraph(
-            "archrock.contact imports but has no contact_check(arch) function yet; the lead wires "
-            "it here."),), {"available": False})
-    res = check(ctx.arch)
-    data = res.to_dict() if hasattr(res, "to_dict") else {"result": repr(res)}
-    return Section("contact", title, (Paragraph(
-        "The same arch run in a rigid-body contact engine, beside the four-link model."),),
-        {"available": True, **data})
+    res = ramp(ctx.arch)  # default EngineSettings: within 1% of k on the documented arches
+    lim = ctx.limit
+    rows = []
+    for d in ("l", "r"):
+        eng, mech = res.l if d == "l" else res.r, lim.mechanism(d)
+        rows.append((f"M_{d}", f"{eng.multiplier:.4f}", f"{mech.multiplier:.4f}",
+                     f"{100 * (eng.multiplier / mech.multiplier - 1):+.1f}%",
+                     " ".join(map(str, eng.hinges)) + ("" if eng.mode == "rocking" else
+                                                       f" ({eng.mode})"),
+                     " ".join(map(str, mech.joints))))
+    return Section("contact", title, (
+        Paragraph("The same voussoirs as rigid bodies with contact and Coulomb friction "
+                  f"(mu = {res.settings.friction:g}) in the pymunk engine, under a slowly "
+                  "increasing horizontal ground acceleration in each direction: the acceleration "
+                  "at which the arch starts to move and the joints that open, beside the limit "
+                  "analysis (docs/verification.md, Contact engine). Joints are numbered from the "
+                  "left springing (0)."),
+        Table(("direction", "engine multiplier", "limit analysis k", "difference",
+               "engine hinges", "limit hinges"), tuple(rows))),
+        {"available": True, **res.to_dict()},
+        (("contact engine k_l / k_r", f"{res.k_l:.4f} / {res.k_r:.4f}"),))
 
 
 @titled('codecheck', 'Code check: kinematic analysis (NTC 2018 / Circolare 2019)')

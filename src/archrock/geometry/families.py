@@ -469,6 +469,10 @@ def _offset(line, thick, s, side, sign, pointed=None):
     return p + side * normal * (thick(s)[:, None] / 2)
 
 
+class _CrownOffsetCrossed(ArchInputError):
+    """An offset range ending just past a pointed crown has no point on its own side."""
+
+
 def _sample_offset(line, thick, s0, s1, side, ppr, crown):
     """The offset line (intrados: side -1, extrados: +1) between arc lengths s0 < s1, sampled
     so its tangent turns at most 1/ppr rad per segment; a pointed crown inside (s0, s1] or
@@ -491,7 +495,7 @@ def _sample_offset(line, thick, s0, s1, side, ppr, crown):
         cp, centre = crown(side)
         part = pts[:-1] if s1 == mid else pts[1:]
         if not np.any(part[:, 0] * (-1 if s1 == mid else 1) > 1e-12 * line.length):
-            raise ArchInputError(
+            raise _CrownOffsetCrossed(
                 f"n: the joints beside the pointed crown cross each other before the "
                 f"{'intrados' if side < 0 else 'extrados'} (voussoirs too short for this "
                 f"thickness there); allowed fewer voussoirs, a thinner arch or an even number "
@@ -738,7 +742,7 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
                     lengths[i], lengths[i + 1])))
                 try:
                     pts = _sample_offset(line, te, lo, hi, side, ppr, crown)
-                except IndexError:  # a range ending just past a pointed crown: widen it
+                except _CrownOffsetCrossed:  # a range ending just past a pointed crown: widen it
                     continue
                 left = (0, pts[0]) if i == 0 else _cut(pts, c[i], d[i], c[i] + side * d[i])
                 right = (len(pts) - 2, pts[-1]) if i == n - 1 else \

@@ -1,0 +1,77 @@
+"""Benchmark: seconds of computation per simulated second, contact engine vs four-link kernel.
+
+Oppenheim's arch under the paper's pulse (a = -1 g, t_p = 0.2 s) for a fixed simulated window:
+* engine: archrock.contact.ContactArch (pymunk), the default EngineSettings (and the coarse
+  ones of the default test suite), stepped through the window without the early stop at rest;
+* four-link: archrock.response.respond(integrator="fast"), RK4 at dt = 2 ms (numba when
+  installed), run to rest as archrock does (its simulated span is the response's t_final).
+
+Usage: python benchmarks/bench_contact.py [--window 6] [--repeat 3] [--json FILE]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import time
+
+
+def _engine(arch, motion, settings, window):
+    from archrock.contact import ContactArch
+
+    ca = ContactArch(arch, settings)
+    ca.settle()
+    steps = int(round(window / ca.dt))
+    t0 = time.perf_counter()
+    for _ in range(steps):
+        ca.step(float(motion(ca.time + 0.5 * ca.dt)), 1)
+    return time.perf_counter() - t0, steps * ca.dt, steps
+
+
+def main(argv=None):
+    from archrock._jit import HAVE_NUMBA
+    from archrock.contact import EngineSettings
+    from archrock.geometry import oppenheim_arch
+    from archrock.groundmotion import oppenheim_pulse
+    from archrock.response import prepare, respond
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--window", type=float, default=6.0, help="simulated seconds (default 6)")
+    ap.add_argument("--repeat", type=int, default=3, help="repeats; the best is kept")
+    ap.add_argument("--json", help="write the figures to this JSON file")
+    args = ap.parse_args(argv)
+    arch = oppenheim_arch()
+    motion = oppenheim_pulse(-1.0, 0.2)
+    model = prepare(arch)
+    respond(model, motion, t_end=args.window)  # compile
+    best = float("inf")
+    for _ in range(args.repeat):
+        t0 = time.perf_counter()
+        r = respond(model, motion, t_end=args.window)
+        best = min(best, time.perf_counter() - t0)
+    four = {"seconds": best, "simulated": r.t_final, "per_sim_second": best / r.t_final}
+    out = {"python": platform.python_version(), "numba": HAVE_NUMBA, "four_link": four}
+    for name, s in (("engine_default", EngineSettings()),
+                    ("engine_coarse", EngineSettings(steps_per_T=150, iterations=20))):
+        runs = [_engine(arch, motion, s, args.window) for _ in range(args.repeat)]
+        sec, sim, steps = min(runs)
+        out[name] = {"seconds": sec, "simulated": sim, "steps": steps,
+                     "per_sim_second": sec / sim, "settings": s.to_dict(),
+                     "ratio_to_four_link": (sec / sim) / four["per_sim_second"]}
+    print(f"Oppenheim's arch, paper pulse; best of {args.repeat}")
+    print(f"  four-link kernel ({'numba' if HAVE_NUMBA else 'pure Python'}): "
+          f"{four['per_sim_second']:.3g} s per simulated s ({r.t_final:.2f} s simulated)")
+    for name in ("engine_default", "engine_coarse"):
+        e = out[name]
+        print(f"  {name:15s}: {e['per_sim_second']:.3g} s per simulated s "
+              f"({e['steps']} steps of {e['simulated'] / e['steps'] * 1e3:.2f} ms), "
+              f"{e['ratio_to_four_link']:.0f}x the four-link kernel")
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as f:
+            json.dump(out, f, indent=2)
+    return out
+
+
+if __name__ == "__main__":
+    main()

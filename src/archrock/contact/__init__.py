@@ -1,0 +1,23 @@
+"""The contact engine: the arch as rigid voussoirs with contact and Coulomb friction (pymunk), a
+check of the four-link model's idealisations (one mechanism, no sliding).
+
+* :mod:`.engine` -- :class:`ContactArch`, the arch in a pymunk space (exact mass properties,
+  convex pieces of each outline, static abutments, ground motion as the ground frame's body
+  force);
+* :mod:`.ramp` -- :func:`ramp`, the activation multiplier and hinges in each direction;
+* :mod:`.motion` -- :func:`engine_respond`, the response to a pulse or record, with the
+  equivalent four-link rotation;
+* :mod:`.settings` -- :class:`EngineSettings`; :mod:`.convex` -- exact convex decomposition.
+
+pymunk is optional (``pip install "archrock[dem]"``): it is imported when an engine is built.
+"""
+
+from .convex import convex_pieces
+from .motion import ContactResponse, engine_respond, equivalent_rotation
+from .ramp import RampDirection, RampResult, ramp, ramp_direction
+from .settings import DEFAULT_FRICTION, EngineSettings
+from .engine import ContactArch, import_pymunk
+
+__all__ = ["ContactArch", "EngineSettings", "DEFAULT_FRICTION", "RampDirection", "RampResult",
+           "ramp", "ramp_direction", "ContactResponse", "engine_respond", "equivalent_rotation",
+           "convex_pieces", "import_pymunk"]

@@ -1,0 +1,182 @@
+"""An arch's response to a ground motion in the contact engine, beside the four-link model.
+
+The ground acceleration enters as the body force of the ground's frame (:mod:`.engine`); the run
+goes on after the ground motion until the arch is at rest, has collapsed or ``t_free`` T of free
+motion have passed.  Collapse in the engine: a voussoir's mass centre has dropped by more than
+``collapse_drop`` x size below its settled height (an arch that survives comes back up; one
+that falls drops by metres), so the engine's collapse time is later than the four-link model's
+(the last passage of the unstable rotation).
+
+The equivalent four-link rotation: phi_l = (rotation of the voussoir of M_l's link 1 that rests
+on its ground hinge A) / s_l, with s_l the sign of :class:`~archrock.mechanism.FourLink` (theta_1 =
+s phi), likewise phi_r for M_r; the signed rotation is +phi_l where phi_l >= phi_r, else -phi_r
+(0 when both are <= 0), as ``respond``'s signed response (+phi in M_l, -phi in M_r).  It is the four-link phi exactly
+while the engine moves in the limit mechanism; when the engine opens another one (impulsive
+pulses often put hinge B elsewhere), it is still the rotation about the springing hinge.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._records import readonly_arrays
+from ..errors import ArchInputError
+from ..geometry import VoussoirArch
+from ..groundmotion import GroundMotion
+from ..units import G
+from .engine import ContactArch
+from .settings import EngineSettings
+
+__all__ = ["ContactResponse", "engine_respond", "equivalent_rotation"]
+
+
+@dataclass(frozen=True, eq=False)
+class ContactResponse:
+    """Result of :func:`engine_respond`.
+
+    time (k,) [s]: output samples up to t_end; rotations (k, n) [rad]: every voussoir's
+    rotation (counter-clockwise +) since settling; joint_rotations (k, n+1) [rad]; sliding
+    (k, n+1) [m]: slip along each joint at its closed end (ContactArch.joint_sliding); phi (k,) [rad]:
+    the equivalent signed four-link rotation; max_sliding (n+1,) [m] and peak [rad] (|phi|) over
+    the whole run; status 'rest', 'collapsed' or 'moving'; t_collapse [s]: when a voussoir had
+    dropped by collapse_drop x size (None without collapse); t_final [s]: end of the run."""
+
+    time: np.ndarray = field(repr=False)
+    rotations: np.ndarray = field(repr=False)
+    joint_rotations: np.ndarray = field(repr=False)
+    sliding: np.ndarray = field(repr=False)
+    phi: np.ndarray = field(repr=False)
+    positions: np.ndarray = field(repr=False)
+    max_sliding: np.ndarray
+    peak: float
+    status: str
+    t_collapse: float | None
+    t_final: float
+    settings: EngineSettings
+    run: dict
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    @property
+    def collapsed(self) -> bool:
+        return self.status == "collapsed"
+
+    def to_dict(self, samples: bool = True) -> dict:
+        d = {"collapsed": self.collapsed, "status": self.status, "t_collapse": self.t_collapse,
+             "t_final": self.t_final, "peak": self.peak,
+             "max_sliding": self.max_sliding.tolist(),
+             "engine": self.settings.to_dict(), "run": dict(self.run)}
+        if samples:
+            d["time"] = self.time.tolist()
+            d["phi"] = self.phi.tolist()
+            d["rotations"] = self.rotations.tolist()
+        return d
+
+
+def _link1(model, direction):
+    """The voussoir of link 1 on the ground hinge A (the springing side), and the sign s."""
+    fl = model.mech_l if direction == "l" else model.mech_r
+    idx = fl.link_voussoirs[0]
+    return np.array([min(idx) if direction == "l" else max(idx)], dtype=int), float(fl.sign)
+
+
+def equivalent_rotation(model, rotations: np.ndarray) -> np.ndarray:
+    """Signed four-link rotation (module docstring) of voussoir rotations (k, n) [rad], for a
+    prepared :class:`~archrock.response.DynamicModel` of the same arch."""
+    rot = np.atleast_2d(np.asarray(rotations, float))
+    il, sl = _link1(model, "l")
+    ir, sr = _link1(model, "r")
+    pl = rot[:, il].mean(axis=1) / sl
+    pr = rot[:, ir].mean(axis=1) / sr
+    out = np.where(pl >= pr, pl, -pr)
+    out[np.maximum(pl, pr) <= 0] = 0.0
+    return out
+
+
+def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSettings | None = None,
+                   *, model=None, t_end: float = 3.0, dt_out: float = 0.005,
+                   t_free: float = 20.0, collapse_drop: float = 0.2,
+                   progress=None) -> ContactResponse:
+    """The engine's response of ``arch`` to ``motion``.
+
+    model: a prepared :class:`~archrock.response.DynamicModel` (default: ``prepare(arch)``), for
+    the equivalent rotation; t_end, dt_out [s]: output window and sampling; t_free [T]: free
+    motion after the ground motion at most; collapse_drop: drop of a mass centre, as a fraction
+    of the size, that counts as collapse."""
+    if not isinstance(motion, GroundMotion):
+        raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
+    for name, v, lo, hi in (("t_end", t_end, 1e-6, 1e5), ("dt_out", dt_out, 1e-7, 1e5),
+                            ("t_free", t_free, 0.0, 1e4), ("collapse_drop", collapse_drop, 1e-4, 10)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+    if dt_out > t_end:
+        raise ArchInputError(f"dt_out: {dt_out} s; allowed <= t_end = {t_end} s")
+    if model is None:
+        from ..response import prepare
+
+        model = prepare(arch)
+    settings = settings or EngineSettings()
+    ca = ContactArch(arch, settings)
+    ca.settle()
+    dt = ca.dt
+    every = max(1, int(round(dt_out / dt)))
+    dt_s = every * dt  # output sampling actually used: a whole number of steps
+    n_out = int(math.floor(t_end / dt_s + 1e-9)) + 1
+    t_stop = float(motion.times[-1]) + t_free * ca.time_scale
+    drop_limit = collapse_drop * ca.size
+    m_tot = float(ca.masses.sum())
+    ke_rest = 1e-9 * m_tot * G * ca.size
+    n = arch.n
+    rots = np.full((n_out, n), np.nan)
+    jrot = np.full((n_out, n + 1), np.nan)
+    slide = np.full((n_out, n + 1), np.nan)
+    posn = np.full((n_out, n, 2), np.nan)
+    max_sl = np.zeros(n + 1)
+    peak_rot = 0.0
+    status, t_col = "moving", None
+    k = 0
+    quiet = 0
+    quiet_needed = int(0.5 * settings.steps_per_T)
+    while True:
+        t = ca.time
+        pos, ang, vel, rate = ca.state()
+        rel = ang - ca.ref_ang
+        sl = ca.joint_sliding(pos, ang) - ca.ref_slide
+        np.maximum(max_sl, np.abs(sl), out=max_sl)
+        if k < n_out and ca.steps == k * every:
+            rots[k] = rel
+            jrot[k] = ca.joint_rotations(rel)
+            slide[k] = sl
+            posn[k] = pos
+            k += 1
+        if ca.drops(pos).max() > drop_limit:
+            status, t_col = "collapsed", t
+            break
+        if t > motion.times[-1]:
+            ke = ca.kinetic_energy(vel, rate)
+            quiet = quiet + 1 if ke < ke_rest else 0
+            if quiet >= quiet_needed and k >= n_out:
+                status = "rest"
+                break
+            if quiet >= quiet_needed and status != "rest":
+                status = "rest"  # keeps sampling the arch at rest to t_end
+        if t >= t_stop and k >= n_out:
+            break
+        ca.step(float(motion(t + 0.5 * dt)), 1)
+        if progress and ca.steps % int(10 * settings.steps_per_T) == 0:
+            progress(f"engine t = {ca.time:.1f} s")
+    if status == "rest" and quiet < quiet_needed:
+        status = "moving"
+    phi = equivalent_rotation(model, np.nan_to_num(rots))
+    phi[np.isnan(rots[:, 0])] = np.nan
+    # peak |phi| over the whole run from the samples (and the last state)
+    full = equivalent_rotation(model, (ca.state()[1] - ca.ref_ang)[None, :])
+    peak = float(np.nanmax(np.abs(np.concatenate([phi, full])))) if n_out else 0.0
+    run = {"t_end": t_end, "dt_out": dt_s, "t_free": t_free, "collapse_drop": collapse_drop,
+           "dt": dt, "motion": motion.name}
+    return ContactResponse(np.arange(n_out) * dt_s, rots, jrot, slide, phi, posn, max_sl, peak,
+                           status, t_col, float(ca.time), settings, run)

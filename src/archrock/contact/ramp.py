@@ -1,0 +1,196 @@
+"""Quasi-static activation in the contact engine: a slowly increasing horizontal ground
+acceleration, then constant accelerations held from rest to narrow the activation multiplier.
+
+The ground acceleration is xg'' = -lambda g (direction 'l', the one that opens M_l) or
++lambda g ('r').  Stage 1 ramps lambda at ``rate`` per T (T = sqrt(size/g)) until the arch moves:
+a joint's relative rotation or sliding passes its threshold.  The ramp overshoots the activation
+by the time a slowly starting mechanism needs to reach the threshold, so stage 2 holds constant
+values of lambda from rest for ``hold`` T each and bisects between one that leaves the arch at
+rest and one that moves it, down to a relative width ``tol``.  The reported multiplier is the
+middle of the last bracket; the hinges are the joints whose relative rotation is at least 5%
+of the largest one when the ramp's motion has grown to ``4 x threshold``, each at the
+end of its joint (intrados or extrados) that stays closed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ArchInputError
+from ..geometry import VoussoirArch
+from ..units import G
+from .engine import ContactArch
+from .settings import EngineSettings
+
+__all__ = ["RampDirection", "RampResult", "ramp", "ramp_direction"]
+
+EDGE = ("intrados", "extrados")
+
+
+@dataclass(frozen=True)
+class RampDirection:
+    """The engine's activation in one direction: ``multiplier`` lambda = |xg''|/g at which the
+    arch starts moving (middle of the bracket [lower, upper]); ``mode`` 'rocking' (joints open
+    as hinges) or 'sliding' (a joint slides first); ``hinges`` joint numbers (0 = left
+    springing) and ``edges`` the closed end of each; ``sliding_joints`` joints whose sliding
+    passed its threshold; ``ramp_multiplier`` where the ramp itself saw motion; ``holds``
+    (lambda, moved) of stage 2."""
+
+    direction: str
+    multiplier: float
+    lower: float
+    upper: float
+    mode: str
+    hinges: tuple[int, ...]
+    edges: tuple[str, ...]
+    sliding_joints: tuple[int, ...]
+    ramp_multiplier: float
+    joint_rotations: tuple[float, ...]
+    joint_sliding: tuple[float, ...]
+    holds: tuple[tuple[float, bool], ...] = field(repr=False, default=())
+
+    def to_dict(self) -> dict:
+        return {"direction": self.direction, "multiplier": self.multiplier, "lower": self.lower,
+                "upper": self.upper, "mode": self.mode, "hinges": list(self.hinges),
+                "edges": list(self.edges), "sliding_joints": list(self.sliding_joints),
+                "ramp_multiplier": self.ramp_multiplier,
+                "joint_rotations": list(self.joint_rotations),
+                "joint_sliding": list(self.joint_sliding),
+                "holds": [[lam, moved] for lam, moved in self.holds]}
+
+
+@dataclass(frozen=True)
+class RampResult:
+    """Both directions of :func:`ramp`, with the settings that made them."""
+
+    l: RampDirection
+    r: RampDirection
+    settings: EngineSettings
+    ramp: dict
+
+    @property
+    def k_l(self) -> float:
+        return self.l.multiplier
+
+    @property
+    def k_r(self) -> float:
+        return self.r.multiplier
+
+    def to_dict(self) -> dict:
+        return {"k_l": self.k_l, "k_r": self.k_r, "hinges_l": list(self.l.hinges),
+                "hinges_r": list(self.r.hinges), "l": self.l.to_dict(), "r": self.r.to_dict(),
+                "engine": self.settings.to_dict(), "ramp": dict(self.ramp)}
+
+
+def _motion(ca: ContactArch, thr_rot: float, thr_slide: float):
+    """(relative joint rotations (n+1,), sliding (n+1,), normalised measure) since settling."""
+    pos, ang, _, _ = ca.state()
+    rot = ca.joint_rotations(ang) - ca.joint_rotations(ca.ref_ang)
+    sl = ca.joint_sliding(pos, ang) - ca.ref_slide
+    measure = max(np.abs(rot).max() / thr_rot, np.abs(sl).max() / thr_slide)
+    return rot, sl, measure, pos, ang
+
+
+def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> bool:
+    ca = ContactArch(arch, settings)
+    ca.settle()
+    a = -sign * lam * G
+    steps = int(math.ceil(hold * settings.steps_per_T))
+    done = 0
+    while done < steps:
+        k = min(check_every, steps - done)
+        ca.step(a, k)
+        done += k
+        if _motion(ca, thr_rot, thr_slide)[2] > 1.0:
+            return True
+    return False
+
+
+def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings | None = None, *,
+                   rate: float = 0.05, hold: float = 4.0, tol: float = 0.005,
+                   threshold: float = 1e-3, slide_threshold: float = 1e-3,
+                   lambda_max: float = 2.0, progress=None) -> RampDirection:
+    """The engine's activation multiplier and hinges in ``direction`` ('l' or 'r').
+
+    rate: lambda per T of the ramp; hold: duration of each constant-lambda run [T]; tol:
+    relative width of the final bracket; threshold: relative joint rotation [rad] and
+    slide_threshold: sliding as a fraction of the joint's length that count as motion;
+    lambda_max: the ramp gives up (ArchInputError) beyond it."""
+    if direction not in ("l", "r"):
+        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
+                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
+                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
+                            ("lambda_max", lambda_max, 1e-3, 100.0)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+    settings = settings or EngineSettings()
+    sign = 1.0 if direction == "l" else -1.0
+    ca = ContactArch(arch, settings)
+    ca.settle()
+    thr_slide = slide_threshold * float(np.mean(ca.joint_lengths))
+    check = max(1, int(settings.steps_per_T // 100))
+    dlam = rate / settings.steps_per_T
+    lam = 0.0
+    lam_seen = None
+    while True:
+        for _ in range(check):
+            lam += dlam
+            ca.step(-sign * lam * G, 1)
+        rot, sl, measure, pos, ang = _motion(ca, threshold, thr_slide)
+        if lam_seen is None and measure > 1.0:
+            lam_seen = lam
+        if measure > 4.0:
+            break
+        if lam > lambda_max:
+            raise ArchInputError(f"lambda_max: the arch did not move up to |xg''|/g = "
+                                 f"{lambda_max:g} in direction {direction!r}; allowed a larger "
+                                 f"lambda_max")
+    if progress:
+        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
+    # hinges: joints opening by at least a quarter of the largest relative rotation
+    big = np.abs(rot).max()
+    slid = tuple(int(j) for j in np.flatnonzero(np.abs(sl) > thr_slide))
+    rocking = big / threshold >= np.abs(sl).max() / thr_slide
+    hinges = tuple(int(j) for j in np.flatnonzero(np.abs(rot) >= 0.05 * big)) if rocking else ()
+    gaps = ca.end_gaps(pos, ang)
+    edges = tuple(EDGE[int(np.argmin(gaps[j]))] for j in hinges)
+    # stage 2: holds from rest, bisecting [lo, hi]
+    holds = []
+    hi = lam_seen
+    lo = 0.5 * lam_seen
+    while True:
+        moved = _moves(arch, settings, sign, lo, hold, threshold, thr_slide, check)
+        holds.append((lo, moved))
+        if not moved:
+            break
+        if lo == 0.0:  # moves under gravity alone: the arch does not stand in the engine
+            hi = 0.0
+            break
+        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
+    while hi - lo > tol * hi:
+        mid = 0.5 * (lo + hi)
+        moved = _moves(arch, settings, sign, mid, hold, threshold, thr_slide, check)
+        holds.append((mid, moved))
+        if progress:
+            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
+        if moved:
+            hi = mid
+        else:
+            lo = mid
+    return RampDirection(direction, 0.5 * (lo + hi), lo, hi, "rocking" if rocking else "sliding",
+                         hinges, edges, slid, float(lam_seen),
+                         tuple(float(x) for x in rot), tuple(float(x) for x in sl), tuple(holds))
+
+
+def ramp(arch: VoussoirArch, settings: EngineSettings | None = None, progress=None,
+         **kwargs) -> RampResult:
+    """:func:`ramp_direction` in both directions ('l' then 'r')."""
+    settings = settings or EngineSettings()
+    out = [ramp_direction(arch, d, settings, progress=progress, **kwargs) for d in ("l", "r")]
+    opts = {"rate": 0.05, "hold": 4.0, "tol": 0.005, "threshold": 1e-3, "slide_threshold": 1e-3}
+    opts.update(kwargs)
+    return RampResult(out[0], out[1], settings, opts)
