@@ -42,7 +42,7 @@ from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
                    response_cost_s)
 
 __all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "ida_curve", "msa",
-           "random_models", "safe_scale", "IM_KINDS"]
+           "random_models", "safe_scale", "IM_KINDS", "ENGINES"]
 
 IM_KINDS = ("pga", "scale")
 
@@ -140,15 +140,107 @@ def _check_analyses(what, recs, n_models, per_pair, n_boot, fit_s) -> float:
     return est
 
 
-def _progress(what, total, est, progress):
+def _progress(what, total, est, progress, unit="analysis"):
     from .ensemble.progress import Progress
 
-    return Progress(total, bool(progress) and est > PROGRESS_S, desc=what, unit="analysis")
+    return Progress(total, bool(progress) and est > PROGRESS_S, desc=what, unit=unit)
+
+
+ENGINES = ("batch", "respond")
+
+
+def _engine(engine: str) -> str:
+    if engine not in ENGINES:
+        raise ArchInputError(f"engine: {engine!r}; allowed one of {', '.join(ENGINES)}")
+    return engine
+
+
+#: the max_events of the responses of a collapse test (:func:`_collapsed`)
+_TEST_EVENTS = 50_000
+
+
+def _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop=False):
+    from .studyrun import SweepRunner
+    from .sweep import SweepArches, SweepMotions
+
+    return SweepRunner(SweepArches.from_models(ms, dt, t_free), SweepMotions.of(recs),
+                       workers=workers, scheduler=scheduler, max_events=_TEST_EVENTS,
+                       early_stop=early_stop, bar=bar)
+
+
+def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
+               early_stop=False) -> list:
+    """The curves of :func:`ida_curve` for every (arch, record), arch-major, each round of the
+    search in one sweep: the grid of every pair, then the no-activation checks of the pairs
+    whose lowest grid scale collapsed, then the bisection steps of all pairs together (the same
+    midpoints, in the same order, as :func:`~archrock.curves.bisect_boundary`)."""
+    A, Rn, n = len(ms), len(recs), s.size
+    P = A * Rn
+    pa = np.repeat(np.arange(A), Rn)  # pair p = (arch p // Rn, record p % Rn)
+    pr = np.tile(np.arange(Rn), A)
+    with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop) as run:
+        st = run(np.repeat(pa, n), np.repeat(pr, n), np.tile(s, P))["status"]
+        flags = (st == 1).reshape(P, n)
+        lo = np.full(P, np.nan)
+        hi = np.full(P, np.nan)
+        below = np.zeros(P, dtype=bool)
+        safe = [None] * P
+        first = [None] * P
+        checks = []
+        for p in range(P):
+            hits = np.flatnonzero(flags[p])
+            if hits.size == 0:
+                continue
+            i0 = int(hits[0])
+            first[p] = i0
+            if i0 == 0:
+                below[p] = True
+                x = safe_scale(ms[pa[p]], recs[pr[p]])
+                if x < float(s[0]):
+                    safe[p] = x
+                    checks.append(p)
+                else:  # not reachable for a consistent model: keep the grid point
+                    hi[p] = float(s[0])
+            else:
+                lo[p], hi[p] = float(s[i0 - 1]), float(s[i0])
+        if checks:
+            c = np.array(checks)
+            st = run(pa[c], pr[c], np.array([safe[p] for p in checks]))["status"]
+            for p, collapsed in zip(checks, st == 1):
+                if collapsed:  # unbracketed: the grid point alone
+                    safe[p], hi[p] = None, float(s[0])
+                else:
+                    lo[p], hi[p] = safe[p], float(s[0])
+        # bisect_boundary(test, lo, hi, False, tol, relative=True), all pairs at once
+        while True:
+            act = np.flatnonzero(~np.isnan(lo) & (hi - lo > tol * hi))
+            if act.size == 0:
+                break
+            mid = 0.5 * (lo[act] + hi[act])
+            col = run(pa[act], pr[act], mid)["status"] == 1
+            lo[act] = np.where(col, lo[act], mid)
+            hi[act] = np.where(col, mid, hi[act])
+    curves = []
+    for p in range(P):
+        r, j = recs[pr[p]], ids[pa[p]]
+        f = _im_factor(r, im)
+        fl = flags[p]
+        if first[p] is None:
+            curves.append(IDACurve(r.name, j, r.pga_g, s, fl, None, None, None, (), 0,
+                                   float(s[-1] * f)))
+            continue
+        fc = first_collapse(s, fl)
+        h = float(hi[p])
+        br = None if np.isnan(lo[p]) else (float(lo[p]), h)
+        curves.append(IDACurve(r.name, j, r.pga_g, s, fl, h, br, h * f,
+                               tuple(fc["survivals_above"]), fc["resurrections"],
+                               float(s[-1] * f), bool(below[p]), safe[p]))
+    return curves
 
 
 def _collapsed(model, record, scale, dt, t_free) -> bool:
     return respond(model, record.scaled(scale), t_end=0.5, dt_out=0.5, dt=dt, t_free=t_free,
-                   max_events=50_000).collapsed
+                   max_events=_TEST_EVENTS).collapsed
 
 
 # ---------------------------------------------------------------------------- IDA
@@ -313,29 +405,50 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
         seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress: bool = False) -> IDAResult:
+        progress: bool = False, engine: str = "batch", workers: int | None = None,
+        scheduler=None, early_stop: bool = False) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
-    (:mod:`archrock.work`); ``progress``: the curves done on stderr for a long run."""
+    (:mod:`archrock.work`); ``progress``: the responses (or curves) done on stderr for a long run.
+
+    engine: "batch" (default) runs every (arch, record, scale) of a round (the grid scan, then
+    each bisection step) in one parallel call (:mod:`archrock.studyrun`: in-process numba
+    threads, ``workers`` > 1 processes or a Dask ``scheduler``); "respond" runs curve after curve
+    with :func:`ida_curve` (archrock 0.1.0's path).  Both give the same curves, bit for bit
+    (:mod:`archrock.sweep`).  early_stop (batch engine): end a response once it can no longer
+    collapse (:data:`archrock.sweep.HAVE_EARLY_STOP`; the outcome is that of the full run unless
+    the energy lies within the kernel's 1% margin of a barrier)."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
     s = _grid("scales", scales)
+    engine = _engine(engine)
     top = max(recs, key=lambda r: r.pga)
     check_pga(float(s[-1]) * top.pga_g, f"scales: {s[-1]:g} x record {top.name!r}",
               "reduce the largest scale factor", warn=False)
     bisect_steps = 2 + math.ceil(math.log2(1.0 / tol)) if isinstance(tol, float) and 0 < tol < 1 else 12
     est = _check_analyses("ida", recs, len(ms), s.size + bisect_steps, n_boot, FIT_MOMENTS_S)
-    bar = _progress("ida", len(ms) * len(recs), est, progress)
-    curves = []
-    try:
-        for j, m in zip(ids, ms):
-            for r in recs:
-                curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
-                                        t_free=t_free))
-                bar.update(1)
-    finally:
-        bar.close()
+    if engine == "batch":
+        if not (isinstance(tol, (int, float)) and math.isfinite(tol) and 0 < tol < 1):
+            raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
+        bar = _progress("ida", len(ms) * len(recs) * (s.size + bisect_steps), est, progress,
+                        unit="response")
+        try:
+            curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, workers,
+                                scheduler, bar, early_stop)
+        finally:
+            bar.close()
+    else:
+        bar = _progress("ida", len(ms) * len(recs), est, progress)
+        curves = []
+        try:
+            for j, m in zip(ids, ms):
+                for r in recs:
+                    curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
+                                            t_free=t_free))
+                    bar.update(1)
+        finally:
+            bar.close()
     curves = tuple(curves)
     x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
     if np.any(np.isinf(x)):
@@ -389,25 +502,37 @@ class StripeResult:
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress: bool = False) -> StripeResult:
+        progress: bool = False, engine: str = "batch", workers: int | None = None,
+        scheduler=None, early_stop: bool = False) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
-    beyond the work bound (:mod:`archrock.work`); ``progress`` as :func:`ida`."""
+    beyond the work bound (:mod:`archrock.work`); ``progress`` as :func:`ida`; ``engine``,
+    ``workers``, ``scheduler`` as :func:`ida` (every level x arch x record in one sweep)."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
     lv = _grid("levels", levels)
+    engine = _engine(engine)
     top = max(float(x / _im_factor(r, im)) * r.pga_g for x in lv[-1:] for r in recs)
     check_pga(top, f"levels: {lv[-1]:g}", "reduce the top level", warn=False)
     est = _check_analyses("msa", recs, len(ms), lv.size, n_boot, FIT_MLE_S)
     bar = _progress("msa", lv.size * len(ms) * len(recs), est, progress)
     out = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
+    # scale of record k at level i: the same float as the arch-by-arch loop computes
+    scale = np.array([[float(x / _im_factor(r, im)) for r in recs] for x in lv])
     try:
-        for i, x in enumerate(lv):
-            for j, m in enumerate(ms):
-                for k, r in enumerate(recs):
-                    out[i, j, k] = _collapsed(m, r, float(x / _im_factor(r, im)), dt, t_free)
-                    bar.update(1)
+        if engine == "batch":
+            L, A, Rn = lv.size, len(ms), len(recs)
+            li, ai, ri = np.meshgrid(np.arange(L), np.arange(A), np.arange(Rn), indexing="ij")
+            with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop) as run:
+                st = run(ai.ravel(), ri.ravel(), scale[li.ravel(), ri.ravel()])["status"]
+            out[:] = (st == 1).reshape(L, A, Rn)
+        else:
+            for i, x in enumerate(lv):
+                for j, m in enumerate(ms):
+                    for k, r in enumerate(recs):
+                        out[i, j, k] = _collapsed(m, r, float(scale[i, k]), dt, t_free)
+                        bar.update(1)
     finally:
         bar.close()
     trials = np.full(lv.size, len(ms) * len(recs))
