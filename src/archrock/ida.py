@@ -1,8 +1,10 @@
 """Incremental dynamic analysis (IDA) and multiple-stripe analysis (MSA) of rocking arches.
 
 Intensity measure (IM): ``im="pga"`` (default) is the peak ground acceleration of the *scaled*
-record in g, IM = scale * PGA_record / g; ``im="scale"`` is the scale factor itself (only
-meaningful for a single record, or records normalised beforehand).
+record in g, IM = scale * PGA_record / g; ``"pgv"`` [m/s], ``"sa:T"`` (Sa(T, 5%) [g]) and
+``"arias"`` [m/s] are those of :mod:`archrock.groundmotion.intensity` (Arias grows as the scale
+squared); ``im="scale"`` is the scale factor itself (only meaningful for a single record, or
+records normalised beforehand).
 
 * :func:`ida` -- for every record (and every arch), scan the scale factors of a grid, find the
   first collapse (refined by bisection between the last survival below it and it; when the lowest
@@ -34,6 +36,7 @@ from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripe
 from .curves import bisect_boundary
 from .geometry import Arch
 from .groundmotion import G, GroundMotion, check_pga
+from .groundmotion.intensity import IM_NAMES, im_at, im_units, intensity, parse_im, scale_for
 from .impact import ImpactSpec
 from .population import PreparedArches, left_out_summary, prepare_many
 from .response import DynamicModel, prepare, respond
@@ -44,7 +47,7 @@ from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
 __all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "ida_curve", "msa",
            "random_models", "safe_scale", "IM_KINDS", "ENGINES"]
 
-IM_KINDS = ("pga", "scale")
+IM_KINDS = IM_NAMES
 
 
 # ---------------------------------------------------------------------------- inputs
@@ -100,14 +103,23 @@ def _grid(name: str, values) -> np.ndarray:
 
 
 def _im(im: str) -> str:
-    if im not in IM_KINDS:
-        raise ArchInputError(f"im: {im!r}; allowed one of {', '.join(IM_KINDS)}")
-    return im
+    return parse_im(im)
+
+
+def _units_text(im: str) -> str:
+    """The IM's units in the results' JSON ('g (PGA of the scaled record)', ...)."""
+    if im == "scale":
+        return "scale factor"
+    name = "Sa(%s s, 5%%)" % im.split(":")[1] if im.startswith("sa:") else im.upper()
+    if im == "arias":
+        name = "Arias intensity"
+    return f"{im_units(im)} ({name} of the scaled record)"
 
 
 def _im_factor(record: GroundMotion, im: str) -> float:
     """IM per unit scale factor."""
-    return record.pga / G if im == "pga" else 1.0
+    # PGA as 0.1.0 computed it (the same float); the others from groundmotion.intensity
+    return record.pga / G if im == "pga" else intensity(record, im)
 
 
 def random_models(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
@@ -169,7 +181,7 @@ def _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop=False):
 
 
 def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
-               early_stop=False) -> list:
+               early_stop=False, factors=None) -> list:
     """The curves of :func:`ida_curve` for every (arch, record), arch-major, each round of the
     search in one sweep: the grid of every pair, then the no-activation checks of the pairs
     whose lowest grid scale collapsed, then the bisection steps of all pairs together (the same
@@ -221,20 +233,21 @@ def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
             lo[act] = np.where(col, lo[act], mid)
             hi[act] = np.where(col, mid, hi[act])
     curves = []
+    factors = [_im_factor(r, im) for r in recs] if factors is None else factors
     for p in range(P):
         r, j = recs[pr[p]], ids[pa[p]]
-        f = _im_factor(r, im)
+        f = factors[pr[p]]
         fl = flags[p]
         if first[p] is None:
             curves.append(IDACurve(r.name, j, r.pga_g, s, fl, None, None, None, (), 0,
-                                   float(s[-1] * f)))
+                                   float(im_at(f, im, s[-1]))))
             continue
         fc = first_collapse(s, fl)
         h = float(hi[p])
         br = None if np.isnan(lo[p]) else (float(lo[p]), h)
-        curves.append(IDACurve(r.name, j, r.pga_g, s, fl, h, br, h * f,
+        curves.append(IDACurve(r.name, j, r.pga_g, s, fl, h, br, im_at(f, im, h),
                                tuple(fc["survivals_above"]), fc["resurrections"],
-                               float(s[-1] * f), bool(below[p]), safe[p]))
+                               float(im_at(f, im, s[-1])), bool(below[p]), safe[p]))
     return curves
 
 
@@ -321,7 +334,7 @@ class IDAResult:
 
     def to_dict(self) -> dict:
         return {"method": "ida", "im": self.im,
-                "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
+                "im_units": _units_text(self.im),
                 "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error,
                 "n_curves": len(self.curves), "n_censored": self.n_censored,
                 "n_arches": len({c.arch for c in self.curves}),
@@ -369,7 +382,7 @@ def safe_scale(model: DynamicModel, record: GroundMotion) -> float:
 
 def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "pga", tol: float = 1e-3,
               arch_index: int = 0, dt: float | None = None,
-              t_free: float | None = None) -> IDACurve:
+              t_free: float | None = None, factor: float | None = None) -> IDACurve:
     """One IDA curve (see :class:`IDACurve`); tol: relative bisection tolerance on the scale."""
     s = _grid("scales", scales)
     im = _im(im)
@@ -377,10 +390,10 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
         raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
     flags = np.array([_collapsed(model, record, float(x), dt, t_free) for x in s])
     fc = first_collapse(s, flags)
-    f = _im_factor(record, im)
+    f = _im_factor(record, im) if factor is None else factor
     if fc["first_collapse"] is None:
         return IDACurve(record.name, arch_index, record.pga_g, s, flags, None, None, None, (), 0,
-                        float(s[-1] * f))
+                        float(im_at(f, im, s[-1])))
     i0 = int(np.flatnonzero(flags)[0])
 
     def test(x):
@@ -399,8 +412,9 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
         below = False
         lo, hi = bisect_boundary(test, float(s[i0 - 1]), float(s[i0]), False, tol, relative=True)
     return IDACurve(record.name, arch_index, record.pga_g, s, flags, hi,
-                    None if lo is None else (lo, hi), hi * f, tuple(fc["survivals_above"]),
-                    fc["resurrections"], float(s[-1] * f), below, safe)
+                    None if lo is None else (lo, hi), im_at(f, im, hi),
+                    tuple(fc["survivals_above"]), fc["resurrections"],
+                    float(im_at(f, im, s[-1])), below, safe)
 
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
@@ -428,6 +442,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
               "reduce the largest scale factor", warn=False)
     bisect_steps = 2 + math.ceil(math.log2(1.0 / tol)) if isinstance(tol, float) and 0 < tol < 1 else 12
     est = _check_analyses("ida", recs, len(ms), s.size + bisect_steps, n_boot, FIT_MOMENTS_S)
+    factors = [_im_factor(r, im) for r in recs]
     if engine == "batch":
         if not (isinstance(tol, (int, float)) and math.isfinite(tol) and 0 < tol < 1):
             raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
@@ -435,7 +450,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
                         unit="response")
         try:
             curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, workers,
-                                scheduler, bar, early_stop)
+                                scheduler, bar, early_stop, factors)
         finally:
             bar.close()
     else:
@@ -443,9 +458,9 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
         curves = []
         try:
             for j, m in zip(ids, ms):
-                for r in recs:
+                for r, f in zip(recs, factors):
                     curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
-                                            t_free=t_free))
+                                            t_free=t_free, factor=f))
                     bar.update(1)
         finally:
             bar.close()
@@ -491,7 +506,7 @@ class StripeResult:
 
     def to_dict(self) -> dict:
         return {"method": "msa", "im": self.im,
-                "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
+                "im_units": _units_text(self.im),
                 "levels": self.levels.tolist(), "trials": self.trials.tolist(),
                 "collapses": self.collapses.tolist(), "records": list(self.records),
                 "arches": list(self.arches), "failed": [list(x) for x in self.failed],
@@ -513,13 +528,18 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     im = _im(im)
     lv = _grid("levels", levels)
     engine = _engine(engine)
-    top = max(float(x / _im_factor(r, im)) * r.pga_g for x in lv[-1:] for r in recs)
+    factors = [_im_factor(r, im) for r in recs]
+    for r, f in zip(recs, factors):
+        if not f > 0:
+            raise ArchInputError(f"records: {r.name!r} has {im} = 0; allowed records with a "
+                                 f"nonzero intensity")
+    top = max(float(scale_for(f, im, lv[-1])) * r.pga_g for r, f in zip(recs, factors))
     check_pga(top, f"levels: {lv[-1]:g}", "reduce the top level", warn=False)
     est = _check_analyses("msa", recs, len(ms), lv.size, n_boot, FIT_MLE_S)
     bar = _progress("msa", lv.size * len(ms) * len(recs), est, progress)
     out = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
     # scale of record k at level i: the same float as the arch-by-arch loop computes
-    scale = np.array([[float(x / _im_factor(r, im)) for r in recs] for x in lv])
+    scale = np.array([[float(scale_for(f, im, x)) for f in factors] for x in lv])
     try:
         if engine == "batch":
             L, A, Rn = lv.size, len(ms), len(recs)
@@ -544,15 +564,18 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
 
 
 def default_stripe_levels(ida_result: IDAResult, scales, records, n: int = 8) -> np.ndarray:
-    """Default PGA levels [g] of the multiple stripes after an IDA: ``n`` geometric levels from
-    0.6 x the smallest to 1.4 x the largest first-collapse IM, so the stripes bracket the collapses;
-    if nothing collapsed, from the lowest to the highest scale factor x the records' PGA."""
+    """Default IM levels (the IDA's IM: PGA [g] by default) of the multiple stripes after an IDA:
+    ``n`` geometric levels from 0.6 x the smallest to 1.4 x the largest first-collapse IM, so the
+    stripes bracket the collapses; if nothing collapsed, from the lowest to the highest IM of the
+    records scaled by the lowest and highest scale factors."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ArchInputError(f"n: {n!r}; allowed an integer >= 1")
     f = ida_result.first_ims
     f = f[np.isfinite(f)]
-    lo = 0.6 * f.min() if f.size else float(scales[0] * min(r.pga_g for r in records))
-    hi = 1.4 * f.max() if f.size else float(scales[-1] * max(r.pga_g for r in records))
+    im = ida_result.im
+    unit = [r.pga_g if im == "pga" else _im_factor(r, im) for r in records]
+    lo = 0.6 * f.min() if f.size else float(min(im_at(u, im, scales[0]) for u in unit))
+    hi = 1.4 * f.max() if f.size else float(max(im_at(u, im, scales[-1]) for u in unit))
     return np.geomspace(lo, hi, n)
 
 
