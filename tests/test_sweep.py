@@ -160,3 +160,35 @@ def test_sweep_without_numba_agrees(without_numba):
     assert pure["status"] == r["status"].tolist()
     np.testing.assert_allclose(pure["peak"], r["peak"], rtol=1e-12)
     assert set(pure["status"]) >= {1}
+
+
+def test_out_folder_keeps_responses_and_resumes(models, records, tmp_path, monkeypatch):
+    pytest.importorskip("pyarrow")
+    import archrock.studyrun as sr
+
+    scales = np.linspace(0.8, 6.0, 10)
+    ref = ida(records, models, scales, tol=5e-3)
+    out = tmp_path / "run"
+    first = ida(records, models, scales, tol=5e-3, out=out)
+    assert [c.to_dict() for c in first.curves] == [c.to_dict() for c in ref.curves]
+    chunks = sorted((out / "items").glob("chunk-*.parquet"))
+    assert chunks and (out / "manifest.json").exists()
+    # lose half the chunks (a killed run): the rerun computes those only, the same curves
+    for f in chunks[::2]:
+        f.unlink()
+    kept = sr.ResultStore(out, SweepArches.from_models(models.models), SweepMotions.of(records),
+                          settings={"max_events": 50_000, "early_stop": False}).loaded
+    ran = []
+    real = sr.sweep
+    monkeypatch.setattr(sr, "sweep", lambda *a, **k: ran.append(len(a[2])) or real(*a, **k))
+    again = ida(records, models, scales, tol=5e-3, out=out)
+    assert [c.to_dict() for c in again.curves] == [c.to_dict() for c in ref.curves]
+    total = sum(len(f.read_bytes()) > 0 for f in (out / "items").glob("chunk-*.parquet"))
+    assert 0 < sum(ran) and kept > 0 and total > len(chunks) // 2
+    # everything kept now: nothing runs
+    ran.clear()
+    ida(records, models, scales, tol=5e-3, out=out)
+    assert sum(ran) == 0
+    # another study in the same folder is refused, naming --out
+    with pytest.raises(ArchInputError, match="^out:"):
+        ida(records[:1], models, scales, tol=5e-3, out=out)

@@ -171,17 +171,23 @@ def _engine(engine: str) -> str:
 _TEST_EVENTS = 50_000
 
 
-def _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop=False):
-    from .studyrun import SweepRunner
+def _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop=False, out=None):
+    from .studyrun import ResultStore, SweepRunner
     from .sweep import SweepArches, SweepMotions
 
-    return SweepRunner(SweepArches.from_models(ms, dt, t_free), SweepMotions.of(recs),
-                       workers=workers, scheduler=scheduler, max_events=_TEST_EVENTS,
-                       early_stop=early_stop, bar=bar)
+    arches, motions = SweepArches.from_models(ms, dt, t_free), SweepMotions.of(recs)
+    store = None
+    if out is not None:
+        store = ResultStore(out, arches, motions,
+                            about={"study": "fragility (IDA and stripes)",
+                                   "records": [r.name for r in recs], "arches": len(ms)},
+                            settings={"max_events": _TEST_EVENTS, "early_stop": bool(early_stop)})
+    return SweepRunner(arches, motions, workers=workers, scheduler=scheduler,
+                       max_events=_TEST_EVENTS, early_stop=early_stop, bar=bar, store=store)
 
 
 def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
-               early_stop=False, factors=None) -> list:
+               early_stop=False, factors=None, out=None) -> list:
     """The curves of :func:`ida_curve` for every (arch, record), arch-major, each round of the
     search in one sweep: the grid of every pair, then the no-activation checks of the pairs
     whose lowest grid scale collapsed, then the bisection steps of all pairs together (the same
@@ -190,7 +196,7 @@ def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
     P = A * Rn
     pa = np.repeat(np.arange(A), Rn)  # pair p = (arch p // Rn, record p % Rn)
     pr = np.tile(np.arange(Rn), A)
-    with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop) as run:
+    with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop, out) as run:
         st = run(np.repeat(pa, n), np.repeat(pr, n), np.tile(s, P))["status"]
         flags = (st == 1).reshape(P, n)
         lo = np.full(P, np.nan)
@@ -420,7 +426,7 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
         seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
         progress: bool = False, engine: str = "batch", workers: int | None = None,
-        scheduler=None, early_stop: bool = False) -> IDAResult:
+        scheduler=None, early_stop: bool = False, out=None) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
     (:mod:`archrock.work`); ``progress``: the responses (or curves) done on stderr for a long run.
@@ -431,7 +437,9 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     with :func:`ida_curve` (archrock 0.1.0's path).  Both give the same curves, bit for bit
     (:mod:`archrock.sweep`).  early_stop (batch engine): end a response once it can no longer
     collapse (:data:`archrock.sweep.HAVE_EARLY_STOP`; the outcome is that of the full run unless
-    the energy lies within the kernel's 1% margin of a barrier)."""
+    the energy lies within the kernel's 1% margin of a barrier).  out (batch engine): a folder
+    that keeps every finished response (:class:`archrock.studyrun.ResultStore`), so that the
+    same call after an interruption recomputes nothing it had finished."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
@@ -450,7 +458,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
                         unit="response")
         try:
             curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, workers,
-                                scheduler, bar, early_stop, factors)
+                                scheduler, bar, early_stop, factors, out)
         finally:
             bar.close()
     else:
@@ -518,11 +526,12 @@ class StripeResult:
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
         progress: bool = False, engine: str = "batch", workers: int | None = None,
-        scheduler=None, early_stop: bool = False) -> StripeResult:
+        scheduler=None, early_stop: bool = False, out=None) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
     beyond the work bound (:mod:`archrock.work`); ``progress`` as :func:`ida`; ``engine``,
-    ``workers``, ``scheduler`` as :func:`ida` (every level x arch x record in one sweep)."""
+    ``workers``, ``scheduler``, ``early_stop``, ``out`` as :func:`ida` (every level x arch x
+    record in one sweep)."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
@@ -544,7 +553,7 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         if engine == "batch":
             L, A, Rn = lv.size, len(ms), len(recs)
             li, ai, ri = np.meshgrid(np.arange(L), np.arange(A), np.arange(Rn), indexing="ij")
-            with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop) as run:
+            with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop, out) as run:
                 st = run(ai.ravel(), ri.ravel(), scale[li.ravel(), ri.ravel()])["status"]
             out[:] = (st == 1).reshape(L, A, Rn)
         else:

@@ -24,7 +24,7 @@ import numpy as np
 from .errors import ArchInputError
 from .sweep import SweepArches, SweepMotions, sweep
 
-__all__ = ["SweepRunner", "check_workers"]
+__all__ = ["SweepRunner", "ResultStore", "check_workers"]
 
 _STATE: dict = {}
 
@@ -56,18 +56,125 @@ def _dask_chunk(arches, motions, a, m, s, max_events, early_stop):
                  parallel=False, max_events=max_events, early_stop=early_stop)
 
 
+#: columns of a stored chunk of items (:class:`ResultStore`)
+_STORED = ("status", "peak", "t_collapse", "t_unstable", "t_limit", "n_events")
+STORE_FORMAT = "archrock-sweep/1"
+
+
+def _digest(arches: SweepArches, motions: SweepMotions, extra: dict) -> str:
+    """sha256 of everything an item's result depends on: the packed arches and motions (their
+    bytes), the run settings and the package's sources."""
+    import hashlib
+    import json
+
+    from ._jit import _package_digest
+
+    h = hashlib.sha256()
+    for name, arr in sorted(arches.arrays().items()) + [
+            (k, v) for k, v in sorted(motions.arrays().items()) if k != "names"]:
+        a = np.ascontiguousarray(arr)
+        h.update(f"{name}\0{a.dtype.str}\0{a.shape}\0".encode())
+        h.update(a.tobytes())
+    h.update(json.dumps(extra, sort_keys=True).encode())
+    h.update(_package_digest().encode())
+    return h.hexdigest()
+
+
+class ResultStore:
+    """Finished items of a study's sweeps kept in a folder (``--out DIR``), so that a killed
+    study started again recomputes nothing it had finished: ``manifest.json`` (format, the
+    digest of the inputs, what the study is) and ``items/chunk-NNNNN.parquet`` (arch, motion,
+    scale and the results of each item), each written atomically.  A folder holding another
+    study's items (another digest) is refused.  Needs pyarrow (the 'ensemble' extra)."""
+
+    def __init__(self, folder, arches, motions, *, about: dict | None = None,
+                 settings: dict | None = None):
+        from pathlib import Path
+
+        try:
+            import pyarrow.parquet as pq  # noqa: F401
+        except ImportError:
+            raise ImportError("--out needs pyarrow: pip install 'archrock[ensemble]'") from None
+        self.folder = Path(folder)
+        self.digest = _digest(arches, motions, settings or {})
+        man = self.folder / "manifest.json"
+        import json
+
+        if man.exists():
+            try:
+                old = json.loads(man.read_text(encoding="utf-8"))
+            except (OSError, ValueError) as exc:
+                raise ArchInputError(f"out: {str(man)!r} cannot be read ({exc}); allowed a "
+                                     f"folder written by this study, or a new one") from None
+            if old.get("format") != STORE_FORMAT or old.get("digest") != self.digest:
+                raise ArchInputError(f"out: {str(self.folder)!r} holds another study (other "
+                                     f"arches, records, settings or archrock version); allowed "
+                                     f"the folder of this very study, or a new one")
+        else:
+            self.folder.mkdir(parents=True, exist_ok=True)
+            tmp = man.with_name(f"manifest.json.tmp-{os.getpid()}")
+            tmp.write_text(json.dumps({"format": STORE_FORMAT, "digest": self.digest,
+                                       "study": about or {}}, indent=2), encoding="utf-8")
+            os.replace(tmp, man)
+        (self.folder / "items").mkdir(exist_ok=True)
+        for stale in (self.folder / "items").glob("*.tmp-*"):
+            stale.unlink()
+        self.done: dict = {}
+        self.next = 0  # number of the next chunk file: after every existing one, never reused
+        for f in sorted((self.folder / "items").glob("chunk-*.parquet")):
+            try:
+                self._load(f)
+            except Exception:  # noqa: BLE001 - an unreadable chunk is recomputed, not fatal
+                continue
+            finally:
+                num = f.stem.split("-")[-1]
+                if num.isdigit():
+                    self.next = max(self.next, int(num) + 1)
+        self.loaded = len(self.done)
+
+    @staticmethod
+    def _key(a, m, s):
+        return (int(a), int(m), float(s))
+
+    def _load(self, path):
+        import pyarrow.parquet as pq
+
+        tab = pq.read_table(path).to_pydict()
+        for i, (a, m, s) in enumerate(zip(tab["arch"], tab["motion"], tab["scale"])):
+            self.done[self._key(a, m, s)] = tuple(tab[c][i] for c in _STORED)
+
+    def lookup(self, a, m, s):
+        """(indices of items found, their rows), the rest missing."""
+        return [self.done.get(self._key(*x)) for x in zip(a, m, s)]
+
+    def write(self, a, m, s, res):
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        cols = {"arch": np.asarray(a, np.int64), "motion": np.asarray(m, np.int64),
+                "scale": np.asarray(s, float), **{c: np.asarray(res[c]) for c in _STORED}}
+        path = self.folder / "items" / f"chunk-{self.next:05d}.parquet"
+        tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
+        pq.write_table(pa.table(cols), tmp)
+        os.replace(tmp, path)
+        self.next += 1
+        for i, key in enumerate(zip(a, m, s)):
+            self.done[self._key(*key)] = tuple(cols[c][i].item() for c in _STORED)
+
+
 class SweepRunner:
     """Runs item lists on one executor (module doc); use as a context manager."""
 
     def __init__(self, arches: SweepArches, motions: SweepMotions, *, workers=None,
                  scheduler=None, max_events: int | None = None, early_stop: bool = False,
-                 bar=None):
+                 bar=None, store: ResultStore | None = None):
         self.arches, self.motions = arches, motions
         self.workers = check_workers(workers)
         self.scheduler = scheduler
         self.max_events = max_events
         self.early_stop = bool(early_stop)
         self.bar = bar
+        self.store = store
         self.pool = self.client = None
         self.responses = 0
         self.executor = "in-process"
@@ -128,10 +235,27 @@ class SweepRunner:
         return False
 
     def __call__(self, arch_index, motion_index, scales) -> dict:
-        """Results of :func:`~archrock.sweep.sweep` for the items, in their order."""
+        """Results of :func:`~archrock.sweep.sweep` for the items, in their order (items kept in
+        the :class:`ResultStore` are read, not run again)."""
         a = np.asarray(arch_index, dtype=np.int64).ravel()
         m = np.asarray(motion_index, dtype=np.int64).ravel()
         s = np.asarray(scales, dtype=float).ravel()
+        if self.store is None:
+            return self._run(a, m, s)
+        rows = self.store.lookup(a, m, s)
+        todo = np.array([i for i, r in enumerate(rows) if r is None], dtype=np.int64)
+        if a.size - todo.size and self.bar is not None:
+            self.bar.update(a.size - todo.size)
+        new = self._run(a[todo], m[todo], s[todo])
+        out = {c: np.zeros(a.size, dtype=new[c].dtype) for c in _STORED}
+        for c_i, c in enumerate(_STORED):
+            for i, r in enumerate(rows):
+                if r is not None:
+                    out[c][i] = r[c_i]
+            out[c][todo] = new[c]
+        return out
+
+    def _run(self, a, m, s) -> dict:
         N = a.size
         if N == 0:
             return {"status": np.zeros(0, dtype=np.int64), "peak": np.zeros(0),
@@ -158,14 +282,21 @@ class SweepRunner:
             for fut in as_completed(list(futs)):
                 c = futs[fut]
                 out[c] = fut.result()
+                self._keep(a, m, s, chunks[c], out[c])
                 self._done(chunks[c][1] - chunks[c][0])
         else:
             for c, (i, j) in enumerate(chunks):
                 out[c] = sweep(self.arches, self.motions, a[i:j], m[i:j], s[i:j],
                                max_events=self.max_events, early_stop=self.early_stop)
+                self._keep(a, m, s, (i, j), out[c])
                 self._done(j - i)
         res = {k: np.concatenate([o[k] for o in out]) for k in out[0] if k != "seconds"}
         return res
+
+    def _keep(self, a, m, s, chunk, res):
+        if self.store is not None:
+            i, j = chunk
+            self.store.write(a[i:j], m[i:j], s[i:j], res)
 
     def _done(self, n):
         self.responses += n

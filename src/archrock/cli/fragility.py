@@ -5,9 +5,9 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import _int, emit_json, non_negative_int
+from ._parser import EXIT_INTERRUPTED, PROG, _int, emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, figure_arg, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
 
 
 def add_fragility_parser(subparsers):
@@ -45,6 +45,9 @@ def add_fragility_parser(subparsers):
                    help="1: in-process (numba threads, default); N > 1: local process pool")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run on an existing Dask cluster (needs archrock[dask])")
+    p.add_argument("--out", metavar="DIR",
+                   help="keep every finished response in DIR (Parquet + manifest.json); the same "
+                        "command after an interruption resumes (batch engine)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress on stderr (shown for runs estimated above a few seconds)")
@@ -78,14 +81,25 @@ def run_fragility(args) -> int:
     models = (random_models(nominal, args.samples, args.seed, spreads(args), impact)
               if args.samples > 0 else [prepare(nominal, impact)])
     boot = args.bootstrap
+    out = folder_arg(args.out)
+    if out is not None and args.engine == "respond":
+        raise ArchInputError("out: kept by the batch engine; allowed --out with --engine batch")
     run = dict(engine=args.engine, workers=args.workers if args.workers > 1 else None,
-               scheduler=args.scheduler) if args.engine == "batch" else dict(engine="respond")
-    res_ida = ida(records, models, scales, im=im, n_boot=boot, seed=args.seed,
-                  progress=not args.no_progress, **run)
-    levels = (parse_range(args.levels, "levels") if args.levels
-              else default_stripe_levels(res_ida, scales, records))
-    res_msa = msa(records, models, levels, im=im, n_boot=boot, seed=args.seed,
-                  progress=not args.no_progress, **run)
+               scheduler=args.scheduler, out=out) if args.engine == "batch" \
+        else dict(engine="respond")
+    try:
+        res_ida = ida(records, models, scales, im=im, n_boot=boot, seed=args.seed,
+                      progress=not args.no_progress, **run)
+        levels = (parse_range(args.levels, "levels") if args.levels
+                  else default_stripe_levels(res_ida, scales, records))
+        res_msa = msa(records, models, levels, im=im, n_boot=boot, seed=args.seed,
+                      progress=not args.no_progress, **run)
+    except KeyboardInterrupt:
+        kept = ("nothing was kept (give --out DIR to keep finished responses and resume)"
+                if out is None else f"the finished responses are kept in {out}; the same "
+                                    f"command resumes from them")
+        print(f"{PROG}: interrupted; {kept}", file=sys.stderr)
+        return EXIT_INTERRUPTED
     if plot:
         from ..plots import plot_fragility
 
