@@ -74,6 +74,13 @@ def test_fragility_on_a_folder_equals_its_files(folder, capsys):
     assert a["ida"] == b["ida"] and a["stripes"] == b["stripes"]
     assert [x["sha256"] for x in a["record_files"]] == [x["sha256"] for x in b["record_files"]]
     assert len(a["record_files"]) == 2 and a["im"] == "pga"
+    # kept in --out and resumed from it: the same results
+    for _ in range(2):
+        assert main(["fragility", "--records", str(folder), *common, "--out",
+                     str(folder.parent / "run")]) == 0
+        kept = json.loads(capsys.readouterr().out)
+        assert kept["ida"] == a["ida"] and kept["stripes"] == a["stripes"]
+    assert (folder.parent / "run" / "manifest.json").exists()
     # in PGV: the same first-collapse scales, IM in m/s
     assert main(["fragility", "--records", str(folder), *common, "--im", "pgv"]) == 0
     c = json.loads(capsys.readouterr().out)

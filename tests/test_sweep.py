@@ -192,3 +192,15 @@ def test_out_folder_keeps_responses_and_resumes(models, records, tmp_path, monke
     # another study in the same folder is refused, naming --out
     with pytest.raises(ArchInputError, match="^out:"):
         ida(records[:1], models, scales, tol=5e-3, out=out)
+
+
+@pytest.mark.slow  # spawns worker processes (each compiles its serial loop) and a Dask cluster
+def test_process_pool_and_dask_give_the_same_curves(models, records):
+    scales = np.linspace(0.8, 6.0, 8)
+    ref = [c.to_dict() for c in ida(records, models, scales).curves]
+    assert [c.to_dict() for c in ida(records, models, scales, workers=2).curves] == ref
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        assert [c.to_dict() for c in ida(records, models, scales, scheduler=client).curves] == ref

@@ -546,7 +546,7 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     check_pga(top, f"levels: {lv[-1]:g}", "reduce the top level", warn=False)
     est = _check_analyses("msa", recs, len(ms), lv.size, n_boot, FIT_MLE_S)
     bar = _progress("msa", lv.size * len(ms) * len(recs), est, progress)
-    out = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
+    outcomes = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
     # scale of record k at level i: the same float as the arch-by-arch loop computes
     scale = np.array([[float(scale_for(f, im, x)) for f in factors] for x in lv])
     try:
@@ -555,20 +555,20 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
             li, ai, ri = np.meshgrid(np.arange(L), np.arange(A), np.arange(Rn), indexing="ij")
             with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop, out) as run:
                 st = run(ai.ravel(), ri.ravel(), scale[li.ravel(), ri.ravel()])["status"]
-            out[:] = (st == 1).reshape(L, A, Rn)
+            outcomes[:] = (st == 1).reshape(L, A, Rn)
         else:
             for i, x in enumerate(lv):
                 for j, m in enumerate(ms):
                     for k, r in enumerate(recs):
-                        out[i, j, k] = _collapsed(m, r, float(scale[i, k]), dt, t_free)
+                        outcomes[i, j, k] = _collapsed(m, r, float(scale[i, k]), dt, t_free)
                         bar.update(1)
     finally:
         bar.close()
     trials = np.full(lv.size, len(ms) * len(recs))
-    coll = out.reshape(lv.size, -1).sum(axis=1)
+    coll = outcomes.reshape(lv.size, -1).sum(axis=1)
     fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed,
                     confidence=confidence, n_records=len(recs))
-    return StripeResult(lv, trials, coll, out, im, fit, err, tuple(r.name for r in recs),
+    return StripeResult(lv, trials, coll, outcomes, im, fit, err, tuple(r.name for r in recs),
                         tuple(ids), failed)
 
 
