@@ -621,8 +621,11 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     from .ensemble.progress import Progress
 
     if engine == "batch":
-        bar = Progress(samples * d.size * _check_int("n_scan", n_scan, 2),
-                       bool(progress) and est > PROGRESS_S, desc="curves", unit="response")
+        # responses: the scan and (about) three bisections per arch and duration
+        per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
+            max(float(a_max) / float(tol), 2.0))))
+        bar = Progress(samples * d.size * per_curve, bool(progress) and est > PROGRESS_S,
+                       desc="curves", unit="response")
         try:
             rows = _batch_rows(sampler, samples, resolved, d, kwargs, bar)
         finally:
