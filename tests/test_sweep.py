@@ -204,3 +204,20 @@ def test_process_pool_and_dask_give_the_same_curves(models, records):
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
         assert [c.to_dict() for c in ida(records, models, scales, scheduler=client).curves] == ref
+
+
+def test_least_loss_chains_equal_respond(records):
+    """Chains longer than M_l, M_r (the least-loss law opens other mechanisms at impacts)."""
+    from archrock.response import prepare
+
+    sampler = ArchSampler(nominal_arch(radius=2.0, thickness=0.3), seed=0)
+    ms = [prepare(sampler.arch(i), "least-loss") for i in (0, 4, 1)]
+    assert max(len(m.chain[0]) for m in ms) > 2
+    A, M = SweepArches.from_models(ms), SweepMotions.of(records[1:])
+    ai = np.repeat(np.arange(3), 3)
+    si = np.tile([1.5, 2.5, 3.5], 3)
+    res = sweep(A, M, ai, np.zeros(9, int), si)
+    for k, (a, s) in enumerate(zip(ai, si)):
+        r = respond(ms[a], records[1].scaled(float(s)), t_end=0.5, dt_out=0.5)
+        assert res["status"][k] == STATUS[r.status] and res["peak"][k] == r.peak
+        assert res["n_events"][k] == len(r.events)
