@@ -14,9 +14,9 @@ LAYER = {
     "limit": 2, "friction": 2,
     "mechanism": 3,
     "impact": 4, "groundmotion": 4,
-    "kernel": 5, "response": 5, "batch": 5, "population": 5, "contact": 5,
+    "kernel": 5, "response": 5, "batch": 5, "population": 5, "sweep": 5, "contact": 5,
     "ensemble": 6, "codecheck": 6, "assessment": 6, "curves": 6, "fragility": 6, "ida": 6, "work": 6,
-    "defectmap": 6, "sensitivity": 6, "verification": 6,
+    "defectmap": 6, "sensitivity": 6, "verification": 6, "studyrun": 6,
     "reports": 7, "plots": 7, "animate": 7, "contactplots": 7, "cli": 7, "study": 7, "__main__": 7,
 }
 #: same layer, kept apart: neither may import the other

@@ -413,9 +413,11 @@ def test_fragility_reports_are_what_the_command_prints(capsys, tmp_path):
     assert code == 0 and out == format_fragility(res_ida, res_msa, arch_name="nominal", n_records=2,
                                                  n_arches=1, n_requested=0) + "\n"
     d = run_json(capsys, *argv, "--json")
+    from archrock.groundmotion.suite import read_records
+
     assert d == json.loads(json.dumps(fragility_summary(res_ida, res_msa, arch_name="nominal",
                                                         records=records, n_arches=1, impact=PAPER_PRACTICE,
-                                                        cv=cv)))
+                                                        cv=cv, suite=read_records(files))))
     assert len(d["stripes"]["levels"]) == 8
 
 

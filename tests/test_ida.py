@@ -135,7 +135,7 @@ def test_im_scale(small, records):
 
 @pytest.mark.parametrize("call, field", [
     (lambda m, r: ida(r, m, [1.0, 0.5]), "scales"),
-    (lambda m, r: ida(r, m, [1.0], im="pgv"), "im"),
+    (lambda m, r: ida(r, m, [1.0], im="pgd"), "im"),  # pgv, sa:T, arias are IMs now
     (lambda m, r: ida([], m, [1.0]), "records"),
     (lambda m, r: msa(r, m, [-1.0, 1.0]), "levels"),
     (lambda m, r: ida(r, m, [1.0, 2.0], tol=2.0), "tol"),

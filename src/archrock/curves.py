@@ -51,6 +51,7 @@ __all__ = [
     "ensemble_curve",
     "collapse_mode",
     "parse_range",
+    "ENGINES",
 ]
 
 #: Response settings used by every collapse test (outcome only: coarse output sampling).
@@ -266,6 +267,147 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
                              tuple(windows), thr, a_max, tol, grid, flags, count[0])
 
 
+# ---------------------------------------------------------------------------- batch engine
+#: items per sweep call of the curves' batch engine (each item carries its own pulse)
+_CHUNK = 4096
+ENGINES = ("batch", "respond")
+
+
+def _engine(engine: str) -> str:
+    if engine not in ENGINES:
+        raise ArchInputError(f"engine: {engine!r}; allowed one of {', '.join(ENGINES)}")
+    return engine
+
+
+class _PulseRunner:
+    """Collapse tests of (model, pulse duration, |a|) items through :func:`archrock.sweep.sweep`,
+    each item with its own ``pulse(kind, sign * a, t_p)`` (the very motion ``respond`` gets in
+    :func:`collapse_amplitude`), remembered per (model, duration, |a|)."""
+
+    def __init__(self, models, kind, sign, dt, bar=None):
+        from .sweep import SweepArches
+
+        self.arches = SweepArches.from_models(models, dt)
+        self.kind, self.sign, self.bar = kind, sign, bar
+        self.cache: dict = {}
+
+    def __call__(self, keys):
+        """Outcomes (collapsed, t_collapse) of the (model, duration, |a|) keys not yet run."""
+        from .sweep import SweepMotions, sweep
+
+        todo = list(dict.fromkeys(k for k in keys if k not in self.cache))
+        for i in range(0, len(todo), _CHUNK):
+            part = todo[i:i + _CHUNK]
+            motions = SweepMotions.of([pulse(self.kind, self.sign * a, tp) for _, tp, a in part])
+            n = len(part)
+            res = sweep(self.arches, motions, [m for m, _, _ in part], np.arange(n),
+                        np.ones(n), max_events=_RESPOND["max_events"])
+            for k, st, tc in zip(part, res["status"], res["t_collapse"]):
+                self.cache[k] = (bool(st == 1), None if np.isnan(tc) else float(tc))
+            if self.bar is not None:
+                self.bar.update(n)
+        return [self.cache[k][0] for k in keys]
+
+
+def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None) -> list:
+    """:func:`collapse_amplitude` of every (model, duration), arch-major: the grids of all in
+    one sweep, then the bisections of every first collapse and survival-window edge together,
+    one step per sweep (the same midpoints as :func:`bisect_boundary`)."""
+    kind = pulse_kind(kind)
+    sign = _check_sign(sign)
+    tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")
+    n_scan = _check_int("n_scan", n_scan, 2)
+    thrs = [float(m.k_l if sign < 0 else m.k_r) for m in models]
+    for thr in thrs:
+        if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
+            raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation "
+                                 f"threshold {thr:.4f} g and <= {MAX_PGA_G:g} g")
+    run = _PulseRunner(models, kind, sign, dt, bar)
+    searches = [(m, float(tp)) for m in range(len(models)) for tp in d]
+    grids = {s: np.geomspace(thrs[s[0]] * (1 + 1e-6), a_max, n_scan) for s in searches}
+    keys = [(m, tp, float(a)) for (m, tp) in searches for a in grids[(m, tp)]]
+    flags = dict(zip(searches, np.array(run(keys)).reshape(len(searches), n_scan)))
+    # bisection tasks: [search, lo, hi, lo_val, role]; role 'first', ('wlo', w) or ('whi', w)
+    tasks, first, windows = [], {}, {}
+    for s in searches:
+        grid, fl = grids[s], flags[s]
+        hits = np.flatnonzero(fl)
+        if hits.size == 0:
+            continue
+        i0 = int(hits[0])
+        if i0 == 0:
+            first[s] = (thrs[s[0]], float(grid[0]))
+        else:
+            tasks.append([s, float(grid[i0 - 1]), float(grid[i0]), False, "first"])
+        ws = []
+        j, n = i0, grid.size
+        while j < n:
+            if fl[j]:
+                j += 1
+                continue
+            k = j
+            while k + 1 < n and not fl[k + 1]:
+                k += 1
+            w = len(ws)
+            ws.append([None, float(grid[k])])
+            tasks.append([s, float(grid[j - 1]), float(grid[j]), True, ("wlo", w)])
+            if k + 1 < n:
+                tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w)])
+            j = k + 1
+        windows[s] = ws
+    while True:
+        act = [t for t in tasks if t[2] - t[1] > tol]
+        if not act:
+            break
+        mids = [0.5 * (t[1] + t[2]) for t in act]
+        out = run([(t[0][0], t[0][1], x) for t, x in zip(act, mids)])
+        for t, x, c in zip(act, mids, out):
+            if c == t[3]:
+                t[1] = x
+            else:
+                t[2] = x
+    for s, lo, hi, _, role in tasks:
+        if role == "first":
+            first[s] = (lo, hi)
+        elif role[0] == "wlo":
+            windows[s][role[1]][0] = hi
+        else:
+            windows[s][role[1]][1] = lo
+    counts: dict = {}
+    for (m, tp, _) in run.cache:
+        counts[(m, tp)] = counts.get((m, tp), 0) + 1
+    points = []
+    for s in searches:
+        m, tp = s
+        grid, fl = grids[s], flags[s]
+        if s not in first:
+            points.append(CollapseAmplitude(tp, kind, sign, None, None, None, None, (), thrs[m],
+                                            a_max, tol, grid, fl, counts[s]))
+            continue
+        lo, hi = first[s]
+        # the collapse mode needs the impacts of the response at the boundary: that one response
+        # again through respond (the outcome and t_collapse are the sweep's, identical)
+        r = respond(models[m], pulse(kind, sign * hi, tp), dt=dt, **_RESPOND)
+        points.append(CollapseAmplitude(tp, kind, sign, hi, (lo, hi), collapse_mode(r),
+                                        r.t_collapse, tuple(tuple(w) for w in windows[s]),
+                                        thrs[m], a_max, tol, grid, fl, counts[s]))
+    return points
+
+
+def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None) -> list:
+    pts = _amplitudes_batch(models, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt,
+                            bar=bar)
+    out = []
+    for i, model in enumerate(models):
+        mine = tuple(pts[i * d.size:(i + 1) * d.size])
+        amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in mine])
+        out.append(CollapseCurve(d, amps, tuple(p.mode for p in mine),
+                                 tuple(p.windows for p in mine), mine, float(model.k_l),
+                                 float(model.k_r),
+                                 (float(model.impact.l_to_r), float(model.impact.r_to_l))))
+    return out
+
+
 # ---------------------------------------------------------------------------- a curve
 @dataclass(frozen=True)
 class CollapseCurve:
@@ -330,12 +472,21 @@ def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: 
 
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
-                   literal_cv: bool = False, dt: float | None = None) -> CollapseCurve:
+                   literal_cv: bool = False, dt: float | None = None,
+                   engine: str = "batch") -> CollapseCurve:
     """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
-    of :mod:`archrock.work`."""
+    of :mod:`archrock.work`.  engine: "batch" (default) runs the scans of every duration in one
+    parallel sweep, then every bisection step of all of them in one more
+    (:mod:`archrock.sweep`); "respond" runs response after response (0.1.0's path).  Both give
+    the same curve, bit for bit."""
     model = _model(model, impact, cv, literal_cv)
     d = _durations(durations)
+    engine = _engine(engine)
     _check_curve_work(1, d.size, n_scan, a_max, tol)
+    if engine == "batch":
+        _check_real("a_max", a_max, None, "a finite number > the activation threshold")
+        return _curves_batch([model], d, kind, sign, a_max=float(a_max), n_scan=n_scan,
+                             tol=tol, dt=dt)[0]
     return _curve(model, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
 
 
@@ -411,11 +562,28 @@ def _one_sample(job):
     return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf), None
 
 
+def _batch_rows(sampler, samples, impact, d, kwargs, bar) -> list:
+    """The rows of :func:`_one_sample` for samples 0 .. samples - 1, all arches in one batch."""
+    prepared = [prepare_sample(sampler, i, impact) for i in range(samples)]
+    usable = [m for m, _ in prepared if m is not None]
+    kw = {k: v for k, v in kwargs.items() if k != "a_max"}
+    curves = iter(_curves_batch(usable, d, a_max=float(kwargs["a_max"]), bar=bar, **kw)
+                  if usable else ())
+    rows = []
+    for model, why in prepared:
+        if model is None:
+            rows.append((None, why))
+        else:
+            amps = next(curves).amplitudes
+            rows.append((np.where(np.isfinite(amps), amps, np.inf), None))
+    return rows
+
+
 def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
                    tol: float = 1e-3, dt: float | None = None, workers: int = 1,
-                   progress: bool = False) -> EnsembleCurve:
+                   progress: bool = False, engine: str = "batch") -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
     Arch i is sample i of :class:`~archrock.sampling.ArchSampler` (nominal, spreads, seed): the
@@ -427,7 +595,10 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     (:data:`archrock.errors.UNUSABLE_ARCH`: it cannot stand, voussoirs do not overlap, ...) is left
     out and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv: apply a
     fixed c_v to the rates literally instead of energy-consistently (docs/method.md, Impact).
-    workers > 1 runs arches in a process pool (workers die with this process).  The work is
+    engine "batch" (default): every arch and duration of a search step in one parallel sweep
+    (numba threads; :func:`collapse_curve`); "respond": arch after arch, ``workers`` > 1 of them
+    at once in a process pool (workers die with this process).  Both give the same curves, bit
+    for bit.  The work is
     estimated first and refused beyond the bound of :mod:`archrock.work`; ``progress`` shows
     the arches done on stderr when the estimate exceeds a few seconds.
     """
@@ -444,27 +615,39 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     spec = ImpactSpec.parse(impact, literal=literal_cv)
     resolved = spec.resolved(nominal)
     kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
-    nominal_curve = collapse_curve(prepare(nominal, spec), d, **kwargs)
+    engine = _engine(engine)
+    nominal_curve = collapse_curve(prepare(nominal, spec), d, engine=engine, **kwargs)
     jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
     from .ensemble.progress import Progress
 
-    bar = Progress(samples, bool(progress) and est > PROGRESS_S, desc="curves", unit="arch")
-    try:
-        if workers == 1:
-            rows = []
-            for j in jobs:
-                rows.append(_one_sample(j))
-                bar.update(1)
-        else:
-            from .ensemble.executors import worker_pool
-
-            with worker_pool(min(workers, os.cpu_count() or 1)) as ex:
+    if engine == "batch":
+        # responses: the scan and (about) three bisections per arch and duration
+        per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
+            max(float(a_max) / float(tol), 2.0))))
+        bar = Progress(samples * d.size * per_curve, bool(progress) and est > PROGRESS_S,
+                       desc="curves", unit="response")
+        try:
+            rows = _batch_rows(sampler, samples, resolved, d, kwargs, bar)
+        finally:
+            bar.close()
+    else:
+        bar = Progress(samples, bool(progress) and est > PROGRESS_S, desc="curves", unit="arch")
+        try:
+            if workers == 1:
                 rows = []
-                for row in ex.map(_one_sample, jobs):
-                    rows.append(row)
+                for j in jobs:
+                    rows.append(_one_sample(j))
                     bar.update(1)
-    finally:
-        bar.close()
+            else:
+                from .ensemble.executors import worker_pool
+
+                with worker_pool(min(workers, os.cpu_count() or 1)) as ex:
+                    rows = []
+                    for row in ex.map(_one_sample, jobs):
+                        rows.append(row)
+                        bar.update(1)
+        finally:
+            bar.close()
     failed = tuple((i, why) for i, (_, why) in enumerate(rows) if why is not None)
     kept = tuple(i for i, (row, _) in enumerate(rows) if row is not None)
     if not kept:

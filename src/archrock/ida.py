@@ -1,8 +1,10 @@
 """Incremental dynamic analysis (IDA) and multiple-stripe analysis (MSA) of rocking arches.
 
 Intensity measure (IM): ``im="pga"`` (default) is the peak ground acceleration of the *scaled*
-record in g, IM = scale * PGA_record / g; ``im="scale"`` is the scale factor itself (only
-meaningful for a single record, or records normalised beforehand).
+record in g, IM = scale * PGA_record / g; ``"pgv"`` [m/s], ``"sa:T"`` (Sa(T, 5%) [g]) and
+``"arias"`` [m/s] are those of :mod:`archrock.groundmotion.intensity` (Arias grows as the scale
+squared); ``im="scale"`` is the scale factor itself (only meaningful for a single record, or
+records normalised beforehand).
 
 * :func:`ida` -- for every record (and every arch), scan the scale factors of a grid, find the
   first collapse (refined by bisection between the last survival below it and it; when the lowest
@@ -34,6 +36,7 @@ from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripe
 from .curves import bisect_boundary
 from .geometry import Arch
 from .groundmotion import G, GroundMotion, check_pga
+from .groundmotion.intensity import IM_NAMES, im_at, im_units, intensity, parse_im, scale_for
 from .impact import ImpactSpec
 from .population import PreparedArches, left_out_summary, prepare_many
 from .response import DynamicModel, prepare, respond
@@ -42,9 +45,9 @@ from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
                    response_cost_s)
 
 __all__ = ["IDACurve", "IDAResult", "StripeResult", "ida", "ida_curve", "msa",
-           "random_models", "safe_scale", "IM_KINDS"]
+           "random_models", "safe_scale", "IM_KINDS", "ENGINES"]
 
-IM_KINDS = ("pga", "scale")
+IM_KINDS = IM_NAMES
 
 
 # ---------------------------------------------------------------------------- inputs
@@ -100,14 +103,23 @@ def _grid(name: str, values) -> np.ndarray:
 
 
 def _im(im: str) -> str:
-    if im not in IM_KINDS:
-        raise ArchInputError(f"im: {im!r}; allowed one of {', '.join(IM_KINDS)}")
-    return im
+    return parse_im(im)
+
+
+def _units_text(im: str) -> str:
+    """The IM's units in the results' JSON ('g (PGA of the scaled record)', ...)."""
+    if im == "scale":
+        return "scale factor"
+    name = "Sa(%s s, 5%%)" % im.split(":")[1] if im.startswith("sa:") else im.upper()
+    if im == "arias":
+        name = "Arias intensity"
+    return f"{im_units(im)} ({name} of the scaled record)"
 
 
 def _im_factor(record: GroundMotion, im: str) -> float:
     """IM per unit scale factor."""
-    return record.pga / G if im == "pga" else 1.0
+    # PGA as 0.1.0 computed it (the same float); the others from groundmotion.intensity
+    return record.pga / G if im == "pga" else intensity(record, im)
 
 
 def random_models(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
@@ -140,15 +152,114 @@ def _check_analyses(what, recs, n_models, per_pair, n_boot, fit_s) -> float:
     return est
 
 
-def _progress(what, total, est, progress):
+def _progress(what, total, est, progress, unit="analysis"):
     from .ensemble.progress import Progress
 
-    return Progress(total, bool(progress) and est > PROGRESS_S, desc=what, unit="analysis")
+    return Progress(total, bool(progress) and est > PROGRESS_S, desc=what, unit=unit)
+
+
+ENGINES = ("batch", "respond")
+
+
+def _engine(engine: str) -> str:
+    if engine not in ENGINES:
+        raise ArchInputError(f"engine: {engine!r}; allowed one of {', '.join(ENGINES)}")
+    return engine
+
+
+#: the max_events of the responses of a collapse test (:func:`_collapsed`)
+_TEST_EVENTS = 50_000
+
+
+def _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop=False, out=None):
+    from .studyrun import ResultStore, SweepRunner
+    from .sweep import SweepArches, SweepMotions
+
+    arches, motions = SweepArches.from_models(ms, dt, t_free), SweepMotions.of(recs)
+    store = None
+    if out is not None:
+        store = ResultStore(out, arches, motions,
+                            about={"study": "fragility (IDA and stripes)",
+                                   "records": [r.name for r in recs], "arches": len(ms)},
+                            settings={"max_events": _TEST_EVENTS, "early_stop": bool(early_stop)})
+    return SweepRunner(arches, motions, workers=workers, scheduler=scheduler,
+                       max_events=_TEST_EVENTS, early_stop=early_stop, bar=bar, store=store)
+
+
+def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
+               early_stop=False, factors=None, out=None) -> list:
+    """The curves of :func:`ida_curve` for every (arch, record), arch-major, each round of the
+    search in one sweep: the grid of every pair, then the no-activation checks of the pairs
+    whose lowest grid scale collapsed, then the bisection steps of all pairs together (the same
+    midpoints, in the same order, as :func:`~archrock.curves.bisect_boundary`)."""
+    A, Rn, n = len(ms), len(recs), s.size
+    P = A * Rn
+    pa = np.repeat(np.arange(A), Rn)  # pair p = (arch p // Rn, record p % Rn)
+    pr = np.tile(np.arange(Rn), A)
+    with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop, out) as run:
+        st = run(np.repeat(pa, n), np.repeat(pr, n), np.tile(s, P))["status"]
+        flags = (st == 1).reshape(P, n)
+        lo = np.full(P, np.nan)
+        hi = np.full(P, np.nan)
+        below = np.zeros(P, dtype=bool)
+        safe = [None] * P
+        first = [None] * P
+        checks = []
+        for p in range(P):
+            hits = np.flatnonzero(flags[p])
+            if hits.size == 0:
+                continue
+            i0 = int(hits[0])
+            first[p] = i0
+            if i0 == 0:
+                below[p] = True
+                x = safe_scale(ms[pa[p]], recs[pr[p]])
+                if x < float(s[0]):
+                    safe[p] = x
+                    checks.append(p)
+                else:  # not reachable for a consistent model: keep the grid point
+                    hi[p] = float(s[0])
+            else:
+                lo[p], hi[p] = float(s[i0 - 1]), float(s[i0])
+        if checks:
+            c = np.array(checks)
+            st = run(pa[c], pr[c], np.array([safe[p] for p in checks]))["status"]
+            for p, collapsed in zip(checks, st == 1):
+                if collapsed:  # unbracketed: the grid point alone
+                    safe[p], hi[p] = None, float(s[0])
+                else:
+                    lo[p], hi[p] = safe[p], float(s[0])
+        # bisect_boundary(test, lo, hi, False, tol, relative=True), all pairs at once
+        while True:
+            act = np.flatnonzero(~np.isnan(lo) & (hi - lo > tol * hi))
+            if act.size == 0:
+                break
+            mid = 0.5 * (lo[act] + hi[act])
+            col = run(pa[act], pr[act], mid)["status"] == 1
+            lo[act] = np.where(col, lo[act], mid)
+            hi[act] = np.where(col, mid, hi[act])
+    curves = []
+    factors = [_im_factor(r, im) for r in recs] if factors is None else factors
+    for p in range(P):
+        r, j = recs[pr[p]], ids[pa[p]]
+        f = factors[pr[p]]
+        fl = flags[p]
+        if first[p] is None:
+            curves.append(IDACurve(r.name, j, r.pga_g, s, fl, None, None, None, (), 0,
+                                   float(im_at(f, im, s[-1]))))
+            continue
+        fc = first_collapse(s, fl)
+        h = float(hi[p])
+        br = None if np.isnan(lo[p]) else (float(lo[p]), h)
+        curves.append(IDACurve(r.name, j, r.pga_g, s, fl, h, br, im_at(f, im, h),
+                               tuple(fc["survivals_above"]), fc["resurrections"],
+                               float(im_at(f, im, s[-1])), bool(below[p]), safe[p]))
+    return curves
 
 
 def _collapsed(model, record, scale, dt, t_free) -> bool:
     return respond(model, record.scaled(scale), t_end=0.5, dt_out=0.5, dt=dt, t_free=t_free,
-                   max_events=50_000).collapsed
+                   max_events=_TEST_EVENTS).collapsed
 
 
 # ---------------------------------------------------------------------------- IDA
@@ -229,7 +340,7 @@ class IDAResult:
 
     def to_dict(self) -> dict:
         return {"method": "ida", "im": self.im,
-                "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
+                "im_units": _units_text(self.im),
                 "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error,
                 "n_curves": len(self.curves), "n_censored": self.n_censored,
                 "n_arches": len({c.arch for c in self.curves}),
@@ -277,7 +388,7 @@ def safe_scale(model: DynamicModel, record: GroundMotion) -> float:
 
 def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "pga", tol: float = 1e-3,
               arch_index: int = 0, dt: float | None = None,
-              t_free: float | None = None) -> IDACurve:
+              t_free: float | None = None, factor: float | None = None) -> IDACurve:
     """One IDA curve (see :class:`IDACurve`); tol: relative bisection tolerance on the scale."""
     s = _grid("scales", scales)
     im = _im(im)
@@ -285,10 +396,10 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
         raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
     flags = np.array([_collapsed(model, record, float(x), dt, t_free) for x in s])
     fc = first_collapse(s, flags)
-    f = _im_factor(record, im)
+    f = _im_factor(record, im) if factor is None else factor
     if fc["first_collapse"] is None:
         return IDACurve(record.name, arch_index, record.pga_g, s, flags, None, None, None, (), 0,
-                        float(s[-1] * f))
+                        float(im_at(f, im, s[-1])))
     i0 = int(np.flatnonzero(flags)[0])
 
     def test(x):
@@ -307,35 +418,60 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
         below = False
         lo, hi = bisect_boundary(test, float(s[i0 - 1]), float(s[i0]), False, tol, relative=True)
     return IDACurve(record.name, arch_index, record.pga_g, s, flags, hi,
-                    None if lo is None else (lo, hi), hi * f, tuple(fc["survivals_above"]),
-                    fc["resurrections"], float(s[-1] * f), below, safe)
+                    None if lo is None else (lo, hi), im_at(f, im, hi),
+                    tuple(fc["survivals_above"]), fc["resurrections"],
+                    float(im_at(f, im, s[-1])), below, safe)
 
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
         seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress: bool = False) -> IDAResult:
+        progress: bool = False, engine: str = "batch", workers: int | None = None,
+        scheduler=None, early_stop: bool = False, out=None) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
-    (:mod:`archrock.work`); ``progress``: the curves done on stderr for a long run."""
+    (:mod:`archrock.work`); ``progress``: the responses (or curves) done on stderr for a long run.
+
+    engine: "batch" (default) runs every (arch, record, scale) of a round (the grid scan, then
+    each bisection step) in one parallel call (:mod:`archrock.studyrun`: in-process numba
+    threads, ``workers`` > 1 processes or a Dask ``scheduler``); "respond" runs curve after curve
+    with :func:`ida_curve` (archrock 0.1.0's path).  Both give the same curves, bit for bit
+    (:mod:`archrock.sweep`).  early_stop (batch engine): end a response once it can no longer
+    collapse (:data:`archrock.sweep.HAVE_EARLY_STOP`; the outcome is that of the full run unless
+    the energy lies within the kernel's 1% margin of a barrier).  out (batch engine): a folder
+    that keeps every finished response (:class:`archrock.studyrun.ResultStore`), so that the
+    same call after an interruption recomputes nothing it had finished."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
     s = _grid("scales", scales)
+    engine = _engine(engine)
     top = max(recs, key=lambda r: r.pga)
     check_pga(float(s[-1]) * top.pga_g, f"scales: {s[-1]:g} x record {top.name!r}",
               "reduce the largest scale factor", warn=False)
     bisect_steps = 2 + math.ceil(math.log2(1.0 / tol)) if isinstance(tol, float) and 0 < tol < 1 else 12
     est = _check_analyses("ida", recs, len(ms), s.size + bisect_steps, n_boot, FIT_MOMENTS_S)
-    bar = _progress("ida", len(ms) * len(recs), est, progress)
-    curves = []
-    try:
-        for j, m in zip(ids, ms):
-            for r in recs:
-                curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
-                                        t_free=t_free))
-                bar.update(1)
-    finally:
-        bar.close()
+    factors = [_im_factor(r, im) for r in recs]
+    if engine == "batch":
+        if not (isinstance(tol, (int, float)) and math.isfinite(tol) and 0 < tol < 1):
+            raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
+        bar = _progress("ida", len(ms) * len(recs) * (s.size + bisect_steps), est, progress,
+                        unit="response")
+        try:
+            curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, workers,
+                                scheduler, bar, early_stop, factors, out)
+        finally:
+            bar.close()
+    else:
+        bar = _progress("ida", len(ms) * len(recs), est, progress)
+        curves = []
+        try:
+            for j, m in zip(ids, ms):
+                for r, f in zip(recs, factors):
+                    curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
+                                            t_free=t_free, factor=f))
+                    bar.update(1)
+        finally:
+            bar.close()
     curves = tuple(curves)
     x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
     if np.any(np.isinf(x)):
@@ -378,7 +514,7 @@ class StripeResult:
 
     def to_dict(self) -> dict:
         return {"method": "msa", "im": self.im,
-                "im_units": "g (PGA of the scaled record)" if self.im == "pga" else "scale factor",
+                "im_units": _units_text(self.im),
                 "levels": self.levels.tolist(), "trials": self.trials.tolist(),
                 "collapses": self.collapses.tolist(), "records": list(self.records),
                 "arches": list(self.arches), "failed": [list(x) for x in self.failed],
@@ -389,45 +525,66 @@ class StripeResult:
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress: bool = False) -> StripeResult:
+        progress: bool = False, engine: str = "batch", workers: int | None = None,
+        scheduler=None, early_stop: bool = False, out=None) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
-    beyond the work bound (:mod:`archrock.work`); ``progress`` as :func:`ida`."""
+    beyond the work bound (:mod:`archrock.work`); ``progress`` as :func:`ida`; ``engine``,
+    ``workers``, ``scheduler``, ``early_stop``, ``out`` as :func:`ida` (every level x arch x
+    record in one sweep)."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
     im = _im(im)
     lv = _grid("levels", levels)
-    top = max(float(x / _im_factor(r, im)) * r.pga_g for x in lv[-1:] for r in recs)
+    engine = _engine(engine)
+    factors = [_im_factor(r, im) for r in recs]
+    for r, f in zip(recs, factors):
+        if not f > 0:
+            raise ArchInputError(f"records: {r.name!r} has {im} = 0; allowed records with a "
+                                 f"nonzero intensity")
+    top = max(float(scale_for(f, im, lv[-1])) * r.pga_g for r, f in zip(recs, factors))
     check_pga(top, f"levels: {lv[-1]:g}", "reduce the top level", warn=False)
     est = _check_analyses("msa", recs, len(ms), lv.size, n_boot, FIT_MLE_S)
     bar = _progress("msa", lv.size * len(ms) * len(recs), est, progress)
-    out = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
+    outcomes = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
+    # scale of record k at level i: the same float as the arch-by-arch loop computes
+    scale = np.array([[float(scale_for(f, im, x)) for f in factors] for x in lv])
     try:
-        for i, x in enumerate(lv):
-            for j, m in enumerate(ms):
-                for k, r in enumerate(recs):
-                    out[i, j, k] = _collapsed(m, r, float(x / _im_factor(r, im)), dt, t_free)
-                    bar.update(1)
+        if engine == "batch":
+            L, A, Rn = lv.size, len(ms), len(recs)
+            li, ai, ri = np.meshgrid(np.arange(L), np.arange(A), np.arange(Rn), indexing="ij")
+            with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop, out) as run:
+                st = run(ai.ravel(), ri.ravel(), scale[li.ravel(), ri.ravel()])["status"]
+            outcomes[:] = (st == 1).reshape(L, A, Rn)
+        else:
+            for i, x in enumerate(lv):
+                for j, m in enumerate(ms):
+                    for k, r in enumerate(recs):
+                        outcomes[i, j, k] = _collapsed(m, r, float(scale[i, k]), dt, t_free)
+                        bar.update(1)
     finally:
         bar.close()
     trials = np.full(lv.size, len(ms) * len(recs))
-    coll = out.reshape(lv.size, -1).sum(axis=1)
+    coll = outcomes.reshape(lv.size, -1).sum(axis=1)
     fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed,
                     confidence=confidence, n_records=len(recs))
-    return StripeResult(lv, trials, coll, out, im, fit, err, tuple(r.name for r in recs),
+    return StripeResult(lv, trials, coll, outcomes, im, fit, err, tuple(r.name for r in recs),
                         tuple(ids), failed)
 
 
 def default_stripe_levels(ida_result: IDAResult, scales, records, n: int = 8) -> np.ndarray:
-    """Default PGA levels [g] of the multiple stripes after an IDA: ``n`` geometric levels from
-    0.6 x the smallest to 1.4 x the largest first-collapse IM, so the stripes bracket the collapses;
-    if nothing collapsed, from the lowest to the highest scale factor x the records' PGA."""
+    """Default IM levels (the IDA's IM: PGA [g] by default) of the multiple stripes after an IDA:
+    ``n`` geometric levels from 0.6 x the smallest to 1.4 x the largest first-collapse IM, so the
+    stripes bracket the collapses; if nothing collapsed, from the lowest to the highest IM of the
+    records scaled by the lowest and highest scale factors."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ArchInputError(f"n: {n!r}; allowed an integer >= 1")
     f = ida_result.first_ims
     f = f[np.isfinite(f)]
-    lo = 0.6 * f.min() if f.size else float(scales[0] * min(r.pga_g for r in records))
-    hi = 1.4 * f.max() if f.size else float(scales[-1] * max(r.pga_g for r in records))
+    im = ida_result.im
+    unit = [r.pga_g if im == "pga" else _im_factor(r, im) for r in records]
+    lo = 0.6 * f.min() if f.size else float(min(im_at(u, im, scales[0]) for u in unit))
+    hi = 1.4 * f.max() if f.size else float(max(im_at(u, im, scales[-1]) for u in unit))
     return np.geomspace(lo, hi, n)
 
 

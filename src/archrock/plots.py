@@ -642,10 +642,12 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
     if ax is None:
         fig, axes = new_figure(1, 1, figsize=(6.4, 4.4))
         ax = axes[0][0]
+    from .groundmotion.intensity import im_label as _label, im_units
+
     im = getattr(stripes, "im", None) or getattr(ida, "im", None) or "pga"
-    unit = "g" if im == "pga" else ""
+    unit = "" if im == "scale" else im_units(im)
     if im_label is None:
-        im_label = "PGA of the scaled record [g]" if im == "pga" else "scale factor [-]"
+        im_label = _label(im)
     xs = []
     if stripes is not None:
         xs.append(np.asarray(stripes.levels, dtype=float))

@@ -31,7 +31,13 @@ def add_curves_parser(subparsers):
     p.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
                    help="bisection tolerance [g] (default 0.001)")
     add_random_arches_options(p, "random arches for quantile bands (0 = nominal only, default)")
-    p.add_argument("--workers", type=_int, default=1, metavar="N", help="processes (default 1)")
+    p.add_argument("--engine", choices=("batch", "respond"), default=None,
+                   help="batch (default without --workers): the scans and bisection steps of "
+                        "every arch and duration in one parallel call each (numba threads); "
+                        "respond (default with --workers N > 1): arch after arch, N processes; "
+                        "the results are identical")
+    p.add_argument("--workers", type=_int, default=1, metavar="N",
+                   help="processes of --engine respond (default 1)")
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-progress", action="store_true",
@@ -54,7 +60,13 @@ def run_curves(args) -> int:
     if args.workers < 1:
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     impact = impact_spec_from_args(args)
-    kw = dict(kind=args.pulse, sign=args.sign, a_max=args.a_max, n_scan=args.n_scan, tol=args.tol)
+    if args.engine is None:
+        args.engine = "respond" if args.workers > 1 else "batch"
+    if args.workers > 1 and args.engine == "batch":
+        raise ArchInputError("workers: the batch engine runs on numba threads in this process; "
+                             "allowed --workers N > 1 with --engine respond")
+    kw = dict(kind=args.pulse, sign=args.sign, a_max=args.a_max, n_scan=args.n_scan, tol=args.tol,
+              engine=args.engine)
     band = None
     if args.samples > 0:
         band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,

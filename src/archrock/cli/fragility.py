@@ -5,31 +5,49 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import emit_json, non_negative_int
+from ._parser import EXIT_INTERRUPTED, PROG, _int, emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, figure_arg, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
 
 
 def add_fragility_parser(subparsers):
     p = subparsers.add_parser(
         "fragility", help="IDA and multiple-stripe fragility over accelerograms (and random arches)",
-        description="IM = PGA of the scaled record [g]. IDA: per record (and arch), scan the scale "
+        description="IM = PGA of the scaled record [g] (--im: PGV, Sa(T), Arias). IDA: per record (and arch), scan the scale "
                     "factors, bisect the first collapse, report survivals above it; lognormal fit "
                     "by moments (censored MLE when some never collapse). Multiple stripes at "
                     "--levels (default: 8 levels spanning the IDA first collapses): binomial MLE.")
     add_geometry_options(p)
-    p.add_argument("--records", nargs="+", required=True, metavar="FILE",
-                   help="accelerograms: PEER .AT2 (g) or two-column 'time accel' files (g)")
+    p.add_argument("--records", nargs="+", required=True, metavar="FILE|DIR",
+                   help="accelerograms: PEER .AT2 (g) or two-column 'time accel' files (g), or "
+                        "folders of .AT2 files (a record suite); each read once, its sha256 in "
+                        "the JSON")
+    p.add_argument("--im", default="pga", metavar="pga|pgv|sa:T|arias|scale",
+                   help="intensity measure of the fits, levels and plot: PGA [g] (default), PGV "
+                        "[m/s], Sa(T, 5%%) [g] at period T [s], Arias intensity [m/s], or the "
+                        "scale factor")
     p.add_argument("--units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of two-column records (default g)")
     p.add_argument("--scales", default="0.1:3:30", metavar="LO:HI:N|A,B,...",
                    help="IDA scale factors (default 0.1:3:30)")
     p.add_argument("--levels", default=None, metavar="LO:HI:N|A,B,...",
-                   help="stripe PGA levels [g] (default: 8 levels around the IDA first collapses)")
+                   help="stripe IM levels (--im units; default: 8 levels around the IDA first "
+                        "collapses)")
     add_random_arches_options(p, "random arches (0 = the nominal arch only, default)")
     add_impact_options(p)
     p.add_argument("--bootstrap", type=non_negative_int, default=200, metavar="N",
                    help="bootstrap resamples for confidence bands (0 = none, or >= 2; default 200)")
+    p.add_argument("--engine", choices=("batch", "respond"), default="batch",
+                   help="batch (default): every arch x record x scale of a search step in one "
+                        "parallel call; respond: response after response (0.1.0's path); the "
+                        "results are identical")
+    p.add_argument("--workers", type=_int, default=1, metavar="N",
+                   help="1: in-process (numba threads, default); N > 1: local process pool")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on an existing Dask cluster (needs archrock[dask])")
+    p.add_argument("--out", metavar="DIR",
+                   help="keep every finished response in DIR (Parquet + manifest.json); the same "
+                        "command after an interruption resumes (batch engine)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress on stderr (shown for runs estimated above a few seconds)")
@@ -40,7 +58,8 @@ def add_fragility_parser(subparsers):
 
 def run_fragility(args) -> int:
     from ..curves import parse_range
-    from ..groundmotion import load_record
+    from ..groundmotion.intensity import parse_im
+    from ..groundmotion.suite import read_records
     from ..ida import default_stripe_levels, ida, msa, random_models
     from ..reports.fragility import format_fragility, fragility_summary
     from ..response import prepare
@@ -49,18 +68,38 @@ def run_fragility(args) -> int:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
-    records = [load_record(f, units=args.units) for f in args.records]
+    if args.workers < 1:
+        raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
+    if args.engine == "respond" and (args.workers > 1 or args.scheduler):
+        raise ArchInputError("engine: 'respond' runs in this process only; allowed --workers "
+                             "and --scheduler with --engine batch")
+    im = parse_im(args.im)
+    suite = read_records(args.records, units=args.units)
+    records = list(suite.records)
     scales = parse_range(args.scales, "scales")
     impact = impact_spec_from_args(args)
     models = (random_models(nominal, args.samples, args.seed, spreads(args), impact)
               if args.samples > 0 else [prepare(nominal, impact)])
     boot = args.bootstrap
-    res_ida = ida(records, models, scales, n_boot=boot, seed=args.seed,
-                  progress=not args.no_progress)
-    levels = (parse_range(args.levels, "levels") if args.levels
-              else default_stripe_levels(res_ida, scales, records))
-    res_msa = msa(records, models, levels, n_boot=boot, seed=args.seed,
-                  progress=not args.no_progress)
+    out = folder_arg(args.out)
+    if out is not None and args.engine == "respond":
+        raise ArchInputError("out: kept by the batch engine; allowed --out with --engine batch")
+    run = dict(engine=args.engine, workers=args.workers if args.workers > 1 else None,
+               scheduler=args.scheduler, out=out) if args.engine == "batch" \
+        else dict(engine="respond")
+    try:
+        res_ida = ida(records, models, scales, im=im, n_boot=boot, seed=args.seed,
+                      progress=not args.no_progress, **run)
+        levels = (parse_range(args.levels, "levels") if args.levels
+                  else default_stripe_levels(res_ida, scales, records))
+        res_msa = msa(records, models, levels, im=im, n_boot=boot, seed=args.seed,
+                      progress=not args.no_progress, **run)
+    except KeyboardInterrupt:
+        kept = ("nothing was kept (give --out DIR to keep finished responses and resume)"
+                if out is None else f"the finished responses are kept in {out}; the same "
+                                    f"command resumes from them")
+        print(f"{PROG}: interrupted; {kept}", file=sys.stderr)
+        return EXIT_INTERRUPTED
     if plot:
         from ..plots import plot_fragility
 
@@ -69,7 +108,7 @@ def run_fragility(args) -> int:
     if args.json:
         emit_json(fragility_summary(res_ida, res_msa, arch_name=nominal.name, records=records,
                                     n_arches=len(models), impact=impact,
-                                    cv=impact.resolved(nominal).cv))
+                                    cv=impact.resolved(nominal).cv, suite=suite))
         return 0
     print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
                            n_arches=len(models), n_requested=args.samples))

@@ -2,18 +2,24 @@
 
 from __future__ import annotations
 
+from ..groundmotion.intensity import im_label, im_units
 from ._common import format_ci, format_failed, format_left_out, impact_summary
 
 __all__ = ["fragility_summary", "format_fragility"]
 
 
 def fragility_summary(ida_result, stripes, *, arch_name: str, records, n_arches: int, impact,
-                      cv: float | None = None) -> dict:
+                      cv: float | None = None, suite=None, engine: dict | None = None) -> dict:
     """JSON-ready summary (the ``archrock fragility --json`` object) of an IDAResult and a
-    StripeResult over ``records`` (GroundMotion) and ``n_arches`` analysed arches."""
+    StripeResult over ``records`` (GroundMotion) and ``n_arches`` analysed arches; ``suite``
+    (:class:`archrock.groundmotion.suite.RecordSuite`): the files read, with their sha256;
+    ``engine``: how the responses were run."""
     return {"arch": arch_name, "records": [r.name for r in records],
-            "n_arches": n_arches, "im": "pga_g",
+            "n_arches": n_arches, "im": ida_result.im,
+            "im_units": im_units(ida_result.im),
+            "record_files": None if suite is None else suite.to_dict(),
             "impact": impact_summary(impact, cv),
+            **({} if engine is None else {"engine": engine}),
             "ida": ida_result.to_dict(),
             "stripes": stripes.to_dict()}
 
@@ -22,10 +28,12 @@ def format_fragility(ida_result, stripes, *, arch_name: str, n_records: int, n_a
                      n_requested: int) -> str:
     """Readable report: first collapse per record and arch, both fits, stripe counts.
     n_requested: random arches asked for (for the line on those left out)."""
-    lines = [f"{arch_name}: {n_records} record(s) x {n_arches} arch(es); IM = PGA [g]"]
+    im = ida_result.im
+    u = "" if im == "scale" else " " + im_units(im)
+    lines = [f"{arch_name}: {n_records} record(s) x {n_arches} arch(es); IM = {im_label(im)}"]
     lines += format_failed(ida_result.failed, n_requested)
     for c in ida_result.curves:
-        fc = "never" if c.first_im is None else f"{c.first_im:.4f} g (scale {c.first_scale:.4f})"
+        fc = "never" if c.first_im is None else f"{c.first_im:.4f}{u} (scale {c.first_scale:.4f})"
         sa = ", ".join(f"{s:g}" for s in c.survivals_above) or "-"
         lines.append(f"  arch {c.arch} {c.record[:40]:<40} first collapse {fc}; "
                      f"survives above at scales {sa}")
@@ -36,8 +44,8 @@ def format_fragility(ida_result, stripes, *, arch_name: str, n_records: int, n_a
         if r.fit is None:
             lines.append(f"{name}: no fit ({r.fit_error})")
         else:
-            lines.append(f"{name}: {r.fit.method} theta = {r.fit.theta:.4f} g, "
+            lines.append(f"{name}: {r.fit.method} theta = {r.fit.theta:.4f}{u}, "
                          f"beta = {r.fit.beta:.3f} (n = {r.fit.n_records}){format_ci(r.fit)}")
-    lines.append("stripes: " + ", ".join(f"{x:.3f} g {z}/{n}" for x, z, n in
+    lines.append("stripes: " + ", ".join(f"{x:.3f}{u} {z}/{n}" for x, z, n in
                                          zip(stripes.levels, stripes.collapses, stripes.trials)))
     return "\n".join(lines)

@@ -1,0 +1,91 @@
+"""A record suite: a folder of accelerograms read once, each with its file's sha256.
+
+A fragility study runs every record of a suite on every arch at many scale factors.  The suite is
+read here once (:func:`read_suite`); the study packs the records end to end
+(:class:`archrock.sweep.SweepMotions`) and hands them to every worker once, and the results name
+each record with the sha256 of its file, so a result can be traced to the exact files.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import ArchInputError
+from .motion import GroundMotion
+from .records import load_record
+
+__all__ = ["RecordSuite", "read_suite", "read_records", "file_sha256"]
+
+#: suffixes of the record files a suite folder holds (any case)
+SUITE_SUFFIXES = (".at2",)
+
+
+def file_sha256(path) -> str:
+    """sha256 of a file's bytes (hex)."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+@dataclass(frozen=True, eq=False)
+class RecordSuite:
+    """Records read from files: ``records[i]`` from ``files[i]`` with ``sha256[i]``."""
+
+    records: tuple
+    files: tuple
+    sha256: tuple
+
+    def __len__(self) -> int:
+        return len(self.records)
+
+    def __iter__(self):
+        return iter(self.records)
+
+    def to_dict(self) -> list:
+        return [{"name": r.name, "file": f, "sha256": h, "pga_g": r.pga_g,
+                 "duration": float(r.times[-1])}
+                for r, f, h in zip(self.records, self.files, self.sha256)]
+
+
+def read_suite(folder, units: str | None = None) -> RecordSuite:
+    """Every PEER ``.AT2`` file of ``folder`` (not its subfolders), in file-name order."""
+    p = Path(folder)
+    if not p.is_dir():
+        raise ArchInputError(f"records: {str(folder)!r} is not a folder; allowed a folder of "
+                             f"PEER .AT2 files")
+    files = sorted(f for f in p.iterdir() if f.is_file() and f.suffix.lower() in SUITE_SUFFIXES)
+    if not files:
+        raise ArchInputError(f"records: no .AT2 file in the folder {str(folder)!r}; allowed a "
+                             f"folder holding PEER .AT2 files")
+    return read_records(files, units)
+
+
+def read_records(paths, units: str | None = None) -> RecordSuite:
+    """Record files and folders (a folder stands for its :func:`read_suite`), in the order given,
+    each read once; two paths naming the same file are refused."""
+    records, files, shas = [], [], []
+    for path in paths:
+        p = Path(path)
+        if p.is_dir():
+            s = read_suite(p, units)
+            records += s.records
+            files += s.files
+            shas += s.sha256
+            continue
+        gm = load_record(p, units=units)
+        records.append(gm)
+        files.append(str(p))
+        shas.append(file_sha256(p))
+    seen = {}
+    for f, h in zip(files, shas):
+        key = str(Path(f).resolve())
+        if key in seen:
+            raise ArchInputError(f"records: {f!r} is given twice; allowed each record once")
+        seen[key] = h
+    if not records or not all(isinstance(r, GroundMotion) for r in records):
+        raise ArchInputError("records: allowed at least one record file or folder")
+    return RecordSuite(tuple(records), tuple(str(f) for f in files), tuple(shas))
