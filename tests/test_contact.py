@@ -123,11 +123,20 @@ def test_ramp_mirror_symmetry_of_an_irregular_arch():
     assert r_l.multiplier == pytest.approx(lim.k_l, rel=0.05)
 
 
-def test_low_friction_slides_before_it_rocks():
+def test_low_friction_slides_where_and_when_the_friction_limit_analysis_says():
+    """Two independent methods: the engine's ramp and the static LP with Coulomb rows
+    (archrock.friction). Oppenheim's arch needs 0.4951; with mu = 0.3 both slide first, at the
+    springing the loads push toward (joint 7 for M_l), at lambda 0.1472 (LP) and 0.1466 (engine,
+    default settings)."""
+    from archrock.friction import friction_analysis
+
     a = oppenheim_arch()
-    r = ramp_direction(a, "l", COARSE.replace(friction=0.3), **FAST_RAMP)
+    lp = friction_analysis(a, 0.3).l
+    assert lp.sliding_governs and lp.joints == (7,)
+    r = ramp_direction(a, "l", EngineSettings(friction=0.3), tol=0.01)  # default engine
     assert r.mode == "sliding" and r.hinges == ()
-    assert r.sliding_joints and r.multiplier < 0.6 * 0.370010
+    assert r.sliding_joints == (7,)
+    assert r.multiplier == pytest.approx(lp.multiplier, rel=0.03)
 
 
 def test_engine_settings_round_trip_and_bad_input():
