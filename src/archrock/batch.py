@@ -45,7 +45,8 @@ __all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch
            "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
 
 #: status codes of :func:`simulate_batch` (those of the kernel, plus -1 not run / failed).
-STATUS_NAMES = {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}
+STATUS_NAMES = {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving",
+                K.ST_STOPPED: "stopped"}
 ST_NOT_RUN = -1
 #: event-table size per response in the batch kernel (the paper's pulse needs about 100).  The
 #: kernel keeps integrating past it (status, peak and times stay exact); only the counts of
@@ -529,7 +530,7 @@ def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
 @maybe_njit
 def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                   v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns,
-                  t_lim, n_imp, n_act, n_ev):
+                  t_lim, n_imp, n_act, n_ev, early_stop):
     """Integrate arch b over its chain and write its summary into the output arrays (shared by
     both loops)."""
     R = n_rows[b]
@@ -542,10 +543,10 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
     else:
         rows = geos[b, :R].copy()
     # kernel modes are rows + 1 (0 = rest)
-    _, ev, ne, st, tf, pk, tc, tu = K.simulate_chain(
+    _, ev, ne, st, tf, pk, tc, tu = K.simulate_chain_stop(
         rows, lims[b, :R].copy(), phus[b, :R].copy(), dirs[b, :R].copy(), nexts[b, :R] + 1,
         ratios[b, :R].copy(), k_l[b], k_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free,
-        max_events)
+        max_events, early_stop)
     m = min(ne, max_events)
     ni = 0
     na = 0
@@ -566,24 +567,24 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
 
 def _simulate_loop_py(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                       v_rest, run, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                      t_uns, t_lim, n_imp, n_act, n_ev):
+                      t_uns, t_lim, n_imp, n_act, n_ev, early_stop):
     for b in range(geos.shape[0]):
         if run[b]:
             _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                           v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                          t_uns, t_lim, n_imp, n_act, n_ev)
+                          t_uns, t_lim, n_imp, n_act, n_ev, early_stop)
 
 
 if HAVE_NUMBA:
     @maybe_njit(parallel=True)
     def _simulate_loop_nb(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                           v_rest, run, times, accel, g, dt, t_free, max_events, status, peak,
-                          t_col, t_uns, t_lim, n_imp, n_act, n_ev):
+                          t_col, t_uns, t_lim, n_imp, n_act, n_ev, early_stop):
         for b in numba.prange(geos.shape[0]):
             if run[b]:
                 _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts,
                               ratios, v_rest, times, accel, g, dt, t_free, max_events, status,
-                              peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev)
+                              peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev, early_stop)
 
     _simulate_loop_serial = maybe_njit(_simulate_loop_py)
 else:  # pragma: no cover - without numba
@@ -592,7 +593,8 @@ else:  # pragma: no cover - without numba
 
 def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float = 2e-3,
                    t_free: float = 60.0, max_events: int = MAX_EVENTS, parallel: bool = True,
-                   tabulate: bool = True, table_intervals: int = 600) -> dict:
+                   tabulate: bool = True, table_intervals: int = 600,
+                   early_stop: bool = False) -> dict:
     """Response of every usable arch of ``prepared`` to ``motion`` (RK4 kernel, step ``dt`` [s],
     free motion after the record at most ``t_free`` [s]).
 
@@ -607,6 +609,12 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     per arch inside the loop; otherwise the exact loop closure.
     ``parallel`` uses the numba prange loop (all numba threads); otherwise a serial compiled loop
     (for process-pool or Dask workers); a Python loop when numba is absent.
+    ``early_stop``: an arch is no longer followed from the first impact after the ground motion
+    from which it can neither collapse nor exceed its peak (:func:`archrock.kernel.cannot_collapse`:
+    energy below every reachable mechanism's barrier under impacts that never add energy); its
+    status is then 3 ("stopped", ``early_stopped`` True): not collapsed, peak and t_unstable
+    final, n_impacts / n_activations only those before the stop, no time of rest.  Status,
+    collapse and peak of every arch are those of the full run.
     """
     if not isinstance(motion, GroundMotion):
         raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
@@ -632,7 +640,7 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
             np.ascontiguousarray(p.chain_ratio, dtype=float), p.v_rest, run, times, accel, G,
             float(dt), float(t_free), int(max_events), res["status"], res["peak"],
             res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_impacts"],
-            res["n_activations"], res["n_events"])
+            res["n_activations"], res["n_events"], bool(early_stop))
     if HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:
@@ -640,5 +648,6 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     for key in ("t_collapse", "t_limit", "t_unstable"):
         res[key][res[key] < 0] = np.nan
     res["events_truncated"] = res.pop("n_events") > int(max_events)
+    res["early_stopped"] = res["status"] == K.ST_STOPPED
     res["seconds"] = time.perf_counter() - t0
     return res
