@@ -100,7 +100,9 @@ def _outcomes(df, motion: bool) -> dict:
            "counts": counts,
            "shares": {k: (v / n if n else None) for k, v in counts.items()}}
     if motion:
-        out["integrated"] = {k: int((status == k).sum()) for k in INTEGRATED}
+        # "stopped" (early stop) only when there is one: other ensembles' summaries unchanged
+        out["integrated"] = {k: int((status == k).sum()) for k in INTEGRATED
+                             if k != "stopped" or (status == k).any()}
     return out
 
 
@@ -125,7 +127,13 @@ class EnsembleResult:
     out_dir: str | None = None
 
     def summary(self, confidence: float = 0.95) -> dict:
-        """JSON-ready summary (definitions in the module docstring)."""
+        """JSON-ready summary (definitions in the module docstring); from the stored batches
+        (:func:`archrock.ensemble.streaming.summarize_store`) when no frame is kept."""
+        if self.frame is None:
+            from .streaming import summarize_store
+
+            return summarize_store(self.out_dir, self.config, self.nominal, self.impact,
+                                   self.timing, confidence)
         df = self.frame
         kl_all, kr_all = df["k_l"].to_numpy(), df["k_r"].to_numpy()
         # a standing arch by limit analysis (k <= 0: "cannot stand", a failed sample)
