@@ -221,3 +221,26 @@ def test_ensemble_early_stop_column_and_summary():
     # the flag is in the configuration only when set: other hashes are unchanged
     assert "early_stop" not in full.config.to_dict() and cfg.to_dict()["early_stop"] is True
     assert EnsembleConfig.from_dict(cfg.to_dict()) == cfg
+
+
+@pytest.mark.slow
+def test_no_numba_early_stop_is_the_compiled_one(without_numba):
+    """The pure-Python kernel stops the same arches with the same outcome and peak."""
+    script = textwrap.dedent("""
+        import json
+        from archrock.batch import prepare_batch, simulate_batch
+        from archrock.geometry import oppenheim_arch
+        from archrock.groundmotion import PulseSpec
+        from archrock.sampling import ArchSampler
+        s, t, r = ArchSampler(oppenheim_arch(), seed=9).draw(0, 6)
+        res = simulate_batch(prepare_batch(s, r, t, 2000.0, impact=0.8754),
+                             PulseSpec("oppenheim", -1.0, 0.2).build(), early_stop=True)
+        print(json.dumps({k: res[k].tolist() for k in ("status", "peak", "n_impacts")}))
+    """)
+    got = json.loads(without_numba("-c", script).strip().splitlines()[-1])
+    s, t, r = ArchSampler(oppenheim_arch(), seed=9).draw(0, 6)
+    res = simulate_batch(prepare_batch(s, r, t, 2000.0, impact=0.8754), PULSE.build(),
+                         early_stop=True)
+    assert got["status"] == res["status"].tolist() and K.ST_STOPPED in got["status"]
+    assert got["n_impacts"] == res["n_impacts"].tolist()
+    np.testing.assert_allclose(got["peak"], res["peak"], rtol=1e-12)
