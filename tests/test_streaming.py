@@ -82,3 +82,20 @@ def test_keep_frame_false_needs_a_folder():
     cfg = EnsembleConfig.from_arch(oppenheim_arch(), samples=2)
     with pytest.raises(ArchInputError, match="keep_frame"):
         run_ensemble(cfg, progress=False, keep_frame=False)
+
+
+def test_cli_low_memory_prints_the_same_summary(tmp_path, capsys):
+    import json
+
+    from archrock.cli import main
+
+    args = ["ensemble", "--samples", "40", "--batch-size", "15", "--pulse", "oppenheim",
+            "--amplitude", "-1", "--pulse-duration", "0.2", "--cv", "0.8754", "--json",
+            "--no-progress", "--out", str(tmp_path / "o")]
+    assert main(args) == 0
+    ref = json.loads(capsys.readouterr().out)
+    assert main(args + ["--low-memory"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    got.pop("streamed"), ref.pop("timing"), got.pop("timing")
+    _close(ref, got)
+    assert main(["ensemble", "--samples", "4", "--low-memory", "--no-progress"]) == 2

@@ -42,6 +42,10 @@ def add_ensemble_parser(subparsers):
                         "below every mechanism's barrier under an impact law that adds no energy: "
                         "collapse and peak as in the full run, impacts and rest not followed "
                         "(status 'stopped', column early_stopped)")
+    p.add_argument("--low-memory", action="store_true",
+                   help="keep no per-sample table in memory (needs --out; not with --plot): each "
+                        "batch is written and dropped and the summary is read back from the "
+                        "stored batches, exactly (for 10^7 arches and more)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="histograms of k_l and k_r")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
@@ -69,6 +73,9 @@ def run_ensemble_cmd(args) -> int:
     given = [f for f, v in (("--cv", args.cv), ("--impact", args.impact),
                             ("--impact-on", args.impact_on),
                             ("--literal-cv", args.literal_cv or None)) if v is not None]
+    if args.low_memory and (out is None or plot):
+        raise CLIError("--low-memory: needs --out DIR (the summary is read from the stored "
+                       "batches) and cannot draw --plot (the histograms need every sample)")
     if args.early_stop and motion is None:
         raise CLIError("--early-stop: unused without a ground motion; give --pulse ... or "
                        "--record FILE, or drop --early-stop")
@@ -83,7 +90,8 @@ def run_ensemble_cmd(args) -> int:
                                       early_stop=bool(args.early_stop))
     try:
         result = run_ensemble(config, out_dir=out, workers=args.workers,
-                              scheduler=args.scheduler, progress=not args.no_progress)
+                              scheduler=args.scheduler, progress=not args.no_progress,
+                              keep_frame=not args.low_memory)
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; " + _kept(out, config.n_batches), file=sys.stderr)
         return EXIT_INTERRUPTED
