@@ -244,3 +244,12 @@ def test_no_numba_early_stop_is_the_compiled_one(without_numba):
     assert got["status"] == res["status"].tolist() and K.ST_STOPPED in got["status"]
     assert got["n_impacts"] == res["n_impacts"].tolist()
     np.testing.assert_allclose(got["peak"], res["peak"], rtol=1e-12)
+
+
+def test_degenerate_four_bar_is_reported_by_the_parallel_loop_too():
+    """A division by zero inside prange (massless voussoirs) surfaces as the serial path's
+    per-arch error, not as a SystemError or NaN models."""
+    s, t, r = ArchSampler(oppenheim_arch(), seed=1).draw(0, 4)
+    for parallel in (True, False):
+        pb = prepare_batch(s, r, t, 0.0, impact=0.8, parallel=parallel)
+        assert pb.error.tolist() == ["four-link model: degenerate four-bar (division by zero)"] * 4

@@ -410,7 +410,24 @@ def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, s
             out["m0_r"], out["v_rest"], err_l, err_r, tab_l, tab_r)
     try:
         if parallel and _prepare_loop_nb is not None:
-            _prepare_loop_nb(*loop_args, ok, *outs)
+            try:
+                _prepare_loop_nb(*loop_args, ok, *outs)
+            except (ZeroDivisionError, FloatingPointError, SystemError):
+                # an exception inside prange may surface as SystemError ("returned a result
+                # with an exception set"): the serial per-arch pass below finds the culprits
+                # (and re-raises anything else)
+                raise ZeroDivisionError from None
+            # inside prange a division by zero gives inf/nan instead of ZeroDivisionError: the
+            # rows with a non-finite result are redone by the serial loop, which raises as the
+            # one-arch path does (and is the reference for every row anyway)
+            done = ok & (err_l == 0) & (err_r == 0)
+            finite = (np.isfinite(geo_l).all(axis=1) & np.isfinite(geo_r).all(axis=1)
+                      & np.isfinite(tab_l).all(axis=1) & np.isfinite(tab_r).all(axis=1))
+            for v in out.values():
+                finite &= np.isfinite(v)
+            redo = done & ~finite
+            if redo.any():
+                _prepare_loop(*loop_args, redo, *outs)
         else:
             _prepare_loop(*loop_args, ok, *outs)
     except (ZeroDivisionError, FloatingPointError):
