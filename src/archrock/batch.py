@@ -34,7 +34,7 @@ from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError, ArchrockError
 from .impact import ImpactSpec
-from .geometry import Arch, sector_properties
+from .geometry import Arch, power_of_two_near, sector_properties
 from .groundmotion import G, GroundMotion
 from .limit import (_mechanism_from_candidate, candidate_hinges, kinematic_multipliers_arches,
                     kinematic_multipliers_batch)
@@ -45,7 +45,8 @@ __all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch
            "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
 
 #: status codes of :func:`simulate_batch` (those of the kernel, plus -1 not run / failed).
-STATUS_NAMES = {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}
+STATUS_NAMES = {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving",
+                K.ST_STOPPED: "stopped"}
 ST_NOT_RUN = -1
 #: event-table size per response in the batch kernel (the paper's pulse needs about 100).  The
 #: kernel keeps integrating past it (status, peak and times stay exact); only the counts of
@@ -83,32 +84,52 @@ def mechanism_label(n: int, candidate: int) -> str:
 
 
 @maybe_njit
-def _prepare_loop(px, py, mass, cen, inert, jl, el, jr, er, ok, geo_l, geo_r,
-                  phu_l, phu_r, lim_l, lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r):
-    B = px.shape[0]
-    for b in range(B):
-        if not ok[b]:
-            continue
-        err_l[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jl[b], el[b], False,
-                                 geo_l[b])
-        err_r[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jr[b], er[b], True,
-                                 geo_r[b])
-        if err_l[b] != 0 or err_r[b] != 0:
-            continue
-        for side in range(2):
-            geo = geo_l[b] if side == 0 else geo_r[b]
-            dead = dead_point(geo)
-            phu = unstable_rotation(geo, dead)
-            lim = rotation_limit(phu, dead)
-            start, top = table_range(geo, lim, dead)
-            M0 = coefficients(0.0, geo)[0]
-            if side == 0:
-                phu_l[b], lim_l[b], m0_l[b] = phu, lim, M0
-                tab_l[b, 0], tab_l[b, 1] = start, top
-            else:
-                phu_r[b], lim_r[b], m0_r[b] = phu, lim, M0
-                tab_r[b, 0], tab_r[b, 1] = start, top
-        v_rest[b] = rest_rate(geo_l[b], phu_l[b], phu_r[b], G)
+def _prepare_one(b, px, py, mass, cen, inert, jl, el, jr, er, geo_l, geo_r, phu_l, phu_r, lim_l,
+                 lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r):
+    """Four-link vectors, unstable rotations, limits, table ranges and v_rest of arch b."""
+    err_l[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jl[b], el[b], False,
+                             geo_l[b])
+    err_r[b] = mechanism_geo(px[b], py[b], mass[b], cen[b], inert[b], jr[b], er[b], True,
+                             geo_r[b])
+    if err_l[b] != 0 or err_r[b] != 0:
+        return
+    for side in range(2):
+        geo = geo_l[b] if side == 0 else geo_r[b]
+        dead = dead_point(geo)
+        phu = unstable_rotation(geo, dead)
+        lim = rotation_limit(phu, dead)
+        start, top = table_range(geo, lim, dead)
+        M0 = coefficients(0.0, geo)[0]
+        if side == 0:
+            phu_l[b], lim_l[b], m0_l[b] = phu, lim, M0
+            tab_l[b, 0], tab_l[b, 1] = start, top
+        else:
+            phu_r[b], lim_r[b], m0_r[b] = phu, lim, M0
+            tab_r[b, 0], tab_r[b, 1] = start, top
+    v_rest[b] = rest_rate(geo_l[b], phu_l[b], phu_r[b], G)
+
+
+def _prepare_loop_py(px, py, mass, cen, inert, jl, el, jr, er, ok, geo_l, geo_r, phu_l, phu_r,
+                     lim_l, lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r):
+    for b in range(px.shape[0]):
+        if ok[b]:
+            _prepare_one(b, px, py, mass, cen, inert, jl, el, jr, er, geo_l, geo_r, phu_l, phu_r,
+                         lim_l, lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r)
+
+
+if HAVE_NUMBA:
+    @maybe_njit(parallel=True)
+    def _prepare_loop_nb(px, py, mass, cen, inert, jl, el, jr, er, ok, geo_l, geo_r, phu_l,
+                         phu_r, lim_l, lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r):
+        for b in numba.prange(px.shape[0]):
+            if ok[b]:
+                _prepare_one(b, px, py, mass, cen, inert, jl, el, jr, er, geo_l, geo_r, phu_l,
+                             phu_r, lim_l, lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r)
+
+    _prepare_loop = maybe_njit(_prepare_loop_py)
+else:  # pragma: no cover - without numba
+    _prepare_loop = _prepare_loop_py
+    _prepare_loop_nb = None
 
 
 # ---------------------------------------------------------------------------- preparation
@@ -212,7 +233,7 @@ def _is_arch_sequence(values) -> bool:
 
 
 def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, impact=None,
-                  cv: float | None = None, *, nominal=None) -> PreparedBatch:
+                  cv: float | None = None, *, nominal=None, parallel: bool = True) -> PreparedBatch:
     """Limit analysis, four-link models, rotation limits and impact law of a batch of arches.
 
     Either spans [rad], radii [m], thicknesses [m]: arrays (B, n) with the same n (circular
@@ -226,27 +247,32 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
     :class:`~archrock.impact.ImpactSpec` or what ``ImpactSpec.parse`` reads (with ``cv``), as
     for :func:`archrock.response.prepare`: a fixed c_v (applied energy-consistently, c = cv
     sqrt(M_old(0)/M_new(0)), or to the rates with ``literal``, docs/method.md, Impact), "paper" or
-    "momentum" (per geometry, through :func:`archrock.impact.impact_law`; a geometry on which
-    "paper" creates energy gets an error instead of a law), or "least-loss" (each arch's chain of
-    mechanisms from ``archrock.response.prepare(arch, "least-loss")``, arch by arch in Python:
-    about 0.1 s each).  A spec evaluated on the nominal arch needs ``nominal`` (an Arch).
+    "momentum" (per geometry, compiled for the whole batch by
+    :func:`archrock.impact.compiled.rate_ratios_batch`, the numbers of
+    :func:`archrock.impact.impact_law`; a geometry on which "paper" creates energy gets an error
+    instead of a law), or "least-loss" (each arch's chain of mechanisms from
+    ``archrock.response.prepare(arch, "least-loss")``, arch by arch in Python: about 0.1 s
+    each).  A spec evaluated on the nominal arch needs ``nominal`` (an Arch).
+    ``parallel``: the limit analysis, the four-link loop and the impact laws spread the arches
+    over the numba threads (the results do not depend on it); False for process-pool or Dask
+    workers, which run one batch each.
     Arch objects together with radii/thicknesses arrays, or polylines as arrays, are refused with
     an :class:`~archrock.errors.ArchInputError`.
     """
     t0 = time.perf_counter()
     if radii is None and thicknesses is None and _is_arch_sequence(spans):
-        return _prepare_arches(spans, impact, cv, nominal, t0)
+        return _prepare_arches(spans, impact, cv, nominal, t0, parallel)
     if radii is None or thicknesses is None:
         raise ArchInputError(f"radii, thicknesses: needed with arrays of spans; {_NOT_CIRCULAR}")
     spans, radii, thick = (_circular_rows(name, v) for name, v in (
         ("spans", spans), ("radii", radii), ("thicknesses", thicknesses)))
     spec = _spec(impact, cv, nominal)
-    impact, cv = spec.model, spec.cv
     B, n = spans.shape
     error = check_geometries(spans, radii, thick)
     ok = error == ""
     k_l, k_r, cand_l, cand_r = _multipliers(
-        B, ok, lambda: kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok]))
+        B, ok, lambda: kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok],
+                                                   parallel=parallel))
     _limit_errors(k_l, k_r, ok, error)
     ok = error == ""
     t1 = time.perf_counter()
@@ -264,8 +290,10 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
     mass = np.ascontiguousarray(density * p["area"])
     cen = np.ascontiguousarray(p["centroid"])
     inert = np.ascontiguousarray(density * p["polar"])
-    return _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec,
-                   lambda b: Arch(spans[b], radii[b], thick[b], density), t0, t1)
+    # Arch.reference_length of each row: the power of two nearest its mean radius
+    ref = np.asarray(power_of_two_near(np.mean(r_, axis=1)), float).reshape(B)
+    return _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, spec,
+                   lambda b: Arch(spans[b], radii[b], thick[b], density), t0, t1, parallel)
 
 
 def _spec(impact, cv, nominal):
@@ -299,7 +327,7 @@ def _limit_errors(k_l, k_r, ok, error):
         error[b] = f"limit analysis: the arch cannot stand (k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})"
 
 
-def _prepare_arches(arches, impact, cv, nominal, t0) -> PreparedBatch:
+def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedBatch:
     """prepare_batch of a sequence of arches of any shape (see there)."""
     from .geometry import VoussoirArch
 
@@ -320,7 +348,7 @@ def _prepare_arches(arches, impact, cv, nominal, t0) -> PreparedBatch:
             error[b] = why if why.startswith("geometry:") else "geometry: " + why
     ok = error == ""
     k_l, k_r, cand_l, cand_r = _multipliers(
-        B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good]))
+        B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good], parallel=parallel))
     _limit_errors(k_l, k_r, ok, error)
     ok = error == ""
     t1 = time.perf_counter()
@@ -338,22 +366,37 @@ def _prepare_arches(arches, impact, cv, nominal, t0) -> PreparedBatch:
     mass = np.ascontiguousarray(np.stack([np.asarray(a.masses, float) for a in rows]))
     cen = np.ascontiguousarray(np.stack([np.asarray(a.centroids, float) for a in rows]))
     inert = np.ascontiguousarray(np.stack([np.asarray(a.inertias, float) for a in rows]))
-    return _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec,
-                   lambda b: items[b], t0, t1)
+    ref = np.array([a.reference_length for a in rows], dtype=float)
+    return _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, spec,
+                   lambda b: items[b], t0, t1, parallel)
 
 
-def _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec, arch_of, t0,
-            t1) -> PreparedBatch:
+def _hinge_arrays(n, cand):
+    """Joints and edges (B, 4) of candidates ``cand`` (B,), and their compact labels (B,):
+    unranked once per distinct candidate (a batch has a few dozen), then gathered."""
+    uniq, inv = np.unique(cand, return_inverse=True)
+    inv = inv.reshape(-1)
+    joints = np.empty((uniq.size, 4), dtype=np.int64)
+    edges = np.empty((uniq.size, 4), dtype=np.int64)
+    labels = np.empty(uniq.size, dtype=object)
+    for u, c in enumerate(uniq.tolist()):
+        joints[u], edges[u] = candidate_hinges(n, c)
+        labels[u] = mechanism_label(n, c)
+    return joints[inv], edges[inv], labels[inv]
+
+
+def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, spec, arch_of, t0,
+            t1, parallel=True) -> PreparedBatch:
     """The four-link models, rotation limits, tables and impact law of a batch whose limit
-    analysis is done (both paths); ``arch_of(b)`` the arch object of row b."""
+    analysis is done (both paths); ``arch_of(b)`` the arch object of row b (least-loss only),
+    ``ref`` (B,) each arch's reference length [m]."""
     impact, cv = spec.model, spec.cv
     B = error.size
     ok = error == ""
     # hinges of each arch's two mechanisms, unranked from the candidate indices (the candidate
     # list itself is never built: 14 C(n+1, 4) entries)
-    hinges = {c: candidate_hinges(n, c) for c in set(cand_l.tolist()) | set(cand_r.tolist())}
-    jl, el, jr, er = (np.array([hinges[int(c)][k] for c in cand], dtype=np.int64).reshape(B, 4)
-                      for cand in (cand_l, cand_r) for k in (0, 1))
+    jl, el, lab_l = _hinge_arrays(n, cand_l)
+    jr, er, lab_r = _hinge_arrays(n, cand_r)
     geo_l = np.full((B, GEO_SIZE), np.nan)
     geo_r = np.full((B, GEO_SIZE), np.nan)
     out = {name: np.full(B, np.nan) for name in
@@ -366,7 +409,27 @@ def _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec, 
     outs = (geo_l, geo_r, out["phu_l"], out["phu_r"], out["lim_l"], out["lim_r"], out["m0_l"],
             out["m0_r"], out["v_rest"], err_l, err_r, tab_l, tab_r)
     try:
-        _prepare_loop(*loop_args, ok, *outs)
+        if parallel and _prepare_loop_nb is not None:
+            try:
+                _prepare_loop_nb(*loop_args, ok, *outs)
+            except (ZeroDivisionError, FloatingPointError, SystemError):
+                # an exception inside prange may surface as SystemError ("returned a result
+                # with an exception set"): the serial per-arch pass below finds the culprits
+                # (and re-raises anything else)
+                raise ZeroDivisionError from None
+            # inside prange a division by zero gives inf/nan instead of ZeroDivisionError: the
+            # rows with a non-finite result are redone by the serial loop, which raises as the
+            # one-arch path does (and is the reference for every row anyway)
+            done = ok & (err_l == 0) & (err_r == 0)
+            finite = (np.isfinite(geo_l).all(axis=1) & np.isfinite(geo_r).all(axis=1)
+                      & np.isfinite(tab_l).all(axis=1) & np.isfinite(tab_r).all(axis=1))
+            for v in out.values():
+                finite &= np.isfinite(v)
+            redo = done & ~finite
+            if redo.any():
+                _prepare_loop(*loop_args, redo, *outs)
+        else:
+            _prepare_loop(*loop_args, ok, *outs)
     except (ZeroDivisionError, FloatingPointError):
         # a degenerate four-bar somewhere: redo arch by arch and record the culprits
         for b in np.flatnonzero(ok):
@@ -377,10 +440,8 @@ def _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec, 
             except (ZeroDivisionError, FloatingPointError):
                 error[b] = "four-link model: degenerate four-bar (division by zero)"
         ok = error == ""
-    mech_l = np.array([mechanism_label(n, int(c)) if ok[b] else "" for b, c in enumerate(cand_l)],
-                      dtype=object)
-    mech_r = np.array([mechanism_label(n, int(c)) if ok[b] else "" for b, c in enumerate(cand_r)],
-                      dtype=object)
+    mech_l = np.where(ok, lab_l, "").astype(object)
+    mech_r = np.where(ok, lab_r, "").astype(object)
     for b in np.flatnonzero(ok & ((err_l != 0) | (err_r != 0))):
         code, m = (err_l[b], "M_l " + mech_l[b]) if err_l[b] != 0 else (err_r[b], "M_r " + mech_r[b])
         error[b] = GEO_ERRORS[int(code)].format(m=m)
@@ -395,8 +456,8 @@ def _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec, 
         c_lr[ok] = cv * ratio[ok]
         c_rl[ok] = cv / ratio[ok]
     elif impact != "least-loss":
-        _impact_per_arch(impact, arch_of, n, k_l, k_r, cand_l, cand_r, ok,
-                         c_lr, c_rl, error)
+        _impact_batch(impact, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, geo_r,
+                      out["m0_l"], out["m0_r"], ok, c_lr, c_rl, error, parallel)
         ok = error == ""
     chain = {}
     if impact == "least-loss":
@@ -409,26 +470,38 @@ def _finish(n, px, py, mass, cen, inert, k_l, k_r, cand_l, cand_r, error, spec, 
                          **chain)
 
 
-def _impact_per_arch(model, arch_of, n, k_l, k_r, cand_l, cand_r, ok, c_lr, c_rl, error):
-    """'paper' / 'momentum' impact laws arch by arch (Python objects); failures recorded."""
-    import warnings
+def _impact_batch(model, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, geo_r, m0_l, m0_r,
+                  ok, c_lr, c_rl, error, parallel):
+    """'paper' / 'momentum' rate ratios of the usable rows, compiled over the batch; the checks
+    and messages of :func:`archrock.impact.impact_law` (only the failing rows are worded)."""
+    from .impact.compiled import SINGULAR, rate_ratios_batch
 
-    from .impact import impact_law
-    from .limit import _mechanism_from_candidate
-    from .mechanism import four_link
-
-    for b in np.flatnonzero(ok):
-        try:
-            arch = arch_of(b)
-            ml = four_link(arch, _mechanism_from_candidate(n, int(cand_l[b]), "l", k_l[b]))
-            mr = four_link(arch, _mechanism_from_candidate(n, int(cand_r[b]), "r", k_r[b]))
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                law = impact_law(ml, mr, model)
-        except ArchrockError as exc:
-            error[b] = " ".join(str(exc).split())
-            continue
-        c_lr[b], c_rl[b] = law.l_to_r, law.r_to_l
+    mref = np.asarray(power_of_two_near(np.sum(mass, axis=1)), float).reshape(-1)
+    lr, rl, code_lr, code_rl = rate_ratios_batch(model, ok, px, py, mass, cen, inert, jl, el, jr,
+                                                 er, geo_l, geo_r, ref, mref, parallel)
+    if model == "paper":
+        singular = ok & ((code_lr == SINGULAR) | (code_rl == SINGULAR))
+        for b in np.flatnonzero(singular):
+            error[b] = ("impact: the 'paper' model's momentum equations are singular for this "
+                        "geometry; use --impact momentum")
+        with np.errstate(invalid="ignore"):
+            e_lr = lr**2 * m0_r / m0_l
+            e_rl = rl**2 * m0_l / m0_r
+            bad = ok & ~singular & ((e_lr > 1.0 + 1e-9) | (lr < 0) | (e_rl > 1.0 + 1e-9) | (rl < 0))
+        for b in np.flatnonzero(bad):
+            for name, e, c in (("l_to_r", e_lr[b], lr[b]), ("r_to_l", e_rl[b], rl[b])):
+                if e > 1.0 + 1e-9:
+                    error[b] = (f"impact {name}: the 'paper' model creates energy on this geometry "
+                                f"(kinetic energy ratio {e:.4f} > 1, rate ratio {c:.4f}); use "
+                                f"--impact momentum or a fixed --cv")
+                    break
+                if c < 0:
+                    error[b] = (f"impact {name}: the 'paper' model gives a negative rate ratio "
+                                f"{c:.4f} on this geometry; use --impact momentum")
+                    break
+    use = error == ""
+    c_lr[use] = lr[use]
+    c_rl[use] = rl[use]
 
 
 def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
@@ -474,7 +547,7 @@ def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
 @maybe_njit
 def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                   v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns,
-                  t_lim, n_imp, n_act, n_ev):
+                  t_lim, n_imp, n_act, n_ev, early_stop):
     """Integrate arch b over its chain and write its summary into the output arrays (shared by
     both loops)."""
     R = n_rows[b]
@@ -487,10 +560,10 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
     else:
         rows = geos[b, :R].copy()
     # kernel modes are rows + 1 (0 = rest)
-    _, ev, ne, st, tf, pk, tc, tu = K.simulate_chain(
+    _, ev, ne, st, tf, pk, tc, tu = K.simulate_chain_stop(
         rows, lims[b, :R].copy(), phus[b, :R].copy(), dirs[b, :R].copy(), nexts[b, :R] + 1,
         ratios[b, :R].copy(), k_l[b], k_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free,
-        max_events)
+        max_events, early_stop)
     m = min(ne, max_events)
     ni = 0
     na = 0
@@ -511,24 +584,24 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
 
 def _simulate_loop_py(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                       v_rest, run, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                      t_uns, t_lim, n_imp, n_act, n_ev):
+                      t_uns, t_lim, n_imp, n_act, n_ev, early_stop):
     for b in range(geos.shape[0]):
         if run[b]:
             _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                           v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                          t_uns, t_lim, n_imp, n_act, n_ev)
+                          t_uns, t_lim, n_imp, n_act, n_ev, early_stop)
 
 
 if HAVE_NUMBA:
     @maybe_njit(parallel=True)
     def _simulate_loop_nb(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
                           v_rest, run, times, accel, g, dt, t_free, max_events, status, peak,
-                          t_col, t_uns, t_lim, n_imp, n_act, n_ev):
+                          t_col, t_uns, t_lim, n_imp, n_act, n_ev, early_stop):
         for b in numba.prange(geos.shape[0]):
             if run[b]:
                 _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts,
                               ratios, v_rest, times, accel, g, dt, t_free, max_events, status,
-                              peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev)
+                              peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev, early_stop)
 
     _simulate_loop_serial = maybe_njit(_simulate_loop_py)
 else:  # pragma: no cover - without numba
@@ -537,7 +610,8 @@ else:  # pragma: no cover - without numba
 
 def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float = 2e-3,
                    t_free: float = 60.0, max_events: int = MAX_EVENTS, parallel: bool = True,
-                   tabulate: bool = True, table_intervals: int = 600) -> dict:
+                   tabulate: bool = True, table_intervals: int = 600,
+                   early_stop: bool = False) -> dict:
     """Response of every usable arch of ``prepared`` to ``motion`` (RK4 kernel, step ``dt`` [s],
     free motion after the record at most ``t_free`` [s]).
 
@@ -552,6 +626,12 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     per arch inside the loop; otherwise the exact loop closure.
     ``parallel`` uses the numba prange loop (all numba threads); otherwise a serial compiled loop
     (for process-pool or Dask workers); a Python loop when numba is absent.
+    ``early_stop``: an arch is no longer followed from the first impact after the ground motion
+    from which it can neither collapse nor exceed its peak (:func:`archrock.kernel.cannot_collapse`:
+    energy below every reachable mechanism's barrier under impacts that never add energy); its
+    status is then 3 ("stopped", ``early_stopped`` True): not collapsed, peak and t_unstable
+    final, n_impacts / n_activations only those before the stop, no time of rest.  Status,
+    collapse and peak of every arch are those of the full run.
     """
     if not isinstance(motion, GroundMotion):
         raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
@@ -577,7 +657,7 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
             np.ascontiguousarray(p.chain_ratio, dtype=float), p.v_rest, run, times, accel, G,
             float(dt), float(t_free), int(max_events), res["status"], res["peak"],
             res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_impacts"],
-            res["n_activations"], res["n_events"])
+            res["n_activations"], res["n_events"], bool(early_stop))
     if HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:
@@ -585,5 +665,6 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     for key in ("t_collapse", "t_limit", "t_unstable"):
         res[key][res[key] < 0] = np.nan
     res["events_truncated"] = res.pop("n_events") > int(max_events)
+    res["early_stopped"] = res["status"] == K.ST_STOPPED
     res["seconds"] = time.perf_counter() - t0
     return res

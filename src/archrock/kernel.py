@@ -17,14 +17,17 @@ import math
 import numpy as np
 
 from ._jit import maybe_njit
-from .mechanism import fast_coefficients
+from .mechanism import fast_coefficients, potential
 
 # event kinds (column 0 of the event table)
 # EV_COLLAPSE: the last upward passage of phi_u before the limit; EV_LIMIT: the limit reached
 # (the end of the run); EV_UNSTABLE: the first passage of phi_u
 EV_ACTIVATION, EV_IMPACT, EV_REST, EV_COLLAPSE, EV_UNSTABLE, EV_LIMIT = 1, 2, 3, 4, 5, 6
-# status codes
-ST_REST, ST_COLLAPSED, ST_MOVING = 0, 1, 2
+# status codes; ST_STOPPED: early stop (simulate_chain_stop), the arch can no longer collapse
+ST_REST, ST_COLLAPSED, ST_MOVING, ST_STOPPED = 0, 1, 2, 3
+#: early stop: the energy must be below every barrier by this fraction (integration error of the
+#: energy, spline coefficients; one impact of the paper's law removes about a quarter)
+STOP_MARGIN = 1e-2
 #: step multiplier in the free motion after the ground motion
 FREE_STEP_FACTOR = 4.0
 
@@ -192,6 +195,46 @@ def simulate_chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, time
     dirs: +1 for a mechanism of direction l, -1 for r (the sign of the response); closing
     mode m opens mode nexts[m - 1] with rate ratio ratios[m - 1].  Returns as :func:`simulate`.
     """
+    return simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times,
+                               accel, g, n_out, dt_out, dt, t_free, max_events, False)
+
+
+@maybe_njit
+def cannot_collapse(row, w, peak, geos, phus, nexts, ratios, g):
+    """Whether an arch just out of an impact into chain row ``row`` at rate ``w`` [rad/s], with
+    no ground motion left, can neither collapse nor exceed ``peak`` [rad] any more.
+
+    Free motion conserves E = M phi'^2 / 2 + g V(phi) between impacts, and an impact from row j
+    into row k multiplies the kinetic energy at phi = 0 by e_j = c_j^2 M_k(0) / M_j(0).  If
+    every impact the arch can meet (rows reachable from ``row`` by ``nexts``) has e_j <= 1, the
+    energy never grows; then in every such row j the rotation stays below the phi at which
+    g V_j(phi) = E, and V_j increases on [0, phi_u,j] (F > 0 below the unstable position).
+    So E < (1 - STOP_MARGIN) g V_j(min(peak, phi_u,j)) for all of them means no passage of
+    any phi_u (no collapse) and no new peak.  An impact law that can add energy (e_j > 1, e.g.
+    the 'paper' model on some arches, a literal c_v) never allows the stop."""
+    R = phus.size
+    energy = 0.5 * fast_coefficients(0.0, geos[row])[0] * w * w
+    j = row
+    for _ in range(R):
+        k = nexts[j] - 1
+        m_j = fast_coefficients(0.0, geos[j])[0]
+        m_k = fast_coefficients(0.0, geos[k])[0]
+        if ratios[j] * ratios[j] * m_k > m_j:  # e_j > 1: this impact can add energy
+            return False
+        top = phus[j] if phus[j] < peak else peak
+        if not energy < (1.0 - STOP_MARGIN) * g * potential(top, geos[j]):
+            return False
+        j = k
+    return True
+
+
+@maybe_njit
+def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times, accel,
+                        g, n_out, dt_out, dt, t_free, max_events, early_stop):
+    """:func:`simulate_chain`, and with ``early_stop`` the run ends with status
+    :data:`ST_STOPPED` at the first impact after the ground motion from which the arch
+    :func:`cannot_collapse`: its outcome (no collapse) and peak are final, its impacts and
+    time to rest are not followed."""
     out = np.zeros(n_out)
     ev = np.zeros((max_events, 6))
     n_ev = 0
@@ -315,6 +358,11 @@ def simulate_chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, time
                 mode = new_mode
                 phi = 0.0
                 w = w_plus
+                if early_stop and t >= t_motion and cannot_collapse(
+                        mode - 1, w, peak, geos, phus, nexts, ratios, g):
+                    k_out = _fill_value(out, dt_out, 1e300, np.nan, k_out)
+                    status = ST_STOPPED
+                    break
             continue
         k_out = _fill(out, dt_out, t, t + h, phi, w, p1, w1, sign, k_out)
         if w > 0.0 and w1 <= 0.0:

@@ -39,7 +39,7 @@ from itertools import combinations
 import numpy as np
 from scipy.optimize import linprog
 
-from ._jit import HAVE_NUMBA, maybe_njit
+from ._jit import HAVE_NUMBA, maybe_njit, numba
 from ._records import readonly_arrays
 from .errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
 from .geometry import Arch, VoussoirArch, power_of_two_near, sector_properties
@@ -403,7 +403,7 @@ def _enumerate(spans, radii, thick):
 # Optional compiled kernel (the "fast" extra).  The same arithmetic as _enumerate_sums, candidate
 # by candidate, keeping the first minimum in candidate order (as numpy's argmin does).
 _NUMBA_ENABLED = False
-_numba_kernel = None
+_numba_kernel = _numba_kernel_par = None
 if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see archrock._jit)
     _NUMBA_ENABLED = True
 
@@ -415,92 +415,104 @@ if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see arc
         Only first joints ja0 <= a < ja1 (rank0: rank of the first such quadruple), starting
         from the best values already in k_*, i_*: calls over consecutive ranges of a give the
         result of one call over all, and a long enumeration can report its progress."""
-        B = cw.shape[0]
+        for b in range(cw.shape[0]):
+            _numba_arch(b, cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, ja0, ja1, rank0)
+
+    @maybe_njit(parallel=True)
+    def _numba_kernel_par(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, ja0, ja1, rank0):
+        """:func:`_numba_kernel` with the arches spread over the numba threads (each arch's
+        enumeration is the same sequential loop, so the results are the serial ones, bit for
+        bit)."""
+        for b in numba.prange(cw.shape[0]):
+            _numba_arch(b, cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, ja0, ja1, rank0)
+
+    @maybe_njit(nogil=True)
+    def _numba_arch(b, cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, ja0, ja1, rank0):
+        """The enumeration of arch b (see :func:`_numba_kernel`)."""
         m = cw.shape[1]
         tol = 1e-9
         tiny = 1e-14
-        for b in range(B):
-            best_l = k_l[b]
-            best_r = k_r[b]
-            arg_l = i_l[b]
-            arg_r = i_r[b]
-            rank = rank0 - 1
-            for ja in range(ja0, ja1):
-                for jb in range(ja + 1, m):
-                    W1 = cw[b, jb] - cw[b, ja]
-                    X1 = cwx[b, jb] - cwx[b, ja]
-                    Y1 = cwy[b, jb] - cwy[b, ja]
-                    for jc in range(jb + 1, m):
-                        W2 = cw[b, jc] - cw[b, jb]
-                        X2 = cwx[b, jc] - cwx[b, jb]
-                        Y2 = cwy[b, jc] - cwy[b, jb]
-                        for jd in range(jc + 1, m):
-                            rank += 1
-                            W3 = cw[b, jd] - cw[b, jc]
-                            X3 = cwx[b, jd] - cwx[b, jc]
-                            Y3 = cwy[b, jd] - cwy[b, jc]
-                            for pat in range(1, 15):
-                                ea = (pat >> 3) & 1
-                                eb = (pat >> 2) & 1
-                                ec = (pat >> 1) & 1
-                                ed = pat & 1
-                                Ax = pxf[b, 2 * ja + ea]
-                                Ay = pyf[b, 2 * ja + ea]
-                                Bx = pxf[b, 2 * jb + eb]
-                                By = pyf[b, 2 * jb + eb]
-                                Cx = pxf[b, 2 * jc + ec]
-                                Cy = pyf[b, 2 * jc + ec]
-                                Dx = pxf[b, 2 * jd + ed]
-                                Dy = pyf[b, 2 * jd + ed]
-                                u2x = Cx - Bx
-                                u2y = Cy - By
-                                u3x = Dx - Cx
-                                u3y = Dy - Cy
-                                rx = Ax - Bx
-                                ry = Ay - By
-                                det = u2x * u3y - u2y * u3x
-                                scale = (max(abs(u2x) + abs(u2y), 1e-300)
-                                         * max(abs(u3x) + abs(u3y), 1e-300))
-                                if not abs(det) > 1e-12 * scale:
-                                    continue
-                                w2 = (rx * u3y - ry * u3x) / det
-                                w3 = (u2x * ry - u2y * rx) / det
-                                q0 = _EDGE_SIGN[ea] * 1.0
-                                q1 = _EDGE_SIGN[eb] * (w2 - 1.0)
-                                q2 = _EDGE_SIGN[ec] * (w3 - w2)
-                                q3 = _EDGE_SIGN[ed] * (-w3)
-                                qmag = max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
-                                thr = tol * qmag
-                                if q0 > thr and q1 > thr and q2 > thr and q3 > thr:
-                                    sigma = 1.0
-                                elif q0 < -thr and q1 < -thr and q2 < -thr and q3 < -thr:
-                                    sigma = -1.0
-                                else:
-                                    continue
-                                vBx = -(By - Ay)
-                                vBy = Bx - Ax
-                                work_x = (-(Y1 - W1 * Ay)
-                                          + W2 * vBx - (Y2 - W2 * By) * w2
-                                          - (Y3 - W3 * Dy) * w3)
-                                work_y = ((X1 - W1 * Ax)
-                                          + W2 * vBy + (X2 - W2 * Bx) * w2
-                                          + (X3 - W3 * Dx) * w3)
-                                work_x = sigma * work_x
-                                work_y = sigma * work_y
-                                if work_x > tiny:
-                                    lam = work_y / work_x
-                                    if lam < best_l:
-                                        best_l = lam
-                                        arg_l = rank * 16 + pat
-                                elif work_x < -tiny:
-                                    lam = work_y / (-work_x)
-                                    if lam < best_r:
-                                        best_r = lam
-                                        arg_r = rank * 16 + pat
-            k_l[b] = best_l
-            k_r[b] = best_r
-            i_l[b] = arg_l
-            i_r[b] = arg_r
+        best_l = k_l[b]
+        best_r = k_r[b]
+        arg_l = i_l[b]
+        arg_r = i_r[b]
+        rank = rank0 - 1
+        for ja in range(ja0, ja1):
+            for jb in range(ja + 1, m):
+                W1 = cw[b, jb] - cw[b, ja]
+                X1 = cwx[b, jb] - cwx[b, ja]
+                Y1 = cwy[b, jb] - cwy[b, ja]
+                for jc in range(jb + 1, m):
+                    W2 = cw[b, jc] - cw[b, jb]
+                    X2 = cwx[b, jc] - cwx[b, jb]
+                    Y2 = cwy[b, jc] - cwy[b, jb]
+                    for jd in range(jc + 1, m):
+                        rank += 1
+                        W3 = cw[b, jd] - cw[b, jc]
+                        X3 = cwx[b, jd] - cwx[b, jc]
+                        Y3 = cwy[b, jd] - cwy[b, jc]
+                        for pat in range(1, 15):
+                            ea = (pat >> 3) & 1
+                            eb = (pat >> 2) & 1
+                            ec = (pat >> 1) & 1
+                            ed = pat & 1
+                            Ax = pxf[b, 2 * ja + ea]
+                            Ay = pyf[b, 2 * ja + ea]
+                            Bx = pxf[b, 2 * jb + eb]
+                            By = pyf[b, 2 * jb + eb]
+                            Cx = pxf[b, 2 * jc + ec]
+                            Cy = pyf[b, 2 * jc + ec]
+                            Dx = pxf[b, 2 * jd + ed]
+                            Dy = pyf[b, 2 * jd + ed]
+                            u2x = Cx - Bx
+                            u2y = Cy - By
+                            u3x = Dx - Cx
+                            u3y = Dy - Cy
+                            rx = Ax - Bx
+                            ry = Ay - By
+                            det = u2x * u3y - u2y * u3x
+                            scale = (max(abs(u2x) + abs(u2y), 1e-300)
+                                     * max(abs(u3x) + abs(u3y), 1e-300))
+                            if not abs(det) > 1e-12 * scale:
+                                continue
+                            w2 = (rx * u3y - ry * u3x) / det
+                            w3 = (u2x * ry - u2y * rx) / det
+                            q0 = _EDGE_SIGN[ea] * 1.0
+                            q1 = _EDGE_SIGN[eb] * (w2 - 1.0)
+                            q2 = _EDGE_SIGN[ec] * (w3 - w2)
+                            q3 = _EDGE_SIGN[ed] * (-w3)
+                            qmag = max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
+                            thr = tol * qmag
+                            if q0 > thr and q1 > thr and q2 > thr and q3 > thr:
+                                sigma = 1.0
+                            elif q0 < -thr and q1 < -thr and q2 < -thr and q3 < -thr:
+                                sigma = -1.0
+                            else:
+                                continue
+                            vBx = -(By - Ay)
+                            vBy = Bx - Ax
+                            work_x = (-(Y1 - W1 * Ay)
+                                      + W2 * vBx - (Y2 - W2 * By) * w2
+                                      - (Y3 - W3 * Dy) * w3)
+                            work_y = ((X1 - W1 * Ax)
+                                      + W2 * vBy + (X2 - W2 * Bx) * w2
+                                      + (X3 - W3 * Dx) * w3)
+                            work_x = sigma * work_x
+                            work_y = sigma * work_y
+                            if work_x > tiny:
+                                lam = work_y / work_x
+                                if lam < best_l:
+                                    best_l = lam
+                                    arg_l = rank * 16 + pat
+                            elif work_x < -tiny:
+                                lam = work_y / (-work_x)
+                                if lam < best_r:
+                                    best_r = lam
+                                    arg_r = rank * 16 + pat
+        k_l[b] = best_l
+        k_r[b] = best_r
+        i_l[b] = arg_l
+        i_r[b] = arg_r
 
 
 def _circular_sums_of(spans, radii, thick):
@@ -601,7 +613,7 @@ def _say(msg: str) -> None:
     print(f"archrock limit analysis: {msg}", file=sys.stderr, flush=True)
 
 
-def _full_enumeration(sums_of, B, n, chunk, max_seconds, why=""):
+def _full_enumeration(sums_of, B, n, chunk, max_seconds, why="", parallel=False):
     """Every candidate of B arches of n voussoirs, after estimating the work: refused beyond
     ``max_seconds``, with progress lines on stderr when it will take a while.  ``sums_of(s, e)``
     gives the prefix sums and joint points (cw, cwx, cwy, px, py) of arches s..e-1: from the
@@ -626,10 +638,10 @@ def _full_enumeration(sums_of, B, n, chunk, max_seconds, why=""):
     t0 = time.perf_counter()
     if _NUMBA_ENABLED:
         try:
-            out = _enumerate_numba(sums_of, B, n, progress, t0)
+            out = _enumerate_numba(sums_of, B, n, progress, t0, parallel)
         except Exception:  # noqa: BLE001 - a kernel that cannot compile here: use numpy
             _disable_numba()
-            return _full_enumeration(sums_of, B, n, chunk, max_seconds, why)
+            return _full_enumeration(sums_of, B, n, chunk, max_seconds, why, parallel)
     else:
         out = _enumerate_numpy(sums_of, B, n, chunk, progress, t0)
     if progress:
@@ -637,7 +649,7 @@ def _full_enumeration(sums_of, B, n, chunk, max_seconds, why=""):
     return out
 
 
-def _enumerate_numba(sums_of, B, n, progress, t0):
+def _enumerate_numba(sums_of, B, n, progress, t0, parallel=False):
     m = n + 1
     k_l = np.full(B, np.inf)
     k_r = np.full(B, np.inf)
@@ -647,7 +659,9 @@ def _enumerate_numba(sums_of, B, n, progress, t0):
     pxf = np.ascontiguousarray(px.reshape(B, -1))
     pyf = np.ascontiguousarray(py.reshape(B, -1))
     if not progress:
-        _numba_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, 0, m, 0)
+        # arches over the numba threads (no Python per arch); one arch alone stays serial
+        kernel = _numba_kernel_par if parallel and B > 1 else _numba_kernel
+        kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, 0, m, 0)
         return k_l, k_r, i_l, i_r
     # one arch at a time, the first joints in ranges of about a tenth of the work each
     total = math.comb(m, 4)
@@ -713,7 +727,8 @@ def _enumerate_numpy(sums_of, B, n, chunk, progress, t0):
 
 
 def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = None,
-                                method: str = "auto", max_seconds: float | None = None):
+                                method: str = "auto", max_seconds: float | None = None, *,
+                                parallel: bool = False):
     """Collapse multipliers of a batch of arches with the same number of voussoirs.
 
     spans [rad], radii [m], thicknesses [m]: arrays (B, n). Returns (k_l, k_r, cand_l, cand_r)
@@ -723,7 +738,8 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     ``max_seconds``: bound on the estimated time of a full enumeration (default
     :data:`MAX_ENUMERATION_SECONDS`), beyond which it raises LimitExceededError.
     ``chunk``: arches per block of the vectorised (numpy) enumeration (default: sized to stay in
-    cache); it does not change the results.
+    cache); it does not change the results.  ``parallel``: the compiled enumeration spreads
+    the arches over the numba threads (the same numbers, bit for bit).
     A multiplier is inf where no mechanism loads that direction, and -inf (both directions)
     where the guided search finds no line of thrust at any horizontal load (cannot stand).
     """
@@ -731,7 +747,8 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     max_seconds = _check_method(method, max_seconds)
     B, n = spans.shape
     if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
-        return _full_enumeration(_circular_sums_of(spans, radii, thick), B, n, chunk, max_seconds)
+        return _full_enumeration(_circular_sums_of(spans, radii, thick), B, n, chunk, max_seconds,
+                                 parallel=parallel)
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)
@@ -749,7 +766,8 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     return k_l, k_r, i_l, i_r
 
 
-def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: float | None = None):
+def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: float | None = None,
+                                 *, parallel: bool = False):
     """:func:`kinematic_multipliers_batch` for arches of any shape with the same number of
     voussoirs (a sequence of :class:`VoussoirArch`): their :func:`arch_sums` stacked into one
     enumeration (n <= :data:`ENUMERATION_MAX_VOUSSOIRS` with "auto"), or arch by arch the
@@ -768,7 +786,7 @@ def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: floa
         stacked = tuple(np.ascontiguousarray(np.concatenate([sm[k] for sm in sums]))
                         for k in range(5))
         return _full_enumeration(lambda s, e: tuple(a[s:e] for a in stacked), B, n, None,
-                                 max_seconds)
+                                 max_seconds, parallel=parallel)
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)

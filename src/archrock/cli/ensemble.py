@@ -37,6 +37,15 @@ def add_ensemble_parser(subparsers):
                    help="folder for batches/*.parquet and manifest.json; resumes if it exists")
     add_motion_options(p)
     add_impact_options(p)
+    p.add_argument("--early-stop", action="store_true",
+                   help="stop following an arch once, after the ground motion, its energy is "
+                        "below every mechanism's barrier under an impact law that adds no energy: "
+                        "collapse and peak as in the full run, impacts and rest not followed "
+                        "(status 'stopped', column early_stopped)")
+    p.add_argument("--low-memory", action="store_true",
+                   help="keep no per-sample table in memory (needs --out; not with --plot): each "
+                        "batch is written and dropped and the summary is read back from the "
+                        "stored batches, exactly (for 10^7 arches and more)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="histograms of k_l and k_r")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
@@ -64,6 +73,12 @@ def run_ensemble_cmd(args) -> int:
     given = [f for f, v in (("--cv", args.cv), ("--impact", args.impact),
                             ("--impact-on", args.impact_on),
                             ("--literal-cv", args.literal_cv or None)) if v is not None]
+    if args.low_memory and (out is None or plot):
+        raise CLIError("--low-memory: needs --out DIR (the summary is read from the stored "
+                       "batches) and cannot draw --plot (the histograms need every sample)")
+    if args.early_stop and motion is None:
+        raise CLIError("--early-stop: unused without a ground motion; give --pulse ... or "
+                       "--record FILE, or drop --early-stop")
     if motion is None and given:
         # without a motion nothing impacts: the option would be silently ignored
         raise CLIError(f"{given[0]}: unused without a ground motion (the ensemble is then limit "
@@ -71,10 +86,12 @@ def run_ensemble_cmd(args) -> int:
     config = EnsembleConfig.from_arch(nominal, samples=args.samples, seed=args.seed,
                                       batch_size=args.batch_size,
                                       motion=motion, spreads=spreads(args),
-                                      impact=impact_spec_from_args(args))
+                                      impact=impact_spec_from_args(args),
+                                      early_stop=bool(args.early_stop))
     try:
         result = run_ensemble(config, out_dir=out, workers=args.workers,
-                              scheduler=args.scheduler, progress=not args.no_progress)
+                              scheduler=args.scheduler, progress=not args.no_progress,
+                              keep_frame=not args.low_memory)
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; " + _kept(out, config.n_batches), file=sys.stderr)
         return EXIT_INTERRUPTED

@@ -27,10 +27,12 @@ __all__ = ["COLUMNS", "run_batch", "sample_arch"]
 #: Columns of a batch's table (one row per sample).  Times [s]: t_collapse, the last upward
 #: passage of the unstable position before the rotation limit (the physical collapse time, which
 #: the limit does not move); t_limit, when the limit (a numerical stop) was reached; t_unstable,
-#: the first passage of the unstable position (NaN if never).
+#: the first passage of the unstable position (NaN if never).  early_stopped: the arch was no
+#: longer followed once it could not collapse (EnsembleConfig.early_stop; status "stopped":
+#: peak final, n_impacts / n_activations only those before the stop, no rest).
 COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
            "status", "peak", "t_collapse", "t_limit", "t_unstable", "n_impacts", "n_activations",
-           "events_truncated", "error"]
+           "events_truncated", "early_stopped", "error"]
 
 
 def sample_arch(config: EnsembleConfig, index: int):
@@ -57,23 +59,28 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
     if sampler.circular:
         spans, thick, radii = sampler.draw(start, nb)
         pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
-                           impact=cfg.impact.resolved(sampler.nominal))
+                           impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
     else:  # any other family: the arches themselves (invalid draws carry their reason)
-        pb = prepare_batch(sampler.arches(start, nb), impact=cfg.impact.resolved(sampler.nominal))
+        pb = prepare_batch(sampler.arches(start, nb), impact=cfg.impact.resolved(sampler.nominal),
+                           parallel=parallel)
     motion = cfg.motion.build() if cfg.motion is not None else None
     error = pb.error.copy()
     if motion is not None:
         res = simulate_batch(pb, motion, dt=cfg.dt, t_free=cfg.t_free, parallel=parallel,
-                             tabulate=cfg.tabulate, max_events=MAX_EVENTS)
+                             tabulate=cfg.tabulate, max_events=MAX_EVENTS,
+                             early_stop=cfg.early_stop)
         st = res["status"]
-        status = np.array([STATUS_NAMES.get(int(s), "failed") for s in st], dtype=object)
-        status[st == ST_NOT_RUN] = "failed"
+        # status names by table look-up (codes -1 .. 3), not arch by arch
+        names = np.array(["failed"] + [STATUS_NAMES.get(c, "failed") for c in range(4)],
+                         dtype=object)
+        status = names[np.clip(st, ST_NOT_RUN, 3) + 1]
         sim_seconds = res["seconds"]
     else:
         res = {"peak": np.full(nb, np.nan), "t_collapse": np.full(nb, np.nan),
                "t_limit": np.full(nb, np.nan), "t_unstable": np.full(nb, np.nan), "n_impacts": np.zeros(nb, dtype=np.int64),
                "n_activations": np.zeros(nb, dtype=np.int64),
-               "events_truncated": np.zeros(nb, dtype=bool)}
+               "events_truncated": np.zeros(nb, dtype=bool),
+               "early_stopped": np.zeros(nb, dtype=bool)}
         status = np.where(error == "", "limit-only", "failed").astype(object)
         sim_seconds = 0.0
     df = pd.DataFrame({
@@ -89,6 +96,7 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
         "n_impacts": res["n_impacts"].astype(np.int64),
         "n_activations": res["n_activations"].astype(np.int64),
         "events_truncated": res["events_truncated"].astype(bool),
+        "early_stopped": res["early_stopped"].astype(bool),
         "error": error.astype(str),
     }, columns=COLUMNS)
     timings = {"prepare_s": float(sum(pb.seconds.values())), "response_s": float(sim_seconds),

@@ -49,7 +49,10 @@ class EnsembleConfig:
     step; t_free [s]: free motion allowed after the ground motion (both by default from the nominal
     arch's size, :func:`archrock.response.default_steps`); tabulate: the RK4 kernel reads
     the equation's coefficients from spline tables (as ``respond``'s default; ~1e-9 relative,
-    about 3x faster) instead of the exact loop closure.
+    about 3x faster) instead of the exact loop closure; early_stop: stop following an arch once,
+    after the ground motion, it can no longer collapse (:func:`archrock.batch.simulate_batch`:
+    outcome and peak exact, impacts and time to rest not followed; written to the JSON only when
+    true, so other configurations and their hashes are unchanged).
     """
 
     nominal: dict
@@ -62,6 +65,7 @@ class EnsembleConfig:
     dt: float | None = None
     t_free: float | None = None
     tabulate: bool = True
+    early_stop: bool = False
 
     def __post_init__(self):
         if isinstance(self.nominal, VoussoirArch):
@@ -87,6 +91,8 @@ class EnsembleConfig:
             object.__setattr__(self, name, float(v))
         if not isinstance(self.tabulate, bool):
             raise ArchInputError(f"tabulate: {self.tabulate!r}; allowed true or false")
+        if not isinstance(self.early_stop, bool):
+            raise ArchInputError(f"early_stop: {self.early_stop!r}; allowed true or false")
         motion = self.motion
         if isinstance(motion, dict):
             motion = motion_spec_from_dict(motion)  # checked as it is built
@@ -120,6 +126,8 @@ class EnsembleConfig:
         d["motion"] = None if self.motion is None else self.motion.to_dict()
         d["spreads"] = self.spreads.to_dict()
         d["impact"] = self.impact.to_dict()
+        if not self.early_stop:
+            del d["early_stop"]
         return d
 
     def to_json(self) -> str:

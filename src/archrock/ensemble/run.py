@@ -58,19 +58,27 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
 
 
 def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, scheduler=None,
-                 progress: bool = True) -> EnsembleResult:
+                 progress: bool = True, keep_frame: bool = True) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
     out_dir: folder for the batches and manifest (None: nothing written); workers: 1 runs
     in-process (numba parallel loop), > 1 a local process pool over batches; scheduler: address
     of a Dask scheduler (or a ``distributed.Client``), which takes precedence over ``workers``;
-    progress: a progress bar on stderr.
+    progress: a progress bar on stderr; keep_frame: False keeps no per-sample table in memory
+    (needs ``out_dir``): each batch is written and dropped, the result's ``frame`` is None and
+    its summary is computed from the stored batches (:mod:`archrock.ensemble.streaming`), so
+    memory stays that of one batch however many samples (10^7 and more).
     """
     import pandas as pd
 
     if not isinstance(config, EnsembleConfig):
         raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
     workers = int_field("workers", workers, 1)
+    if not isinstance(keep_frame, bool):
+        raise ArchInputError(f"keep_frame: {keep_frame!r}; allowed true or false")
+    if not keep_frame and out_dir is None:
+        raise ArchInputError("keep_frame: False needs out_dir (the summary is then read from "
+                             "the stored batches)")
     _check_ensemble_work(config, workers if scheduler is None else 1)
     t_start = time.perf_counter()
     impact = _impact_info(config)
@@ -78,6 +86,7 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
     out = Path(out_dir) if out_dir is not None else None
     manifest = Manifest(out, config, impact, nominal) if out is not None else None
     frames: dict[int, object] = {}
+    done: set[int] = set()
     batch_timings: dict[int, dict] = {}
     todo = []
     recomputed: dict[int, str] = {}
@@ -87,7 +96,10 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
             nb = config.batch_range(b)[1]
             df, why = read_batch(out, b, config) if out is not None else (None, None)
             if df is not None:
-                frames[b] = df
+                done.add(b)
+                if keep_frame:
+                    frames[b] = df
+                del df
                 manifest.batch_done(b, nb, {}, computed=False)
                 bar.update(nb)
             else:
@@ -101,7 +113,9 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
             manifest.save()
 
         def finished(b, df, timings):
-            frames[b] = df
+            done.add(b)
+            if keep_frame:
+                frames[b] = df
             batch_timings[b] = timings
             if out is not None:
                 write_batch(out, b, df, config)
@@ -113,13 +127,13 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
     finally:
         bar.close()
         if manifest is not None:
-            manifest.finish(complete=len(frames) == config.n_batches)
-    frame = pd.concat([frames[b] for b in sorted(frames)], ignore_index=True)
+            manifest.finish(complete=len(done) == config.n_batches)
+    frame = pd.concat([frames[b] for b in sorted(frames)], ignore_index=True) if keep_frame else None
     wall = time.perf_counter() - t_start
     computed = sorted(batch_timings)
     n_computed = int(sum(config.batch_range(b)[1] for b in computed))
     timing = {"wall_s": wall, "executor": executor, "workers": workers,
-              "computed_batches": computed, "loaded_batches": sorted(set(frames) - set(computed)),
+              "computed_batches": computed, "loaded_batches": sorted(done - set(computed)),
               "recomputed_batches": {str(b): why for b, why in sorted(recomputed.items())},
               "computed_samples": n_computed,
               "samples_per_s": n_computed / wall if n_computed and wall > 0 else None,

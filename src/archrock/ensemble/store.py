@@ -31,8 +31,8 @@ __all__ = ["EnsembleConfigMismatch", "Manifest", "batch_path", "read_batch", "wr
 
 MANIFEST = "manifest.json"
 # 2: spreads and impact as objects; draws by ArchSampler.  3: t_collapse is the last passage of
-# the unstable position (no longer the rotation limit), t_limit a new column
-FORMAT = "archrock-ensemble/3"
+# the unstable position (no longer the rotation limit), t_limit a new column.  4: early_stopped
+FORMAT = "archrock-ensemble/4"
 PROVENANCE_KEY = b"archrock.ensemble"
 
 

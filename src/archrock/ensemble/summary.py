@@ -13,6 +13,9 @@ Definitions used by :meth:`EnsembleResult.summary`:
   std, q05 and q95 are None (not estimated, ``note`` says so).
 * response statistics over the samples whose response was integrated; ``peak_rad`` only over
   those that did not collapse (a collapsed sample's ``peak`` column is its rotation limit).
+  Early-stopped samples (status "stopped", column ``early_stopped``) count as integrated, not
+  collapsed, with their final peak; ``n_impacts`` (and any statistic of the motion after the
+  stop, such as a time to rest) leaves them out: ``response.early_stopped`` says how many.
 * p_collapse, conditional: collapses / integrated samples, with the Wilson score interval
   (:func:`archrock.fragility.collapse_probability`); p, low, high None (``note`` says why) when
   no sample was integrated; p_collapse and p_failure are None without a ground motion.
@@ -45,7 +48,8 @@ P_COLLAPSE_RULE = ("conditional: collapsed / integrated samples; samples without
 P_FAILURE_RULE = ("cannot stand counted as failed: (cannot stand + collapsed) / (cannot stand + "
                   "integrated); samples whose outcome is unknown (invalid draw, no mechanism, "
                   "model not applicable) left out")
-INTEGRATED = ("rest", "collapsed", "moving")
+#: statuses of an integrated sample ("stopped": early stop, EnsembleConfig.early_stop)
+INTEGRATED = ("rest", "collapsed", "moving", "stopped")
 
 #: The paper's random arches (plausibility figures, docs/verification.md).
 PAPER_RANDOM_ARCHES = published.RANDOM_ARCHES
@@ -96,7 +100,9 @@ def _outcomes(df, motion: bool) -> dict:
            "counts": counts,
            "shares": {k: (v / n if n else None) for k, v in counts.items()}}
     if motion:
-        out["integrated"] = {k: int((status == k).sum()) for k in INTEGRATED}
+        # "stopped" (early stop) only when there is one: other ensembles' summaries unchanged
+        out["integrated"] = {k: int((status == k).sum()) for k in INTEGRATED
+                             if k != "stopped" or (status == k).any()}
     return out
 
 
@@ -121,7 +127,13 @@ class EnsembleResult:
     out_dir: str | None = None
 
     def summary(self, confidence: float = 0.95) -> dict:
-        """JSON-ready summary (definitions in the module docstring)."""
+        """JSON-ready summary (definitions in the module docstring); from the stored batches
+        (:func:`archrock.ensemble.streaming.summarize_store`) when no frame is kept."""
+        if self.frame is None:
+            from .streaming import summarize_store
+
+            return summarize_store(self.out_dir, self.config, self.nominal, self.impact,
+                                   self.timing, confidence)
         df = self.frame
         kl_all, kr_all = df["k_l"].to_numpy(), df["k_r"].to_numpy()
         # a standing arch by limit analysis (k <= 0: "cannot stand", a failed sample)
@@ -174,11 +186,15 @@ class EnsembleResult:
             out["p_failure"] = _wilson(cs + k, cs + n, confidence, P_FAILURE_RULE,
                                        failures=cs + k, cannot_stand=cs, collapses=k)
             col = ran[ran["collapsed"]]
+            stopped = (ran["early_stopped"].to_numpy() if "early_stopped" in ran
+                       else np.zeros(len(ran), dtype=bool))
             out["response"] = {
                 "status": {str(k_): int(v) for k_, v in ran["status"].value_counts().items()},
                 "activated": float((ran["n_activations"] > 0).mean()) if n else None,
                 "peak_rad": _stats(ran.loc[~ran["collapsed"], "peak"].to_numpy()),
-                "n_impacts": _stats(ran["n_impacts"].to_numpy()),
+                # impacts after an early stop are not counted: those arches are left out
+                "n_impacts": _stats(ran.loc[~stopped, "n_impacts"].to_numpy()),
+                "early_stopped": int(stopped.sum()),
                 "events_truncated": int(ran["events_truncated"].sum()),
                 # the last passage of the unstable position; t_limit: the numerical stop
                 "t_collapse_s": _stats(col["t_collapse"].to_numpy()),
