@@ -419,6 +419,11 @@ def test_fragility_reports_are_what_the_command_prints(capsys, tmp_path):
                                                         records=records, n_arches=1, impact=PAPER_PRACTICE,
                                                         cv=cv, suite=read_records(files))))
     assert len(d["stripes"]["levels"]) == 8
+    # early stop: the same report (collapse decisions and first collapses unchanged)
+    code, out_stop, _ = run(capsys, *argv, "--early-stop")
+    assert code == 0 and out_stop == out
+    code, _, err = run(capsys, *argv, "--early-stop", "--engine", "respond")
+    assert code == 2 and "early-stop" in err
 
 
 def test_default_stripe_levels_bracket_the_first_collapses_or_fall_back_on_the_scales():

@@ -77,6 +77,23 @@ def test_ida_batch_equals_arch_by_arch(models, records):
         c.bracket[1], rel=3e-3) for c in below)
 
 
+def test_ida_with_early_stop_keeps_every_first_collapse(models, records):
+    """Early stop ends only responses that can no longer collapse (the energy below every
+    mechanism's barrier after the record): first-collapse scales, survivals and the fit are
+    those of the full responses."""
+    from archrock.sweep import HAVE_EARLY_STOP
+
+    assert HAVE_EARLY_STOP
+    scales = np.linspace(0.8, 6.0, 14)
+    full = ida(records, models, scales, tol=2e-3)
+    stop = ida(records, models, scales, tol=2e-3, early_stop=True)
+    for a, b in zip(full.curves, stop.curves):
+        assert a.first_scale == b.first_scale and a.survivals_above == b.survivals_above
+        assert a.bracket == b.bracket
+        assert np.array_equal(a.collapsed, b.collapsed)
+    assert full.fit == stop.fit
+
+
 def test_stripes_batch_equal_arch_by_arch(models, records):
     levels = [0.3, 0.5, 0.8, 1.2]
     a = msa(records, models, levels)

@@ -45,6 +45,10 @@ def add_fragility_parser(subparsers):
                    help="1: in-process (numba threads, default); N > 1: local process pool")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run on an existing Dask cluster (needs archrock[dask])")
+    p.add_argument("--early-stop", action="store_true",
+                   help="batch engine: end a response once the record is over and the arch's "
+                        "energy is below every mechanism it can open (same collapse decisions "
+                        "and peaks; impacts and time to rest are not followed)")
     p.add_argument("--out", metavar="DIR",
                    help="keep every finished response in DIR (Parquet + manifest.json); the same "
                         "command after an interruption resumes (batch engine)")
@@ -84,9 +88,11 @@ def run_fragility(args) -> int:
     out = folder_arg(args.out)
     if out is not None and args.engine == "respond":
         raise ArchInputError("out: kept by the batch engine; allowed --out with --engine batch")
+    if args.early_stop and args.engine == "respond":
+        raise ArchInputError("early-stop: a batch-engine option; allowed with --engine batch")
     run = dict(engine=args.engine, workers=args.workers if args.workers > 1 else None,
-               scheduler=args.scheduler, out=out) if args.engine == "batch" \
-        else dict(engine="respond")
+               scheduler=args.scheduler, out=out, early_stop=args.early_stop) \
+        if args.engine == "batch" else dict(engine="respond")
     try:
         res_ida = ida(records, models, scales, im=im, n_boot=boot, seed=args.seed,
                       progress=not args.no_progress, **run)
