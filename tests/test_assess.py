@@ -67,7 +67,7 @@ def test_values_are_the_package_s(report):
     assert len(s["curves"]["data"]["band"]["samples"]) == 2
     # docs/defects.md: voussoirs 2 and 4 cost most, -29.3%
     assert s["defects"]["data"]["available"] is True
-    assert "voussoir 2 and 4" in text and "-29.3%" in text
+    assert "voussoirs 2 and 4" in text and "-29.3%" in text
     ct = s["contact"]["data"]  # docs/verification.md: the engine's ramp 0.3667, hinges 0 3 5 7
     assert ct["available"] is True and ct["hinges_l"] == [0, 3, 5, 7]
     assert abs(ct["k_l"] / 0.370010 - 1) < 0.05 and abs(ct["k_r"] / 0.370010 - 1) < 0.05

@@ -58,7 +58,7 @@ def test_page_loads_with_every_figure(report):
     dom = proc.stdout
     m = re.search(r'<body[^>]*data-images="(\d+)/(\d+)"[^>]*>', dom)
     assert m, dom[:500]
-    assert int(m.group(1)) == int(m.group(2)) == n_img == 5  # arch, Fig. 3, response, curve, capacity
+    assert int(m.group(1)) == int(m.group(2)) == n_img == 6  # + defect map
     assert 'data-errors="0"' in dom and 'data-fetched="0"' in dom
     srcs = re.findall(r'<img[^>]*\ssrc="([^"]*)"', dom)
     assert len(srcs) == n_img and all(s.startswith("data:image/png;base64,") for s in srcs)

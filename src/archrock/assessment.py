@@ -424,14 +424,15 @@ def section_defects(ctx: Context) -> Section:
     where = " and ".join(str(w) for w in worst)
     return Section("defects", title, (
         Paragraph(f"Each voussoir in turn loses 30% of its thickness about its centreline "
-                  f"(docs/defects.md). The largest loss of capacity comes from voussoir "
-                  f"{where} (numbered from the left springing): min(k_l, k_r) falls from "
+                  f"(docs/defects.md). The largest loss of capacity comes from "
+                  f"{'voussoirs' if len(worst) > 1 else 'voussoir'} {where} (numbered from the left springing): min(k_l, k_r) falls from "
                   f"{res.k0:.4f} to {res.k[m]:.4f} g ({100 * res.relative_loss[m]:.1f}%). "
                   f"`archrock defects` maps the other defects (joint tilt, missing mortar) "
                   f"and, with a pulse, the first-collapse amplitude."),
         Figure("defects", "Capacity lost when each voussoir is the damaged one.", res)),
         {"available": True, **res.to_dict()},
-        (("worst defect", f"voussoir {where}: -{100 * res.relative_loss[m]:.1f}%"),))
+        (("worst defect", f"{'voussoirs' if len(worst) > 1 else 'voussoir'} {where}: "
+                          f"-{100 * res.relative_loss[m]:.1f}%"),))
 
 
 @titled('fragility', 'Fragility curves')
