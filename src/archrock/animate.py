@@ -20,7 +20,7 @@ import numpy as np
 
 from .errors import ArchInputError
 
-__all__ = ["animate_response", "animation_path"]
+__all__ = ["animate_response", "animation_path", "save_animation"]
 
 #: Animation formats: Pillow writes GIF, ffmpeg (if installed) MP4.
 ANIMATION_SUFFIXES = (".gif", ".mp4")
@@ -51,7 +51,7 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     for name, v in (("fps", fps), ("speed", speed), ("exaggerate", exaggerate)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0")
-    from matplotlib.animation import FFMpegWriter, FuncAnimation, PillowWriter
+    from matplotlib.animation import FuncAnimation
 
     model = response.model
     t = response.time
@@ -120,7 +120,14 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
         marker.set_data([tk], [val])
         return [*patches, hinge_marks, title, marker]
 
-    anim = FuncAnimation(fig, draw, frames=n_frames, blit=False)
+    return save_animation(FuncAnimation(fig, draw, frames=n_frames, blit=False), path, fps, dpi)
+
+
+def save_animation(anim, path: Path, fps: int, dpi: int) -> Path:
+    """Write a matplotlib animation to ``path`` (.gif with Pillow, .mp4 with ffmpeg); a file
+    that cannot be written is an ArchInputError naming it."""
+    from matplotlib.animation import FFMpegWriter, PillowWriter
+
     path.parent.mkdir(parents=True, exist_ok=True)
     writer = PillowWriter(fps=fps) if path.suffix.lower() == ".gif" else FFMpegWriter(fps=fps)
     try:

@@ -8,8 +8,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import ArchInputError
-
 __all__ = ["save_engine_figure", "save_verify_figure", "animate_engine", "engine_outlines"]
 
 _COLORS = {"engine": "#c0392b", "paper": "#1f4e9c", "momentum": "#2e8b57"}
@@ -96,11 +94,11 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
                    speed: float = 1.0, dpi: int = 80, max_frames: int = 300) -> Path:
     """Animation: the engine's voussoirs (left) beside the four-link mechanism (right), to
     scale, with both rotations against time below."""
-    from .animate import animation_path
+    from .animate import animation_path, save_animation
     from .plots import STYLE, displaced_outlines, new_figure, voussoir_bounds
 
     path = animation_path(path)
-    from matplotlib.animation import FFMpegWriter, FuncAnimation, PillowWriter
+    from matplotlib.animation import FuncAnimation
     from matplotlib.patches import Polygon
 
     t = res.time
@@ -161,12 +159,4 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
         title.set_text(f"t = {tk:5.2f} s")
         return [*patches["engine"], *patches["four-link"], marker, title]
 
-    anim = FuncAnimation(fig, draw, frames=n_frames, blit=False)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    writer = PillowWriter(fps=fps) if path.suffix.lower() == ".gif" else FFMpegWriter(fps=fps)
-    try:
-        anim.save(str(path), writer=writer, dpi=dpi)
-    except (OSError, RuntimeError, ValueError) as exc:
-        why = getattr(exc, "strerror", None) or " ".join(str(exc).split())
-        raise ArchInputError(f"animation file {str(path)!r}: cannot write ({why})") from None
-    return path
+    return save_animation(FuncAnimation(fig, draw, frames=n_frames, blit=False), path, fps, dpi)

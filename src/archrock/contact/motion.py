@@ -136,7 +136,6 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     slide = np.full((n_out, n + 1), np.nan)
     posn = np.full((n_out, n, 2), np.nan)
     max_sl = np.zeros(n + 1)
-    peak_rot = 0.0
     status, t_col = "moving", None
     k = 0
     quiet = 0

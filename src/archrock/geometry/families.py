@@ -719,7 +719,7 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
             d[j] = (0.0, 1.0)
     cs, sn = np.cos(tilt), np.sin(tilt)
     d = np.column_stack([cs * d[:, 0] - sn * d[:, 1], sn * d[:, 0] + cs * d[:, 1]])
-    shape, span, rise = r["shape"], r["span"], r["rise"]
+    span, rise = r["span"], r["rise"]
     intr, extr = [], []
     for i in range(n):
         lines = {}

@@ -174,7 +174,6 @@ def _paper(px, py, mass, cen, inert, joints, edges, is_r, links, ref, mref, v, w
     """paper_rate_ratio(old, new) (De Lorenzis et al.'s five equations on the old links) from
     the old mechanism's hinges (joints, edges from the left springing; leading side first for
     M_r through ``links``) and both velocity fields.  Returns (c, singular)."""
-    n = mass.size
     # nondimensional, exactly as the one-arch function
     vs = v / ref
     vns = vn / ref
