@@ -280,39 +280,59 @@ def _engine(engine: str) -> str:
 
 
 class _PulseRunner:
-    """Collapse tests of (model, pulse duration, |a|) items through :func:`archrock.sweep.sweep`,
-    each item with its own ``pulse(kind, sign * a, t_p)`` (the very motion ``respond`` gets in
-    :func:`collapse_amplitude`), remembered per (model, duration, |a|)."""
+    """Collapse tests of (model, pulse duration, |a|) items, each item with its own
+    ``pulse(kind, sign * a, t_p)`` (the very motion ``respond`` gets in
+    :func:`collapse_amplitude`), on the executor of a :class:`archrock.studyrun.SweepRunner`
+    (threads, a process pool or Dask; finished items kept in ``out``), remembered per
+    (model, duration, |a|)."""
 
-    def __init__(self, models, kind, sign, dt, bar=None):
-        from .sweep import SweepArches
+    def __init__(self, models, d, kind, sign, dt, bar=None, *, workers=None, scheduler=None,
+                 out=None):
+        from .studyrun import ResultStore, SweepRunner
+        from .sweep import SweepArches, SweepMotions
 
-        self.arches = SweepArches.from_models(models, dt)
-        self.kind, self.sign, self.bar = kind, sign, bar
+        arches = SweepArches.from_models(models, dt)
+        # the unit pulses of the durations: what defines the items besides the arches (and
+        # what the digest of a kept folder reads); item (m, j, a) is pulse j scaled to |a|
+        units = SweepMotions.of([pulse(kind, float(sign), float(tp)) for tp in d])
+        self.index = {float(tp): j for j, tp in enumerate(d)}
+        store = None
+        if out is not None:
+            store = ResultStore(out, arches, units,
+                                about={"study": "collapse-acceleration curves", "pulse": kind,
+                                       "sign": sign, "durations": [float(x) for x in d],
+                                       "arches": len(models)},
+                                settings={"study": "curves", "kind": kind, "sign": sign,
+                                          "max_events": _RESPOND["max_events"]})
+        self.runner = SweepRunner(arches, units, workers=workers, scheduler=scheduler,
+                                  max_events=_RESPOND["max_events"], bar=bar, store=store,
+                                  pulses=(kind, sign, d))
         self.cache: dict = {}
 
-    def __call__(self, keys):
-        """Outcomes (collapsed, t_collapse) of the (model, duration, |a|) keys not yet run."""
-        from .sweep import SweepMotions, sweep
+    def __enter__(self):
+        self.runner.__enter__()
+        return self
 
+    def __exit__(self, *exc):
+        return self.runner.__exit__(*exc)
+
+    def __call__(self, keys):
+        """Outcomes (collapsed) of the (model, duration, |a|) keys, running those not yet run."""
         todo = list(dict.fromkeys(k for k in keys if k not in self.cache))
-        for i in range(0, len(todo), _CHUNK):
-            part = todo[i:i + _CHUNK]
-            motions = SweepMotions.of([pulse(self.kind, self.sign * a, tp) for _, tp, a in part])
-            n = len(part)
-            res = sweep(self.arches, motions, [m for m, _, _ in part], np.arange(n),
-                        np.ones(n), max_events=_RESPOND["max_events"])
-            for k, st, tc in zip(part, res["status"], res["t_collapse"]):
+        if todo:
+            res = self.runner([m for m, _, _ in todo], [self.index[tp] for _, tp, _ in todo],
+                              [a for _, _, a in todo])
+            for k, st, tc in zip(todo, res["status"], res["t_collapse"]):
                 self.cache[k] = (bool(st == 1), None if np.isnan(tc) else float(tc))
-            if self.bar is not None:
-                self.bar.update(n)
         return [self.cache[k][0] for k in keys]
 
 
-def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None) -> list:
+def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None, workers=None,
+                      scheduler=None, out=None) -> list:
     """:func:`collapse_amplitude` of every (model, duration), arch-major: the grids of all in
     one sweep, then the bisections of every first collapse and survival-window edge together,
-    one step per sweep (the same midpoints as :func:`bisect_boundary`)."""
+    one step per sweep (the same midpoints as :func:`bisect_boundary`); on the executor of
+    ``workers``/``scheduler``, the finished responses kept in ``out`` (:class:`_PulseRunner`)."""
     kind = pulse_kind(kind)
     sign = _check_sign(sign)
     tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")
@@ -322,7 +342,13 @@ def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None
         if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
             raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation "
                                  f"threshold {thr:.4f} g and <= {MAX_PGA_G:g} g")
-    run = _PulseRunner(models, kind, sign, dt, bar)
+    with _PulseRunner(models, d, kind, sign, dt, bar, workers=workers, scheduler=scheduler,
+                      out=out) as run:
+        return _search(run, models, d, kind, sign, thrs, a_max=a_max, n_scan=n_scan, tol=tol,
+                       dt=dt)
+
+
+def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list:
     searches = [(m, float(tp)) for m in range(len(models)) for tp in d]
     grids = {s: np.geomspace(thrs[s[0]] * (1 + 1e-6), a_max, n_scan) for s in searches}
     keys = [(m, tp, float(a)) for (m, tp) in searches for a in grids[(m, tp)]]
@@ -394,9 +420,10 @@ def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None
     return points
 
 
-def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None) -> list:
+def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None, workers=None,
+                  scheduler=None, out=None) -> list:
     pts = _amplitudes_batch(models, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt,
-                            bar=bar)
+                            bar=bar, workers=workers, scheduler=scheduler, out=out)
     out = []
     for i, model in enumerate(models):
         mine = tuple(pts[i * d.size:(i + 1) * d.size])
@@ -473,21 +500,39 @@ def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: 
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
                    literal_cv: bool = False, dt: float | None = None,
-                   engine: str = "batch") -> CollapseCurve:
+                   engine: str = "batch", workers: int | None = None, scheduler=None,
+                   out=None) -> CollapseCurve:
     """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
     of :mod:`archrock.work`.  engine: "batch" (default) runs the scans of every duration in one
     parallel sweep, then every bisection step of all of them in one more
     (:mod:`archrock.sweep`); "respond" runs response after response (0.1.0's path).  Both give
-    the same curve, bit for bit."""
+    the same curve, bit for bit.  Batch engine only: ``workers`` N > 1 a local process pool,
+    ``scheduler`` a Dask cluster (address or Client), ``out`` a folder keeping every finished
+    response so that the same call again recomputes nothing it had finished
+    (:mod:`archrock.studyrun`)."""
     model = _model(model, impact, cv, literal_cv)
     d = _durations(durations)
     engine = _engine(engine)
-    _check_curve_work(1, d.size, n_scan, a_max, tol)
+    workers = _check_batch_run(engine, workers, scheduler, out)
+    _check_curve_work(1, d.size, n_scan, a_max, tol, workers or 1)
     if engine == "batch":
         _check_real("a_max", a_max, None, "a finite number > the activation threshold")
         return _curves_batch([model], d, kind, sign, a_max=float(a_max), n_scan=n_scan,
-                             tol=tol, dt=dt)[0]
+                             tol=tol, dt=dt, workers=workers, scheduler=scheduler, out=out)[0]
     return _curve(model, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+
+
+def _check_batch_run(engine, workers, scheduler, out) -> int | None:
+    """``workers`` checked (None or >= 1); ``scheduler`` and ``out`` only with the batch engine."""
+    from .studyrun import check_workers
+
+    workers = check_workers(workers)
+    if engine != "batch":
+        for name, v in (("scheduler", scheduler), ("out", out)):
+            if v is not None:
+                raise ArchInputError(f"{name}: run by the batch engine; allowed with "
+                                     f"engine='batch'")
+    return workers
 
 
 def _curve(model, d, kind, sign, *, a_max, n_scan, tol, dt) -> CollapseCurve:
@@ -562,13 +607,15 @@ def _one_sample(job):
     return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf), None
 
 
-def _batch_rows(sampler, samples, impact, d, kwargs, bar) -> list:
-    """The rows of :func:`_one_sample` for samples 0 .. samples - 1, all arches in one batch."""
+def _batch_rows(nominal, sampler, samples, impact, d, kwargs, bar, run) -> tuple:
+    """(the nominal model's curve, the rows of :func:`_one_sample` for samples 0 .. samples - 1),
+    the nominal and every usable random arch in one batch (``run``: workers, scheduler, out)."""
     prepared = [prepare_sample(sampler, i, impact) for i in range(samples)]
     usable = [m for m, _ in prepared if m is not None]
     kw = {k: v for k, v in kwargs.items() if k != "a_max"}
-    curves = iter(_curves_batch(usable, d, a_max=float(kwargs["a_max"]), bar=bar, **kw)
-                  if usable else ())
+    curves = iter(_curves_batch([nominal] + usable, d, a_max=float(kwargs["a_max"]), bar=bar,
+                                **kw, **run))
+    nominal_curve = next(curves)
     rows = []
     for model, why in prepared:
         if model is None:
@@ -576,14 +623,15 @@ def _batch_rows(sampler, samples, impact, d, kwargs, bar) -> list:
         else:
             amps = next(curves).amplitudes
             rows.append((np.where(np.isfinite(amps), amps, np.inf), None))
-    return rows
+    return nominal_curve, rows
 
 
 def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
                    tol: float = 1e-3, dt: float | None = None, workers: int = 1,
-                   progress: bool = False, engine: str = "batch") -> EnsembleCurve:
+                   progress: bool = False, engine: str = "batch", scheduler=None,
+                   out=None) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
     Arch i is sample i of :class:`~archrock.sampling.ArchSampler` (nominal, spreads, seed): the
@@ -595,10 +643,12 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     (:data:`archrock.errors.UNUSABLE_ARCH`: it cannot stand, voussoirs do not overlap, ...) is left
     out and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv: apply a
     fixed c_v to the rates literally instead of energy-consistently (docs/method.md, Impact).
-    engine "batch" (default): every arch and duration of a search step in one parallel sweep
-    (numba threads; :func:`collapse_curve`); "respond": arch after arch, ``workers`` > 1 of them
-    at once in a process pool (workers die with this process).  Both give the same curves, bit
-    for bit.  The work is
+    engine "batch" (default): the nominal and every random arch and duration of a search step in
+    one sweep (:func:`collapse_curve`): in-process numba threads, ``workers`` > 1 a local process
+    pool, ``scheduler`` a Dask cluster; ``out`` a folder keeping every finished response (a rerun
+    recomputes nothing it had finished; :mod:`archrock.studyrun`).  "respond": arch after arch,
+    ``workers`` > 1 of them at once in a process pool (workers die with this process; no
+    ``scheduler`` nor ``out``).  Both give the same curves, bit for bit.  The work is
     estimated first and refused beyond the bound of :mod:`archrock.work`; ``progress`` shows
     the arches done on stderr when the estimate exceeds a few seconds.
     """
@@ -616,7 +666,12 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     resolved = spec.resolved(nominal)
     kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
     engine = _engine(engine)
-    nominal_curve = collapse_curve(prepare(nominal, spec), d, engine=engine, **kwargs)
+    _check_batch_run(engine, workers, scheduler, out)
+    if engine == "batch":  # the checks of collapse_curve, before the arches are drawn
+        _check_real("a_max", a_max, None, "a finite number > the activation threshold")
+        nominal_model = prepare(nominal, spec)
+    else:
+        nominal_curve = collapse_curve(prepare(nominal, spec), d, engine=engine, **kwargs)
     jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
     from .ensemble.progress import Progress
 
@@ -624,10 +679,12 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
         # responses: the scan and (about) three bisections per arch and duration
         per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
             max(float(a_max) / float(tol), 2.0))))
-        bar = Progress(samples * d.size * per_curve, bool(progress) and est > PROGRESS_S,
+        bar = Progress((samples + 1) * d.size * per_curve, bool(progress) and est > PROGRESS_S,
                        desc="curves", unit="response")
+        run = dict(workers=workers if workers > 1 else None, scheduler=scheduler, out=out)
         try:
-            rows = _batch_rows(sampler, samples, resolved, d, kwargs, bar)
+            nominal_curve, rows = _batch_rows(nominal_model, sampler, samples, resolved, d,
+                                              kwargs, bar, run)
         finally:
             bar.close()
     else:

@@ -13,6 +13,12 @@ round after round on one executor, as ``ensemble`` does:
 
 The items of a round are cut into chunks so that progress can be shown; results never depend on
 the executor or the chunks (each item is independent).
+
+With ``pulses=(kind, sign, durations)`` (the collapse-acceleration curves) an item carries its own
+motion: item (arch, j, a) is arch under ``pulse(kind, sign * a, durations[j])``, scale 1, the very
+motion ``respond`` gets in :func:`archrock.curves.collapse_amplitude`.  The pulses are built where
+the item runs (a worker gets four numbers per item, not the samples), at most :data:`PULSE_CHUNK`
+items per sweep call to bound their memory.
 """
 
 from __future__ import annotations
@@ -46,14 +52,32 @@ def _init_worker(parent, arches, motions):
     _STATE["motions"] = SweepMotions(**motions)
 
 
-def _pool_chunk(a, m, s, max_events, early_stop):
-    return sweep(_STATE["arches"], _STATE["motions"], a, m, s, parallel=False,
-                 max_events=max_events, early_stop=early_stop)
+#: items per sweep call when each item carries its own pulse (``pulses``, module doc)
+PULSE_CHUNK = 4096
 
 
-def _dask_chunk(arches, motions, a, m, s, max_events, early_stop):
-    return sweep(SweepArches.from_arrays(arches), SweepMotions(**motions), a, m, s,
-                 parallel=False, max_events=max_events, early_stop=early_stop)
+def _sweep_items(arches, motions, a, m, s, pulses, **kw):
+    """:func:`~archrock.sweep.sweep` of the items; with ``pulses`` (module doc) motion m is the
+    index of a duration and s the pulse's |amplitude| [g], each item's pulse built here."""
+    if pulses is None:
+        return sweep(arches, motions, a, m, s, **kw)
+    from .groundmotion import pulse
+
+    kind, sign, durations = pulses
+    n = len(a)
+    own = SweepMotions.of([pulse(kind, sign * float(x), float(durations[j]))
+                           for j, x in zip(m, s)])
+    return sweep(arches, own, a, np.arange(n), np.ones(n), **kw)
+
+
+def _pool_chunk(a, m, s, max_events, early_stop, pulses=None):
+    return _sweep_items(_STATE["arches"], _STATE["motions"], a, m, s, pulses, parallel=False,
+                        max_events=max_events, early_stop=early_stop)
+
+
+def _dask_chunk(arches, motions, a, m, s, max_events, early_stop, pulses=None):
+    return _sweep_items(SweepArches.from_arrays(arches), SweepMotions(**motions), a, m, s,
+                        pulses, parallel=False, max_events=max_events, early_stop=early_stop)
 
 
 #: columns of a stored chunk of items (:class:`ResultStore`)
@@ -163,12 +187,16 @@ class ResultStore:
 
 
 class SweepRunner:
-    """Runs item lists on one executor (module doc); use as a context manager."""
+    """Runs item lists on one executor (module doc); use as a context manager.  pulses:
+    (kind, sign, durations) when each item carries its own pulse (module doc); ``motions`` are
+    then the unit pulses of the durations (what a :class:`ResultStore`'s digest reads)."""
 
     def __init__(self, arches: SweepArches, motions: SweepMotions, *, workers=None,
                  scheduler=None, max_events: int | None = None, early_stop: bool = False,
-                 bar=None, store: ResultStore | None = None):
+                 bar=None, store: ResultStore | None = None, pulses=None):
         self.arches, self.motions = arches, motions
+        self.pulses = None if pulses is None else (
+            str(pulses[0]), int(pulses[1]), tuple(float(x) for x in pulses[2]))
         self.workers = check_workers(workers)
         self.scheduler = scheduler
         self.max_events = max_events
@@ -264,20 +292,23 @@ class SweepRunner:
         parts = getattr(self, "n_parts", 1)
         # a few chunks per worker (load balance), at most ~20 per round (progress), >= 64 items
         n_chunks = max(1, min(max(4 * parts, 20 if self.bar is not None else 1), N // 64))
+        if self.pulses is not None:  # each item's pulse in memory: bounded chunks
+            n_chunks = max(n_chunks, -(-N // PULSE_CHUNK))
         edges = np.linspace(0, N, n_chunks + 1).astype(int)
         chunks = [(edges[i], edges[i + 1]) for i in range(n_chunks) if edges[i + 1] > edges[i]]
         out = [None] * len(chunks)
         if self.pool is not None or self.client is not None:
             if self.pool is not None:
                 futs = {self.pool.submit(_pool_chunk, a[i:j], m[i:j], s[i:j], self.max_events,
-                                         self.early_stop): c
+                                         self.early_stop, self.pulses): c
                         for c, (i, j) in enumerate(chunks)}
                 from concurrent.futures import as_completed
             else:
                 from distributed import as_completed
 
                 futs = {self.client.submit(_dask_chunk, *self.remote, a[i:j], m[i:j], s[i:j],
-                                           self.max_events, self.early_stop, pure=False): c
+                                           self.max_events, self.early_stop, self.pulses,
+                                           pure=False): c
                         for c, (i, j) in enumerate(chunks)}
             for fut in as_completed(list(futs)):
                 c = futs[fut]
@@ -286,8 +317,9 @@ class SweepRunner:
                 self._done(chunks[c][1] - chunks[c][0])
         else:
             for c, (i, j) in enumerate(chunks):
-                out[c] = sweep(self.arches, self.motions, a[i:j], m[i:j], s[i:j],
-                               max_events=self.max_events, early_stop=self.early_stop)
+                out[c] = _sweep_items(self.arches, self.motions, a[i:j], m[i:j], s[i:j],
+                                      self.pulses, max_events=self.max_events,
+                                      early_stop=self.early_stop)
                 self._keep(a, m, s, (i, j), out[c])
                 self._done(j - i)
         res = {k: np.concatenate([o[k] for o in out]) for k in out[0] if k != "seconds"}
