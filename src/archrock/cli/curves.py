@@ -5,9 +5,9 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import _int, emit_json, positive_float
+from ._parser import EXIT_INTERRUPTED, PROG, _int, emit_json, positive_float
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, figure_arg, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
 
 
 def add_curves_parser(subparsers):
@@ -31,13 +31,18 @@ def add_curves_parser(subparsers):
     p.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
                    help="bisection tolerance [g] (default 0.001)")
     add_random_arches_options(p, "random arches for quantile bands (0 = nominal only, default)")
-    p.add_argument("--engine", choices=("batch", "respond"), default=None,
-                   help="batch (default without --workers): the scans and bisection steps of "
-                        "every arch and duration in one parallel call each (numba threads); "
-                        "respond (default with --workers N > 1): arch after arch, N processes; "
-                        "the results are identical")
+    p.add_argument("--engine", choices=("batch", "respond"), default="batch",
+                   help="batch (default): the scans and bisection steps of every arch and "
+                        "duration in one parallel call each; respond: arch after arch (0.1.0's "
+                        "path); the results are identical")
     p.add_argument("--workers", type=_int, default=1, metavar="N",
-                   help="processes of --engine respond (default 1)")
+                   help="1: in-process (numba threads, default); N > 1: a local process pool "
+                        "(of the batch engine's items, or of --engine respond's arches)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="batch engine: run on an existing Dask cluster (needs archrock[dask])")
+    p.add_argument("--out", metavar="DIR",
+                   help="batch engine: keep every finished response in DIR (Parquet + "
+                        "manifest.json); the same command after an interruption resumes")
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-progress", action="store_true",
@@ -60,21 +65,35 @@ def run_curves(args) -> int:
     if args.workers < 1:
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     impact = impact_spec_from_args(args)
-    if args.engine is None:
-        args.engine = "respond" if args.workers > 1 else "batch"
-    if args.workers > 1 and args.engine == "batch":
-        raise ArchInputError("workers: the batch engine runs on numba threads in this process; "
-                             "allowed --workers N > 1 with --engine respond")
+    out = folder_arg(args.out)
+    if args.engine == "respond":
+        if args.scheduler:
+            raise ArchInputError("scheduler: run by the batch engine; allowed --scheduler with "
+                                 "--engine batch")
+        if out is not None:
+            raise ArchInputError("out: kept by the batch engine; allowed --out with --engine "
+                                 "batch")
     kw = dict(kind=args.pulse, sign=args.sign, a_max=args.a_max, n_scan=args.n_scan, tol=args.tol,
               engine=args.engine)
+    if args.engine == "batch":
+        kw.update(scheduler=args.scheduler, out=out)
     band = None
-    if args.samples > 0:
-        band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,
-                              impact=impact, workers=args.workers,
-                              progress=not args.no_progress, **kw)
-        curve = band.nominal
-    else:
-        curve = collapse_curve(prepare(nominal, impact), durations, **kw)
+    try:
+        if args.samples > 0:
+            band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,
+                                  impact=impact, workers=args.workers,
+                                  progress=not args.no_progress, **kw)
+            curve = band.nominal
+        else:
+            curve = collapse_curve(prepare(nominal, impact), durations,
+                                   workers=args.workers if args.engine == "batch" else None,
+                                   **kw)
+    except KeyboardInterrupt:
+        kept = ("nothing was kept (give --out DIR to keep finished responses and resume)"
+                if out is None else f"the finished responses are kept in {out}; the same "
+                                    f"command resumes from them")
+        print(f"{PROG}: interrupted; {kept}", file=sys.stderr)
+        return EXIT_INTERRUPTED
     if plot:
         from ..plots import plot_collapse_curve
 
