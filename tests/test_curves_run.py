@@ -69,6 +69,15 @@ def test_kept_single_curve_is_read_back(tmp_path, monkeypatch):
     assert a.to_dict(scan=True) == b.to_dict(scan=True) and not ran
     assert a.to_dict(scan=True) == collapse_curve(nom, [0.3], kind="one-sine", n_scan=10,
                                                   engine="respond").to_dict(scan=True)
+    # items are keyed by their amplitude: another tolerance is the same study, its shared grid
+    # read back, its answer that of a run without the folder
+    monkeypatch.setattr(sr, "sweep", lambda *x, **k: ran.append(len(x[2])) or real(*x, **k))
+    ran.clear()
+    c = collapse_curve(nom, [0.3], kind="one-sine", n_scan=10, tol=2e-4, out=tmp_path / "c")
+    n = c.points[0].n_responses
+    assert sum(ran) == n - a.points[0].n_responses > 0  # only the new bisection steps ran
+    assert c.to_dict(scan=True) == collapse_curve(nom, [0.3], kind="one-sine", n_scan=10,
+                                                  tol=2e-4).to_dict(scan=True)
 
 
 @pytest.mark.slow  # spawns worker processes (each compiles its serial loop) and a Dask cluster
