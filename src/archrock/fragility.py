@@ -43,11 +43,11 @@ __all__ = [
     "bootstrap_fit",
     "collapse_probability",
     "first_collapse",
-    "FIT_METHODS",
+    "FIT_CHOICES",
 ]
 
 #: Values of :attr:`FragilityFit.method`.
-FIT_METHODS = ("moments", "mle", "censored_mle")
+FIT_CHOICES = ("moments", "mle", "censored_mle")
 
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 
@@ -138,8 +138,8 @@ class FragilityFit:
             raise ArchInputError(f"theta: must be > 0 and finite, got {self.theta!r}")
         if not (math.isfinite(self.beta) and self.beta > 0):
             raise ArchInputError(f"beta: must be > 0 and finite, got {self.beta!r}")
-        if self.method not in FIT_METHODS:
-            raise ArchInputError(f"method: must be one of {FIT_METHODS}, got {self.method!r}")
+        if self.method not in FIT_CHOICES:
+            raise ArchInputError(f"method: must be one of {FIT_CHOICES}, got {self.method!r}")
 
     def probability(self, x) -> np.ndarray:
         """P(collapse | IM = x) for intensities x >= 0 (same units as theta); x = 0 gives 0."""

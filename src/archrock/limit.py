@@ -50,7 +50,7 @@ __all__ = [
     "kinematic_multipliers_arches",
     "static_multiplier", "thrust_line", "minimum_thickness", "thickness_bisection",
     "length_scale", "arch_sums",
-    "enumeration_estimate", "EDGES", "SEARCH_METHODS", "ENUMERATION_MAX_VOUSSOIRS",
+    "enumeration_estimate", "EDGES", "SEARCH_CHOICES", "ENUMERATION_MAX_VOUSSOIRS",
     "MAX_ENUMERATION_SECONDS",
 ]
 
@@ -558,7 +558,7 @@ _NUMPY_BYTES_PER_CANDIDATE = 170
 ENUMERATION_MAX_VOUSSOIRS = 40
 #: Ways of finding the mechanisms: "auto" (enumeration up to ENUMERATION_MAX_VOUSSOIRS, the
 #: guided search above), "enumeration" (every candidate, with a work estimate), "guided".
-SEARCH_METHODS = ("auto", "enumeration", "guided")
+SEARCH_CHOICES = ("auto", "enumeration", "guided")
 #: Default bound [s] on the estimated time of a full enumeration; beyond it LimitExceededError.
 MAX_ENUMERATION_SECONDS = 300.0
 # Candidates per second of the enumeration on one core (measured 1.0-1.4e8 with numba for
@@ -583,9 +583,9 @@ _GUIDED_MAX_CANDIDATES = 2_000_000
 
 
 def _check_method(method, max_seconds):
-    if method not in SEARCH_METHODS:
+    if method not in SEARCH_CHOICES:
         raise ArchInputError(f"method: {method!r}; allowed "
-                             f"{', '.join(map(repr, SEARCH_METHODS))}")
+                             f"{', '.join(map(repr, SEARCH_CHOICES))}")
     if max_seconds is not None:
         try:
             ok = float(max_seconds) > 0 and math.isfinite(float(max_seconds))
@@ -733,7 +733,7 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
 
     spans [rad], radii [m], thicknesses [m]: arrays (B, n). Returns (k_l, k_r, cand_l, cand_r)
     where cand_* index into the candidate list of :func:`_candidates` (joint quadruple, edges).
-    ``method``: one of :data:`SEARCH_METHODS`; "auto" enumerates every candidate up to
+    ``method``: one of :data:`SEARCH_CHOICES`; "auto" enumerates every candidate up to
     :data:`ENUMERATION_MAX_VOUSSOIRS` voussoirs and runs the static-guided search above.
     ``max_seconds``: bound on the estimated time of a full enumeration (default
     :data:`MAX_ENUMERATION_SECONDS`), beyond which it raises LimitExceededError.
