@@ -59,6 +59,16 @@ def subcommand(name: str):
 
 
 # ---------------------------------------------------------------------------- argparse types
+def interrupted_study(out) -> int:
+    """Ctrl-C in a study that keeps its finished responses in ``out`` (None: nothing kept):
+    say what was kept on stderr; the exit status."""
+    kept = ("nothing was kept (give --out DIR to keep finished responses and resume)"
+            if out is None else f"the finished responses are kept in {out}; the same "
+                                f"command resumes from them")
+    print(f"{PROG}: interrupted; {kept}", file=sys.stderr)
+    return EXIT_INTERRUPTED
+
+
 def finite_float(text: str) -> float:
     """argparse type: a finite number (NaN and infinities refused)."""
     try:

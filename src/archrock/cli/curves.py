@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import EXIT_INTERRUPTED, PROG, _int, emit_json, positive_float
+from ._parser import _int, emit_json, interrupted_study, positive_float
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
 
@@ -89,11 +89,7 @@ def run_curves(args) -> int:
                                    workers=args.workers if args.engine == "batch" else None,
                                    **kw)
     except KeyboardInterrupt:
-        kept = ("nothing was kept (give --out DIR to keep finished responses and resume)"
-                if out is None else f"the finished responses are kept in {out}; the same "
-                                    f"command resumes from them")
-        print(f"{PROG}: interrupted; {kept}", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return interrupted_study(out)
     if plot:
         from ..plots import plot_collapse_curve
 
