@@ -177,6 +177,22 @@ class CollapseAmplitude:
         }
 
 
+def survival_runs(flags, i0: int):
+    """(j, k) of each run of survivals flags[j..k] (False) after the first collapse at i0:
+    collapse at j - 1, and at k + 1 unless k is the last grid point."""
+    n = len(flags)
+    j = i0
+    while j < n:
+        if flags[j]:
+            j += 1
+            continue
+        k = j
+        while k + 1 < n and not flags[k + 1]:
+            k += 1
+        yield j, k
+        j = k + 1
+
+
 def bisect_boundary(test, lo, hi, lo_val, tol, relative=False):
     """Boundary between lo (outcome ``test(lo) == lo_val``) and hi (the other outcome), narrowed
     until hi - lo <= tol (or tol * hi with ``relative``); returns the final (lo, hi).
@@ -244,25 +260,16 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
     else:
         lo, hi = bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, tol)
     r = run(hi)
-    # survival windows above the first collapse: runs of False in flags[i0:], edges bisected
+    # survival windows above the first collapse, edges bisected
     windows = []
-    j = i0
     n = grid.size
-    while j < n:
-        if flags[j]:
-            j += 1
-            continue
-        k = j
-        while k + 1 < n and not flags[k + 1]:
-            k += 1
-        # survivals grid[j]..grid[k]; collapse at grid[j-1]; collapse at grid[k+1] (if any)
+    for j, k in survival_runs(flags, i0):
         _, w_lo = bisect_boundary(test, float(grid[j - 1]), float(grid[j]), True, tol)
         if k + 1 < n:
             w_hi, _ = bisect_boundary(test, float(grid[k]), float(grid[k + 1]), False, tol)
         else:
             w_hi = float(grid[k])
         windows.append((w_lo, w_hi))
-        j = k + 1
     return CollapseAmplitude(tp, kind, sign, hi, (lo, hi), collapse_mode(r), r.t_collapse,
                              tuple(windows), thr, a_max, tol, grid, flags, count[0])
 
@@ -366,20 +373,12 @@ def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list
         else:
             tasks.append([s, float(grid[i0 - 1]), float(grid[i0]), False, "first"])
         ws = []
-        j, n = i0, grid.size
-        while j < n:
-            if fl[j]:
-                j += 1
-                continue
-            k = j
-            while k + 1 < n and not fl[k + 1]:
-                k += 1
+        for j, k in survival_runs(fl, i0):
             w = len(ws)
             ws.append([None, float(grid[k])])
             tasks.append([s, float(grid[j - 1]), float(grid[j]), True, ("wlo", w)])
-            if k + 1 < n:
+            if k + 1 < grid.size:
                 tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w)])
-            j = k + 1
         windows[s] = ws
     while True:
         act = [t for t in tasks if t[2] - t[1] > tol]
