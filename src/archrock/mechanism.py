@@ -31,7 +31,7 @@ from .limit import EDGES, Mechanism
 from .units import G
 
 __all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",
-           "fast_coefficients"]
+           "fast_coefficients", "exact_acceleration", "table_acceleration"]
 
 # Layout of the flat geometry vector used by the scalar kernels (shared with the compiled
 # integrator): hinge points A, B, C, D at phi = 0; sign s (theta_1 = s phi); link masses;
@@ -497,29 +497,34 @@ def four_link(arch: VoussoirArch, mechanism: Mechanism) -> FourLink:
 
 
 # ---------------------------------------------------------------------------- tabulated coefficients
-# The fast integrator evaluates M, L, F, P a few million times per ensemble.  It can read them
-# from natural cubic splines through exact values on a uniform grid of phi instead of redoing
-# the loop closure (about 10x cheaper).  The grid starts below 0 so that phi = 0, where
-# impacts happen, is far from the splines' free ends (natural end conditions are only O(h^2)).  Layout appended to the 21 geometry
-# numbers: [phi_start, h, n_intervals, then per interval 4 functions x 4 polynomial coefficients
-# in s = phi - phi_i].
-TABLE_HEADER = 3
+# The fast integrator evaluates the equation of motion a few million times per ensemble.  It
+# reads it from natural cubic splines through exact values on a uniform grid of phi instead of
+# redoing the loop closure.  The grid starts below 0 so that phi = 0, where impacts happen, is
+# far from the splines' free ends (natural end conditions are only O(h^2)).  The splines are of
+# M and of the ratios L/M, F/M, P/M, so that phi'' = (P/M) a - (F/M) g - (L/M) phi'^2 needs no
+# division: the four stages of an RK4 step are one dependent chain, and a division was a third
+# of each link.  (The ratios are also the better-conditioned functions near the dead point,
+# where M grows without bound.)  Layout appended to the 21 geometry numbers: [phi_start, h,
+# n_intervals, 1/h, then per interval 4 functions (M, L/M, F/M, P/M) x 4 polynomial
+# coefficients in s = phi - phi_i].
+TABLE_HEADER = 4
 
 
 @maybe_njit
 def coefficient_table(geo, start, phi_max, n_intervals):
-    """geo extended with spline tables of (M, L, F, P) on [start, phi_max] (start < 0)."""
+    """geo extended with spline tables of (M, L/M, F/M, P/M) on [start, phi_max] (start < 0)."""
     n = n_intervals
     h = (phi_max - start) / n
     y = np.empty((4, n + 1))
     for i in range(n + 1):
         M, L, F, P = coefficients(start + i * h, geo)
-        y[0, i], y[1, i], y[2, i], y[3, i] = M, L, F, P
+        y[0, i], y[1, i], y[2, i], y[3, i] = M, L / M, F / M, P / M
     out = np.empty(GEO_SIZE + TABLE_HEADER + 16 * n)
     out[:GEO_SIZE] = geo[:GEO_SIZE]
     out[GEO_SIZE] = start
     out[GEO_SIZE + 1] = h
     out[GEO_SIZE + 2] = n
+    out[GEO_SIZE + 3] = 1.0 / h
     # natural cubic spline second derivatives by the Thomas algorithm (uniform grid)
     cp = np.zeros(n + 1)
     dp = np.zeros(n + 1)
@@ -545,20 +550,48 @@ def coefficient_table(geo, start, phi_max, n_intervals):
 
 @maybe_njit
 def fast_coefficients(phi, geo):
-    """(M, L, F, P) from the spline tables when ``geo`` carries them, else exactly."""
+    """(M, L, F, P) from the spline tables when ``geo`` carries them and phi is inside them,
+    else exactly."""
     if geo.size <= GEO_SIZE:
         return coefficients(phi, geo)
     start = geo[GEO_SIZE]
-    h = geo[GEO_SIZE + 1]
-    n = int(geo[GEO_SIZE + 2])
-    x = (phi - start) / h
-    i = int(x)
-    if i < 0 or i >= n:
+    x = (phi - start) * geo[GEO_SIZE + 3]
+    if not (x >= 0.0 and x < geo[GEO_SIZE + 2]):
         return coefficients(phi, geo)
-    s = phi - (start + i * h)
+    i = int(x)
+    s = phi - (start + i * geo[GEO_SIZE + 1])
     base = GEO_SIZE + TABLE_HEADER + 16 * i
     M = ((geo[base + 3] * s + geo[base + 2]) * s + geo[base + 1]) * s + geo[base]
     L = ((geo[base + 7] * s + geo[base + 6]) * s + geo[base + 5]) * s + geo[base + 4]
     F = ((geo[base + 11] * s + geo[base + 10]) * s + geo[base + 9]) * s + geo[base + 8]
     P = ((geo[base + 15] * s + geo[base + 14]) * s + geo[base + 13]) * s + geo[base + 12]
-    return M, L, F, P
+    return M, L * M, F * M, P * M
+
+
+@maybe_njit
+def exact_acceleration(phi, rate, a, g, geo):
+    """phi'' [rad/s^2] at rotation phi [rad], rate phi' [rad/s], ground acceleration a [m/s^2]
+    (positive toward +x) and gravity g [m/s^2], from the exact coefficients."""
+    M, L, F, P = coefficients(phi, geo)
+    return (P * a - F * g - L * rate * rate) / M
+
+
+@maybe_njit
+def table_acceleration(phi, rate, a, g, geo):
+    """:func:`exact_acceleration` from the spline tables; NaN when ``geo`` carries none or phi
+    is outside them.  It never calls the exact path itself: a call in this innermost chain made
+    the compiled RK4 step almost twice as slow even when not taken, so the caller redoes the
+    whole step exactly when it sees a NaN."""
+    if geo.size <= GEO_SIZE:
+        return math.nan
+    start = geo[GEO_SIZE]
+    x = (phi - start) * geo[GEO_SIZE + 3]
+    if not (x >= 0.0 and x < geo[GEO_SIZE + 2]):
+        return math.nan
+    i = int(x)
+    s = phi - (start + i * geo[GEO_SIZE + 1])
+    base = GEO_SIZE + TABLE_HEADER + 16 * i
+    lm = ((geo[base + 7] * s + geo[base + 6]) * s + geo[base + 5]) * s + geo[base + 4]
+    fm = ((geo[base + 11] * s + geo[base + 10]) * s + geo[base + 9]) * s + geo[base + 8]
+    pm = ((geo[base + 15] * s + geo[base + 14]) * s + geo[base + 13]) * s + geo[base + 12]
+    return pm * a - fm * g - lm * rate * rate

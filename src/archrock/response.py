@@ -38,7 +38,7 @@ from .geometry import VoussoirArch
 from .groundmotion import G, GroundMotion
 from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
 from .limit import LimitResult, limit_analysis
-from .mechanism import FourLink, four_link, rest_rate
+from .mechanism import FourLink, exact_acceleration, four_link, rest_rate
 
 __all__ = ["DynamicModel", "Event", "Response", "prepare", "respond", "default_steps",
            "time_scale"]
@@ -524,7 +524,7 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
                 break
 
             def rhs(tt, y, j=j):
-                return [y[1], K._rhs(y[0], y[1], a_of(tt, j), geo, G)]
+                return [y[1], exact_acceleration(y[0], y[1], a_of(tt, j), G, geo)]
 
             def close(tt, y, t_start=t0):
                 # phi = 0 exactly at the start of an arc is not a closure: only a return to 0

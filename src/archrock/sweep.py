@@ -31,7 +31,7 @@ from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError, LimitExceededError
 from .groundmotion import G, GroundMotion
-from .mechanism import GEO_SIZE, coefficient_table
+from .mechanism import GEO_SIZE, TABLE_HEADER, coefficient_table
 
 __all__ = ["SweepArches", "SweepMotions", "sweep", "SWEEP_EVENTS"]
 
@@ -128,7 +128,7 @@ class SweepArches:
         geo = np.ascontiguousarray(prepared.chain_geo[ok, :R], dtype=float)
         if tabulate:
             n = int(table_intervals)
-            rows = np.zeros((ok.size, R, GEO_SIZE + 3 + 16 * n))
+            rows = np.zeros((ok.size, R, GEO_SIZE + TABLE_HEADER + 16 * n))
             _tables(geo, np.ascontiguousarray(prepared.chain_table[ok, :R], dtype=float),
                     prepared.n_mechanisms[ok].astype(np.int64), n, rows)
         else:
