@@ -54,6 +54,8 @@ def _init_worker(parent, arches, motions):
 
 #: items per sweep call when each item carries its own pulse (``pulses``, module doc)
 PULSE_CHUNK = 4096
+#: least items per in-process chunk (one parallel call each)
+IN_PROCESS_CHUNK = 2048
 
 
 def _sweep_items(arches, motions, a, m, s, pulses, **kw):
@@ -292,6 +294,10 @@ class SweepRunner:
         parts = getattr(self, "n_parts", 1)
         # a few chunks per worker (load balance), at most ~20 per round (progress), >= 64 items
         n_chunks = max(1, min(max(4 * parts, 20 if self.bar is not None else 1), N // 64))
+        if self.pool is None and self.client is None:
+            # in-process, every chunk is one parallel call that waits for its slowest item:
+            # small chunks leave threads idle (items differ in cost by orders of magnitude)
+            n_chunks = max(1, min(n_chunks, N // IN_PROCESS_CHUNK))
         if self.pulses is not None:  # each item's pulse in memory: bounded chunks
             n_chunks = max(n_chunks, -(-N // PULSE_CHUNK))
         edges = np.linspace(0, N, n_chunks + 1).astype(int)
