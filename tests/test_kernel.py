@@ -30,7 +30,8 @@ def irregular():
 
 
 def _table(model, row=0):
-    return np.asarray(model.tables[row])
+    # the kernel builds missing table intervals in place: it takes writable arrays
+    return np.array(model.tables[row])
 
 
 def _motion(a):
@@ -67,25 +68,53 @@ def test_table_acceleration_is_nan_outside_the_tables(model):
 
 
 def test_rk4_step_from_tables_and_exact(model):
-    """Inside the tables the step is the table step, close to the exact one; a step whose
-    stages leave the tables (or a geo without tables) is the exact step, bit for bit."""
+    """Inside the tables the step is the table step, close to the exact one; a geo without
+    tables gives the exact step; a step whose stages leave the tables is exact in those
+    stages only."""
     fl = model.chain[0][0]
     tab = _table(model)
-    geo = np.asarray(fl.geo)
+    geo = np.array(fl.geo)
     times, accel = _motion(-0.3 * G)
-    inside = K._rk4(0.05, 0.4, 0.0, 2e-3, 0, times, accel, tab, G)
-    assert inside == K._rk4_table(0.05, 0.4, 0.0, 2e-3, 0, times, accel, tab, G)
-    exact = K._rk4_exact(0.05, 0.4, 0.0, 2e-3, 0, times, accel, geo, G)
+    step = (0.0, 2e-3, 0, times, accel)
+    inside = K._rk4(0.05, 0.4, *step, tab, G)
+    assert inside == K._rk4_table(0.05, 0.4, *step, tab, G)
+    exact = K._rk4(0.05, 0.4, *step, geo, G)
+    assert exact == K._rk4_fill(0.05, 0.4, *step, geo, G)
+    assert math.isnan(K._rk4_table(0.05, 0.4, *step, geo, G)[0])
     assert inside != exact and np.allclose(inside, exact, rtol=0, atol=1e-12)
-    # the exact step read from a tabulated row is the exact step of the bare geometry
-    assert K._rk4_exact(0.05, 0.4, 0.0, 2e-3, 0, times, accel, tab, G) == exact
-    assert K._rk4(0.05, 0.4, 0.0, 2e-3, 0, times, accel, geo, G) == exact
-    # just below the table's start, moving down: stages outside -> the exact step
+    # just above the table's start, moving down: the later stages are outside
     start = tab[GEO_SIZE]
     phi0 = start + 1e-7
-    step = K._rk4(phi0, -1.0, 0.0, 2e-3, 0, times, accel, tab, G)
-    assert step == K._rk4_exact(phi0, -1.0, 0.0, 2e-3, 0, times, accel, geo, G)
-    assert all(math.isfinite(v) for v in step)
+    below = K._rk4(phi0, -1.0, *step, tab, G)
+    assert math.isnan(K._rk4_table(phi0, -1.0, *step, tab, G)[0])
+    assert below != K._rk4(phi0, -1.0, *step, geo, G)
+    assert np.allclose(below, K._rk4(phi0, -1.0, *step, geo, G), rtol=0, atol=1e-12)
+
+
+def test_lazy_tables_equal_built_tables(model, irregular):
+    """A table built interval by interval as the motion reaches it (what the ensemble kernel
+    does) holds the very numbers of the table built whole, whatever the order."""
+    from archrock.mechanism import build_interval, empty_table, table_range
+
+    for m in (model, irregular):
+        for row, (fl, lim) in enumerate(zip(m.chain[0], m.chain[1])):
+            whole = _table(m, row)
+            start, top = table_range(fl.geo, lim, fl.phi_dead)
+            lazy = empty_table(np.asarray(fl.geo), start, top, 600)
+            assert lazy.size == whole.size
+            order = np.random.default_rng(row).permutation(600)
+            for i in order[:300]:
+                build_interval(lazy, int(i))
+            base = GEO_SIZE + 4
+            for i in order[:300]:
+                assert np.array_equal(lazy[base + 16 * i:base + 16 * (i + 1)],
+                                      whole[base + 16 * i:base + 16 * (i + 1)])
+            assert np.isnan(lazy[base + 16 * order[300]])
+            # a response on the lazy table is the response on the whole one
+            times, accel = _motion(-0.45 * G)
+            for phi, w in ((0.0, 0.3), (0.08, -0.5), (lim * 0.9, 0.2)):
+                assert K._rk4(phi, w, 0.0, 2e-3, 0, times, accel, lazy, G) == \
+                    K._rk4(phi, w, 0.0, 2e-3, 0, times, accel, whole, G)
 
 
 def test_hermite_root_of_a_known_cubic():

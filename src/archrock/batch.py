@@ -38,7 +38,7 @@ from .geometry import Arch, power_of_two_near, sector_properties
 from .groundmotion import G, GroundMotion
 from .limit import (_mechanism_from_candidate, candidate_hinges, kinematic_multipliers_arches,
                     kinematic_multipliers_batch)
-from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficient_table, coefficients, dead_point, mechanism_geo,
+from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficients, empty_table, dead_point, mechanism_geo,
                         rest_rate, rotation_limit, table_range, unstable_rotation)
 
 __all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch",
@@ -552,11 +552,12 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
     both loops)."""
     R = n_rows[b]
     if n_tab > 0:
-        first = coefficient_table(geos[b, 0], tabs[b, 0, 0], tabs[b, 0, 1], n_tab)
+        # built interval by interval as the motion reaches them (mechanism.empty_table)
+        first = empty_table(geos[b, 0], tabs[b, 0, 0], tabs[b, 0, 1], n_tab)
         rows = np.zeros((R, first.size))
         rows[0] = first
         for j in range(1, R):
-            rows[j] = coefficient_table(geos[b, j], tabs[b, j, 0], tabs[b, j, 1], n_tab)
+            rows[j] = empty_table(geos[b, j], tabs[b, j, 0], tabs[b, j, 1], n_tab)
     else:
         rows = geos[b, :R].copy()
     # kernel modes are rows + 1 (0 = rest)

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from ._jit import maybe_njit
-from .mechanism import exact_acceleration, fast_coefficients, potential, table_acceleration
+from .mechanism import fast_coefficients, filling_acceleration, potential, table_acceleration
 
 # event kinds (column 0 of the event table)
 # EV_COLLAPSE: the last upward passage of phi_u before the limit; EV_LIMIT: the limit reached
@@ -72,17 +72,18 @@ def _rk4_with(acceleration):
 
 
 _rk4_table = _rk4_with(table_acceleration)
-_rk4_exact = _rk4_with(exact_acceleration)
+_rk4_fill = _rk4_with(filling_acceleration)
 
 
 @maybe_njit
 def _rk4(phi, w, t, h, i, times, accel, geo, g):
-    """One RK4 step of length h from t in segment i: (phi, phi') at t + h.  From the spline
-    tables (``FourLink.tabulated``, ~10x cheaper) when the whole step stays inside them, else
-    exactly (a NaN from a table stage propagates to the result)."""
+    """One RK4 step of length h from t in segment i: (phi, phi') at t + h, from the tables
+    (``FourLink.tabulated``, ~10x cheaper than the loop closure).  A stage outside the built
+    intervals gives NaN, which propagates to the result: the step is then redone building the
+    intervals it needs (``geo`` is written), exactly where it leaves the tables."""
     p1, w1 = _rk4_table(phi, w, t, h, i, times, accel, geo, g)
     if p1 != p1 or w1 != w1:
-        p1, w1 = _rk4_exact(phi, w, t, h, i, times, accel, geo, g)
+        p1, w1 = _rk4_fill(phi, w, t, h, i, times, accel, geo, g)
     return p1, w1
 
 

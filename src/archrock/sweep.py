@@ -31,7 +31,7 @@ from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError, LimitExceededError
 from .groundmotion import G, GroundMotion
-from .mechanism import GEO_SIZE, TABLE_HEADER, coefficient_table
+from .mechanism import GEO_SIZE, coefficient_table, table_size
 
 __all__ = ["SweepArches", "SweepMotions", "sweep", "SWEEP_EVENTS"]
 
@@ -128,7 +128,7 @@ class SweepArches:
         geo = np.ascontiguousarray(prepared.chain_geo[ok, :R], dtype=float)
         if tabulate:
             n = int(table_intervals)
-            rows = np.zeros((ok.size, R, GEO_SIZE + TABLE_HEADER + 16 * n))
+            rows = np.zeros((ok.size, R, table_size(n)))
             _tables(geo, np.ascontiguousarray(prepared.chain_table[ok, :R], dtype=float),
                     prepared.n_mechanisms[ok].astype(np.int64), n, rows)
         else:
@@ -279,7 +279,10 @@ def sweep(arches: SweepArches, motions: SweepMotions, arch_index, motion_index, 
            "t_collapse": np.zeros(N), "t_unstable": np.zeros(N), "t_limit": np.zeros(N),
            "n_events": np.zeros(N, dtype=np.int64)}
     p = arches
-    args = (a, m, s, p.rows, p.n_rows, p.limits, p.unstable, p.directions, p.nexts, p.ratios,
+    # the kernel builds table intervals it lacks in place (none are lacking in packed tables,
+    # but a compiled writer needs a writable array: Dask hands read-only buffers)
+    rows = p.rows if p.rows.flags.writeable else p.rows.copy()
+    args = (a, m, s, rows, p.n_rows, p.limits, p.unstable, p.directions, p.nexts, p.ratios,
             p.k_l, p.k_r, p.v_rest, p.dt, p.t_free, motions.times, motions.accel,
             motions.offsets, G, SWEEP_EVENTS, bool(early_stop), res["status"], res["peak"], res["t_collapse"],
             res["t_unstable"], res["t_limit"], res["n_events"])
