@@ -141,14 +141,14 @@ class PreparedBatch:
     mech_l / mech_r: compact hinge labels ('0i-3e-5i-7e'); geo_l / geo_r (B, 21): flat four-link
     vectors; phi_unstable_* / phi_limit_* [rad]; c_l_to_r / c_r_to_l: impact rate ratios out of
     M_l / M_r; v_rest [rad/s]; table_l / table_r (B, 2): the
-    range [start, top] of phi [rad] of the spline tables of M, L, F, P used by the fast kernel
+    range [start, top] of phi [rad] of the tables of M, L/M, F/M, P/M used by the fast kernel
     (as FourLink.tabulated(phi_limit)); seconds: time spent preparing.
 
     The chain of mechanisms that the kernel runs (as ``DynamicModel.chain``), padded to R >= 2
     rows (rows 0 and 1: M_l and M_r, opened from rest): chain_geo (B, R, 21), chain_limit and
     chain_unstable (B, R) [rad], chain_direction (B, R) (+1 for direction l, -1 for r),
     chain_next (B, R) (row opened when the row closes), chain_ratio (B, R) (its rate ratio),
-    chain_table (B, R, 2) (spline-table ranges [rad]), n_mechanisms (B,) (rows used; 0 for an
+    chain_table (B, R, 2) (table ranges [rad]), n_mechanisms (B,) (rows used; 0 for an
     unusable arch).  Left out, they are built from the two-row fields (the paper's alternation).
     """
 
@@ -622,9 +622,9 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     numerical stop, was reached), t_unstable [s] (its first passage) (each NaN if never), n_impacts,
     n_activations, events_truncated (more than ``max_events`` events: status, peak and times are
     still exact, n_impacts and n_activations are lower bounds); plus 'seconds'.
-    ``tabulate``: the kernel reads M, L, F, P from natural cubic splines on ``table_intervals``
-    intervals (as ``respond(..., tabulate=True)``, relative error ~1e-9, about 3x faster), built
-    per arch inside the loop; otherwise the exact loop closure.
+    ``tabulate``: the kernel reads phi'' from tables of ``table_intervals`` intervals (as
+    ``respond(..., tabulate=True)``, relative error ~2e-9), each interval built inside the loop
+    when the arch's motion first reaches it; otherwise the exact loop closure.
     ``parallel`` uses the numba prange loop (all numba threads); otherwise a serial compiled loop
     (for process-pool or Dask workers); a Python loop when numba is absent.
     ``early_stop``: an arch is no longer followed from the first impact after the ground motion

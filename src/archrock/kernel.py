@@ -26,7 +26,7 @@ EV_ACTIVATION, EV_IMPACT, EV_REST, EV_COLLAPSE, EV_UNSTABLE, EV_LIMIT = 1, 2, 3,
 # status codes; ST_STOPPED: early stop (simulate_chain_stop), the arch can no longer collapse
 ST_REST, ST_COLLAPSED, ST_MOVING, ST_STOPPED = 0, 1, 2, 3
 #: early stop: the energy must be below every barrier by this fraction (integration error of the
-#: energy, spline coefficients; one impact of the paper's law removes about a quarter)
+#: energy, table coefficients; one impact of the paper's law removes about a quarter)
 STOP_MARGIN = 1e-2
 #: step multiplier in the free motion after the ground motion
 FREE_STEP_FACTOR = 4.0

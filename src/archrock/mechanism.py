@@ -346,7 +346,7 @@ def rest_rate(geo, phi_unstable_l, phi_unstable_r, g):
 
 @maybe_njit
 def table_range(geo, phi_limit, phi_dead):
-    """(start, top) [rad] of the spline tables for motions up to ``phi_limit``: past the limit
+    """(start, top) [rad] of the tables for motions up to ``phi_limit``: past the limit
     by 25% (not past the dead point) and below 0 by 5% of that, halved until the four-bar
     closes on the undisplaced branch from there to 0 (it can lock on the negative side too)."""
     top = min(phi_limit * 1.25, phi_dead * (1 - 1e-6))
@@ -454,7 +454,7 @@ class FourLink:
         return v, w
 
     def tabulated(self, phi_max: float, n_intervals: int = 600) -> np.ndarray:
-        """``geo`` with spline tables of the coefficients for 0 <= phi <= ``phi_max`` [rad] (for
+        """``geo`` with the tables of the coefficients for 0 <= phi <= ``phi_max`` [rad] (for
         the fast integrator; the tables reach past both ends so that their free ends are far)."""
         start, top = table_range(self.geo, phi_max, self.phi_dead)
         tab = coefficient_table(np.asarray(self.geo), start, top, int(n_intervals))

@@ -126,7 +126,7 @@ class DynamicModel:
 
     @cached_property
     def tables(self) -> tuple[np.ndarray, ...]:
-        """Geometry vectors with spline tables of M, L, F, P (fast integrator), one per mechanism
+        """Geometry vectors with tables of M, L/M, F/M, P/M (fast integrator), one per mechanism
         of the chain (M_l, M_r, extra...)."""
         mechs, lims, _ = self.chain
         return tuple(fl.tabulated(lim) for fl, lim in zip(mechs, lims))
@@ -396,7 +396,7 @@ def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *,
     :func:`default_steps`): 2e-3 s and 60 s for arches of metres and more, as in 0.1.0, a step
     at most T/100 and a free motion at least 50 T for T = sqrt(R/g).
     rtol/atol: tolerances of the reference integrator; tabulate: the fast
-    integrator reads M, L, F, P from spline tables (relative error ~1e-9) instead of the exact
+    integrator reads phi'' from tables (relative error ~2e-9) instead of the exact
     loop closure (the reference always uses the exact one).
     """
     model = arch_or_model if isinstance(arch_or_model, DynamicModel) else prepare(arch_or_model, impact, cv=cv)

@@ -10,7 +10,7 @@ calls.
 
 Exactness.  :meth:`SweepArches.from_models` packs prepared :class:`~archrock.response.DynamicModel`
 objects with the numbers ``respond`` reads: the same chain (four-link vectors, rotation limits,
-unstable rotations, successors and rate ratios), the same spline tables (``model.tables``, built
+unstable rotations, successors and rate ratios), the same tables (``model.tables``, built
 once per arch instead of once per item), ``v_rest``, k_l, k_r, and per arch the step ``dt`` and
 free-motion cap ``t_free`` of :func:`archrock.response.default_steps`.  The scaled acceleration is
 ``accel * scale`` as :meth:`GroundMotion.scaled` computes it, and the output sampling does not
@@ -44,7 +44,7 @@ SWEEP_EVENTS = 64
 @dataclass(frozen=True, eq=False)
 class SweepArches:
     """B arches packed for :func:`sweep`: per arch its chain of R rows (padded), each row the
-    four-link vector with its spline tables (``rows`` (B, R, S)), rotation limits and unstable
+    four-link vector with its tables (``rows`` (B, R, S)), rotation limits and unstable
     rotations [rad], directions (+1 l, -1 r), successor rows and rate ratios, the number of rows
     used, k_l, k_r, v_rest [rad/s] and the RK4 step ``dt`` and free-motion cap ``t_free`` [s]."""
 

@@ -48,7 +48,7 @@ class EnsembleConfig:
     practice, the 'paper' model's c_v of the nominal arch fixed on every sample); dt [s]: RK4
     step; t_free [s]: free motion allowed after the ground motion (both by default from the nominal
     arch's size, :func:`archrock.response.default_steps`); tabulate: the RK4 kernel reads
-    the equation's coefficients from spline tables (as ``respond``'s default; ~1e-9 relative,
+    the equation's coefficients from tables (as ``respond``'s default; ~1e-9 relative,
     about 3x faster) instead of the exact loop closure; early_stop: stop following an arch once,
     after the ground motion, it can no longer collapse (:func:`archrock.batch.simulate_batch`:
     outcome and peak exact, impacts and time to rest not followed; written to the JSON only when
