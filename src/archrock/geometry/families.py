@@ -59,8 +59,9 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 class _Piece:
     """A smooth piece of a centreline: p(u), p'(u) for u in [0, 1] (vectorised)."""
 
-    def __init__(self, p, dp, grid: int = 256):
+    def __init__(self, p, dp, grid: int = 256, constant_speed: bool = False):
         self.p, self.dp = p, dp
+        self.constant_speed = constant_speed
         u = np.linspace(0.0, 1.0, grid + 1)
         self._u = u
         seg = np.array([self._gl(a, b) for a, b in zip(u[:-1], u[1:])])
@@ -78,6 +79,8 @@ class _Piece:
     def u_of_s(self, s):
         """Parameter u at arc length s from the piece's start (Newton on the exact length)."""
         s = np.clip(np.asarray(s, float), 0.0, self.length)
+        if self.constant_speed:  # a circular arc: the arc length is proportional to u
+            return s / self.length
         k = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(self._u) - 2)
         u0, s0 = self._u[k], self._s[k]
         u = u0 + (s - s0) / np.maximum(self._s[k + 1] - s0, 1e-300) * (self._u[k + 1] - u0)
@@ -146,7 +149,7 @@ def _arc(cx, cy, r, th0, th1):
     def dp(u):
         th = th0 + (th1 - th0) * np.asarray(u, float)
         return -(th1 - th0) * r * np.sin(th), (th1 - th0) * r * np.cos(th)
-    return _Piece(p, dp, grid=8)  # exact lengths: the speed is constant
+    return _Piece(p, dp, grid=8, constant_speed=True)  # exact lengths: the speed is constant
 
 
 def _graph(f, df, a):
