@@ -157,3 +157,40 @@ def test_locate_lands_on_the_target(model, target, phi0, w0, a):
     t_cross = sol.t_events[0][sol.t_events[0] > 1e-9]
     assert t_cross.size == 1
     assert hc == pytest.approx(t_cross[0], abs=1e-11)
+
+
+@pytest.mark.parametrize("n", [3, 0, -1, 2.5, True, "600"])
+def test_table_intervals_refused_by_name(model, n):
+    """Tables need at least four intervals (five knots for the end slopes): fewer, or a
+    non-integer, is refused naming the field, at every entry point."""
+    from archrock.batch import prepare_batch, simulate_batch
+    from archrock.errors import ArchInputError
+    from archrock.groundmotion import oppenheim_pulse
+    from archrock.sweep import SweepArches
+
+    with pytest.raises(ArchInputError, match=r"n_intervals: .*allowed an integer >= 4"):
+        model.chain[0][0].tabulated(0.1, n)
+    arch = geometry.oppenheim_arch()
+    pb = prepare_batch([arch], impact="momentum")
+    with pytest.raises(ArchInputError, match=r"table_intervals: .*allowed an integer >= 4"):
+        simulate_batch(pb, oppenheim_pulse(-1.0, 0.2), table_intervals=n)
+    with pytest.raises(ArchInputError, match=r"table_intervals: .*allowed an integer >= 4"):
+        SweepArches.from_batch(pb, table_intervals=n)
+
+
+def test_table_error_falls_as_the_fourth_power_of_the_interval(model):
+    """The table's largest error in phi'' falls as h^4 (cubic Hermite with fourth-order slopes):
+    the fitted order from 40 to 320 intervals is 4.2; the least allowed table (4 intervals)
+    still gives finite values."""
+    fl = model.chain[0][0]
+    lim = model.chain[1][0]
+    phis = np.linspace(0.0, lim, 401)
+    exact = np.array([exact_acceleration(p, 0.3, -2.0, G, fl.geo) for p in phis])
+    errs = []
+    for n in (4, 40, 320):
+        tab = np.array(fl.tabulated(lim, n))
+        approx = np.array([table_acceleration(p, 0.3, -2.0, G, tab) for p in phis])
+        errs.append(np.max(np.abs(approx - exact)))
+    assert np.all(np.isfinite(errs))
+    order = math.log(errs[1] / errs[2]) / math.log(8.0)
+    assert 3.7 < order < 4.7

@@ -38,8 +38,9 @@ from .geometry import Arch, power_of_two_near, sector_properties
 from .groundmotion import G, GroundMotion
 from .limit import (_mechanism_from_candidate, candidate_hinges, kinematic_multipliers_arches,
                     kinematic_multipliers_batch)
-from .mechanism import (GEO_ERRORS, GEO_SIZE, coefficients, empty_table, dead_point, mechanism_geo,
-                        rest_rate, rotation_limit, table_range, unstable_rotation)
+from .mechanism import (GEO_ERRORS, GEO_SIZE, check_table_intervals, coefficients, dead_point,
+                        empty_table, mechanism_geo, rest_rate, rotation_limit, table_range,
+                        unstable_rotation)
 
 __all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch",
            "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
@@ -650,7 +651,7 @@ def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float =
     run = run & (p.n_mechanisms >= 2)
     args = (np.ascontiguousarray(p.chain_geo, dtype=float),
             np.ascontiguousarray(p.chain_table, dtype=float), p.n_mechanisms.astype(np.int64),
-            int(table_intervals) if tabulate else 0, p.k_l, p.k_r,
+            check_table_intervals(table_intervals) if tabulate else 0, p.k_l, p.k_r,
             np.ascontiguousarray(p.chain_limit, dtype=float),
             np.ascontiguousarray(p.chain_unstable, dtype=float),
             np.ascontiguousarray(p.chain_direction, dtype=float),

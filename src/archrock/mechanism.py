@@ -457,7 +457,8 @@ class FourLink:
         """``geo`` with the tables of the coefficients for 0 <= phi <= ``phi_max`` [rad] (for
         the fast integrator; the tables reach past both ends so that their free ends are far)."""
         start, top = table_range(self.geo, phi_max, self.phi_dead)
-        tab = coefficient_table(np.asarray(self.geo), start, top, int(n_intervals))
+        tab = coefficient_table(np.asarray(self.geo), start, top,
+                                check_table_intervals(n_intervals, "n_intervals"))
         tab.setflags(write=False)
         return tab
 
@@ -520,6 +521,17 @@ def four_link(arch: VoussoirArch, mechanism: Mechanism) -> FourLink:
 TABLE_HEADER = 4
 
 
+#: fewest table intervals: the one-sided slopes at the ends use five knots
+MIN_TABLE_INTERVALS = 4
+
+
+def check_table_intervals(n, name: str = "table_intervals") -> int:
+    """``n`` as an int, or ArchInputError naming ``name`` unless it is an integer >= 4."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < MIN_TABLE_INTERVALS:
+        raise ArchInputError(f"{name}: {n!r}; allowed an integer >= {MIN_TABLE_INTERVALS}")
+    return int(n)
+
+
 @maybe_njit
 def table_size(n_intervals):
     """Length of a geometry vector with tables of ``n_intervals`` intervals."""
@@ -529,7 +541,7 @@ def table_size(n_intervals):
 @maybe_njit
 def empty_table(geo, start, phi_max, n_intervals):
     """geo with room for the tables of (M, L/M, F/M, P/M) on [start, phi_max] (start < 0,
-    ``n_intervals`` >= 3), none of them built yet (see :func:`build_interval`)."""
+    ``n_intervals`` >= 4), none of them built yet (see :func:`build_interval`)."""
     n = n_intervals
     h = (phi_max - start) / n
     out = np.full(table_size(n), np.nan)
@@ -607,7 +619,7 @@ def build_interval(tab, i):
 @maybe_njit
 def coefficient_table(geo, start, phi_max, n_intervals):
     """geo extended with the tables of (M, L/M, F/M, P/M) on [start, phi_max] (start < 0,
-    ``n_intervals`` >= 3), every interval built."""
+    ``n_intervals`` >= 4), every interval built."""
     out = empty_table(geo, start, phi_max, n_intervals)
     for i in range(n_intervals):
         build_interval(out, i)

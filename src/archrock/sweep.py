@@ -31,7 +31,7 @@ from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError, LimitExceededError
 from .groundmotion import G, GroundMotion
-from .mechanism import GEO_SIZE, coefficient_table, table_size
+from .mechanism import GEO_SIZE, check_table_intervals, coefficient_table, table_size
 
 __all__ = ["SweepArches", "SweepMotions", "sweep", "SWEEP_EVENTS"]
 
@@ -127,7 +127,7 @@ class SweepArches:
         R = int(prepared.n_mechanisms[ok].max())
         geo = np.ascontiguousarray(prepared.chain_geo[ok, :R], dtype=float)
         if tabulate:
-            n = int(table_intervals)
+            n = check_table_intervals(table_intervals)
             rows = np.zeros((ok.size, R, table_size(n)))
             _tables(geo, np.ascontiguousarray(prepared.chain_table[ok, :R], dtype=float),
                     prepared.n_mechanisms[ok].astype(np.int64), n, rows)
