@@ -78,7 +78,7 @@ _rk4_fill = _rk4_with(filling_acceleration)
 @maybe_njit
 def _rk4(phi, w, t, h, i, times, accel, geo, g):
     """One RK4 step of length h from t in segment i: (phi, phi') at t + h, from the tables
-    (``FourLink.tabulated``, ~10x cheaper than the loop closure).  A stage outside the built
+    (``FourLink.tabulated``, about 7x cheaper than the loop closure).  A stage outside the built
     intervals gives NaN, which propagates to the result: the step is then redone building the
     intervals it needs (``geo`` is written), exactly where it leaves the tables."""
     p1, w1 = _rk4_table(phi, w, t, h, i, times, accel, geo, g)
@@ -127,8 +127,7 @@ def _locate(phi, w, t, hmax, i, times, accel, geo, g, target, from_zero, p_max, 
 
     Newton on h -> RK4(h) (its derivative is the step's end rate to O(h^4)) from the root of
     the step's cubic Hermite interpolant, kept inside a bracket that every evaluation narrows:
-    two or three RK4 evaluations instead of the seven or so of regula falsi.  Stops as that
-    did: |phi - target| < 1e-15 rad or a bracket narrower than 1e-13 s.  With ``from_zero``
+    about 3.5 RK4 evaluations per event instead of the 8 of regula falsi.  Stops as that did: |phi - target| < 1e-15 rad or a bracket narrower than 1e-13 s.  With ``from_zero``
     the step starts on the target itself (just after an impact), so the lower end of the
     bracket is first moved off zero by halving.
     """
