@@ -22,7 +22,7 @@ from ..batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, prepare_batch, simulat
 from ..errors import ArchInputError
 from .config import EnsembleConfig
 
-__all__ = ["COLUMNS", "run_batch", "sample_arch"]
+__all__ = ["COLUMNS", "run_batch", "run_batches", "sample_arch"]
 
 #: Columns of a batch's table (one row per sample).  Times [s]: t_collapse, the last upward
 #: passage of the unstable position before the rotation limit (the physical collapse time, which
@@ -48,14 +48,31 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
     Returns (DataFrame with the columns of :data:`COLUMNS`, timings dict).  ``parallel`` uses
     the numba parallel loop; process-pool and Dask workers run it serially.
     """
-    import pandas as pd
-
-    t0 = time.perf_counter()
     cfg = config if isinstance(config, EnsembleConfig) else EnsembleConfig.from_dict(config)
     if not 0 <= b < cfg.n_batches:
         raise ArchInputError(f"batch: {b}; allowed 0..{cfg.n_batches - 1}")
+    return run_batches(cfg, [b], parallel)[0][1:]
+
+
+def run_batches(config: EnsembleConfig, batches, parallel: bool = True) -> list:
+    """:func:`run_batch` of consecutive batches (b, b + 1, ...) computed together: one
+    preparation and one response call for all their arches, then one table per batch.  The
+    rows are those of :func:`run_batch` batch by batch (every arch is computed on its own);
+    only the Python around the compiled loops is paid once.  Timings are shared out in
+    proportion to the batches' sizes.  Returns [(b, DataFrame, timings), ...]."""
+    import pandas as pd
+
+    t0 = time.perf_counter()
+    cfg = config
+    bs = [int(b) for b in batches]
+    if not bs or any(not 0 <= b < cfg.n_batches for b in bs):
+        raise ArchInputError(f"batches: {bs}; allowed consecutive batches in 0..{cfg.n_batches - 1}")
+    if bs != list(range(bs[0], bs[0] + len(bs))):
+        raise ArchInputError(f"batches: {bs}; allowed consecutive batches")
     sampler = cfg.sampler
-    start, nb = cfg.batch_range(b)
+    start = cfg.batch_range(bs[0])[0]
+    last, n_last = cfg.batch_range(bs[-1])
+    nb = last + n_last - start
     if sampler.circular:
         spans, thick, radii = sampler.draw(start, nb)
         pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
@@ -83,8 +100,11 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
                "early_stopped": np.zeros(nb, dtype=bool)}
         status = np.where(error == "", "limit-only", "failed").astype(object)
         sim_seconds = 0.0
-    df = pd.DataFrame({
-        "batch": np.full(nb, b, dtype=np.int64),
+    # one table for the group, cut into the batches' tables (copy-on-write slices: building a
+    # table per batch converted every string column again)
+    batch_of = np.concatenate([np.full(cfg.batch_range(b)[1], b, dtype=np.int64) for b in bs])
+    table = pd.DataFrame({
+        "batch": batch_of,
         "index": np.arange(start, start + nb, dtype=np.int64),
         "k_l": pb.k_l, "k_r": pb.k_r,
         "mech_l": pb.mech_l.astype(str), "mech_r": pb.mech_r.astype(str),
@@ -99,7 +119,14 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
         "early_stopped": res["early_stopped"].astype(bool),
         "error": error.astype(str),
     }, columns=COLUMNS)
-    timings = {"prepare_s": float(sum(pb.seconds.values())), "response_s": float(sim_seconds),
-               "total_s": time.perf_counter() - t0, "pid": os.getpid()}
-    return df, timings
-
+    prepare_s = float(sum(pb.seconds.values()))
+    total_s = time.perf_counter() - t0
+    out = []
+    for b in bs:
+        lo, count = cfg.batch_range(b)
+        lo -= start
+        df = table.iloc[lo:lo + count].reset_index(drop=True)
+        share = count / nb
+        out.append((b, df, {"prepare_s": prepare_s * share, "response_s": float(sim_seconds) * share,
+                            "total_s": total_s * share, "pid": os.getpid()}))
+    return out
