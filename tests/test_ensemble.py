@@ -109,6 +109,41 @@ def test_batches_are_self_contained(base):
                                   base.frame.iloc[20:30].reset_index(drop=True))
 
 
+@pytest.mark.parametrize("early_stop", [False, True])
+def test_batches_computed_together_give_each_batchs_rows(early_stop):
+    """In-process, consecutive batches are computed in one call (run_batches); every arch is
+    computed on its own, so each batch's table is the one it gets alone, also for a last,
+    shorter batch, and timings are shared out by size."""
+    from archrock.ensemble.compute import run_batches
+
+    cfg = config(samples=45, early_stop=early_stop)
+    together = run_batches(cfg, [1, 2, 3, 4])
+    assert [b for b, _, _ in together] == [1, 2, 3, 4]
+    for b, df, timings in together:
+        alone = run_batches(cfg, [b])[0][1]
+        pd.testing.assert_frame_equal(df, alone)
+        assert list(df["batch"]) == [b] * len(df) and len(df) == cfg.batch_range(b)[1]
+        assert timings["response_s"] > 0
+    assert len(together[-1][1]) == 5
+    with pytest.raises(ArchInputError, match="batches: .*consecutive"):
+        run_batches(cfg, [1, 3])
+
+
+def test_in_process_groups_runs_of_consecutive_batches(monkeypatch):
+    from archrock.ensemble import executors
+
+    monkeypatch.setattr(executors, "GROUP_ARCHES", 25)
+    cfg = config(samples=95)  # batches of 10, the last of 5
+    assert executors._groups(cfg, [0, 1, 2, 3, 5, 6, 9]) == [[0, 1], [2, 3], [5, 6], [9]]
+    assert executors._groups(cfg, [7, 8, 9]) == [[7, 8, 9]]  # 10 + 10 + 5 arches
+    monkeypatch.setattr(executors, "GROUP_ARCHES", 1)
+    assert executors._groups(cfg, [0, 1]) == [[0], [1]]
+    # a resumed run computes only the missing batches, grouped, with the same rows
+    full = run_ensemble(config(samples=95), progress=False).frame
+    monkeypatch.setattr(executors, "GROUP_ARCHES", 4000)
+    pd.testing.assert_frame_equal(run_ensemble(config(samples=95), progress=False).frame, full)
+
+
 def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     out = tmp_path / "ens"
     first = run_ensemble(config(), out_dir=out, progress=False)
