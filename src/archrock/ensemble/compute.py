@@ -107,17 +107,18 @@ def run_batches(config: EnsembleConfig, batches, parallel: bool = True) -> list:
         "batch": batch_of,
         "index": np.arange(start, start + nb, dtype=np.int64),
         "k_l": pb.k_l, "k_r": pb.k_r,
-        "mech_l": pb.mech_l.astype(str), "mech_r": pb.mech_r.astype(str),
+        # object arrays of str: pandas makes them its string columns without a numpy copy
+        "mech_l": pb.mech_l, "mech_r": pb.mech_r,
         "c_l_to_r": pb.c_l_to_r, "c_r_to_l": pb.c_r_to_l,
         "collapsed": status == "collapsed",
-        "status": status.astype(str),
+        "status": status,
         "peak": res["peak"], "t_collapse": res["t_collapse"], "t_limit": res["t_limit"],
         "t_unstable": res["t_unstable"],
         "n_impacts": res["n_impacts"].astype(np.int64),
         "n_activations": res["n_activations"].astype(np.int64),
         "events_truncated": res["events_truncated"].astype(bool),
         "early_stopped": res["early_stopped"].astype(bool),
-        "error": error.astype(str),
+        "error": error,
     }, columns=COLUMNS)
     prepare_s = float(sum(pb.seconds.values()))
     total_s = time.perf_counter() - t0
