@@ -8,7 +8,9 @@ the response (``response_s``), the wall time and arches per second, and the seri
 the share of the single-thread wall time spent outside the compiled parallel loops (the numba
 ``prange`` kernels of the limit enumeration, the four-link loop, the impact laws and the
 response, timed here by wrapping them).  Amdahl's law with that fraction s bounds the speed-up
-on N threads by 1 / (s + (1 - s) / N).
+on N threads by 1 / (s + (1 - s) / N).  After a warm-up ensemble, each configuration runs
+REPEATS times; the run of median wall time is shown, with the serial fractions of all the
+single-thread runs.
 
 ``--million``: 10^6 arches (batches of 10,000) through limit analysis and the paper's pulse
 with early stop, batch by batch through ``run_batch`` keeping only the counts, so memory stays
@@ -26,6 +28,10 @@ import os
 import platform
 import resource
 import time
+
+
+#: runs per configuration in the scaling table (the median is shown)
+REPEATS = 3
 
 
 def _config(samples, early_stop=False, batch_size=500, seed=0):
@@ -105,10 +111,17 @@ def scaling(samples):
         cfg = _config(samples, early)
         key = "early_stop" if early else "full"
         rows = {}
+        fractions = []
         for threads in (1, all_threads):
-            res, row = _run(cfg, threads)
+            # three runs each, the one of median wall time kept: the serial part is a few
+            # hundredths of a second, within the noise of a shared machine
+            runs = sorted((_run(cfg, threads) for _ in range(REPEATS)),
+                          key=lambda r: r[1]["wall_s"])
+            res, row = runs[len(runs) // 2]
             frames[(key, threads)] = res.frame
             rows[threads] = row
+            if threads == 1:
+                fractions = sorted(r["outside_kernels_s"] / r["wall_s"] for _, r in runs)
         one, many = rows[1], rows[all_threads]
         s = one["outside_kernels_s"] / one["wall_s"]
         out[key] = {"threads_1": one, f"threads_{all_threads}": many,
@@ -119,7 +132,9 @@ def scaling(samples):
                   f"{row['arches_per_s']:7.0f} arches/s  prepare {row['prepare_s']:5.2f} s  "
                   f"response {row['response_s']:6.2f} s  outside the parallel kernels "
                   f"{row['outside_kernels_s']:5.2f} s  ({row['collapsed']} collapsed)")
-        print(f"{key:10s} serial fraction {100 * s:.2f}% of the 1-thread time; speed-up "
+        out[key]["serial_fraction_runs"] = fractions
+        print(f"{key:10s} serial fraction {100 * s:.2f}% of the 1-thread time (runs: "
+              f"{', '.join(f'{100 * f:.2f}%' for f in fractions)}); speed-up "
               f"x{out[key]['speedup']:.2f} on {all_threads} threads (Amdahl bound "
               f"x{out[key]['amdahl_bound']:.2f})")
     numba.set_num_threads(all_threads)
