@@ -39,8 +39,8 @@ from .groundmotion import G, GroundMotion
 from .limit import (_mechanism_from_candidate, candidate_hinges, kinematic_multipliers_arches,
                     kinematic_multipliers_batch)
 from .mechanism import (GEO_ERRORS, GEO_SIZE, check_table_intervals, coefficients, dead_point,
-                        empty_table, mechanism_geo, rest_rate, rotation_limit, table_range,
-                        unstable_rotation)
+                        init_table, mechanism_geo, rest_rate, rotation_limit, table_range,
+                        table_size, unstable_rotation)
 
 __all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch",
            "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
@@ -553,12 +553,10 @@ def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, next
     both loops)."""
     R = n_rows[b]
     if n_tab > 0:
-        # built interval by interval as the motion reaches them (mechanism.empty_table)
-        first = empty_table(geos[b, 0], tabs[b, 0, 0], tabs[b, 0, 1], n_tab)
-        rows = np.zeros((R, first.size))
-        rows[0] = first
-        for j in range(1, R):
-            rows[j] = empty_table(geos[b, j], tabs[b, j, 0], tabs[b, j, 1], n_tab)
+        # built interval by interval as the motion reaches them (mechanism.init_table)
+        rows = np.empty((R, table_size(n_tab)))
+        for j in range(R):
+            init_table(rows[j], geos[b, j], tabs[b, j, 0], tabs[b, j, 1], n_tab)
     else:
         rows = geos[b, :R].copy()
     # kernel modes are rows + 1 (0 = rest)

@@ -32,7 +32,8 @@ from .units import G
 
 __all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",
            "fast_coefficients", "exact_acceleration", "table_acceleration",
-           "filling_acceleration", "empty_table", "build_interval", "table_size"]
+           "filling_acceleration", "init_table", "empty_table", "build_interval", "build_table",
+           "table_size"]
 
 # Layout of the flat geometry vector used by the scalar kernels (shared with the compiled
 # integrator): hinge points A, B, C, D at phi = 0; sign s (theta_1 = s phi); link masses;
@@ -539,17 +540,25 @@ def table_size(n_intervals):
 
 
 @maybe_njit
-def empty_table(geo, start, phi_max, n_intervals):
-    """geo with room for the tables of (M, L/M, F/M, P/M) on [start, phi_max] (start < 0,
-    ``n_intervals`` >= 4), none of them built yet (see :func:`build_interval`)."""
+def init_table(out, geo, start, phi_max, n_intervals):
+    """Write into ``out`` (length :func:`table_size`) geo and empty tables of (M, L/M, F/M,
+    P/M) on [start, phi_max] (start < 0, ``n_intervals`` >= 4), none of them built yet (see
+    :func:`build_interval`).  In place, so that a batch loop fills its own rows."""
     n = n_intervals
     h = (phi_max - start) / n
-    out = np.full(table_size(n), np.nan)
+    out[:] = np.nan
     out[:GEO_SIZE] = geo[:GEO_SIZE]
     out[GEO_SIZE] = start
     out[GEO_SIZE + 1] = h
     out[GEO_SIZE + 2] = n
     out[GEO_SIZE + 3] = 1.0 / h
+
+
+@maybe_njit
+def empty_table(geo, start, phi_max, n_intervals):
+    """:func:`init_table` in a new array."""
+    out = np.empty(table_size(n_intervals))
+    init_table(out, geo, start, phi_max, n_intervals)
     return out
 
 
@@ -617,29 +626,41 @@ def build_interval(tab, i):
 
 
 @maybe_njit
+def build_table(tab):
+    """Build every interval of ``tab`` (from :func:`init_table`)."""
+    for i in range(int(tab[GEO_SIZE + 2])):
+        build_interval(tab, i)
+
+
+@maybe_njit
 def coefficient_table(geo, start, phi_max, n_intervals):
     """geo extended with the tables of (M, L/M, F/M, P/M) on [start, phi_max] (start < 0,
     ``n_intervals`` >= 4), every interval built."""
     out = empty_table(geo, start, phi_max, n_intervals)
-    for i in range(n_intervals):
-        build_interval(out, i)
+    build_table(out)
     return out
+
+
+@maybe_njit
+def _table_interval(phi, geo):
+    """(base, s): the offset of phi's interval in ``geo``'s tables and phi - phi_i [rad], or
+    (-1, 0) when ``geo`` carries no tables or phi is outside them (built or not)."""
+    if geo.size <= GEO_SIZE:
+        return -1, 0.0
+    start = geo[GEO_SIZE]
+    x = (phi - start) * geo[GEO_SIZE + 3]
+    if not (x >= 0.0 and x < geo[GEO_SIZE + 2]):
+        return -1, 0.0
+    i = int(x)
+    return GEO_SIZE + TABLE_HEADER + 16 * i, phi - (start + i * geo[GEO_SIZE + 1])
 
 
 @maybe_njit
 def fast_coefficients(phi, geo):
     """(M, L, F, P) from the tables when ``geo`` carries them and phi is in a built interval,
     else exactly."""
-    if geo.size <= GEO_SIZE:
-        return coefficients(phi, geo)
-    start = geo[GEO_SIZE]
-    x = (phi - start) * geo[GEO_SIZE + 3]
-    if not (x >= 0.0 and x < geo[GEO_SIZE + 2]):
-        return coefficients(phi, geo)
-    i = int(x)
-    s = phi - (start + i * geo[GEO_SIZE + 1])
-    base = GEO_SIZE + TABLE_HEADER + 16 * i
-    if geo[base] != geo[base]:
+    base, s = _table_interval(phi, geo)
+    if base < 0 or geo[base] != geo[base]:
         return coefficients(phi, geo)
     M = ((geo[base + 3] * s + geo[base + 2]) * s + geo[base + 1]) * s + geo[base]
     L = ((geo[base + 7] * s + geo[base + 6]) * s + geo[base + 5]) * s + geo[base + 4]
@@ -662,15 +683,9 @@ def table_acceleration(phi, rate, a, g, geo):
     outside them or in an interval not built yet.  It never calls anything itself: a call in
     this innermost chain made the compiled RK4 step almost twice as slow even when not taken,
     so the caller redoes the step with :func:`filling_acceleration` when it sees a NaN."""
-    if geo.size <= GEO_SIZE:
+    base, s = _table_interval(phi, geo)
+    if base < 0:
         return math.nan
-    start = geo[GEO_SIZE]
-    x = (phi - start) * geo[GEO_SIZE + 3]
-    if not (x >= 0.0 and x < geo[GEO_SIZE + 2]):
-        return math.nan
-    i = int(x)
-    s = phi - (start + i * geo[GEO_SIZE + 1])
-    base = GEO_SIZE + TABLE_HEADER + 16 * i
     lm = ((geo[base + 7] * s + geo[base + 6]) * s + geo[base + 5]) * s + geo[base + 4]
     fm = ((geo[base + 11] * s + geo[base + 10]) * s + geo[base + 9]) * s + geo[base + 8]
     pm = ((geo[base + 15] * s + geo[base + 14]) * s + geo[base + 13]) * s + geo[base + 12]
@@ -681,13 +696,11 @@ def table_acceleration(phi, rate, a, g, geo):
 def filling_acceleration(phi, rate, a, g, geo):
     """:func:`table_acceleration`, building phi's interval first when it is not yet (writes
     into ``geo``), and :func:`exact_acceleration` outside the tables."""
-    if geo.size > GEO_SIZE:
-        x = (phi - geo[GEO_SIZE]) * geo[GEO_SIZE + 3]
-        if x >= 0.0 and x < geo[GEO_SIZE + 2]:
-            base = GEO_SIZE + TABLE_HEADER + 16 * int(x)
-            if geo[base + 4] != geo[base + 4]:
-                build_interval(geo, int(x))
-            v = table_acceleration(phi, rate, a, g, geo)
-            if v == v:
-                return v
+    base, _ = _table_interval(phi, geo)
+    if base >= 0:
+        if geo[base + 4] != geo[base + 4]:
+            build_interval(geo, (base - GEO_SIZE - TABLE_HEADER) // 16)
+        v = table_acceleration(phi, rate, a, g, geo)
+        if v == v:
+            return v
     return exact_acceleration(phi, rate, a, g, geo)

@@ -31,7 +31,7 @@ from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError, LimitExceededError
 from .groundmotion import G, GroundMotion
-from .mechanism import GEO_SIZE, check_table_intervals, coefficient_table, table_size
+from .mechanism import build_table, check_table_intervals, init_table, table_size
 
 __all__ = ["SweepArches", "SweepMotions", "sweep", "SWEEP_EVENTS"]
 
@@ -149,7 +149,8 @@ class SweepArches:
 def _tables(geo, ranges, n_rows, n, out):
     for b in range(geo.shape[0]):
         for j in range(n_rows[b]):
-            out[b, j] = coefficient_table(geo[b, j], ranges[b, j, 0], ranges[b, j, 1], n)
+            init_table(out[b, j], geo[b, j], ranges[b, j, 0], ranges[b, j, 1], n)
+            build_table(out[b, j])
 
 
 @dataclass(frozen=True, eq=False)
