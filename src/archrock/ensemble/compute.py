@@ -54,7 +54,7 @@ def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
     return run_batches(cfg, [b], parallel)[0][1:]
 
 
-def run_batches(config: EnsembleConfig, batches, parallel: bool = True) -> list:
+def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
     """:func:`run_batch` of consecutive batches (b, b + 1, ...) computed together: one
     preparation and one response call for all their arches, then one table per batch.  The
     rows are those of :func:`run_batch` batch by batch (every arch is computed on its own);
@@ -63,7 +63,6 @@ def run_batches(config: EnsembleConfig, batches, parallel: bool = True) -> list:
     import pandas as pd
 
     t0 = time.perf_counter()
-    cfg = config
     bs = [int(b) for b in batches]
     if not bs or any(not 0 <= b < cfg.n_batches for b in bs):
         raise ArchInputError(f"batches: {bs}; allowed consecutive batches in 0..{cfg.n_batches - 1}")
