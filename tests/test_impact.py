@@ -283,7 +283,11 @@ def test_impact_spec_on_nominal_is_the_papers_practice():
 
     nominal = geometry.oppenheim_arch()
     ra = geometry.random_arch(seed=315)
-    assert PAPER_PRACTICE.resolved(nominal) == ImpactSpec.fixed(0.8753811790524885)
+    resolved = PAPER_PRACTICE.resolved(nominal)
+    # c_v is a computed number (five equations through LAPACK): its last digit follows the
+    # numpy/scipy build, so it is compared to 1e-12 (the paper's 0.8754 is good to 5e-5)
+    assert resolved.model == "fixed" and resolved.on == "arch" and not resolved.literal
+    assert resolved.cv == pytest.approx(0.8753811790524885, rel=1e-12)
     model = prepare(ra, PAPER_PRACTICE, nominal=nominal)
     assert model.impact.model == "fixed"
     assert model.impact.energy_l_to_r == pytest.approx(0.8753811790524885**2, rel=1e-12)
