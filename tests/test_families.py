@@ -239,13 +239,14 @@ def test_every_family_is_drawn_with_its_fill_and_loads(tmp_path):
 def test_vertical_stereotomy_minimum_thickness_is_makris_and_alexakis():
     """Minimum thickness of a semicircular arch under its own weight with vertical joints
     approaches t/R = 0.1095 (Makris and Alexakis 2013), above Milankovitch's 0.1075 with radial
-    joints; near the springings the verticals that miss the intrados are left out."""
+    joints; near the springings the springing voussoirs span the verticals that would miss the
+    intrados, and the voussoirs between are shortened so that n is kept."""
     from archrock.limit import minimum_thickness
 
     t = 0.11  # of a centreline radius 1
     vertical = family_arch("circular", 2.0, 1.0, t, 32, joints="vertical", exact=False)
     radial = family_arch("circular", 2.0, 1.0, t, 32, exact=False)
-    assert vertical.n == 26 and radial.n == 32  # 3 joints left out at each springing
+    assert vertical.n == 32 and radial.n == 32  # n honoured (3 springing joints would miss)
     tv = minimum_thickness(vertical).factor * t
     tr = minimum_thickness(radial).factor * t
     assert tv == pytest.approx(0.1095, abs=2e-4)
@@ -267,3 +268,33 @@ def test_pointed_arch_of_any_voussoir_count_builds_or_says_why():
     with pytest.raises(ArchInputError, match="^n: the joints beside the pointed crown"):
         family_arch("pointed", 10.0, 7.0, 1.0, 51)
     assert family_arch("pointed", 10.0, 7.0, 0.3, 51).n == 51
+
+
+@pytest.mark.parametrize("n", [7, 12])
+def test_vertical_joints_keep_the_voussoirs_asked_for(n):
+    """Issue 17: --joints vertical --voussoirs 7 on a semicircle analysed 5 voussoirs (12 gave
+    10) without a word.  The springing voussoirs now reach to the first equal division whose
+    vertical crosses the ring and the rest of the centreline is divided equally: n voussoirs,
+    every interior joint vertical and inside the ring, symmetric about the crown."""
+    arch = family_arch("circular", 10.0, 5.0, 1.0, n, joints="vertical")
+    assert arch.n == n
+    for i in range(n - 1):
+        a, b = arch.intrados[i][-1], arch.extrados[i][-1]
+        assert a[0] == pytest.approx(b[0], abs=1e-12)  # vertical joint
+        assert b[1] > a[1] + 0.5  # from the intrados up to the extrados, above it
+        assert -4.5 < a[0] < 4.5  # crosses the intrados (radius 4.5), not the springing face
+    # symmetric: voussoir i mirrors voussoir n-1-i
+    x_joints = [arch.intrados[i][-1][0] for i in range(n - 1)]
+    assert np.allclose(x_joints, [-x for x in reversed(x_joints)], atol=1e-12)
+
+
+def test_vertical_joints_cli_reports_n_voussoirs():
+    import json
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "archrock", "limit", "--shape", "circular",
+                          "--span", "10", "--rise", "5", "--thickness", "1", "--voussoirs", "7",
+                          "--joints", "vertical", "--json"], capture_output=True, text=True,
+                         check=True)
+    assert len(json.loads(out.stdout)["voussoirs"]) == 7

@@ -354,9 +354,10 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
     [kg/m^3], ``loads`` (:class:`Load` or dicts; points in this frame), ``fill``.
 
     Vertical joints pass through the centreline's division points; where such a vertical line
-    would miss the intrados (near steep springings) the joint is left out and the springing
-    voussoir spans it, as vertical stereotomy does (Makris and Alexakis 2013): the arch then has
-    fewer than n voussoirs (``.n``).
+    would miss the intrados (near steep springings) the springing voussoir spans it, as vertical
+    stereotomy does (Makris and Alexakis 2013), reaching to the first division whose vertical
+    crosses the ring, and the centreline between the two springing voussoirs is divided equally
+    among the other n - 2: the arch always has exactly n voussoirs (``.n``).
 
     ``fill = {"level": y [m], "density": rho [kg/m^3]}``: the fill above each voussoir's
     extrados up to y = level, cut by the vertical lines through the extrados ends of its
@@ -537,9 +538,11 @@ def _vertical_cut(line, thick, x, side, sign_piece, lo, hi):
 
 
 def _vertical_joints_that_cut(line, thick, s_div):
-    """The division points whose vertical line crosses the whole ring: near steep springings the
-    vertical through a centreline point misses the intrados, and the springing voussoir spans it
-    (vertical stereotomy; Makris and Alexakis 2013).  Returns the kept points (ends included)."""
+    """n + 1 division points (ends included) whose vertical lines cross the whole ring: the
+    equal division ``s_div`` where every interior vertical crosses it; otherwise (near steep
+    springings the vertical through a centreline point misses the intrados) each springing
+    voussoir spans those joints (vertical stereotomy; Makris and Alexakis 2013) up to the first
+    equal division that crosses, and the rest is divided equally, so that n is kept."""
     big_l = line.length
     p, _ = line.eval(s_div)
     keep = [0]
@@ -554,10 +557,24 @@ def _vertical_joints_that_cut(line, thick, s_div):
         if xa < p[j, 0] < xb:
             keep.append(j)
     keep.append(len(s_div) - 1)
+    n = len(s_div) - 1
     if len(keep) < 4:
-        raise ArchInputError("joints: fewer than 3 voussoirs keep a vertical joint that crosses "
-                             "the ring; allowed more voussoirs or joints='normal'")
-    return s_div[keep]
+        raise ArchInputError(f"voussoirs: {n} with joints='vertical' leaves fewer than 2 vertical "
+                             f"joints that cross the whole ring; allowed more voussoirs or "
+                             f"joints='normal'")
+    if len(keep) == n + 1:
+        return s_div
+    # Some joints near the springings miss the intrados: each springing voussoir reaches to the
+    # first (last) equal division whose vertical crosses the ring, and the centreline between
+    # those two joints is divided equally among the other n - 2 voussoirs, so the arch still has
+    # exactly n voussoirs.  x grows along the centreline, so every point between two joints that
+    # cross the ring crosses it too.
+    s_a, s_b = s_div[keep[1]], s_div[keep[-2]]
+    out = np.concatenate([[0.0], np.linspace(s_a, s_b, n - 1), [big_l]])
+    out[1], out[-2] = s_a, s_b
+    if line.kink:  # a joint at a pointed crown sits exactly on it
+        out[np.abs(out - big_l / 2) < 1e-12 * big_l] = big_l / 2
+    return out
 
 
 def _voussoir_lines(line, thick, s_div, joints, shape, span, rise, ppr, t_crown):
@@ -675,8 +692,9 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
     :func:`~archrock.geometry.perturb_voussoirs`.
 
     Voussoir i covers the centreline's arc length [s_i, s_i+1] with lengths
-    l_i = l0_i (1 + s_a U0_i) rescaled to the total L (l0_i the nominal's: L/n, or longer at a
-    springing whose vertical joints were left out); its thickness is t(s)(1 + s_t U1_i) and
+    l_i = l0_i (1 + s_a U0_i) rescaled to the total L (l0_i the nominal's: L/n, or, with
+    vertical joints that would miss the intrados near the springings, the nominal's longer
+    springing voussoirs and equal ones between); its thickness is t(s)(1 + s_t U1_i) and
     its own centreline is offset along the normal by s_R U2_i t(s) (t(s): the nominal
     thickness, the circular family's R_i = R + s_R t U).  Joint j (1..n-1) is the nominal
     family's joint line at s_j (normal to the centreline, or vertical) rotated about the
@@ -695,7 +713,8 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
                              "family_arch")
     line, thick = nominal._frame
     big_l, ppr = line.length, r["points_per_rad"]
-    # the nominal's division points (vertical joints that miss the intrados left out)
+    # the nominal's division points (with vertical joints: longer springing voussoirs where an
+    # equal division's vertical would miss the intrados)
     base = big_l * np.arange(r["voussoirs"] + 1) / r["voussoirs"]
     if r["joints"] == "vertical":
         base = _vertical_joints_that_cut(line, thick, base)
