@@ -189,7 +189,7 @@ def write(tmp_path, name, text):
 
 
 def test_two_column_comments_commas_header_and_units(tmp_path):
-    text = "# a comment\n\ntime, accel\n0.0, 0.1\n0.5, -0.2  # trailing comment\n\n1.0,0.0\n"
+    text = "# a comment\n# corners (long intervals meant)\n\ntime, accel\n0.0, 0.1\n0.5, -0.2  # trailing comment\n\n1.0,0.0\n"
     for units, factor in (("g", G), ("m/s2", 1.0), ("cm/s2", 0.01)):
         gm = read_two_column(write(tmp_path, "rec.csv", text), units=units)
         np.testing.assert_allclose(gm.times, [0.0, 0.5, 1.0])
@@ -202,7 +202,7 @@ def test_two_column_comments_commas_header_and_units(tmp_path):
 
 
 def test_two_column_prepends_zero_sample(tmp_path):
-    gm = read_two_column(write(tmp_path, "late.txt", "0.2 1.0\n0.4 1.0\n"), units="m/s2")
+    gm = read_two_column(write(tmp_path, "late.txt", "# corners\n0.2 1.0\n0.4 1.0\n"), units="m/s2")
     np.testing.assert_allclose(gm.times, [0.0, 0.2, 0.4])
     np.testing.assert_allclose(gm.accel, [0.0, 1.0, 1.0])
     assert gm(0.1) == pytest.approx(0.5)
@@ -336,7 +336,7 @@ def test_load_record_dispatch(tmp_path):
     with raises(r"units: 'cm/s2' for lower\.at2; allowed 'g'") as e:
         load_record(p, units="cm/s2")
     one_line(e)
-    q = write(tmp_path, "rec.dat", "0 0\n1 2\n")
+    q = write(tmp_path, "rec.dat", "# corners\n0 0\n1 2\n")
     assert load_record(q).pga == pytest.approx(2 * G)
     assert load_record(q, units="cm/s2").pga == pytest.approx(0.02)
     with raises(r"units: 'gal'"):
@@ -450,7 +450,7 @@ def test_spec_bad_fields_are_named(make, field):
 
 
 def test_record_spec_bad_fields_are_named(tmp_path):
-    p = write(tmp_path, "rec.txt", "0 0\n1 1\n")
+    p = write(tmp_path, "rec.txt", "# corners\n0 0\n1 1\n")
     good = {"path": str(p), "units": None, "scale": 1.0, "sha256": RecordSpec.from_file(p).sha256}
     for change, field in (({"units": "ft/s2"}, "record units"), ({"scale": float("inf")}, "record scale"),
                           ({"sha256": "abc"}, "record sha256"), ({"path": 3}, "record path")):
@@ -488,10 +488,6 @@ def test_suspicious_records_warn_once_with_the_field(tmp_path):
         load_record(_sampled(tmp_path, "ms.txt", _wave(peak=6.0)))
     with pytest.warns(UserWarning, match=r"slow\.txt: time step 0\.07 s .* coarser than 0\.05 s"):
         load_record(_sampled(tmp_path, "slow.txt", _wave(), dt=0.07))
-    rows = _sampled(tmp_path, "step.txt", _wave()).read_text().splitlines()
-    rows[30] = rows[29].split()[0] + " 0.123"  # a repeated time with a new value: a step
-    with pytest.warns(UserWarning, match=r"step\.txt: line 31: time 0\.29 s repeats"):
-        load_record(write(tmp_path, "step.txt", "\n".join(rows) + "\n"))
 
 
 @pytest.mark.parametrize("edit, match", [
@@ -512,8 +508,8 @@ def test_record_sampled_every_second_is_refused_but_a_corner_list_is_not(tmp_pat
         load_record(_sampled(tmp_path, "sec.txt", _wave(40), dt=1.0))
     with raises(r"DT 0\.5 s|time step 0\.5 s"):
         read_at2(at2(tmp_path, "NPTS= 10 DT= 0.5 SEC"))
-    # a few corners describe a piecewise-linear motion: long intervals are meant
-    assert load_record(write(tmp_path, "tri.txt", "0 0\n0.5 0.4\n1 0\n")).duration == 1.0
+    # a corner list describes a piecewise-linear motion: long intervals are meant
+    assert load_record(write(tmp_path, "tri.txt", "# corners\n0 0\n0.5 0.4\n1 0\n")).duration == 1.0
 
 
 def test_scaled_records_and_pulses_are_bounded(tmp_path):
@@ -530,3 +526,43 @@ def test_scaled_records_and_pulses_are_bounded(tmp_path):
     with raises("pulse amplitude"):
         PulseSpec("oppenheim", 25.0, 0.2)
     assert pulse("oppenheim", -20.0, 0.2).pga_g == pytest.approx(20.0)
+
+
+# ---- issue 17: two-column records are checked as AT2 files are --------------------------------
+@pytest.mark.parametrize("dt, rows", [(1.0, 10), (0.5, 10), (1.0, 40), (0.5, 60)])
+def test_coarse_two_column_record_is_refused_as_its_at2_twin(tmp_path, dt, rows):
+    """Sampled every 1 s or 0.5 s, short or long: refused as the same data in AT2 form is,
+    naming the step, the bound and the way to declare a corner list."""
+    p = _sampled(tmp_path, "coarse.txt", _wave(rows), dt=dt)
+    with raises(rf"record coarse\.txt: time step {dt:g} s \(line 2\); allowed at most 0\.1 s "
+                r"\(.*\); a piecewise-linear motion given by its corners: put a '# corners' line") as e:
+        load_record(p, units="m/s2")
+    one_line(e)
+    with raises(rf"DT {dt:g} s|time step {dt:g} s"):
+        read_at2(at2(tmp_path, f"NPTS= 10 DT= {dt:g} SEC"))
+
+
+def test_two_column_at_007_s_warns_like_at2_even_when_short(tmp_path):
+    with pytest.warns(UserWarning, match=r"short\.txt: time step 0\.07 s .* coarser than 0\.05 s"):
+        gm = load_record(_sampled(tmp_path, "short.txt", _wave(10), dt=0.07))
+    assert gm.duration == pytest.approx(0.63)
+
+
+def test_repeated_time_in_a_sampled_record_is_refused(tmp_path):
+    rows = _sampled(tmp_path, "step.txt", _wave()).read_text().splitlines()
+    rows[30] = rows[29].split()[0] + " 0.123"  # a repeated time with a new value
+    with raises(r"record step\.txt: line 31: time 0\.29 s repeats line 30 in a sampled record of "
+                r"200 rows; allowed increasing times \(a step, a time twice, only in a "
+                r"piecewise-linear motion given by its corners") as e:
+        load_record(write(tmp_path, "step.txt", "\n".join(rows) + "\n"))
+    one_line(e)
+    # declared a corner list, the same rows are a motion with a step there
+    gm = load_record(write(tmp_path, "step.txt", "# corners\n" + "\n".join(rows) + "\n"))
+    assert gm(0.29) == pytest.approx(0.123 * G) and gm(0.289) != pytest.approx(0.123 * G)
+
+
+def test_short_pulse_with_steps_is_a_corner_list(tmp_path):
+    """The docs' idealised pulses as two-column files (Oppenheim's a = -1 g, t_p = 0.2 s): a
+    few rows with steps are corners, read without a marker."""
+    gm = load_record(write(tmp_path, "opp.txt", "0 -1\n0.2 -1\n0.2 0.5\n0.6 0.5\n0.6 0\n"))
+    assert gm(0.1) == pytest.approx(-G) and gm(0.4) == pytest.approx(0.5 * G)

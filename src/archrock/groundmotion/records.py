@@ -18,10 +18,16 @@ from ..units import G
 from .motion import (MAX_RECORD_DT_S, WARN_RECORD_DT_S, GroundMotion, _unit_factor,
                      check_pga)
 
-#: A two-column file with at least this many rows and no steps is a sampled record, whose time
-#: step is checked; fewer rows (or steps) describe a piecewise-linear motion by its corners,
-#: where long intervals are meant.
+#: A two-column file is a sampled record, checked as a PEER ``.AT2`` file is (time step at most
+#: MAX_RECORD_DT_S, warned above WARN_RECORD_DT_S; strictly increasing times), unless it is a
+#: corner list: a piecewise-linear motion given by its corners, where long intervals and steps
+#: (a time twice, with a new value) are meant.  A corner list is declared by a comment line
+#: ``# corners`` (any length), or is a file of fewer than this many rows with a step (the
+#: idealised pulses of the docs: "0 -1 / 0.2 -1 / 0.2 0.5 / 0.6 0.5 / 0.6 0").
 MIN_SAMPLED_ROWS = 20
+#: The comment that declares a two-column file a corner list.
+CORNERS_MARK = "corners"
+_CORNERS_HINT = f"a piecewise-linear motion given by its corners: put a '# {CORNERS_MARK}' line first"
 
 __all__ = ["read_two_column", "read_at2", "load_record"]
 
@@ -78,7 +84,8 @@ def _units_cause(pga_g: float, units: str) -> str:
             + " or ".join(f"--units {u}" for u in fits))
 
 
-def _check_record(p: Path, motion: GroundMotion, units: str, lineno_of=None) -> None:
+def _check_record(p: Path, motion: GroundMotion, units: str, lineno_of=None,
+                  corners_hint: bool = False) -> None:
     """Refuse or warn about a record that cannot be meant (PGA, time step; module constants
     of :mod:`.motion`). ``lineno_of(i)``: the file line of sample i, for the message."""
     pga_g = motion.pga / G
@@ -89,8 +96,9 @@ def _check_record(p: Path, motion: GroundMotion, units: str, lineno_of=None) -> 
     cause = ("times in ms or in samples? a sampled accelerogram has a step of 0.005-0.02 s"
              if dt[i] >= 1.0 else "a record this coarse misses the pulses that rock an arch")
     if dt[i] > MAX_RECORD_DT_S:
+        hint = f"; {_CORNERS_HINT}" if corners_hint else ""
         raise ArchInputError(f"record {p.name}: time step {dt[i]:g} s{where}; allowed at most "
-                             f"{MAX_RECORD_DT_S:g} s ({cause})")
+                             f"{MAX_RECORD_DT_S:g} s ({cause}){hint}")
     if dt[i] > WARN_RECORD_DT_S:
         warnings.warn(f"record {p.name}: time step {dt[i]:g} s{where} is coarser than "
                       f"{WARN_RECORD_DT_S:g} s; {cause}", stacklevel=3)
@@ -108,9 +116,15 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
     """Read "time accel" rows (whitespace- or comma-separated) into a GroundMotion.
 
     '#' starts a comment (whole line or trailing); blank lines are skipped; the first non-comment
-    line may be a non-numeric header.  Times [s] must be >= 0 and increasing; one time may appear
-    twice in a row (a step).  If the first time is > 0, a zero sample (0, 0) is prepended, so the
-    record ramps from 0 to its first value.  ``units`` in UNITS, converted to m/s^2.
+    line may be a non-numeric header.  Times [s] must be >= 0 and increasing.  If the first time
+    is > 0, a zero sample (0, 0) is prepended, so the record ramps from 0 to its first value.
+    ``units`` in UNITS, converted to m/s^2.
+
+    A sampled record is checked as a PEER ``.AT2`` file is: a time step above MAX_RECORD_DT_S
+    (0.1 s) or a repeated time is refused, above WARN_RECORD_DT_S (0.05 s) a warning.  A corner
+    list (:data:`MIN_SAMPLED_ROWS`: a ``# corners`` comment line, or fewer than 20 rows with a
+    step) is a piecewise-linear motion by its corners: any interval, and one time may appear
+    twice in a row (a step to a new value).
     """
     factor = _unit_factor(units)
     p, lines = _read_lines(path)
@@ -118,8 +132,12 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
     acs: list[float] = []
     linenos: list[int] = []
     seen_first = False
+    marked = False
     for lineno, raw in enumerate(lines, start=1):
-        line = raw.split("#", 1)[0].strip()
+        line, _, comment = raw.partition("#")
+        line = line.strip()
+        if not line and comment.strip().lower().startswith(CORNERS_MARK):
+            marked = True
         if not line:
             continue
         tokens = line.replace(",", " ").replace(";", " ").split()
@@ -165,16 +183,18 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
         raise ArchInputError(f"record {p.name}: line {linenos[i]}: time {ts_file[i]:g} s repeats "
                              f"line {linenos[i - 1]} with the same value; allowed increasing times "
                              f"(a time twice only for a step to a new value)")
-    if len(linenos) >= MIN_SAMPLED_ROWS and steps:
-        # a corner list may step; a sampled record has no repeated time: an export slip
-        warnings.warn(f"record {p.name}: line {linenos[steps[0]]}: time {ts_file[steps[0]]:g} s "
-                      f"repeats the line before (read as a step) in a record of {len(linenos)} "
-                      f"rows; a sampled record has no repeated times", stacklevel=2)
-    if len(linenos) >= MIN_SAMPLED_ROWS and not steps:
-        off = len(ts) - len(linenos)  # 1 if a zero sample was put in front
-        _check_record(p, motion, units, lambda i: linenos[max(i - off, 0)])
-    else:
+    corners = marked or (bool(steps) and len(linenos) < MIN_SAMPLED_ROWS)
+    if steps and not corners:
+        # a sampled record has no repeated time (an AT2 file cannot have one): an export slip
+        i = steps[0]
+        raise ArchInputError(f"record {p.name}: line {linenos[i]}: time {ts_file[i]:g} s repeats "
+                             f"line {linenos[i - 1]} in a sampled record of {len(linenos)} rows; "
+                             f"allowed increasing times (a step, a time twice, only in {_CORNERS_HINT})")
+    if corners:
         check_pga(motion.pga / G, f"record {p.name}", _units_cause(motion.pga / G, units))
+    else:
+        off = len(ts) - len(linenos)  # 1 if a zero sample was put in front
+        _check_record(p, motion, units, lambda i: linenos[max(i - off, 0)], corners_hint=True)
     return motion
 
 
