@@ -12,7 +12,7 @@ from scipy.optimize import linprog
 
 from archrock import friction, limit
 from archrock.cli import main
-from archrock.errors import ArchInputError, CannotStandError
+from archrock.errors import ArchInputError, CannotStandError, NoMechanismError
 from archrock.geometry import (Arch, Load, family_arch, nominal_arch, oppenheim_arch,
                                random_arch)
 
@@ -409,3 +409,148 @@ def test_cli_friction_limited_minimum_thickness(capsys):
 def test_cli_friction_is_checked(capsys, value, says):
     code, _, err = _cli(capsys, "limit", "--friction", value)
     assert code == 2 and "--friction" in err and says in err
+
+
+# ---------------------------------------------------------------------------- bounded searches
+class _CountLPs:
+    """Counts the linear programs archrock.friction solves (its own reference to linprog); a
+    search that runs away fails at 1000 programs instead of hanging the suite."""
+
+    def __init__(self, monkeypatch):
+        self.n = 0
+        real = friction.linprog
+
+        def counted(*args, **kwargs):
+            self.n += 1
+            if self.n > 1000:
+                raise AssertionError("more than 1000 linear programs in one search")
+            return real(*args, **kwargs)
+
+        monkeypatch.setattr(friction, "linprog", counted)
+
+
+def test_no_finite_friction_on_a_squat_segmental_arch(monkeypatch):
+    """Oppenheim's arch with an embrace of 80 deg: at the frictionless collapse (k = 3.902) the
+    thrust leaves a springing along the joint (N = 0, T = 0.288 W).  The former absolute
+    tolerance (1e-10 on mu) never ended there (mu climbed to 1e7-1e15, whose ulp exceeds it);
+    now each direction ends in 3 LPs with None and the reason "no finite friction"."""
+    a = nominal_arch(10.0, 80.0, 1.5, 7)
+    lps = _CountLPs(monkeypatch)
+    need = friction.friction_needed(a)
+    assert need == {"l": None, "r": None}
+    assert lps.n <= 8
+    for d, j in (("l", 0), ("r", 7)):
+        why = need.reasons[d]
+        assert why.startswith(friction.NO_FINITE_FRICTION)
+        assert f"joint {j}" in why and "3.9020" in why and "> 1000" in why
+    # with a real friction the arch slides at both springings, at a finite multiplier
+    lps.n = 0
+    res = friction.friction_analysis(a, 0.5)
+    assert lps.n <= 20
+    for d in ("l", "r"):
+        fd = res.direction(d)
+        assert fd.friction_needed is None and fd.friction_needed_reason.startswith(
+            "no finite friction")
+        assert fd.sliding_governs and fd.frictionless == pytest.approx(3.902013, abs=1e-6)
+        assert fd.multiplier == pytest.approx(_voussoir_lp(a, d, 0.5), abs=1e-7)
+        assert fd.joints == (0, 7)
+    d = json.loads(json.dumps(res.to_dict()))
+    assert d["l"]["friction_needed"] is None
+    assert d["l"]["friction_needed_reason"].startswith("no finite friction")
+    # even a huge friction coefficient does not give the frictionless multiplier
+    assert friction.friction_analysis(a, 1e4).l.sliding_governs
+
+
+def test_near_lift_off_friction_is_found_in_a_bounded_number_of_lps(monkeypatch):
+    """A squat arch whose collapse needs a large but finite friction (a springing with a small
+    normal force): the bisection ends in at most ~55 LPs per direction, to 1e-10 relative, and
+    the value is where the friction multiplier drops."""
+    a = nominal_arch(10.0, 85.2, 1.85, 17)
+    lps = _CountLPs(monkeypatch)
+    need = friction.friction_needed(a)
+    assert lps.n <= 2 * 60
+    assert need.reasons == {"l": None, "r": None}
+    assert 5 < need["l"] < friction.MU_CAP
+    assert need["r"] == pytest.approx(need["l"], rel=1e-8)  # a symmetric arch
+    up = friction.friction_analysis(a, need["l"] * (1 + 1e-6)).l
+    down = friction.friction_analysis(a, need["l"] * (1 - 1e-4)).l
+    assert not up.sliding_governs and down.sliding_governs
+
+
+def test_bisection_bound_raises_a_clear_error(monkeypatch):
+    """The explicit bound on the bisection (never reached by the arithmetic: ~50 halvings from
+    MU_CAP to the tolerances) turns into LimitExceededError, not an endless loop.  Under
+    self-weight (lambda = 0) many states stand, so the least friction needs the bisection."""
+    from archrock.errors import LimitExceededError
+
+    monkeypatch.setattr(friction, "_MAX_BISECTIONS", 3)
+    fs = friction._FrictionStatics(oppenheim_arch(), "l")
+    with pytest.raises(LimitExceededError, match="did not reach its tolerance in 3"):
+        fs.least_friction(0.0)
+
+
+def test_least_friction_under_self_weight_to_a_relative_tolerance(monkeypatch):
+    """The least friction with which Oppenheim's arch stands (lambda = 0, not a unique state:
+    a full bisection), found from MU_CAP down in a bounded number of LPs, and just above it the
+    arch stands with friction, just below it it slides (1e-8 relative either side)."""
+    fs = friction._FrictionStatics(oppenheim_arch(), "l")
+    lps = _CountLPs(monkeypatch)
+    mu, x = fs.least_friction(0.0, None, friction.MU_CAP)
+    assert lps.n <= 60
+    assert mu == pytest.approx(0.2063, abs=1e-4)
+    # the state found needs mu within the margin tolerance (1e-10 per W on the Coulomb rows)
+    assert float(np.max(fs.ratios(x))) == pytest.approx(mu, rel=1e-8)
+    assert friction.friction_analysis(oppenheim_arch(), mu * (1 + 1e-8)).k >= 0
+    with pytest.raises(CannotStandError):
+        friction.friction_analysis(oppenheim_arch(), mu * (1 - 1e-8))
+
+
+def test_minimum_thickness_tolerance_is_checked():
+    with pytest.raises(ArchInputError, match="tol.*0.5"):
+        friction.friction_minimum_thickness(oppenheim_arch(), 0.5, tol=100)
+    with pytest.raises(ArchInputError, match="tol"):
+        friction.friction_minimum_thickness(oppenheim_arch(), 0.5, tol=0.0)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_squat_arches_end_in_bounded_lps(monkeypatch, seed):
+    """Squat arches (embrace 40-100 deg, t/R 0.05-0.3, 3-20 voussoirs), irregular or not:
+    every friction function ends within its LP budget with a number or a reason."""
+    rng = np.random.default_rng(100 + seed)
+    a = nominal_arch(10.0, rng.uniform(40, 100), 10 * rng.uniform(0.05, 0.3),
+                     int(rng.integers(3, 21)))
+    if seed % 2:
+        a = random_arch(a, seed=seed, spread_span=0.1, spread_thickness=0.1, spread_radius=0.05)
+    lps = _CountLPs(monkeypatch)
+    need = friction.friction_needed(a)
+    assert lps.n <= 2 * 60
+    for d in ("l", "r"):
+        assert (need[d] is None) != (need.reasons[d] is None)
+        assert need[d] is None or 0 <= need[d] <= friction.MU_CAP
+    lps.n = 0
+    try:
+        friction.friction_analysis(a, 0.5)
+    except (CannotStandError, NoMechanismError):
+        pass
+    assert lps.n <= 2 * 130
+    lps.n = 0
+    friction.friction_minimum_thickness(a, 0.5)
+    assert lps.n <= 80
+
+
+def test_cli_no_finite_friction(capsys):
+    """`archrock limit --embrace 80` (once endless): null with a reason in JSON, "no finite
+    friction" in the text."""
+    code, out, _ = _cli(capsys, "limit", "--embrace", "80", "--friction", "0.5", "--json")
+    d = json.loads(out)
+    assert code == 0
+    assert d["friction_needed_l"] is None and d["friction_needed_r"] is None
+    assert d["friction_needed_reason_l"].startswith("no finite friction")
+    assert d["friction_k_l"] == pytest.approx(2.957935, abs=1e-5)
+    code, out, _ = _cli(capsys, "limit", "--embrace", "80")
+    assert code == 0
+    assert "M_l no finite friction, M_r no finite friction" in out
+    code, out, _ = _cli(capsys, "limit", "--json")
+    d = json.loads(out)
+    assert d["friction_needed_reason_l"] is None
+    assert d["friction_needed_l"] == pytest.approx(0.495132, abs=1e-6)

@@ -21,12 +21,16 @@ Public API (for the reports, the assess report and the contact engine):
 * :func:`friction_analysis` (arch, mu) -> :class:`FrictionResult`: per direction the multiplier
   with friction, the frictionless one, whether sliding governs, |T|/N at every joint of the
   thrust line found, the joints that need the most friction, the friction needed.
-* :func:`friction_needed` (arch) -> {"l": mu_l, "r": mu_r}: the friction coefficient the
-  frictionless collapse needs.  Definition: the smallest mu whose friction multiplier equals the
-  frictionless one, i.e. the minimum, over every statically admissible state at the frictionless
-  collapse multiplier, of the largest |T_j|/N_j.  Where the collapse state is unique (a
-  four-hinge mechanism through which exactly one thrust line passes) this is the largest |T|/N
-  along that thrust line; where it is not, the least demanding admissible thrust line counts.
+* :func:`friction_needed` (arch) -> {"l": mu_l, "r": mu_r} (a :class:`FrictionNeeded`, a dict
+  with ``reasons``): the friction coefficient the frictionless collapse needs.  Definition: the
+  smallest mu whose friction multiplier equals the frictionless one, i.e. the minimum, over every
+  statically admissible state at the frictionless collapse multiplier, of the largest |T_j|/N_j.
+  Where the collapse state is unique (a four-hinge mechanism through which exactly one thrust
+  line passes) this is the largest |T|/N along that thrust line; where it is not, the least
+  demanding admissible thrust line counts.  Found to a relative tolerance of 1e-10 with at most
+  ~55 LPs per direction; None, with a reason, where no mechanism loads the arch or where it
+  needs more than MU_CAP = 1000 ("no finite friction": a joint must carry shear with almost no
+  normal force, e.g. a springing about to lift off).
 * :func:`friction_minimum_thickness` (arch, mu) -> :class:`~archrock.limit.MinimumThickness`:
   the smallest thickness standing under self-weight (lambda = 0) with friction mu;
   CannotStandError when no thickness stands (mu below the friction that sliding alone needs).
@@ -43,13 +47,14 @@ import numpy as np
 from scipy.optimize import linprog
 
 from ._records import readonly_arrays
-from .errors import ArchInputError, CannotStandError, NoMechanismError
+from .errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
 from .geometry import VoussoirArch
 from .limit import (DIRECTIONS, MinimumThickness, ThrustLine, _statics, _Statics, _thrust_from_x,
                     thickness_bisection)
 
-__all__ = ["FrictionDirection", "FrictionResult", "friction_analysis", "friction_needed",
-           "friction_minimum_thickness", "joint_shear_normal", "check_friction"]
+__all__ = ["FrictionDirection", "FrictionResult", "FrictionNeeded", "friction_analysis",
+           "friction_needed", "friction_minimum_thickness", "joint_shear_normal",
+           "check_friction", "MU_CAP", "NO_FINITE_FRICTION", "NO_MECHANISM"]
 
 # A joint "needs the most friction" when its |T|/N is within this of the largest (absolute:
 # ratios are friction coefficients, O(0.1-1)).
@@ -61,8 +66,23 @@ _GOVERNS_TOL = 1e-9
 _MARGIN_TOL = 1e-10
 # A multiplier whose frictionless margin is below this is beyond the limit (not rounding).
 _INADMISSIBLE = 1e-8
-# Bisection of the least friction: absolute tolerance on mu.
-_MU_TOL = 1e-10
+# Bisection of the least friction: relative tolerance on mu (an absolute one never ends where
+# mu is large: one ulp of 1e7 is 2e-9), with an absolute floor below which a friction
+# coefficient is zero for every purpose.
+_MU_RTOL = 1e-10
+_MU_ATOL = 1e-12
+#: The largest friction coefficient reported as a number.  Masonry joints have mu ~ 0.4-0.8
+#: (about 1 for rough dry stone); a state needing |T|/N > 1000 has a joint whose normal force is
+#: below 1/1000 of its shear, i.e. a thrust within 0.06 deg of the joint's own line (a springing
+#: about to lift off, N -> 0 with T != 0).  No material supplies that: "no finite friction".
+MU_CAP = 1e3
+#: The bisection from MU_CAP to the tolerances takes log2(MU_CAP / _MU_ATOL) ~ 50 LPs; this
+#: bound is never reached by the arithmetic, it only turns a solver pathology into an error.
+_MAX_BISECTIONS = 100
+#: The first words of :attr:`FrictionNeeded.reasons` (and of the JSON's
+#: ``friction_needed_reason_l``/``_r``) for the two cases with no number.
+NO_FINITE_FRICTION = "no finite friction"
+NO_MECHANISM = "no mechanism"
 # HiGHS's default feasibility tolerance (1e-7) would accept rows violated by up to 1e-7, i.e.
 # a margin of -1e-7 reads as 0 and the least friction comes out ~1e-7 too low: the margin
 # programs run at the tightest tolerances HiGHS takes.
@@ -166,8 +186,13 @@ class _FrictionStatics:
         """(mu, x): the smallest friction coefficient for which a state admissible at
         multiplier ``lam`` exists (the least, over those states, of max |T|/N), and that state.
         ``x_hint``: an admissible state at ``lam`` (its largest ratio brackets the answer);
-        ``mu_hi``: a friction known to be enough.  Bisection on the sign of :meth:`margin`;
-        one LP suffices when the state is unique (the hint's ratio is then the answer)."""
+        ``mu_hi``: a friction known to be enough.  Bisection on the sign of :meth:`margin`, to
+        a relative tolerance of 1e-10 on mu (floor 1e-12), at most ~55 LPs; one or two LPs when
+        the state is unique (the hint's ratio is then the answer).
+
+        mu is math.inf (x None) where no state at all is admissible at ``lam``, and None where
+        every admissible state needs more than :data:`MU_CAP` (x: the best state known, which
+        needs more; "no finite friction")."""
         s0, x0 = self.margin(lam, None)
         if s0 < -_INADMISSIBLE:
             return math.inf, None
@@ -184,25 +209,46 @@ class _FrictionStatics:
             s, x = self.margin(lam, mu_hi)
             if s >= thr:
                 hi, x_hi = mu_hi, x
-        if not math.isfinite(hi):
-            return math.inf, None
-        if hi <= _MU_TOL:
+        if hi > MU_CAP:
+            # one program decides: is any admissible state content with mu = MU_CAP?
+            s, x = self.margin(lam, MU_CAP)
+            if s < thr:
+                return None, x_hi
+            hi, x_hi = MU_CAP, x
+        if hi <= _MU_ATOL:
             return hi, x_hi
         # the state is usually unique: then nothing below the hint's ratio is admissible
-        lo = hi * (1 - 1e-7) - _MU_TOL
+        lo = hi * (1 - 1e-7)
         s, x = self.margin(lam, lo)
         if s < thr:
             return hi, x_hi
         hi, x_hi, lo = lo, x, 0.0
-        while hi - lo > _MU_TOL:
+        for _ in range(_MAX_BISECTIONS):
+            if hi - lo <= max(_MU_RTOL * hi, _MU_ATOL):
+                break
             mid = 0.5 * (lo + hi)
             s, x = self.margin(lam, mid)
             if s >= thr:
                 hi, x_hi = mid, x
             else:
                 lo = mid
+        else:
+            raise LimitExceededError(
+                f"friction needed: the bisection on mu did not reach its tolerance in "
+                f"{_MAX_BISECTIONS} linear programs (bracket [{lo:.17g}, {hi:.17g}]); the "
+                f"solver's margins are inconsistent for this arch")
         # report the friction the state found actually needs (<= hi)
         return min(hi, float(np.max(self.ratios(x_hi)))), x_hi
+
+
+class FrictionNeeded(dict):
+    """{"l": mu_l, "r": mu_r} as :func:`friction_needed` returns it (each a float, or None),
+    with ``reasons``: {"l": str or None, "r": ...}, why a direction has no number (it begins
+    with :data:`NO_FINITE_FRICTION` or :data:`NO_MECHANISM`; None beside a number)."""
+
+    def __init__(self, values: dict, reasons: dict):
+        super().__init__(values)
+        self.reasons = dict(reasons)
 
 
 @dataclass(frozen=True)
@@ -213,7 +259,9 @@ class FrictionDirection:
     Coulomb friction mu and no tension (associative, see the module docstring); frictionless:
     the static multiplier without friction (:func:`archrock.limit.static_multiplier`);
     sliding_governs: friction lowers the multiplier (multiplier < frictionless);
-    friction_needed: the friction the frictionless collapse needs (:func:`friction_needed`).
+    friction_needed: the friction the frictionless collapse needs (:func:`friction_needed`),
+    None with ``friction_needed_reason`` where there is no number (no mechanism, or no finite
+    friction: more than :data:`MU_CAP`).
     ratios: |T_j|/N_j at every joint 0..n of the least-friction admissible state at
     ``multiplier`` (the one drawn as ``thrust``); shear, normal: T_j, N_j per total weight
     (T along the joint from its intrados end to its extrados end, force of the left part on
@@ -232,6 +280,7 @@ class FrictionDirection:
     shear: np.ndarray
     normal: np.ndarray
     thrust: ThrustLine = field(repr=False)
+    friction_needed_reason: str | None = None
 
     def __post_init__(self):
         readonly_arrays(self)
@@ -239,7 +288,9 @@ class FrictionDirection:
     def to_dict(self) -> dict:
         return {"direction": self.direction, "mu": self.mu, "multiplier": self.multiplier,
                 "frictionless": self.frictionless, "sliding_governs": self.sliding_governs,
-                "friction_needed": self.friction_needed, "joints": list(self.joints),
+                "friction_needed": self.friction_needed,
+                "friction_needed_reason": self.friction_needed_reason,
+                "joints": list(self.joints),
                 "ratios": self.ratios.tolist(), "shear": self.shear.tolist(),
                 "normal": self.normal.tolist(), "points": self.thrust.points.tolist()}
 
@@ -269,7 +320,7 @@ class FrictionResult:
 
 
 def _state(fs: _FrictionStatics, direction: str, mu: float, lam: float, lam0: float,
-           needed: float | None, x) -> FrictionDirection:
+           needed: float | None, reason: str | None, x) -> FrictionDirection:
     """The record of one direction; ``x``: the least-friction admissible state at ``lam``."""
     ratios = fs.ratios(x)
     T, N = fs.shear_normal(x)
@@ -277,43 +328,60 @@ def _state(fs: _FrictionStatics, direction: str, mu: float, lam: float, lam0: fl
     joints = tuple(int(j) for j in np.flatnonzero(ratios >= top - _CRITICAL_TOL))
     governs = not math.isfinite(lam0) or lam < lam0 - _GOVERNS_TOL * max(1.0, abs(lam0))
     return FrictionDirection(direction, mu, float(lam), float(lam0), bool(governs), needed, joints,
-                             ratios, T, N, _thrust_from_x(fs.st, x))
+                             ratios, T, N, _thrust_from_x(fs.st, x), reason)
+
+
+def _no_finite_reason(fs: _FrictionStatics, lam0: float, x) -> str:
+    """Why the collapse at ``lam0`` needs more than MU_CAP: the joint of state ``x`` (the best
+    one found) with the largest |T|/N, its N and T."""
+    T, N = fs.shear_normal(x)
+    j = int(np.argmax(fs.ratios(x)))
+    scale = max(1.0, float(np.max(np.abs(T[j]))))
+    n_j = 0.0 if abs(N[j]) < 1e-12 * scale else float(N[j])  # rounding noise of a zero
+    return (f"{NO_FINITE_FRICTION}: every admissible state at the collapse multiplier "
+            f"{lam0:.4f} needs |T|/N > {MU_CAP:g} at some joint; the one found carries "
+            f"N = {n_j:.3g} W and T = {T[j]:.3g} W at joint {j} (its thrust runs along the "
+            f"joint: about to lift off or slide, whatever the friction)")
 
 
 def _needed(fs: _FrictionStatics):
-    """(friction needed, frictionless multiplier, state x) of one direction; needed is None
-    where no mechanism loads the arch (unbounded multiplier)."""
+    """(friction needed, reason, frictionless multiplier, state x) of one direction; needed is
+    None, with a reason, where no mechanism loads the arch (unbounded multiplier) or where no
+    finite friction (<= MU_CAP) suffices."""
+    d = "l" if fs.st.d > 0 else "r"
     status, x0 = fs.max_lambda(None)
     if status == 3:
-        return None, math.inf, None
+        return (None, f"{NO_MECHANISM}: no horizontal load opens a mechanism in direction "
+                      f"{d!r} (unbounded multiplier), so no friction is needed", math.inf, None)
     if status != 0:
-        d = "l" if fs.st.d > 0 else "r"
         raise CannotStandError(f"arch: no line of thrust fits inside the arch for direction "
                                f"{d!r}; the arch cannot stand")
     lam0 = float(x0[3])
     mu, x = fs.least_friction(lam0, x0)
-    return mu, lam0, (x if x is not None else x0)
+    if mu is None or not math.isfinite(mu):
+        return None, _no_finite_reason(fs, lam0, x if x is not None else x0), lam0, x0
+    return float(mu), None, lam0, (x if x is not None else x0)
 
 
-def friction_needed(arch: VoussoirArch) -> dict:
+def friction_needed(arch: VoussoirArch) -> FrictionNeeded:
     """{"l": mu_l, "r": mu_r}: the friction coefficient the frictionless (Heyman) collapse
     needs in each direction: the minimum over the statically admissible states at the
-    frictionless collapse multiplier of the largest |T_j|/N_j (None where no mechanism loads
-    the arch).  Equal to the smallest mu at which :func:`friction_analysis` gives the
-    frictionless multiplier."""
+    frictionless collapse multiplier of the largest |T_j|/N_j, to a relative tolerance of
+    1e-10.  None where no mechanism loads the arch, and None where it needs more than
+    :data:`MU_CAP` (no finite friction suffices); ``.reasons`` says which.  Equal to the
+    smallest mu at which :func:`friction_analysis` gives the frictionless multiplier."""
     _check_arch(arch)
-    out = {}
+    out, why = {}, {}
     for d in DIRECTIONS:
-        mu, _, _ = _needed(_FrictionStatics(arch, d))
-        out[d] = None if mu is None else float(mu)
-    return out
+        out[d], why[d], _, _ = _needed(_FrictionStatics(arch, d))
+    return FrictionNeeded(out, why)
 
 
 def _self_weight_friction(arch: VoussoirArch) -> float:
     """The least friction with which the arch stands under self-weight (lambda = 0)."""
     fs = _FrictionStatics(arch, "l")
     mu, _ = fs.least_friction(0.0)
-    return mu
+    return math.inf if mu is None else mu
 
 
 def friction_analysis(arch: VoussoirArch, mu: float) -> FrictionResult:
@@ -326,7 +394,7 @@ def friction_analysis(arch: VoussoirArch, mu: float) -> FrictionResult:
     lams = {}
     for d in DIRECTIONS:
         fs = _FrictionStatics(arch, d)
-        needed, lam0, _ = _needed(fs)
+        needed, reason, lam0, _ = _needed(fs)
         # solved even where mu >= needed (then it returns lam0): the two stay independent checks
         status, x = fs.max_lambda(mu)
         if status == 3:  # unbounded even with friction
@@ -337,16 +405,18 @@ def friction_analysis(arch: VoussoirArch, mu: float) -> FrictionResult:
             continue
         lam = float(x[3])
         _, xs = fs.least_friction(lam, x, mu)
-        out[d] = (fs, lam, lam0, needed, x if xs is None else xs)
+        out[d] = (fs, lam, lam0, needed, reason, x if xs is None else xs)
         lams[d] = lam
     if min(lams.values()) < 0:
         need = _self_weight_friction(arch)
+        needs = (f"at least {need:.4f}" if math.isfinite(need) else
+                 f"more than {MU_CAP:g}: no finite friction lets it stand")
         ks = ", ".join(f"k_{d} = {lams[d]:.4g}" if math.isfinite(lams[d]) else
                        f"none in direction {d!r}" for d in DIRECTIONS)
         raise CannotStandError(
             f"arch: with friction {mu:g} it cannot stand under its own weight: its joints slide "
-            f"(largest multipliers with friction: {ks}); it needs a friction coefficient of at "
-            f"least {need:.4f}")
+            f"(largest multipliers with friction: {ks}); it needs a friction coefficient of "
+            f"{needs}")
     dirs = {d: _state(fs, d, mu, *rest) for d, (fs, *rest) in out.items()}
     return FrictionResult(arch, mu, dirs["l"], dirs["r"])
 
@@ -363,9 +433,18 @@ def friction_minimum_thickness(arch: VoussoirArch, mu: float,
     """Smallest thickness (common factor on every voussoir, as
     :func:`archrock.limit.minimum_thickness`) at which the arch stands under self-weight with
     Coulomb friction ``mu`` and no tension.  CannotStandError when no thickness the arch allows
-    stands with this friction (the joints slide whatever the thickness)."""
+    stands with this friction (the joints slide whatever the thickness).  ``tol``: relative
+    tolerance on the thickness factor, 0 < tol < 0.5 (the bisection takes ~log2(1e6 / tol)
+    steps after at most ~log2 of the largest factor doublings)."""
     _check_arch(arch)
     mu = check_friction(mu)
+    try:
+        tol = float(tol)
+    except (TypeError, ValueError):
+        tol = math.nan
+    if not 1e-15 <= tol < 0.5:
+        raise ArchInputError(f"tol: {tol!r} is out of range; allowed a relative tolerance on "
+                             f"the thickness, 1e-15 <= tol < 0.5")
     return thickness_bisection(
         arch, _stands_with_friction(mu), tol,
         cannot=f"arch: no thickness stands under its own weight with friction {mu:g}: the joints "

@@ -74,8 +74,12 @@ def friction_summary(needed=None, friction=None) -> dict:
     if needed is None and friction is not None:
         needed = {d: friction.direction(d).friction_needed for d in ("l", "r")}
     if needed is not None:
+        reasons = _needed_reasons(needed, friction)
         out["friction_needed_l"] = needed["l"]
         out["friction_needed_r"] = needed["r"]
+        # null above: why (no mechanism, or no finite friction: archrock.friction.MU_CAP)
+        out["friction_needed_reason_l"] = reasons["l"]
+        out["friction_needed_reason_r"] = reasons["r"]
     if friction is not None:
         out["friction_mu"] = friction.mu
         for d in ("l", "r"):
@@ -87,16 +91,29 @@ def friction_summary(needed=None, friction=None) -> dict:
     return out
 
 
+def _needed_reasons(needed, friction) -> dict:
+    """Why a friction needed is None: ``needed.reasons`` (archrock.friction.FrictionNeeded) or
+    the FrictionResult's ``friction_needed_reason``; None where unknown or a number."""
+    reasons = getattr(needed, "reasons", None)
+    if reasons is None and friction is not None:
+        reasons = {d: friction.direction(d).friction_needed_reason for d in ("l", "r")}
+    return {d: (reasons or {}).get(d) for d in ("l", "r")}
+
+
 def friction_lines(needed=None, friction=None) -> list[str]:
     """Readable lines of a friction analysis (see :func:`friction_summary`)."""
     if needed is None and friction is None:
         return []
     if needed is None:
         needed = {d: friction.direction(d).friction_needed for d in ("l", "r")}
-    fmt = {d: "-" if needed[d] is None else f"{needed[d]:.4f}" for d in ("l", "r")}
+    reasons = _needed_reasons(needed, friction)
+    # None: the reason's first words ("no finite friction", "no mechanism"), the reason below
+    fmt = {d: (f"{needed[d]:.4f}" if needed[d] is not None else
+               (reasons[d] or "-").split(":")[0]) for d in ("l", "r")}
     lines = ["", "Friction (Coulomb |T| <= mu N at every joint; associative: docs/friction.md)",
              f"  friction the no-sliding collapse needs (largest |T|/N on its thrust line): "
              f"M_l {fmt['l']}, M_r {fmt['r']}"]
+    lines += [f"  M_{d}: {reasons[d]}" for d in ("l", "r") if needed[d] is None and reasons[d]]
     if friction is None:
         return lines
     lines += [f"  with mu = {friction.mu:g}:",
