@@ -50,7 +50,7 @@ def add_dem_parser(subparsers):
                     "(pip install 'archrock[dem]').")
     add_geometry_options(p)
     add_motion_options(p)
-    add_impact_options(p)
+    add_impact_options(p)  # for the four-link run beside the engine's only (the engine has none)
     add_engine_options(p)
     p.add_argument("--ramp", action="store_true",
                    help="slowly increasing ground acceleration in each direction: activation "
@@ -58,6 +58,10 @@ def add_dem_parser(subparsers):
     p.add_argument("--ramp-tol", type=positive_float, default=0.005, metavar="TOL",
                    help="--ramp: relative width of the final bracket of the multiplier "
                         "(default 0.005)")
+    p.add_argument("--ramp-max", type=positive_float, default=None, metavar="LAMBDA",
+                   help="--ramp: the largest |xg''|/g the ramp tries before it gives up "
+                        "(default max(2, 1.5 k) per direction, k from the limit analysis; at "
+                        "most 100)")
     p.add_argument("--ramp-hold", type=positive_float, default=4.0, metavar="T",
                    help="--ramp: duration of each constant-acceleration hold, in units of "
                         "T = sqrt(size/g) (default 4)")
@@ -82,6 +86,7 @@ def _progress(msg):
 
 def run_dem(args) -> int:
     from ..contact import import_pymunk
+    from ..errors import ImpactModelError
 
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     spec = motion_spec_from_args(args)
@@ -103,7 +108,8 @@ def run_dem(args) -> int:
         from ..reports.contact import format_ramp, ramp_dict
 
         limit = limit_analysis(arch)
-        res = ramp(arch, settings, progress=progress, tol=args.ramp_tol, hold=args.ramp_hold)
+        res = ramp(arch, settings, progress=progress, limit=limit, lambda_max=args.ramp_max,
+                   tol=args.ramp_tol, hold=args.ramp_hold)
         if args.json:
             emit_json(ramp_dict(res, limit))
         else:
@@ -114,10 +120,23 @@ def run_dem(args) -> int:
     from ..response import prepare, respond
 
     motion = spec.build()
-    model = prepare(arch, impact_spec_from_args(args))
+    # the engine uses no impact law; the four-link run beside it does: the impact options are
+    # for that run only, and an impact law that cannot apply to this arch leaves it out (with
+    # the reason) instead of stopping the engine's run
+    fl, fl_note = None, None
+    try:
+        model = prepare(arch, impact_spec_from_args(args))
+    except ImpactModelError as exc:
+        why = " ".join(str(exc).split())
+        model = prepare(arch, "momentum")  # its mechanisms give the equivalent rotation
+        if args.impact is None and args.cv is None:  # the default law: the energy-consistent one
+            fl_note = f"four-link model with the momentum impact law ({why})"
+        else:
+            fl_note = f"four-link model not run: {why}"
     res = engine_respond(arch, motion, settings, model=model, t_end=args.t_end,
                          dt_out=args.dt_out, progress=progress)
-    fl = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out)
+    if fl_note is None or fl_note.startswith("four-link model with"):
+        fl = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out)
     if plot:
         from ..contactplots import save_engine_figure
 
@@ -127,9 +146,14 @@ def run_dem(args) -> int:
 
         animation = animate_engine(res, fl, arch, animation)
     if args.json:
-        emit_json(engine_response_dict(res, fl))
+        d = engine_response_dict(res, fl)
+        if fl_note:
+            d["four_link_note"] = fl_note
+        emit_json(d)
         return 0
     print(format_engine_response(res, fl, arch, motion))
+    if fl_note:
+        print(f"  {fl_note}")
     for f in (plot, animation):
         if f:
             print(f"wrote {f}")

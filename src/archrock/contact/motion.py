@@ -103,8 +103,9 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
                    progress=None) -> ContactResponse:
     """The engine's response of ``arch`` to ``motion``.
 
-    model: a prepared :class:`~archrock.response.DynamicModel` (default: ``prepare(arch)``), for
-    the equivalent rotation; t_end, dt_out [s]: output window and sampling; t_free [T]: free
+    model: a prepared :class:`~archrock.response.DynamicModel`, for the equivalent rotation (only
+    its mechanisms are used: the engine has no impact law; default ``prepare(arch, "momentum")``,
+    which any arch with a mechanism admits); t_end, dt_out [s]: output window and sampling; t_free [T]: free
     motion after the ground motion at most; collapse_drop: drop of a mass centre, as a fraction
     of the size, that counts as collapse."""
     if not isinstance(motion, GroundMotion):
@@ -118,7 +119,7 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     if model is None:
         from ..response import prepare
 
-        model = prepare(arch)
+        model = prepare(arch, "momentum")
     settings = settings or EngineSettings()
     ca = ContactArch(arch, settings)
     ca.settle()

@@ -10,6 +10,13 @@ rest and one that moves it, down to a relative width ``tol``.  The reported mult
 middle of the last bracket; the hinges are the joints whose relative rotation is at least 5%
 of the largest one when the ramp's motion has grown to ``4 x threshold``, each at the
 end of its joint (intrados or extrados) that stays closed.
+
+The ramp's range follows the arch: :func:`ramp` gives up beyond
+``lambda_max = max(2, 1.5 k_d)`` (:func:`ramp_range`, k_d the limit analysis's multiplier of the
+direction; at most 100), and on an arch with k_d > 2 it starts from ``0.5 k_d`` held from rest
+(as the holds of stage 2 do) instead of from 0, so that its length does not grow with k.  An
+arch that does not move within the range is an outcome (:class:`LimitExceededError`), not an
+input error.
 """
 
 from __future__ import annotations
@@ -19,15 +26,34 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ArchInputError
+from ..errors import ArchInputError, LimitExceededError
 from ..geometry import VoussoirArch
 from ..units import G
 from .engine import ContactArch
 from .settings import EngineSettings
 
-__all__ = ["RampDirection", "RampResult", "ramp", "ramp_direction"]
+__all__ = ["RampDirection", "RampResult", "ramp", "ramp_direction", "ramp_range",
+           "LAMBDA_MAX_FLOOR", "LAMBDA_MAX_FACTOR", "LAMBDA_MAX_CAP"]
 
 EDGE = ("intrados", "extrados")
+
+#: The ramp's range: lambda_max = max(LAMBDA_MAX_FLOOR, LAMBDA_MAX_FACTOR k), at most
+#: LAMBDA_MAX_CAP (the engine's activation is within a few % of k on the documented arches, and
+#: 8% below it where the joints start to slide: 1.5 k leaves room for both).
+LAMBDA_MAX_FLOOR = 2.0
+LAMBDA_MAX_FACTOR = 1.5
+LAMBDA_MAX_CAP = 100.0
+
+
+def ramp_range(k: float | None) -> tuple[float, float]:
+    """(lambda_start, lambda_max) of the ramp for an arch whose limit-analysis multiplier in the
+    direction is ``k`` (None or inf: no mechanism, the whole range up to LAMBDA_MAX_CAP):
+    lambda_max = max(2, 1.5 k) capped at 100; the ramp starts at 0, or at 0.5 k where k > 2."""
+    if k is None or not math.isfinite(k) or k <= 0:
+        return 0.0, LAMBDA_MAX_CAP
+    lam_max = min(LAMBDA_MAX_CAP, max(LAMBDA_MAX_FLOOR, LAMBDA_MAX_FACTOR * float(k)))
+    start = 0.5 * float(k) if k > LAMBDA_MAX_FLOOR else 0.0
+    return min(start, 0.5 * lam_max), lam_max
 
 
 @dataclass(frozen=True)
@@ -112,13 +138,17 @@ def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> 
 def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings | None = None, *,
                    rate: float = 0.05, hold: float = 4.0, tol: float = 0.005,
                    threshold: float = 1e-3, slide_threshold: float = 1e-3,
-                   lambda_max: float = 2.0, progress=None) -> RampDirection:
+                   lambda_max: float = 2.0, lambda_start: float = 0.0,
+                   progress=None) -> RampDirection:
     """The engine's activation multiplier and hinges in ``direction`` ('l' or 'r').
 
     rate: lambda per T of the ramp; hold: duration of each constant-lambda run [T]; tol:
     relative width of the final bracket; threshold: relative joint rotation [rad] and
     slide_threshold: sliding as a fraction of the joint's length that count as motion;
-    lambda_max: the ramp gives up (ArchInputError) beyond it."""
+    lambda_max: the ramp gives up beyond it (:class:`LimitExceededError`: the arch did not move
+    within the range; :func:`ramp_range` gives the range that follows an arch's k);
+    lambda_start: the ramp starts from this lambda, held from rest (0 <= lambda_start <
+    lambda_max)."""
     if direction not in ("l", "r"):
         raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
     for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
@@ -127,6 +157,10 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
                             ("lambda_max", lambda_max, 1e-3, 100.0)):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
             raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+    if (isinstance(lambda_start, bool) or not isinstance(lambda_start, (int, float))
+            or not 0.0 <= lambda_start < lambda_max):
+        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
+                             f"lambda_max = {lambda_max:g}")
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = ContactArch(arch, settings)
@@ -134,7 +168,7 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     thr_slide = slide_threshold * float(np.mean(ca.joint_lengths))
     check = max(1, int(settings.steps_per_T // 100))
     dlam = rate / settings.steps_per_T
-    lam = 0.0
+    lam = float(lambda_start)
     lam_seen = None
     while True:
         for _ in range(check):
@@ -146,9 +180,10 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
         if measure > 4.0:
             break
         if lam > lambda_max:
-            raise ArchInputError(f"lambda_max: the arch did not move up to |xg''|/g = "
-                                 f"{lambda_max:g} in direction {direction!r}; allowed a larger "
-                                 f"lambda_max")
+            raise LimitExceededError(
+                f"the arch did not move in the contact engine up to |xg''|/g = {lambda_max:g} "
+                f"in direction {direction!r} (the ramp's range; the limit analysis may give a "
+                f"larger multiplier or none: raise lambda_max, `archrock dem --ramp --ramp-max`)")
     if progress:
         progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
     # hinges: joints opening by at least a quarter of the largest relative rotation
@@ -186,11 +221,30 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
                          tuple(float(x) for x in rot), tuple(float(x) for x in sl), tuple(holds))
 
 
-def ramp(arch: VoussoirArch, settings: EngineSettings | None = None, progress=None,
-         **kwargs) -> RampResult:
-    """:func:`ramp_direction` in both directions ('l' then 'r')."""
+def ramp(arch: VoussoirArch, settings: EngineSettings | None = None, progress=None, *,
+         limit=None, lambda_max: float | None = None, **kwargs) -> RampResult:
+    """:func:`ramp_direction` in both directions ('l' then 'r').
+
+    lambda_max: the ramp's upper end in both directions; None (default): :func:`ramp_range` of
+    each direction's multiplier in ``limit`` (the arch's :class:`~archrock.limit.LimitResult`;
+    computed when not given), with the start it gives.  The ranges used are in
+    ``result.ramp["lambda_max"]`` and ``["lambda_start"]``."""
     settings = settings or EngineSettings()
-    out = [ramp_direction(arch, d, settings, progress=progress, **kwargs) for d in ("l", "r")]
+    ranges = {}
+    for d in ("l", "r"):
+        if lambda_max is not None:
+            ranges[d] = (kwargs.get("lambda_start", 0.0), float(lambda_max))
+            continue
+        if limit is None:
+            from ..limit import limit_analysis
+
+            limit = limit_analysis(arch, verify=False)
+        ranges[d] = ramp_range(getattr(limit, f"k_{d}"))
+    kw = {k: v for k, v in kwargs.items() if k != "lambda_start"}
+    out = [ramp_direction(arch, d, settings, progress=progress, lambda_start=ranges[d][0],
+                          lambda_max=ranges[d][1], **kw) for d in ("l", "r")]
     opts = {"rate": 0.05, "hold": 4.0, "tol": 0.005, "threshold": 1e-3, "slide_threshold": 1e-3}
-    opts.update(kwargs)
+    opts.update(kw)
+    opts["lambda_start"] = {d: ranges[d][0] for d in ("l", "r")}
+    opts["lambda_max"] = {d: ranges[d][1] for d in ("l", "r")}
     return RampResult(out[0], out[1], settings, opts)
