@@ -33,7 +33,8 @@ from .impact import PAPER_PRACTICE, ImpactSpec
 from .sampling import Spreads
 
 __all__ = ["AssessConfig", "Section", "Paragraph", "Table", "Figure", "Context", "Assessment",
-           "SECTIONS", "assess", "REFERENCES"]
+           "SECTIONS", "assess", "REFERENCES", "MASONRY_FRICTION", "MASONRY_FRICTION_SOURCE",
+           "arch_extent"]
 
 #: The paper and the works the report cites (in the order of first use in docs/method.md).
 REFERENCES = {
@@ -56,7 +57,16 @@ REFERENCES = {
            "mechanisms: docs/codecheck.md).",
     "baker": "J. W. Baker, Efficient analytical fragility function fitting using dynamic "
              "structural analysis, Earthquake Spectra 31 (2015) 579-599.",
+    "ec6": "EN 1996-1-1:2005 (Eurocode 6) par. 3.6.2, eq. (3.5): f_vk = f_vk0 + 0.4 sigma_d, "
+           "the characteristic shear strength of masonry, whose coefficient 0.4 on the normal "
+           "stress is the code's friction coefficient of masonry joints (used here as mu = 0.4).",
 }
+
+#: The friction coefficient the report takes for masonry joints, and where it comes from: where
+#: the multiplier k needs more friction than this, the summary says so beside k and gives the
+#: multiplier with this friction (archrock.friction.friction_analysis).
+MASONRY_FRICTION = 0.4
+MASONRY_FRICTION_SOURCE = "EN 1996-1-1 (Eurocode 6) 3.6.2"
 
 
 # ---------------------------------------------------------------------------- content blocks
@@ -172,6 +182,11 @@ class AssessConfig:
 
 
 # ---------------------------------------------------------------------------- context
+@dataclass(frozen=True)
+class _Failed:
+    exc: Exception
+
+
 @dataclass
 class Context:
     """What the sections share: the arch, the configuration, a progress callback and a cache of
@@ -183,9 +198,17 @@ class Context:
     cache: dict = field(default_factory=dict)
 
     def once(self, key: str, compute: Callable):
+        """compute() the first time; its result, or the error it raised, every time after (a
+        failed limit analysis is not run again by each section that needs it)."""
         if key not in self.cache:
-            self.cache[key] = compute()
-        return self.cache[key]
+            try:
+                self.cache[key] = compute()
+            except Exception as exc:  # noqa: BLE001 - kept and raised again, not swallowed
+                self.cache[key] = _Failed(exc)
+        value = self.cache[key]
+        if isinstance(value, _Failed):
+            raise value.exc
+        return value
 
     @property
     def limit(self):
@@ -207,6 +230,29 @@ class Context:
 
         return self.once("model", lambda: prepare(self.arch, self.config.impact, limit=self.limit))
 
+    @property
+    def friction(self) -> dict | None:
+        """What friction does to k, computed once: {"needed": {"l": mu or None, "r": ...} (None:
+        no finite friction suffices), "mu": MASONRY_FRICTION, "with_mu": {"l": k, "r": k} or
+        None, "with_mu_error": why not, or None}; None when archrock.friction does not import."""
+        return self.once("friction", self._friction)
+
+    def _friction(self):
+        try:
+            from .friction import friction_analysis, friction_needed
+        except ImportError:
+            return None
+        out = {"needed": friction_needed(self.arch), "mu": MASONRY_FRICTION, "with_mu": None,
+               "with_mu_error": None, "sliding_governs": None}
+        try:
+            fa = friction_analysis(self.arch, MASONRY_FRICTION)
+        except ArchrockError as exc:  # e.g. the joints slide under self-weight at this mu
+            out["with_mu_error"] = " ".join(str(exc).split())
+        else:
+            out["with_mu"] = {d: fa.direction(d).multiplier for d in ("l", "r")}
+            out["sliding_governs"] = {d: fa.direction(d).sliding_governs for d in ("l", "r")}
+        return out
+
 
 def titled(key: str, title: str):
     """Decorator naming a section function's key and title (used when it cannot be computed)."""
@@ -225,31 +271,91 @@ def _f(x, spec=".4f") -> str:
 
 
 # ---------------------------------------------------------------------------- sections
+def arch_extent(arch: VoussoirArch) -> tuple[float, float, float, float]:
+    """(x_min, x_max, y_min, y_max) of the masonry [m]: of the voussoirs' outlines, so that the
+    height is the extrados crown's (the crown is inside a voussoir when n is odd, above the
+    corners of the joints).  A circular :class:`Arch`'s arcs are taken exactly (their highest
+    point is the extrados radius where an arc crosses the vertical through the centre)."""
+    jp = np.asarray(arch.joint_points, float).reshape(-1, 2)
+    pts = [jp] + [np.asarray(arch.outline(i), float) for i in range(arch.n)]
+    allp = np.vstack(pts)
+    x0, x1 = float(allp[:, 0].min()), float(allp[:, 0].max())
+    y0, y1 = float(allp[:, 1].min()), float(allp[:, 1].max())
+    if isinstance(arch, Arch):
+        psi = np.asarray(arch.joint_angles, float)
+        ro = np.asarray(arch.extrados_radii, float)
+        for i in range(arch.n):  # exact extremes of each extrados arc (centre at the origin)
+            a, b = sorted((psi[i], psi[i + 1]))
+            for ang, fx, fy in ((0.5 * math.pi, 0, 1), (0.0, 1, 0), (math.pi, -1, 0)):
+                if a <= ang <= b:
+                    x0, x1 = min(x0, fx * ro[i]), max(x1, fx * ro[i])
+                    y1 = max(y1, fy * ro[i])
+    return x0, x1, y0, y1
+
+
+def _shape_lines(arch: VoussoirArch) -> tuple[str, dict]:
+    """The arch's defining dimensions as a sentence and a dict: R, t, t/R and the embrace of a
+    circular arch; shape, span, rise, rise/span and thickness of a family's."""
+    if isinstance(arch, Arch):
+        R, t = np.asarray(arch.radii, float), np.asarray(arch.thicknesses, float)
+        emb = math.degrees(float(np.sum(arch.spans)))
+        d = {"radius": float(R.mean()), "thickness": float(t.mean()),
+             "t_over_R": float((t / R).mean()), "embrace_deg": emb}
+        if np.ptp(R) <= 1e-12 * R.mean() and np.ptp(t) <= 1e-12 * t.mean():
+            txt = (f"mean radius R = {R[0]:g} m, thickness t = {t[0]:g} m, t/R = "
+                   f"{t[0] / R[0]:.4f}, embrace {emb:g} deg")
+        else:
+            d.update(radius_range=[float(R.min()), float(R.max())],
+                     thickness_range=[float(t.min()), float(t.max())])
+            txt = (f"mean radius R = {R.mean():.4g} m ({R.min():.4g}-{R.max():.4g}), thickness "
+                   f"t = {t.mean():.4g} m ({t.min():.4g}-{t.max():.4g}), mean t/R = "
+                   f"{d['t_over_R']:.4f}, embrace {emb:.4g} deg")
+        return txt, d
+    recipe = getattr(arch, "recipe", None)
+    if recipe:
+        S, F, t = recipe["span"], recipe["rise"], recipe["thickness"]
+        tc = recipe.get("thickness_crown")
+        d = {"shape": recipe["shape"], "span": S, "rise": F, "rise_over_span": F / S,
+             "thickness": t, "thickness_crown": tc, "t_over_span": t / S,
+             "joints": recipe.get("joints")}
+        txt = (f"{recipe['shape']} family: centreline span S = {S:g} m, rise F = {F:g} m, "
+               f"F/S = {F / S:.4f}, thickness t = {t:g} m"
+               + (f" (crown {tc:g} m)" if tc is not None else "")
+               + f", t/S = {t / S:.4f}, {recipe.get('joints', 'normal')} joints")
+        return txt, d
+    return "a polygon arch (surveyed or drawn): its dimensions are those measured below", {}
+
+
 @titled('geometry', 'Geometry')
 def section_geometry(ctx: Context) -> Section:
     arch = ctx.arch
     jp = np.asarray(arch.joint_points, float)
-    xs, ys = jp[..., 0], jp[..., 1]
-    span = float(np.max(xs) - np.min(xs))
-    rise = float(np.max(ys) - np.min(ys))
+    x0, x1, y0, y1 = arch_extent(arch)
+    span, rise = x1 - x0, y1 - y0
+    shape_txt, shape = _shape_lines(arch)
     masses = np.asarray(arch.masses, float)
     rows = tuple((i, f"{m:.1f}", f"{c[0]:.3f}", f"{c[1]:.3f}",
                   f"{math.hypot(*(jp[i, 1] - jp[i, 0])):.3f}")
                  for i, (m, c) in enumerate(zip(masses, arch.centroids)))
     kind = "circular (exact sectors)" if isinstance(arch, Arch) else type(arch).__name__
-    blocks = [Paragraph(f"{arch.name}: a {kind} arch of {arch.n} voussoirs; overall span "
-                        f"{span:.3f} m (extrados to extrados at the springings), height {rise:.3f} m, "
-                        f"mass {masses.sum():.1f} kg per metre of depth"
-                        + (f", {len(arch.loads)} attached load(s)" if arch.loads else "") + "."),
+    blocks = [Paragraph(f"{arch.name}: a {kind} arch of {arch.n} voussoirs; {shape_txt}."),
+              Paragraph(f"Measured on the masonry: overall span {span:.3f} m (outside to outside), "
+                        f"height {rise:.3f} m (from the lowest point of the springings to the top "
+                        f"of the extrados at the crown), mass {masses.sum():.1f} kg per metre of "
+                        f"depth" + (f", {len(arch.loads)} attached load(s)" if arch.loads else "")
+                        + "."),
               Figure("arch", f"{arch.name}: voussoirs and joints (joint 0 at the left springing).",
                      arch),
               Table(("voussoir", "mass [kg/m]", "x_G [m]", "y_G [m]", "joint i contact length [m]"),
                     rows, "Each voussoir with its loads; joint i is its left face.")]
     data = {"name": arch.name, "kind": kind, "voussoirs": arch.n, "span": span, "height": rise,
-            "mass": float(masses.sum()), "geometry": arch.to_dict(),
-            "units": {"span": "m", "height": "m", "mass": "kg/m"}}
-    return Section("geometry", "Geometry", tuple(blocks), data,
-                   (("voussoirs", str(arch.n)), ("mass [kg/m]", f"{masses.sum():.1f}")))
+            "mass": float(masses.sum()), "dimensions": shape, "geometry": arch.to_dict(),
+            "units": {"span": "m", "height": "m", "mass": "kg/m", "radius": "m",
+                      "thickness": "m", "embrace_deg": "deg", "rise": "m"}}
+    head = [("arch", shape_txt), ("voussoirs", str(arch.n)),
+            ("span x height [m]", f"{span:.3f} x {rise:.3f}"),
+            ("mass [kg/m]", f"{masses.sum():.1f}")]
+    return Section("geometry", "Geometry", tuple(blocks), data, tuple(head))
 
 
 @titled('limit', 'Limit analysis (both directions)')
@@ -276,8 +382,44 @@ def section_limit(ctx: Context) -> Section:
             "static_k_r": lim.static_k_r, "discrepancy": lim.discrepancy, "method": lim.method,
             "mechanism_l": lim.mechanism_l.to_dict(), "mechanism_r": lim.mechanism_r.to_dict(),
             "units": {"k": "g"}}
-    return Section("limit", "Limit analysis (both directions)", blocks, data,
-                   (("k_l [g]", f"{lim.k_l:.6f}"), ("k_r [g]", f"{lim.k_r:.6f}")))
+    try:
+        fr = ctx.friction
+    except Exception:  # noqa: BLE001 - the friction section says why; k stands without it
+        fr = None
+    notes = {d: friction_note(fr, d) for d in ("l", "r")}
+    if fr is not None:
+        data["friction"] = {"mu": fr["mu"], "source": MASONRY_FRICTION_SOURCE,
+                            "needed": fr["needed"], "k_with_mu": fr["with_mu"],
+                            "with_mu_error": fr["with_mu_error"], "notes": notes}
+        if any(notes.values()):
+            blocks = blocks + (Paragraph("Friction: " + " ".join(
+                f"M_{d}: {notes[d]}." for d in ("l", "r") if notes[d])),)
+    head = tuple((f"k_{d} [g]", f"{getattr(lim, f'k_{d}'):.6f}"
+                  + (f" - {notes[d]}" if notes[d] else "")) for d in ("l", "r"))
+    return Section("limit", "Limit analysis (both directions)", blocks, data, head)
+
+
+def _mu(x) -> str:
+    return "no finite friction" if x is None else f"{x:.3f}"
+
+
+def friction_note(fr: dict | None, d: str) -> str:
+    """'' where the masonry's friction (MASONRY_FRICTION) is enough for k in direction ``d``;
+    else what k needs and the multiplier with that friction (or why there is none)."""
+    if fr is None:
+        return ""
+    need = fr["needed"][d]
+    mu = fr["mu"]
+    if need is not None and need <= mu:
+        return ""
+    what = ("needs more friction than any finite coefficient gives" if need is None else
+            f"needs friction mu >= {need:.3f}")
+    head = (f"{what}, more than masonry's mu = {mu:g} ({MASONRY_FRICTION_SOURCE}): "
+            if need is not None else f"{what} (masonry: mu = {mu:g}, {MASONRY_FRICTION_SOURCE}): ")
+    if fr["with_mu"] is not None:
+        return head + f"with mu = {mu:g} the joints slide first, at k_{d} = {fr['with_mu'][d]:.4f}"
+    return head + f"with mu = {mu:g} no multiplier ({fr['with_mu_error']})"
+
 
 
 def _optional_missing(key: str, title: str, module: str, what: str) -> Section:
@@ -290,21 +432,40 @@ def _optional_missing(key: str, title: str, module: str, what: str) -> Section:
 def section_friction(ctx: Context) -> Section:
     """OPTIONAL: the friction coefficient the thrust needs (archrock.friction)."""
     title = "Friction the thrust needs"
-    try:
-        from .friction import friction_needed
-    except ImportError:
+    fr = ctx.friction
+    if fr is None:
         return _optional_missing("friction", title, "friction",
                                  "The friction the limit thrust needs at the joints")
-    need = friction_needed(ctx.arch)  # {"l": mu or None, "r": ...}
-    rows = tuple((f"M_{d}", "no mechanism" if need[d] is None else _f(need[d], ".4f"))
-                 for d in ("l", "r"))
+    need, mu = fr["needed"], fr["mu"]  # need: {"l": mu or None (no finite friction), "r": ...}
+    lim = ctx.limit
+    rows = []
+    for d in ("l", "r"):
+        k_mu = ("-" if fr["with_mu"] is None else f"{fr['with_mu'][d]:.4f}")
+        gov = ("-" if fr["sliding_governs"] is None else
+               "sliding" if fr["sliding_governs"][d] else "hinges (no sliding)")
+        rows.append((f"M_{d}", _mu(need[d]), f"{getattr(lim, f'k_{d}'):.4f}", k_mu, gov))
+    notes = [f"M_{d}: {friction_note(fr, d)}." for d in ("l", "r") if friction_note(fr, d)]
+    verdict = (" ".join(notes) if notes else
+               f"Masonry's friction mu = {mu:g} ({MASONRY_FRICTION_SOURCE}) is enough for the "
+               f"multipliers above in both directions.")
+    if fr["with_mu_error"] and not notes:
+        verdict += f" With mu = {mu:g}: {fr['with_mu_error']}."
     return Section("friction", title, (
         Paragraph("The smallest Coulomb friction coefficient at the joints with which the thrust "
                   "at collapse needs no sliding (Heyman's no-sliding hypothesis made explicit; "
-                  "static LP, docs/friction.md). Joints with less friction than this slide before "
-                  "the hinge mechanism forms: run `archrock limit --friction MU`."),
-        Table(("mechanism", "friction coefficient needed"), rows)),
-        {"available": True, "friction_needed_l": need["l"], "friction_needed_r": need["r"]})
+                  "static LP, docs/friction.md), and the multiplier when the joints have the "
+                  f"friction of masonry, mu = {mu:g}: the coefficient 0.4 of EN 1996-1-1 "
+                  "(Eurocode 6) 3.6.2, f_vk = f_vk0 + 0.4 sigma_d, taken as the friction "
+                  "coefficient of the joints. Joints with less friction than needed slide before "
+                  "the hinge mechanism forms: `archrock limit --friction MU` gives any other "
+                  "coefficient. " + verdict),
+        Table(("mechanism", "friction coefficient needed", "k, no sliding [g]",
+               f"k with mu = {mu:g} [g]", f"at mu = {mu:g} governs"), tuple(rows))),
+        {"available": True, "friction_needed_l": need["l"], "friction_needed_r": need["r"],
+         "no_finite_friction": {d: need[d] is None for d in ("l", "r")},
+         "mu_masonry": mu, "mu_source": REFERENCES["ec6"],
+         "k_with_mu": fr["with_mu"], "sliding_governs": fr["sliding_governs"],
+         "with_mu_error": fr["with_mu_error"]})
 
 
 @titled('impact', 'Impact coefficients by model')
@@ -436,10 +597,14 @@ def section_defects(ctx: Context) -> Section:
 
 
 @titled('fragility', 'Fragility curves')
-def section_fragility(ctx: Context) -> Section | None:
+def section_fragility(ctx: Context) -> Section:
     cfg = ctx.config
     if not cfg.records:
-        return None
+        why = ("no accelerograms were given: fragility curves are fitted to the collapses of "
+               "the arch under recorded ground motions (`archrock assess --records FILE|DIR`, "
+               "PEER .AT2 or two-column files)")
+        return Section("fragility", "Fragility curves", (Paragraph(f"Skipped: {why}."),),
+                       {"skipped": True, "reason": why})
     from .ida import default_stripe_levels, ida, msa, random_models
 
     records = ctx.records
@@ -470,8 +635,11 @@ def section_contact(ctx: Context) -> Section:
         import_pymunk()  # the package imports without pymunk; the engine needs it
     except ImportError:
         return _optional_missing("contact", title, "contact", "The contact-engine (pymunk) check")
-    res = ramp(ctx.arch)  # default EngineSettings: within 1% of k on the documented arches
     lim = ctx.limit
+    # default EngineSettings: within 1% of k on the documented arches; the ramp's range follows
+    # the arch's k (max(2, 1.5 k), archrock.contact.ramp_range); an arch that does not move in
+    # it is an outcome said in this section (LimitExceededError), the report goes on
+    res = ramp(ctx.arch, limit=lim)
     rows = []
     for d in ("l", "r"):
         eng, mech = res.l if d == "l" else res.r, lim.mechanism(d)
@@ -483,14 +651,31 @@ def section_contact(ctx: Context) -> Section:
     return Section("contact", title, (
         Paragraph("The same voussoirs as rigid bodies with contact and Coulomb friction "
                   f"(mu = {res.settings.friction:g}) in the pymunk engine, under a slowly "
-                  "increasing horizontal ground acceleration in each direction: the acceleration "
+                  "increasing horizontal ground acceleration in each direction (up to |xg''|/g = "
+                  + " / ".join(f"{res.ramp['lambda_max'][d]:.3g}" for d in ("l", "r"))
+                  + ", i.e. max(2, 1.5 k)): the acceleration "
                   "at which the arch starts to move and the joints that open, beside the limit "
                   "analysis (docs/verification.md, Contact engine). Joints are numbered from the "
-                  "left springing (0)."),
+                  "left springing (0)." + _engine_friction_note(ctx, res.settings.friction)),
         Table(("direction", "engine multiplier", "limit analysis k", "difference",
                "engine hinges", "limit hinges"), tuple(rows))),
         {"available": True, **res.to_dict()},
         (("contact engine k_l / k_r", f"{res.k_l:.4f} / {res.k_r:.4f}"),))
+
+
+def _engine_friction_note(ctx: Context, mu: float) -> str:
+    try:
+        fr = ctx.friction
+    except Exception:  # noqa: BLE001 - said in the friction section
+        return ""
+    if fr is None:
+        return ""
+    short = [d for d in ("l", "r") if fr["needed"][d] is None or fr["needed"][d] > mu]
+    if not short:
+        return ""
+    return (" The engine's friction is less than the no-sliding collapse needs in "
+            + " and ".join(f"M_{d} ({_mu(fr['needed'][d])})" for d in short)
+            + ": there the engine's joints slide first and its multiplier is below k.")
 
 
 @titled('codecheck', 'Code check: kinematic analysis (NTC 2018 / Circolare 2019)')
@@ -514,7 +699,9 @@ def section_codecheck(ctx: Context) -> Section:
             rows.append((lab, *[f"{c.checks[kind]['ratio']:.3f} "
                                 f"{'pass' if c.checks[kind]['passed'] else 'FAIL'}" for c in dirs]))
     spec = cfg.spectrum
-    spec_txt = ("No site spectrum was given: the table gives the capacity only." if spec is None
+    spec_txt = ("No site spectrum was given (--spectrum FILE, or --ag --f0 --tc-star --soil, "
+                "or --ec8-type): the table gives the capacity only, and there is no verdict: "
+                "the check compares the capacity with a site's demand." if spec is None
                 else f"Site spectrum: {spec.kind}"
                 + (f" ({spec.source})" if spec.source else "") + f", Se(0) = {spec.pga:.3f} g.")
     blocks = (Paragraph("The kinematic analysis of local mechanisms of the Italian code (NTC 2018 "
@@ -596,9 +783,42 @@ class Assessment:
     def headline(self) -> list:
         return [h for s in self.sections for h in s.headline]
 
+    @property
+    def verdict(self) -> dict:
+        """{"status": "pass" | "fail" | "none", "text": the verdict in words}: the code check
+        against the site spectrum (both mechanisms, every check), with the friction caveat where
+        k needs more friction than masonry has; "none" with the reason where there is no
+        spectrum or no code check."""
+        secs = {s.key: s for s in self.sections}
+        cc = secs.get("codecheck")
+        caveat = ""
+        lim = secs.get("limit")
+        notes = (lim.data.get("friction") or {}).get("notes") if lim is not None else None
+        if notes and any(notes.values()):
+            caveat = (" This is on Heyman's no-sliding hypothesis: "
+                      + "; ".join(f"k_{d} {v}" for d, v in notes.items() if v)
+                      + " (section Friction the thrust needs).")
+        if cc is None:
+            return {"status": "none", "text": "No verdict: the code check was not part of this "
+                                              "report."}
+        if "error" in cc.data:
+            return {"status": "none", "text": f"No verdict: the code check could not be "
+                                              f"computed ({cc.data['error']})."}
+        passed = cc.data.get("passed")
+        if passed is None:
+            return {"status": "none", "text": (
+                "No verdict: no site spectrum was given (--spectrum FILE, or --ag --f0 --tc-star "
+                "--soil, or --ec8-type), so there is no demand to compare the capacity with; the "
+                "report gives the arch's capacity (k, a_0*, d_u*) only." + caveat)}
+        word = "passes" if passed else "FAILS"
+        return {"status": "pass" if passed else "fail", "text": (
+            f"The arch {word} the kinematic check of NTC 2018 / Circolare 2019 (both mechanisms, "
+            f"linear and nonlinear checks) for the given site spectrum." + caveat)}
+
     def to_dict(self) -> dict:
         return {"arch": self.arch.name, "archrock_version": self.version,
                 "config": self.config.to_dict(), "seconds": self.seconds,
+                "verdict": self.verdict,
                 "headline": [list(h) for h in self.headline],
                 "sections": {s.key: {"title": s.title, "seconds": s.seconds, "data": s.data}
                              for s in self.sections}}
@@ -630,11 +850,14 @@ def assess(arch: VoussoirArch, config: AssessConfig | None = None, *,
         t0 = time.perf_counter()
         try:
             sec = func(ctx)
-        except ArchInputError:
-            raise  # a mistake in the input: the whole assessment stops with it
-        except ArchrockError as exc:  # an outcome (e.g. an impact law that cannot apply)
+        except Exception as exc:  # noqa: BLE001 - one section lost, never the whole report
+            # an outcome (an impact law that cannot apply, a ramp whose range the arch does not
+            # move in, ...) or anything else: the section says why and the report goes on.  The
+            # user's input (arch, configuration, records) is checked before this loop.
             key = getattr(func, "key", name)
-            msg = " ".join(str(exc).split())
+            msg = " ".join(str(exc).split()) or type(exc).__name__
+            if not isinstance(exc, ArchrockError):
+                msg = f"internal error ({type(exc).__name__}): {msg}"
             sec = Section(key, getattr(func, "title", name), (Paragraph(
                 f"Not computed: {msg}"),), {"error": msg, "error_type": type(exc).__name__})
             ctx.progress(f"      {name}: not computed ({type(exc).__name__})")

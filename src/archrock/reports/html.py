@@ -145,7 +145,14 @@ padding:.25rem .5rem;text-align:left;vertical-align:top} th{background:#f2f4f7}
 figure{margin:1rem 0;text-align:center} figure img{max-width:100%;height:auto}
 figcaption{font-size:.85rem;color:#555} .note{color:#8a5a00} nav ol{columns:2;font-size:.9rem}
 caption{caption-side:bottom;font-size:.8rem;color:#666;text-align:left}
-@media print{body{margin:0;max-width:none} h2{page-break-before:auto} figure,table{page-break-inside:avoid}
+.verdict{border-left:4px solid #888;padding:.4rem .8rem;background:#f6f6f6}
+.verdict.pass{border-color:#2e7d32} .verdict.fail{border-color:#c62828}
+h1,h2,h3{break-after:avoid;page-break-after:avoid} p,figcaption{orphans:3;widows:3}
+@page{size:A4;margin:18mm 15mm 20mm 15mm;
+@bottom-center{content:"page " counter(page) " of " counter(pages);font-size:9pt;color:#555}}
+@media print{body{margin:0;max-width:none;font-size:10pt} h2{page-break-before:auto}
+figure,table,.verdict{break-inside:avoid;page-break-inside:avoid}
+h2+p,h2+table,h2+figure{break-before:avoid;page-break-before:avoid}
 nav{display:none}}
 """
 
@@ -193,8 +200,11 @@ def render_html(assessment, figures: dict | None = None, progress=None) -> str:
         f"file written beside this report.</p>",
     ]
     head = assessment.headline
+    verdict = assessment.verdict
+    parts.append(f'<h2 id="summary">Summary</h2><p class="verdict {verdict["status"]}"><strong>'
+                 f'Verdict:</strong> {html.escape(verdict["text"])}</p>')
     if head:
-        parts.append("<h2 id=\"summary\">Summary</h2><table><tbody>" + "".join(
+        parts.append("<table><tbody>" + "".join(
             f"<tr><th>{_cell(k)}</th><td>{_cell(v)}</td></tr>" for k, v in head) + "</tbody></table>")
     parts.append("<nav><ol>" + "".join(
         f'<li><a href="#{html.escape(s.key)}">{html.escape(s.title)}</a></li>'
@@ -249,7 +259,10 @@ def find_chromium() -> str | None:
 
 
 def write_pdf(html_path, pdf_path, timeout: float = 120.0) -> Path:
-    """Print the HTML report to PDF with headless Chromium (``--print-to-pdf``). Raises
+    """Print the HTML report to PDF with headless Chromium (``--print-to-pdf``): A4 pages with
+    "page i of n" at the bottom (the style sheet's ``@page`` rule and its ``@bottom-center``
+    margin box; Chromium's own header and footer, with the file's path and the date, are
+    switched off), headings kept with what follows them (``break-after: avoid``). Raises
     :class:`ArchrockError` with what to install when no Chromium is on PATH."""
     exe = find_chromium()
     if exe is None:
