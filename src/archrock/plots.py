@@ -107,9 +107,11 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
                 ax.add_patch(Polygon(region, closed=True, facecolor=STYLE["fill"], edgecolor="none",
                                      alpha=0.8 * alpha, zorder=zorder - 0.2))
     patches = []
+    # many voussoirs: thinner lines (500 joints at the usual width paint the arch black)
+    thin = min(1.0, _DENSE_JOINTS / max(arch.n, 1))
     for i in range(arch.n):
         poly = Polygon(voussoir_outline(arch, i), closed=True, facecolor=face, edgecolor=edge,
-                       linewidth=0.8, alpha=alpha, zorder=zorder)
+                       linewidth=0.8 * thin, alpha=alpha, zorder=zorder)
         ax.add_patch(poly)
         patches.append(poly)
     if joints:
@@ -117,15 +119,17 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
         # part darker so steps between irregular voussoirs stay visible.
         for j in range(arch.n + 1):
             (x0, y0), (x1, y1) = arch.joint_points[j]
-            ax.plot([x0, x1], [y0, y1], color=STYLE["joint"], lw=1.4, solid_capstyle="butt",
-                    zorder=zorder + 0.1)
+            ax.plot([x0, x1], [y0, y1], color=STYLE["joint"], lw=max(0.1, 1.4 * thin),
+                    solid_capstyle="butt", zorder=zorder + 0.1)
     if ground:
         for j in (0, arch.n):
             _draw_support(ax, arch, j, zorder)
     if label_joints:
         inside = set(label_joints) if isinstance(label_joints, (set, frozenset, list, tuple)) else set()
+        step = _label_step(arch.n)
         for j in range(arch.n + 1):
-            label_joint(ax, arch, j, inside=j in inside, zorder=zorder + 0.2)
+            if j % step == 0 or j == arch.n or j in inside:
+                label_joint(ax, arch, j, inside=j in inside, zorder=zorder + 0.2)
     if loads and arch.loads:
         fill = {id(ld) for ld in _fill_loads(arch)}
         m_max = max(ld.mass for ld in arch.loads) or 1.0
@@ -138,6 +142,22 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
     ax.set_aspect("equal")
     ax.autoscale_view()
     return patches
+
+
+#: Above this many voussoirs the joints are drawn thinner and only some are numbered.
+_DENSE_JOINTS = 40
+
+
+def _label_step(n: int) -> int:
+    """Number every joint up to _DENSE_JOINTS voussoirs, else every 5th, 10th, 20th, 25th,
+    50th, 100th, ... joint: at most about 12 numbers."""
+    if n <= _DENSE_JOINTS:
+        return 1
+    for base in (1, 10, 100, 1000, 10000, 100000):
+        for m in (5, 10, 20, 25, 50):
+            if m * base >= n / 12 and (m * base) % 10 in (0, 5):
+                return m * base
+    return max(1, n // 12)
 
 
 def _fill_loads(arch) -> list:
@@ -206,6 +226,59 @@ def _thrust_points(thrust, arch) -> np.ndarray:
     return np.column_stack([r * np.cos(psi), r * np.sin(psi)])
 
 
+def clip_thrust_polyline(poly, arch, crossings) -> np.ndarray:
+    """The polyline ``poly`` (m, 2) [m] of a line of thrust (its funicular polygon: the joint
+    crossings and, between them, the vertices on the load lines) as drawn: from the crossing of
+    joint 0 to that of joint n, every vertex kept only if it lies within its voussoir, between
+    the lines of the two joints whose crossings enclose it.
+
+    A vertex is where the lines of action of the forces on both sides of a voussoir meet; near a
+    springing, or on a thin voussoir (hundreds of voussoirs), that point can lie far outside the
+    voussoir (two nearly parallel lines), below the springing: drawn, the line runs into the
+    abutment or zigzags out of the masonry.  Dropping it draws the thrust straight from one
+    crossing to the next there.  ``crossings``: the thrust's (n+1, 2) joint crossings; a
+    polyline that does not pass through them is only cut at the springing joints."""
+    poly = np.asarray(poly, float)
+    pts = np.asarray(crossings, float)
+    if poly.ndim != 2 or len(poly) < 2 or len(pts) != arch.n + 1:
+        return poly
+    jp = np.asarray(arch.joint_points, float)
+    cen = np.asarray(arch.centroids, float)
+    tol = 1e-9 * max(1.0, float(np.ptp(jp.reshape(-1, 2), axis=0).max()))
+
+    def inside(p, joint, voussoir):
+        """Whether the points p lie on voussoir ``voussoir``'s side of joint ``joint``'s line."""
+        a, b = jp[joint]
+        u = (b - a) / max(np.hypot(*(b - a)), 1e-300)
+        side = u[0] * (p[:, 1] - a[1]) - u[1] * (p[:, 0] - a[0])
+        ref = u[0] * (cen[voussoir][1] - a[1]) - u[1] * (cen[voussoir][0] - a[0])
+        return (side if ref >= 0 else -side) >= -tol
+
+    # the polyline's index of each crossing, in order (None where it does not pass through it)
+    where, k = [], 0
+    for j in range(arch.n + 1):
+        d = np.hypot(*(poly[k:] - pts[j]).T)
+        hit = np.flatnonzero(d <= 1e-7 * max(1.0, arch.size))
+        if len(hit) == 0:
+            where = None
+            break
+        k += int(hit[0])
+        where.append(k)
+    if where is None:  # not a funicular polygon through the crossings: cut at the springings
+        keep = inside(poly, 0, 0) & inside(poly, arch.n, arch.n - 1)
+        first = int(np.argmax(keep)) if keep.any() else 0
+        last = len(poly) - int(np.argmax(keep[::-1])) if keep.any() else len(poly)
+        return np.vstack([pts[0], poly[first:last], pts[-1]])
+    out = [pts[0]]
+    for j in range(arch.n):
+        between = poly[where[j] + 1:where[j + 1]]
+        if len(between):
+            ok = inside(between, j, j) & inside(between, j + 1, j)
+            out.extend(between[ok])
+        out.append(pts[j + 1])
+    return np.vstack(out)
+
+
 # ---------------------------------------------------------------------------- limit analysis
 def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True,
                label_joints: bool = True):
@@ -231,7 +304,7 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
     draw_arch(ax, arch, label_joints=ext if label_joints else False)
     poly = getattr(thrust, "polyline", None)
     pts = _thrust_points(thrust, arch)
-    poly = pts if poly is None else poly
+    poly = clip_thrust_polyline(pts if poly is None else poly, arch, pts)
     ax.plot(poly[:, 0], poly[:, 1], "-", color=STYLE["thrust"], lw=1.6, zorder=4,
             label="line of thrust at collapse")
     ax.plot(pts[:, 0], pts[:, 1], ".", color=STYLE["thrust"], ms=4, zorder=4)
