@@ -205,3 +205,64 @@ def test_cli_verify_agrees_where_the_models_must(capsys):
     assert d["agreement"] == {"paper": 1.0, "momentum": 1.0}
     assert d["cv"]["paper"] == pytest.approx(0.87538, abs=1e-5)
     assert d["cv"]["momentum"] == pytest.approx(0.64496, abs=1e-5)
+
+
+def test_ramp_range_follows_the_multiplier():
+    """lambda_max = max(2, 1.5 k) (at most 100), the ramp starting at 0.5 k where k > 2."""
+    from archrock.contact import ramp_range
+
+    assert ramp_range(0.37) == (0.0, pytest.approx(2.0, abs=1e-12))
+    start, top = ramp_range(2.375)  # --embrace 90
+    assert start == pytest.approx(1.1875, abs=1e-12) and top == pytest.approx(3.5625, abs=1e-12)
+    assert ramp_range(float("inf")) == (0.0, pytest.approx(100.0, abs=1e-12))
+    assert ramp_range(None)[1] == pytest.approx(100.0, abs=1e-12)
+    assert ramp_range(80.0) == (pytest.approx(40.0, abs=1e-12), pytest.approx(100.0, abs=1e-12))
+
+
+def test_ramp_that_does_not_move_is_an_outcome_not_an_input_error():
+    from archrock.errors import ArchInputError, LimitExceededError
+
+    with pytest.raises(LimitExceededError, match="did not move") as info:
+        ramp_direction(oppenheim_arch(), "l", COARSE, rate=0.5, lambda_max=0.2)
+    assert not isinstance(info.value, ArchInputError)
+    with pytest.raises(ArchInputError, match="lambda_start"):
+        ramp_direction(oppenheim_arch(), "l", COARSE, lambda_max=0.2, lambda_start=0.3)
+
+
+@pytest.mark.slow
+def test_ramp_past_two_g_on_a_segmental_arch():
+    """--embrace 90: k = 2.375 > 2, beyond the old fixed lambda_max = 2; the ramp (default
+    engine) finds the activation, below k where the joints slide (friction 0.8 < the 2.14 the
+    thrust needs)."""
+    from archrock.contact import ramp
+    from archrock.geometry import nominal_arch
+
+    a = nominal_arch(embrace_deg=90)
+    lim = limit_analysis(a)
+    res = ramp(a, limit=lim, tol=0.02)
+    assert res.ramp["lambda_max"]["l"] == pytest.approx(1.5 * lim.k_l, rel=1e-12)
+    assert 2.0 < res.k_l < lim.k_l and 2.0 < res.k_r < lim.k_r
+
+
+def test_cli_dem_ignores_impact_options_and_needs_no_law(capsys):
+    """The engine uses no impact law: --ramp accepts the impact options and ignores them; a
+    pulse on a pointed arch, where the paper's law creates energy, runs (the four-link run
+    beside it uses the momentum law and says so)."""
+    coarse = ["--steps-per-T", "150", "--iterations", "20"]
+    assert main(["dem", "--voussoirs", "5", "--ramp", "--ramp-tol", "0.03", "--impact", "paper",
+                 "--impact-on", "nominal", "--json", *coarse]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["k_l"] == pytest.approx(d["limit"]["k_l"], rel=0.05)
+    pointed = ["--shape", "pointed", "--span", "10", "--rise", "7", "--thickness", "0.8",
+               "--voussoirs", "12"]
+    motion = ["--pulse", "oppenheim", "--amplitude", "-0.1", "--pulse-duration", "0.2",
+              "--t-end", "0.2"]
+    assert main(["dem", *pointed, *motion, "--json", *coarse]) == 0
+    d = json.loads(capsys.readouterr().out)
+    # the four-link run beside it: the momentum law (said in the note, or by the law itself
+    # where the default falls back to it)
+    assert d["four_link"]["collapsed"] is False
+    assert "momentum" in d.get("four_link_note", "") + json.dumps(d["four_link"])
+    assert main(["dem", *pointed, *motion, "--impact", "paper", "--json", *coarse]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["four_link_note"].startswith("four-link model not run") and "four_link" not in d

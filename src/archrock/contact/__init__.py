@@ -14,10 +14,10 @@ pymunk is optional (``pip install "archrock[dem]"``): it is imported when an eng
 
 from .convex import convex_pieces
 from .motion import ContactResponse, engine_respond, equivalent_rotation
-from .ramp import RampDirection, RampResult, ramp, ramp_direction
+from .ramp import RampDirection, RampResult, ramp, ramp_direction, ramp_range
 from .settings import DEFAULT_FRICTION, EngineSettings
 from .engine import ContactArch, import_pymunk
 
 __all__ = ["ContactArch", "EngineSettings", "DEFAULT_FRICTION", "RampDirection", "RampResult",
-           "ramp", "ramp_direction", "ContactResponse", "engine_respond", "equivalent_rotation",
+           "ramp", "ramp_direction", "ramp_range", "ContactResponse", "engine_respond", "equivalent_rotation",
            "convex_pieces", "import_pymunk"]
