@@ -45,7 +45,7 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
     the drawn rotations (1 = to scale); max_frames caps the file size.
     """
     from .plots import (STYLE, displaced_hinges, displaced_outlines, draw_displaced, new_figure,
-                        plot_ground_motion, voussoir_bounds)
+                        plot_ground_motion, springing_level, voussoir_bounds)
 
     path = animation_path(path)
     for name, v in (("fps", fps), ("speed", speed), ("exaggerate", exaggerate)):
@@ -92,8 +92,11 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
 
     ax_arch.set_aspect("equal")
     ax_arch.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
-    ax_arch.set_ylim(min(pts[:, 1].min(), 0.0) - pad, pts[:, 1].max() + pad)
-    ax_arch.axhline(0.0, color=STYLE["ground"], lw=1.0)
+    ground = springing_level(model.arch)  # the ground the springings stand on
+    ax_arch.set_ylim(min(pts[:, 1].min(), ground) - pad, pts[:, 1].max() + pad)
+    ax_arch.axhline(ground, color=STYLE["ground"], lw=1.0)
+    ax_arch.set_xlabel("x [m]")
+    ax_arch.set_ylabel("y [m]")
     patches = draw_displaced(ax_arch, model, "rest", 0.0)
     hinge_marks, = ax_arch.plot([], [], "o", ms=6, mfc="white", mec=STYLE["hinge"], mew=1.6,
                                 zorder=5)

@@ -45,12 +45,15 @@ def save_engine_figure(res, four_link, path, dpi: int = 150) -> Path:
     ax.set_ylabel(r"signed rotation $\phi$ [rad]")
     ax.set_title(f"engine: {res.status}; four-link: "
                  f"{four_link.status if four_link is not None else '-'}", fontsize=9)
-    ax.legend(fontsize=7)
-    for i in range(res.rotations.shape[1]):
+    # legends outside the axes, on the right: inside they hid curves (voussoir 3's trough)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+    nv = res.rotations.shape[1]
+    for i in range(nv):
         ax_v.plot(res.time, res.rotations[:, i], lw=0.9, label=f"voussoir {i}")
     ax_v.set_ylabel("voussoir rotation [rad]")
     ax_v.set_xlabel("$t$ [s]")
-    ax_v.legend(fontsize=6, ncol=min(6, res.rotations.shape[1]))
+    ax_v.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False,
+                ncol=1 + (nv - 1) // 14)
     j = np.arange(res.max_sliding.size)
     ax_s.bar(j, res.max_sliding * 1e3, color="#7f8c8d")
     ax_s.set_xlabel("joint (0 = left springing)")
@@ -95,7 +98,7 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
     """Animation: the engine's voussoirs (left) beside the four-link mechanism (right), to
     scale, with both rotations against time below."""
     from .animate import animation_path, save_animation
-    from .plots import STYLE, displaced_outlines, new_figure, voussoir_bounds
+    from .plots import STYLE, displaced_outlines, new_figure, springing_level, voussoir_bounds
 
     path = animation_path(path)
     from matplotlib.animation import FuncAnimation
@@ -110,12 +113,15 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
     pts = voussoir_bounds(arch)
     pad = 0.15 * np.ptp(pts[:, 0])
     patches = {}
+    ground = springing_level(arch)  # the ground the springings stand on
     for k, name in ((0, "engine"), (1, "four-link")):
         ax = axes[0][k]
         ax.set_aspect("equal")
         ax.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
-        ax.set_ylim(min(pts[:, 1].min(), 0.0) - pad, pts[:, 1].max() + pad)
-        ax.axhline(0.0, color=STYLE["ground"], lw=1.0)
+        ax.set_ylim(min(pts[:, 1].min(), ground) - pad, pts[:, 1].max() + pad)
+        ax.axhline(ground, color=STYLE["ground"], lw=1.0)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
         ax.set_title(name, fontsize=9)
         patches[name] = []
         for i in range(arch.n):

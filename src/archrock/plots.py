@@ -148,6 +148,13 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
 _DENSE_JOINTS = 40
 
 
+def springing_level(arch) -> float:
+    """The height of the ground the arch stands on [m]: the lowest point of its two springing
+    joints (an arch whose centre is at the origin springs above y = 0)."""
+    jp = np.asarray(arch.joint_points, float)
+    return float(min(jp[0, :, 1].min(), jp[-1, :, 1].min()))
+
+
 def _label_step(n: int) -> int:
     """Number every joint up to _DENSE_JOINTS voussoirs, else every 5th, 10th, 20th, 25th,
     50th, 100th, ... joint: at most about 12 numbers."""
@@ -833,9 +840,12 @@ def plot_multiplier_histograms(df, path: str | os.PathLike, dpi: int = 150,
         for (label, ks), c in zip((reference or {}).items(), colors):
             ax.axvline(ks[0] if name == "l" else ks[1], color=c, lw=1.2, ls="--", label=label)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8, frameon=False)
         ax.yaxis.set_major_locator(MaxNLocator(integer=True))  # counts of samples
     axes[0, 0].set_ylabel("samples")
+    # one legend for both panels, below them: inside, it overprinted the reference lines
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=min(len(labels), 5),
+               fontsize=8, frameon=False)
     n_hidden = int((~shown).sum())
     why = ", ".join(f"{LEFT_OUT[k].split(' (')[0]} {v}" for k, v in hidden.items() if v)
     fig.suptitle(f"{shown.sum()} of {len(kl_all)} samples shown"

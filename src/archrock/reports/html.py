@@ -82,28 +82,52 @@ def _fig_fragility(payload):
     return plot_fragility(fit, stripes, None, ida=ida)
 
 
+def _same_curves(a, b, rtol: float = 1e-6) -> bool:
+    """Whether two directions of a code check draw the same lines (a symmetric arch)."""
+    try:
+        if not (np.allclose(a.curve_d_star, b.curve_d_star, rtol=rtol, atol=0)
+                and np.allclose(a.curve_a_star, b.curve_a_star, rtol=rtol, atol=0)):
+            return False
+    except ValueError:  # curves of different lengths
+        return False
+    keys = ("d0_star", "a0_star", "ds_star", "as_star", "du_star", "ts")
+    if not all(math.isclose(getattr(a, k), getattr(b, k), rel_tol=rtol) for k in keys):
+        return False
+    da = a.checks.get("nonlinear", {}).get("demand_m")
+    db = b.checks.get("nonlinear", {}).get("demand_m")
+    return (da is None) == (db is None) and (da is None or math.isclose(da, db, rel_tol=rtol))
+
+
 def _fig_codecheck(res):
     """Capacity curves a*(d*) [m/s^2 vs m], the code's straight lines, d_u*, d_s* with the
-    secant line, and the demand S_De(T_s) when a spectrum is given."""
+    secant line, and the demand S_De(T_s) when a spectrum is given.  Where both mechanisms
+    draw the same lines (a symmetric arch) they are drawn and listed once, as "M_l = M_r":
+    drawn twice, the second hid the first and the legend listed curves that cannot be seen."""
     from ..plots import new_figure
 
     fig, axes = new_figure(1, 1, figsize=(6.6, 4.2))
     ax = axes[0][0]
     colors = {"l": "#1f4e9c", "r": "#c0392b"}
-    for c in res.directions:
-        col = colors[c.direction]
+    dirs = list(res.directions)
+    names = {c.direction: f"$M_{c.direction}$" for c in dirs}
+    if len(dirs) == 2 and _same_curves(dirs[0], dirs[1]):
+        names = {dirs[0].direction: "$M_l$ = $M_r$"}
+        dirs = dirs[:1]
+        colors = {dirs[0].direction: "#1f4e9c"}
+    for c in dirs:
+        col, name = colors[c.direction], names[c.direction]
         ax.plot(c.curve_d_star, c.curve_a_star, "-", color=col, lw=1.6,
-                label=f"$M_{c.direction}$: exact four-link curve")
+                label=f"{name}: exact four-link curve")
         ax.plot([0, c.d0_star], [c.a0_star, 0], ":", color=col, lw=1.0,
-                label=f"$M_{c.direction}$: code's straight line")
+                label=f"{name}: code's straight line")
         ax.plot([0, c.ds_star], [0, c.as_star], "--", color=col, lw=0.9, alpha=0.8,
-                label=f"$M_{c.direction}$: secant, $T_s$ = {c.ts:.2f} s")
+                label=f"{name}: secant, $T_s$ = {c.ts:.2f} s")
         ax.axvline(c.du_star, color=col, lw=0.8, alpha=0.6,
-                   label=f"$d_u^*$ = {c.du_star:.3f} m ($M_{c.direction}$)")
+                   label=f"{name}: $d_u^*$ = {c.du_star:.3f} m")
         if "nonlinear" in c.checks:
             dem = c.checks["nonlinear"]["demand_m"]
             ax.plot([dem], [0], "v", color=col, ms=9, clip_on=False,
-                    label=f"demand $S_{{De}}(T_s)$ = {dem:.3f} m ($M_{c.direction}$)")
+                    label=f"{name}: demand $S_{{De}}(T_s)$ = {dem:.3f} m")
     ax.set_xlabel("spectral displacement $d^*$ [m]")
     ax.set_ylabel("spectral acceleration $a^*$ [m/s$^2$]")
     ax.set_xlim(0, None)
