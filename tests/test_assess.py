@@ -16,6 +16,7 @@ from archrock.assessment import (SECTIONS, AssessConfig, Context, Paragraph, Sec
 from archrock.cli import main
 from archrock.codecheck import CodeCheckConfig, SiteSpectrum
 from archrock.geometry import oppenheim_arch
+from archrock.impact import ImpactSpec
 from archrock.reports.html import render_html, write_report
 
 FAST = AssessConfig(durations=(0.3, 0.7), n_scan=12, samples=2, t_end=3.0,
@@ -166,7 +167,8 @@ def test_an_outcome_is_said_in_its_section_not_fatal():
     from archrock.geometry import family_arch
 
     arch = family_arch("pointed", 10, 7, 0.8, 12)
-    res = assess(arch, AssessConfig(durations=(0.5,), samples=0),
+    paper = ImpactSpec.parse("paper")  # the paper's law on this arch, no fallback
+    res = assess(arch, AssessConfig(impact=paper, durations=(0.5,), samples=0),
                  sections=[section_limit, section_response])
     resp = res.section("response")
     assert resp.title == "Response to the paper's pulse"
@@ -219,8 +221,9 @@ def test_verdict_and_friction_beside_k(report):
     assert lim["k_with_mu"]["l"] == pytest.approx(k_mu, rel=1e-9)
     head = dict(res.headline)
     assert "0.370010" in head["k_l [g]"] and "needs friction mu >= 0.495" in head["k_l [g]"]
-    assert "mu = 0.4 (EN 1996-1-1" in head["k_l [g]"] and "0.2638" in head["k_l [g]"]
-    assert "no-sliding hypothesis" in data["verdict"]["text"]
+    assert "masonry's mu = 0.4 (EN 1996-1-1" in head["k_l [g]"] and "0.2638" in head["k_l [g]"]
+    assert "no-sliding hypothesis: k (both directions) needs friction mu >= 0.495" in \
+        data["verdict"]["text"]
     assert "EN 1996-1-1" in text and "0.4 sigma_d" in text
 
 
@@ -246,7 +249,7 @@ def test_no_finite_friction_is_said_in_words():
           "with_mu_error": None, "sliding_governs": {"l": True, "r": False}}
     assert "no finite" not in friction_note(fr, "r") and friction_note(fr, "r") == ""
     note = friction_note(fr, "l")
-    assert "more friction than any finite coefficient" in note and "0.2100" in note
+    assert "no finite friction" in note and "k_l = 0.2100" in note
 
 
 def test_a_failing_section_never_loses_the_report():

@@ -390,7 +390,8 @@ def section_limit(ctx: Context) -> Section:
     if fr is not None:
         data["friction"] = {"mu": fr["mu"], "source": MASONRY_FRICTION_SOURCE,
                             "needed": fr["needed"], "k_with_mu": fr["with_mu"],
-                            "with_mu_error": fr["with_mu_error"], "notes": notes}
+                            "with_mu_error": fr["with_mu_error"], "notes": notes,
+                            "caveat": friction_caveat(fr)}
         if any(notes.values()):
             blocks = blocks + (Paragraph("Friction: " + " ".join(
                 f"M_{d}: {notes[d]}." for d in ("l", "r") if notes[d])),)
@@ -412,13 +413,30 @@ def friction_note(fr: dict | None, d: str) -> str:
     mu = fr["mu"]
     if need is not None and need <= mu:
         return ""
-    what = ("needs more friction than any finite coefficient gives" if need is None else
-            f"needs friction mu >= {need:.3f}")
-    head = (f"{what}, more than masonry's mu = {mu:g} ({MASONRY_FRICTION_SOURCE}): "
-            if need is not None else f"{what} (masonry: mu = {mu:g}, {MASONRY_FRICTION_SOURCE}): ")
+    what = ("needs more friction than any finite coefficient (no finite friction)"
+            if need is None else f"needs friction mu >= {need:.3f}")
+    head = f"{what}, more than masonry's mu = {mu:g} ({MASONRY_FRICTION_SOURCE}); "
     if fr["with_mu"] is not None:
         return head + f"with mu = {mu:g} the joints slide first, at k_{d} = {fr['with_mu'][d]:.4f}"
     return head + f"with mu = {mu:g} no multiplier ({fr['with_mu_error']})"
+
+
+def friction_caveat(fr: dict | None) -> str:
+    """One sentence for the verdict where k needs more friction than masonry has ('' where it
+    does not): both directions at once when they need the same."""
+    if fr is None:
+        return ""
+    short = [d for d in ("l", "r") if friction_note(fr, d)]
+    if not short:
+        return ""
+    need, wm = fr["needed"], fr["with_mu"]
+    same = (len(short) == 2 and (need["l"] is None) == (need["r"] is None)
+            and (need["l"] is None or math.isclose(need["l"], need["r"], rel_tol=1e-6))
+            and (wm is None or math.isclose(wm["l"], wm["r"], rel_tol=1e-6)))
+    if same:
+        note = friction_note(fr, "l").replace("k_l =", "k =")
+        return f"k (both directions) {note}"
+    return "; ".join(f"k_{d} {friction_note(fr, d)}" for d in short)
 
 
 
@@ -793,11 +811,10 @@ class Assessment:
         cc = secs.get("codecheck")
         caveat = ""
         lim = secs.get("limit")
-        notes = (lim.data.get("friction") or {}).get("notes") if lim is not None else None
-        if notes and any(notes.values()):
-            caveat = (" This is on Heyman's no-sliding hypothesis: "
-                      + "; ".join(f"k_{d} {v}" for d, v in notes.items() if v)
-                      + " (section Friction the thrust needs).")
+        fr = (lim.data.get("friction") or {}).get("caveat") if lim is not None else None
+        if fr:
+            caveat = (f" This is on Heyman's no-sliding hypothesis: {fr} (section Friction the "
+                      f"thrust needs).")
         if cc is None:
             return {"status": "none", "text": "No verdict: the code check was not part of this "
                                               "report."}
