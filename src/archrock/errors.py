@@ -4,7 +4,9 @@
   message names the field and the allowed range.  Fix the input.
 * :class:`GeometryOutcome` -- the input is valid but the arch has no answer of the kind asked:
   it cannot stand under its own weight (:class:`CannotStandError`), no four-hinge mechanism can
-  open (:class:`NoMechanismError`: sliding or crushing governs), or a drawn random arch is not a
+  open (:class:`NoMechanismError`: sliding or crushing governs), a joint lifts off before any
+  four-hinge mechanism opens (:class:`NotFourHingeError`: the four-link model does not hold), or
+  a drawn random arch is not a
   valid arch (:class:`InvalidSampleError`).  A physical outcome, reported as such.
 * :class:`ImpactModelError` -- an impact model cannot be used on this geometry (it would create
   energy: :class:`EnergyGainError`; its equations are singular).
@@ -17,7 +19,7 @@ the study.  Every class derives from :class:`ArchrockError`.
 """
 
 __all__ = ["ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
-           "NoMechanismError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
+           "NoMechanismError", "NotFourHingeError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
            "FitError", "LimitExceededError", "UNUSABLE_ARCH"]
 
 
@@ -40,6 +42,12 @@ class CannotStandError(GeometryOutcome):
 class NoMechanismError(GeometryOutcome):
     """No admissible four-hinge mechanism opens under horizontal forces: the arch fails by
     sliding or crushing, which Heyman's hypotheses exclude."""
+
+
+class NotFourHingeError(GeometryOutcome):
+    """The arch's governing (Heyman) mechanism is not a four-hinge chain: a joint lifts off
+    (opens at both ends) at a lower multiplier than any four-hinge mechanism.  Oppenheim's
+    four-link model does not describe it; the contact engine (``archrock dem``) does."""
 
 
 class InvalidSampleError(GeometryOutcome):

@@ -41,7 +41,8 @@ from scipy.optimize import linprog
 
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from ._records import readonly_arrays
-from .errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
+from .errors import (ArchInputError, CannotStandError, LimitExceededError, NoMechanismError,
+                     NotFourHingeError)
 from .geometry import Arch, VoussoirArch, power_of_two_near, sector_properties
 
 __all__ = [
@@ -49,7 +50,9 @@ __all__ = [
     "limit_analysis", "kinematic_mechanisms", "kinematic_multipliers_batch",
     "kinematic_multipliers_arches",
     "static_multiplier", "thrust_line", "minimum_thickness", "thickness_bisection",
-    "length_scale", "arch_sums",
+    "length_scale", "arch_sums", "general_mechanisms", "mechanism_multiplier",
+    "certify_four_hinge", "CERTIFY_TOL", "GENERAL_MAX_VOUSSOIRS", "require_four_hinge",
+    "certify_candidates", "LIFT_OFF_REASON",
     "enumeration_estimate", "EDGES", "SEARCH_CHOICES", "ENUMERATION_MAX_VOUSSOIRS",
     "MAX_ENUMERATION_SECONDS",
 ]
@@ -78,15 +81,30 @@ HINGE_LABELS = ("A", "B", "C", "D")
 
 @dataclass(frozen=True)
 class Mechanism:
-    """A four-hinge collapse mechanism; hinges ordered from the left springing.
+    """A collapse mechanism; hinges ordered from the left springing.
 
     direction: 'l' (loads toward +x, M_l) or 'r' (loads toward -x, M_r).
     multiplier: the horizontal load multiplier lambda that activates it (kinematic theorem).
+    hinges: the joints that rotate about one end of their contact segment.
+    lift_off: the joints that open at both ends (the parts separate across them, with no
+    sliding); empty for the four-hinge rocking chain of Oppenheim's model.  A mechanism with
+    lift-off has fewer than four hinges (kind 'lift-off'); the four-link model does not
+    describe it (docs/method.md, The Heyman optimum).
     """
 
     direction: str
-    hinges: tuple[Hinge, Hinge, Hinge, Hinge]
+    hinges: tuple[Hinge, ...]
     multiplier: float
+    lift_off: tuple[int, ...] = ()
+
+    @property
+    def kind(self) -> str:
+        """'four-hinge' (a rocking chain of three links) or 'lift-off'."""
+        return "lift-off" if self.lift_off else "four-hinge"
+
+    @property
+    def is_four_hinge(self) -> bool:
+        return not self.lift_off and len(self.hinges) == 4
 
     @property
     def joints(self) -> tuple[int, ...]:
@@ -95,8 +113,18 @@ class Mechanism:
     @property
     def label(self) -> str:
         """Compact hinge label, joints from the left springing with their edge (i = intrados,
-        e = extrados), e.g. '0i-3e-5i-7e'."""
-        return "-".join(f"{h.joint}{h.edge[0]}" for h in sorted(self.hinges, key=lambda h: h.joint))
+        e = extrados, s = separates: lift-off), e.g. '0i-3e-5i-7e' or '0s-4i-7e'."""
+        parts = [(h.joint, f"{h.joint}{h.edge[0]}") for h in self.hinges]
+        parts += [(j, f"{j}s") for j in self.lift_off]
+        return "-".join(p for _, p in sorted(parts))
+
+    def describe(self) -> str:
+        """One line for people: the kind, the hinges and the joints that lift off."""
+        if not self.lift_off:
+            return f"four-hinge mechanism {self.label}"
+        lifts = ", ".join(str(j) for j in self.lift_off)
+        return (f"mechanism with lift-off at joint{'s' if len(self.lift_off) > 1 else ''} "
+                f"{lifts} ({self.label})")
 
     def labelled(self) -> list[tuple[str, Hinge]]:
         """(label, hinge) pairs: A..D from the mechanism's leading side (docs/method.md, Four-link equation): for
@@ -109,11 +137,13 @@ class Mechanism:
     def mirrored(self, n: int) -> "Mechanism":
         """The same mechanism on the mirror image of an n-voussoir arch."""
         hinges = tuple(Hinge(n - h.joint, h.edge) for h in reversed(self.hinges))
-        return Mechanism("r" if self.direction == "l" else "l", hinges, self.multiplier)
+        return Mechanism("r" if self.direction == "l" else "l", hinges, self.multiplier,
+                         tuple(sorted(n - j for j in self.lift_off)))
 
     def to_dict(self) -> dict:
         return {"direction": self.direction, "multiplier": self.multiplier,
-                "hinges": [h.to_dict() for h in self.hinges]}
+                "hinges": [h.to_dict() for h in self.hinges], "kind": self.kind,
+                "lift_off": [int(j) for j in self.lift_off], "label": self.label}
 
 
 @dataclass(frozen=True)
@@ -162,8 +192,12 @@ class ThrustLine:
 class LimitResult:
     """Result of :func:`limit_analysis`: multipliers, mechanisms and thrust lines, both directions.
 
-    k_l, k_r come from the kinematic enumeration; static_k_l, static_k_r from the linear program
-    (None when not checked); ``discrepancy`` is the largest |kinematic - static| difference.
+    k_l, k_r: the Heyman collapse multipliers, the virtual-work values of the governing
+    mechanisms (four-hinge where the line of thrust through the best four-hinge mechanism fits
+    the arch, else the mechanism with lift-off from the static LP's dual); static_k_l,
+    static_k_r: the linear program's optima (None when not solved); ``discrepancy`` the largest
+    |kinematic - static| difference; four_hinge_l/_r: the best four-hinge mechanism of each
+    direction (the governing one, or the one a four-link model would open; None where none).
     """
 
     arch: VoussoirArch = field(repr=False)
@@ -177,6 +211,13 @@ class LimitResult:
     static_k_r: float | None = None
     discrepancy: float | None = None
     method: str = "kinematic enumeration (vectorised), checked by static LP (HiGHS)"
+    four_hinge_l: Mechanism | None = None
+    four_hinge_r: Mechanism | None = None
+
+    @property
+    def four_hinge(self) -> bool:
+        """Whether four-hinge mechanisms govern both directions (the four-link model holds)."""
+        return self.mechanism_l.is_four_hinge and self.mechanism_r.is_four_hinge
 
     @property
     def k(self) -> float:
@@ -192,6 +233,8 @@ class LimitResult:
             "mechanism_l": self.mechanism_l.to_dict(), "mechanism_r": self.mechanism_r.to_dict(),
             "static_k_l": self.static_k_l, "static_k_r": self.static_k_r,
             "discrepancy": self.discrepancy, "method": self.method,
+            "four_hinge_l": None if self.four_hinge_l is None else self.four_hinge_l.to_dict(),
+            "four_hinge_r": None if self.four_hinge_r is None else self.four_hinge_r.to_dict(),
             "thrust_l": _thrust_dict(self.thrust_l),
             "thrust_r": _thrust_dict(self.thrust_r),
             "arch": self.arch.to_dict(),
@@ -882,7 +925,8 @@ def _guided_arch(spans, radii, thick, max_seconds):
 
 def _guided(arch: VoussoirArch, sums, full):
     """(k_l, k_r, cand_l, cand_r) of any arch given its sums (a batch of one) by the
-    static-guided search; ``full(why)`` runs the full enumeration where it cannot confirm."""
+    static-guided search; ``full(why)`` runs the full enumeration where it cannot confirm
+    (``full=None``: inf there, the four-hinge family does not attain the static optimum)."""
     lp = {}
     for d in DIRECTIONS:
         try:
@@ -904,6 +948,9 @@ def _guided(arch: VoussoirArch, sums, full):
             out.append((np.inf, 0))
             continue
         found = _search(arch, sums, d, *lp[d])
+        if found is None and full is None:
+            # no four-hinge mechanism attains the static optimum: one with lift-off governs
+            found = (np.inf, 0)
         if found is None:
             if enumerated is None:
                 enumerated = full(
@@ -941,35 +988,96 @@ def _mechanism_from_candidate(n: int, idx: int, direction: str, k: float) -> Mec
     return Mechanism(direction, hinges, float(k))
 
 
-def kinematic_mechanisms(arch: VoussoirArch, method: str = "auto",
-                         max_seconds: float | None = None) -> tuple[Mechanism, Mechanism]:
-    """The governing mechanisms (M_l, M_r) of any arch: by kinematic enumeration, or by the
-    static-guided search for many voussoirs (``method``, ``max_seconds``: see
-    :func:`kinematic_multipliers_batch`).  Works on :func:`arch_sums` (weights with loads)."""
+def _four_hinge_search(arch: VoussoirArch, method: str, max_seconds: float):
+    """(sums, k_l, k_r, cand_l, cand_r): the best four-hinge mechanism per direction (inf where
+    none loads it; -inf when the arch cannot stand), by the enumeration or, above
+    :data:`ENUMERATION_MAX_VOUSSOIRS` voussoirs with "auto", the static-guided search (which
+    never falls back to the full enumeration here: where it cannot confirm a four-hinge
+    mechanism, one with lift-off governs and the LP's dual gives it)."""
+    n = arch.n
+    sums = arch_sums(arch)
+    if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
+        (k_l,), (k_r,), (i_l,), (i_r,) = _full_enumeration(lambda s, e: sums, 1, n, None,
+                                                           max_seconds)
+    else:
+        k_l, k_r, i_l, i_r = _guided(arch, sums, None)
+    return sums, k_l, k_r, i_l, i_r
+
+
+@dataclass(frozen=True)
+class _Governing:
+    """One direction's answer: the governing mechanism, the best four-hinge mechanism (None
+    where none loads that direction), the LP optimum and line of thrust (None where not
+    solved) and how the mechanism was found."""
+
+    mechanism: Mechanism
+    four_hinge: Mechanism | None
+    static: float | None
+    thrust: ThrustLine | None
+    how: str
+
+
+def _governing(arch: VoussoirArch, method: str = "auto", max_seconds: float | None = None,
+               static: bool = True) -> dict:
+    """The Heyman collapse mechanism of each direction ({'l': _Governing, 'r': ...}).
+
+    The best four-hinge mechanism governs when the line of thrust through its hinges fits
+    (:func:`certify_four_hinge`); otherwise the static LP's optimum does, with the mechanism
+    read from its dual and confirmed by its own virtual work.  ``static``: solve the LP also
+    where the four-hinge mechanism is certified (the cross-check)."""
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
     max_seconds = _check_method(method, max_seconds)
     n = arch.n
-    sums = arch_sums(arch)
-
-    def full(why=""):
-        return _full_enumeration(lambda s, e: sums, 1, n, None, max_seconds, why)
-
-    if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
-        (k_l,), (k_r,), (i_l,), (i_r,) = full()
-    else:
-        k_l, k_r, i_l, i_r = _guided(arch, sums, full)
+    sums, k_l, k_r, i_l, i_r = _four_hinge_search(arch, method, max_seconds)
     if k_l == -np.inf:
         raise CannotStandError(
             "arch: no line of thrust fits inside the arch under any horizontal load; it cannot "
             "stand (increase the thickness)")
-    if not (np.isfinite(k_l) and np.isfinite(k_r)):
-        raise NoMechanismError(
-            "arch: no four-hinge mechanism can open under horizontal forces (the arch is too flat "
-            "or too thick to hinge); sliding or crushing governs, which limit analysis under "
-            "Heyman's hypotheses does not cover")
-    return (_mechanism_from_candidate(n, int(i_l), "l", k_l),
-            _mechanism_from_candidate(n, int(i_r), "r", k_r))
+    out = {}
+    for d, k, i in (("l", k_l, i_l), ("r", k_r, i_r)):
+        four = _mechanism_from_candidate(n, int(i), d, k) if np.isfinite(k) else None
+        if four is not None and _certify_arch(arch, four):
+            lp = static_multiplier(arch, d) if static else (None, None)
+            out[d] = _Governing(four, four, lp[0], lp[1], "four-hinge")
+            continue
+        lam_s, thrust, mech = _lp_mechanism(arch, d)
+        if lam_s == math.inf:
+            raise NoMechanismError(
+                f"arch: no mechanism opens under horizontal forces toward "
+                f"{'+x' if d == 'l' else '-x'} (the arch is too flat or too thick to hinge or "
+                f"lift off); sliding or crushing governs, which limit analysis under Heyman's "
+                f"hypotheses does not cover")
+        how = "lp-dual"
+        if mech is None and n <= GENERAL_MAX_VOUSSOIRS:
+            mech = general_mechanisms(arch, d)
+            how = "general-enumeration"
+            if abs(mech.multiplier - lam_s) > _DUAL_CONFIRM * max(1.0, abs(lam_s)):
+                mech = None
+        if mech is None:
+            raise LimitExceededError(
+                f"limit analysis: the static optimum ({lam_s:.6g}, direction {d!r}) is attained "
+                f"by no mechanism archrock can confirm by virtual work (a degenerate linear "
+                f"program); the multiplier is not reported")
+        out[d] = _Governing(mech, four, lam_s, thrust, how)
+    for d in DIRECTIONS:
+        if out[d].mechanism.multiplier <= 0:
+            raise CannotStandError(
+                f"arch: it cannot stand under its own weight (k_l = "
+                f"{out['l'].mechanism.multiplier:.4g}, k_r = {out['r'].mechanism.multiplier:.4g}); "
+                f"increase the thickness")
+    return out
+
+
+def kinematic_mechanisms(arch: VoussoirArch, method: str = "auto",
+                         max_seconds: float | None = None) -> tuple[Mechanism, Mechanism]:
+    """The governing (Heyman) mechanisms (M_l, M_r) of any arch: the best four-hinge mechanism
+    (enumeration, or the static-guided search for many voussoirs: ``method``, ``max_seconds``,
+    see :func:`kinematic_multipliers_batch`) where the line of thrust through its hinges fits
+    the arch, otherwise the mechanism with lift-off that the static LP's dual gives, confirmed
+    by its virtual work (``Mechanism.kind``).  Works on :func:`arch_sums` (weights with loads)."""
+    g = _governing(arch, method, max_seconds, static=False)
+    return g["l"].mechanism, g["r"].mechanism
 
 
 # ---------------------------------------------------------------------------- static
@@ -1152,8 +1260,284 @@ def _thrust_from_x(st: _Statics, x: np.ndarray) -> ThrustLine:
         except np.linalg.LinAlgError:
             pass
         poly.append(pts[i + 1])
+    # a joint that lifts off transmits nothing: no crossing, no vertex (NaN) to draw
+    poly = [p for p in poly if np.all(np.isfinite(p))]
     return ThrustLine("l" if st.d > 0 else "r", float(lam), radii, pts, forces, np.array(poly),
                       frac)
+
+
+# ---------------------------------------------------------------------------- general mechanisms
+# The static program has two rows per joint j: the thrust stays inside the intrados end (row j)
+# and inside the extrados end (row n+1+j).  By linear-programming duality each row is a virtual
+# motion of the part right of the joint relative to the part left of it: row j a rotation about
+# the intrados end P_in that opens the joint at its extrados, row n+1+j a rotation about the
+# extrados end that opens it at its intrados.  A joint with one active row is a hinge; with both,
+# it opens at both ends: the parts separate across it (lift-off), without sliding, since the
+# program bounds no shear.  A basic dual solution has at most four active rows (four redundants),
+# so every vertex of the dual is a single-degree-of-freedom mechanism of at most four rows: the
+# four-hinge chains (four joints, one row each) and those with lift-off (a joint with both rows).
+# The smallest multiplier over all of them is the static optimum (the Heyman collapse
+# multiplier), which :func:`general_mechanisms` enumerates kinematically, without the program.
+
+#: Why a study leaves out an arch whose governing mechanism has lift-off (batch error text).
+LIFT_OFF_REASON = ("limit analysis: a joint lifts off before any four-hinge mechanism opens (the "
+                   "governing mechanism has lift-off); the four-link model does not hold (archrock "
+                   "dem follows it)")
+
+#: A four-hinge mechanism governs when the line of thrust through its hinges lies inside every
+#: contact segment to this fraction of the segment's length (then its multiplier is both an
+#: upper bound, kinematic theorem, and a lower bound, static theorem).  HiGHS's optimum lies
+#: within ~1e-9 of the segment ends; a lift-off mechanism that beats a four-hinge one by less
+#: than ~1e-7 of its multiplier is not told apart (the multipliers agree to that).
+CERTIFY_TOL = 1e-7
+# Rows whose dual rate is below this fraction of the largest are inactive (HiGHS rounds to ~1e-12).
+_DUAL_TOL = 1e-9
+# The kinematic multiplier of the LP's mechanism must equal the LP's optimum to this (relative
+# for |lambda| >= 1, absolute below): HiGHS's default feasibility tolerance is 1e-7.
+_DUAL_CONFIRM = 1e-7
+# Rows of a degenerate dual (more than four active) above which the pool is not enumerated.
+_POOL_MAX_ROWS = 24
+#: Largest arch (voussoirs) :func:`general_mechanisms` enumerates: C(2n+2, 4) candidates
+#: (1.7e6 at n = 40, about 2 s in numpy).
+GENERAL_MAX_VOUSSOIRS = 40
+
+
+def _kinematic_frame(arch: VoussoirArch):
+    """(w, g, P): weights per unit total weight (n,), their points (n, 2) and the joint points
+    (n+1, 2 edges, 2), lengths divided by the reference length about :func:`_origin` (the
+    statics' frame)."""
+    ref = arch.reference_length
+    origin = _origin(arch)
+    w, g = _weights_centroids(arch)
+    P = np.asarray(arch.joint_points, float)
+    return w, (g - origin) / ref, (P - origin) / ref
+
+
+def _row_terms(w, g, P):
+    """Per row (2(n+1) rows: intrados ends, then extrados ends): the twist (v_x, v_y, omega) at
+    the origin of the unit relative motion (3, R), its joint (R,), and the work terms (X, Y) of
+    the weights right of its joint: sum_i w_i v(G_i) over the voussoirs i >= joint."""
+    n1 = P.shape[0]
+    pts = np.concatenate([P[:, 0], P[:, 1]])
+    om = np.concatenate([-np.ones(n1), np.ones(n1)])  # about P_in clockwise opens the extrados
+    T = np.stack([om * pts[:, 1], -om * pts[:, 0], om])
+    joint = np.concatenate([np.arange(n1), np.arange(n1)])
+    suffix = lambda v: np.concatenate([np.cumsum(v[::-1])[::-1], [0.0]])  # noqa: E731
+    Sw, Sx, Sy = suffix(w)[joint], suffix(w * g[:, 0])[joint], suffix(w * g[:, 1])[joint]
+    X = T[0] * Sw - T[2] * Sy
+    Y = T[1] * Sw + T[2] * Sx
+    return T, joint, X, Y
+
+
+def _null_rates(T4):
+    """Rates (..., 4) of four rows whose twists are T4 (..., 3, 4) closing the chain
+    (sum rate_k T_k = 0), from the signed 3x3 minors; ok where the null space is one line."""
+    cols = [T4[..., k] for k in range(4)]
+
+    def det3(a, b, c):
+        return (a[..., 0] * (b[..., 1] * c[..., 2] - b[..., 2] * c[..., 1])
+                - a[..., 1] * (b[..., 0] * c[..., 2] - b[..., 2] * c[..., 0])
+                + a[..., 2] * (b[..., 0] * c[..., 1] - b[..., 1] * c[..., 0]))
+
+    c0, c1, c2, c3 = cols
+    rates = np.stack([det3(c1, c2, c3), -det3(c0, c2, c3), det3(c0, c1, c3), -det3(c0, c1, c2)],
+                     axis=-1)
+    norm = np.max(np.stack([np.abs(c).sum(axis=-1) for c in cols], axis=-1), axis=-1)
+    big = np.max(np.abs(rates), axis=-1)
+    ok = big > 1e-12 * norm ** 3
+    return rates, ok, big
+
+
+def _rows_multipliers(rows, T, X, Y, d):
+    """Multipliers (K,) of the candidate mechanisms ``rows`` (K, 4) for direction d (+1 'l',
+    -1 'r'): inf where the four rows do not close into one admissible mechanism (every rate of
+    one sign) or the horizontal loads do no work on it."""
+    T4 = T[:, rows]                       # (3, K, 4)
+    rates, ok, big = _null_rates(np.moveaxis(T4, 0, -2))
+    thr = _ADMISSIBLE_TOL * np.where(ok, big, 1.0)
+    pos = np.all(rates > thr[:, None], axis=1)
+    neg = np.all(rates < -thr[:, None], axis=1)
+    sigma = np.where(neg, -1.0, 1.0)
+    rates = rates * sigma[:, None]
+    adm = ok & (pos | neg)
+    Xc = np.sum(rates * X[rows], axis=1) * d
+    Yc = np.sum(rates * Y[rows], axis=1)
+    scale = np.sum(np.abs(rates * X[rows]) + np.abs(rates * Y[rows]), axis=1)
+    good = adm & (Xc > 1e-12 * np.maximum(scale, 1e-300))
+    return np.where(good, Yc / np.where(good, Xc, 1.0), np.inf)
+
+
+def _mechanism_of_rows(arch: VoussoirArch, rows, direction: str, lam: float) -> Mechanism:
+    """The :class:`Mechanism` of active rows (joint ends): one row a hinge, two a lift-off."""
+    n1 = arch.n + 1
+    by_joint: dict[int, set] = {}
+    for r in rows:
+        by_joint.setdefault(int(r) % n1, set()).add(int(r) // n1)
+    hinges = tuple(Hinge(j, EDGES[next(iter(e))]) for j, e in sorted(by_joint.items())
+                   if len(e) == 1)
+    lift = tuple(j for j, e in sorted(by_joint.items()) if len(e) == 2)
+    return Mechanism(direction, hinges, float(lam), lift)
+
+
+def general_mechanisms(arch: VoussoirArch, direction: str) -> Mechanism:
+    """The collapse mechanism of ``arch`` for ``direction`` by kinematic enumeration of every
+    single-degree-of-freedom mechanism of at most four active joint ends (four-hinge chains and
+    mechanisms with lift-off): the smallest virtual-work multiplier.  By linear-programming
+    duality it equals the static optimum (:func:`static_multiplier`); this is the independent
+    kinematic method that checks it.  Arches of up to :data:`GENERAL_MAX_VOUSSOIRS` voussoirs.
+    NoMechanismError where no mechanism loads that direction."""
+    if direction not in DIRECTIONS:
+        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+    if arch.n > GENERAL_MAX_VOUSSOIRS:
+        raise ArchInputError(f"arch: {arch.n} voussoirs; general_mechanisms enumerates up to "
+                             f"{GENERAL_MAX_VOUSSOIRS} (C(2n+2, 4) candidates)")
+    w, g, P = _kinematic_frame(arch)
+    T, _, X, Y = _row_terms(w, g, P)
+    d = 1.0 if direction == "l" else -1.0
+    best, best_rows = np.inf, None
+    R = T.shape[1]
+    for first in range(R - 3):  # blocks by first row: memory O(R^3)
+        rest = np.array(list(combinations(range(first + 1, R), 3)), dtype=np.int64)
+        rows = np.column_stack([np.full(len(rest), first), rest])
+        lam = _rows_multipliers(rows, T, X, Y, d)
+        k = int(np.argmin(lam))
+        if lam[k] < best:
+            best, best_rows = float(lam[k]), rows[k]
+    if best_rows is None:
+        raise NoMechanismError(f"arch: no mechanism opens under horizontal forces toward "
+                               f"{'+x' if d > 0 else '-x'}")
+    return _mechanism_of_rows(arch, best_rows, direction, best)
+
+
+def mechanism_multiplier(arch: VoussoirArch, mechanism: Mechanism) -> float:
+    """The virtual-work multiplier of any mechanism of :func:`general_mechanisms`'s family
+    (four-hinge or with lift-off), from its joints alone: the relative motions that close the
+    chain, their rates of one sign, and the work of the weights and of the horizontal loads.
+    NaN where the joints do not make one admissible mechanism."""
+    n1 = arch.n + 1
+    rows = [EDGES.index(h.edge) * n1 + h.joint for h in mechanism.hinges]
+    rows += [j for j in mechanism.lift_off] + [n1 + j for j in mechanism.lift_off]
+    if len(rows) != 4:
+        return math.nan
+    w, g, P = _kinematic_frame(arch)
+    T, _, X, Y = _row_terms(w, g, P)
+    d = 1.0 if mechanism.direction == "l" else -1.0
+    lam = _rows_multipliers(np.array([sorted(rows)]), T, X, Y, d)[0]
+    return float(lam) if np.isfinite(lam) else math.nan
+
+
+def _lp_mechanism(arch: VoussoirArch, direction: str):
+    """(LP optimum, its line of thrust, the mechanism read from the LP's dual and confirmed by
+    its own virtual work, or None where it cannot be confirmed).  CannotStandError where no
+    line of thrust fits; (inf, None, None) where the program is unbounded (no mechanism)."""
+    st = _statics(arch, direction)
+    res = linprog(c=[0, 0, 0, -1.0], A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 4,
+                  method="highs")
+    if res.status == 3:
+        return math.inf, None, None
+    if res.status != 0:
+        raise CannotStandError(
+            f"arch: no line of thrust fits inside the arch for direction {direction!r} "
+            f"(linear program status {res.status}: {res.message}); the arch cannot stand")
+    lam_s = float(res.x[3])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        thrust = _thrust_from_x(st, res.x)
+    mu = -np.asarray(res.ineqlin.marginals, float)
+    support = np.flatnonzero(mu > _DUAL_TOL * np.max(mu))
+    w, g, P = _kinematic_frame(arch)
+    T, _, X, Y = _row_terms(w, g, P)
+    d = st.d
+    if support.size == 4:
+        pool = support[None]
+    elif support.size < 4:
+        # a degenerate vertex: complete it with any row (its rate comes out zero or not one
+        # sign, and such candidates are not admissible), so search the rows of the joints
+        # involved, both ends
+        joints = np.unique(support % (arch.n + 1))
+        cand = np.union1d(support, np.concatenate([joints, joints + arch.n + 1]))
+        pool = np.array(list(combinations(cand.tolist(), 4)), dtype=np.int64)
+    elif support.size <= _POOL_MAX_ROWS:
+        pool = np.array(list(combinations(support.tolist(), 4)), dtype=np.int64)
+    else:
+        return lam_s, thrust, None
+    lam = _rows_multipliers(pool, T, X, Y, d) if len(pool) else np.array([np.inf])
+    k = int(np.argmin(lam))
+    if not np.isfinite(lam[k]) or abs(lam[k] - lam_s) > _DUAL_CONFIRM * max(1.0, abs(lam_s)):
+        return lam_s, thrust, None
+    return lam_s, thrust, _mechanism_of_rows(arch, pool[k], direction, float(lam[k]))
+
+
+def _hinge_rows(cw, cwx, cwy, px, py, d):
+    """Rows A (B, 2(n+1), 4) and right-hand sides b (B, 2(n+1)) of the joint-line statics of a
+    batch (prefix sums (B, n+1), joint points (B, n+1, 2 edges)): A x <= b keeps the thrust
+    inside every contact segment (rows 0..n the intrados ends, n+1..2n+1 the extrados ends),
+    equality puts it through that end."""
+    ex, ey = px[..., 1] - px[..., 0], py[..., 1] - py[..., 0]
+    L = np.hypot(ex, ey)
+    nux, nuy = ey / L, -ex / L
+    x0, y0 = px[..., 0], py[..., 0]
+    zero, one = np.zeros_like(cw), np.ones_like(cw)
+    A_N = np.stack([nux, nuy, zero, d * cw * nux], axis=-1)
+    b_N = -nuy * cw
+    A_m = np.stack([-y0, x0, -one, d * (cwy - y0 * cw)], axis=-1)
+    b_m = cwx - x0 * cw
+    A = np.concatenate([-A_m, A_m - L[..., None] * A_N], axis=1)
+    b = np.concatenate([b_m, L * b_N - b_m], axis=1)
+    return A, b, L
+
+
+def certify_four_hinge(cw, cwx, cwy, px, py, joints, edges, direction: str) -> np.ndarray:
+    """Whether each arch's four-hinge mechanism (joints, edges (B, 4)) governs: the line of
+    thrust through its four hinges lies inside every contact segment, in compression, to
+    :data:`CERTIFY_TOL` of the segment's length (B,) bool.  Then its multiplier is the Heyman
+    collapse multiplier (both limit theorems); where not, a mechanism outside the four-hinge
+    family (lift-off) governs with a smaller one.  Inputs as :func:`arch_sums` (a batch)."""
+    d = 1.0 if direction == "l" else -1.0
+    A, b, L = _hinge_rows(cw, cwx, cwy, px, py, d)
+    B, m = cw.shape
+    j = np.asarray(joints, dtype=np.int64)
+    e = np.asarray(edges, dtype=np.int64)
+    rows = e * m + j                                   # (B, 4)
+    bi = np.arange(B)[:, None]
+    M, rhs = A[bi, rows], b[bi, rows]                  # (B, 4, 4), (B, 4)
+    scale = np.prod(np.abs(M).sum(axis=2), axis=1)
+    with np.errstate(all="ignore"):
+        det = np.linalg.det(M)
+        ok = np.isfinite(det) & (np.abs(det) > 1e-13 * scale)
+        M = np.where(ok[:, None, None], M, np.eye(4))
+        x = np.linalg.solve(M, rhs[..., None])[..., 0]
+        resid = np.einsum("bkc,bc->bk", A, x) - b     # > 0: outside
+        Fx = x[:, :1] + d * x[:, 3:] * cw
+        Fy = x[:, 1:2] - cw
+        F = np.hypot(Fx, Fy)
+        width = np.concatenate([L * F, L * F], axis=1)
+        worst = np.max(resid / np.maximum(width, 1e-300 + 1e-12 * np.max(width, axis=1,
+                                                                           keepdims=True)),
+                       axis=1)
+    return ok & (worst <= CERTIFY_TOL)
+
+
+def certify_candidates(sums, n: int, cand_l, cand_r) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`certify_four_hinge` of a batch's best four-hinge candidates (indices of
+    :func:`_candidates`, as :func:`kinematic_multipliers_batch` returns them) for both
+    directions: (governs_l, governs_r), each (B,) bool."""
+    out = []
+    for d, cand in (("l", cand_l), ("r", cand_r)):
+        uniq, inv = np.unique(np.asarray(cand, dtype=np.int64), return_inverse=True)
+        je = [candidate_hinges(n, c) for c in uniq.tolist()]
+        J = np.array([j for j, _ in je], dtype=np.int64)[inv.reshape(-1)]
+        E = np.array([e for _, e in je], dtype=np.int64)[inv.reshape(-1)]
+        out.append(certify_four_hinge(*sums, J, E, d))
+    return out[0], out[1]
+
+
+def _certify_arch(arch: VoussoirArch, mechanism: Mechanism) -> bool:
+    if not mechanism.is_four_hinge:
+        return False
+    sums = arch_sums(arch)
+    j = np.array([[h.joint for h in mechanism.hinges]])
+    e = np.array([[EDGES.index(h.edge) for h in mechanism.hinges]])
+    return bool(certify_four_hinge(*sums, j, e, mechanism.direction)[0])
 
 
 def thrust_line(arch: VoussoirArch, mechanism: Mechanism, form: str = "auto") -> ThrustLine:
@@ -1168,34 +1552,65 @@ def thrust_line(arch: VoussoirArch, mechanism: Mechanism, form: str = "auto") ->
     return _thrust_from_x(st, x)
 
 
+def require_four_hinge(result: LimitResult, what: str = "the four-link model") -> None:
+    """NotFourHingeError, naming the mechanism, where a direction of ``result`` is governed by
+    a mechanism with lift-off: Oppenheim's four-link model (and every study built on it) holds
+    only where four-hinge mechanisms govern."""
+    for d in DIRECTIONS:
+        m = result.mechanism(d)
+        if m.lift_off:
+            four = result.four_hinge_l if d == "l" else result.four_hinge_r
+            best = ("no four-hinge mechanism loads it" if four is None else
+                    f"its best four-hinge mechanism {four.label} would need k = "
+                    f"{four.multiplier:.4g}")
+            raise NotFourHingeError(
+                f"arch: M_{d} is governed by a {m.describe()} at k = {m.multiplier:.4g} "
+                f"({best}); {what} does not hold for this arch: the contact engine follows it "
+                f"(archrock dem)")
+
+
+_HOW = {"four-hinge": "four-hinge enumeration (vectorised), certified by its line of thrust",
+        "lp-dual": "static LP (HiGHS) optimum; mechanism from its dual, confirmed by virtual work",
+        "general-enumeration": "static LP (HiGHS) optimum; mechanism by enumeration of every "
+                               "mechanism with lift-off, confirmed by virtual work"}
+
+
 def limit_analysis(arch: VoussoirArch, verify: bool = True, method: str = "auto",
                    max_seconds: float | None = None) -> LimitResult:
-    """k_l, k_r, their mechanisms and thrust lines of any arch; ``verify`` adds the static LP
-    cross-check.
+    """k_l, k_r, their mechanisms and thrust lines of any arch: the Heyman collapse multiplier
+    (the static LP's optimum) and the mechanism that attains it, four-hinge or with lift-off
+    (docs/method.md, The Heyman optimum).  ``verify``: solve the LP also where a four-hinge
+    mechanism is certified by its line of thrust, and report kinematic - static.
 
-    ``method``: "auto" (full enumeration up to :data:`ENUMERATION_MAX_VOUSSOIRS` voussoirs, the
-    static-guided search above), "enumeration" or "guided"; ``max_seconds`` bounds a full
-    enumeration's estimated time (see :func:`kinematic_multipliers_batch`).
+    ``method``: "auto" (four-hinge enumeration up to :data:`ENUMERATION_MAX_VOUSSOIRS`
+    voussoirs, the static-guided search above), "enumeration" or "guided"; ``max_seconds``
+    bounds a full enumeration's estimated time (see :func:`kinematic_multipliers_batch`).
     """
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch (Arch, PolygonArch), got "
                              f"{type(arch).__name__}")
-    m_l, m_r = kinematic_mechanisms(arch, method, max_seconds)
-    if m_l.multiplier <= 0 or m_r.multiplier <= 0:
-        raise CannotStandError(
-            f"arch: it cannot stand under its own weight (k_l = {m_l.multiplier:.4g}, "
-            f"k_r = {m_r.multiplier:.4g}); increase the thickness")
-    th_l, th_r = thrust_line(arch, m_l), thrust_line(arch, m_r)
-    s_l = s_r = disc = None
-    if verify:
-        s_l, _ = static_multiplier(arch, "l")
-        s_r, _ = static_multiplier(arch, "r")
+    gov = _governing(arch, method, max_seconds, static=verify)
+    m_l, m_r = gov["l"].mechanism, gov["r"].mechanism
+    th = {}
+    for d, m in (("l", m_l), ("r", m_r)):
+        th[d] = thrust_line(arch, m) if m.is_four_hinge else gov[d].thrust
+    s_l, s_r = gov["l"].static, gov["r"].static
+    disc = None
+    if s_l is not None and s_r is not None:
         disc = max(abs(s_l - m_l.multiplier), abs(s_r - m_r.multiplier))
     guided = method == "guided" or (method == "auto" and arch.n > ENUMERATION_MAX_VOUSSOIRS)
-    how = ("static-guided four-hinge search (kinematic = static LP multiplier, HiGHS)" if guided
-           else "kinematic enumeration (vectorised)")
-    return LimitResult(arch, m_l.multiplier, m_r.multiplier, m_l, m_r, th_l, th_r, s_l, s_r, disc,
-                       method=f"{how}, checked by static LP (HiGHS)")
+    hows = []
+    for d in DIRECTIONS:
+        h = _HOW[gov[d].how]
+        if gov[d].how == "four-hinge" and guided:
+            h = "static-guided four-hinge search, certified by its line of thrust"
+        hows.append(h)
+    how = hows[0] if hows[0] == hows[1] else f"l: {hows[0]}; r: {hows[1]}"
+    if disc is not None:
+        how += f"; kinematic = static LP (HiGHS) to {disc:.1e}"
+    f_l, f_r = gov["l"].four_hinge, gov["r"].four_hinge
+    return LimitResult(arch, m_l.multiplier, m_r.multiplier, m_l, m_r, th["l"], th["r"], s_l, s_r,
+                       disc, method=how, four_hinge_l=f_l, four_hinge_r=f_r)
 
 
 # ---------------------------------------------------------------------------- minimum thickness

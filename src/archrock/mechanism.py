@@ -25,7 +25,7 @@ import numpy as np
 
 from ._jit import maybe_njit
 from ._records import readonly_arrays
-from .errors import ArchInputError
+from .errors import ArchInputError, NotFourHingeError
 from .geometry import VoussoirArch
 from .limit import EDGES, Mechanism
 from .units import G
@@ -474,6 +474,9 @@ def four_link(arch: VoussoirArch, mechanism: Mechanism) -> FourLink:
                              f"{type(arch).__name__}")
     if mechanism.direction not in ("l", "r"):
         raise ArchInputError(f"mechanism.direction: {mechanism.direction!r}; allowed 'l' or 'r'")
+    if getattr(mechanism, "lift_off", ()):
+        raise NotFourHingeError(f"mechanism: a {mechanism.describe()} is not a four-hinge chain; "
+                                f"the four-link model does not describe it (archrock dem does)")
     hinges = sorted(mechanism.hinges, key=lambda h: h.joint)
     joints = [h.joint for h in hinges]
     if len(set(joints)) != 4 or joints[0] < 0 or joints[-1] > arch.n:

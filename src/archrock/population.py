@@ -28,6 +28,8 @@ LEFT_OUT = {
     "invalid_draw": "invalid draw (not a valid arch, e.g. neighbouring voussoirs do not overlap)",
     "cannot_stand": "cannot stand under its own weight (k <= 0)",
     "no_mechanism": "no four-hinge mechanism (sliding or crushing governs)",
+    "lift_off": "a joint lifts off before any four-hinge mechanism opens (four-link model does "
+                "not hold)",
     "four_link_not_applicable": "four-link model not applicable (degenerate mechanism)",
     "impact_not_applicable": "impact model not applicable (it would create energy, or singular)",
     "other": "other",
@@ -39,6 +41,7 @@ _PATTERNS = (
     ("impact_not_applicable", r"^(least-loss chain:|impact\b)"),
     ("invalid_draw", r"^geometry:|not a valid arch"),
     ("cannot_stand", r"cannot stand|does not stand"),
+    ("lift_off", r"lift-off|lifts off"),
     ("no_mechanism", r"four-hinge mechanism"),
     ("four_link_not_applicable", r"^four-link model:|^mechanism "),
 )
