@@ -1,0 +1,222 @@
+"""The Heyman optimum on every arch: the static LP's multiplier, the mechanism that attains it
+(four-hinge or with lift-off), three independent values that agree (four-hinge enumeration
+where it governs, the LP, the kinematic enumeration of every mechanism with lift-off), and the
+four-link model only where four-hinge mechanisms govern."""
+
+import time
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from archrock import limit
+from archrock.batch import prepare_batch
+from archrock.errors import CannotStandError, GeometryOutcome, NotFourHingeError
+from archrock.geometry import Arch, Load, family_arch, nominal_arch, oppenheim_arch
+from archrock.population import left_out_outcome
+from archrock.response import prepare
+
+
+def _readme_arch():
+    """The README's geometry-file example: three voussoirs of 22.5 deg, R = 10 m, t = 1.5 m."""
+    return Arch(np.radians([22.5] * 3), np.full(3, 10.0), np.full(3, 1.5))
+
+
+def _agree(a, b, tol=1e-9):
+    return abs(a - b) <= tol * max(1.0, abs(b))
+
+
+def test_readme_example_is_governed_by_lift_off():
+    res = limit.limit_analysis(_readme_arch())
+    # the unsafe four-hinge value 24.035 of 0.4.0 is gone: a springing lifts off at 10.383
+    for d in "lr":
+        m = res.mechanism(d)
+        assert m.kind == "lift-off"
+        assert res.k_l == pytest.approx(10.383417117133, rel=1e-9)
+        four = res.four_hinge_l if d == "l" else res.four_hinge_r
+        assert four.multiplier == pytest.approx(24.0351027973599, rel=1e-9)
+    assert res.mechanism_l.label == "0s-1i-3e"
+    # mirror symmetry: M_r is M_l's mirror image
+    assert res.mechanism_r.label == res.mechanism_l.mirrored(3).label == "0e-2i-3s"
+    assert res.discrepancy < 1e-9
+    assert not res.four_hinge
+
+
+def test_flat_bridge_arch_reports_the_static_optimum():
+    arch = family_arch("circular", 10.0, 1.0, 0.6, 12)
+    res = limit.limit_analysis(arch)
+    assert res.k == pytest.approx(res.static_k_l, rel=1e-9)
+    assert res.k == pytest.approx(6.3186, abs=5e-5)
+    assert res.four_hinge_l.multiplier == pytest.approx(6.3504, abs=5e-5)
+    assert res.mechanism_l.lift_off == (0,) and res.mechanism_r.lift_off == (12,)
+    # the mechanism's own virtual work gives the multiplier (a third computation)
+    assert limit.mechanism_multiplier(arch, res.mechanism_l) == pytest.approx(res.k_l, rel=1e-12)
+
+
+def test_oppenheim_unchanged_and_four_hinge():
+    res = limit.limit_analysis(oppenheim_arch())
+    assert res.k == pytest.approx(0.370010, abs=5e-7)
+    assert res.four_hinge and res.mechanism_l.label == "0i-3e-5i-7e"
+    assert res.discrepancy < 1e-12
+    assert res.four_hinge_l is res.mechanism_l
+    assert limit.mechanism_multiplier(oppenheim_arch(), res.mechanism_l) == pytest.approx(
+        res.k_l, rel=1e-12)
+
+
+@pytest.mark.parametrize("embrace", [40.0, 80.0, 120.0, 157.5, 180.0])
+@pytest.mark.parametrize("thickness", [0.6, 1.5, 3.0])
+def test_general_enumeration_equals_static_lp(embrace, thickness):
+    """LP duality as a test: the smallest multiplier over every mechanism of at most four
+    joint ends, computed kinematically, is the static LP's optimum."""
+    arch = nominal_arch(10.0, embrace, thickness, 7)
+    try:
+        res = limit.limit_analysis(arch)
+    except CannotStandError:
+        # too thin: some mechanism opens under its own weight (a multiplier <= 0)
+        assert min(limit.general_mechanisms(arch, d).multiplier for d in "lr") <= 0
+        return
+    except GeometryOutcome as exc:
+        # too flat and thick to open at all: no mechanism loads that direction, the LP is unbounded
+        assert "no mechanism" in str(exc)
+        with pytest.raises(GeometryOutcome, match="no mechanism"):
+            for d in "lr":
+                limit.general_mechanisms(arch, d)
+        return
+    for d in "lr":
+        gen = limit.general_mechanisms(arch, d)
+        static = res.static_k_l if d == "l" else res.static_k_r
+        assert _agree(gen.multiplier, static, 1e-8)
+        assert _agree(res.mechanism(d).multiplier, gen.multiplier, 1e-8)
+
+
+def test_shallow_arches_lift_off_and_deep_ones_hinge():
+    """Where each kind governs on a 7-voussoir arch of t/R = 0.15: the springing lifts off on
+    segmental arches from 65 to 80 deg of embrace, four hinges form from 85 deg; below 65 deg
+    nothing opens at all (the LP is unbounded: only sliding or crushing could fail it)."""
+    kinds = {e: limit.limit_analysis(nominal_arch(10.0, e, 1.5, 7)).mechanism_l.kind
+             for e in (65.0, 80.0, 85.0, 157.5)}
+    assert kinds == {65.0: "lift-off", 80.0: "lift-off", 85.0: "four-hinge",
+                     157.5: "four-hinge"}
+    with pytest.raises(GeometryOutcome, match="no mechanism"):
+        limit.limit_analysis(nominal_arch(10.0, 60.0, 1.5, 7))
+
+
+def test_respond_refuses_an_arch_whose_mechanism_lifts_off():
+    arch = family_arch("circular", 10.0, 1.0, 0.6, 12)
+    with pytest.raises(NotFourHingeError, match=r"lift-off at joint 0 .*archrock dem"):
+        prepare(arch, "momentum")
+    # an outcome, counted by the studies under its own key
+    assert issubclass(NotFourHingeError, GeometryOutcome)
+    assert left_out_outcome(str(NotFourHingeError("arch: M_l is governed by a mechanism with "
+                                                  "lift-off at joint 0"))) == "lift_off"
+
+
+def test_batch_leaves_out_lift_off_arches_with_their_heyman_multiplier():
+    arches = [nominal_arch(10.0, e, 1.5, 7) for e in (80.0, 157.5)]
+    pb = prepare_batch(arches, impact="momentum")
+    assert left_out_outcome(pb.error[0]) == "lift_off" and pb.error[1] == ""
+    assert pb.k_l[0] == pytest.approx(3.9020130665024, rel=1e-9)  # the LP's, not 4.1423
+    assert pb.k_l[1] == pytest.approx(0.370010, abs=5e-7)
+    spans = np.stack([a.spans for a in arches])
+    pb2 = prepare_batch(spans, np.full((2, 7), 10.0), np.full((2, 7), 1.5), impact="momentum")
+    assert list(pb2.error) == list(pb.error)
+    np.testing.assert_allclose(pb2.k_l, pb.k_l, rtol=1e-12)
+
+
+def test_certification_matches_the_lp_on_random_arches():
+    """The batch decides 'four-hinge governs' from the line of thrust alone; the single-arch
+    path from the same test; both agree with the LP on which kind governs."""
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        n = int(rng.integers(3, 11))
+        emb = rng.uniform(30, 200)
+        t = rng.uniform(0.05, 0.4) * 10
+        spans = np.radians(emb) / n * (1 + 0.2 * rng.uniform(-1, 1, n))
+        spans *= np.radians(emb) / spans.sum()
+        arch = Arch(spans, np.full(n, 10.0), np.full(n, t))
+        try:
+            res = limit.limit_analysis(arch)
+        except GeometryOutcome:
+            continue
+        for d in "lr":
+            m = res.mechanism(d)
+            static = res.static_k_l if d == "l" else res.static_k_r
+            assert _agree(m.multiplier, static, 1e-7)
+            if m.lift_off and res.four_hinge_l is not None:
+                four = res.four_hinge_l if d == "l" else res.four_hinge_r
+                # a lift-off mechanism governs only below every four-hinge one
+                assert four is None or four.multiplier > m.multiplier
+
+
+def test_loaded_arch_lp_dual_and_enumeration_agree():
+    arch = family_arch("circular", 10.0, 2.5, 0.8, 8,
+                       loads=[Load(2, 6000.0, (-2.0, 3.0))])
+    res = limit.limit_analysis(arch)
+    for d in "lr":
+        gen = limit.general_mechanisms(arch, d)
+        assert _agree(res.mechanism(d).multiplier, gen.multiplier, 1e-8)
+
+
+# ------------------------------------------------------------------------ property sweep
+_SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
+
+
+@st.composite
+def _family(draw, max_n):
+    shape = draw(st.sampled_from(_SHAPES))
+    lo, hi = {"circular": (0.05, 0.5), "three-centred": (0.1, 0.5), "pointed": (0.52, 1.0)}.get(
+        shape, (0.05, 1.0))
+    rise = 10.0 * draw(st.floats(lo, hi))
+    thick = 10.0 * draw(st.floats(0.02, 0.3))
+    n = draw(st.integers(3, max_n))
+    joints = draw(st.sampled_from(["normal", "vertical"]))
+    loaded = draw(st.booleans())
+    return shape, rise, thick, n, joints, loaded
+
+
+def _sweep_case(case, seconds):
+    shape, rise, thick, n, joints, loaded = case
+    try:
+        arch = family_arch(shape, 10.0, rise, thick, n, joints=joints)
+        if loaded:
+            c = np.asarray(arch.centroids)[n // 3]
+            arch = family_arch(shape, 10.0, rise, thick, n, joints=joints,
+                               loads=[Load(n // 3, 0.5 * float(np.sum(arch.masses)),
+                                           (float(c[0]), float(c[1]) + thick))])
+    except GeometryOutcome:
+        return "no arch"
+    except ValueError:  # ArchInputError: the family refuses these proportions by name
+        return "refused"
+    t0 = time.perf_counter()
+    try:
+        res = limit.limit_analysis(arch)
+    except CannotStandError:
+        outcome = "cannot stand"
+    except GeometryOutcome:
+        outcome = "no mechanism"
+    else:
+        outcome = "four-hinge" if res.four_hinge else "lift-off"
+        assert res.discrepancy <= 1e-7 * max(1.0, res.k)
+        if n <= 10:
+            for d in "lr":
+                gen = limit.general_mechanisms(arch, d)
+                assert _agree(res.mechanism(d).multiplier, gen.multiplier, 1e-7)
+    assert time.perf_counter() - t0 < seconds
+    return outcome
+
+
+@settings(max_examples=12, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow])
+@given(_family(max_n=24))
+def test_property_sweep_sample(case):
+    """Every family, rise/span 0.05-1, t/span 0.02-0.3, both joint kinds, with and without a
+    load: limit analysis ends in seconds with kinematic = static (or an outcome)."""
+    _sweep_case(case, seconds=20.0)
+
+
+@pytest.mark.slow
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(_family(max_n=200))
+def test_property_sweep(case):
+    _sweep_case(case, seconds=60.0)
