@@ -309,3 +309,51 @@ def test_scan_beyond_the_work_bound_or_20_g_is_refused_before_any_response(nomin
         collapse_curve(nominal_model, [0.2], n_scan=10**9)
     with pytest.raises(ArchInputError, match=r"a_max: 50.0; .*<= 20 g"):
         collapse_amplitude(nominal_model, 0.2, a_max=50.0)
+
+
+# ---------------------------------------------------------------------------- bounded searches
+@pytest.mark.parametrize("tol", [100.0, 0.5, 1e-300, 1e-10, float("nan")])
+def test_tolerance_out_of_range_is_refused(nominal_model, tol):
+    """tol is the bisection's tolerance on the amplitude [g]: 1e-9 <= tol <= 0.1 g (100 g was
+    accepted, and 1e-300 would stall the bisection at one ulp)."""
+    with pytest.raises(ArchInputError, match=r"^tol: .*allowed .*1e-09 g <= tol <= 0\.1 g"):
+        collapse_amplitude(nominal_model, 0.2, tol=tol)
+    with pytest.raises(ArchInputError, match="^tol:"):
+        collapse_curve(nominal_model, [0.2], tol=tol)
+
+
+def test_cli_curves_tolerance_is_checked(capsys):
+    from archrock.cli import main
+
+    code = main(["curves", "--tol", "100", "--durations", "0.2", "--n-scan", "5"])
+    _, err = capsys.readouterr()
+    assert code == 2 and "tol: 100" in err and "0.1 g" in err
+
+
+def test_bisection_is_bounded_by_steps_and_by_the_floats():
+    """bisect_boundary ends: at the tolerance (steps counted), at the floats' resolution when
+    the tolerance is below it, and with LimitExceededError when a step bound is hit."""
+    from archrock import curves
+    from archrock.errors import LimitExceededError
+
+    calls = []
+
+    def test(a):  # collapse above 0.7 g
+        calls.append(a)
+        return a > 0.7
+
+    lo, hi = curves.bisect_boundary(test, 0.5, 1.5, False, 1e-3)
+    assert lo <= 0.7 < hi and hi - lo <= 1e-3
+    assert len(calls) == 10  # ceil(log2(1 / 1e-3))
+    calls.clear()
+    # a tolerance far below one ulp: stops where the bracket is a few ulps wide (was endless)
+    lo, hi = curves.bisect_boundary(test, 0.5, 1.5, False, 1e-300)
+    assert lo <= 0.7 < hi and hi - lo <= 4 * np.finfo(float).eps * hi
+    assert 50 <= len(calls) <= curves.MAX_BISECTIONS
+    calls.clear()
+    lo, hi = curves.bisect_boundary(test, 0.5, 1.5, False, 1e-3, relative=True)
+    assert hi - lo <= 1e-3 * hi and len(calls) == 11  # ceil(log2(1 / (1e-3 * 0.7)))
+    # a boundary at 0 with a tolerance below every float: the bracket [0, 2^-k] never gets
+    # within a few ulps of hi; the step bound ends it with a clear error
+    with pytest.raises(LimitExceededError, match="after 64 steps"):
+        curves.bisect_boundary(lambda a: True, 0.0, 1.0, False, 1e-300)

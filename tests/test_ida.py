@@ -253,3 +253,56 @@ def test_one_record_on_many_arches_says_what_the_interval_covers(records):
     lo, hi = st.fit.theta_ci
     assert lo < st.fit.theta < hi
     assert st.fit.ci_note == "one record: the interval covers the scatter between arches under this record only"
+
+
+# ---------------------------------------------------------------------------- bounded searches
+@pytest.mark.parametrize("tol", [0.0, 1e-300, 0.9, 2.0, float("nan"), True])
+def test_tolerance_range(small, records, tol):
+    """tol is relative to the first-collapse scale: 1e-9 <= tol <= 0.5 (1e-300 stalled the
+    bisection at one ulp; 0.9 brackets nothing)."""
+    with pytest.raises(ArchInputError, match=r"^tol: .*1e-09 <= tol <= 0\.5"):
+        ida(records[:1], small, [1.0, 2.0], tol=tol)
+    with pytest.raises(ArchInputError, match="^tol:"):
+        ida_curve(small, records[0], [1.0, 2.0], tol=tol)
+
+
+def test_ida_bisection_steps_are_bounded(small, records):
+    """The scale bisection of both engines ends in ceil(log2(1 / tol)) steps or fewer per curve
+    and gives the same bracket, at most tol wide (relative)."""
+    import archrock.ida as ida_mod
+
+    n = [0]
+    real = ida_mod._collapsed
+
+    def counted(*a, **k):
+        n[0] += 1
+        return real(*a, **k)
+
+    s = np.linspace(0.5, 8.0, 6)
+    ida_mod._collapsed = counted
+    try:
+        c = ida_curve(small, records[0], s, tol=1e-3)
+    finally:
+        ida_mod._collapsed = real
+    assert c.first_scale is not None
+    lo, hi = c.bracket
+    assert 0 < hi - lo <= 1e-3 * hi
+    assert n[0] <= s.size + 1 + 10  # grid, the no-activation check, <= 10 halvings
+    batch = ida(records[:1], small, s, tol=1e-3)
+    assert batch.curves[0].bracket == pytest.approx(c.bracket, rel=1e-15)
+
+
+def test_default_levels_name_the_scales_when_they_give_no_range(small, records):
+    """One scale factor and no collapse: the default stripe levels have no range; the message
+    names the scales (it used to speak of 'levels', an option not given)."""
+    from archrock.ida import default_stripe_levels
+
+    res = ida(records[:1], small, [0.05])
+    assert res.curves[0].first_scale is None
+    with pytest.raises(ArchInputError, match=r"^scales: 0\.05: no record collapsed.*--levels"):
+        default_stripe_levels(res, [0.05], records[:1])
+    # two scales: a range, eight increasing levels
+    res2 = ida(records[:1], small, [0.05, 0.1])
+    lv = default_stripe_levels(res2, [0.05, 0.1], records[:1])
+    assert lv.size == 8 and np.all(np.diff(lv) > 0)
+    assert lv[0] == pytest.approx(0.05 * records[0].pga_g, rel=1e-12)

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._records import readonly_arrays
-from .errors import ArchInputError
+from .errors import ArchInputError, LimitExceededError
 from .geometry import Arch, VoussoirArch
 from .groundmotion import MAX_PGA_G, pulse, pulse_kind
 from .impact import ImpactSpec
@@ -54,6 +54,17 @@ __all__ = [
     "ENGINES",
 ]
 
+#: Allowed range of ``tol``, the bisection's tolerance on the amplitude [g]: below 1e-9 g the
+#: boundary is finer than the integrator resolves it (and a bisection to 1e-300 would stall at one
+#: ulp); above 0.1 g the "boundary" is coarser than the activation thresholds of slender arches
+#: (0.05-0.4 g) and than the default grid's spacing, i.e. no bisection at all.
+TOL_MIN_G, TOL_MAX_G = 1e-9, 0.1
+#: Bound on the steps of one bisection (:func:`bisect_boundary`, the batch engine's rounds).
+#: From a bracket of at most MAX_PGA_G = 20 g to TOL_MIN_G takes 35 halvings (a relative
+#: tolerance of 1e-9 on a bracket [lo, hi] with lo >= 0: 30), so the bound only turns a
+#: pathological ``test`` into an error instead of an endless loop.
+MAX_BISECTIONS = 64
+
 #: Response settings used by every collapse test (outcome only: coarse output sampling).
 _RESPOND = {"t_end": 0.5, "dt_out": 0.5, "max_events": 20_000}
 
@@ -65,6 +76,17 @@ def _check_real(name: str, value, lo: float | None = None, allowed: str = "") ->
     v = float(value)
     if not math.isfinite(v) or (lo is not None and v <= lo):
         raise ArchInputError(f"{name}: {value!r}; allowed {allowed or 'a finite number'}")
+    return v
+
+
+def check_tol(value, name: str = "tol") -> float:
+    """The amplitude tolerance [g] as a float, or ArchInputError naming ``name`` and the
+    allowed range TOL_MIN_G <= tol <= TOL_MAX_G."""
+    allowed = (f"a tolerance on the collapse amplitude, {TOL_MIN_G:g} g <= {name} <= "
+               f"{TOL_MAX_G:g} g")
+    v = _check_real(name, value, 0.0, allowed)
+    if not TOL_MIN_G <= v <= TOL_MAX_G:
+        raise ArchInputError(f"{name}: {value!r}; allowed {allowed}")
     return v
 
 
@@ -199,14 +221,30 @@ def bisect_boundary(test, lo, hi, lo_val, tol, relative=False):
 
     The one bisection of the package: collapse amplitudes here, IDA scale factors in
     :mod:`archrock.ida`.  Collapse is not monotonic, so the result is *a* boundary between the
-    given ends, not necessarily the lowest one."""
-    while hi - lo > (tol * hi if relative else tol):
+    given ends, not necessarily the lowest one.  Bounded: it also stops where the bracket is
+    one or two ulps wide (a tolerance below the floats' resolution), and raises
+    LimitExceededError after MAX_BISECTIONS steps (never reached with the tolerances the
+    callers allow: 35 steps at most)."""
+    for _ in range(MAX_BISECTIONS):
+        if not _wider(lo, hi, tol, relative):
+            return lo, hi
         mid = 0.5 * (lo + hi)
         if test(mid) == lo_val:
             lo = mid
         else:
             hi = mid
+    if _wider(lo, hi, tol, relative):
+        raise LimitExceededError(f"bisection: [{lo:.17g}, {hi:.17g}] still wider than the "
+                                 f"tolerance {tol:g}{' relative' if relative else ''} after "
+                                 f"{MAX_BISECTIONS} steps")
     return lo, hi
+
+
+def _wider(lo, hi, tol, relative=False):
+    """hi - lo above the tolerance (``tol`` or ``tol * hi``) and above the floats' resolution
+    at hi (4 ulps: the midpoint of a narrower bracket is one of its ends).  Arrays too."""
+    width = np.abs(hi) * tol if relative else tol
+    return (hi - lo > width) & (hi - lo > 4 * np.finfo(float).eps * np.abs(hi))
 
 
 def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: int = -1, *,
@@ -229,7 +267,7 @@ def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: in
     kind = pulse_kind(kind)
     sign = _check_sign(sign)
     tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
-    tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")
+    tol = check_tol(tol)
     n_scan = _check_int("n_scan", n_scan, 2)
     thr = float(model.k_l if sign < 0 else model.k_r)
     a_max = _check_real("a_max", a_max, None, f"a finite number > the activation threshold {thr:.4f} g")
@@ -342,7 +380,7 @@ def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None
     ``workers``/``scheduler``, the finished responses kept in ``out`` (:class:`_PulseRunner`)."""
     kind = pulse_kind(kind)
     sign = _check_sign(sign)
-    tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")
+    tol = check_tol(tol)
     n_scan = _check_int("n_scan", n_scan, 2)
     thrs = [float(m.k_l if sign < 0 else m.k_r) for m in models]
     for thr in thrs:
@@ -380,8 +418,8 @@ def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list
             if k + 1 < grid.size:
                 tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w)])
         windows[s] = ws
-    while True:
-        act = [t for t in tasks if t[2] - t[1] > tol]
+    for _ in range(MAX_BISECTIONS + 1):  # the rounds of bisect_boundary, bounded the same way
+        act = [t for t in tasks if _wider(t[1], t[2], tol)]
         if not act:
             break
         mids = [0.5 * (t[1] + t[2]) for t in act]
@@ -391,6 +429,9 @@ def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list
                 t[1] = x
             else:
                 t[2] = x
+    else:
+        raise LimitExceededError(f"curves: {len(act)} bisections still wider than the tolerance "
+                                 f"{tol:g} g after {MAX_BISECTIONS} steps")
     for s, lo, hi, _, role in tasks:
         if role == "first":
             first[s] = (lo, hi)
@@ -489,7 +530,7 @@ def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: 
     :mod:`archrock.work`): a scan of n_scan responses plus its bisections per duration."""
     n_scan = _check_int("n_scan", n_scan, 2)
     a_max = _check_real("a_max", a_max, 0.0, "a finite number > 0 g")
-    tol = _check_real("tol", tol, 0.0, "a finite number > 0 g")
+    tol = check_tol(tol)
     per_curve = n_scan + 3 * max(1, math.ceil(math.log2(max(a_max / tol, 2.0))))
     return check_work("curves", arches * durations * per_curve, "responses", response_cost_s(),
                       "reduce --n-scan (150 resolves the windows), the durations or --samples",

@@ -30,10 +30,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ._records import readonly_arrays
-from .errors import ArchInputError, FitError
+from .errors import ArchInputError, FitError, LimitExceededError
 from .fragility import (FragilityFit, bootstrap_fit, fit_ida_moments, fit_stripes_mle,
                         first_collapse)
-from .curves import bisect_boundary
+from .curves import MAX_BISECTIONS, _wider, bisect_boundary
 from .geometry import Arch
 from .groundmotion import G, GroundMotion, check_pga
 from .groundmotion.intensity import IM_NAMES, im_at, im_units, intensity, parse_im, scale_for
@@ -100,6 +100,20 @@ def _grid(name: str, values) -> np.ndarray:
     if s.ndim != 1 or s.size < 1 or not np.all(np.isfinite(s)) or np.any(s <= 0) or np.any(np.diff(s) <= 0):
         raise ArchInputError(f"{name}: allowed a strictly increasing list of numbers > 0")
     return s
+
+
+#: Allowed range of the IDA's ``tol``, relative to the scale factor of the first collapse:
+#: below 1e-9 finer than the integrator resolves a boundary (and a bisection to 1e-300 would
+#: stall at one ulp); above 0.5 the bracket [hi / 2, hi] says nothing a grid does not.
+TOL_MIN, TOL_MAX = 1e-9, 0.5
+
+
+def _check_tol(tol) -> float:
+    if (isinstance(tol, bool) or not isinstance(tol, (int, float, np.integer, np.floating))
+            or not math.isfinite(tol) or not TOL_MIN <= tol <= TOL_MAX):
+        raise ArchInputError(f"tol: {tol!r}; allowed a tolerance relative to the scale factor, "
+                             f"{TOL_MIN:g} <= tol <= {TOL_MAX:g}")
+    return float(tol)
 
 
 def _im(im: str) -> str:
@@ -230,14 +244,17 @@ def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
                 else:
                     lo[p], hi[p] = safe[p], float(s[0])
         # bisect_boundary(test, lo, hi, False, tol, relative=True), all pairs at once
-        while True:
-            act = np.flatnonzero(~np.isnan(lo) & (hi - lo > tol * hi))
+        for _ in range(MAX_BISECTIONS + 1):  # bounded as bisect_boundary
+            act = np.flatnonzero(~np.isnan(lo) & _wider(lo, hi, tol, relative=True))
             if act.size == 0:
                 break
             mid = 0.5 * (lo[act] + hi[act])
             col = run(pa[act], pr[act], mid)["status"] == 1
             lo[act] = np.where(col, lo[act], mid)
             hi[act] = np.where(col, mid, hi[act])
+        else:
+            raise LimitExceededError(f"ida: {act.size} bisections still wider than the "
+                                     f"tolerance {tol:g} (relative) after {MAX_BISECTIONS} steps")
     curves = []
     factors = [_im_factor(r, im) for r in recs] if factors is None else factors
     for p in range(P):
@@ -392,8 +409,7 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
     """One IDA curve (see :class:`IDACurve`); tol: relative bisection tolerance on the scale."""
     s = _grid("scales", scales)
     im = _im(im)
-    if not (isinstance(tol, (int, float)) and math.isfinite(tol) and 0 < tol < 1):
-        raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
+    tol = _check_tol(tol)
     flags = np.array([_collapsed(model, record, float(x), dt, t_free) for x in s])
     fc = first_collapse(s, flags)
     f = _im_factor(record, im) if factor is None else factor
@@ -448,12 +464,11 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     top = max(recs, key=lambda r: r.pga)
     check_pga(float(s[-1]) * top.pga_g, f"scales: {s[-1]:g} x record {top.name!r}",
               "reduce the largest scale factor", warn=False)
-    bisect_steps = 2 + math.ceil(math.log2(1.0 / tol)) if isinstance(tol, float) and 0 < tol < 1 else 12
+    tol = _check_tol(tol)
+    bisect_steps = 2 + math.ceil(math.log2(1.0 / tol))
     est = _check_analyses("ida", recs, len(ms), s.size + bisect_steps, n_boot, FIT_MOMENTS_S)
     factors = [_im_factor(r, im) for r in recs]
     if engine == "batch":
-        if not (isinstance(tol, (int, float)) and math.isfinite(tol) and 0 < tol < 1):
-            raise ArchInputError(f"tol: {tol!r}; allowed 0 < tol < 1 (relative)")
         bar = _progress("ida", len(ms) * len(recs) * (s.size + bisect_steps), est, progress,
                         unit="response")
         try:
@@ -585,6 +600,15 @@ def default_stripe_levels(ida_result: IDAResult, scales, records, n: int = 8) ->
     unit = [r.pga_g if im == "pga" else _im_factor(r, im) for r in records]
     lo = 0.6 * f.min() if f.size else float(min(im_at(u, im, scales[0]) for u in unit))
     hi = 1.4 * f.max() if f.size else float(max(im_at(u, im, scales[-1]) for u in unit))
+    if n > 1 and not hi > lo * (1 + 1e-9):
+        # nothing collapsed and the scales give one IM: no range to put stripes in
+        s = np.atleast_1d(np.asarray(scales, float))
+        grid = ", ".join(f"{x:g}" for x in s[:5]) + (", ..." if s.size > 5 else "")
+        raise ArchInputError(
+            f"scales: {grid}: no record collapsed and the records scaled by these factors have "
+            f"one IM ({lo:g}), so there is no range for the default stripe levels; allowed a "
+            f"range of scale factors reaching a collapse (LO:HI:N, e.g. 0.1:3:30), or explicit "
+            f"--levels")
     return np.geomspace(lo, hi, n)
 
 
