@@ -415,3 +415,50 @@ def test_one_record_cannot_give_a_fragility():
 def test_collapse_probability_of_no_trials_says_it_cannot_be_estimated():
     with pytest.raises(ArchInputError, match="trials: 0; a collapse probability cannot be estimated"):
         collapse_probability(0, 0)
+
+
+# ----------------------------------------------------------------------------- progress output
+
+def test_progress_lines_are_throttled(capsys, monkeypatch):
+    """`fragility --samples 200` wrote 1,205 progress lines (a tqdm redraw ten times a second
+    into a log). Off a terminal the lines now come once per 1% and 1 s, or once a minute, and
+    the last: 10,000 updates over 500 s give at most 100 + 500 / 60 + 1 lines."""
+    import archrock.ensemble.progress as progress
+
+    clock = [1000.0]
+    monkeypatch.setattr(progress.time, "monotonic", lambda: clock[0])
+    bar = progress.Progress(10_000, True, desc="ida", unit="response")
+    assert bar.bar is None  # captured stderr is no terminal: plain lines, no tqdm redraws
+    for _ in range(10_000):
+        clock[0] += 0.05
+        bar.update(1)
+    bar.close()
+    lines = capsys.readouterr().err.splitlines()
+    assert 90 <= len(lines) <= 110
+    assert lines[-1] == "ida: 10000/10000 responses (100%)"
+    # slow progress: a line a minute at most, whatever is done
+    bar = progress.Progress(10**9, True, desc="ida", unit="response")
+    for _ in range(1000):
+        clock[0] += 1.0
+        bar.update(1)
+    assert len(capsys.readouterr().err.splitlines()) == 16  # 1000 s / 60 s
+    # disabled: nothing
+    bar = progress.Progress(10, False)
+    bar.update(10)
+    assert capsys.readouterr().err == ""
+
+
+def test_cli_one_scale_without_collapse_names_scales(capsys, tmp_path):
+    """`fragility --scales 2` on a record that never collapses the arch: the message names
+    --scales (the option given), not --levels."""
+    from archrock.cli import main
+
+    t = np.arange(0, 3.0, 0.01)
+    rec = tmp_path / "r.txt"
+    np.savetxt(rec, np.column_stack([t, 0.3 * np.sin(2 * np.pi * 1.5 * t)
+                                     * np.sin(np.pi * t / 3.0) ** 2]))
+    code = main(["fragility", "--records", str(rec), "--scales", "2", "--bootstrap", "0",
+                 "--no-progress"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith("archrock: error: scales: 2: no record collapsed") and "0.6" in err

@@ -8,28 +8,55 @@ import time
 __all__ = ["Progress"]
 
 
+def _terminal() -> bool:
+    """stderr is a terminal (where a bar redraws in place); in a log file or a pipe every redraw
+    of a bar would be one more line."""
+    try:
+        return bool(sys.stderr.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
 class Progress:
-    """Units done out of ``total``: a tqdm bar on stderr, or a line a second without tqdm;
-    silent unless ``enabled``. ``desc`` names the study, ``unit`` what is counted (the
-    ensemble's samples by default; curves' arches, fragility's analyses)."""
+    """Units done out of ``total``: a tqdm bar on stderr when it is a terminal (redrawn at most
+    once a second), otherwise plain lines, throttled: a line once at least 1% of the total more
+    is done and a second has passed since the last (or once a minute, whatever is done), and the
+    last line; so a run writes at most ~100 lines plus one a minute.  Silent unless ``enabled``.
+    ``desc`` names the study, ``unit`` what is counted (the ensemble's samples by default;
+    curves' arches, fragility's analyses)."""
+
+    #: plain lines: at least this many seconds apart ...
+    MIN_INTERVAL_S = 1.0
+    #: ... and this fraction of the total apart, unless this many seconds passed
+    MIN_FRACTION = 0.01
+    HEARTBEAT_S = 60.0
 
     def __init__(self, total: int, enabled: bool, desc: str = "ensemble", unit: str = "arch"):
         self.bar = None
         self.enabled = enabled
         self.total = total
         self.done = 0
-        self.last = 0.0
+        self.printed = 0  # done at the last plain line
+        self.last = time.monotonic()
         self.desc = desc
         self.plural = "samples" if desc == "ensemble" else unit + "s"
-        if not enabled:
+        if not enabled or not _terminal():
             return
         try:
             from tqdm import tqdm
 
             self.bar = tqdm(total=total, unit=unit, desc=desc, file=sys.stderr,
-                            dynamic_ncols=True)
+                            dynamic_ncols=True, mininterval=self.MIN_INTERVAL_S)
         except ImportError:
             self.bar = None
+
+    def _due(self, now: float) -> bool:
+        if self.done >= self.total:
+            return self.printed < self.total  # the last line, once
+        since = now - self.last
+        step = max(1, int(self.MIN_FRACTION * self.total))
+        return ((self.done - self.printed >= step and since >= self.MIN_INTERVAL_S)
+                or since >= self.HEARTBEAT_S)
 
     def update(self, n: int):
         self.done += n
@@ -37,9 +64,12 @@ class Progress:
             return
         if self.bar is not None:
             self.bar.update(n)
-        elif time.monotonic() - self.last > 1.0 or self.done == self.total:
-            self.last = time.monotonic()
-            print(f"{self.desc}: {self.done}/{self.total} {self.plural}", file=sys.stderr,
+            return
+        now = time.monotonic()
+        if self._due(now):
+            self.last, self.printed = now, self.done
+            pct = f" ({100 * self.done / self.total:.0f}%)" if self.total > 0 else ""
+            print(f"{self.desc}: {self.done}/{self.total} {self.plural}{pct}", file=sys.stderr,
                   flush=True)
 
     def note(self, text: str):
@@ -54,4 +84,3 @@ class Progress:
     def close(self):
         if self.bar is not None:
             self.bar.close()
-
