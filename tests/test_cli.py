@@ -655,3 +655,23 @@ def test_interrupted_ensemble_without_out_says_nothing_was_kept(capsys, monkeypa
     code, out, err = run(capsys, "ensemble", "--samples", "3", "--no-progress")
     assert code == 130 and out == ""
     assert err == "archrock: interrupted; nothing was kept (give --out DIR to keep finished batches and resume)\n"
+
+
+def test_codecheck_spectrum_in_cm_per_s2_is_refused_with_a_units_hint(capsys, tmp_path):
+    """Issue 17: a spectrum file in cm/s^2 was read as 294 g.  Above 20 g it is refused with the
+    units that make it plausible; above 5 g (a file in m/s^2) a warning."""
+    f = tmp_path / "cms.txt"
+    f.write_text("0 294.3\n0.2 735.75\n0.5 735.75\n2 100\n")
+    code, out, err = run(capsys, "codecheck", "--spectrum", str(f))
+    assert code == 2 and out == ""
+    assert err == (f"archrock: error: spectrum file '{f}': Se up to 735.8 g; allowed at most 20 g "
+                   f"(units? Se is read in g; if it is in cm/s^2, divide the column by 981 "
+                   f"(peak 0.75 g))\n")
+    f.write_text("0 2.943\n0.2 7.2\n0.5 7.2\n2 1\n")
+    code, out, err = run(capsys, "codecheck", "--spectrum", str(f))
+    assert code == 0 and "archrock: warning: spectrum file" in err
+    assert "Se up to 7.2 g is above any code spectrum (about 3 g); units? if Se is in m/s^2, " \
+           "divide the column by 9.81 (peak 0.734 g)" in err
+    f.write_text("0 0.3\n0.2 0.75\n0.5 0.75\n2 0.1\n")
+    code, out, err = run(capsys, "codecheck", "--spectrum", str(f))
+    assert code == 0 and err == ""

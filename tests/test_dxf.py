@@ -183,3 +183,31 @@ def test_cli_refusal_is_one_line(tmp_path, capsys):
     assert code == 2 and err.startswith("archrock: error: ") and err.count("\n") == 1
     assert main(["import-dxf", str(tmp_path / "missing.dxf")]) == 2
     assert "DXF file not found" in capsys.readouterr().err
+
+
+def test_drawing_in_millimetres_read_as_metres_is_refused_with_the_units_hint(tmp_path, capsys):
+    """Issue 17: a DXF drawn in millimetres read as a 21 km arch; now refused naming the size,
+    the allowed range and --units mm (with the size it gives), and the header's units."""
+    arch = as_polygon(oppenheim_arch(), 5)
+    _write_dxf(tmp_path / "mm.dxf", _outlines(arch), scale=1000.0, seed=5)
+    code = main(["import-dxf", str(tmp_path / "mm.dxf")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1
+    assert err.startswith("archrock: error: ")
+    assert "mm.dxf: the arch is 2.109e+04 m across read in m; allowed 0.01 m to 500 m " \
+           "(units? drawn in mm? give --units mm (21.09 m))" in err
+    # a drawing whose header says millimetres: the message says so too
+    doc = ezdxf.readfile(tmp_path / "mm.dxf")
+    doc.header["$INSUNITS"] = 4
+    doc.saveas(tmp_path / "mm.dxf")
+    with pytest.raises(ArchInputError, match=r"give --units mm \(21\.09 m\); the DXF header says mm"):
+        read_dxf(tmp_path / "mm.dxf")
+    # a drawing in metres read as millimetres: 2 cm, refused the other way
+    from archrock.geometry import nominal_arch
+
+    _write_dxf(tmp_path / "m.dxf", _outlines(as_polygon(nominal_arch(0.05, 157.5, 0.01, 7), 5)))
+    with pytest.raises(ArchInputError, match=r"the arch is 0\.0001079 m across read in mm; allowed "
+                                             r"0\.01 m to 500 m \(units\? drawn in m\? give --units m "
+                                             r"\(0\.1079 m\); the DXF header says m\)"):
+        read_dxf(tmp_path / "m.dxf", units="mm")
+    assert read_dxf(tmp_path / "mm.dxf", units="mm")[0].n == 7

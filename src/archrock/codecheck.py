@@ -68,6 +68,35 @@ def _real(name, value, lo=None, hi=None, lo_open=False, allowed=""):
 
 
 # ---------------------------------------------------------------------------- spectrum
+#: Largest spectral acceleration accepted from a spectrum file [g]: elastic design spectra peak
+#: at 2.5 a_g S, a few g at the most; tens or hundreds of g is a file in m/s^2 or cm/s^2.
+MAX_SPECTRUM_G = 20.0
+#: Above this peak [g] a warning: beyond any code's elastic spectrum (2.5 a_g S, at most about
+#: 3 g), so probably a file in m/s^2.
+WARN_SPECTRUM_G = 5.0
+
+
+def _check_spectrum_units(where: str, se) -> None:
+    """Refuse a spectrum file whose Se (read in g) cannot be meant, with the units that would
+    make it plausible (peak 0.005-5 g)."""
+    finite = np.asarray(se, float)[np.isfinite(se)]
+    peak = float(np.max(finite)) if finite.size else 0.0
+    if peak <= WARN_SPECTRUM_G:
+        return
+    if peak <= MAX_SPECTRUM_G:
+        import warnings
+        warnings.warn(f"spectrum file {where!r}: Se up to {peak:.4g} g is above any code "
+                      f"spectrum (about 3 g); units? if Se is in m/s^2, divide the column by "
+                      f"{G:g} (peak {peak / G:.3g} g)", stacklevel=3)
+        return
+    fits = [(u, f) for u, f in (("m/s^2", G), ("cm/s^2", 100.0 * G)) if 0.005 <= peak / f <= 5.0]
+    hint = ("units? Se is read in g; " + " or ".join(
+        f"if it is in {u}, divide the column by {f:g} (peak {peak / f:.3g} g)" for u, f in fits)
+        if fits else "units? Se is read in g")
+    raise ArchInputError(f"spectrum file {where!r}: Se up to {peak:.4g} g; allowed at most "
+                         f"{MAX_SPECTRUM_G:g} g ({hint})")
+
+
 def ntc_spectrum_parameters(ag: float, f0: float, tc_star: float, soil: str = "A",
                             topography="T1") -> dict:
     """S = S_S S_T, T_B, T_C, T_D [s] of the NTC 2018 elastic horizontal spectrum (par. 3.2.3.2.1,
@@ -158,7 +187,8 @@ class SiteSpectrum:
     def from_file(cls, path) -> "SiteSpectrum":
         """A two-column text file: T [s], Se [g] ('#' comments, commas or blanks)."""
         try:
-            text = open(path, encoding="utf-8").read()
+            with open(path, encoding="utf-8") as fh:
+                text = fh.read()
         except OSError as exc:
             raise ArchInputError(f"spectrum file {str(path)!r}: cannot read it ({exc.strerror})") from None
         rows = []
@@ -178,6 +208,7 @@ class SiteSpectrum:
         if not rows:
             raise ArchInputError(f"spectrum file {str(path)!r}: no data rows")
         a = np.array(rows)
+        _check_spectrum_units(str(path), a[:, 1])
         import os
         return cls("table", periods=tuple(a[:, 0]), values=tuple(a[:, 1]),
                    source=os.path.basename(str(path)))

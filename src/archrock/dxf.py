@@ -44,6 +44,14 @@ __all__ = ["read_dxf", "read_dxf_outlines", "arch_from_outlines", "UNITS"]
 
 #: drawing unit -> metres
 UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001}
+#: Extent [m] of a drawing (the larger side of the box around its voussoirs) accepted as an
+#: arch: masonry arches span from laboratory models of a few decimetres to about 100 m (the
+#: longest stone spans); beyond these bounds the drawing units are wrong (a drawing in mm read
+#: as m gives a 10 km arch).
+MIN_EXTENT_M = 0.01
+MAX_EXTENT_M = 500.0
+#: DXF header $INSUNITS codes of the drawing units offered by ``units``.
+_INSUNITS = {6: "m", 5: "cm", 4: "mm"}
 
 _TYPES = "LWPOLYLINE POLYLINE"
 
@@ -392,14 +400,36 @@ def read_dxf_outlines(path: str | os.PathLike, layer: str | None = None,
         if not found:
             raise ArchInputError(f"{p}: no closed polylines in the drawing; allowed one closed "
                                  f"LWPOLYLINE or POLYLINE per voussoir")
-        return found
-    found = [item for name, items in by_layer.items() if name.lower() == layer.lower()
-             for item in items]
-    if not found:
-        have = ", ".join(repr(k) for k in sorted(by_layer)) or "none"
-        raise ArchInputError(f"{p}: layer {layer!r} has no closed polylines; layers with closed "
-                             f"polylines: {have}")
+    else:
+        found = [item for name, items in by_layer.items() if name.lower() == layer.lower()
+                 for item in items]
+        if not found:
+            have = ", ".join(repr(k) for k in sorted(by_layer)) or "none"
+            raise ArchInputError(f"{p}: layer {layer!r} has no closed polylines; layers with "
+                                 f"closed polylines: {have}")
+    try:
+        header_units = _INSUNITS.get(int(doc.header.get("$INSUNITS", 0)))
+    except (TypeError, ValueError):
+        header_units = None
+    _check_extent(p, found, units, header_units)
     return found
+
+
+def _check_extent(p: Path, found, units: str, header_units: str | None) -> None:
+    """Refuse a drawing whose size in metres cannot be an arch (wrong drawing units), naming
+    the ``--units`` that would make it one (and what the DXF header says)."""
+    pts = np.vstack([q for _, q in found])
+    extent = float(np.max(np.ptp(pts, axis=0)))
+    if MIN_EXTENT_M <= extent <= MAX_EXTENT_M:
+        return
+    raw = extent / UNITS[units]  # the size in the drawing's own numbers
+    fits = [u for u in UNITS if u != units and MIN_EXTENT_M <= raw * UNITS[u] <= MAX_EXTENT_M]
+    fits.sort(key=lambda u: (u != header_units, abs(np.log10(raw * UNITS[u] / 10.0))))
+    hint = "; ".join(f"drawn in {u}? give --units {u} ({raw * UNITS[u]:.4g} m)" for u in fits[:1])
+    said = f"; the DXF header says {header_units}" if header_units and header_units != units else ""
+    raise ArchInputError(f"{p}: the arch is {extent:.4g} m across read in {units}; allowed "
+                         f"{MIN_EXTENT_M:g} m to {MAX_EXTENT_M:g} m (units? "
+                         f"{hint or 'check the drawing units'}{said})")
 
 
 def read_dxf(path: str | os.PathLike, layer: str | None = None, units: str = "m", *,
