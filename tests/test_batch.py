@@ -245,3 +245,46 @@ def test_mechanism_label_is_the_mechanism_label():
 
     for c in (0, 17, 400, 1000):
         assert mechanism_label(7, c) == _mechanism_from_candidate(7, c, "r", 0.3).label
+
+
+def test_default_fallback_rows_get_the_momentum_law():
+    """A spec with the default's fallback: a row the paper model refuses gets the momentum law
+    of that arch (the one-arch path's, note included) and is integrated; the others keep the
+    paper law; "paper" by name still records the refusal as the row's error."""
+    from archrock.geometry import nominal_arch
+    from archrock.impact import PAPER_PRACTICE, ImpactSpec
+
+    # a 17-voussoir semicircle that stands; the paper model creates energy on the first
+    arches = [nominal_arch(radius=5.0, embrace_deg=180.0, thickness=t, voussoirs=17)
+              for t in (0.9, 1.0)]
+    pb = prepare_batch(arches, impact=ImpactSpec("paper", fallback="momentum"))
+    assert pb.ok.all()
+    one = [prepare(a).impact for a in arches]          # the default, arch by arch
+    assert one[0].model == "momentum" and one[1].model == "paper"
+    assert pb.impact_fallback.tolist() == [one[0].fallback, ""]
+    for b, law in enumerate(one):
+        # the compiled batch laws agree with impact_law to rounding (test above: 1e-12)
+        assert pb.c_l_to_r[b] == pytest.approx(law.l_to_r, rel=1e-12)
+        assert pb.c_r_to_l[b] == pytest.approx(law.r_to_l, rel=1e-12)
+    res = simulate_batch(pb, oppenheim_pulse(-0.5, 0.2))
+    assert np.all(res["status"] >= 0)
+    strict = prepare_batch(arches, impact="paper")
+    assert strict.ok.tolist() == [False, True] and "creates energy" in strict.error[0]
+    assert strict.impact_fallback.tolist() == ["", ""]
+    # the default around such a nominal arch: its momentum c_v on every row, each row saying so
+    pn = prepare_batch(arches, impact=PAPER_PRACTICE, nominal=arches[0])
+    note = PAPER_PRACTICE.resolved(arches[0]).note
+    assert note and pn.impact_fallback.tolist() == [note, note]
+
+
+def test_no_fallback_rows_where_paper_can_be_used(sample):
+    nom, u, spans, thick, radii = sample
+    from archrock.impact import PAPER_PRACTICE
+
+    pb = prepare_batch(spans, radii, thick, impact=PAPER_PRACTICE, nominal=nom)
+    assert pb.ok.all() and set(pb.impact_fallback.tolist()) == {""}
+    paper = prepare_batch(spans, radii, thick, impact="paper")
+    with_fb = prepare_batch(spans, radii, thick, impact=dict(model="paper", fallback="momentum"))
+    # the fallback touches no row the paper model can take: the same arrays, bit for bit
+    assert np.array_equal(paper.c_l_to_r, with_fb.c_l_to_r)
+    assert np.array_equal(paper.c_r_to_l, with_fb.c_r_to_l)

@@ -248,14 +248,31 @@ def test_impact_spec_round_trips_and_parses_every_spelling():
 
     for spec in (ImpactSpec(), PAPER_PRACTICE, ImpactSpec("momentum"), ImpactSpec.fixed(0.8),
                  ImpactSpec.fixed(0.7, literal=True), ImpactSpec("least-loss"),
-                 ImpactSpec("momentum", on="nominal", literal=True)):
+                 ImpactSpec("momentum", on="nominal", literal=True),
+                 ImpactSpec("paper", on="nominal"), ImpactSpec("paper", fallback="momentum"),
+                 ImpactSpec("fixed", cv=0.6, note="why")):
         assert ImpactSpec.from_dict(spec.to_dict()) == spec
     assert ImpactSpec.parse(None) == PAPER_PRACTICE
-    assert ImpactSpec.parse("nominal-paper") == PAPER_PRACTICE        # 0.1.0's ensemble spelling
+    # 0.1.0's ensemble spelling is the paper model on the nominal arch, written out: no fallback
+    assert ImpactSpec.parse("nominal-paper") == ImpactSpec("paper", on="nominal")
     assert ImpactSpec.parse("momentum") == ImpactSpec("momentum", on="arch")
     assert ImpactSpec.parse(0.8) == ImpactSpec.parse("fixed", cv=0.8) == ImpactSpec.parse(None, cv=0.8)
     assert ImpactSpec.parse(0.8, literal=True).literal
-    assert ImpactSpec.parse(None, literal=True) == ImpactSpec("paper", literal=True, on="nominal")
+    assert ImpactSpec.parse(None, literal=True) == ImpactSpec("paper", literal=True, on="nominal",
+                                                              fallback="momentum")
+
+
+def test_impact_spec_dicts_of_0_4_read_as_before():
+    """The default's dict is 0.4's (manifests of default runs resume); the written-out paper
+    model on the nominal arch says it has no fallback; a 0.4 dict without one is the default."""
+    from archrock.impact import PAPER_PRACTICE, ImpactSpec
+
+    old = {"model": "paper", "cv": None, "literal": False, "on": "nominal"}
+    assert PAPER_PRACTICE.to_dict() == old
+    assert ImpactSpec.from_dict(old) == PAPER_PRACTICE
+    assert ImpactSpec("paper", on="nominal").to_dict() == {**old, "fallback": None}
+    assert ImpactSpec("paper").to_dict() == {**old, "on": "arch"}
+    assert "fallback" in ImpactSpec("paper", fallback="momentum").to_dict()
 
 
 @pytest.mark.parametrize("kwargs, field", [
@@ -267,6 +284,9 @@ def test_impact_spec_round_trips_and_parses_every_spelling():
     (dict(model="least-loss", on="nominal"), "impact on"),
     (dict(model="momentum", literal=True), "literal"),
     (dict(model="paper", on="crown"), "impact on"),
+    (dict(model="momentum", fallback="momentum"), "fallback"),
+    (dict(model="paper", fallback="least-loss"), "fallback"),
+    (dict(model="paper", note="why"), "note"),
 ])
 def test_impact_spec_refuses_bad_fields(kwargs, field):
     from archrock.impact import ImpactSpec
@@ -299,3 +319,73 @@ def test_impact_spec_on_nominal_is_the_papers_practice():
     assert ImpactSpec.fixed(0.5).resolved(nominal) == ImpactSpec.fixed(0.5)
     with pytest.raises(ArchInputError, match="^impact model"):
         ImpactSpec.parse("bogus")
+
+
+# ----------------------------------------------------------------------------- the fallback
+@pytest.fixture(scope="module")
+def semicircle17():
+    """A 17-voussoir semicircle (R = 5 m, t = 0.9 m: span 10, rise 5 of the centreline) that
+    stands (k = 0.2326) and on which the paper model creates energy (ratio 1.3035 l_to_r)."""
+    return geometry.nominal_arch(radius=5.0, embrace_deg=180.0, thickness=0.9, voussoirs=17)
+
+
+def test_default_falls_back_to_momentum_where_paper_creates_energy(semicircle17):
+    from archrock.impact import PAPER_PRACTICE, ImpactSpec
+    from archrock.response import prepare
+
+    law = prepare(semicircle17).impact                 # the default: one arch, its own nominal
+    assert law.model == "momentum"
+    assert "creates energy" in law.fallback and "kinetic energy ratio 1.3035" in law.fallback
+    assert law.fallback.endswith("momentum law used")
+    # it is the momentum law of that arch, the same call: bit for bit
+    mom = prepare(semicircle17, "momentum").impact
+    assert (law.l_to_r, law.r_to_l, law.energy_l_to_r) == (mom.l_to_r, mom.r_to_l,
+                                                          mom.energy_l_to_r)
+    assert mom.fallback is None and max(law.energy_l_to_r, law.energy_r_to_l) < 1
+    assert prepare(semicircle17, PAPER_PRACTICE).impact == law
+    assert law.to_dict()["fallback"] == law.fallback
+
+
+@pytest.mark.parametrize("spec", ["paper", "nominal-paper"])
+def test_paper_given_by_name_still_refuses(semicircle17, spec):
+    from archrock.impact import ImpactSpec
+    from archrock.response import prepare
+
+    with pytest.raises(EnergyGainError, match="creates energy.*use --impact momentum"):
+        prepare(semicircle17, spec)                   # the arch alone
+    with pytest.raises(EnergyGainError, match="creates energy"):
+        # a study around it: the spec resolved on it as the nominal arch
+        prepare(semicircle17, ImpactSpec.parse(spec), nominal=semicircle17)
+
+
+def test_default_on_a_nominal_arch_that_falls_back(semicircle17):
+    """Studies: the default fixes the momentum law's c_v of such a nominal arch on every arch,
+    and the resolved spec and every arch's law say why."""
+    from archrock.impact import PAPER_PRACTICE, nominal_cv
+    from archrock.response import prepare
+
+    resolved = PAPER_PRACTICE.resolved(semicircle17)
+    assert resolved.model == "fixed"
+    assert resolved.cv == nominal_cv(semicircle17, "momentum")
+    assert resolved.note.startswith("on the nominal arch, ") and "creates energy" in resolved.note
+    assert resolved.note in resolved.describe() and resolved.to_dict()["note"] == resolved.note
+    ra = geometry.random_arch(semicircle17, seed=1)
+    law = prepare(ra, PAPER_PRACTICE, nominal=semicircle17).impact
+    assert law.model == "fixed" and law.cv == resolved.cv and law.fallback == resolved.note
+
+
+def test_fallback_leaves_usable_arches_alone(opp):
+    """Where the paper model can be used the fallback changes nothing: the same law, bit for
+    bit, and no note (Oppenheim's c_v 0.87538, momentum 0.64496)."""
+    from archrock.impact import PAPER_PRACTICE, nominal_cv
+    from archrock.response import prepare
+
+    law = impact_law(*opp, "paper", fallback="momentum")
+    assert law == impact_law(*opp, "paper") and law.fallback is None
+    assert "fallback" not in law.to_dict()
+    default = prepare(geometry.oppenheim_arch()).impact
+    assert default == law
+    # five linear equations through LAPACK: the last digits follow the build, so 1e-12
+    assert default.l_to_r == pytest.approx(0.8753811790524912, rel=1e-12)
+    assert PAPER_PRACTICE.resolved(geometry.oppenheim_arch()).note is None
+    assert nominal_cv(geometry.oppenheim_arch(), "momentum") == pytest.approx(0.64496, abs=5e-6)

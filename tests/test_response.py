@@ -629,3 +629,45 @@ def test_no_numba_path_gives_the_same_response_and_types(without_numba):
     assert np.allclose(np.array(pure["response"], float), np.array(compiled["response"], float),
                        rtol=0, atol=1e-9, equal_nan=True)
     assert pure["k_l"] == pytest.approx(compiled["k_l"], rel=1e-12)
+
+
+def test_cli_respond_default_falls_back_where_paper_creates_energy(capsys):
+    """A 17-voussoir semicircle that stands, on which the paper model creates energy: with no
+    impact option respond answers with the momentum law and says why (text and JSON), the same
+    response as --impact momentum; --impact paper still refuses (exit 3)."""
+    import json
+
+    from archrock.cli import main
+
+    argv = ["respond", "--shape", "circular", "--span", "10", "--rise", "5", "--thickness", "0.9",
+            "--voussoirs", "17", "--pulse", "oppenheim", "--amplitude", "-0.5",
+            "--pulse-duration", "0.2", "--t-end", "1", "--dt-out", "0.05"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "impact: momentum;" in out
+    assert "impact law fallback: " in out and "kinetic energy ratio 1.3035" in out
+    assert main(argv + ["--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["restitution"]["model"] == "momentum"
+    assert "creates energy" in d["restitution"]["fallback"]
+    assert main(argv + ["--json", "--impact", "momentum"]) == 0
+    m = json.loads(capsys.readouterr().out)
+    assert m["restitution"]["fallback"] is None
+    # the same law, so the same run: bit for bit
+    assert {k: v for k, v in d.items() if k != "restitution"} == \
+        {k: v for k, v in m.items() if k != "restitution"}
+    assert main(argv + ["--impact", "paper"]) == 3
+    err = capsys.readouterr().err
+    assert "archrock: error: impact l_to_r: the 'paper' model creates energy" in err
+
+
+def test_default_keeps_the_papers_law_where_it_can_be_used(nominal, paper_case):
+    """Oppenheim's arch: the default is the paper model itself (no fallback), and its pulse
+    response is the paper's (impacts at 0.6012, 2.2294, 3.3706 s)."""
+    model = prepare(geometry.oppenheim_arch())
+    assert model.impact == nominal.impact and model.impact.fallback is None
+    res = respond(model, gm.oppenheim_pulse(-1.0, 0.2), t_end=3.0)
+    assert res.impacts == paper_case.impacts      # the same law and arch: bit for bit
+    assert res.to_dict()["restitution"]["fallback"] is None
+    # the paper's figures to their four printed decimals
+    assert res.impacts[:3] == pytest.approx([0.6012, 2.2294, 3.3706], abs=5e-5)

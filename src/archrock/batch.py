@@ -33,7 +33,7 @@ import numpy as np
 from . import kernel as K
 from ._jit import HAVE_NUMBA, maybe_njit, numba
 from .errors import ArchInputError, ArchrockError
-from .impact import ImpactSpec
+from .impact import ImpactSpec, fallback_note
 from .geometry import Arch, power_of_two_near, sector_properties
 from .groundmotion import G, GroundMotion
 from .limit import (_mechanism_from_candidate, candidate_hinges, kinematic_multipliers_arches,
@@ -151,6 +151,11 @@ class PreparedBatch:
     chain_next (B, R) (row opened when the row closes), chain_ratio (B, R) (its rate ratio),
     chain_table (B, R, 2) (table ranges [rad]), n_mechanisms (B,) (rows used; 0 for an
     unusable arch).  Left out, they are built from the two-row fields (the paper's alternation).
+
+    impact_fallback (B,): '' where the row's impact law is the one asked for; otherwise why it
+    is the momentum law's (the default spec's paper model cannot be used on that arch, or on
+    the nominal arch whose c_v the row gets), the note of ``ImpactLaw.fallback`` of the same
+    arch through :func:`archrock.response.prepare`.  Left out, '' for every row.
     """
 
     k_l: np.ndarray
@@ -178,8 +183,11 @@ class PreparedBatch:
     chain_ratio: np.ndarray = None
     chain_table: np.ndarray = None
     n_mechanisms: np.ndarray = None
+    impact_fallback: np.ndarray = None
 
     def __post_init__(self):
+        if self.impact_fallback is None:
+            self.impact_fallback = np.full(self.k_l.size, "", dtype=object)
         if self.chain_geo is None:
             B = self.k_l.size
             tab_l = np.full((B, 2), np.nan) if self.table_l is None else self.table_l
@@ -251,7 +259,8 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
     "momentum" (per geometry, compiled for the whole batch by
     :func:`archrock.impact.compiled.rate_ratios_batch`, the numbers of
     :func:`archrock.impact.impact_law`; a geometry on which "paper" creates energy gets an error
-    instead of a law), or "least-loss" (each arch's chain of mechanisms from
+    instead of a law, or the momentum law under a spec with ``fallback``, as the default's: its
+    ``impact_fallback`` says why), or "least-loss" (each arch's chain of mechanisms from
     ``archrock.response.prepare(arch, "least-loss")``, arch by arch in Python: about 0.1 s
     each).  A spec evaluated on the nominal arch needs ``nominal`` (an Arch).
     ``parallel``: the limit analysis, the four-link loop and the impact laws spread the arches
@@ -450,6 +459,9 @@ def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, s
     t2 = time.perf_counter()
     c_lr = np.full(B, np.nan)
     c_rl = np.full(B, np.nan)
+    # why a row's law is the fallback's ('' where it is the law asked for): a fixed c_v
+    # resolved on a nominal arch that fell back carries its note to every row
+    fallback = np.full(B, spec.note or "", dtype=object)
     if impact == "fixed" and spec.literal:
         c_lr[ok] = c_rl[ok] = cv
     elif impact == "fixed":
@@ -457,18 +469,31 @@ def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, s
         c_lr[ok] = cv * ratio[ok]
         c_rl[ok] = cv / ratio[ok]
     elif impact != "least-loss":
+        before = error.copy()
         _impact_batch(impact, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, geo_r,
                       out["m0_l"], out["m0_r"], ok, c_lr, c_rl, error, parallel)
+        # the default spec: a row the paper model refuses gets the momentum law instead (the
+        # law and note of impact_law(..., fallback=...) on the same arch)
+        fell = ok & (error != before) if spec.fallback is not None else np.zeros(B, bool)
+        if fell.any():
+            for b in np.flatnonzero(fell):
+                fallback[b] = fallback_note(error[b], spec.fallback)
+                error[b] = ""
+            f_lr, f_rl = np.full(B, np.nan), np.full(B, np.nan)
+            _impact_batch(spec.fallback, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l,
+                          geo_r, out["m0_l"], out["m0_r"], fell, f_lr, f_rl, error, parallel)
+            c_lr[fell], c_rl[fell] = f_lr[fell], f_rl[fell]
         ok = error == ""
     chain = {}
     if impact == "least-loss":
         chain = _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, out["v_rest"],
                                      error)
+    fallback[error != ""] = ""
     t3 = time.perf_counter()
     return PreparedBatch(k_l, k_r, mech_l, mech_r, geo_l, geo_r, out["phu_l"], out["phu_r"],
                          out["lim_l"], out["lim_r"], c_lr, c_rl, out["v_rest"], error,
                          tab_l, tab_r, {"limit": t1 - t0, "four_link": t2 - t1, "impact": t3 - t2},
-                         **chain)
+                         **chain, impact_fallback=fallback)
 
 
 def _impact_batch(model, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, geo_r, m0_l, m0_r,

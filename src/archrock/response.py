@@ -145,7 +145,9 @@ def prepare(arch: VoussoirArch, impact=None, *, cv: float | None = None,
     model name ("paper", "momentum", "fixed" with ``cv``, "least-loss": the momentum law, each
     impact opening the admissible mechanism that keeps the most kinetic energy, Bisegna et al.
     2023), a number (a fixed c_v), or None: the paper's model (on ``nominal`` when given, else on
-    ``arch``).  An :class:`ImpactLaw` is used as it is.  ``literal_cv`` applies a fixed c_v to the
+    ``arch``), the momentum law where the paper model cannot be used on that arch (it would
+    create energy; ``model.impact.fallback`` then says so), whereas "paper" given by name
+    refuses such an arch.  An :class:`ImpactLaw` is used as it is.  ``literal_cv`` applies a fixed c_v to the
     rates.  nominal: the study's nominal arch, on which a spec with ``on='nominal'`` is evaluated.
     limit_factor: rotation limit as a multiple of the unstable rotation (default: halfway to
     the four-bar's dead point, at most 2.5 times the unstable rotation); must be > 1.
@@ -168,8 +170,11 @@ def prepare(arch: VoussoirArch, impact=None, *, cv: float | None = None,
     m_l, m_r = four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
     if spec is not None and spec.model == "least-loss":
         return _prepare_least_loss(arch, lim, m_l, m_r, limit_factor)
+    # the default spec falls back to the momentum law where the paper model cannot be used
+    # (spec.fallback); a fixed c_v resolved on such a nominal arch carries the reason (spec.note)
     law = impact if spec is None else impact_law(m_l, m_r, spec.model, cv=spec.cv,
-                                                 literal=spec.literal)
+                                                 literal=spec.literal, fallback=spec.fallback,
+                                                 note=spec.note)
     pl_l, pl_r = _rotation_limit(m_l, limit_factor), _rotation_limit(m_r, limit_factor)
     v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
@@ -340,7 +345,10 @@ class Response:
             "restitution": {"model": self.model.impact.model, "l_to_r": self.model.impact.l_to_r,
                             "r_to_l": self.model.impact.r_to_l,
                             "energy_l_to_r": self.model.impact.energy_l_to_r,
-                            "energy_r_to_l": self.model.impact.energy_r_to_l},
+                            "energy_r_to_l": self.model.impact.energy_r_to_l,
+                            # None, or why the law is not the one asked for (the default's
+                            # paper model cannot be used on this arch: momentum law used)
+                            "fallback": self.model.impact.fallback},
             "phi_limit": {"l": self.model.phi_limit_l, "r": self.model.phi_limit_r},
             "phi_unstable": {"l": self.model.phi_unstable_l, "r": self.model.phi_unstable_r},
             "chain": self.model.chain_dicts(),

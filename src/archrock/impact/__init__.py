@@ -5,11 +5,11 @@
 * :mod:`~archrock.impact.spec` -- :class:`ImpactSpec`, the one object that names the choice.
 """
 
-from .laws import (EnergyGainWarning, ImpactLaw, impact_law, momentum_rate_ratio,
+from .laws import (EnergyGainWarning, ImpactLaw, fallback_note, impact_law, momentum_rate_ratio,
                    paper_rate_ratio, projection_ratio)
 from .least_loss import LeastLoss, least_loss_mechanism
 from .spec import IMPACT_MODELS, PAPER_PRACTICE, ImpactSpec, nominal_cv
 
 __all__ = ["ImpactLaw", "impact_law", "paper_rate_ratio", "momentum_rate_ratio",
            "EnergyGainWarning", "projection_ratio", "LeastLoss", "least_loss_mechanism",
-           "ImpactSpec", "PAPER_PRACTICE", "IMPACT_MODELS", "nominal_cv"]
+           "ImpactSpec", "PAPER_PRACTICE", "IMPACT_MODELS", "nominal_cv", "fallback_note"]

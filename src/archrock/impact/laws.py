@@ -6,7 +6,10 @@ mechanism's coordinate (docs/method.md, Impact):
 * ``"paper"`` (De Lorenzis, DeJong, Ochsendorf 2007, as used by the paper): five momentum
   equations written on the old links, impulses at the closing points A*, B*, C*, D* (the
   opposite edge of each old hinge's joint), post-impact velocities taken from the new mechanism
-  voussoir by voussoir.  Refused with :class:`EnergyGainError` when it creates energy.
+  voussoir by voussoir.  Refused with :class:`EnergyGainError` when it creates energy (with
+  :class:`ImpactModelError` when a rate ratio is negative or the equations are singular), unless
+  a ``fallback`` model is named (the default spec's ``"momentum"``): the arch then gets that law,
+  and ``ImpactLaw.fallback`` says why.
 * ``"momentum"``: impulses only at the hinges of the new mechanism; projecting the momentum
   balance on the new mechanism gives c = -(sum m v'.v + I w' w) / M'(0).  Never creates energy;
   Housner's c = 1 - 1.5 sin^2(alpha) for a single block.
@@ -17,6 +20,7 @@ mechanism's coordinate (docs/method.md, Impact):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from dataclasses import dataclass
@@ -29,7 +33,7 @@ from ..mechanism import FourLink
 from .spec import IMPACT_MODELS
 
 __all__ = ["ImpactLaw", "impact_law", "paper_rate_ratio", "momentum_rate_ratio",
-           "EnergyGainWarning", "projection_ratio"]
+           "EnergyGainWarning", "projection_ratio", "fallback_note"]
 
 #: The models that give a rate ratio per direction (least-loss builds a chain on top of momentum).
 _LAW_MODELS = tuple(m for m in IMPACT_MODELS if m != "least-loss")
@@ -46,6 +50,9 @@ class ImpactLaw:
     l_to_r: c at an impact closing M_l and opening M_r; r_to_l the reverse.
     energy_l_to_r / energy_r_to_l: kinetic energy after / before for each (<= 1 unless literal).
     cv: the user-given coefficient for the "fixed" model (None otherwise).
+    fallback: None when this is the law asked for; otherwise why another was used (the paper
+    model could not be used on this arch, so ``model`` is the fallback's; or a fixed c_v that is
+    the fallback's on the nominal arch).
     """
 
     model: str
@@ -55,6 +62,7 @@ class ImpactLaw:
     energy_r_to_l: float
     cv: float | None = None
     literal: bool = False
+    fallback: str | None = None
 
     @property
     def equivalent_cv(self) -> float:
@@ -63,9 +71,21 @@ class ImpactLaw:
         return math.sqrt(0.5 * (self.energy_l_to_r + self.energy_r_to_l))
 
     def to_dict(self) -> dict:
-        return {"model": self.model, "l_to_r": self.l_to_r, "r_to_l": self.r_to_l,
-                "energy_l_to_r": self.energy_l_to_r, "energy_r_to_l": self.energy_r_to_l,
-                "cv": self.cv, "literal": self.literal}
+        """JSON-ready dict (``fallback`` only when one was used)."""
+        d = {"model": self.model, "l_to_r": self.l_to_r, "r_to_l": self.r_to_l,
+             "energy_l_to_r": self.energy_l_to_r, "energy_r_to_l": self.energy_r_to_l,
+             "cv": self.cv, "literal": self.literal}
+        if self.fallback is not None:
+            d["fallback"] = self.fallback
+        return d
+
+
+def fallback_note(refusal: str, fallback: str = "momentum") -> str:
+    """The note of a law used instead of the paper model: the paper model's refusal (the message
+    of its :class:`ImpactModelError`, without the advice that follows it) and the law used.
+    The one-arch and the batch paths word their refusals alike, so their notes are the same."""
+    reason = " ".join(str(refusal).split()).split("; use --impact")[0]
+    return f"{reason}; {fallback} law used"
 
 
 def _m0(fl: FourLink) -> float:
@@ -166,10 +186,26 @@ def paper_rate_ratio(old: FourLink, new: FourLink) -> float:
 
 
 def impact_law(mech_l: FourLink, mech_r: FourLink, model: str = "momentum", cv: float | None = None,
-               literal: bool = False) -> ImpactLaw:
-    """Rate ratios of an arch's two mechanisms for the chosen impact model."""
+               literal: bool = False, *, fallback: str | None = None,
+               note: str | None = None) -> ImpactLaw:
+    """Rate ratios of an arch's two mechanisms for the chosen impact model.
+
+    fallback: with ``model="paper"``, the model used where the paper model cannot be used on
+    this arch (``"momentum"``: the default spec's; None refuses with ImpactModelError); the law
+    returned is then the fallback's, its ``fallback`` the reason (:func:`fallback_note`).
+    note: recorded as the law's ``fallback`` (a fixed c_v resolved on a nominal arch that fell
+    back).  Where the paper model can be used, the result does not depend on either."""
     if model not in _LAW_MODELS:
         raise ArchInputError(f"impact model: {model!r}; allowed {', '.join(_LAW_MODELS)}")
+    if fallback is not None:
+        if model != "paper" or fallback not in ("momentum",):
+            raise ArchInputError(f"fallback: {fallback!r}; allowed None, or 'momentum' with the "
+                                 f"'paper' model (got model {model!r})")
+        try:
+            return impact_law(mech_l, mech_r, model, cv, literal)
+        except ImpactModelError as exc:
+            law = impact_law(mech_l, mech_r, fallback)
+            return dataclasses.replace(law, fallback=fallback_note(exc, fallback))
     m_l, m_r = _m0(mech_l), _m0(mech_r)
     if model == "fixed":
         if cv is None or not math.isfinite(float(cv)) or not 0.0 < float(cv) <= 1.0:
@@ -199,4 +235,4 @@ def impact_law(mech_l: FourLink, mech_r: FourLink, model: str = "momentum", cv: 
         warnings.warn(f"impact law {model!r} gains kinetic energy at impact "
                       f"(ratios l_to_r {e_lr:.4f}, r_to_l {e_rl:.4f})", EnergyGainWarning, stacklevel=2)
     return ImpactLaw(model, float(c_lr), float(c_rl), float(e_lr), float(e_rl),
-                     cv if model == "fixed" else None, bool(literal and model == "fixed"))
+                     cv if model == "fixed" else None, bool(literal and model == "fixed"), note)

@@ -12,14 +12,27 @@ An :class:`ImpactSpec` says
 * ``on``: ``"arch"`` evaluates the model on every arch analysed; ``"nominal"`` evaluates it once
   on the study's nominal arch and applies the resulting c_v to every arch as a fixed coefficient
   (the paper's practice, section 5.1: "as a first approximation").  When one arch is analysed
-  alone it is its own nominal arch, so ``"nominal"`` then means the model on that arch.
+  alone it is its own nominal arch, so ``"nominal"`` then means the model on that arch;
+* ``fallback``: with the ``"paper"`` model only, ``"momentum"`` or None: on an arch where the
+  paper's equations cannot be used (they would create energy, give a negative rate ratio or are
+  singular) the momentum law is used for that arch instead of refusing it, and the law says so
+  (``ImpactLaw.fallback``; a spec resolved on such a nominal arch carries it as ``note``);
+* ``note``: why a resolved fixed c_v is what it is (set by :meth:`ImpactSpec.resolved` when the
+  nominal arch fell back; None otherwise).
 
-:data:`PAPER_PRACTICE` (the paper model on the nominal arch) is the default of every command and
-study; ``prepare(arch)`` alone uses the paper model on ``arch``, which is the same thing.
+:data:`PAPER_PRACTICE` (the paper model on the nominal arch, falling back to the momentum law
+where the paper model cannot be used on it) is the default of every command and study;
+``prepare(arch)`` alone uses it on ``arch``, which is the same thing.  A spec written out
+(``"paper"``, ``ImpactSpec("paper", on="nominal")``, ``--impact paper``) has no fallback: it
+refuses such an arch with :class:`~archrock.errors.ImpactModelError`.  In a dict
+(:meth:`ImpactSpec.to_dict`) ``fallback`` is written only where it differs from the implied
+value (``"momentum"`` for the paper model on the nominal arch, the default's form; None
+otherwise), so the dicts of 0.4's specs, and of manifests written by it, read as before.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import warnings
@@ -27,11 +40,14 @@ from dataclasses import dataclass
 
 from ..errors import ArchInputError
 
-__all__ = ["ImpactSpec", "PAPER_PRACTICE", "IMPACT_MODELS", "nominal_cv"]
+__all__ = ["ImpactSpec", "PAPER_PRACTICE", "IMPACT_MODELS", "FALLBACK_MODELS", "nominal_cv"]
 
 #: The impact models an ImpactSpec can name.
 IMPACT_MODELS = ("paper", "momentum", "fixed", "least-loss")
 _ON = ("arch", "nominal")
+#: What the paper model may fall back to where it cannot be used (ImpactSpec.fallback).
+FALLBACK_MODELS = ("momentum",)
+_FIELDS = ("model", "cv", "literal", "on", "fallback", "note")
 #: Old spellings still accepted by :meth:`ImpactSpec.parse` (scripts of archrock 0.1.0).
 _ALIASES = {"nominal-paper": ("paper", "nominal")}
 
@@ -44,6 +60,8 @@ class ImpactSpec:
     cv: float | None = None
     literal: bool = False
     on: str = "arch"
+    fallback: str | None = None
+    note: str | None = None
 
     def __post_init__(self):
         if self.model not in IMPACT_MODELS:
@@ -70,6 +88,14 @@ class ImpactSpec:
             raise ArchInputError("literal: applies to a fixed c_v (model 'fixed', or a model "
                                  "evaluated on the nominal arch); not to a per-arch "
                                  f"{self.model!r} law")
+        if self.fallback is not None and (self.model != "paper"
+                                          or self.fallback not in FALLBACK_MODELS):
+            raise ArchInputError(f"fallback: {self.fallback!r}; allowed None, or "
+                                 f"{', '.join(map(repr, FALLBACK_MODELS))} with the 'paper' model "
+                                 f"(got model {self.model!r})")
+        if self.note is not None and not (isinstance(self.note, str) and self.model == "fixed"):
+            raise ArchInputError(f"note: {self.note!r}; allowed None, or a text with the 'fixed' "
+                                 f"model (why a resolved c_v is what it is)")
 
     # ------------------------------------------------------------------ constructors
     @classmethod
@@ -108,7 +134,7 @@ class ImpactSpec:
         if cv is not None or literal:
             if cv is not None:
                 raise ArchInputError("cv: give it in the impact specification, not beside it")
-            spec = cls(spec.model, spec.cv, True, spec.on)
+            spec = dataclasses.replace(spec, literal=True)
         return spec
 
     # ------------------------------------------------------------------ use
@@ -117,54 +143,82 @@ class ImpactSpec:
         fixed c_v of this model on that arch (:func:`nominal_cv`); otherwise itself."""
         if self.on != "nominal" or nominal is None:
             return self
-        return ImpactSpec("fixed", cv=nominal_cv(nominal, self.model), literal=self.literal)
+        cv, note = _nominal(nominal, self.model, self.fallback)
+        if note is not None:
+            note = f"on the nominal arch, {note} (c_v = {cv:.6g})"
+        return ImpactSpec("fixed", cv=cv, literal=self.literal, note=note)
 
     def describe(self) -> str:
         """One line for reports."""
         if self.model == "fixed":
             return (f"fixed c_v = {self.cv:.4f}"
-                    + (" on the rates (literal)" if self.literal else " (energy x c_v^2)"))
+                    + (" on the rates (literal)" if self.literal else " (energy x c_v^2)")
+                    + (f"; {self.note}" if self.note else ""))
         where = "evaluated on the nominal arch, applied to every arch" if self.on == "nominal" \
             else "on each arch"
-        return f"{self.model} model {where}" + (" (literal)" if self.literal else "")
+        return (f"{self.model} model {where}" + (" (literal)" if self.literal else "")
+                + (f" ({self.fallback} law where the paper model cannot be used)"
+                   if self.fallback else ""))
 
     def to_dict(self) -> dict:
-        return {"model": self.model, "cv": self.cv, "literal": self.literal, "on": self.on}
+        """JSON-ready dict; ``fallback`` only where it differs from the implied value, ``note``
+        only when set (module docstring), so the dicts of 0.4's specs are unchanged."""
+        d = {"model": self.model, "cv": self.cv, "literal": self.literal, "on": self.on}
+        if self.fallback != _implied_fallback(self.model, self.on):
+            d["fallback"] = self.fallback
+        if self.note is not None:
+            d["note"] = self.note
+        return d
 
     @classmethod
     def from_dict(cls, data) -> "ImpactSpec":
         if not isinstance(data, dict):
             raise ArchInputError(f"impact: {data!r}; allowed an object with model, cv, literal, on")
-        unknown = set(data) - {"model", "cv", "literal", "on"}
+        unknown = set(data) - set(_FIELDS)
         if unknown:
-            raise ArchInputError(f"impact: unknown field(s) {sorted(unknown)}; allowed model, cv, "
-                                 f"literal, on")
-        return cls(data.get("model", "paper"), data.get("cv"), data.get("literal", False),
-                   data.get("on", "arch"))
+            raise ArchInputError(f"impact: unknown field(s) {sorted(unknown)}; allowed "
+                                 f"{', '.join(_FIELDS)}")
+        model, on = data.get("model", "paper"), data.get("on", "arch")
+        return cls(model, data.get("cv"), data.get("literal", False), on,
+                   data.get("fallback", _implied_fallback(model, on)), data.get("note"))
 
 
-#: The paper's practice and archrock's default: the paper model on the nominal arch.
-PAPER_PRACTICE = ImpactSpec("paper", on="nominal")
+def _implied_fallback(model, on) -> str | None:
+    """The fallback a dict without one means: the default's (the paper model on the nominal
+    arch falls back to momentum), None for every other spec."""
+    return "momentum" if (model, on) == ("paper", "nominal") else None
 
 
-def nominal_cv(nominal, model: str = "paper") -> float:
+#: The paper's practice and archrock's default: the paper model on the nominal arch, the
+#: momentum law where the paper model cannot be used on it (it would create energy).
+PAPER_PRACTICE = ImpactSpec("paper", on="nominal", fallback="momentum")
+
+
+def nominal_cv(nominal, model: str = "paper", fallback: str | None = None) -> float:
     """The c_v of ``model`` on the arch ``nominal`` (0.8754 for Oppenheim's arch with the paper
     model): the rate ratio on a symmetric arch; for an asymmetric one the c_v with the same mean
     kinetic-energy loss as its two directions (``ImpactLaw.equivalent_cv``).  Raises
-    EnergyGainError where the paper model creates energy on it."""
+    EnergyGainError where the paper model creates energy on it, unless ``fallback`` names the
+    model to use there instead (``ImpactSpec.resolved`` says when it was used)."""
+    return _nominal(nominal, model, fallback)[0]
+
+
+def _nominal(nominal, model: str, fallback: str | None) -> tuple[float, str | None]:
+    """(c_v, fallback note or None) of ``model`` on ``nominal`` (:func:`nominal_cv`)."""
     if model not in ("paper", "momentum"):
         raise ArchInputError(f"impact model: {model!r} on the nominal arch; allowed 'paper' or "
                              f"'momentum' (a model that gives one c_v)")
-    key = (json.dumps(nominal.to_dict(), sort_keys=True), model)
+    key = (json.dumps(nominal.to_dict(), sort_keys=True), model, fallback)
     if key not in _NOMINAL_CV:
-        _NOMINAL_CV[key] = _evaluate_cv(nominal, model)
+        _NOMINAL_CV[key] = _evaluate_cv(nominal, model, fallback)
     return _NOMINAL_CV[key]
 
 
-_NOMINAL_CV: dict = {}  # (nominal geometry JSON, model) -> c_v: studies ask for it per arch
+# (nominal geometry JSON, model, fallback) -> (c_v, note): studies ask for it per arch
+_NOMINAL_CV: dict = {}
 
 
-def _evaluate_cv(arch, model: str) -> float:
+def _evaluate_cv(arch, model: str, fallback: str | None) -> tuple[float, str | None]:
     from ..limit import limit_analysis
     from ..mechanism import four_link
     from .laws import impact_law
@@ -172,5 +226,6 @@ def _evaluate_cv(arch, model: str) -> float:
     lim = limit_analysis(arch, verify=False)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        law = impact_law(four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r), model)
-    return float(law.equivalent_cv)
+        law = impact_law(four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r), model,
+                         fallback=fallback)
+    return float(law.equivalent_cv), law.fallback

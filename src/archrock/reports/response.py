@@ -19,6 +19,7 @@ def format_response(result, model, motion) -> str:
         f"ground motion: {motion.name} (duration {motion.duration:g} s, PGA {motion.pga_g:.3f} g)",
         f"impact: {law.model}; rate ratio l->r {law.l_to_r:.4f}, r->l {law.r_to_l:.4f} "
         f"(energy ratio {law.energy_l_to_r:.4f}, {law.energy_r_to_l:.4f})",
+        *([f"impact law fallback: {law.fallback}"] if law.fallback else []),
         f"outcome: {outcome}; peak rotation {result.peak:.4f} rad; {len(imp)} impacts"
         + (f" (first at {imp[0]:.3f} s)" if imp else "")
         + (f"; first passed the unstable position at {result.t_unstable:.3f} s"
