@@ -462,3 +462,26 @@ def test_cli_one_scale_without_collapse_names_scales(capsys, tmp_path):
     err = capsys.readouterr().err
     assert code == 2
     assert err.startswith("archrock: error: scales: 2: no record collapsed") and "0.6" in err
+
+
+def test_likelihood_maximisation_is_bounded_and_says_no_fit(monkeypatch):
+    """Both optimisers run with an explicit iteration bound; where neither converges the
+    answer is FitError (a study reports 'no fit'), not a RuntimeError that stops it."""
+    import archrock.fragility as fr
+
+    seen = []
+    real = fr.minimize
+
+    def stalled(fun, x0, args=(), method=None, options=None, **kw):
+        seen.append((method, options["maxiter"]))
+        res = real(fun, x0, args=args, method=method, options={**options, "maxiter": 1}, **kw)
+        res.success = False
+        if method == "BFGS":
+            res.jac = np.array([1.0, 1.0])
+        return res
+
+    monkeypatch.setattr(fr, "minimize", stalled)
+    x, n, z = synthetic_stripes(trials=50)
+    with pytest.raises(FitError, match="did not converge in 400 BFGS and 4000 Nelder-Mead"):
+        fit_stripes_mle(x, n, z)
+    assert seen == [("BFGS", 400), ("Nelder-Mead", 4000)]

@@ -182,15 +182,24 @@ def _minimise(fun, x0, args) -> np.ndarray:
 
     Working in logs keeps theta, beta > 0 without bounds.  BFGS with the analytic gradient is
     fast; Nelder-Mead from its end point is the fallback when line searches stall (flat tails).
+    Both bounded in iterations (BFGS 400, SciPy's default for two unknowns, made explicit;
+    Nelder-Mead 4000); where neither converges the data identify no fit: FitError (a study
+    reports it as "no fit", it does not stop).
     """
-    res = minimize(fun, x0, args=args, jac=True, method="BFGS", options={"gtol": 1e-9})
+    res = minimize(fun, x0, args=args, jac=True, method="BFGS",
+                   options={"gtol": 1e-9, "maxiter": _BFGS_MAXITER})
     if res.success or np.max(np.abs(res.jac)) < 1e-6:
         return res.x
     res2 = minimize(lambda p, *a: fun(p, *a)[0], res.x, args=args, method="Nelder-Mead",
-                    options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 4000})
+                    options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": _NM_MAXITER})
     if res2.success and np.all(np.isfinite(res2.x)):
         return res2.x
-    raise RuntimeError(f"fragility: the likelihood maximisation did not converge ({res.message})")
+    raise FitError(f"data: the likelihood maximisation did not converge in {_BFGS_MAXITER} BFGS "
+                   f"and {_NM_MAXITER} Nelder-Mead iterations ({res.message}); no fit")
+
+
+#: iteration bounds of :func:`_minimise`
+_BFGS_MAXITER, _NM_MAXITER = 400, 4000
 
 
 def _stripes_negll(params, lnx, n, z, scale):
