@@ -29,7 +29,8 @@ def add_curves_parser(subparsers):
     p.add_argument("--n-scan", type=_int, default=150, metavar="N",
                    help="amplitude grid points (geometric, default 150)")
     p.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
-                   help="bisection tolerance [g] (default 0.001)")
+                   help="bisection tolerance on the collapse amplitude [g], 1e-9 to 0.1 "
+                        "(default 0.001)")
     add_random_arches_options(p, "random arches for quantile bands (0 = nominal only, default)")
     p.add_argument("--engine", choices=("batch", "respond"), default="batch",
                    help="batch (default): the scans and bisection steps of every arch and "
