@@ -268,3 +268,7 @@ def test_print_css_is_a4_with_page_numbers(report):
     css = text[text.index("<style>"):text.index("</style>")]
     assert "size:A4" in css and "counter(page)" in css and "@bottom-center" in css
     assert re.search(r"h2[^{]*\{break-after:avoid", css.replace("h1,h2,h3", "h2"))
+    # every section heading printed together with its first block (no heading alone at a page
+    # bottom: Chromium does not honour break-after on its own)
+    assert ".keep{" in css.replace("figure,table,.verdict,.keep{", ".keep{")
+    assert text.count("<h2>") - text.count('<div class="keep"><h2>') == 0

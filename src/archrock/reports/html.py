@@ -175,7 +175,7 @@ h1,h2,h3{break-after:avoid;page-break-after:avoid} p,figcaption{orphans:3;widows
 @page{size:A4;margin:18mm 15mm 20mm 15mm;
 @bottom-center{content:"page " counter(page) " of " counter(pages);font-size:9pt;color:#555}}
 @media print{body{margin:0;max-width:none;font-size:10pt} h2{page-break-before:auto}
-figure,table,.verdict{break-inside:avoid;page-break-inside:avoid}
+figure,table,.verdict,.keep{break-inside:avoid;page-break-inside:avoid}
 h2+p,h2+table,h2+figure{break-before:avoid;page-break-before:avoid}
 nav{display:none}}
 """
@@ -236,9 +236,12 @@ def render_html(assessment, figures: dict | None = None, progress=None) -> str:
     for s in assessment.sections:
         if progress:
             progress(f"  drawing {s.key}")
-        body = "".join(_block_html(b, figs, s.key) for b in s.blocks)
-        parts.append(f'<section id="{html.escape(s.key)}"><h2>{html.escape(s.title)}</h2>'
-                     f"{body}</section>")
+        blocks = [_block_html(b, figs, s.key) for b in s.blocks]
+        # the heading and the section's first block in one unbreakable box: Chromium's printing
+        # does not honour break-after: avoid on its own, and left headings alone at page bottoms
+        head = (f'<div class="keep"><h2>{html.escape(s.title)}</h2>'
+                f'{blocks[0] if blocks else ""}</div>')
+        parts.append(f'<section id="{html.escape(s.key)}">{head}{"".join(blocks[1:])}</section>')
     parts.append("</body></html>")
     return "\n".join(parts)
 
