@@ -1243,9 +1243,19 @@ def static_multiplier(arch: VoussoirArch, direction: str,
 def _thrust_from_x(st: _Statics, x: np.ndarray) -> ThrustLine:
     """The line of thrust of the nondimensional redundants x (see :class:`_Statics`), in metres."""
     arch = st.arch
-    radii, pts, frac = st.crossings(x)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        radii, pts, frac = st.crossings(x)
     lam = x[3]
     forces = st.forces(x)
+    # a joint that lifts off transmits no normal force (per unit weight: rounding below 1e-9;
+    # without a bound on the shear, only a force along the joint, which needs infinite
+    # friction): its line of action does not cross the joint, so it has no crossing point,
+    # whatever 0/0 gave
+    free = np.abs(st.A_N @ x + st.b_N) < 1e-9 * np.maximum(1.0, np.hypot(*forces.T))
+    if free.any():
+        pts = np.where(free[:, None], np.nan, pts)
+        frac = np.where(free, np.nan, frac)
+        radii = None if radii is None else np.where(free, np.nan, radii)
     # funicular polygon: from each joint crossing along F_i to the load line of voussoir i
     poly = [pts[0]]
     g = arch.centroids

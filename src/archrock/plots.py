@@ -261,9 +261,14 @@ def clip_thrust_polyline(poly, arch, crossings) -> np.ndarray:
         ref = u[0] * (cen[voussoir][1] - a[1]) - u[1] * (cen[voussoir][0] - a[0])
         return (side if ref >= 0 else -side) >= -tol
 
+    # a joint that lifts off has no crossing (NaN): the line runs from the last crossing before
+    # it to the first after it
+    joints = [j for j in range(arch.n + 1) if np.all(np.isfinite(pts[j]))]
+    if len(joints) < 2:
+        return poly
     # the polyline's index of each crossing, in order (None where it does not pass through it)
     where, k = [], 0
-    for j in range(arch.n + 1):
+    for j in joints:
         d = np.hypot(*(poly[k:] - pts[j]).T)
         hit = np.flatnonzero(d <= 1e-7 * max(1.0, arch.size))
         if len(hit) == 0:
@@ -275,14 +280,14 @@ def clip_thrust_polyline(poly, arch, crossings) -> np.ndarray:
         keep = inside(poly, 0, 0) & inside(poly, arch.n, arch.n - 1)
         first = int(np.argmax(keep)) if keep.any() else 0
         last = len(poly) - int(np.argmax(keep[::-1])) if keep.any() else len(poly)
-        return np.vstack([pts[0], poly[first:last], pts[-1]])
-    out = [pts[0]]
-    for j in range(arch.n):
-        between = poly[where[j] + 1:where[j + 1]]
+        return np.vstack([pts[joints[0]], poly[first:last], pts[joints[-1]]])
+    out = [pts[joints[0]]]
+    for (ja, wa), (jb, wb) in zip(zip(joints, where), zip(joints[1:], where[1:])):
+        between = poly[wa + 1:wb]
         if len(between):
-            ok = inside(between, j, j) & inside(between, j + 1, j)
+            ok = inside(between, ja, ja) & inside(between, jb, jb - 1)
             out.extend(between[ok])
-        out.append(pts[j + 1])
+        out.append(pts[jb])
     return np.vstack(out)
 
 
@@ -316,6 +321,11 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
             label="line of thrust at collapse")
     ax.plot(pts[:, 0], pts[:, 1], ".", color=STYLE["thrust"], ms=4, zorder=4)
     draw_hinges(ax, arch, mech)
+    jp = np.asarray(arch.joint_points, float)
+    for i, j in enumerate(getattr(mech, "lift_off", ())):
+        # the joint opens at both ends: drawn as a thick dashed line across it
+        ax.plot(jp[j, :, 0], jp[j, :, 1], "--", color=STYLE["thrust"], lw=3.0, zorder=5,
+                label="joint that lifts off" if i == 0 else None)
 
     bounds = voussoir_bounds(arch)
     (xmin, ymin), (xmax, ymax) = bounds.min(axis=0), bounds.max(axis=0)
@@ -333,6 +343,8 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
 
     seq = ", ".join(f"{lab} = {h.joint}{'i' if h.edge == 'intrados' else 'e'}"
                     for lab, h in mech.labelled())
+    if getattr(mech, "lift_off", ()):
+        seq += f"; lifts off at joint {', '.join(map(str, mech.lift_off))}"
     ax.set_title(f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
                  f"hinges (joint, i = intrados / e = extrados): {seq}", fontsize=10)
     ax.set_xlabel("x [m]")
@@ -340,7 +352,9 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
     ax.legend(loc="lower center", fontsize=8, frameon=False)
     pad = 0.12 * size
     ax.set_xlim(xmin - pad, xmax + pad)
-    ax.set_ylim(min(ymin, 0.0) - 0.2 * size, ymax + pad)
+    # room below for the legend and above for the joint numbers, not the empty space down to y = 0
+    # (a flat arch)
+    ax.set_ylim(ymin - 0.45 * size, ymax + 0.2 * size)
     ax.grid(True, lw=0.3, alpha=0.4)
     return ax
 
