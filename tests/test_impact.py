@@ -36,8 +36,10 @@ def randoms():
 # ------------------------------------------------------------------------- the paper's figures
 def test_paper_model_oppenheim(opp):
     law = impact_law(*opp, "paper")
-    assert round(law.l_to_r, 4) == 0.8754
-    assert round(law.r_to_l, 4) == 0.8754
+    # the paper prints c_v = 0.8754: any value that rounds to it (the last digits of the five
+    # equations' solution follow the numpy/LAPACK build)
+    assert law.l_to_r == pytest.approx(0.8754, abs=5e-5)
+    assert law.r_to_l == pytest.approx(0.8754, abs=5e-5)
     assert law.l_to_r == pytest.approx(law.r_to_l, rel=1e-12)
     # symmetric arch: M_l(0) = M_r(0), so the energy ratio is c^2 < 1
     assert law.energy_l_to_r == pytest.approx(law.l_to_r**2, rel=1e-12)
@@ -46,8 +48,9 @@ def test_paper_model_oppenheim(opp):
 
 def test_momentum_model_oppenheim(opp):
     law = impact_law(*opp, "momentum")
-    assert round(law.l_to_r, 4) == 0.6450
-    assert round(law.r_to_l, 4) == 0.6450
+    # 0.64496 to the 4 decimals quoted beside the paper's 0.8754
+    assert law.l_to_r == pytest.approx(0.6450, abs=5e-5)
+    assert law.r_to_l == pytest.approx(0.6450, abs=5e-5)
     assert law.energy_r_to_l == pytest.approx(law.r_to_l**2, rel=1e-12)
 
 

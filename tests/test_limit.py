@@ -23,7 +23,8 @@ def _edge_radius(arch, hinge):
 def test_oppenheim_multipliers_and_hinges():
     a = oppenheim_arch()
     res = limit.limit_analysis(a)
-    assert round(res.k_l, 4) == 0.3700 and round(res.k_r, 4) == 0.3700
+    # the paper's k to its 4 printed decimals
+    assert res.k_l == pytest.approx(0.3700, abs=5e-5) and res.k_r == pytest.approx(0.3700, abs=5e-5)
     assert res.k_l == pytest.approx(0.370010, abs=5e-7)
     assert res.k_l == pytest.approx(res.k_r, abs=1e-12)
     assert res.static_k_l == pytest.approx(res.k_l, abs=1e-9)

@@ -36,7 +36,9 @@ def test_readme_python_block_runs(i, tmp_path, monkeypatch):
         shown = [float(x) for x in re.findall(r"-?\d+\.\d+(?:e-?\d+)?", got)]
         for num in re.findall(r"-?\d+\.\d+", want.split("(")[0]):
             decimals = len(num.split(".")[1])
-            assert any(round(x, decimals) == float(num) for x in shown), \
+            # the README shows `decimals` decimals: a printed value within half a unit of the
+            # last one (1e-12 more for a computed value right on a rounding boundary)
+            assert any(abs(x - float(num)) <= 0.5 * 10.0**-decimals + 1e-12 for x in shown), \
                 f"README says {want!r}, the code printed {got!r}"
             checked += 1
     assert checked >= 2

@@ -103,7 +103,8 @@ def test_polygon_impact_laws_equal_circular(opp):
     pl, pr = four_link(poly, lim.mechanism_l), four_link(poly, lim.mechanism_r)
     for model, cv in (("paper", 0.87538), ("momentum", 0.64496)):
         circ, law = impact_law(ml, mr, model), impact_law(pl, pr, model)
-        assert round(circ.l_to_r, 5) == cv
+        # the 5 decimals quoted (0.87538, 0.64496): solutions of small linear systems
+        assert circ.l_to_r == pytest.approx(cv, abs=5e-6)
         for name in ("l_to_r", "r_to_l", "energy_l_to_r", "energy_r_to_l"):
             assert getattr(law, name) == pytest.approx(getattr(circ, name), rel=1e-4)
     # the least-loss choice: the same mechanism, the same kinetic-energy ratio
