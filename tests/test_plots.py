@@ -56,6 +56,7 @@ def test_springing_level_is_the_lowest_springing_corner():
     assert springing_level(a) == pytest.approx(9.25 * np.sin(np.radians(11.25)), abs=1e-12)
 
 
+@pytest.mark.filterwarnings("ignore:Animation was deleted")  # captured, never rendered
 def test_animation_ground_at_the_springings_and_axes_in_metres(tmp_path, monkeypatch):
     from archrock import animate
     from archrock.groundmotion import oppenheim_pulse

@@ -23,11 +23,22 @@ def ramp_dict(result, limit) -> dict:
     return d
 
 
+def _range_line(opts: dict) -> list[str]:
+    """The ramp's range per direction (``lambda_start`` .. ``lambda_max``), when recorded."""
+    top, start = opts.get("lambda_max"), opts.get("lambda_start") or {}
+    if not isinstance(top, dict):
+        return []
+    return ["  ramp range |xg''|/g: " + ", ".join(
+        f"M_{d} {start.get(d, 0.0):.3g} to {top[d]:.3g}" for d in ("l", "r") if d in top)
+        + " (default max(2, 1.5 k); --ramp-max)"]
+
+
 def format_ramp(result, limit, arch) -> str:
     s = result.settings
     lines = [f"Contact engine ramp: {arch.name}, {arch.n} voussoirs, friction MU = {s.friction:g}",
              f"  engine: {s.steps_per_T:g} steps per T, {s.iterations} iterations, "
              f"slop {s.slop:g}, rounding {s.rounding:g} (x size)",
+             *_range_line(result.ramp),
              f"  {'':3} {'engine':>9} {'bracket':>19} {'limit k':>9} {'error':>8}  "
              f"{'engine hinges':<22} limit hinges"]
     for d in ("l", "r"):
