@@ -77,3 +77,69 @@ def test_cli_sensitivity(capsys):
     assert main(["sensitivity", "--samples", "100"]) == 2
     assert "power of two" in capsys.readouterr().err
     assert main(["sensitivity", "--spread-tilt", "3", "--samples", "16"]) == 2
+
+
+# ---- issue 17: zero spreads, constant outputs and the work estimate ---------------------------
+def test_zero_spreads_are_refused_with_the_fields(capsys):
+    """All spreads 0 gave nan indices and R^2 = -3.47 (rounding noise decomposed)."""
+    code = main(["sensitivity", "--spread-span", "0", "--spread-thickness", "0",
+                 "--spread-radius", "0", "--samples", "16", "--limit-only", "--no-progress"])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1
+    assert err.startswith("archrock: error: spreads: all 0 (span, thickness, radius, tilt); "
+                          "allowed at least one spread > 0 (--spread-span, --spread-thickness, "
+                          "--spread-radius or --spread-tilt)")
+    from archrock.errors import ArchInputError
+
+    with pytest.raises(ArchInputError, match="spreads: all 0"):
+        sobol_indices(oppenheim_arch(), Spreads(0.0, 0.0, 0.0), 16, motion=None)
+
+
+def test_an_output_constant_up_to_rounding_has_zero_variance_and_no_indices():
+    from archrock.groundmotion import PulseSpec
+    from archrock.sensitivity import _constant, _r2
+
+    y = np.full(64, 0.37) + np.random.default_rng(0).normal(0, 1e-17, 64)  # noise of 1 ulp
+    assert _constant(y) and np.isnan(_r2(np.zeros((64, 3)), y))
+    assert not _constant(y + np.linspace(0, 1e-6, 64))
+    # a weak pulse collapses no arch: the collapse has variance 0 and undefined indices
+    res = sobol_indices(oppenheim_arch(), Spreads(0.05, 0.05, 0.0), 16,
+                        motion=PulseSpec("oppenheim", -0.2, 0.2), seed=2)
+    o = res.outputs.index("collapse")
+    assert res.mean[o] == pytest.approx(0.0, abs=0) and res.variance[o] == pytest.approx(0.0, abs=0)
+    assert np.all(np.isnan(res.S1[o])) and np.isnan(res.r2_linear[o])
+    k = res.outputs.index("k_l")
+    assert res.variance[k] > 1e-6 and np.all(np.isfinite(res.S1[k]))
+
+
+def test_sensitivity_estimates_its_work_first(capsys, monkeypatch):
+    """--samples 1048576 ran with no estimate: the bootstrap alone would hold ~10 GB."""
+    code = main(["sensitivity", "--samples", "1048576", "--no-progress"])
+    err = capsys.readouterr().err
+    assert code == 2 and err == ("archrock: error: samples: 1048576; allowed a power of two from "
+                                 "16 to 131072 (the bootstrap of 200 resamples would hold about "
+                                 "10.1 GB)\n")
+    from archrock.sensitivity import check_sensitivity_work
+
+    # 65536 x 5 arches with the pulse: minutes, warned; beyond the bound: refused (exit 3)
+    with pytest.warns(UserWarning, match=r"sensitivity: about 3\.28e\+05 arches, estimated"):
+        est = check_sensitivity_work(oppenheim_arch(), 65536, 3, sensitivity_pulse())
+    assert 60.0 < est < 3600.0
+    monkeypatch.setenv("ARCHROCK_MAX_WORK_S", "30")
+    code = main(["sensitivity", "--samples", "65536", "--no-progress"])
+    err = capsys.readouterr().err
+    assert code == 3 and err.count("\n") == 1
+    assert err.startswith("archrock: error: sensitivity: about 3.28e+05 arches, estimated ")
+    assert "allowed up to 30 s (ARCHROCK_MAX_WORK_S); reduce --samples" in err
+    # a family arch costs more per arch (pure Python perturbation)
+    fam = family_arch("pointed", 10.0, 7.0, 1.0, 7)
+    monkeypatch.setenv("ARCHROCK_MAX_WORK_S", "1e9")
+    with pytest.warns(UserWarning):
+        assert check_sensitivity_work(fam, 4096, 3, None) > 50 * \
+            check_sensitivity_work(oppenheim_arch(), 4096, 3, None)
+
+
+def sensitivity_pulse():
+    from archrock.sensitivity import PAPER_PULSE
+
+    return PAPER_PULSE

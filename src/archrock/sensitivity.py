@@ -43,13 +43,29 @@ from .groundmotion import PulseSpec
 from .sampling import DEFAULT_SPREADS, Spreads
 
 __all__ = ["SobolResult", "sobol_indices", "input_layout", "arches_from_inputs", "GROUPINGS",
-           "PAPER_PULSE"]
+           "PAPER_PULSE", "check_sensitivity_work"]
 
 GROUPINGS = ("kind", "voussoir", "input")
 #: The paper's pulse: Oppenheim's, a = -1 g, t_p = 0.2 s.
 PAPER_PULSE = PulseSpec("oppenheim", -1.0, 0.2)
 #: arches prepared and integrated at a time (a progress line after each chunk)
 _CHUNK = 4096
+#: Work model of a study (module :mod:`archrock.work`), measured on the 2-core development
+#: machine: one random circular arch prepared (built and its limit analysis: 1280 in 0.13 s) ...
+SAMPLE_ARCH_S = 1e-4
+#: ... one random family arch (perturb_family and the polygon's analysis, pure Python: 320 in
+#: 5.4 s) ...
+SAMPLE_FAMILY_S = 2e-2
+#: ... and SALib's bootstrap: seconds per base sample x group x resample x output (1280 arches,
+#: 3 groups, 200 resamples, 4 outputs: 0.6 s).
+ANALYSE_S = 1e-6
+#: SALib's bootstrap holds about six (N, resamples) arrays of 8 bytes at once; above this many
+#: bytes the study is refused (memory, not time): 2**17 base samples with 200 resamples.
+MAX_BOOTSTRAP_BYTES = 2.0e9
+_BOOTSTRAP_ARRAYS = 6
+#: Below this relative spread (std / |mean|) an output is constant up to rounding: its indices
+#: are not defined (reported as n/a, never computed from the rounding noise).
+_CONSTANT_RTOL = 1e-12
 
 
 def _salib():
@@ -203,13 +219,51 @@ def _groups(layout, by: str):
     return [name for name, _, _, _, _ in layout]
 
 
+def _constant(y: np.ndarray) -> bool:
+    """Whether ``y`` is constant up to rounding (its variance is noise, not spread)."""
+    return float(np.std(y)) <= _CONSTANT_RTOL * max(float(np.max(np.abs(y))), 1e-300)
+
+
 def _r2(x: np.ndarray, y: np.ndarray) -> float:
     var = float(np.var(y))
-    if var == 0.0:
+    if _constant(y):
         return math.nan
     a = np.column_stack([np.ones(len(x)), x])
     coef, *_ = np.linalg.lstsq(a, y, rcond=None)
     return float(1.0 - np.var(y - a @ coef) / var)
+
+
+def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resamples: int = 200
+                           ) -> float:
+    """Estimated seconds of a Sobol study (:mod:`archrock.work`): samples x (groups + 2) random
+    arches, each prepared (and with ``motion`` integrated), then SALib's bootstrap.  Refuses a
+    study beyond the work bound (LimitExceededError) or whose bootstrap would hold more than
+    :data:`MAX_BOOTSTRAP_BYTES` (ArchInputError naming --samples); warns above a minute."""
+    import os
+
+    from .work import RECORD_RESPONSE_S_PER_S, SAMPLE_RESPONSE_S, check_work
+
+    need = _BOOTSTRAP_ARRAYS * 8.0 * samples * num_resamples
+    if need > MAX_BOOTSTRAP_BYTES:
+        top = 16
+        while _BOOTSTRAP_ARRAYS * 8.0 * (2 * top) * num_resamples <= MAX_BOOTSTRAP_BYTES:
+            top *= 2
+        raise ArchInputError(f"samples: {samples}; allowed a power of two from 16 to {top} (the "
+                             f"bootstrap of {num_resamples} resamples would hold about "
+                             f"{need / 1e9:.3g} GB)")
+    runs = samples * (groups + 2)
+    family = not isinstance(nominal, Arch)
+    each = SAMPLE_FAMILY_S if family else SAMPLE_ARCH_S
+    if motion is not None:
+        each += SAMPLE_RESPONSE_S
+        if motion.to_dict()["type"] == "record":
+            each += RECORD_RESPONSE_S_PER_S * motion.build().duration
+    outputs = 3 + (motion is not None)
+    each += ANALYSE_S * groups * num_resamples * outputs / (groups + 2)
+    cores = 1 if family else (os.cpu_count() or 1)
+    return check_work("sensitivity", runs, "arches", each,
+                      "reduce --samples (1024 give the indices to a few hundredths), or group "
+                      "by kind (--by kind)", cores, kernel=not family)
 
 
 def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAULT_SPREADS,
@@ -234,6 +288,11 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     from .response import default_steps
 
     spreads = Spreads.from_dict(spreads)
+    if not (spreads.span or spreads.thickness or spreads.radius or spreads.tilt):
+        raise ArchInputError("spreads: all 0 (span, thickness, radius, tilt); allowed at least one "
+                             "spread > 0 (--spread-span, --spread-thickness, --spread-radius or "
+                             "--spread-tilt): with none every arch is the nominal one and there "
+                             "is no variance to share out")
     layout = input_layout(nominal, spreads)
     if by not in GROUPINGS:
         raise ArchInputError(f"by: {by!r}; allowed {', '.join(GROUPINGS)}")
@@ -245,6 +304,9 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
         raise ArchInputError(f"seed: {seed!r}; allowed an integer >= 0")
     if not (isinstance(conf_level, float) and 0.0 < conf_level < 1.0):
         raise ArchInputError(f"conf_level: {conf_level!r}; allowed 0 < conf_level < 1")
+    if isinstance(num_resamples, bool) or not isinstance(num_resamples, (int, np.integer)) \
+            or num_resamples < 2:
+        raise ArchInputError(f"num_resamples: {num_resamples!r}; allowed an integer >= 2")
     if isinstance(motion, dict):
         motion = motion_spec_from_dict(motion)
     if motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):
@@ -252,6 +314,7 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     spec = ImpactSpec.parse(impact)
     groups = _groups(layout, by)
     names = list(dict.fromkeys(groups))
+    check_sensitivity_work(nominal, int(samples), len(names), motion, int(num_resamples))
     problem = {"num_vars": len(layout), "names": [lay[0] for lay in layout],
                "bounds": [[-1.0, 1.0]] * len(layout)}
     if by != "input":
@@ -304,7 +367,8 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     for o, y in enumerate(ys.values()):
         mean[o], var[o] = float(np.mean(y)), float(np.var(y))
         r2[o] = _r2(x, y)
-        if var[o] == 0.0:
+        if _constant(y):
+            var[o] = 0.0  # the rest is rounding noise
             continue  # nothing to decompose: indices undefined (NaN)
         with np.errstate(divide="ignore", invalid="ignore"):
             si = analyze.analyze(problem, y, calc_second_order=False, conf_level=conf_level,
