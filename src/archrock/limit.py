@@ -1358,23 +1358,59 @@ def _null_rates(T4):
     return rates, ok, big
 
 
-def _rows_multipliers(rows, T, X, Y, d):
+def _rows_multipliers(rows, T, X, Y, d, rates_out: bool = False):
     """Multipliers (K,) of the candidate mechanisms ``rows`` (K, 4) for direction d (+1 'l',
     -1 'r'): inf where the four rows do not close into one admissible mechanism (every rate of
-    one sign) or the horizontal loads do no work on it."""
+    one sign; a rate that is zero leaves its row inactive, so three rows that close on their
+    own, e.g. the whole arch turning about one springing while the other lifts off, count as
+    well) or the horizontal loads do no work on it.  ``rates_out``: also the rates (K, 4),
+    zero where a row is inactive."""
     T4 = T[:, rows]                       # (3, K, 4)
     rates, ok, big = _null_rates(np.moveaxis(T4, 0, -2))
-    thr = _ADMISSIBLE_TOL * np.where(ok, big, 1.0)
-    pos = np.all(rates > thr[:, None], axis=1)
-    neg = np.all(rates < -thr[:, None], axis=1)
+    thr = (_ADMISSIBLE_TOL * np.where(ok, big, 1.0))[:, None]
+    pos = np.all(rates > -thr, axis=1) & np.any(rates > thr, axis=1)
+    neg = np.all(rates < thr, axis=1) & np.any(rates < -thr, axis=1)
     sigma = np.where(neg, -1.0, 1.0)
-    rates = rates * sigma[:, None]
+    rates = np.where(np.abs(rates) > thr, rates * sigma[:, None], 0.0)
     adm = ok & (pos | neg)
     Xc = np.sum(rates * X[rows], axis=1) * d
     Yc = np.sum(rates * Y[rows], axis=1)
     scale = np.sum(np.abs(rates * X[rows]) + np.abs(rates * Y[rows]), axis=1)
     good = adm & (Xc > 1e-12 * np.maximum(scale, 1e-300))
-    return np.where(good, Yc / np.where(good, Xc, 1.0), np.inf)
+    lam = np.where(good, Yc / np.where(good, Xc, 1.0), np.inf)
+    return (lam, rates) if rates_out else lam
+
+
+def _set_multiplier(rows, T, X, Y, d):
+    """(multiplier, rates) of one set of at most four rows by the SVD of their closure
+    (3 x k): a mechanism where the null space is one line and its rates are of one sign (zeros
+    allowed: inactive rows); (inf, None) otherwise.  Rows whose points are collinear (two
+    springings on one bed line) make the 4-row minors of :func:`_null_rates` vanish; this
+    does not need a fourth independent row."""
+    rows = np.asarray(rows, dtype=np.int64)
+    M = T[:, rows]
+    _, sv, vt = np.linalg.svd(M, full_matrices=True)
+    rank = int(np.sum(sv > 1e-10 * max(sv[0], 1e-300)))
+    if rows.size - rank != 1:
+        return math.inf, None
+    v = vt[-1]
+    big = np.max(np.abs(v))
+    thr = _ADMISSIBLE_TOL * big
+    if np.all(v < thr):
+        v = -v
+    if not (np.all(v > -thr) and np.any(v > thr)):
+        return math.inf, None
+    v = np.where(np.abs(v) > thr, v, 0.0)
+    Xc, Yc = d * float(v @ X[rows]), float(v @ Y[rows])
+    scale = float(np.abs(v * X[rows]).sum() + np.abs(v * Y[rows]).sum())
+    if not Xc > 1e-12 * max(scale, 1e-300):
+        return math.inf, None
+    return Yc / Xc, v
+
+
+def _active(rows, rates):
+    """The rows of one candidate whose rate is not zero."""
+    return [int(r) for r, v in zip(rows, rates) if v != 0.0]
 
 
 def _mechanism_of_rows(arch: VoussoirArch, rows, direction: str, lam: float) -> Mechanism:
@@ -1409,10 +1445,10 @@ def general_mechanisms(arch: VoussoirArch, direction: str) -> Mechanism:
     for first in range(R - 3):  # blocks by first row: memory O(R^3)
         rest = np.array(list(combinations(range(first + 1, R), 3)), dtype=np.int64)
         rows = np.column_stack([np.full(len(rest), first), rest])
-        lam = _rows_multipliers(rows, T, X, Y, d)
+        lam, rates = _rows_multipliers(rows, T, X, Y, d, rates_out=True)
         k = int(np.argmin(lam))
         if lam[k] < best:
-            best, best_rows = float(lam[k]), rows[k]
+            best, best_rows = float(lam[k]), _active(rows[k], rates[k])
     if best_rows is None:
         raise NoMechanismError(f"arch: no mechanism opens under horizontal forces toward "
                                f"{'+x' if d > 0 else '-x'}")
@@ -1427,12 +1463,12 @@ def mechanism_multiplier(arch: VoussoirArch, mechanism: Mechanism) -> float:
     n1 = arch.n + 1
     rows = [EDGES.index(h.edge) * n1 + h.joint for h in mechanism.hinges]
     rows += [j for j in mechanism.lift_off] + [n1 + j for j in mechanism.lift_off]
-    if len(rows) != 4:
+    if len(rows) not in (3, 4):
         return math.nan
     w, g, P = _kinematic_frame(arch)
     T, _, X, Y = _row_terms(w, g, P)
     d = 1.0 if mechanism.direction == "l" else -1.0
-    lam = _rows_multipliers(np.array([sorted(rows)]), T, X, Y, d)[0]
+    lam, _ = _set_multiplier(sorted(rows), T, X, Y, d)
     return float(lam) if np.isfinite(lam) else math.nan
 
 
@@ -1457,6 +1493,11 @@ def _lp_mechanism(arch: VoussoirArch, direction: str):
     w, g, P = _kinematic_frame(arch)
     T, _, X, Y = _row_terms(w, g, P)
     d = st.d
+    if support.size <= 4:
+        lam1, rates1 = _set_multiplier(support, T, X, Y, d)
+        if abs(lam1 - lam_s) <= _DUAL_CONFIRM * max(1.0, abs(lam_s)):
+            return lam_s, thrust, _mechanism_of_rows(arch, _active(support, rates1), direction,
+                                                     float(lam1))
     if support.size == 4:
         pool = support[None]
     elif support.size < 4:
@@ -1470,11 +1511,14 @@ def _lp_mechanism(arch: VoussoirArch, direction: str):
         pool = np.array(list(combinations(support.tolist(), 4)), dtype=np.int64)
     else:
         return lam_s, thrust, None
-    lam = _rows_multipliers(pool, T, X, Y, d) if len(pool) else np.array([np.inf])
+    if not len(pool):
+        return lam_s, thrust, None
+    lam, rates = _rows_multipliers(pool, T, X, Y, d, rates_out=True)
     k = int(np.argmin(lam))
     if not np.isfinite(lam[k]) or abs(lam[k] - lam_s) > _DUAL_CONFIRM * max(1.0, abs(lam_s)):
         return lam_s, thrust, None
-    return lam_s, thrust, _mechanism_of_rows(arch, pool[k], direction, float(lam[k]))
+    return lam_s, thrust, _mechanism_of_rows(arch, _active(pool[k], rates[k]), direction,
+                                             float(lam[k]))
 
 
 def _hinge_rows(cw, cwx, cwy, px, py, d):
