@@ -36,8 +36,9 @@ from .errors import ArchInputError, ArchrockError
 from .impact import ImpactSpec, fallback_note
 from .geometry import Arch, power_of_two_near, sector_properties
 from .groundmotion import G, GroundMotion
-from .limit import (_mechanism_from_candidate, candidate_hinges, kinematic_multipliers_arches,
-                    kinematic_multipliers_batch)
+from .limit import (LIFT_OFF_REASON, _batch_sums, _mechanism_from_candidate, arch_sums,
+                    candidate_hinges, certify_candidates, kinematic_multipliers_arches,
+                    kinematic_multipliers_batch, static_multiplier)
 from .mechanism import (GEO_ERRORS, GEO_SIZE, check_table_intervals, coefficients, dead_point,
                         init_table, mechanism_geo, rest_rate, rotation_limit, table_range,
                         table_size, unstable_rotation)
@@ -284,6 +285,9 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
         B, ok, lambda: kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok],
                                                    parallel=parallel))
     _limit_errors(k_l, k_r, ok, error)
+    _lift_off_errors(n, lambda rows: _batch_sums(spans[rows], radii[rows], thick[rows])[:5],
+                     lambda b: Arch(spans[b], radii[b], thick[b], density), k_l, k_r, cand_l,
+                     cand_r, error)
     ok = error == ""
     t1 = time.perf_counter()
     # geometry of the voussoirs (invalid rows replaced by a harmless copy of a valid one)
@@ -337,6 +341,30 @@ def _limit_errors(k_l, k_r, ok, error):
         error[b] = f"limit analysis: the arch cannot stand (k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})"
 
 
+def _lift_off_errors(n: int, sums_of, arch_of, k_l, k_r, cand_l, cand_r, error) -> None:
+    """Rows whose best four-hinge mechanism does not govern (the line of thrust through its
+    hinges leaves the arch: a mechanism with lift-off has a smaller multiplier) get
+    :data:`~archrock.limit.LIFT_OFF_REASON` (the four-link model is not integrated for them)
+    and, in k_l / k_r, the Heyman multiplier of that direction (the static LP's optimum, one
+    linear program per such row and direction).  ``sums_of(rows)``: the
+    :func:`~archrock.limit.arch_sums` of those rows, stacked; ``arch_of(b)``: row b's arch."""
+    rows = np.flatnonzero(error == "")
+    if rows.size == 0:
+        return
+    gov_l, gov_r = certify_candidates(sums_of(rows), n, cand_l[rows], cand_r[rows])
+    for b, gl, gr in zip(rows, gov_l, gov_r):
+        if gl and gr:
+            continue
+        error[b] = LIFT_OFF_REASON
+        arch = arch_of(b)
+        for d, governs, k in (("l", gl, k_l), ("r", gr, k_r)):
+            if not governs:
+                try:
+                    k[b] = static_multiplier(arch, d)[0]
+                except ArchrockError:  # the error row says why; the k is then not known
+                    k[b] = np.nan
+
+
 def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedBatch:
     """prepare_batch of a sequence of arches of any shape (see there)."""
     from .geometry import VoussoirArch
@@ -360,6 +388,9 @@ def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedB
     k_l, k_r, cand_l, cand_r = _multipliers(
         B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good], parallel=parallel))
     _limit_errors(k_l, k_r, ok, error)
+    _lift_off_errors(n, lambda rows: tuple(np.concatenate(parts) for parts in zip(
+        *(arch_sums(items[b]) for b in rows))), lambda b: items[b], k_l, k_r, cand_l, cand_r,
+        error)
     ok = error == ""
     t1 = time.perf_counter()
     safe = np.flatnonzero(ok)[0] if ok.any() else None

@@ -37,7 +37,7 @@ from .errors import ArchInputError, LimitExceededError
 from .geometry import VoussoirArch
 from .groundmotion import G, GroundMotion
 from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
-from .limit import LimitResult, limit_analysis
+from .limit import LimitResult, limit_analysis, require_four_hinge
 from .mechanism import FourLink, exact_acceleration, four_link, rest_rate
 
 __all__ = ["DynamicModel", "Event", "Response", "prepare", "respond", "default_steps",
@@ -167,6 +167,7 @@ def prepare(arch: VoussoirArch, impact=None, *, cv: float | None = None,
             nominal = arch  # a c_v to apply literally: the arch alone is its own nominal arch
         spec = spec.resolved(nominal)
     lim = limit_analysis(arch, verify=False) if limit is None else limit
+    require_four_hinge(lim)
     m_l, m_r = four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
     if spec is not None and spec.model == "least-loss":
         return _prepare_least_loss(arch, lim, m_l, m_r, limit_factor)
