@@ -243,3 +243,67 @@ GOOD = {"span_deg": 30.0, "radius": 10.0, "thickness": 1.0}
 def test_malformed_dict_raises_naming_the_field(data, field):
     with pytest.raises(ArchInputError, match=field):
         Arch.from_dict(data)
+
+
+# ---- issue 17: polygon files whose order, sides or loads cannot be meant ----------------------
+def _polygon_dict():
+    from archrock.geometry import as_polygon
+
+    return as_polygon(oppenheim_arch(), 6).to_dict()
+
+
+def _from(d):
+    from archrock.geometry import PolygonArch
+
+    return PolygonArch.from_dict(d)
+
+
+def test_voussoirs_listed_right_to_left_are_named():
+    """Both ways of listing from the right (the list reversed; the list and each line reversed)
+    ended in "cannot stand ... increase the thickness"."""
+    d = _polygon_dict()
+    assert _from(d).n == 7
+    back = {**d, "voussoirs": d["voussoirs"][::-1]}
+    with pytest.raises(ArchInputError, match=r"^voussoirs: listed from right to left \(voussoir 0 "
+                       r"at x = 8\.315 m, voussoir 6 at x = -8\.315 m\); allowed the list from "
+                       r"the left springing, each intrados and extrados from left to right$"):
+        _from(back)
+    mirrored = {**d, "voussoirs": [{"intrados": v["intrados"][::-1], "extrados": v["extrados"][::-1]}
+                                   for v in d["voussoirs"][::-1]]}
+    with pytest.raises(ArchInputError, match=r"^voussoirs: listed from right to left \(voussoir 0 "
+                       r"at x = 9\.808 m, voussoir 6 at x = -9\.808 m\)"):
+        _from(mirrored)
+
+
+@pytest.mark.parametrize("which", [[3], list(range(7))])
+def test_swapped_intrados_and_extrados_are_named(which):
+    d = _polygon_dict()
+    vs = [dict(v) for v in d["voussoirs"]]
+    for i in which:
+        vs[i] = {"intrados": vs[i]["extrados"], "extrados": vs[i]["intrados"]}
+    with pytest.raises(ArchInputError, match=rf"^voussoirs\[{which[0]}\]: intrados and extrados "
+                       r"swapped \(its 'intrados' lies on the outer side of the ring\)"):
+        _from({**d, "voussoirs": vs})
+
+
+@pytest.mark.parametrize("at, where, gap", [((140.0, 9.0), "beside", 129.5),
+                                            ((30.0, 9.0), "beside", 19.46),
+                                            ((0.0, -30.0), "below", 31.8),
+                                            ((0.0, 200.0), "above", 189.3)])
+def test_loads_far_from_the_arch_are_refused(at, where, gap):
+    d = _polygon_dict()
+    d["loads"] = [{"voussoir": 3, "mass": 8000.0, "at": list(at)}]
+    with pytest.raises(ArchInputError, match=rf"^loads\[0\]\.at: \({at[0]:g}, {at[1]:g}\) m is "
+                       rf"{gap:g} m {where} the arch \(x -10\.54\.\.10\.54 m, y 1\.805\.\.10\.74 m, "
+                       rf"extent 21\.09 m\); allowed within"):
+        _from(d)
+    # near the arch, or above it like a pier or a deep fill: accepted
+    for ok in ((0.0, 11.0), (12.0, 9.0), (0.0, 60.0)):
+        d["loads"] = [{"voussoir": 3, "mass": 8000.0, "at": list(ok)}]
+        assert _from(d).loads[0].at == pytest.approx(ok)
+    # the circular Arch checks its loads the same way (its frame: the centre at the origin)
+    from archrock.geometry import Load
+
+    a = oppenheim_arch()
+    with pytest.raises(ArchInputError, match=r"^loads\[0\]\.at: \(140, 9\) m is .* beside the arch"):
+        Arch(a.spans, a.radii, a.thicknesses, a.density, "far", (Load(3, 8000.0, (140.0, 9.0)),))

@@ -139,6 +139,38 @@ def _loads(loads, n: int) -> tuple:
     return tuple(out)
 
 
+#: How far a load's point may lie outside the arch's bounding box, in units of the arch's extent
+#: (the box's larger side): beside or below it by LOAD_REACH (a load acts on its voussoir, so its
+#: point lies over or near it), above it by LOAD_REACH_ABOVE (a deep fill over a culvert, a pier
+#: or a tower on the extrados).  A point tens of metres beside the arch is a slip (another frame,
+#: other units), and it left the arch "unable to stand" with no word of why.
+LOAD_REACH = 0.5
+LOAD_REACH_ABOVE = 5.0
+
+
+def _check_load_reach(loads, outlines) -> None:
+    """Refuse a load whose point lies outside the arch's bounding box (``outlines``: the
+    voussoirs' boundary polygons) by more than LOAD_REACH x the extent beside or below it, or
+    LOAD_REACH_ABOVE x the extent above it."""
+    if not loads:
+        return
+    pts = np.vstack(outlines)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    extent = float(np.max(hi - lo))
+    for i, ld in enumerate(loads):
+        x, y = (float(v) for v in ld.at)
+        gaps = (("beside", max(lo[0] - x, x - hi[0]), LOAD_REACH),
+                ("below", lo[1] - y, LOAD_REACH), ("above", y - hi[1], LOAD_REACH_ABOVE))
+        for where, gap, reach in gaps:
+            if gap > reach * extent:
+                raise ArchInputError(
+                    f"loads[{i}].at: ({x:.4g}, {y:.4g}) m is {gap:.4g} m {where} the arch (x "
+                    f"{lo[0]:.4g}..{hi[0]:.4g} m, y {lo[1]:.4g}..{hi[1]:.4g} m, extent "
+                    f"{extent:.4g} m); allowed within {reach * extent:.4g} m {where} it (the "
+                    f"point where the load acts on its voussoir, in metres, in the geometry's "
+                    f"frame)")
+
+
 class VoussoirArch(ABC):
     """The interface of every arch (module docstring).  Subclasses are frozen dataclasses with
     ``density``, ``name`` and ``loads`` fields and provide the masonry's geometry."""

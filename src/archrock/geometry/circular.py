@@ -17,7 +17,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import DEFAULT_DENSITY, Load, VoussoirArch, _check_scalar, _finite_array, _loads
+from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_load_reach, _check_scalar,
+                   _finite_array, _loads)
 
 __all__ = [
     "Arch",
@@ -114,6 +115,7 @@ class Arch(VoussoirArch):
             raise ArchInputError(
                 f"joint {j}: the neighbouring voussoirs do not overlap radially "
                 f"(contact from {inner[j]:g} m to {outer[j]:g} m); allowed: overlapping radial extents")
+        _check_load_reach(self.loads, [self.outline(i) for i in range(n)])
 
     # ------------------------------------------------------------------ basic sizes
     @property

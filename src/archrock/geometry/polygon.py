@@ -18,7 +18,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import DEFAULT_DENSITY, Load, VoussoirArch, _check_scalar, _loads, polygon_properties
+from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_load_reach, _check_scalar, _loads,
+                   polygon_properties)
 
 __all__ = ["PolygonArch", "FACE_TOLERANCE", "as_polygon"]
 
@@ -42,6 +43,13 @@ def _polyline(name: str, values) -> np.ndarray:
         raise ArchInputError(f"{name}: two consecutive points coincide; allowed distinct points")
     arr.setflags(write=False)
     return arr
+
+
+def _signed_area(poly: np.ndarray) -> float:
+    """Signed area of a closed polygon (> 0 counter-clockwise), shifted to its first vertex."""
+    p = np.asarray(poly, float) - poly[0]
+    q = np.roll(p, -1, axis=0)
+    return 0.5 * float(np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]))
 
 
 def _simple(poly: np.ndarray) -> bool:
@@ -97,6 +105,7 @@ class PolygonArch(VoussoirArch):
         object.__setattr__(self, "density", _check_scalar("density", self.density, 0.0, None,
                                                           allowed="> 0 kg/m^3"))
         object.__setattr__(self, "loads", _loads(self.loads, n))
+        self._check_order()
         for i in range(n):
             poly = self.outline(i)
             if not _simple(poly):
@@ -104,7 +113,34 @@ class PolygonArch(VoussoirArch):
                                      f"simple polygon (intrados and extrados left to right)")
             if self.areas[i] <= 1e-12 * self.size ** 2:
                 raise ArchInputError(f"voussoirs[{i}]: zero area; allowed a region of positive area")
+            if _signed_area(poly) < 0:
+                # walking the intrados from the left springing to the right one, the masonry
+                # lies on the left: the boundary (intrados forward, extrados back) turns
+                # counter-clockwise.  Clockwise: the extrados was given as the intrados.
+                raise ArchInputError(
+                    f"voussoirs[{i}]: intrados and extrados swapped (its 'intrados' lies on the "
+                    f"outer side of the ring); allowed the intrados on the inner side, both "
+                    f"left to right")
         self.joint_points  # checks the faces of neighbours
+        _check_load_reach(self.loads, [self.outline(i) for i in range(n)])
+
+    def _check_order(self) -> None:
+        """Voussoirs listed from right to left (the list, or the list and each line, reversed):
+        the first voussoir's springing lies right of the last one's, or each voussoir's right
+        end meets the next one's left end."""
+        n = self.n
+        first = 0.5 * (self.intrados[0][0] + self.extrados[0][0])
+        last = 0.5 * (self.intrados[-1][-1] + self.extrados[-1][-1])
+        size = 0.5 * float(np.max(np.ptp(np.vstack(self.intrados + self.extrados), axis=0)))
+        # the list reversed, each line left to right: voussoir j's right end at j-1's left end
+        gaps_fwd = [np.hypot(*(self.intrados[j][0] - self.intrados[j - 1][-1])) for j in range(1, n)]
+        gaps_rev = [np.hypot(*(self.intrados[j][-1] - self.intrados[j - 1][0])) for j in range(1, n)]
+        listed_back = max(gaps_rev) < 1e-3 * size < min(gaps_fwd)
+        if listed_back or last[0] - first[0] < -1e-9 * size:
+            raise ArchInputError(
+                f"voussoirs: listed from right to left (voussoir 0 at x = {first[0]:.4g} m, "
+                f"voussoir {n - 1} at x = {last[0]:.4g} m); allowed the list from the left "
+                f"springing, each intrados and extrados from left to right")
 
     # ------------------------------------------------------------------ shape
     @property
