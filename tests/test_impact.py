@@ -392,3 +392,23 @@ def test_fallback_leaves_usable_arches_alone(opp):
     assert default.l_to_r == pytest.approx(0.8753811790524912, rel=1e-12)
     assert PAPER_PRACTICE.resolved(geometry.oppenheim_arch()).note is None
     assert nominal_cv(geometry.oppenheim_arch(), "momentum") == pytest.approx(0.64496, abs=5e-6)
+
+
+def test_fixed_cv_zero_is_a_law_that_stops_the_arch():
+    """The momentum law keeps nothing on some arches (R = 10 m, 90 deg, t = 1.5 m: M_l and M_r
+    are orthogonal in the mass metric), so the default's nominal c_v there is 0: a fixed c_v
+    of 0 is a law (the first impact stops the arch), not an input error; below 0 or above 1 is."""
+    from archrock.geometry import nominal_arch
+    from archrock.impact import PAPER_PRACTICE, ImpactSpec
+    from archrock.response import prepare, respond
+    from archrock.groundmotion import oppenheim_pulse
+
+    flat = nominal_arch(10.0, 90.0, 1.5, 7)
+    assert prepare(flat, "momentum").impact.l_to_r == pytest.approx(0.0, abs=1e-12)
+    spec = PAPER_PRACTICE.resolved(flat)
+    assert spec.model == "fixed" and spec.cv == pytest.approx(0.0, abs=1e-12)
+    res = respond(geometry.oppenheim_arch(), oppenheim_pulse(-1.0, 0.2), impact=ImpactSpec.fixed(0.0))
+    assert res.status == "rest" and len(res.impacts) == 1
+    for bad in (-0.1, 1.1):
+        with pytest.raises(ArchInputError, match=r"cv: .*allowed 0 <= cv <= 1"):
+            ImpactSpec.fixed(bad)

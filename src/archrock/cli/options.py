@@ -253,7 +253,7 @@ def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPars
                    help="evaluate --impact on each arch (default when --impact is given) or once "
                         "on the nominal arch, its c_v then fixed on every arch")
     g.add_argument("--cv", type=finite_float, default=None, metavar="CV",
-                   help="fixed coefficient of restitution, 0 < cv <= 1 (kinetic energy x cv^2)")
+                   help="fixed coefficient of restitution, 0 <= cv <= 1 (kinetic energy x cv^2; 0 stops the arch at the first impact)")
     g.add_argument("--literal-cv", action="store_true",
                    help="apply the fixed c_v (--cv, or the nominal arch's) to the rates "
                         "literally (may gain energy on irregular arches)")

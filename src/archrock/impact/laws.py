@@ -208,8 +208,8 @@ def impact_law(mech_l: FourLink, mech_r: FourLink, model: str = "momentum", cv: 
             return dataclasses.replace(law, fallback=fallback_note(exc, fallback))
     m_l, m_r = _m0(mech_l), _m0(mech_r)
     if model == "fixed":
-        if cv is None or not math.isfinite(float(cv)) or not 0.0 < float(cv) <= 1.0:
-            raise ArchInputError(f"cv: {cv!r}; allowed 0 < cv <= 1")
+        if cv is None or not math.isfinite(float(cv)) or not 0.0 <= float(cv) <= 1.0:
+            raise ArchInputError(f"cv: {cv!r}; allowed 0 <= cv <= 1 (0: every impact stops the arch)")
         cv = float(cv)
         if literal:
             c_lr = c_rl = cv

@@ -6,7 +6,7 @@ An :class:`ImpactSpec` says
   projection), ``"fixed"`` (a given coefficient of restitution ``cv``) or ``"least-loss"``
   (momentum law, each impact opening the mechanism that keeps the most energy; Bisegna et al.
   2023);
-* ``cv``: the coefficient of restitution of the fixed model, 0 < cv <= 1;
+* ``cv``: the coefficient of restitution of the fixed model, 0 <= cv <= 1;
 * ``literal``: a fixed c_v multiplies the rates (the paper's wording) instead of the kinetic
   energy by cv^2 (energy-consistent, the default);
 * ``on``: ``"arch"`` evaluates the model on every arch analysed; ``"nominal"`` evaluates it once
@@ -73,8 +73,8 @@ class ImpactSpec:
         if self.model == "fixed":
             cv = self.cv
             if isinstance(cv, bool) or not isinstance(cv, (int, float)) or not (
-                    math.isfinite(cv) and 0.0 < cv <= 1.0):
-                raise ArchInputError(f"cv: {cv!r}; allowed 0 < cv <= 1")
+                    math.isfinite(cv) and 0.0 <= cv <= 1.0):
+                raise ArchInputError(f"cv: {cv!r}; allowed 0 <= cv <= 1 (0: every impact stops the arch)")
             object.__setattr__(self, "cv", float(cv))
             object.__setattr__(self, "on", "arch")  # a given c_v is the same on every arch
         elif self.cv is not None:
