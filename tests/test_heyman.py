@@ -220,3 +220,23 @@ def test_property_sweep_sample(case):
 @given(_family(max_n=200))
 def test_property_sweep(case):
     _sweep_case(case, seconds=60.0)
+
+
+def test_minimum_thickness_search_is_bounded():
+    """The worst case: the tightest tolerance allowed ends in fewer than 100 LPs, and a
+    tolerance that could never be met is refused by name."""
+    from archrock.errors import ArchInputError
+
+    calls = []
+
+    def stands(a):
+        calls.append(1)
+        return limit._stands(a)
+
+    mt = limit.thickness_bisection(nominal_arch(10.0, 180.0, 1.5, 8), stands, tol=1e-15)
+    assert len(calls) < 100 and mt.iterations < 70
+    # a semicircle of 8 voussoirs stands down to t/R = 0.10086 (docs/verification.md)
+    assert mt.ratio == pytest.approx(0.10086, abs=1e-5)
+    for bad in (0.0, 1e-300, 0.5, float("nan")):
+        with pytest.raises(ArchInputError, match="tol"):
+            limit.minimum_thickness(oppenheim_arch(), tol=bad)

@@ -1670,6 +1670,8 @@ def limit_analysis(arch: VoussoirArch, verify: bool = True, method: str = "auto"
 # ---------------------------------------------------------------------------- minimum thickness
 # Largest thickness factor tried on an arch family (circular arches stop at t = 2 R).
 _MAX_THICKNESS_FACTOR = 64.0
+# Bound on the minimum-thickness bisection's steps (tol >= 1e-15 needs fewer than 70).
+_MAX_BISECTIONS = 100
 
 
 @dataclass(frozen=True)
@@ -1742,8 +1744,15 @@ def thickness_bisection(arch: VoussoirArch, stands, tol: float = 1e-7,
             return None
         return stands(a)
 
+    try:
+        tol = float(tol)
+    except (TypeError, ValueError):
+        tol = math.nan
+    if not 1e-15 <= tol < 0.5:
+        raise ArchInputError(f"tol: {tol!r}; allowed 1e-15 <= tol < 0.5 (relative width of the "
+                             f"thickness bracket)")
     lo, hi = 1e-6, min(1.0, max_factor)
-    while True:
+    while True:  # at most log2(max_factor) + 1 doublings (max_factor <= 64 or 2R/t)
         ok = at(hi)
         if ok:
             break
@@ -1752,6 +1761,9 @@ def thickness_bisection(arch: VoussoirArch, stands, tol: float = 1e-7,
         hi = min(2 * hi, max_factor)
     it = 0
     while hi - lo > tol * hi:
+        if it >= _MAX_BISECTIONS:  # a halving narrows by 2; 1e-15 from 1e-6 takes < 70
+            raise LimitExceededError(f"minimum thickness: the bisection did not reach tol = "
+                                     f"{tol:g} in {_MAX_BISECTIONS} steps ([{lo:.17g}, {hi:.17g}])")
         mid = 0.5 * (lo + hi)
         if at(mid):
             hi = mid
