@@ -676,3 +676,21 @@ def test_codecheck_spectrum_in_cm_per_s2_is_refused_with_a_units_hint(capsys, tm
     f.write_text("0 0.3\n0.2 0.75\n0.5 0.75\n2 0.1\n")
     code, out, err = run(capsys, "codecheck", "--spectrum", str(f))
     assert code == 0 and err == ""
+
+
+def test_voussoirs_and_lengths_out_of_range_are_one_line(capsys):
+    """Issue 17: --voussoirs 1e6 ran 40 s into Python advice; huge or tiny radii leaked numpy
+    overflow warnings and a traceback."""
+    for argv, msg in (
+            (["--voussoirs", "1e6"], "voussoirs: 1000000; allowed 3 to 2000 (a limit analysis of "
+                                     "2000 voussoirs takes seconds; no masonry ring has more)"),
+            (["--radius", "1e300", "--thickness", "1e299"],
+             "radius: 1e+300 m is out of range; allowed 0.001 m to 10000 m (units? lengths are in "
+             "metres)"),
+            (["--shape", "pointed", "--span", "10", "--rise", "7", "--thickness", "1e-5"],
+             "thickness: 1e-05 m is out of range; allowed 0.001 m to 10000 m (units? lengths are "
+             "in metres)")):
+        code, out, err = run(capsys, "limit", *argv)
+        assert code == 2 and out == "" and err == f"archrock: error: {msg}\n"
+    code, _, err = run(capsys, "limit", "--voussoirs", "2.5")
+    assert code == 2 and "--voussoirs: expected an integer, got '2.5'" in err

@@ -1,6 +1,7 @@
 """Geometry: exact annular-sector properties, joints, contact surfaces, random arches, input errors."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -307,3 +308,53 @@ def test_loads_far_from_the_arch_are_refused(at, where, gap):
     a = oppenheim_arch()
     with pytest.raises(ArchInputError, match=r"^loads\[0\]\.at: \(140, 9\) m is .* beside the arch"):
         Arch(a.spans, a.radii, a.thicknesses, a.density, "far", (Load(3, 8000.0, (140.0, 9.0)),))
+
+
+# ---- issue 17: bounded voussoir counts and lengths ---------------------------------------------
+def test_voussoir_count_is_bounded_by_name():
+    """--voussoirs 1e6 ran for 40 s and ended in Python advice; now refused at once."""
+    from archrock.geometry import family_arch
+
+    assert nominal_arch(voussoirs=2000).n == 2000
+    for make in (lambda n: nominal_arch(voussoirs=n),
+                 lambda n: family_arch("pointed", 10.0, 7.0, 1.0, n)):
+        with pytest.raises(ArchInputError, match=r"^voussoirs: 1000000; allowed 3 to 2000 \("):
+            make(1_000_000)
+        with pytest.raises(ArchInputError, match=r"^voussoirs: 2001; allowed 3 to 2000"):
+            make(2001)
+    a = oppenheim_arch()
+    with pytest.raises(ArchInputError, match=r"^voussoirs: 2001; allowed 3 to 2000"):
+        Arch(np.full(2001, 1e-3), np.full(2001, 10.0), np.full(2001, 1.0))
+
+
+@pytest.mark.parametrize("kwargs, field, value", [
+    (dict(radius=1e12), "radius", "1e+12"), (dict(radius=1e300, thickness=1e299), "radius", "1e+300"),
+    (dict(radius=1e-300, thickness=1e-301), "radius", "1e-300"),
+    (dict(thickness=1e-9), "thickness", "1e-09"), (dict(radius=2e4, thickness=1.0), "radius", "20000")])
+def test_lengths_outside_a_masonry_arch_are_refused_without_numpy_warnings(kwargs, field, value):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow warning may leak before the refusal
+        with pytest.raises(ArchInputError, match=rf"^{field}: {re.escape(value)} m is out of range; allowed "
+                           r"0\.001 m to 10000 m \(units\? lengths are in metres\)$"):
+            nominal_arch(**kwargs)
+
+
+def test_family_lengths_are_bounded_and_the_bounds_themselves_build():
+    from archrock.geometry import family_arch
+    from archrock.limit import limit_analysis
+
+    with pytest.raises(ArchInputError, match=r"^span: 1e\+09 m is out of range; allowed 0\.001 m"):
+        family_arch("circular", 1e9, 1e8, 1e7, 7)
+    with pytest.raises(ArchInputError, match=r"^thickness_crown: 0\.0001 m is out of range"):
+        family_arch("pointed", 10.0, 7.0, 1.0, 7, thickness_crown=1e-4)
+    # the extremes of the range are ordinary arches: the same k (scale invariance)
+    k = limit_analysis(nominal_arch(10.0, 157.5, 1.5, 7)).k
+    assert limit_analysis(nominal_arch(1e4, 157.5, 1.5e3, 7)).k == pytest.approx(k, rel=1e-9)
+    assert limit_analysis(nominal_arch(1e-2, 157.5, 1.5e-3, 7)).k == pytest.approx(k, rel=1e-9)
+    # a constructed arch (scaled, from a file) has the wider range 1e-6..1e7 m
+    assert oppenheim_arch().scaled(1e3).radii[0] == pytest.approx(1e4)
+    with pytest.raises(ArchInputError, match=r"^radii: 1e\+08 m is out of range; allowed 1e-06 m "
+                                             r"to 1e\+07 m"):
+        oppenheim_arch().scaled(1e7)

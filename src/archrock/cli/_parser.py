@@ -100,10 +100,19 @@ def non_negative_int(text: str) -> int:
 
 
 def _int(text: str) -> int:
+    """argparse type: an integer, also written as a whole number in float notation ('1e6',
+    '2048.0'), so that the option's own range check names what is allowed."""
     try:
         return int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+        pass
+    try:
+        v = float(text)
+    except ValueError:
+        v = math.nan
+    if math.isfinite(v) and v == int(v) and abs(v) < 2.0 ** 53:
+        return int(v)
+    raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
 
 
 def json_safe(obj):

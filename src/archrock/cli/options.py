@@ -57,14 +57,14 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                          "(--shape, --span, --rise of the centreline) or --geometry FILE")
     # Defaults are None so that arch_from_args can tell given flags from defaults.
     g.add_argument("--radius", type=finite_float, metavar="R",
-                   help=f"mean radius [m], > 0 (default {d['radius']:g})")
+                   help=f"mean radius [m], 0.001 to 10000 (default {d['radius']:g})")
     g.add_argument("--embrace", type=finite_float, metavar="DEG",
                    help=f"angle of embrace [deg], 0 < embrace < 360 (default {d['embrace']:g})")
     g.add_argument("--shape", choices=SHAPES, metavar="SHAPE",
                    help=f"arch family: {', '.join(SHAPES)} (with --span and --rise; "
                         f"docs/geometry.md)")
     g.add_argument("--span", type=finite_float, metavar="S",
-                   help="span of the centreline between its springings [m], > 0")
+                   help="span of the centreline between its springings [m], 0.001 to 10000")
     g.add_argument("--rise", type=finite_float, metavar="F",
                    help="rise of the centreline's crown above its springings [m] (circular: "
                         "0 < F <= S; pointed: F > S/2; three-centred: F <= S/2)")
@@ -77,7 +77,7 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
     g.add_argument("--joints", choices=JOINTS,
                    help="with --shape: joints normal to the centreline (default) or vertical")
     g.add_argument("--voussoirs", type=_int, metavar="N",
-                   help=f"number of voussoirs, >= 3 (default {d['voussoirs']})")
+                   help=f"number of voussoirs, 3 to 2000 (default {d['voussoirs']})")
     g.add_argument("--density", type=finite_float, metavar="RHO",
                    help=f"density [kg/m^3], > 0 (default {d['density']:g}; cancels from k)")
     g.add_argument("--geometry", metavar="FILE",

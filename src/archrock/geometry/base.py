@@ -62,6 +62,45 @@ def _check_scalar(name: str, value, lo: float | None = None, hi: float | None = 
     return v
 
 
+#: Most voussoirs of an arch: a limit analysis of 2000 voussoirs takes about 2 s and a response
+#: as long; 10^6 ran for minutes and then failed.  No masonry arch has more stones in a ring.
+MAX_VOUSSOIRS = 2000
+#: Range [m] of the lengths given to describe an arch (radius, span, rise, thickness): from a
+#: millimetre (laboratory models) to 10 km; outside it the number is a units slip, and far
+#: outside it (1e-300, 1e300) the arithmetic overflows.
+MIN_LENGTH_M, MAX_LENGTH_M = 1e-3, 1e4
+#: Range [m] of the size of a constructed arch (radii and thicknesses of a circular one, the
+#: extent of a polygon one): wider than the inputs' range, so scaled and perturbed arches pass,
+#: and well inside what double precision squares and cubes without overflow.
+MIN_SIZE_M, MAX_SIZE_M = 1e-6, 1e7
+
+
+def _check_length(name: str, value, extra: str = "") -> float:
+    """A length [m] given to describe an arch, in [MIN_LENGTH_M, MAX_LENGTH_M]."""
+    v = _check_scalar(name, value, allowed=f"a length in m")
+    if not MIN_LENGTH_M <= v <= MAX_LENGTH_M:
+        raise ArchInputError(f"{name}: {v:g} m is out of range; allowed {MIN_LENGTH_M:g} m to "
+                             f"{MAX_LENGTH_M:g} m{extra} (units? lengths are in metres)")
+    return v
+
+
+def _check_voussoir_count(n: int, name: str = "voussoirs") -> int:
+    if n > MAX_VOUSSOIRS:
+        raise ArchInputError(f"{name}: {n}; allowed 3 to {MAX_VOUSSOIRS} (a limit analysis of "
+                             f"{MAX_VOUSSOIRS} voussoirs takes seconds; no masonry ring has more)")
+    return n
+
+
+def _check_size(name: str, values) -> None:
+    """Lengths of a constructed arch within [MIN_SIZE_M, MAX_SIZE_M]."""
+    v = np.abs(np.asarray(values, float))
+    bad = (v < MIN_SIZE_M) | (v > MAX_SIZE_M)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ArchInputError(f"{name}: {float(v.flat[i]):g} m is out of range; allowed "
+                             f"{MIN_SIZE_M:g} m to {MAX_SIZE_M:g} m (units? lengths are in metres)")
+
+
 def power_of_two_near(x):
     """The power of two nearest ``x`` (> 0; a number or an array): nondimensional computations
     divide lengths and masses by it, which is exact, so an arch a power of two larger or smaller

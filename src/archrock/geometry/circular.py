@@ -17,7 +17,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_load_reach, _check_scalar,
+from .base import (DEFAULT_DENSITY, MAX_VOUSSOIRS, Load, VoussoirArch, _check_length,
+                   _check_load_reach, _check_scalar, _check_size, _check_voussoir_count,
                    _finite_array, _loads)
 
 __all__ = [
@@ -101,6 +102,9 @@ class Arch(VoussoirArch):
             i = int(np.argmax((thick <= 0) | (thick >= 2 * radii)))
             raise ArchInputError(
                 f"thickness of voussoir {i}: {thick[i]:g} m; allowed 0 < t < 2 R = {2 * radii[i]:g} m")
+        _check_voussoir_count(n)
+        _check_size("radii", radii)
+        _check_size("thicknesses", thick)
         density = _check_scalar("density", self.density, 0.0, None, allowed="> 0 kg/m^3")
         for arr in (spans, radii, thick):
             arr.setflags(write=False)
@@ -284,12 +288,16 @@ def nominal_arch(radius: float = 10.0, embrace_deg: float = 157.5, thickness: fl
                  voussoirs: int = 7, density: float = DEFAULT_DENSITY, name: str = "nominal") -> Arch:
     """A regular arch: n equal voussoirs of mean radius R [m], thickness t [m], embrace [deg]."""
     radius = _check_scalar("radius", radius, 0.0, None, allowed="> 0 m")
+    radius = _check_length("radius", radius)
     embrace_deg = _check_scalar("embrace", embrace_deg, 0.0, 360.0, allowed="0 < embrace < 360 deg")
     thickness = _check_scalar("thickness", thickness, 0.0, 2 * radius,
                               allowed=f"0 < t < 2 R = {2 * radius:g} m")
-    if isinstance(voussoirs, bool) or int(voussoirs) != voussoirs or voussoirs < 3:
-        raise ArchInputError(f"voussoirs: {voussoirs!r}; allowed an integer >= 3")
-    n = int(voussoirs)
+    thickness = _check_length("thickness", thickness)
+    if isinstance(voussoirs, bool) or not isinstance(voussoirs, (int, float, np.integer)) or \
+            not math.isfinite(voussoirs) or int(voussoirs) != voussoirs or voussoirs < 3:
+        raise ArchInputError(f"voussoirs: {voussoirs!r}; allowed an integer from 3 to "
+                             f"{MAX_VOUSSOIRS}")
+    n = _check_voussoir_count(int(voussoirs))
     return Arch(np.full(n, math.radians(embrace_deg) / n), np.full(n, radius), np.full(n, thickness),
                 density, name=name)
 

@@ -41,7 +41,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import DEFAULT_DENSITY, Load, _check_scalar, polygon_properties
+from .base import (DEFAULT_DENSITY, Load, _check_length, _check_scalar, _check_voussoir_count,
+                   polygon_properties)
 from .polygon import PolygonArch
 
 __all__ = ["family_arch", "FamilyArch", "SHAPES", "JOINTS", "centreline", "perturb_family"]
@@ -377,14 +378,16 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
         raise ArchInputError(f"shape: {shape!r}; allowed {', '.join(SHAPES)}")
     if joints not in JOINTS:
         raise ArchInputError(f"joints: {joints!r}; allowed 'normal' or 'vertical'")
-    span = _check_scalar("span", span, 0.0, None, allowed="S > 0 m")
+    span = _check_length("span", _check_scalar("span", span, 0.0, None, allowed="S > 0 m"))
     lo, hi, text = _RISE_RANGE[shape]
     rise = _check_scalar("rise", rise, lo(span), hi(span), hi_open=False,
                          allowed=f"{text}; here S = {span:g} m")
-    thickness = _check_scalar("thickness", thickness, 0.0, None, allowed="t > 0 m")
-    t_crown = thickness if thickness_crown is None else _check_scalar(
-        "thickness_crown", thickness_crown, 0.0, None, allowed="> 0 m")
-    n = _positive_int("voussoirs", voussoirs, 3)
+    rise = _check_length("rise", rise)
+    thickness = _check_length("thickness", _check_scalar("thickness", thickness, 0.0, None,
+                                                         allowed="t > 0 m"))
+    t_crown = thickness if thickness_crown is None else _check_length("thickness_crown", _check_scalar(
+        "thickness_crown", thickness_crown, 0.0, None, allowed="> 0 m"))
+    n = _check_voussoir_count(_positive_int("voussoirs", voussoirs, 3))
     ppr = _check_scalar("points_per_rad", points_per_rad, 0.0, None, allowed="> 0")
     density = _check_scalar("density", density, 0.0, None, allowed="> 0 kg/m^3")
     user_loads = tuple(ld if isinstance(ld, Load) else Load.from_dict(ld, i)

@@ -18,8 +18,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_load_reach, _check_scalar, _loads,
-                   polygon_properties)
+from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_load_reach, _check_scalar,
+                   _check_size, _check_voussoir_count, _loads, polygon_properties)
 
 __all__ = ["PolygonArch", "FACE_TOLERANCE", "as_polygon"]
 
@@ -102,6 +102,9 @@ class PolygonArch(VoussoirArch):
         extr = tuple(_polyline(f"voussoirs[{i}].extrados", p) for i, p in enumerate(self.extrados))
         object.__setattr__(self, "intrados", intr)
         object.__setattr__(self, "extrados", extr)
+        _check_voussoir_count(n)
+        pts = np.vstack(intr + extr)
+        _check_size("voussoirs: the arch's extent", float(np.max(np.ptp(pts, axis=0))))
         object.__setattr__(self, "density", _check_scalar("density", self.density, 0.0, None,
                                                           allowed="> 0 kg/m^3"))
         object.__setattr__(self, "loads", _loads(self.loads, n))
