@@ -694,3 +694,18 @@ def test_voussoirs_and_lengths_out_of_range_are_one_line(capsys):
         assert code == 2 and out == "" and err == f"archrock: error: {msg}\n"
     code, _, err = run(capsys, "limit", "--voussoirs", "2.5")
     assert code == 2 and "--voussoirs: expected an integer, got '2.5'" in err
+
+
+def test_no_help_text_shows_a_doubled_percent(capsys):
+    """Issue 17: `codecheck --help` and `assess --help` showed "5%% damping" (argparse
+    %-formats an argument's help, not a group's description)."""
+    from archrock.cli import build_parser
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    assert len(sub.choices) > 10
+    for name, p in sub.choices.items():
+        text = p.format_help()
+        assert "%%" not in text, name
+    text = sub.choices["codecheck"].format_help()
+    assert "elastic spectrum at 5% damping" in " ".join(text.split())

@@ -41,12 +41,22 @@ class _Parser(argparse.ArgumentParser):
     (``-5e-1``, ``-1,2``) as values."""
 
     def __init__(self, *args, **kwargs):
+        d = kwargs.get("description")
+        if d is not None and "%(prog)" not in d:  # formatted only when it names %(prog)
+            kwargs["description"] = d.replace("%%", "%")
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = _NEGATIVE_VALUE
 
     def error(self, message):  # noqa: D401 - argparse API
         msg = " ".join(str(message).split())
         self.exit(EXIT_USAGE, f"{PROG}: error: {msg}\n")
+
+    def add_argument_group(self, title=None, description=None, **kwargs):
+        # argparse %-formats an argument's help but not a group's title or description, so a
+        # '%%' written there (as the arguments beside it need) showed literally ("5%% damping")
+        title, description = (None if t is None else str(t).replace("%%", "%")
+                              for t in (title, description))
+        return super().add_argument_group(title, description, **kwargs)
 
 
 def subcommand(name: str):
