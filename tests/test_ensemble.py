@@ -416,6 +416,7 @@ def test_summary_counts_every_outcome_over_all_samples(base):
     oc = s["outcomes"]
     assert oc["samples"] == 40
     assert oc["counts"] == {"invalid_draw": 1, "cannot_stand": 1, "no_mechanism": 1,
+                            "lift_off": 0,
                             "four_link_not_applicable": 0, "impact_not_applicable": 1,
                             "other": 0, "integrated": 36}
     assert sum(oc["counts"].values()) == 40

@@ -1034,6 +1034,12 @@ def _governing(arch: VoussoirArch, method: str = "auto", max_seconds: float | No
         raise CannotStandError(
             "arch: no line of thrust fits inside the arch under any horizontal load; it cannot "
             "stand (increase the thickness)")
+    if k_l <= 0 or k_r <= 0:
+        # a four-hinge mechanism opens under its own weight (kinematic theorem: the Heyman
+        # multiplier is at most this one)
+        raise CannotStandError(
+            f"arch: it cannot stand under its own weight (k_l = {k_l:.4g}, k_r = {k_r:.4g}); "
+            f"increase the thickness")
     out = {}
     for d, k, i in (("l", k_l, i_l), ("r", k_r, i_r)):
         four = _mechanism_from_candidate(n, int(i), d, k) if np.isfinite(k) else None
@@ -1483,8 +1489,9 @@ def _lp_mechanism(arch: VoussoirArch, direction: str):
         return math.inf, None, None
     if res.status != 0:
         raise CannotStandError(
-            f"arch: no line of thrust fits inside the arch for direction {direction!r} "
-            f"(linear program status {res.status}: {res.message}); the arch cannot stand")
+            f"arch: it cannot stand under its own weight: no line of thrust fits inside it "
+            f"(direction {direction!r}, linear program status {res.status}); increase the "
+            f"thickness")
     lam_s = float(res.x[3])
     with np.errstate(invalid="ignore", divide="ignore"):
         thrust = _thrust_from_x(st, res.x)
