@@ -128,6 +128,7 @@ def test_certification_matches_the_lp_on_random_arches():
     """The batch decides 'four-hinge governs' from the line of thrust alone; the single-arch
     path from the same test; both agree with the LP on which kind governs."""
     rng = np.random.default_rng(7)
+    kinds = []
     for _ in range(40):
         n = int(rng.integers(3, 11))
         emb = rng.uniform(30, 200)
@@ -139,6 +140,10 @@ def test_certification_matches_the_lp_on_random_arches():
             res = limit.limit_analysis(arch)
         except GeometryOutcome:
             continue
+        pb = prepare_batch([arch], impact="momentum")
+        assert (left_out_outcome(pb.error[0]) == "lift_off") == (not res.four_hinge)
+        np.testing.assert_allclose([pb.k_l[0], pb.k_r[0]], [res.k_l, res.k_r], rtol=1e-7)
+        kinds.append(res.four_hinge)
         for d in "lr":
             m = res.mechanism(d)
             static = res.static_k_l if d == "l" else res.static_k_r
@@ -147,6 +152,7 @@ def test_certification_matches_the_lp_on_random_arches():
                 four = res.four_hinge_l if d == "l" else res.four_hinge_r
                 # a lift-off mechanism governs only below every four-hinge one
                 assert four is None or four.multiplier > m.multiplier
+    assert 5 <= sum(kinds) < len(kinds)  # both kinds were met
 
 
 def test_loaded_arch_lp_dual_and_enumeration_agree():
