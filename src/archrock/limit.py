@@ -99,8 +99,12 @@ class Mechanism:
 
     @property
     def kind(self) -> str:
-        """'four-hinge' (a rocking chain of three links) or 'lift-off'."""
-        return "lift-off" if self.lift_off else "four-hinge"
+        """'four-hinge' (a rocking chain of three links), 'lift-off', or 'three-hinge' (three
+        hinges on one line: a degenerate chain the dual can give, no four-link model either)."""
+        if self.lift_off:
+            return "lift-off"
+        return "four-hinge" if len(self.hinges) == 4 else f"{len(self.hinges)}-hinge".replace(
+            "3-", "three-")
 
     @property
     def is_four_hinge(self) -> bool:
@@ -121,7 +125,7 @@ class Mechanism:
     def describe(self) -> str:
         """One line for people: the kind, the hinges and the joints that lift off."""
         if not self.lift_off:
-            return f"four-hinge mechanism {self.label}"
+            return f"{self.kind} mechanism {self.label}"
         lifts = ", ".join(str(j) for j in self.lift_off)
         return (f"mechanism with lift-off at joint{'s' if len(self.lift_off) > 1 else ''} "
                 f"{lifts} ({self.label})")
@@ -1619,7 +1623,7 @@ def require_four_hinge(result: LimitResult, what: str = "the four-link model") -
     only where four-hinge mechanisms govern."""
     for d in DIRECTIONS:
         m = result.mechanism(d)
-        if m.lift_off:
+        if not m.is_four_hinge:
             four = result.four_hinge_l if d == "l" else result.four_hinge_r
             best = ("no four-hinge mechanism loads it" if four is None else
                     f"its best four-hinge mechanism {four.label} would need k = "

@@ -474,7 +474,7 @@ def four_link(arch: VoussoirArch, mechanism: Mechanism) -> FourLink:
                              f"{type(arch).__name__}")
     if mechanism.direction not in ("l", "r"):
         raise ArchInputError(f"mechanism.direction: {mechanism.direction!r}; allowed 'l' or 'r'")
-    if getattr(mechanism, "lift_off", ()):
+    if getattr(mechanism, "lift_off", ()) or len(mechanism.hinges) != 4:
         raise NotFourHingeError(f"mechanism: a {mechanism.describe()} is not a four-hinge chain; "
                                 f"the four-link model does not describe it (archrock dem does)")
     hinges = sorted(mechanism.hinges, key=lambda h: h.joint)

@@ -41,7 +41,7 @@ _PATTERNS = (
     ("impact_not_applicable", r"^(least-loss chain:|impact\b)"),
     ("invalid_draw", r"^geometry:|not a valid arch"),
     ("cannot_stand", r"cannot stand|does not stand"),
-    ("lift_off", r"lift-off|lifts off"),
+    ("lift_off", r"lift-off|lifts off|is governed by a"),
     ("no_mechanism", r"four-hinge mechanism"),
     ("four_link_not_applicable", r"^four-link model:|^mechanism "),
 )
