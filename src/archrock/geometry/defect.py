@@ -9,7 +9,10 @@ Three kinds (:class:`Defect`):
   contact that the thinner voussoir still covers.
 * ``tilt``: joint j's line turns by ``value`` degrees, counter-clockwise positive, about the
   mid-point of its contact segment, in (-45, 45); the two voussoirs it separates (a springing
-  joint: its one voussoir and the abutment face) are cut again along the new line.
+  joint: its one voussoir and the abutment face) are cut again along the new line.  Masonry
+  that a springing joint's new line adds past the springing follows the voussoir's own curve
+  continued: the exact circles of a circular :class:`Arch` (the new corners on them), else the
+  circle through the polyline's last three vertices (straight on where they are collinear).
 * ``mortar``: joint j has no mortar over a depth ``value`` in (0, 1) of its contact length,
   measured from its ``intrados`` (default) or ``extrados`` end: the contact segment is that much
   shorter, the masonry (masses, centroids) unchanged.
@@ -294,6 +297,55 @@ def _cut_line(line: np.ndarray, c: np.ndarray, u: np.ndarray, near: np.ndarray):
     return int(k[j]), pts[j]
 
 
+def _circle_through(p0, p1, p2):
+    """(centre, radius) of the circle through three points, or None when they are collinear
+    (to rounding)."""
+    ax, ay = p1 - p0
+    bx, by = p2 - p0
+    det = 2.0 * (ax * by - ay * bx)
+    scale = max(ax * ax + ay * ay, bx * bx + by * by)
+    if abs(det) <= 1e-12 * scale:
+        return None
+    a2, b2 = ax * ax + ay * ay, bx * bx + by * by
+    c = p0 + np.array([(by * a2 - ay * b2) / det, (ax * b2 - bx * a2) / det])
+    return c, float(np.hypot(*(p0 - c)))
+
+
+def _continued(p: np.ndarray, reach: float, circle=None):
+    """(points, circle): points continuing the polyline ``p`` past its first point p[0]
+    (farthest first), over an arc length ``reach``: along ``circle`` (centre, radius) when given
+    (the exact arc of a circular arch), else along the circle through its first three vertices
+    (the curve continued with its end curvature: exact for a sampled circle), else straight on
+    (a straight end; circle None)."""
+    if circle is None and len(p) >= 3:
+        circle = _circle_through(p[0], p[1], p[2])
+    if circle is None:
+        t = p[0] - p[1]
+        return (p[0] + reach * t / np.hypot(*t))[None, :], None
+    c, r = np.asarray(circle[0], float), float(circle[1])
+    phi0 = math.atan2(p[0][1] - c[1], p[0][0] - c[0])
+    phi1 = math.atan2(p[1][1] - c[1], p[1][0] - c[0])
+    sign = 1.0 if math.remainder(phi0 - phi1, 2 * math.pi) > 0 else -1.0
+    span = min(reach / r, 0.5 * math.pi)  # at most a quarter turn past the springing
+    m = max(2, int(math.ceil(span / _ARC_STEP)))
+    ang = phi0 + sign * span * np.arange(m, 0, -1) / m
+    return np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang)]), (c, r)
+
+
+def _on_circle(x: np.ndarray, c0: np.ndarray, u: np.ndarray, circle) -> np.ndarray:
+    """The point where the line through c0 along u meets ``circle``, nearest ``x`` (a cut found
+    on a chord of the continued arc, moved onto the arc itself: its corner is then exact, not a
+    sagitta of the sampling step inside)."""
+    c, r = np.asarray(circle[0], float), float(circle[1])
+    w = c0 - c
+    bq, cq = float(w @ u), float(w @ w) - r * r
+    disc = bq * bq - cq
+    if disc < 0:
+        return x
+    pts = [c0 + (-bq + sg * math.sqrt(disc)) * u for sg in (-1.0, 1.0)]
+    return min(pts, key=lambda q: float(np.hypot(*(q - x))))
+
+
 def _tilted(arch: VoussoirArch, d: Defect) -> PolygonArch:
     poly = _as_polygon(arch)
     n, j = poly.n, d.index
@@ -307,23 +359,39 @@ def _tilted(arch: VoussoirArch, d: Defect) -> PolygonArch:
     tol = 1e-9 * poly.size
     intr, extr = list(poly.intrados), list(poly.extrados)
     reach = 4.0 * length  # a springing face's line extended this far past the springing
-    for lines, near in ((intr, a), (extr, b)):
+    for lines, near, side in ((intr, a, -1), (extr, b, 1)):
         if j == 0 or j == n:
+            # a springing joint tilted outward adds masonry past the springing: along the
+            # voussoir's own curve continued (the exact circle of a circular Arch), not along
+            # the straight extension of the polyline's last chord (whose length, the
+            # polygon's sampling step, then set k: 2.4e-4 off the true circle)
             v = 0 if j == 0 else n - 1
             p = lines[v]
+            circle = None
+            if isinstance(arch, Arch):
+                circle = ((0.0, 0.0), float(arch.radii[v] + 0.5 * side * arch.thicknesses[v]))
             if j == 0:
-                t = p[0] - p[1]
-                line = np.vstack([p[0] + reach * t / np.hypot(*t), p])
+                ext, circle = _continued(p, reach, circle)
+                line = np.vstack([ext, p])
+                beyond = len(ext)  # segments 0..len(ext)-1 lie past the springing
             else:
-                t = p[-1] - p[-2]
-                line = np.vstack([p, p[-1] + reach * t / np.hypot(*t)])
+                ext, circle = _continued(p[::-1], reach, circle)
+                line = np.vstack([p, ext[::-1]])
+                beyond = -len(p)  # segments len(p)-1.. lie past the springing
         else:
             line = _dedupe(np.vstack([lines[j - 1], lines[j]]), tol)
+            circle = None
         hit = _cut_line(line, mid, u, near)
         if hit is None:
             raise ArchInputError(f"defect tilt: {d.value:g} deg at joint {j}: the tilted joint "
                                  f"misses the voussoirs' faces; allowed a smaller tilt")
         k, x = hit
+        # a corner of the tilted springing face on the arc itself, not a sagitta of the sampling
+        # step inside it: past the springing (on the continued arc), and anywhere on a circular
+        # Arch, whose voussoirs' polyline vertices lie on its exact circles
+        if circle is not None and (isinstance(arch, Arch) or (beyond > 0 and k < beyond)
+                                   or (beyond < 0 and k >= -beyond - 1)):
+            x = _on_circle(x, mid, u, circle)
         left = _dedupe(np.vstack([line[:k + 1], x]), tol)
         right = _dedupe(np.vstack([x, line[k + 1:]]), tol)
         if len(left) < 2 or len(right) < 2:
