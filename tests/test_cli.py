@@ -685,10 +685,10 @@ def test_voussoirs_and_lengths_out_of_range_are_one_line(capsys):
             (["--voussoirs", "1e6"], "voussoirs: 1000000; allowed 3 to 2000 (a limit analysis of "
                                      "2000 voussoirs takes seconds; no masonry ring has more)"),
             (["--radius", "1e300", "--thickness", "1e299"],
-             "radius: 1e+300 m is out of range; allowed 0.001 m to 10000 m (units? lengths are in "
+             "radius: 1e+300 m is out of range; allowed 1e-08 m to 1e+08 m (units? lengths are in "
              "metres)"),
-            (["--shape", "pointed", "--span", "10", "--rise", "7", "--thickness", "1e-5"],
-             "thickness: 1e-05 m is out of range; allowed 0.001 m to 10000 m (units? lengths are "
+            (["--shape", "pointed", "--span", "10", "--rise", "7", "--thickness", "1e-9"],
+             "thickness: 1e-09 m is out of range; allowed 1e-08 m to 1e+08 m (units? lengths are "
              "in metres)")):
         code, out, err = run(capsys, "limit", *argv)
         assert code == 2 and out == "" and err == f"archrock: error: {msg}\n"

@@ -65,14 +65,16 @@ def _check_scalar(name: str, value, lo: float | None = None, hi: float | None = 
 #: Most voussoirs of an arch: a limit analysis of 2000 voussoirs takes about 2 s and a response
 #: as long; 10^6 ran for minutes and then failed.  No masonry arch has more stones in a ring.
 MAX_VOUSSOIRS = 2000
-#: Range [m] of the lengths given to describe an arch (radius, span, rise, thickness): from a
-#: millimetre (laboratory models) to 10 km; outside it the number is a units slip, and far
-#: outside it (1e-300, 1e300) the arithmetic overflows.
-MIN_LENGTH_M, MAX_LENGTH_M = 1e-3, 1e4
+#: Range [m] of the lengths given to describe an arch (radius, span, rise, thickness): the
+#: range over which archrock's results are tested scale-free (docs/verification.md, Scale: a
+#: micrometre arch with a 0.15 micrometre ring to a 1,000 km one, with a margin of 100);
+#: outside it the number is a units slip, and far outside it (1e-300, 1e300) the arithmetic
+#: overflows.
+MIN_LENGTH_M, MAX_LENGTH_M = 1e-8, 1e8
 #: Range [m] of the size of a constructed arch (radii and thicknesses of a circular one, the
 #: extent of a polygon one): wider than the inputs' range, so scaled and perturbed arches pass,
 #: and well inside what double precision squares and cubes without overflow.
-MIN_SIZE_M, MAX_SIZE_M = 1e-6, 1e7
+MIN_SIZE_M, MAX_SIZE_M = 1e-9, 1e9
 
 
 def _check_length(name: str, value, extra: str = "") -> float:
