@@ -223,7 +223,7 @@ def test_nominal_paper_impact_is_the_papers_cv():
 @pytest.mark.parametrize("kw, field", [
     ({"samples": 0}, "samples"), ({"spread_span": -0.1}, "spread span"),
     ({"spread_radius": 1.0}, "spread radius"), ({"batch_size": 0}, "batch size"),
-    ({"impact": "fixed", "cv": 0.0}, "cv"), ({"impact": "elastic"}, "impact model"),
+    ({"impact": "fixed", "cv": -0.1}, "cv"), ({"impact": "elastic"}, "impact model"),
     ({"motion": "oppenheim"}, "motion: 'oppenheim'; allowed None, a PulseSpec or RecordSpec"),
     ({"motion": {"type": "pulse", "kind": "oppenheim", "amplitude_g": -1.0, "duration": -0.2}},
      "pulse duration"),
