@@ -438,13 +438,7 @@ def friction_minimum_thickness(arch: VoussoirArch, mu: float,
     steps after at most ~log2 of the largest factor doublings)."""
     _check_arch(arch)
     mu = check_friction(mu)
-    try:
-        tol = float(tol)
-    except (TypeError, ValueError):
-        tol = math.nan
-    if not 1e-15 <= tol < 0.5:
-        raise ArchInputError(f"tol: {tol!r} is out of range; allowed a relative tolerance on "
-                             f"the thickness, 1e-15 <= tol < 0.5")
+    # thickness_bisection checks tol (1e-15 <= tol < 0.5) and bounds its steps
     return thickness_bisection(
         arch, _stands_with_friction(mu), tol,
         cannot=f"arch: no thickness stands under its own weight with friction {mu:g}: the joints "

@@ -223,6 +223,18 @@ class LimitResult:
         """Whether four-hinge mechanisms govern both directions (the four-link model holds)."""
         return self.mechanism_l.is_four_hinge and self.mechanism_r.is_four_hinge
 
+    def not_four_hinge(self, direction: str) -> str | None:
+        """Why the four-link model does not hold in ``direction`` (None where it does): the
+        governing mechanism and what the best four-hinge one would need."""
+        m = self.mechanism(direction)
+        if m.is_four_hinge:
+            return None
+        four = self.four_hinge_l if direction == "l" else self.four_hinge_r
+        best = ("no four-hinge mechanism loads this direction" if four is None else
+                f"the best four-hinge mechanism {four.label} would need k = "
+                f"{four.multiplier:.4f}")
+        return f"M_{direction} is governed by a {m.describe()} at k = {m.multiplier:.4f} ({best})"
+
     @property
     def k(self) -> float:
         """The smaller of the two multipliers (the arch's seismic capacity, in g)."""
@@ -1622,16 +1634,10 @@ def require_four_hinge(result: LimitResult, what: str = "the four-link model") -
     a mechanism with lift-off: Oppenheim's four-link model (and every study built on it) holds
     only where four-hinge mechanisms govern."""
     for d in DIRECTIONS:
-        m = result.mechanism(d)
-        if not m.is_four_hinge:
-            four = result.four_hinge_l if d == "l" else result.four_hinge_r
-            best = ("no four-hinge mechanism loads it" if four is None else
-                    f"its best four-hinge mechanism {four.label} would need k = "
-                    f"{four.multiplier:.4g}")
-            raise NotFourHingeError(
-                f"arch: M_{d} is governed by a {m.describe()} at k = {m.multiplier:.4g} "
-                f"({best}); {what} does not hold for this arch: the contact engine follows it "
-                f"(archrock dem)")
+        why = result.not_four_hinge(d)
+        if why is not None:
+            raise NotFourHingeError(f"arch: {why}; {what} does not hold for this arch: the "
+                                    f"contact engine follows it (archrock dem)")
 
 
 _HOW = {"four-hinge": "four-hinge enumeration (vectorised), certified by its line of thrust",

@@ -186,14 +186,9 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
         # construction (limit_analysis refuses to report a multiplier otherwise)
         lines.append(f"  LP check: max |kinematic - static| = {result.discrepancy:.2e} (agree)")
     for dirn in ("l", "r"):
-        mech = result.mechanism(dirn)
-        if not mech.is_four_hinge:
-            four = result.four_hinge_l if dirn == "l" else result.four_hinge_r
-            best = ("no four-hinge mechanism loads this direction" if four is None else
-                    f"the best four-hinge mechanism ({four.label}) needs k = "
-                    f"{four.multiplier:.4f}")
-            lines.append(f"  M_{dirn}: a {mech.describe()} opens before any four-hinge one "
-                         f"({best}): the four-link model does not hold for this arch; the "
+        why = result.not_four_hinge(dirn)
+        if why is not None:
+            lines.append(f"  {why}: the four-link model does not hold for this arch; the "
                          f"contact engine follows it (archrock dem)")
     if min_thickness is not None:
         ratio = ("" if min_thickness.ratio is None
