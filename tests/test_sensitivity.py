@@ -110,6 +110,11 @@ def test_an_output_constant_up_to_rounding_has_zero_variance_and_no_indices():
     assert np.all(np.isnan(res.S1[o])) and np.isnan(res.r2_linear[o])
     k = res.outputs.index("k_l")
     assert res.variance[k] > 1e-6 and np.all(np.isfinite(res.S1[k]))
+    from archrock.reports.sensitivity import format_sensitivity
+
+    text = format_sensitivity(res)
+    assert "collapse: mean 0.0000, std 0 (the same on every arch): no indices" in text
+    assert "nan" not in text.split("collapse: mean")[1].split("\n\n")[0]
 
 
 def test_sensitivity_estimates_its_work_first(capsys, monkeypatch):

@@ -36,6 +36,11 @@ def format_sensitivity(result) -> str:
     width = max(12, max(len(g) for g in r.groups) + 1)
     for o, out in enumerate(r.outputs):
         lines.append("")
+        if not r.variance[o] > 0:
+            # constant up to rounding: there is no variance to share out
+            lines.append(f"{out}: mean {r.mean[o]:.4f}, std 0 (the same on every arch): no "
+                         f"indices")
+            continue
         lines.append(f"{out}: mean {r.mean[o]:.4f}, std {math.sqrt(r.variance[o]):.4f}; "
                      f"sum S1 = {r.sum_S1[o]:.3f}, sum ST = {r.sum_ST[o]:.3f}, linear R^2 = "
                      f"{r.r2_linear[o]:.3f}")
