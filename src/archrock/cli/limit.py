@@ -24,6 +24,9 @@ def add_limit_parser(subparsers):
     p.add_argument("--friction", type=positive_float, metavar="MU", default=None,
                    help="Coulomb friction coefficient at every joint (finite, > 0): multipliers "
                         "with friction, whether sliding governs, the joints needing most friction")
+    p.add_argument("--thrust-range", action="store_true",
+                   help="also compute the least and greatest horizontal thrust under self-weight "
+                        "(supports spreading or closing) and their hinges (docs/thrust.md)")
     p.set_defaults(func=run_limit)
     return p
 
@@ -50,6 +53,10 @@ def run_limit(args) -> int:
                                f"{_thickness_words(arch, mt)}") from None
     needed = None if fr is not None else friction_needed(arch)
     extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
+    if args.thrust_range:
+        from ..thrust import thrust_range
+
+        extra["thrust"] = thrust_range(arch)
     if args.json:
         emit_json(limit_summary(result, mt, **extra))
     else:

@@ -13,7 +13,8 @@ import numpy as np
 
 from ..geometry import Arch
 
-__all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines"]
+__all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
+           "thrust_range_line"]
 
 
 def _voussoir_properties(arch) -> list[dict]:
@@ -23,11 +24,13 @@ def _voussoir_properties(arch) -> list[dict]:
 
 
 def limit_summary(result, min_thickness=None, needed=None, friction=None,
-                  min_thickness_friction=None) -> dict:
+                  min_thickness_friction=None, thrust=None) -> dict:
     """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object); ``needed``
     ({"l", "r"}, :func:`archrock.friction.friction_needed`) and ``friction`` (a
     :class:`~archrock.friction.FrictionResult`) add the keys of :func:`friction_summary`;
-    ``min_thickness_friction``: the friction coefficient ``min_thickness`` was found with."""
+    ``min_thickness_friction``: the friction coefficient ``min_thickness`` was found with;
+    ``thrust`` (a :class:`~archrock.thrust.ThrustRange`) adds ``thrust_min`` and ``thrust_max``
+    (each ``H`` [N/m], ``hinges`` [{joint, edge}], ``points`` [[x, y]] [m])."""
     arch = result.arch
     d = result.to_dict()
     d.pop("arch", None)
@@ -64,6 +67,10 @@ def limit_summary(result, min_thickness=None, needed=None, friction=None,
         }
     if needed is not None or friction is not None:
         out.update(friction_summary(needed, friction))
+    if thrust is not None:
+        td = thrust.to_dict()
+        out["thrust_min"], out["thrust_max"] = td["thrust_min"], td["thrust_max"]
+        out["units"]["H"] = "N/m (horizontal thrust per metre of depth)"
     return out
 
 
@@ -159,8 +166,22 @@ def _general_lines(arch) -> list[str]:
     return lines
 
 
+def thrust_range_line(thrust) -> str:
+    """One line of a :class:`~archrock.thrust.ThrustRange`: H_min and H_max [kN/m] and the
+    hinges (joint edge) of each line of thrust."""
+    def part(name, H, hinges):
+        if not math.isfinite(H):
+            return f"{name} unbounded"
+        where = ", ".join(f"{h.joint} {h.edge}" for h in hinges) or "none"
+        return f"{name} = {H / 1e3:.4f} kN/m (hinges {where})"
+
+    return (f"thrust range under self-weight: "
+            f"{part('H_min', thrust.thrust_min, thrust.hinges_min)}, "
+            f"{part('H_max', thrust.thrust_max, thrust.hinges_max)}")
+
+
 def format_limit_table(result, min_thickness=None, needed=None, friction=None,
-                       min_thickness_friction=None) -> str:
+                       min_thickness_friction=None, thrust=None) -> str:
     """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check; friction
     (:func:`friction_lines`) where given."""
     arch = result.arch
@@ -198,6 +219,8 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
                    else f" with friction {min_thickness_friction:g}")
         lines.append(f"  minimum thickness under self-weight{with_mu}: factor "
                      f"{min_thickness.factor:.4f} of the given thicknesses{ratio}")
+    if thrust is not None:
+        lines.append(f"  {thrust_range_line(thrust)}")
     lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
                  "M_r: by xg''/g >= k_r, forces toward -x)")
     lines += friction_lines(needed, friction)
