@@ -11,7 +11,7 @@ ROOT = Path(archrock.__file__).parent
 LAYER = {
     "errors": 0, "units": 0, "published": 0, "_jit": 0, "_records": 0,
     "geometry": 1, "sampling": 1, "files": 1, "dxf": 1,
-    "limit": 2, "friction": 2,
+    "limit": 2, "friction": 2, "thrust": 2,
     "mechanism": 3,
     "impact": 4, "groundmotion": 4,
     "kernel": 5, "response": 5, "batch": 5, "population": 5, "sweep": 5, "contact": 5,
