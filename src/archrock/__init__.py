@@ -6,7 +6,9 @@ The Python API in one namespace, in the order data flows (docs/architecture.md):
   (any shape), :func:`family_arch` (pointed, elliptical, ...), :class:`Load`,
   :func:`nominal_arch`, :func:`oppenheim_arch`, :func:`random_arch`;
   irregular arches of a study: :class:`ArchSampler`, :class:`Spreads`;
-* limit analysis: :func:`limit_analysis`, :func:`minimum_thickness`; with Coulomb friction at
+* limit analysis: :func:`limit_analysis` (the Heyman optimum and its mechanism),
+  :func:`general_mechanisms`, :func:`minimum_thickness`, :func:`thrust_range` (least and
+  greatest thrust under self-weight); with Coulomb friction at
   the joints: :func:`friction_analysis`, :func:`friction_needed`,
   :func:`friction_minimum_thickness`;
 * ground motion: :class:`GroundMotion`, :func:`pulse`, :func:`oppenheim_pulse`,
@@ -26,13 +28,14 @@ from importlib import import_module
 
 _EXPORTS = {
     "errors": ("ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
-               "NoMechanismError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
-               "FitError", "LimitExceededError"),
+               "NoMechanismError", "NotFourHingeError", "InvalidSampleError", "ImpactModelError",
+               "EnergyGainError", "FitError", "LimitExceededError"),
     "geometry": ("Arch", "PolygonArch", "VoussoirArch", "Load", "family_arch", "nominal_arch",
                  "oppenheim_arch", "random_arch", "as_polygon", "arch_from_dict", "Defect",
                  "apply_defect"),
     "sampling": ("ArchSampler", "Spreads"),
-    "limit": ("limit_analysis", "minimum_thickness"),
+    "limit": ("limit_analysis", "minimum_thickness", "general_mechanisms"),
+    "thrust": ("thrust_range",),
     "friction": ("friction_analysis", "friction_needed", "friction_minimum_thickness"),
     "groundmotion": ("GroundMotion", "pulse", "oppenheim_pulse", "load_record", "PulseSpec",
                      "RecordSpec"),
