@@ -357,3 +357,21 @@ def test_bisection_is_bounded_by_steps_and_by_the_floats():
     # within a few ulps of hi; the step bound ends it with a clear error
     with pytest.raises(LimitExceededError, match="after 64 steps"):
         curves.bisect_boundary(lambda a: True, 0.0, 1.0, False, 1e-300)
+
+
+def test_curves_say_when_the_default_impact_law_fell_back(capsys):
+    """A 17-voussoir semicircle on which the paper's equations create energy (ratio 1.3035): the
+    default's c_v is the momentum law's, and the text and JSON say why."""
+    import json
+
+    from archrock.cli import main
+
+    argv = ["curves", "--shape", "circular", "--span", "10", "--rise", "5", "--thickness", "0.9",
+            "--voussoirs", "17", "--durations", "0.2", "--n-scan", "10", "--a-max", "2"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "impact law fallback: on the nominal arch" in out and "1.3035" in out
+    assert main(argv + ["--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["impact"]["applied_cv"] == pytest.approx(0.595972, abs=5e-7)
+    assert "creates energy" in d["impact"]["applied_note"]

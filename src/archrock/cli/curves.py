@@ -96,8 +96,9 @@ def run_curves(args) -> int:
 
         plot_collapse_curve(curve, plot, band=band,
                             title=f"{nominal.name}: {args.pulse} pulse, sign {args.sign:+d}")
+    applied = impact.resolved(nominal)
     about = dict(arch_name=nominal.name, pulse=args.pulse, sign=args.sign,
-                 impact=impact, cv=impact.resolved(nominal).cv)
+                 impact=impact, cv=applied.cv, note=applied.note)
     if args.json:
         emit_json(curves_summary(curve, band, **about))
         return 0

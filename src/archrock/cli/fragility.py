@@ -110,7 +110,8 @@ def run_fragility(args) -> int:
     if args.json:
         emit_json(fragility_summary(res_ida, res_msa, arch_name=nominal.name, records=records,
                                     n_arches=len(models), impact=impact,
-                                    cv=impact.resolved(nominal).cv, suite=suite))
+                                    cv=impact.resolved(nominal).cv, suite=suite,
+                                    note=impact.resolved(nominal).note))
         return 0
     print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
                            n_arches=len(models), n_requested=args.samples))

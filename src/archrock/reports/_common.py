@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 
-def impact_summary(impact, cv: float | None = None) -> dict:
+def impact_summary(impact, cv: float | None = None, note: str | None = None) -> dict:
     """JSON form of a study's ImpactSpec, with ``cv``: the fixed c_v it applies to the random
-    arches (None for a per-arch law)."""
-    return {**impact.to_dict(), "applied_cv": cv, "description": impact.describe()}
+    arches (None for a per-arch law), and ``note``: why that c_v is another law's (the default
+    falls back to momentum where the paper's equations cannot be used on the nominal arch)."""
+    return {**impact.to_dict(), "applied_cv": cv, "applied_note": note,
+            "description": impact.describe()}
 
 
 def format_left_out(left_out: dict, what: str) -> str:

@@ -10,12 +10,12 @@ __all__ = ["curves_summary", "format_curves"]
 
 
 def curves_summary(curve, band=None, *, arch_name: str, pulse: str, sign: int, impact,
-                   cv: float | None = None) -> dict:
+                   cv: float | None = None, note: str | None = None) -> dict:
     """JSON-ready summary (the ``archrock curves --json`` object) of a CollapseCurve and, if
     given, its EnsembleCurve band; impact: the ImpactSpec of the run; cv: the fixed c_v it
     applies to the random arches (None for a per-arch law)."""
     out = {"arch": arch_name, "pulse": pulse, "sign": sign,
-           "impact": impact_summary(impact, cv), "curve": curve.to_dict()}
+           "impact": impact_summary(impact, cv, note), "curve": curve.to_dict()}
     if band is not None:
         b = band.to_dict()
         b.pop("nominal")  # already under "curve"
@@ -28,12 +28,14 @@ def _fmt_windows(ws) -> str:
 
 
 def format_curves(curve, band=None, *, arch_name: str, pulse: str, sign: int, impact,
-                  cv: float | None = None) -> str:
+                  cv: float | None = None, note: str | None = None) -> str:
     """Readable table: first collapse amplitude, band quantiles, mode and survival windows per t_p."""
     imp = impact.describe() if cv is None else f"c_v = {cv:.4f}"
     literal = " (literal, on the rates)" if cv is not None and impact.literal else ""
     lines = [f"{arch_name}: k_l = {curve.k_l:.4f}, k_r = {curve.k_r:.4f}; {pulse} pulse, "
              f"sign {sign:+d}; impact {imp}{literal}"]
+    if note:
+        lines.append(f"impact law fallback: {note}")
     head = f"{'t_p [s]':>8} {'a_first [g]':>12}  {'mode':<22} survival windows above [g]"
     if band is not None:
         head = head.replace("  mode", "  " + " ".join(f"q{q:g}".rjust(7) for q in band.quantiles)

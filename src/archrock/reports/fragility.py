@@ -9,7 +9,8 @@ __all__ = ["fragility_summary", "format_fragility"]
 
 
 def fragility_summary(ida_result, stripes, *, arch_name: str, records, n_arches: int, impact,
-                      cv: float | None = None, suite=None, engine: dict | None = None) -> dict:
+                      cv: float | None = None, suite=None, engine: dict | None = None,
+                      note: str | None = None) -> dict:
     """JSON-ready summary (the ``archrock fragility --json`` object) of an IDAResult and a
     StripeResult over ``records`` (GroundMotion) and ``n_arches`` analysed arches; ``suite``
     (:class:`archrock.groundmotion.suite.RecordSuite`): the files read, with their sha256;
@@ -18,7 +19,7 @@ def fragility_summary(ida_result, stripes, *, arch_name: str, records, n_arches:
             "n_arches": n_arches, "im": ida_result.im,
             "im_units": im_units(ida_result.im),
             "record_files": None if suite is None else suite.to_dict(),
-            "impact": impact_summary(impact, cv),
+            "impact": impact_summary(impact, cv, note),
             **({} if engine is None else {"engine": engine}),
             "ida": ida_result.to_dict(),
             "stripes": stripes.to_dict()}
