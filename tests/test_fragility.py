@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 from scipy.optimize import minimize
-from scipy.stats import binom, binomtest, norm
+from scipy.stats import beta as beta_dist, binom, binomtest, norm
 
 from archrock.errors import ArchInputError, ArchrockError, FitError
 
@@ -320,6 +320,30 @@ def test_collapse_probability_matches_scipy(k, n, conf):
     assert (lo, hi) == pytest.approx((ci.low, ci.high), abs=1e-9)
 
 
+@pytest.mark.parametrize("k, n", [(0, 10), (5, 10), (10, 10), (1, 7), (37, 100), (2, 17),
+                                  (333, 1000), (9999, 10000)])
+@pytest.mark.parametrize("conf", [0.5, 0.9, 0.95, 0.99])
+def test_collapse_probability_matches_closed_forms(k, n, conf):
+    # the intervals come from scipy; this holds them against formulas written out here, so
+    # that a change of variant (e.g. Wilson with continuity correction) is caught
+    z = norm.ppf(0.5 + conf / 2)
+    p = k / n
+    d = 1 + z * z / n
+    centre = (p + z * z / (2 * n)) / d
+    half = z / d * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    _, lo, hi = collapse_probability(k, n, conf)
+    # scipy's Wilson arithmetic differs from this one in the last bit (seen: 2.2e-16)
+    assert (lo, hi) == pytest.approx((max(centre - half, 0.0), min(centre + half, 1.0)),
+                                     abs=1e-12)
+    a = 1 - conf
+    cp_lo = beta_dist.ppf(a / 2, k, n - k + 1) if k > 0 else 0.0
+    cp_hi = beta_dist.ppf(1 - a / 2, k + 1, n - k) if k < n else 1.0
+    _, lo, hi = collapse_probability(k, n, conf, method="clopper-pearson")
+    # scipy finds the exact ends by root-finding (brentq, xtol 2e-12), not from beta
+    # quantiles: they agree to about 5e-13
+    assert (lo, hi) == pytest.approx((cp_lo, cp_hi), abs=2e-12)
+
+
 def test_collapse_probability_known_values():
     # 0 of 10, Wilson 95 %: upper = z^2/n / (1 + z^2/n) = 0.27753...
     z2 = norm.ppf(0.975) ** 2
@@ -327,7 +351,12 @@ def test_collapse_probability_known_values():
     # 0 of 10 exact: upper = 1 - 0.025^(1/10)
     assert collapse_probability(0, 10, method="clopper-pearson")[2] == pytest.approx(1 - 0.025 ** 0.1, rel=1e-10)
     p, lo, hi = collapse_probability(5, 10)
-    assert p == 0.5 and lo == pytest.approx(1 - hi, abs=1e-15)
+    # symmetric about 1/2; 1e-12 rather than 1e-15: the ends are scipy's arithmetic
+    # (binomtest.proportion_ci), whose rounding this test does not control
+    assert p == 0.5 and lo == pytest.approx(1 - hi, abs=1e-12)
+    # Wilson without continuity correction (scipy's "wilsoncc" is wider)
+    assert collapse_probability(3, 10)[1:] == pytest.approx((0.10779126740630, 0.60322185253885),
+                                                            abs=1e-12)
 
 
 @pytest.mark.parametrize("args, kwargs, field", [

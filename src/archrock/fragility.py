@@ -32,7 +32,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import minimize
 from scipy.special import gammaln, log_ndtr, ndtr, ndtri
-from scipy.stats import beta as _beta_dist
+from scipy.stats import binomtest
 
 from .errors import ArchInputError, FitError
 
@@ -457,10 +457,11 @@ def collapse_probability(collapses: int, trials: int, confidence: float = 0.95,
                          method: str = "wilson") -> tuple[float, float, float]:
     """(p_hat, low, high): collapse fraction at one intensity and its two-sided interval.
 
-    method="wilson" (default): Wilson score interval, close to nominal coverage and never
-    degenerate; equals scipy.stats.binomtest(k, n).proportion_ci(confidence, method="wilson").
-    method="clopper-pearson": exact interval from beta quantiles, coverage >= nominal
-    (conservative); equals binomtest(...).proportion_ci(method="exact").
+    method="wilson" (default): Wilson score interval (without continuity correction), close
+    to nominal coverage and never degenerate: scipy.stats.binomtest(k, n).proportion_ci(
+    confidence, method="wilson").
+    method="clopper-pearson": exact interval, coverage >= nominal (conservative):
+    binomtest(k, n).proportion_ci(confidence, method="exact").
     No trials raise ArchInputError: there is no probability to estimate (callers report None).
     """
     if not isinstance(trials, bool) and trials == 0:
@@ -471,20 +472,12 @@ def collapse_probability(collapses: int, trials: int, confidence: float = 0.95,
     if k > n:
         raise ArchInputError(f"collapses: must be between 0 and trials ({n}), got {k}")
     conf = _confidence(confidence)
-    alpha = 1.0 - conf
     p = k / n
-    if method == "wilson":
-        zq = float(ndtri(1.0 - alpha / 2.0))
-        z2 = zq * zq
-        denom = 1.0 + z2 / n
-        centre = (p + z2 / (2 * n)) / denom
-        half = zq / denom * math.sqrt(p * (1 - p) / n + z2 / (4 * n * n))
-        lo, hi = centre - half, centre + half
-    elif method == "clopper-pearson":
-        lo = float(_beta_dist.ppf(alpha / 2.0, k, n - k + 1)) if k > 0 else 0.0
-        hi = float(_beta_dist.ppf(1.0 - alpha / 2.0, k + 1, n - k)) if k < n else 1.0
-    else:
+    scipy_method = {"wilson": "wilson", "clopper-pearson": "exact"}.get(method)
+    if scipy_method is None:
         raise ArchInputError(f"method: must be 'wilson' or 'clopper-pearson', got {method!r}")
+    ci = binomtest(k, n).proportion_ci(confidence_level=conf, method=scipy_method)
+    lo, hi = float(ci.low), float(ci.high)
     # exact ends at 0/n (the formulas give them up to rounding)
     lo = 0.0 if k == 0 else min(max(lo, 0.0), 1.0)
     hi = 1.0 if k == n else min(max(hi, 0.0), 1.0)
