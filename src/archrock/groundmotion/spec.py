@@ -161,15 +161,13 @@ def _build_record(spec: RecordSpec) -> GroundMotion:
 
 
 def _file_sha256(path) -> str:
-    h = hashlib.sha256()
     try:
         with open(path, "rb") as fh:
-            for chunk in iter(lambda: fh.read(1 << 20), b""):
-                h.update(chunk)
+            digest = hashlib.file_digest(fh, "sha256").hexdigest()
     except FileNotFoundError:
         raise ArchInputError(f"record path: {str(path)!r}: file not found; allowed an existing "
                              "readable file") from None
     except OSError as exc:
         raise ArchInputError(f"record path: cannot read {str(path)!r} ({exc.strerror or exc}); "
                              "allowed an existing readable file") from None
-    return h.hexdigest()
+    return digest

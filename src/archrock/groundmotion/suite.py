@@ -24,11 +24,8 @@ SUITE_SUFFIXES = (".at2",)
 
 def file_sha256(path) -> str:
     """sha256 of a file's bytes (hex)."""
-    h = hashlib.sha256()
     with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
+        return hashlib.file_digest(f, "sha256").hexdigest()
 
 
 @dataclass(frozen=True, eq=False)
