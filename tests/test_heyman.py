@@ -246,3 +246,27 @@ def test_minimum_thickness_search_is_bounded():
     for bad in (0.0, 1e-300, 0.5, float("nan")):
         with pytest.raises(ArchInputError, match="tol"):
             limit.minimum_thickness(oppenheim_arch(), tol=bad)
+
+
+def test_batch_of_many_voussoirs_leaves_lift_off_out_without_a_full_enumeration(monkeypatch):
+    """Above 40 voussoirs the batch's guided search gives inf where no four-hinge mechanism is
+    confirmed (a full enumeration of 145 voussoirs would take about a minute) and the row is
+    left out as lift_off with the LP's multiplier: the arch the sweep found, a loaded
+    three-centred arch turning about one springing while the other lifts off."""
+    base = family_arch("three-centred", 10.0, 2.9380585324394937, 2.9986037863196753, 145,
+                       joints="vertical")
+    c = np.asarray(base.centroids)[48]
+    arch = family_arch("three-centred", 10.0, 2.9380585324394937, 2.9986037863196753, 145,
+                       joints="vertical",
+                       loads=[Load(48, 0.5 * float(np.sum(base.masses)),
+                                   (float(c[0]), float(c[1]) + 2.9986037863196753))])
+    res = limit.limit_analysis(arch)
+    assert res.mechanism_l.label == "0s-145e" and res.mechanism_r.is_four_hinge
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the batch ran a full enumeration")
+
+    monkeypatch.setattr(limit, "_full_enumeration", refuse)
+    pb = prepare_batch([arch], impact="momentum")
+    assert left_out_outcome(pb.error[0]) == "lift_off"
+    np.testing.assert_allclose([pb.k_l[0], pb.k_r[0]], [res.k_l, res.k_r], rtol=1e-7)

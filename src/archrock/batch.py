@@ -283,8 +283,8 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
     ok = error == ""
     k_l, k_r, cand_l, cand_r = _multipliers(
         B, ok, lambda: kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok],
-                                                   parallel=parallel))
-    _limit_errors(k_l, k_r, ok, error)
+                                                   parallel=parallel, fallback=False))
+    _limit_errors(k_l, k_r, ok, error, lambda b: Arch(spans[b], radii[b], thick[b], density))
     _lift_off_errors(n, lambda rows: _batch_sums(spans[rows], radii[rows], thick[rows])[:5],
                      lambda b: Arch(spans[b], radii[b], thick[b], density), k_l, k_r, cand_l,
                      cand_r, error)
@@ -331,12 +331,25 @@ def _multipliers(B: int, ok, compute):
     return k_l, k_r, cand_l, cand_r
 
 
-def _limit_errors(k_l, k_r, ok, error):
-    """Rows whose multipliers say the arch has no mechanism (+inf: nothing loads that direction)
-    or cannot stand (k <= 0; -inf from the static-guided search: no line of thrust at any
-    horizontal load)."""
+def _limit_errors(k_l, k_r, ok, error, arch_of):
+    """Rows whose multipliers say the arch has no four-hinge mechanism (+inf) or cannot stand
+    (k <= 0; -inf from the static-guided search: no line of thrust at any horizontal load).
+    An inf row whose static LP is bounded in that direction is governed by a mechanism with
+    lift-off (:data:`~archrock.limit.LIFT_OFF_REASON`, its k the LP's); unbounded, nothing
+    loads that direction."""
     for b in np.flatnonzero(ok & ((k_l == np.inf) | (k_r == np.inf))):
         error[b] = "limit analysis: no admissible four-hinge mechanism"
+        arch = arch_of(b)
+        lift = False
+        for d, k in (("l", k_l), ("r", k_r)):
+            if k[b] == np.inf:
+                try:
+                    lam = static_multiplier(arch, d)[0]
+                except ArchrockError:  # unbounded or infeasible: the message above stands
+                    continue
+                k[b], lift = lam, True
+        if lift:
+            error[b] = LIFT_OFF_REASON
     for b in np.flatnonzero(ok & (k_l < np.inf) & (k_r < np.inf) & ((k_l <= 0) | (k_r <= 0))):
         error[b] = f"limit analysis: the arch cannot stand (k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})"
 
@@ -386,8 +399,9 @@ def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedB
             error[b] = why if why.startswith("geometry:") else "geometry: " + why
     ok = error == ""
     k_l, k_r, cand_l, cand_r = _multipliers(
-        B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good], parallel=parallel))
-    _limit_errors(k_l, k_r, ok, error)
+        B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good], parallel=parallel,
+                                                    fallback=False))
+    _limit_errors(k_l, k_r, ok, error, lambda b: items[b])
     _lift_off_errors(n, lambda rows: tuple(np.concatenate(parts) for parts in zip(
         *(arch_sums(items[b]) for b in rows))), lambda b: items[b], k_l, k_r, cand_l, cand_r,
         error)

@@ -787,7 +787,7 @@ def _enumerate_numpy(sums_of, B, n, chunk, progress, t0):
 
 def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = None,
                                 method: str = "auto", max_seconds: float | None = None, *,
-                                parallel: bool = False):
+                                parallel: bool = False, fallback: bool = True):
     """Collapse multipliers of a batch of arches with the same number of voussoirs.
 
     spans [rad], radii [m], thicknesses [m]: arrays (B, n). Returns (k_l, k_r, cand_l, cand_r)
@@ -798,7 +798,10 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     :data:`MAX_ENUMERATION_SECONDS`), beyond which it raises LimitExceededError.
     ``chunk``: arches per block of the vectorised (numpy) enumeration (default: sized to stay in
     cache); it does not change the results.  ``parallel``: the compiled enumeration spreads
-    the arches over the numba threads (the same numbers, bit for bit).
+    the arches over the numba threads (the same numbers, bit for bit).  ``fallback``: where the
+    guided search confirms no four-hinge mechanism (a mechanism with lift-off governs), run the
+    full enumeration for the best four-hinge one (default) or give inf there (the batch engine,
+    which leaves such arches out anyway: a full enumeration of 200 voussoirs takes minutes).
     A multiplier is inf where no mechanism loads that direction, and -inf (both directions)
     where the guided search finds no line of thrust at any horizontal load (cannot stand).
     """
@@ -818,7 +821,8 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
         _say(f"static-guided search on {B} arches of {n} voussoirs, about {_seconds(estimate)} s")
     t0 = last = time.perf_counter()
     for b in range(B):
-        k_l[b], k_r[b], i_l[b], i_r[b] = _guided_arch(spans[b], radii[b], thick[b], max_seconds)
+        k_l[b], k_r[b], i_l[b], i_r[b] = _guided_arch(spans[b], radii[b], thick[b], max_seconds,
+                                                      fallback)
         if progress and time.perf_counter() - last > 0.1 * _PROGRESS_SECONDS:
             last = time.perf_counter()
             _say(f"static-guided search {b + 1}/{B} arches ({last - t0:.0f} s)")
@@ -826,7 +830,7 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
 
 
 def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: float | None = None,
-                                 *, parallel: bool = False):
+                                 *, parallel: bool = False, fallback: bool = True):
     """:func:`kinematic_multipliers_batch` for arches of any shape with the same number of
     voussoirs (a sequence of :class:`VoussoirArch`): their :func:`arch_sums` stacked into one
     enumeration (n <= :data:`ENUMERATION_MAX_VOUSSOIRS` with "auto"), or arch by arch the
@@ -851,8 +855,8 @@ def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: floa
     i_l = np.empty(B, dtype=np.int64)
     i_r = np.empty(B, dtype=np.int64)
     for b, (arch, sm) in enumerate(zip(arches, sums)):
-        k_l[b], k_r[b], i_l[b], i_r[b] = _guided(arch, sm, lambda why, sm=sm: _full_enumeration(
-            lambda s, e: sm, 1, n, None, max_seconds, why))
+        k_l[b], k_r[b], i_l[b], i_r[b] = _guided(arch, sm, (lambda why, sm=sm: _full_enumeration(
+            lambda s, e: sm, 1, n, None, max_seconds, why)) if fallback else None)
     return k_l, k_r, i_l, i_r
 
 
@@ -929,14 +933,14 @@ def _search(arch: VoussoirArch, sums, direction: str, lam: float, thrust: Thrust
     return None
 
 
-def _guided_arch(spans, radii, thick, max_seconds):
+def _guided_arch(spans, radii, thick, max_seconds, fallback=True):
     """(k_l, k_r, cand_l, cand_r) of one circular arch (its parameters (n,)) by the
     static-guided search, the full enumeration (within ``max_seconds``) where the search cannot
-    confirm its mechanism."""
+    confirm its mechanism (``fallback=False``: inf there; a mechanism with lift-off governs)."""
     arch = Arch(spans, radii, thick)
     sums_of = _circular_sums_of(spans[None], radii[None], thick[None])
-    return _guided(arch, sums_of(0, 1), lambda why: _full_enumeration(
-        sums_of, 1, arch.n, None, max_seconds, why))
+    return _guided(arch, sums_of(0, 1), (lambda why: _full_enumeration(
+        sums_of, 1, arch.n, None, max_seconds, why)) if fallback else None)
 
 
 def _guided(arch: VoussoirArch, sums, full):
