@@ -128,9 +128,19 @@ def test_msa_over_random_arches_and_bootstrap(records):
 
 def test_im_scale(small, records):
     c = ida_curve(small, records[0], np.linspace(0.5, 6.0, 12), im="scale")
-    if c.first_scale is not None:
-        assert c.first_im == c.first_scale
+    # record 1 collapses inside the grid (measured: first collapse at scale 2.793), so the
+    # intensity of the first collapse is checked, not skipped
+    assert c.first_scale is not None and 0.5 < c.first_scale < 6.0
+    assert c.first_im == c.first_scale
     assert c.max_im == 6.0
+    # in PGA (0.3 g at scale 1) the same curve reads 0.3 x the scale
+    g = ida_curve(small, records[0], np.linspace(0.5, 6.0, 12))
+    assert g.first_scale == c.first_scale
+    assert g.first_im == pytest.approx(0.3 * c.first_scale, rel=1e-12)
+    # a grid that stops below the first collapse has none, in either measure
+    low = ida_curve(small, records[0], np.linspace(0.2, 1.0, 5), im="scale")
+    assert low.first_scale is None and low.first_im is None and not low.collapsed.any()
+    assert low.max_im == 1.0
 
 
 @pytest.mark.parametrize("call, field", [

@@ -464,8 +464,19 @@ def test_bad_motion_and_limit(nominal):
         prepare(geometry.oppenheim_arch(), "paper", limit_factor=1.0)
 
 
-def test_kernel_status_codes_are_distinct():
-    assert len({kernel.ST_REST, kernel.ST_COLLAPSED, kernel.ST_MOVING}) == 3
+def test_kernel_status_codes_name_the_outcomes(nominal):
+    """The kernel's status codes are the ones its readers assume: the ensemble names a status
+    by table look-up, names[code + 1] over the codes -1 (not run) .. 3; batch's STATUS_NAMES
+    and respond's status strings name each code as its constant does."""
+    from archrock.batch import ST_NOT_RUN, STATUS_NAMES
+
+    codes = {name: getattr(kernel, name) for name in dir(kernel) if name.startswith("ST_")}
+    assert set(codes) == {"ST_REST", "ST_COLLAPSED", "ST_MOVING", "ST_STOPPED"}
+    assert sorted(codes.values()) == [0, 1, 2, 3] and ST_NOT_RUN == -1
+    assert STATUS_NAMES == {code: name[3:].lower() for name, code in codes.items()}
+    # respond ends at rest and in collapse under two pulses, named as batch names them
+    assert respond(nominal, gm.oppenheim_pulse(-1.0, 0.2)).status == STATUS_NAMES[kernel.ST_REST]
+    assert respond(nominal, gm.oppenheim_pulse(-1.6, 0.3)).status == STATUS_NAMES[kernel.ST_COLLAPSED]
 
 
 @pytest.mark.parametrize("integrator", ["fast", "reference"])
