@@ -88,6 +88,15 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                         "[,at=intrados|extrados] (keeps F of its thickness, 0 < F < 1), "
                         "JOINT:tilt=DEG (-45 < DEG < 45) or JOINT:mortar=F[,from=extrados] "
                         "(no mortar over F of the contact); docs/defects.md")
+    g.add_argument("--pier-height", type=finite_float, metavar="H",
+                   help="the arch on two piers: height [m] of each pier from its foundation to "
+                        "the springing, > 0 (with --pier-width; docs/piers.md)")
+    g.add_argument("--pier-width", type=finite_float, metavar="W",
+                   help="width [m] of each pier, outward of the intrados springing, > 0 and at "
+                        "least the springing joint's width (with --pier-height)")
+    g.add_argument("--pier-courses", type=_int, metavar="N",
+                   help="courses (blocks between horizontal bed joints) of each pier, 1 to 200 "
+                        "(default 1: monolithic; with --pier-height)")
     return parser
 
 
@@ -95,13 +104,43 @@ def arch_from_args(args: argparse.Namespace):
     """The arch described by the options of :func:`add_geometry_options`: a circular
     :class:`~archrock.geometry.Arch`, or a family's (the exact Arch for a circular one with
     normal joints and constant thickness, else a FamilyArch), with the --defect defects applied
-    (archrock.geometry.apply_defect); raises ArchInputError / CLIError on bad input."""
+    (archrock.geometry.apply_defect), on the piers of --pier-height/--pier-width (an
+    ArchOnPiers, archrock.geometry.with_piers); raises ArchInputError / CLIError on bad input."""
     arch = _undamaged_arch_from_args(args)
     if getattr(args, "defect", None):
         from ..geometry import apply_defects
 
         arch = apply_defects(arch, args.defect)
-    return arch
+    return _piers_from_args(args, arch)
+
+
+def _piers_from_args(args: argparse.Namespace, arch):
+    """``arch`` on the piers of --pier-height/--pier-width/--pier-courses (the defects, which
+    number the arch's own voussoirs and joints, are applied first), or ``arch`` without them."""
+    h = getattr(args, "pier_height", None)
+    w = getattr(args, "pier_width", None)
+    c = getattr(args, "pier_courses", None)
+    if h is None and w is None and c is None:
+        return arch
+    if h is None or w is None:
+        given = "--pier-height" if h is not None else ("--pier-width" if w is not None
+                                                          else "--pier-courses")
+        missing = " and ".join(f for f, v in (("--pier-height", h), ("--pier-width", w))
+                               if v is None)
+        raise CLIError(f"{missing}: needed with {given} (the piers' height and width, in metres)")
+    from ..geometry import with_piers
+
+    from ..errors import ArchInputError
+
+    try:
+        return with_piers(arch, h, w, courses=1 if c is None else c)
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("height:", "--pier-height:"), ("width:", "--pier-width:"),
+                            ("courses:", "--pier-courses:")):
+            if msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
 
 
 def _undamaged_arch_from_args(args: argparse.Namespace):

@@ -6,7 +6,9 @@
   sectors), nominal or irregular;
 * :mod:`~archrock.geometry.polygon` -- :class:`PolygonArch`, voussoirs of any shape as polygons;
 * :mod:`~archrock.geometry.families` -- :func:`family_arch`: circular, pointed, elliptical,
-  three-centred, parabolic and catenary arches from span, rise and thickness.
+  three-centred, parabolic and catenary arches from span, rise and thickness;
+* :mod:`~archrock.geometry.piers` -- :func:`with_piers`: an arch on two piers of courses
+  (:class:`ArchOnPiers`, blocks named "pier" or "voussoir").
 
 :func:`arch_from_dict` reads either geometry format (a family arch's dict, with its recipe
 under ``"family"``, is rebuilt as the :class:`FamilyArch`).
@@ -17,13 +19,15 @@ from .circular import (OPPENHEIM, Arch, nominal_arch, oppenheim_arch, perturb_vo
                        random_arch, random_spans_thicknesses_radii, sector_properties)
 from .defect import Defect, apply_defect, apply_defects
 from .families import JOINTS, SHAPES, FamilyArch, family_arch
+from .piers import ArchOnPiers, with_piers
 from .polygon import FACE_TOLERANCE, PolygonArch, as_polygon
 
 __all__ = ["VoussoirArch", "Arch", "PolygonArch", "Load", "nominal_arch", "oppenheim_arch",
            "random_arch", "perturb_voussoirs", "random_spans_thicknesses_radii",
            "sector_properties", "polygon_properties", "power_of_two_near", "as_polygon",
            "family_arch", "FamilyArch", "SHAPES", "JOINTS", "arch_from_dict", "OPPENHEIM",
-           "DEFAULT_DENSITY", "FACE_TOLERANCE", "Defect", "apply_defect", "apply_defects"]
+           "DEFAULT_DENSITY", "FACE_TOLERANCE", "Defect", "apply_defect", "apply_defects",
+           "ArchOnPiers", "with_piers"]
 
 
 def arch_from_dict(data, name: str = "arch") -> VoussoirArch:
