@@ -70,11 +70,11 @@ def test_rocking_frame_activation_is_tan_alpha(b, h, depth, loads):
 
 @pytest.mark.parametrize("b,h,depth,loads", FRAMES)
 def test_rocking_frame_frequency_parameter(b, h, depth, loads):
-    """The four-link model of the limit analysis's mechanism, linearised about rest: free
-    rocking M(0) phi'' = -g dF/dphi(0) phi about the tilted rest... and the restoring moment
-    F(phi) = s sin(alpha - phi), so p^2 = g F(0) / (M(0) sin(alpha)) = -g F'(0) /
-    (M(0) cos(alpha)) = (3 g / 4R)(1 + 2 gamma)/(1 + 3 gamma), gamma = beam mass (with its
-    loads) / both columns' mass, R = sqrt(b^2 + h^2)."""
+    """The four-link model of the limit analysis's mechanism (M phi'' + L phi'^2 + F g = P xg''):
+    M(0) and the restoring moment F(phi) = s sin(alpha - phi) give Housner's
+    phi'' = -p^2 sin(alpha - phi) with p^2 = g F(0) / (M(0) sin(alpha)) = -g F'(0) /
+    (M(0) cos(alpha)) = (3 g / 4R)(1 + 2 gamma)/(1 + 3 gamma) (Makris & Vassiliou 2013),
+    gamma = beam mass (with its loads) / both columns' mass, R = sqrt(b^2 + h^2)."""
     frame = rocking_frame(b, h, depth, loads=loads)
     res = limit_analysis(frame)
     m = frame.masses[0]
@@ -180,8 +180,8 @@ def test_semicircle_on_piers_three_ways(tmp_path, capsys):
     hand = limit_analysis(read_arch(path))
     assert res.k_l == pytest.approx(0.168899, abs=1e-6)
     assert res.k_l == pytest.approx(res.k_r, rel=1e-9)
-    assert hand.k_l == pytest.approx(res.k_l, rel=1e-5)
-    assert hand.k_r == pytest.approx(res.k_r, rel=1e-5)
+    assert hand.k_l == pytest.approx(res.k_l, rel=1e-7)     # measured 4.4e-9
+    assert hand.k_r == pytest.approx(res.k_r, rel=1e-7)
     assert res.mechanism_l.label == hand.mechanism_l.label == "2i-5e-8i-11e"
     assert res.mechanism_r.label == hand.mechanism_r.label == "0e-3i-6e-9i"
     assert res.discrepancy < 1e-9 and hand.discrepancy < 1e-9
@@ -193,7 +193,7 @@ def test_semicircle_on_piers_three_ways(tmp_path, capsys):
     assert flags["mechanism_l"]["label"] == "2i-5e-8i-11e"
     code, out, err = run(capsys, "limit", "--geometry", str(path), "--json")
     assert code == 0, err
-    assert json.loads(out)["k"] == pytest.approx(flags["k"], rel=1e-5)
+    assert json.loads(out)["k"] == pytest.approx(flags["k"], rel=1e-7)
     # the intrados span convention instead (R = 5.4 m) gives another arch: 0.1401
     other = limit_analysis(with_piers(nominal_arch(radius=5.4, embrace_deg=180, thickness=0.8,
                                                    voussoirs=9), 4.0, 2.0))
