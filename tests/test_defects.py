@@ -349,3 +349,18 @@ def test_springing_tilt_on_a_polygon_continues_its_end_curvature():
     ref_change = _exact_tilted_springing_area(arch, 20.0) - arch.areas[0]
     change = apply_defect(poly, "0:tilt=20").areas[0] - poly.areas[0]
     assert change == pytest.approx(ref_change, abs=2.5e-6, rel=0)
+
+
+def test_progress_lines_go_to_the_callback_not_stderr(capsys):
+    """The library prints nothing: a progress line per damaged arch goes to the callback (the
+    CLI's prints it on stderr), none without one."""
+    lines = []
+    m = defect_map(oppenheim_arch(), "thickness", 0.7, indices=[0, 3], progress=lines.append)
+    assert capsys.readouterr() == ("", "")
+    assert [ln.split("  [")[0] for ln in lines] == [
+        f"  voussoir {i} ({j + 1}/2): k_l = {m.k_l[j]:.4f}, k_r = {m.k_r[j]:.4f}"
+        for j, i in enumerate((0, 3))]
+    defect_map(oppenheim_arch(), "thickness", 0.7, indices=[0])
+    assert capsys.readouterr() == ("", "")
+    with pytest.raises(ArchInputError, match=r"^progress: True; allowed None or a callable"):
+        defect_map(oppenheim_arch(), progress=True)

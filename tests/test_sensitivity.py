@@ -148,3 +148,24 @@ def sensitivity_pulse():
     from archrock.sensitivity import PAPER_PULSE
 
     return PAPER_PULSE
+
+
+def test_progress_lines_go_to_the_callback_and_the_cli_prints_them(capsys):
+    """The library prints nothing: its progress lines go to the callback; the CLI prints them
+    on stderr (and not with --no-progress)."""
+    from archrock.errors import ArchInputError
+
+    lines = []
+    sobol_indices(oppenheim_arch(), Spreads(0.05, 0.05, 0.0), 16, motion=None, progress=lines.append)
+    assert capsys.readouterr() == ("", "")
+    assert lines[0] == "sensitivity: 80 arches (16 x (3 groups + 2))"
+    assert lines[-1].startswith("sensitivity: 80/80 arches [")
+    sobol_indices(oppenheim_arch(), Spreads(0.05, 0.05, 0.0), 16, motion=None)
+    assert capsys.readouterr() == ("", "")
+    with pytest.raises(ArchInputError, match=r"^progress: True; allowed None or a callable"):
+        sobol_indices(oppenheim_arch(), Spreads(0.05, 0.05, 0.0), 16, motion=None, progress=True)
+    assert main(["sensitivity", "--samples", "16", "--limit-only", "--json"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err[0] == lines[0] and err[-1].startswith("sensitivity: 80/80 arches [")
+    assert main(["sensitivity", "--samples", "16", "--limit-only", "--json", "--no-progress"]) == 0
+    assert capsys.readouterr().err == ""

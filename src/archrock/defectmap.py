@@ -14,8 +14,8 @@ k_r are recorded as NaN (null in JSON), ``stands`` False, and its loss is the wh
 from __future__ import annotations
 
 import math
-import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -186,7 +186,8 @@ def _amplitude(arch, nominal, impact, pulse, a_max, n_scan, tol):
 def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: float | None = None,
                side: str = "", *, indices=None, pulse_duration: float | None = None,
                pulse_kind: str = "oppenheim", sign: int = -1, impact=None, a_max: float = 10.0,
-               n_scan: int = 60, tol: float = 1e-3, progress: bool = False) -> DefectMap:
+               n_scan: int = 60, tol: float = 1e-3,
+               progress: Callable[[str], None] | None = None) -> DefectMap:
     """The defect map of ``arch`` (module docstring).
 
     kind: 'thickness' (value: remaining fraction, default 0.7), 'tilt' (value [deg], default 5)
@@ -197,10 +198,16 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     amplitude of the two) on each arch, with the impact law
     ``impact`` (an ImpactSpec or its name; default the paper's practice, evaluated on the
     undamaged arch), scanning ``n_scan`` amplitudes up to ``a_max`` [g] and bisecting to
-    ``tol`` [g]; progress: one line per damaged arch on stderr.
+    ``tol`` [g]; progress: None (silent) or a callable given one line of text per damaged arch
+    (the CLI prints them on stderr).
     """
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    if progress is False:
+        progress = None
+    if progress is not None and not callable(progress):
+        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable given one "
+                             "line of text (the CLI passes one that prints it on stderr)")
     if isinstance(kind, Defect):
         if value is not None or side:
             raise ArchInputError("value, side: given with a Defect, which holds its own; give "
@@ -263,10 +270,10 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
                     note = f"no first collapse amplitude: {exc}"
             amps.append(a)
         notes.append(note)
-        if progress:
-            print(f"  {template.target} {int(i)} ({m + 1}/{len(idx)}): k_l = {kl:.4f}, "
-                  f"k_r = {kr:.4f}" + (f", amplitude {amps[-1]:.4f} g" if pulse else "")
-                  + f"  [{time.monotonic() - t0:.1f} s]", file=sys.stderr, flush=True)
+        if progress is not None:
+            progress(f"  {template.target} {int(i)} ({m + 1}/{len(idx)}): k_l = {kl:.4f}, "
+                     f"k_r = {kr:.4f}" + (f", amplitude {amps[-1]:.4f} g" if pulse else "")
+                     + f"  [{time.monotonic() - t0:.1f} s]")
     how = "kinematic enumeration of each damaged arch (archrock.limit)"
     if pulse:
         how += (f"; first collapse amplitude of a {pulse['kind']} pulse, t_p = "

@@ -30,8 +30,8 @@ linear regression of the output on all the inputs (the variance a linear model e
 from __future__ import annotations
 
 import math
-import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -269,7 +269,7 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
 def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAULT_SPREADS,
                   samples: int = 1024, *, by: str = "kind", motion=PAPER_PULSE, impact=None,
                   seed: int = 0, conf_level: float = 0.95, num_resamples: int = 200,
-                  progress: bool = False) -> SobolResult:
+                  progress: Callable[[str], None] | None = None) -> SobolResult:
     """Sobol indices of k_l, k_r, k and (with ``motion``) the collapse indicator over the
     random arches around ``nominal`` (module docstring).
 
@@ -278,7 +278,8 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     PulseSpec / RecordSpec or its dict (default the paper's pulse), or None for k only; impact:
     an ImpactSpec or its name (default the paper's practice: the paper's model on the nominal
     arch, its c_v fixed on every arch); seed: of the scrambled Sobol sequence and of the
-    bootstrap; conf_level: of the intervals.
+    bootstrap; conf_level: of the intervals; progress: None (silent) or a callable given one
+    line of text per chunk of arches run (the CLI prints them on stderr).
     """
     sample, analyze = _salib()
     from .batch import prepare_batch, simulate_batch
@@ -307,6 +308,11 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     if isinstance(num_resamples, bool) or not isinstance(num_resamples, (int, np.integer)) \
             or num_resamples < 2:
         raise ArchInputError(f"num_resamples: {num_resamples!r}; allowed an integer >= 2")
+    if progress is False:
+        progress = None
+    if progress is not None and not callable(progress):
+        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable given one "
+                             "line of text (the CLI passes one that prints it on stderr)")
     if isinstance(motion, dict):
         motion = motion_spec_from_dict(motion)
     if motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):
@@ -323,9 +329,8 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     x = sample.sample(problem, int(samples), calc_second_order=False, seed=int(seed))
     x = np.clip(x, -1.0, 1.0)
     runs = len(x)
-    if progress:
-        print(f"sensitivity: {runs} arches ({samples} x ({len(names)} groups + 2))",
-              file=sys.stderr, flush=True)
+    if progress is not None:
+        progress(f"sensitivity: {runs} arches ({samples} x ({len(names)} groups + 2))")
     resolved = spec.resolved(nominal)
     built = motion.build() if motion is not None else None
     dt, t_free = default_steps(nominal)
@@ -353,9 +358,8 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
         tc = time.perf_counter()
         t_prep += tb - ta
         t_sim += tc - tb
-        if progress:
-            print(f"sensitivity: {sl.stop}/{runs} arches [{tc - t0:.1f} s]", file=sys.stderr,
-                  flush=True)
+        if progress is not None:
+            progress(f"sensitivity: {sl.stop}/{runs} arches [{tc - t0:.1f} s]")
     ys = {"k_l": k_l, "k_r": k_r, "k": np.minimum(k_l, k_r)}
     if built is not None:
         ys["collapse"] = collapse

@@ -204,9 +204,17 @@ def _limit_step(out: Path, progress: Callable[[str], None]) -> dict:
     }
 
 
-def run_paper_study(out_dir: str | os.PathLike, progress: Callable[[str], None] = print) -> dict:
+def _silent(msg: str) -> None:
+    """The default progress of the library: it does not print."""
+
+
+def run_paper_study(out_dir: str | os.PathLike,
+                    progress: Callable[[str], None] | None = None) -> dict:
     """Run the paper's study into ``out_dir`` (created if needed); returns the summary dict,
-    also written to ``out_dir/summary.json``. ``progress`` receives one-line messages."""
+    also written to ``out_dir/summary.json``. ``progress`` receives one-line messages (None:
+    silent; the CLI passes ``print``)."""
+    if progress is None:
+        progress = _silent
     out = Path(out_dir)
     try:
         out.mkdir(parents=True, exist_ok=True)
