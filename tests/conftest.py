@@ -25,3 +25,26 @@ def without_numba():
         return proc.stdout
 
     return run
+
+
+def _rocking_frame(b, h, beam_depth, span=6.0, density=2000.0, loads=()):
+    """Makris & Vassiliou's rocking frame as a 3-block polygon arch: two columns 2b x 2h
+    standing at x = 0 and x = span under a free rectangular beam of depth ``beam_depth`` resting
+    on their tops: column, beam, column (a column's intrados is the face towards the opening; its
+    bottom face is its foundation joint, its top face its bed joint with the beam)."""
+    from archrock.geometry import PolygonArch
+
+    x1, x2, top = 0.0, span, 2 * h
+    intr = ([(x1 + b, 0.0), (x1 + b, top)],
+            [(x1 + b, top), (x2 - b, top)],
+            [(x2 - b, top), (x2 - b, 0.0)])
+    extr = ([(x1 - b, 0.0), (x1 - b, top)],
+            [(x1 - b, top), (x1 - b, top + beam_depth), (x2 + b, top + beam_depth), (x2 + b, top)],
+            [(x2 + b, top), (x2 + b, 0.0)])
+    return PolygonArch(intr, extr, density, name="rocking frame", loads=loads)
+
+
+@pytest.fixture
+def rocking_frame():
+    """The builder of Makris & Vassiliou's rocking frame (:func:`_rocking_frame`)."""
+    return _rocking_frame

@@ -33,19 +33,6 @@ def run(capsys, *argv):
 
 
 # ------------------------------------------------------------------------- the rocking frame
-def rocking_frame(b, h, beam_depth, span=6.0, density=2000.0, loads=()) -> PolygonArch:
-    """Two rocking columns 2b x 2h at x = 0 and x = span under a free rectangular beam of depth
-    ``beam_depth`` resting on their tops: column, beam, column (a column's intrados is the face
-    towards the opening; its bottom face is its foundation joint, its top face its bed joint
-    with the beam)."""
-    x1, x2, top = 0.0, span, 2 * h
-    intr = ([(x1 + b, 0.0), (x1 + b, top)],
-            [(x1 + b, top), (x2 - b, top)],
-            [(x2 - b, top), (x2 - b, 0.0)])
-    extr = ([(x1 - b, 0.0), (x1 - b, top)],
-            [(x1 - b, top), (x1 - b, top + beam_depth), (x2 + b, top + beam_depth), (x2 + b, top)],
-            [(x2 + b, top), (x2 + b, 0.0)])
-    return PolygonArch(intr, extr, density, name="rocking frame", loads=loads)
 
 
 FRAMES = [(0.25, 1.0, 0.3, ()), (0.5, 1.5, 0.05, ()), (0.2, 2.5, 0.6, ()),
@@ -54,7 +41,7 @@ FRAMES = [(0.25, 1.0, 0.3, ()), (0.5, 1.5, 0.05, ()), (0.2, 2.5, 0.6, ()),
 
 
 @pytest.mark.parametrize("b,h,depth,loads", FRAMES)
-def test_rocking_frame_activation_is_tan_alpha(b, h, depth, loads):
+def test_rocking_frame_activation_is_tan_alpha(b, h, depth, loads, rocking_frame):
     """Static activation of the frame: tan(alpha) = b/h of one column, whatever the beam's mass
     (Makris & Vassiliou 2013), by the limit analysis (kinematic and static), with the four
     hinges at the columns' corners: M_l rocks both columns on their right foot corners
@@ -69,7 +56,7 @@ def test_rocking_frame_activation_is_tan_alpha(b, h, depth, loads):
 
 
 @pytest.mark.parametrize("b,h,depth,loads", FRAMES)
-def test_rocking_frame_frequency_parameter(b, h, depth, loads):
+def test_rocking_frame_frequency_parameter(b, h, depth, loads, rocking_frame):
     """The four-link model of the limit analysis's mechanism (M phi'' + L phi'^2 + F g = P xg''):
     M(0) and the restoring moment F(phi) = s sin(alpha - phi) give Housner's
     phi'' = -p^2 sin(alpha - phi) with p^2 = g F(0) / (M(0) sin(alpha)) = -g F'(0) /

@@ -264,19 +264,6 @@ def test_load_at_a_centroid_is_a_heavier_voussoir(opp):
 
 
 # ------------------------------------------------------------------------- Housner's frame
-def rocking_frame(b, h, beam_depth, span=6.0, density=2000.0) -> PolygonArch:
-    """Makris & Vassiliou's rocking frame as a 3-voussoir polygon arch: two columns 2b x 2h
-    standing at x = 0 and x = span, a rectangular cap beam of depth ``beam_depth`` resting on
-    them.  A column's bottom face is its springing joint and its top face its joint with the
-    beam (intrados: the side facing the opening)."""
-    x1, x2, top = 0.0, span, 2 * h
-    intr = ([(x1 + b, 0.0), (x1 + b, top)],
-            [(x1 + b, top), (x2 - b, top)],
-            [(x2 - b, top), (x2 - b, 0.0)])
-    extr = ([(x1 - b, 0.0), (x1 - b, top)],
-            [(x1 - b, top), (x1 - b, top + beam_depth), (x2 + b, top + beam_depth), (x2 + b, top)],
-            [(x2 + b, top), (x2 + b, 0.0)])
-    return PolygonArch(intr, extr, density, name="rocking frame")
 
 
 # M_l sways right: the columns rock on their bottom-right corners, hinged at their top-left
@@ -289,7 +276,7 @@ FRAME_R = Mechanism("r", (Hinge(0, "extrados"), Hinge(1, "intrados"), Hinge(2, "
 
 @pytest.mark.parametrize("b,h,depth", [(0.25, 1.0, 0.3), (0.5, 1.5, 0.05), (0.2, 2.5, 0.6),
                                        (0.3, 1.2, 1e-6)])
-def test_rocking_frame_is_housners_block(b, h, depth):
+def test_rocking_frame_is_housners_block(b, h, depth, rocking_frame):
     """The frame's beam translates, so (gamma = beam mass / both columns' mass)
     M = 8/3 m R^2 (1 + 3 gamma), F = 2 m R (1 + 2 gamma) sin(alpha - phi), L = 0 and
     p^2 = 3 g / (4 R) (1 + 2 gamma) / (1 + 3 gamma): Housner's block at gamma = 0."""
@@ -320,7 +307,7 @@ def test_rocking_frame_is_housners_block(b, h, depth):
         assert law.l_to_r == pytest.approx(1 - 1.5 * math.sin(alpha) ** 2, abs=1e-5)
 
 
-def test_rocking_frame_response():
+def test_rocking_frame_response(rocking_frame):
     """The frame as a DynamicModel (k = tan(alpha) both ways) rocks under a pulse and comes to
     rest, every impact keeping c^2 of the kinetic energy; the two integrators agree."""
     b, h = 0.25, 1.0
@@ -344,7 +331,7 @@ def test_rocking_frame_response():
 
 
 # ------------------------------------------------------------------------- drawing
-def test_displaced_polygons_move_rigidly(opp, tmp_path):
+def test_displaced_polygons_move_rigidly(opp, tmp_path, rocking_frame):
     pytest.importorskip("matplotlib")
     from archrock.plots import displaced_hinges, displaced_outlines
 

@@ -25,6 +25,7 @@ from .errors import UNUSABLE_ARCH, ArchInputError, CannotStandError, GeometryOut
 from .geometry import Defect, VoussoirArch, apply_defect
 from .geometry.defect import defect_base
 from .limit import kinematic_mechanisms
+from .work import check_progress
 
 __all__ = ["DefectMap", "defect_map"]
 
@@ -203,11 +204,7 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     """
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
-    if progress is False:
-        progress = None
-    if progress is not None and not callable(progress):
-        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable given one "
-                             "line of text (the CLI passes one that prints it on stderr)")
+    progress = check_progress(progress)
     if isinstance(kind, Defect):
         if value is not None or side:
             raise ArchInputError("value, side: given with a Defect, which holds its own; give "

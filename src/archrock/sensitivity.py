@@ -41,6 +41,7 @@ from .errors import ArchInputError, InvalidSampleError
 from .geometry import Arch, FamilyArch, VoussoirArch, perturb_voussoirs
 from .groundmotion import PulseSpec
 from .sampling import DEFAULT_SPREADS, Spreads
+from .work import check_progress
 
 __all__ = ["SobolResult", "sobol_indices", "input_layout", "arches_from_inputs", "GROUPINGS",
            "PAPER_PULSE", "check_sensitivity_work"]
@@ -308,11 +309,7 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     if isinstance(num_resamples, bool) or not isinstance(num_resamples, (int, np.integer)) \
             or num_resamples < 2:
         raise ArchInputError(f"num_resamples: {num_resamples!r}; allowed an integer >= 2")
-    if progress is False:
-        progress = None
-    if progress is not None and not callable(progress):
-        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable given one "
-                             "line of text (the CLI passes one that prints it on stderr)")
+    progress = check_progress(progress)
     if isinstance(motion, dict):
         motion = motion_spec_from_dict(motion)
     if motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):
