@@ -47,6 +47,12 @@ def format_ensemble(summary: dict, arch_name: str) -> str:
              + (f", joint tilt {sp['tilt_deg']:g} deg" if sp.get("tilt_deg") else "") + ")",
              f"nominal: k_l = {summary['nominal']['k_l']:.4f}, "
              f"k_r = {summary['nominal']['k_r']:.4f}"]
+    imp = summary.get("impact")
+    if imp and summary.get("p_collapse") is not None:
+        lines.append(f"impact: {imp['description']}")
+        note = (imp.get("applied") or {}).get("note")
+        if note:
+            lines.append(f"impact law fallback: {note}")
     oc = summary.get("outcomes")
     if oc is not None:
         lines += _outcome_lines(oc)
