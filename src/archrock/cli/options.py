@@ -57,14 +57,14 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                          "(--shape, --span, --rise of the centreline) or --geometry FILE")
     # Defaults are None so that arch_from_args can tell given flags from defaults.
     g.add_argument("--radius", type=finite_float, metavar="R",
-                   help=f"mean radius [m], 0.001 to 10000 (default {d['radius']:g})")
+                   help=f"mean radius [m], 1e-8 to 1e8 (default {d['radius']:g})")
     g.add_argument("--embrace", type=finite_float, metavar="DEG",
                    help=f"angle of embrace [deg], 0 < embrace < 360 (default {d['embrace']:g})")
     g.add_argument("--shape", choices=SHAPES, metavar="SHAPE",
                    help=f"arch family: {', '.join(SHAPES)} (with --span and --rise; "
                         f"docs/geometry.md)")
     g.add_argument("--span", type=finite_float, metavar="S",
-                   help="span of the centreline between its springings [m], 0.001 to 10000")
+                   help="span of the centreline between its springings [m], 1e-8 to 1e8")
     g.add_argument("--rise", type=finite_float, metavar="F",
                    help="rise of the centreline's crown above its springings [m] (circular: "
                         "0 < F <= S; pointed: F > S/2; three-centred: F <= S/2)")
