@@ -9,7 +9,7 @@ ROOT = Path(archrock.__file__).parent
 
 #: top-level module or package -> layer (docs/architecture.md)
 LAYER = {
-    "errors": 0, "units": 0, "published": 0, "_jit": 0, "_records": 0,
+    "errors": 0, "units": 0, "published": 0, "_jit": 0, "_records": 0, "_progress": 0,
     "geometry": 1, "sampling": 1, "files": 1, "dxf": 1,
     "limit": 2, "friction": 2, "thrust": 2,
     "mechanism": 3,

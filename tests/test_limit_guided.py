@@ -167,8 +167,13 @@ def test_long_enumeration_reports_progress(monkeypatch, capsys, numba):
     assert capsys.readouterr().err == ""
     monkeypatch.setattr(limit, "_PROGRESS_SECONDS", 0.0)
     monkeypatch.setattr(limit, "_BLOCK_ELEMENTS", 512)  # several numpy blocks
-    out = limit.kinematic_multipliers_batch(*_rows(arch), method="enumeration", chunk=1)
-    err = capsys.readouterr().err
+    # the library never prints: the lines go to the callable of limit_progress, if any
+    limit.kinematic_multipliers_batch(*_rows(arch), method="enumeration", chunk=1)
+    assert capsys.readouterr().err == ""
+    lines = []
+    with limit.limit_progress(lines.append):
+        out = limit.kinematic_multipliers_batch(*_rows(arch), method="enumeration", chunk=1)
+    err = "\n".join(lines)
     assert "full enumeration of 1.91e+04 candidate mechanisms (1 arch of 14 voussoirs)" in err
     assert "100%" in err and "done in" in err
     for x, y in zip(ref, out):  # split in ranges of first joints: the same result
@@ -219,3 +224,14 @@ def test_guided_search_same_without_numba(without_numba):
     scope = {}
     exec(compile(_SCRIPT.replace("print(json.dumps(out))", ""), "<script>", "exec"), scope)
     assert ref == scope["out"]
+
+
+def test_cli_prints_the_progress_of_a_long_enumeration(monkeypatch, capsys):
+    """The CLI hands limit analysis a progress callable that prints on stderr; the library
+    itself stays silent (above)."""
+    from archrock.cli import main
+
+    monkeypatch.setattr(limit, "_PROGRESS_SECONDS", 0.0)
+    assert main(["limit", "--voussoirs", "14", "--json"]) == 0
+    err = capsys.readouterr().err
+    assert "archrock limit analysis: full enumeration of" in err and "done in" in err

@@ -25,7 +25,7 @@ from .errors import UNUSABLE_ARCH, ArchInputError, CannotStandError, GeometryOut
 from .geometry import Defect, VoussoirArch, apply_defect
 from .geometry.defect import defect_base
 from .limit import kinematic_mechanisms
-from .work import check_progress
+from ._progress import check_progress
 
 __all__ = ["DefectMap", "defect_map"]
 

@@ -30,8 +30,9 @@ estimated before it starts (LimitExceededError beyond ``max_seconds``).
 from __future__ import annotations
 
 import math
-import sys
 import time
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from functools import lru_cache
 from itertools import combinations
@@ -40,6 +41,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 from ._jit import HAVE_NUMBA, maybe_njit, numba
+from ._progress import check_progress
 from ._records import readonly_arrays
 from .errors import (ArchInputError, CannotStandError, LimitExceededError, NoMechanismError,
                      NotFourHingeError)
@@ -52,7 +54,7 @@ __all__ = [
     "static_multiplier", "thrust_line", "minimum_thickness", "thickness_bisection",
     "length_scale", "arch_sums", "general_mechanisms", "mechanism_multiplier",
     "certify_four_hinge", "CERTIFY_TOL", "GENERAL_MAX_VOUSSOIRS", "require_four_hinge",
-    "certify_candidates", "LIFT_OFF_REASON",
+    "certify_candidates", "LIFT_OFF_REASON", "limit_progress",
     "enumeration_estimate", "EDGES", "SEARCH_CHOICES", "ENUMERATION_MAX_VOUSSOIRS",
     "MAX_ENUMERATION_SECONDS",
 ]
@@ -668,8 +670,28 @@ def _seconds(x: float) -> str:
     return f"{x:.0f}" if x >= 10 else f"{x:.2g}"
 
 
+# Where the progress lines of long enumerations go: a callable given one line of text, set for
+# a block of code by :func:`limit_progress` (the CLI prints them on stderr); the library itself
+# never prints.  A context variable, so threads and nested calls each see their own.
+_PROGRESS_SINK: ContextVar = ContextVar("archrock_limit_progress", default=None)
+
+
+@contextmanager
+def limit_progress(progress):
+    """Within the block, the progress lines of long limit analyses (a full enumeration above
+    about 5 s, a batch of guided searches) go to ``progress`` (a callable given one line of text;
+    None: silent, the default)."""
+    token = _PROGRESS_SINK.set(check_progress(progress))
+    try:
+        yield
+    finally:
+        _PROGRESS_SINK.reset(token)
+
+
 def _say(msg: str) -> None:
-    print(f"archrock limit analysis: {msg}", file=sys.stderr, flush=True)
+    sink = _PROGRESS_SINK.get()
+    if sink is not None:
+        sink(f"archrock limit analysis: {msg}")
 
 
 def _full_enumeration(sums_of, B, n, chunk, max_seconds, why="", parallel=False):

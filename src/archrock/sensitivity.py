@@ -41,7 +41,7 @@ from .errors import ArchInputError, InvalidSampleError
 from .geometry import Arch, FamilyArch, VoussoirArch, perturb_voussoirs
 from .groundmotion import PulseSpec
 from .sampling import DEFAULT_SPREADS, Spreads
-from .work import check_progress
+from ._progress import check_progress
 
 __all__ = ["SobolResult", "sobol_indices", "input_layout", "arches_from_inputs", "GROUPINGS",
            "PAPER_PULSE", "check_sensitivity_work"]

@@ -12,7 +12,7 @@ import os
 import warnings
 
 from ._jit import HAVE_NUMBA
-from .errors import ArchInputError, LimitExceededError
+from .errors import LimitExceededError
 
 __all__ = ["MAX_WORK_S", "WARN_WORK_S", "PROGRESS_S", "response_cost_s", "check_work",
            "format_duration"]
@@ -78,14 +78,3 @@ def check_work(what: str, units: float, unit: str, seconds_each: float, advice: 
         warnings.warn(said, stacklevel=3)
     return est
 
-
-def check_progress(progress):
-    """A study's ``progress`` argument: None (silent; False reads as None) or a callable given
-    one line of text (the CLI passes one that prints it on stderr); anything else is refused by
-    name.  The library itself never prints."""
-    if progress is False or progress is None:
-        return None
-    if not callable(progress):
-        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable given one "
-                             "line of text (the CLI passes one that prints it on stderr)")
-    return progress

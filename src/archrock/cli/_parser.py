@@ -175,6 +175,10 @@ def new_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _progress_line(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
 def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
     """Parse ``argv`` and run the chosen subcommand; returns the exit status (0 ok, 2 bad input,
     3 a valid input with no answer of the kind asked (archrock.errors.GeometryOutcome: the arch
@@ -184,8 +188,13 @@ def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse: --help/--version (0) or a usage error (2)
         return int(exc.code) if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_USAGE)
+    from ..limit import limit_progress
+
+    # long limit analyses (a full enumeration above about 5 s) say how far they are, on stderr,
+    # unless the command was asked for no progress
+    progress = None if getattr(args, "no_progress", False) else _progress_line
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), limit_progress(progress):
             warnings.simplefilter("default")  # each distinct warning once, not hidden
             warnings.showwarning = _one_line_warning
             return int(args.func(args) or 0)
