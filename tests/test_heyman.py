@@ -270,3 +270,27 @@ def test_batch_of_many_voussoirs_leaves_lift_off_out_without_a_full_enumeration(
     pb = prepare_batch([arch], impact="momentum")
     assert left_out_outcome(pb.error[0]) == "lift_off"
     np.testing.assert_allclose([pb.k_l[0], pb.k_r[0]], [res.k_l, res.k_r], rtol=1e-7)
+
+
+def test_ensemble_around_a_nominal_arch_that_lifts_off(capsys):
+    """A segmental nominal arch (80 deg) lifts off: the ensemble still runs, its nominal k is
+    Heyman's (3.9020, not the four-hinge 4.1423), the default c_v is that of the nominal arch's
+    best four-hinge mechanisms (the note says why), and the samples that lift off are counted
+    as such while the others are integrated."""
+    import json
+
+    from archrock.cli import main
+    from archrock.impact import PAPER_PRACTICE
+
+    nominal = nominal_arch(10.0, 80.0, 1.5, 7)
+    spec = PAPER_PRACTICE.resolved(nominal)
+    assert spec.model == "fixed" and "lift-off at joint 0" in spec.note
+    assert "best four-hinge mechanisms" in spec.note
+    argv = ["ensemble", "--embrace", "80", "--samples", "60", "--pulse", "oppenheim",
+            "--amplitude", "-5", "--pulse-duration", "0.2", "--no-progress", "--json"]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["nominal"]["k_l"] == pytest.approx(3.9020130665024, rel=1e-9)
+    counts = d["outcomes"]["counts"]
+    assert counts["lift_off"] > 0 and counts["integrated"] > 0
+    assert counts["lift_off"] + counts["integrated"] + counts["cannot_stand"] == 60

@@ -20,17 +20,23 @@ __all__ = ["run_ensemble"]
 
 def _nominal_info(config: EnsembleConfig) -> dict:
     from ..batch import mechanism_label
-    from ..limit import kinematic_multipliers_batch
+    from ..limit import (arch_sums, certify_candidates, kinematic_mechanisms,
+                         kinematic_multipliers_batch)
 
     arch = arch_from_dict(config.nominal)
     if not isinstance(arch, Arch):
-        from ..limit import kinematic_mechanisms
-
         m_l, m_r = kinematic_mechanisms(arch)
         return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
                 "mech_r": m_r.label}
     k_l, k_r, i_l, i_r = kinematic_multipliers_batch(arch.spans[None], arch.radii[None],
                                                      arch.thicknesses[None])
+    gov_l, gov_r = certify_candidates(arch_sums(arch), arch.n, i_l, i_r)
+    if not (gov_l[0] and gov_r[0]):
+        # a joint of the nominal arch lifts off: its Heyman multipliers and mechanisms, as for
+        # every other shape (the batch's numbers, above, are those of the samples otherwise)
+        m_l, m_r = kinematic_mechanisms(arch)
+        return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
+                "mech_r": m_r.label}
     return {"k_l": float(k_l[0]), "k_r": float(k_r[0]), "mech_l": mechanism_label(arch.n, int(i_l[0])),
             "mech_r": mechanism_label(arch.n, int(i_r[0]))}
 

@@ -38,7 +38,7 @@ import math
 import warnings
 from dataclasses import dataclass
 
-from ..errors import ArchInputError
+from ..errors import ArchInputError, ImpactModelError
 
 __all__ = ["ImpactSpec", "PAPER_PRACTICE", "IMPACT_MODELS", "FALLBACK_MODELS", "nominal_cv"]
 
@@ -224,8 +224,25 @@ def _evaluate_cv(arch, model: str, fallback: str | None) -> tuple[float, str | N
     from .laws import impact_law
 
     lim = limit_analysis(arch, verify=False)
+    # Where a joint of the nominal arch lifts off, its own mechanism has no four-link model; the
+    # c_v given to the random arches (those that do rock as four-hinge chains) is that of the
+    # nominal arch's best four-hinge mechanisms, and the note says so.
+    mechs, lifted = [], []
+    for d in ("l", "r"):
+        m = lim.mechanism(d)
+        if not m.is_four_hinge:
+            lifted.append(lim.not_four_hinge(d))
+            m = lim.four_hinge_l if d == "l" else lim.four_hinge_r
+        if m is None:
+            raise ImpactModelError(
+                f"impact: the {model} model's c_v is evaluated on the nominal arch, where no "
+                f"four-hinge mechanism loads direction {d!r} ({lim.not_four_hinge(d)}); give a "
+                f"fixed c_v (--cv), or --impact momentum (evaluated on each arch)")
+        mechs.append(m)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        law = impact_law(four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r), model,
+        law = impact_law(four_link(arch, mechs[0]), four_link(arch, mechs[1]), model,
                          fallback=fallback)
-    return float(law.equivalent_cv), law.fallback
+    notes = [f"{'; '.join(lifted)}: c_v of its best four-hinge mechanisms"] if lifted else []
+    notes += [law.fallback] if law.fallback else []
+    return float(law.equivalent_cv), "; ".join(notes) or None
