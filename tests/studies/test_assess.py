@@ -100,8 +100,8 @@ def test_self_contained(report):
 
 def test_optional_sections_say_when_absent(report, monkeypatch):
     res, text, _, _ = report
-    for key in ("friction", "defects", "contact"):
-        monkeypatch.setitem(sys.modules, f"archrock.{ {'defects': 'defectmap'}.get(key, key)}", None)
+    for name in ("statics.friction", "studies.defectmap", "contact"):
+        monkeypatch.setitem(sys.modules, f"archrock.{name}", None)
     from archrock.studies.assessment import section_contact, section_defects, section_friction
 
     ctx_res = assess(oppenheim_arch(), FAST,

@@ -452,7 +452,7 @@ def section_friction(ctx: Context) -> Section:
     title = "Friction the thrust needs"
     fr = ctx.friction
     if fr is None:
-        return _optional_missing("friction", title, "friction",
+        return _optional_missing("friction", title, "statics.friction",
                                  "The friction the limit thrust needs at the joints")
     need, mu = fr["needed"], fr["mu"]  # need: {"l": mu or None (no finite friction), "r": ...}
     lim = ctx.limit
@@ -596,7 +596,7 @@ def section_defects(ctx: Context) -> Section:
     try:
         from .defectmap import defect_map
     except ImportError:
-        return _optional_missing("defects", title, "defectmap", "The defect map")
+        return _optional_missing("defects", title, "studies.defectmap", "The defect map")
     res = defect_map(ctx.arch)  # 30% thickness loss about the centreline, each voussoir
     worst = res.worst_all
     m = int(np.flatnonzero(res.indices == worst[0])[0])
