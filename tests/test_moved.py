@@ -36,6 +36,9 @@ def test_attribute_access_and_pickles_use_the_new_path():
     from archrock.geometry import oppenheim_arch
     from archrock.statics.limit import limit_analysis
 
+    # an earlier import of archrock.limit leaves the attribute on the package: start clean
+    vars(archrock).pop("limit", None)
+    sys.modules.pop("archrock.limit", None)
     with pytest.warns(DeprecationWarning):
         old = archrock.limit
     assert old.limit_analysis is limit_analysis

@@ -206,7 +206,7 @@ def test_physical_outcomes_many_voussoirs():
 
 _SCRIPT = """
 import json
-from archrock import limit
+from archrock.statics import limit
 from archrock.geometry import nominal_arch, random_arch
 out = []
 for n, seed in ((60, None), (120, 7), (300, 9)):

@@ -202,8 +202,8 @@ class Manifest:
             self.data = {
                 "format": FORMAT, "config": cfg, "n_batches": config.n_batches,
                 "seeds": {"entropy": config.seed,
-                          "streams": "sample i is archrock.sampling.ArchSampler(nominal, spreads, "
-                                     "seed).arch(i): block k = i // 500 reads numpy "
+                          "streams": "sample i is archrock.geometry.sampling.ArchSampler(nominal, "
+                                     "spreads, seed).arch(i): block k = i // 500 reads numpy "
                                      "SeedSequence(entropy, spawn_key=(k,))"},
                 "impact": impact, "nominal": nominal, "versions": _versions(),
                 "started": _now(), "finished": None, "batches": {}, "runs": []}
