@@ -2,6 +2,7 @@
 
 import hashlib
 import json
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -16,6 +17,8 @@ from archrock.groundmotion import PulseSpec
 from archrock.dynamics.impact import ImpactSpec
 from archrock.geometry.sampling import DEFAULT_SPREADS, ArchSampler, Spreads
 from archrock.statics.limit import limit_analysis
+
+DATA = Path(__file__).resolve().parents[1] / "data"
 
 PULSE = PulseSpec("oppenheim", -1.0, 0.2)
 
@@ -541,15 +544,54 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     assert "older code" in why["0"] and "another configuration" in why["2"]
     assert "index" in why["3"]
     assert err.count("recomputing batch") == 3
-    # the package's sources changed: every batch is recomputed, and said so
+    # the package's sources changed: batch 0 is recomputed and, the same bit for bit, vouches
+    # for the others, which are kept and stamped with this code's digest
     monkeypatch.setattr(store, "_code_digest", lambda: "0" * 64)
     res, err = _resume(written, capsys)
-    assert res.timing["computed_batches"] == [0, 1, 2, 3]
-    assert set(res.timing["recomputed_batches"].values()) == {"written by other archrock code"}
-    assert err.count("written by other archrock code") == 4
+    assert res.timing["computed_batches"] == [0]
+    assert res.timing["loaded_batches"] == [1, 2, 3]
+    assert "recomputed to verify" in res.timing["recomputed_batches"]["0"]
+    assert "recomputed bit for bit the same: its 3 other batch(es) kept" in err
     pd.testing.assert_frame_equal(res.frame, base.frame)
+    assert {store.written_by(written, b) for b in range(4)} == {"0" * 64}
     res, _ = _resume(written, capsys)
     assert res.timing["loaded_batches"] == [0, 1, 2, 3]
+    # sources whose batch 0 this code computes differently: none of their batches is kept
+    df = pd.read_parquet(batches / "batch-00000.parquet")
+    df.loc[5, "peak"] = np.nextafter(df.loc[5, "peak"], np.inf)  # one float, one ulp
+    store.write_batch(written, 0, df, config())
+    monkeypatch.setattr(store, "_code_digest", lambda: "1" * 64)
+    res, err = _resume(written, capsys)
+    assert res.timing["computed_batches"] == [0, 1, 2, 3]
+    why = res.timing["recomputed_batches"]
+    assert all("recomputes differently (column 'peak')" in why[str(b)] for b in (1, 2, 3))
+    pd.testing.assert_frame_equal(res.frame, base.frame)
+
+
+def test_a_folder_written_by_0_4_0_resumes_by_verification(tmp_path, capsys):
+    """tests/data/ensemble-0.4.0: `archrock ensemble --samples 48 --batch-size 16 --seed 7
+    --pulse oppenheim --amplitude -1 --pulse-duration 0.2 --out DIR`, run by archrock 0.4.0
+    (commit 86d55b4).  Its configuration hash is this release's; its code digest is not, so one
+    batch is recomputed and, being the same bit for bit, the other two are kept."""
+    import shutil
+
+    from archrock.studies.ensemble import store
+
+    out = tmp_path / "ens"
+    shutil.copytree(DATA / "ensemble-0.4.0", out)
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["versions"]["archrock"] == "0.4.0"
+    res = run_ensemble(EnsembleConfig.from_dict(manifest["config"]), out_dir=out, progress=True)
+    err = capsys.readouterr().err
+    if res.timing["loaded_batches"] == [1, 2]:  # the numbers of this installation's numpy/numba
+        assert res.timing["computed_batches"] == [0]
+        assert "its 2 other batch(es) kept" in err
+    else:  # newer releases moved a last digit: then nothing of 0.4.0's is kept, and it says why
+        assert res.timing["computed_batches"] == [0, 1, 2]
+        assert all("recomputes differently (column" in res.timing["recomputed_batches"][str(b)]
+                   for b in (1, 2))
+    assert res.summary()["p_collapse"]["collapses"] == 14  # as 0.4.0 reported
+    assert {store.written_by(out, b) for b in range(3)} == {store.code_digest()}
 
 
 def test_tmp_files_of_live_processes_are_kept(written):

@@ -12,7 +12,9 @@ from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, c
 from .config import EnsembleConfig, int_field
 from .executors import execute
 from .progress import Progress
-from .store import Manifest, batch_path, read_batch, write_batch
+from .compute import run_batches
+from .store import (OTHER_CODE, Manifest, batch_path, code_digest, read_batch, same_bits,
+                    write_batch, written_by)
 from .summary import EnsembleResult
 
 __all__ = ["run_ensemble"]
@@ -96,38 +98,76 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
     batch_timings: dict[int, dict] = {}
     todo = []
     recomputed: dict[int, str] = {}
+    foreign: dict[str, list[int]] = {}  # batches written by other sources, by their digest
     bar = Progress(config.samples, progress)
+
+    def loaded(b, df):
+        done.add(b)
+        if keep_frame:
+            frames[b] = df
+        manifest.batch_done(b, len(df), {}, computed=False)
+        bar.update(len(df))
+
+    def recompute(b, why):
+        todo.append(b)
+        recomputed[b] = why
+        manifest.run["recomputed"][str(b)] = why
+        bar.note(f"ensemble: recomputing batch {b}: {batch_path(out, b).name} {why}")
+
+    def finished(b, df, timings):
+        done.add(b)
+        if keep_frame:
+            frames[b] = df
+        batch_timings[b] = timings
+        if out is not None:
+            write_batch(out, b, df, config)
+            manifest.batch_done(b, len(df), timings, computed=True)
+            manifest.save()
+        bar.update(len(df))
+
     try:
+        mine = code_digest() if out is not None else None
         for b in range(config.n_batches):
-            nb = config.batch_range(b)[1]
-            df, why = read_batch(out, b, config) if out is not None else (None, None)
-            if df is not None:
-                done.add(b)
-                if keep_frame:
-                    frames[b] = df
-                del df
-                manifest.batch_done(b, nb, {}, computed=False)
-                bar.update(nb)
+            df, why = read_batch(out, b, config, any_code=True) if out is not None else (None, None)
+            writer = written_by(out, b) if df is not None else mine
+            if writer != mine:
+                foreign.setdefault(writer, []).append(b)
+            elif df is not None:
+                loaded(b, df)
+            elif why is not None:
+                recompute(b, why)
             else:
                 todo.append(b)
-                if why is not None:
-                    recomputed[b] = why
-                    manifest.run["recomputed"][str(b)] = why
-                    bar.note(f"ensemble: recomputing batch {b}: "
-                             f"{batch_path(out, b).name} {why}")
+            del df
+        for digest, bs in foreign.items():
+            # resume by verification: the first batch of these sources is recomputed here; the
+            # others are kept (and re-stamped with this code's digest) only if it comes out bit
+            # for bit the same, so an older release's folder resumes without recomputing
+            old, _ = read_batch(out, bs[0], config, any_code=True)
+            recomputed[bs[0]] = manifest.run["recomputed"][str(bs[0])] = (
+                f"{OTHER_CODE} ({str(digest)[:12]}): recomputed to verify its other batches")
+            (_, new, timings), = run_batches(config, [bs[0]], workers == 1 and scheduler is None)
+            finished(bs[0], new, timings)
+            differs = same_bits(old, read_batch(out, bs[0], config)[0])
+            del old, new
+            if differs is None:
+                bar.note(f"ensemble: batch {bs[0]}, {OTHER_CODE} ({str(digest)[:12]}), "
+                         f"recomputed bit for bit the same: its {len(bs) - 1} other batch(es) "
+                         f"kept")
+                manifest.run.setdefault("verified", {})[str(digest)] = {
+                    "recomputed_batch": bs[0], "kept": bs[1:]}
+                for b in bs[1:]:
+                    df, _ = read_batch(out, b, config, any_code=True)
+                    write_batch(out, b, df, config)
+                    loaded(b, df)
+                    del df
+            else:
+                for b in bs[1:]:
+                    recompute(b, f"{OTHER_CODE}, whose batch {bs[0]} this code recomputes "
+                                 f"differently ({differs})")
+        todo.sort()
         if manifest is not None:
             manifest.save()
-
-        def finished(b, df, timings):
-            done.add(b)
-            if keep_frame:
-                frames[b] = df
-            batch_timings[b] = timings
-            if out is not None:
-                write_batch(out, b, df, config)
-                manifest.batch_done(b, len(df), timings, computed=True)
-                manifest.save()
-            bar.update(len(df))
 
         executor = execute(config, todo, finished, workers, scheduler)
     finally:

@@ -4,9 +4,12 @@ Layout: ``manifest.json`` (configuration, seeds, versions, runs) next to
 ``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID`` then rename).  Each batch
 file carries in its Parquet metadata (key ``archrock.ensemble``) the configuration's sha256, its
 batch number and the sha256 of the package's sources; a file whose metadata, ``batch`` or
-``index`` columns do not match (or that cannot be read) is recomputed, with the reason.  Batch
-files without ``manifest.json`` are refused; ``*.tmp-PID`` files of killed writes are removed
-when a run starts.
+``index`` columns do not match (or that cannot be read) is recomputed, with the reason.  Batches
+that differ only by the code that wrote them (an older release) are resumed by verification
+(:func:`same_bits`, used by :func:`archrock.studies.ensemble.run.run_ensemble`): one of them is
+recomputed, and the others are kept only if it comes out bit for bit the same.  Batch files
+without ``manifest.json`` are refused; ``*.tmp-PID`` files of killed writes are removed when a
+run starts.
 """
 
 from __future__ import annotations
@@ -27,7 +30,11 @@ from .compute import COLUMNS
 from .config import EnsembleConfig
 
 __all__ = ["EnsembleConfigMismatch", "Manifest", "batch_path", "read_batch", "write_batch",
-           "MANIFEST", "FORMAT", "PROVENANCE_KEY"]
+           "written_by", "same_bits", "code_digest", "MANIFEST", "FORMAT", "PROVENANCE_KEY",
+           "OTHER_CODE"]
+
+#: Why a batch is not loaded as it is: the sources that wrote it differ from these.
+OTHER_CODE = "written by other archrock code"
 
 MANIFEST = "manifest.json"
 # 2: spreads and impact as objects; draws by ArchSampler.  3: t_collapse is the last passage of
@@ -102,9 +109,44 @@ def write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
     os.replace(tmp, path)
 
 
-def read_batch(out: Path, b: int, config: EnsembleConfig):
+def code_digest() -> str:
+    """sha256 of this installation's archrock sources (the ``code_sha256`` of what it writes)."""
+    return _code_digest()
+
+
+def written_by(out: Path, b: int) -> str | None:
+    """The ``code_sha256`` recorded in batch ``b``'s file (None: no file or no provenance)."""
+    import pyarrow.parquet as pq
+
+    try:
+        meta = json.loads((pq.read_schema(batch_path(out, b)).metadata or {})
+                          .get(PROVENANCE_KEY, b"null"))
+    except Exception:  # no file, or a damaged one: read_batch says why
+        return None
+    return meta.get("code_sha256") if isinstance(meta, dict) else None
+
+
+def same_bits(old, new) -> str | None:
+    """None when two batch tables are identical bit for bit (floats compared by their bytes, so
+    -0.0 != 0.0 and NaN == NaN); else the first column that differs, in words."""
+    if list(old.columns) != list(new.columns) or len(old) != len(new):
+        return "its columns or number of rows"
+    for col in old.columns:
+        a, b = old[col].to_numpy(), new[col].to_numpy()
+        if a.dtype != b.dtype:
+            return f"column {col!r} (type {a.dtype} against {b.dtype})"
+        same = (a.tobytes() == b.tobytes() if a.dtype != object
+                else all(x == y or (x != x and y != y) for x, y in zip(a, b)))
+        if not same:
+            return f"column {col!r}"
+    return None
+
+
+def read_batch(out: Path, b: int, config: EnsembleConfig, any_code: bool = False):
     """(DataFrame, None) for a verified batch file; (None, None) when there is none; (None,
-    reason) when the file exists but cannot be used (it is then recomputed)."""
+    reason) when the file exists but cannot be used (it is then recomputed).  ``any_code``: a
+    file written by other archrock sources is returned too (the caller verifies it, see
+    :func:`written_by`); otherwise it is (None, :data:`OTHER_CODE`)."""
     import pyarrow.parquet as pq
 
     path = batch_path(out, b)
@@ -125,8 +167,8 @@ def read_batch(out: Path, b: int, config: EnsembleConfig):
         return None, "written for another configuration"
     if meta.get("batch") != b:
         return None, f"holds batch {meta.get('batch')!r}"
-    if meta.get("code_sha256") != want["code_sha256"]:
-        return None, "written by other archrock code"
+    if meta.get("code_sha256") != want["code_sha256"] and not any_code:
+        return None, OTHER_CODE
     start, nb = config.batch_range(b)
     if list(df.columns) != COLUMNS or len(df) != nb:
         return None, "unexpected columns or number of rows"
