@@ -15,7 +15,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-from archrock.codecheck import (CodeCheckConfig, SiteSpectrum, block_kinematics,  # noqa: E402
+from archrock.studies.codecheck import (CodeCheckConfig, SiteSpectrum, block_kinematics,  # noqa: E402
                                 code_check, kinematic_check)
 from archrock.geometry import oppenheim_arch  # noqa: E402
 from archrock.reports.codecheck import format_codecheck  # noqa: E402

@@ -24,7 +24,7 @@ def convergence():
     from archrock.contact import EngineSettings, engine_respond, ramp_direction
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import oppenheim_pulse
-    from archrock.response import prepare
+    from archrock.dynamics.response import prepare
 
     arch = oppenheim_arch()
     model = prepare(arch)
@@ -62,10 +62,10 @@ def convergence_markdown(rows):
 def pulse_figure():
     """The paper's pulse on Oppenheim's arch: engine beside the four-link model (paper c_v)."""
     from archrock.contact import engine_respond
-    from archrock.contactplots import save_engine_figure
+    from archrock.reports.contactplots import save_engine_figure
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import oppenheim_pulse
-    from archrock.response import prepare, respond
+    from archrock.dynamics.response import prepare, respond
 
     arch, motion = oppenheim_arch(), oppenheim_pulse(-1.0, 0.2)
     model = prepare(arch)
@@ -81,11 +81,11 @@ def pulse_figure():
 
 
 def study(quick=False):
-    from archrock.contactplots import save_verify_figure
+    from archrock.reports.contactplots import save_verify_figure
     from archrock.geometry import oppenheim_arch
-    from archrock.plots import new_figure, save_figure
+    from archrock.reports.plots import new_figure, save_figure
     from archrock.reports.verification import format_verify, verify_markdown
-    from archrock.verification import verify
+    from archrock.studies.verification import verify
 
     amps = [-0.4, -0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0, -4.0, -5.0, -6.0, -8.0]
     if quick:

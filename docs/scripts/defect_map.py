@@ -3,8 +3,8 @@
 
 import time
 
-from archrock.defectmap import defect_map
-from archrock.plots import plot_defect_map
+from archrock.studies.defectmap import defect_map
+from archrock.reports.plots import plot_defect_map
 from archrock.geometry import oppenheim_arch
 from archrock.reports.defects import format_defects
 

@@ -13,10 +13,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from archrock.errors import CannotStandError  # noqa: E402
-from archrock.friction import (friction_analysis, friction_minimum_thickness,  # noqa: E402
+from archrock.statics.friction import (friction_analysis, friction_minimum_thickness,  # noqa: E402
                                friction_needed)
 from archrock.geometry import Arch, Load, family_arch, nominal_arch, oppenheim_arch  # noqa: E402
-from archrock.limit import limit_analysis, minimum_thickness  # noqa: E402
+from archrock.statics.limit import limit_analysis, minimum_thickness  # noqa: E402
 
 
 def centreline_semicircle(n, t_over_r=0.2):

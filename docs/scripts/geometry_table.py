@@ -10,9 +10,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from archrock.geometry.families import family_arch  # noqa: E402
-from archrock.limit import limit_analysis, minimum_thickness  # noqa: E402
-from archrock.plots import plot_limit  # noqa: E402
-from archrock.response import prepare  # noqa: E402
+from archrock.statics.limit import limit_analysis, minimum_thickness  # noqa: E402
+from archrock.reports.plots import plot_limit  # noqa: E402
+from archrock.dynamics.response import prepare  # noqa: E402
 
 S, T, N = 10.0, 1.0, 12
 CASES = [("circular", 2.5, "circular (segmental)"), ("circular", 5.0, "circular (semicircle)"),

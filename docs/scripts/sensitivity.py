@@ -12,8 +12,8 @@ import numpy as np  # noqa: E402
 
 from archrock.geometry import oppenheim_arch  # noqa: E402
 from archrock.reports.sensitivity import format_sensitivity  # noqa: E402
-from archrock.sampling import DEFAULT_SPREADS  # noqa: E402
-from archrock.sensitivity import sobol_indices  # noqa: E402
+from archrock.geometry.sampling import DEFAULT_SPREADS  # noqa: E402
+from archrock.studies.sensitivity import sobol_indices  # noqa: E402
 
 arch = oppenheim_arch()
 t0 = time.perf_counter()
