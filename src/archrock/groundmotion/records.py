@@ -6,6 +6,7 @@ file, the line and what is allowed.
 
 from __future__ import annotations
 
+import hashlib
 import math
 import re
 import warnings
@@ -29,7 +30,13 @@ MIN_SAMPLED_ROWS = 20
 CORNERS_MARK = "corners"
 _CORNERS_HINT = f"a piecewise-linear motion given by its corners: put a '# {CORNERS_MARK}' line first"
 
-__all__ = ["read_two_column", "read_at2", "load_record"]
+__all__ = ["read_two_column", "read_at2", "load_record", "file_sha256"]
+
+
+def file_sha256(path) -> str:
+    """sha256 of a file's bytes (hex): the checksum every record spec and suite carries."""
+    with open(path, "rb") as f:
+        return hashlib.file_digest(f, "sha256").hexdigest()
 
 
 def _short(text: str, limit: int = 60) -> str:

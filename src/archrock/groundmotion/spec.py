@@ -9,7 +9,6 @@ configuration hashes stay valid.  Each specification is checked by building it o
 
 from __future__ import annotations
 
-import hashlib
 import os
 import re
 from dataclasses import dataclass
@@ -19,7 +18,7 @@ from pathlib import Path
 from ..errors import ArchInputError
 from .motion import UNITS, GroundMotion, _positive, _real, check_pga
 from .pulses import pulse, pulse_kind
-from .records import load_record
+from .records import file_sha256, load_record
 
 __all__ = ["PulseSpec", "RecordSpec", "motion_spec_from_dict"]
 
@@ -162,8 +161,7 @@ def _build_record(spec: RecordSpec) -> GroundMotion:
 
 def _file_sha256(path) -> str:
     try:
-        with open(path, "rb") as fh:
-            digest = hashlib.file_digest(fh, "sha256").hexdigest()
+        digest = file_sha256(path)
     except FileNotFoundError:
         raise ArchInputError(f"record path: {str(path)!r}: file not found; allowed an existing "
                              "readable file") from None

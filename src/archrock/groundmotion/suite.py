@@ -8,24 +8,17 @@ each record with the sha256 of its file, so a result can be traced to the exact 
 
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import ArchInputError
 from .motion import GroundMotion
-from .records import load_record
+from .records import file_sha256, load_record
 
 __all__ = ["RecordSuite", "read_suite", "read_records", "file_sha256"]
 
 #: suffixes of the record files a suite folder holds (any case)
 SUITE_SUFFIXES = (".at2",)
-
-
-def file_sha256(path) -> str:
-    """sha256 of a file's bytes (hex)."""
-    with open(path, "rb") as f:
-        return hashlib.file_digest(f, "sha256").hexdigest()
 
 
 @dataclass(frozen=True, eq=False)
