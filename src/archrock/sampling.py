@@ -191,6 +191,18 @@ class ArchSampler:
 
     def _family(self, u, index: int):
         s = self.spreads
+        from .familybatch import compiled_drawing, family_plan
+
+        if compiled_drawing(self):  # the same polylines as perturb_family, compiled
+            from .geometry.batchdraw import draw_lines
+
+            lines = draw_lines(family_plan(self.nominal), u, s)
+            try:
+                if isinstance(lines, ArchInputError):
+                    raise lines
+                return PolygonArch(*lines, self.nominal.recipe["density"], f"sample {index}")
+            except ArchInputError as exc:
+                raise InvalidSampleError(f"not a valid arch: {exc}") from None
         try:
             return perturb_family(self.nominal, u, s.span, s.thickness, s.radius, s.tilt,
                                   name=f"sample {index}")
