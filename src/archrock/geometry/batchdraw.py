@@ -304,6 +304,23 @@ def _dp(typ, par, u):
 
 
 @maybe_njit
+def _pdp(typ, par, u):
+    """(x, y, dx/du, dy/du) [m] of a centreline piece at u: :func:`_p` and :func:`_dp` with
+    each cosine and sine taken once (the same numbers)."""
+    if typ == ARC:
+        th = par[3] + par[4] * u
+        c, s = math.cos(th), math.sin(th)
+        return par[0] + par[2] * c, par[1] + par[2] * s, par[5] * s, par[6] * c
+    if typ == ELLIPSE:
+        th = par[2] * u
+        c, s = math.cos(th), math.sin(th)
+        return par[0] * c, par[1] * s, par[3] * s, par[4] * c
+    x, y = _p(typ, par, u)
+    d0, d1 = _dp(typ, par, u)
+    return x, y, d0, d1
+
+
+@maybe_njit
 def _gl(typ, par, a, b):
     """Arc length [m] from u = a to u = b (8-point Gauss-Legendre, summed as numpy sums)."""
     half = 0.5 * (b - a)
@@ -343,9 +360,12 @@ def _eval(s, side, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds):
     t = np.empty((m, 2))
     idx = np.empty(m, dtype=np.int64)
     uu = np.empty(m)
-    u0 = np.empty(m)
-    s0 = np.empty(m)
     ss = np.empty(m)
+    const = True
+    for j in range(P):
+        const = const and pconst[j]
+    u0 = np.empty(0 if const else m)
+    s0 = np.empty(0 if const else m)
     for j in range(P):
         c = 0
         for i in range(m):
@@ -388,10 +408,9 @@ def _eval(s, side, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds):
                 uu[q] = min(max(uu[q], 0.0), 1.0)
         for q in range(c):
             i = idx[q]
-            x, y = _p(typ, par, uu[q])
+            x, y, d0, d1 = _pdp(typ, par, uu[q])
             p[i, 0] = x
             p[i, 1] = y
-            d0, d1 = _dp(typ, par, uu[q])
             h = np.hypot(d0, d1)
             t[i, 0] = d0 / h
             t[i, 1] = d1 / h
@@ -440,16 +459,10 @@ def _arc_between(px, py, qx, qy, cx, cy, ppr):
 
 
 @maybe_njit
-def _sample_plain(s0, s1, side, k, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
-                  scal):
-    """``families._sample_offset`` over [s0, s1] not straddling a pointed crown: (crossed,
-    points); crossed is the _CrownOffsetCrossed case."""
-    big_l = scal[0]
-    kink = scal[1] != 0.0
-    ppr = scal[5]
-    mid = big_l / 2
+def _segments(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, ppr):
+    """Segments of an offset polyline over [s0, s1] as ``_sample_offset`` counts them: the
+    turning of 65 unwrapped tangents (np.unwrap, then the sum of |diff|) times ppr."""
     ss = _linspace(s0, s1, 65)
-    sign = -1 if (kink and s1 == mid) else 1
     _, tt = _eval(ss, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds)
     ang = np.empty(65)
     for i in range(65):
@@ -474,8 +487,56 @@ def _sample_plain(s0, s1, side, k, ptype, ppar, plen, pconst, tab_u, tab_s, tab_
         prev = cur
     turn = np_sum(diffs)
     m = max(2, int(math.ceil(turn * ppr)))
+    return m
+
+
+@maybe_njit
+def _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
+                        ppr):
+    """:func:`_segments` from the tangents at the two ends (the centreline is convex), or -1
+    where turning x ppr lies within 1e-6 of an integer (then only the 65 tangents decide)."""
+    ends = np.empty(2)
+    ends[0], ends[1] = s0, s1
+    _, tt = _eval(ends, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds)
+    x = abs(math.atan2(tt[1, 1], tt[1, 0]) - math.atan2(tt[0, 1], tt[0, 0])) * ppr
+    if not (x < 1e6) or abs(x - round(x)) <= 1e-6:
+        return -1
+    return max(2, int(math.ceil(x)))
+
+
+@maybe_njit
+def _centre(s0, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal):
+    """The centreline samples of ``families._sample_offset`` over [s0, s1] (not straddling a
+    pointed crown): arc lengths s (m + 1,) [m], points and unit tangents (m + 1, 2).  They do
+    not depend on the side or the thickness: the intrados and the extrados share them."""
+    big_l = scal[0]
+    kink = scal[1] != 0.0
+    ppr = scal[5]
+    mid = big_l / 2
+    sign = -1 if (kink and s1 == mid) else 1
+    # The polyline's segment count m = ceil(turning x ppr) is an integer: every family's
+    # centreline turns one way (convex), so the turning summed over 65 tangents is the turn
+    # between the ends to ~1e-13 rad; the 65 tangents are evaluated only where that product
+    # lies within 1e-6 of an integer (where the last bits could change m).
+    m = _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
+                            bounds, ppr)
+    if m < 0:
+        m = _segments(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, ppr)
     s = _linspace(s0, s1, m + 1)
     p, t = _eval(s, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds)
+    return s, p, t
+
+
+@maybe_njit
+def _sample_plain(s0, s1, side, k, s, p, t, scal):
+    """``families._sample_offset`` over [s0, s1] not straddling a pointed crown, from its
+    centreline samples (:func:`_centre`): (crossed, points); crossed is the
+    _CrownOffsetCrossed case."""
+    big_l = scal[0]
+    kink = scal[1] != 0.0
+    ppr = scal[5]
+    mid = big_l / 2
+    m = s.size - 1
     pts = np.empty((m + 1, 2))
     for i in range(m + 1):
         half = _thick(s[i], scal, k) / 2
@@ -523,24 +584,36 @@ def _sample_plain(s0, s1, side, k, ptype, ppar, plen, pconst, tab_u, tab_s, tab_
 
 
 @maybe_njit
-def _sample(s0, s1, side, k, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal):
-    """``families._sample_offset``: (crossed, points (m, 2) [m])."""
+def _centres(s0, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal):
+    """:func:`_centre` of [s0, s1], or of its two halves when it straddles a pointed crown."""
     mid = scal[0] / 2
     if scal[1] != 0.0 and s0 < mid < s1:
-        c1, a = _sample_plain(s0, mid, side, k, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
-                              bounds, scal)
+        sa, pa, ta = _centre(s0, mid, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
+                             scal)
+        sb, pb, tb = _centre(mid, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
+                             scal)
+        return True, sa, pa, ta, sb, pb, tb
+    sa, pa, ta = _centre(s0, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal)
+    return False, sa, pa, ta, sa, pa, ta
+
+
+@maybe_njit
+def _sample(s0, s1, side, k, two, sa, pa, ta, sb, pb, tb, scal):
+    """``families._sample_offset`` from the samples of :func:`_centres`: (crossed, points
+    (m, 2) [m])."""
+    if two:
+        mid = scal[0] / 2
+        c1, a = _sample_plain(s0, mid, side, k, sa, pa, ta, scal)
         if c1:
             return True, a
-        c2, b = _sample_plain(mid, s1, side, k, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
-                              bounds, scal)
+        c2, b = _sample_plain(mid, s1, side, k, sb, pb, tb, scal)
         if c2:
             return True, b
         out = np.empty((a.shape[0] + b.shape[0] - 1, 2))
         out[:a.shape[0]] = a
         out[a.shape[0]:] = b[1:]
         return False, out
-    return _sample_plain(s0, s1, side, k, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
-                         bounds, scal)
+    return _sample_plain(s0, s1, side, k, sa, pa, ta, scal)
 
 
 @maybe_njit
@@ -608,6 +681,10 @@ def _draw(u, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_
         d[j, 0] = cs * d0 - sn * d1
         d[j, 1] = sn * d0 + cs * d1
     tol = 1e-9 * big_l
+    c_lo, c_hi = -1.0, -1.0
+    two = False
+    sa_ = sb_ = np.empty(0)
+    pa_ = ta_ = pb_ = tb_ = np.empty((0, 2))
     for i in range(n):
         fac = 1.0 + st * u[1, i]
         off = sr * u[2, i]
@@ -628,8 +705,11 @@ def _draw(u, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_
                     hi = big_l
                 else:
                     hi = min(big_l, s_div[i + 1] + 0.5 * min(lengths[i], lengths[i + 1]))
-                crossed, pts = _sample(lo, hi, side, k, ptype, ppar, plen, pconst, tab_u,
-                                       tab_s, tab_n, bounds, scal)
+                if not (lo == c_lo and hi == c_hi):  # the other side's samples, if the same
+                    two, sa_, pa_, ta_, sb_, pb_, tb_ = _centres(lo, hi, ptype, ppar, plen, pconst,
+                                                                 tab_u, tab_s, tab_n, bounds, scal)
+                    c_lo, c_hi = lo, hi
+                crossed, pts = _sample(lo, hi, side, k, two, sa_, pa_, ta_, sb_, pb_, tb_, scal)
                 if crossed:
                     continue
                 m = pts.shape[0]
