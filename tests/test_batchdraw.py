@@ -192,3 +192,19 @@ def test_no_numba_kernels_are_the_compiled_ones(without_numba):
         np.testing.assert_array_equal(np.array(a), b)
     for k, v in batch_properties(plan, U, sp).items():
         np.testing.assert_array_equal(np.array(got[k]), v, err_msg=k)
+
+
+def test_uncertified_draws_are_decided_by_polygon_arch():
+    """A draw whose voussoir outline crosses itself is not certified by the compiled checks;
+    its row gets PolygonArch's refusal, as on the arch-object path (sample 58 of these
+    spreads)."""
+    nom = _nominal("three-centred", 3.0, "normal")
+    sp = Spreads(0.6, 0.6, 0.45, 20.0)
+    s = ArchSampler(nom, sp, 0)
+    U = s.uniforms(56, 4)
+    assert batch_properties(family_plan(nom), U, sp)["state"][2] not in (OK, REFUSED)
+    new = prepare_family_batch(s, 56, 4, impact=0.8)
+    old = prepare_batch([_old_row(nom, u, sp, 56 + j) for j, u in enumerate(U)], impact=0.8)
+    assert new.error.tolist() == old.error.tolist()
+    assert "intersects itself" in new.error[2]
+    np.testing.assert_array_equal(new.k_l, old.k_l)
