@@ -10,9 +10,10 @@ import pytest
 
 from archrock.batch import prepare_batch, simulate_batch
 from archrock.errors import ArchInputError, InvalidSampleError
-from archrock.familybatch import family_plan, prepare_family_batch
+from archrock.ensemble.familybatch import prepare_family_batch
 from archrock.geometry import PolygonArch, family_arch
-from archrock.geometry.batchdraw import OK, REFUSED, batch_properties, draw_lines, np_sum
+from archrock.geometry.batchdraw import (OK, REFUSED, batch_properties, draw_lines, family_plan,
+                                         np_sum)
 from archrock.geometry.batchdraw import _dist
 from archrock.geometry.families import perturb_family
 from archrock.groundmotion import PulseSpec
@@ -169,9 +170,8 @@ def test_no_numba_kernels_are_the_compiled_ones(without_numba):
     """The drawing kernels run as Python under ARCHROCK_NO_NUMBA=1: the same lines and arrays."""
     script = textwrap.dedent("""
         import json
-        from archrock.familybatch import family_plan
         from archrock.geometry import family_arch
-        from archrock.geometry.batchdraw import batch_properties, draw_lines
+        from archrock.geometry.batchdraw import batch_properties, draw_lines, family_plan
         from archrock.sampling import ArchSampler, Spreads
         nom = family_arch("pointed", 10.0, 7.0, 1.0, 12, exact=False)
         sp = Spreads(0.1, 0.1, 0.05, 2.0)

@@ -191,11 +191,9 @@ class ArchSampler:
 
     def _family(self, u, index: int):
         s = self.spreads
-        from .familybatch import compiled_drawing, family_plan
+        from .geometry.batchdraw import compiled_drawing, draw_lines, family_plan
 
         if compiled_drawing(self):  # the same polylines as perturb_family, compiled
-            from .geometry.batchdraw import draw_lines
-
             lines = draw_lines(family_plan(self.nominal), u, s)
             try:
                 if isinstance(lines, ArchInputError):

@@ -78,7 +78,7 @@ def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
                            impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
     else:  # any other family: drawn as arrays, row for row the arches' (invalid draws
         # carry their reason)
-        from ..familybatch import prepare_family_batch
+        from .familybatch import prepare_family_batch
 
         pb = prepare_family_batch(sampler, start, nb, impact=cfg.impact.resolved(sampler.nominal),
                                   parallel=parallel)

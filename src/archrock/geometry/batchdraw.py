@@ -36,7 +36,7 @@ from .families import _catenary_parameter, _vertical_joints_that_cut, circular_r
     three_centred_radii
 from .polygon import FACE_TOLERANCE
 
-__all__ = ["FamilyPlan", "supported", "draw_lines", "batch_properties", "refusal_message",
+__all__ = ["FamilyPlan", "supported", "family_plan", "compiled_drawing", "draw_lines", "batch_properties", "refusal_message",
            "OK", "REFUSED", "UNCERTIFIED"]
 
 OK, REFUSED, UNCERTIFIED = 0, 1, 2
@@ -145,6 +145,27 @@ class FamilyPlan:
         """The plan's arrays in the order the kernels take them."""
         return (self.ptype, self.ppar, self.plen, self.pconst, self.tab_u, self.tab_s,
                 self.tab_n, self.bounds, self.base_len, self.scal)
+
+
+# the plans of the nominals seen lately (a study has one nominal)
+_PLANS: list = []
+
+
+def family_plan(nominal) -> "FamilyPlan":
+    """The :class:`FamilyPlan` of ``nominal``, kept for reuse (the last four nominals)."""
+    for plan in _PLANS:
+        if plan.nominal is nominal:
+            return plan
+    plan = FamilyPlan(nominal)
+    _PLANS.insert(0, plan)
+    del _PLANS[4:]
+    return plan
+
+
+def compiled_drawing(sampler) -> bool:
+    """Whether a sampler's family draws go through this module (numba present, a supported
+    family nominal): :class:`~archrock.sampling.ArchSampler` and the ensemble's batches."""
+    return HAVE_NUMBA and not sampler.circular and supported(sampler.nominal)
 
 
 def _arc_par(cx, cy, r, th0, th1):

@@ -22,35 +22,15 @@ import time
 
 import numpy as np
 
-from ._jit import HAVE_NUMBA
-from .batch import (PreparedBatch, _finish, _lift_off_errors, _limit_errors, _multipliers,
+from ..batch import (PreparedBatch, _finish, _lift_off_errors, _limit_errors, _multipliers,
                     _spec, prepare_batch)
-from .errors import InvalidSampleError
-from .geometry import power_of_two_near
-from .geometry.batchdraw import OK, REFUSED, FamilyPlan, batch_properties, refusal_message, \
-    supported
-from .limit import ENUMERATION_MAX_VOUSSOIRS, _check_method, _full_enumeration, arch_sums
+from ..errors import InvalidSampleError
+from ..geometry import power_of_two_near
+from ..geometry.batchdraw import OK, REFUSED, batch_properties, compiled_drawing, family_plan, \
+    refusal_message
+from ..limit import ENUMERATION_MAX_VOUSSOIRS, _check_method, _full_enumeration, arch_sums
 
-__all__ = ["prepare_family_batch", "compiled_drawing", "family_plan"]
-
-# the plans of the nominals seen lately (a study has one nominal)
-_PLANS: list = []
-
-
-def family_plan(nominal) -> FamilyPlan:
-    """The :class:`~archrock.geometry.batchdraw.FamilyPlan` of ``nominal``, kept for reuse."""
-    for plan in _PLANS:
-        if plan.nominal is nominal:
-            return plan
-    plan = FamilyPlan(nominal)
-    _PLANS.insert(0, plan)
-    del _PLANS[4:]
-    return plan
-
-
-def compiled_drawing(sampler) -> bool:
-    """Whether the sampler's family draws go through the compiled batch drawing."""
-    return HAVE_NUMBA and not sampler.circular and supported(sampler.nominal)
+__all__ = ["prepare_family_batch"]
 
 
 def _row_error(exc) -> str:
@@ -132,7 +112,7 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
         safe = np.flatnonzero(ok)[0]
         fill = (jp[safe], mass[safe], cen[safe], inert[safe], ref[safe])
     else:  # nothing to prepare: the harmless circular stand-in of prepare_batch
-        from .geometry import nominal_arch
+        from ..geometry import nominal_arch
 
         a = nominal_arch(10.0, 157.5, 1.5, n)
         fill = (a.joint_points, a.masses, a.centroids, a.inertias, a.reference_length)
