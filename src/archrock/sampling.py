@@ -19,8 +19,9 @@ draws and arches are 0.1.0's.
 Nominal arches: a circular :class:`~archrock.geometry.Arch` (voussoirs perturbed as annular
 sectors, :func:`~archrock.geometry.perturb_voussoirs`) or a family arch
 (:class:`~archrock.geometry.FamilyArch`, perturbed through its recipe,
-:func:`~archrock.geometry.families.perturb_family`).  A polygon arch without a recipe (a
-surveyed arch) has no family to perturb within and is refused.
+:func:`~archrock.geometry.families.perturb_family`; with numba, for a family arch without loads
+or fill, its arithmetic compiled in :mod:`archrock.geometry.batchdraw`: the same polylines).  A
+polygon arch without a recipe (a surveyed arch) has no family to perturb within and is refused.
 """
 
 from __future__ import annotations

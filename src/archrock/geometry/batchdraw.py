@@ -373,20 +373,31 @@ def _eval(s, side, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds):
     piece's points inverted together, Newton stopping when all are at round-off."""
     m = s.size
     P = ptype.size
+    p = np.empty((m, 2))
+    t = np.empty((m, 2))
+    const = True
+    for j in range(P):
+        const = const and pconst[j]
+    if const:  # arcs: u = s / length point by point, nothing shared between the points
+        for i in range(m):
+            j = min(max(_search(bounds, P + 1, s[i], side > 0) - 1, 0), P - 1)
+            v = min(max(s[i] - bounds[j], 0.0), plen[j])
+            x, y, d0, d1 = _pdp(ptype[j], ppar[j], v / plen[j])
+            p[i, 0] = x
+            p[i, 1] = y
+            h = np.hypot(d0, d1)
+            t[i, 0] = d0 / h
+            t[i, 1] = d1 / h
+        return p, t
     k = np.empty(m, dtype=np.int64)
     for i in range(m):
         j = _search(bounds, P + 1, s[i], side > 0) - 1
         k[i] = min(max(j, 0), P - 1)
-    p = np.empty((m, 2))
-    t = np.empty((m, 2))
     idx = np.empty(m, dtype=np.int64)
     uu = np.empty(m)
     ss = np.empty(m)
-    const = True
-    for j in range(P):
-        const = const and pconst[j]
-    u0 = np.empty(0 if const else m)
-    s0 = np.empty(0 if const else m)
+    u0 = np.empty(m)
+    s0 = np.empty(m)
     for j in range(P):
         c = 0
         for i in range(m):
@@ -642,17 +653,17 @@ def _cut(poly, cx, cy, dx, dy, nx, ny):
     """``families._cut``: (segment index or -1, x, y) of the crossing of the polyline with the
     line through (cx, cy) along (dx, dy) nearest (nx, ny)."""
     m = poly.shape[0]
-    f = np.empty(m)
-    for i in range(m):
-        f[i] = dx * (poly[i, 1] - cy) - dy * (poly[i, 0] - cx)
     best = -1
     bd = 0.0
     bx = 0.0
     by = 0.0
+    f1 = dx * (poly[0, 1] - cy) - dy * (poly[0, 0] - cx)
     for i in range(m - 1):
-        if f[i] * f[i + 1] <= 0 and (f[i] != 0 or f[i + 1] != 0):
-            den = f[i] - f[i + 1]
-            w = f[i] / den if den != 0 else 0.0
+        f0 = f1
+        f1 = dx * (poly[i + 1, 1] - cy) - dy * (poly[i + 1, 0] - cx)
+        if f0 * f1 <= 0 and (f0 != 0 or f1 != 0):
+            den = f0 - f1
+            w = f0 / den if den != 0 else 0.0
             qx = poly[i, 0] + w * (poly[i + 1, 0] - poly[i, 0])
             qy = poly[i, 1] + w * (poly[i + 1, 1] - poly[i, 1])
             dist = np.hypot(qx - nx, qy - ny)
@@ -819,10 +830,8 @@ def _polygon_properties(poly):
     """``base.polygon_properties``: (signed area, area [m^2], cx, cy [m], polar [m^4])."""
     m = poly.shape[0]
     x0, y0 = poly[0, 0], poly[0, 1]
-    cross = np.empty(m)
-    tx = np.empty(m)
-    ty = np.empty(m)
-    tj = np.empty(m)
+    work = np.empty((4, m))
+    cross, tx, ty, tj = work[0], work[1], work[2], work[3]
     for i in range(m):
         j = (i + 1) % m
         x, y = poly[i, 0] - x0, poly[i, 1] - y0
