@@ -24,9 +24,9 @@ FAMILIES = (("pointed", 7.0), ("elliptical", 4.0), ("three-centred", 3.0), ("par
 
 
 def _config(nominal, samples):
-    from archrock.ensemble import EnsembleConfig
+    from archrock.dynamics.impact import ImpactSpec
     from archrock.groundmotion import PulseSpec
-    from archrock.impact import ImpactSpec
+    from archrock.studies.ensemble import EnsembleConfig
 
     return EnsembleConfig.from_arch(nominal, samples=samples, seed=0, batch_size=500,
                                     motion=PulseSpec("oppenheim", -1.0, 0.2),
@@ -34,7 +34,7 @@ def _config(nominal, samples):
 
 
 def _run(nominal, samples):
-    from archrock.ensemble import run_ensemble
+    from archrock.studies.ensemble import run_ensemble
 
     run_ensemble(_config(nominal, min(samples, 50)), progress=False)  # warm-up
     t0 = time.perf_counter()
@@ -50,11 +50,11 @@ def _legacy(nominal, samples):
     """The arch-object path: perturb_family per arch, PolygonArch, prepare_batch, response."""
     import numpy as np
 
-    from archrock.batch import prepare_batch, simulate_batch
+    from archrock.dynamics.batch import prepare_batch, simulate_batch
     from archrock.errors import ArchInputError, InvalidSampleError
     from archrock.geometry.families import perturb_family
+    from archrock.geometry.sampling import ArchSampler
     from archrock.groundmotion import PulseSpec
-    from archrock.sampling import ArchSampler
 
     s = ArchSampler(nominal, seed=0)
     sp = s.spreads

@@ -164,7 +164,8 @@ def family_plan(nominal) -> "FamilyPlan":
 
 def compiled_drawing(sampler) -> bool:
     """Whether a sampler's family draws go through this module (numba present, a supported
-    family nominal): :class:`~archrock.sampling.ArchSampler` and the ensemble's batches."""
+    family nominal): :class:`~archrock.geometry.sampling.ArchSampler` and the ensemble's
+    batches."""
     return HAVE_NUMBA and not sampler.circular and supported(sampler.nominal)
 
 
@@ -176,7 +177,8 @@ def _arc_par(cx, cy, r, th0, th1):
 # ---------------------------------------------------------------------------- numpy's sums
 @maybe_njit
 def _block(a, lo, n):
-    """numpy's pairwise summation of a[lo:lo + n], n <= 128 (as archrock.impact.compiled)."""
+    """numpy's pairwise summation of a[lo:lo + n], n <= 128 (as
+    archrock.dynamics.impact.compiled)."""
     if n < 8:
         res = 0.0
         for i in range(lo, lo + n):
@@ -992,7 +994,8 @@ def _spread_args(u, spreads):
 def draw_lines(plan: FamilyPlan, u, spreads):
     """One draw: (intrados, extrados) tuples of polylines (k, 2) [m] of ``perturb_family(
     plan.nominal, u, ...)``, or the :class:`~archrock.errors.ArchInputError` it would raise.
-    ``u``: (3, n) or (4, n) uniforms; ``spreads``: a :class:`~archrock.sampling.Spreads`."""
+    ``u``: (3, n) or (4, n) uniforms; ``spreads``: a
+    :class:`~archrock.geometry.sampling.Spreads`."""
     u, sa, st, sr, tilt = _spread_args(u, spreads)
     n = plan.n
     if u.ndim != 2 or u.shape[0] not in (3, 4) or u.shape[1] != n:
