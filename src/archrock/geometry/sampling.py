@@ -19,8 +19,9 @@ draws and arches are 0.1.0's.
 Nominal arches: a circular :class:`~archrock.geometry.Arch` (voussoirs perturbed as annular
 sectors, :func:`~archrock.geometry.perturb_voussoirs`) or a family arch
 (:class:`~archrock.geometry.FamilyArch`, perturbed through its recipe,
-:func:`~archrock.geometry.families.perturb_family`).  A polygon arch without a recipe (a
-surveyed arch) has no family to perturb within and is refused.
+:func:`~archrock.geometry.families.perturb_family`; with numba, for a family arch without loads
+or fill, its arithmetic compiled in :mod:`archrock.geometry.batchdraw`: the same polylines).  A
+polygon arch without a recipe (a surveyed arch) has no family to perturb within and is refused.
 """
 
 from __future__ import annotations
@@ -191,6 +192,16 @@ class ArchSampler:
 
     def _family(self, u, index: int):
         s = self.spreads
+        from .batchdraw import compiled_drawing, draw_lines, family_plan
+
+        if compiled_drawing(self):  # the same polylines as perturb_family, compiled
+            lines = draw_lines(family_plan(self.nominal), u, s)
+            try:
+                if isinstance(lines, ArchInputError):
+                    raise lines
+                return PolygonArch(*lines, self.nominal.recipe["density"], f"sample {index}")
+            except ArchInputError as exc:
+                raise InvalidSampleError(f"not a valid arch: {exc}") from None
         try:
             return perturb_family(self.nominal, u, s.span, s.thickness, s.radius, s.tilt,
                                   name=f"sample {index}")

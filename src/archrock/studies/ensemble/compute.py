@@ -76,9 +76,12 @@ def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
         spans, thick, radii = sampler.draw(start, nb)
         pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
                            impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
-    else:  # any other family: the arches themselves (invalid draws carry their reason)
-        pb = prepare_batch(sampler.arches(start, nb), impact=cfg.impact.resolved(sampler.nominal),
-                           parallel=parallel)
+    else:  # any other family: drawn as arrays, row for row the arches' (invalid draws
+        # carry their reason)
+        from .familybatch import prepare_family_batch
+
+        pb = prepare_family_batch(sampler, start, nb, impact=cfg.impact.resolved(sampler.nominal),
+                                  parallel=parallel)
     motion = cfg.motion.build() if cfg.motion is not None else None
     error = pb.error.copy()
     if motion is not None:
