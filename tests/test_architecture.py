@@ -18,6 +18,7 @@ LAYER = {
     "ensemble": 6, "codecheck": 6, "assessment": 6, "curves": 6, "fragility": 6, "ida": 6, "work": 6,
     "defectmap": 6, "sensitivity": 6, "verification": 6, "studyrun": 6,
     "reports": 7, "plots": 7, "animate": 7, "contactplots": 7, "cli": 7, "study": 7, "__main__": 7,
+    "app": 7,
 }
 #: same layer, kept apart: neither may import the other
 APART = {("impact", "groundmotion"), ("groundmotion", "impact")}
