@@ -204,3 +204,38 @@ def _warm_up() -> None:
         api.run_ensemble_job(cfg, lambda d, t: None, lambda: False)
     except Exception:  # noqa: BLE001 - warming up is an optimisation; a real request will say
         pass
+
+
+class BackgroundServer:
+    """The app served by uvicorn in a daemon thread on a free loopback port (tests, scripts):
+    ``with BackgroundServer() as url: ...``; ``url`` is ``http://127.0.0.1:PORT/``."""
+
+    def __init__(self, warm_up: bool = True, timeout_s: float = 30.0):
+        self.warm_up, self.timeout_s = warm_up, timeout_s
+        self.server = self.thread = None
+
+    def __enter__(self) -> str:
+        import socket
+        import threading
+        import time
+
+        import uvicorn
+
+        sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        sock.bind(("127.0.0.1", 0))
+        self.server = uvicorn.Server(uvicorn.Config(create_app(warm_up=self.warm_up),
+                                                    log_level="warning"))
+        self.thread = threading.Thread(target=self.server.run, kwargs={"sockets": [sock]},
+                                       name="archrock-app-server", daemon=True)
+        self.thread.start()
+        end = time.monotonic() + self.timeout_s
+        while not self.server.started:
+            if time.monotonic() > end or not self.thread.is_alive():
+                raise RuntimeError("the app's server did not start")
+            time.sleep(0.02)
+        return f"http://127.0.0.1:{sock.getsockname()[1]}/"
+
+    def __exit__(self, *exc):
+        self.server.should_exit = True
+        self.thread.join(10)
+        return False
