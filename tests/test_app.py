@@ -310,3 +310,15 @@ def test_app_is_an_edge():
     users = [p for p in root.rglob("*.py") if "app" not in p.relative_to(root).parts[:1]
              and re.search(r"from \.+app\b|archrock\.app\b", p.read_text(encoding="utf-8"))]
     assert [p.relative_to(root).as_posix() for p in users] == ["cli/app.py"]
+
+
+def test_exaggerated_rotations_are_drawn_only(client):
+    body = {"arch": OPPENHEIM, "pulse": PULSE, "t_end": 1}
+    one = client.post("/api/respond", json=body).json()
+    five = client.post("/api/respond", json={**body, "exaggerate": 5}).json()
+    assert five["peak"] == one["peak"] and five["phi"] == one["phi"]  # the response itself
+    k = max(range(len(one["frames"])), key=lambda i: abs(one["frames"][i][1]))
+    th1, th1x5 = one["frames"][k][3], five["frames"][k][3]
+    assert abs(th1) > 1e-3 and abs(th1x5 - 5 * th1) < 1e-6
+    r = client.post("/api/respond", json={**body, "exaggerate": 500})
+    assert r.status_code == 400 and r.json()["error"].startswith("exaggerate:")

@@ -250,8 +250,9 @@ def respond(params: dict) -> dict:
     rotation limit) and the animation: ``frames`` (at most :data:`MAX_FRAMES`), each
     ``[t, phi, row, th1, th2, th3, bx, by, cx, cy]``: the chain row open (-1 at rest) and the
     rotations [rad] of its three links and the moved hinges B, C [m] (the library's four-bar
-    kinematics, :func:`archrock.mechanism.configuration`); ``chain`` gives, per row, the hinge
-    points A, B, C, D at rest and the voussoirs of each link."""
+    kinematics, :func:`archrock.mechanism.configuration`) at ``exaggerate`` (1 to 50, default
+    1: to scale) times the rotation; ``chain_links`` gives, per row, the hinge points A, B, C,
+    D at rest and the voussoirs of each link."""
     from ..mechanism import configuration
     from ..response import prepare
     from ..response import respond as respond_
@@ -263,6 +264,9 @@ def respond(params: dict) -> dict:
     t_end = _number(params, "t_end", 3.0)
     if not 0 < t_end <= MAX_T_END_S:
         raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= {MAX_T_END_S:g} s")
+    ex = _number(params, "exaggerate", 1.0)
+    if not 1 <= ex <= 50:
+        raise ArchInputError(f"exaggerate: {ex:g}; allowed 1 to 50 (the drawn rotations' factor)")
     dt_out = max(0.002, t_end / 2000)
     motion = spec.build()
     with COMPUTE_LOCK:
@@ -292,8 +296,11 @@ def respond(params: dict) -> dict:
             frames.append([round(float(tk), 5), round(val, 7), -1, 0, 0, 0, 0, 0, 0, 0])
             continue
         fl = chain[row]
+        # the drawn rotation, ``ex`` times the computed one (archrock.animate's exaggerate)
         rot = max(0.0, (1.0 if fl.direction == "l" else -1.0) * val)
-        bx, by, cx, cy, th1, th2, th3, _ = configuration(rot, fl.geo)
+        bx, by, cx, cy, th1, th2, th3, ok = configuration(ex * rot, fl.geo)
+        if not ok:  # the exaggerated chain would pass its dead point: drawn to scale
+            bx, by, cx, cy, th1, th2, th3, ok = configuration(rot, fl.geo)
         frames.append([round(float(tk), 5), round(val, 7), row,
                        *(round(float(x), 8) for x in (th1, th2, th3)),
                        *(round(float(x), 6) for x in (bx, by, cx, cy))])
@@ -309,6 +316,7 @@ def respond(params: dict) -> dict:
         "ground": {"time": _xy(motion.times), "accel_g": _xy(np.asarray(motion.accel) / 9.80665)},
         "frames": frames,
         "pulse": spec.to_dict(),
+        "exaggerate": ex,
         "elapsed_ms": 1e3 * (time.perf_counter() - t0),
     })
     return out

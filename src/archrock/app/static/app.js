@@ -123,6 +123,7 @@ async function runStatics() {
     requestAnimationFrame(() => {
       const dt = performance.now() - job.t0;
       app.timings.slider.push(dt);
+      (app.timings.sliderServer = app.timings.sliderServer || []).push(res.elapsed_ms);
       app.lastLimitMs = dt;
     });
   } catch (e) {
@@ -324,7 +325,7 @@ function drawFrame(res, polys, hingeMarks, k) {
   const collapsed = res.collapsed && res.t_collapse !== null && t >= res.t_collapse;
   const name = row >= 0 ? `${res.chain_links[row].label} open` : "at rest";
   $("anim-title").textContent = `t = ${t.toFixed(2)} s, phi = ${phi >= 0 ? "+" : ""}${phi.toFixed(4)} rad, ` +
-      (collapsed ? "COLLAPSED" : name);
+      (collapsed ? "COLLAPSED" : name) + (res.exaggerate !== 1 ? ` (rotations drawn x ${res.exaggerate})` : "");
   const m = $("history-marker");
   m.setAttribute("cx", app.hx(t));
   m.setAttribute("cy", app.hy(phi));
@@ -372,7 +373,8 @@ async function play() {
   if (animation) cancelAnimationFrame(animation);
   let res;
   try {
-    res = await post("/api/respond", {arch: archParams(), pulse: pulseParams(), t_end: $("t-end").value.trim()});
+    res = await post("/api/respond", {arch: archParams(), pulse: pulseParams(), t_end: $("t-end").value.trim(),
+                                      exaggerate: Number($("exaggerate").value)});
   } catch (e) { if (!e.handled) console.warn(e); return; }
   clearError();
   app.lastResponse = res;
@@ -464,7 +466,10 @@ function drawHistogram(result) {
   if (k0 >= x0 && k0 <= x1) el("line", {x1: hx(k0), x2: hx(k0), y1: T, y2: H - B, class: "nominal"}, svg);
   el("line", {x1: L, x2: W - R, y1: H - B, y2: H - B, class: "axis"}, svg);
   const lab = (x, y, t, a = "middle") => { const e = el("text", {x, y, "text-anchor": a}, svg); e.textContent = t; };
-  for (let i = 0; i <= 4; i++) { const v = x0 + (x1 - x0) * i / 4; lab(hx(v), H - B + 12, v.toFixed(3)); }
+  for (let i = 0; i <= 4; i++) {
+    const v = x0 + (x1 - x0) * i / 4;
+    lab(hx(v), H - B + 12, v.toFixed(3), i === 0 ? "start" : i === 4 ? "end" : "middle");
+  }
   lab(W - R, H - 3, "k = min(k_l, k_r) [g]; dashed: the nominal arch", "end");
   lab(L - 3, hy(cmax) + 3, `${cmax}`, "end");
   svg.setAttribute("data-bars", counts.length);
