@@ -322,3 +322,45 @@ def test_exaggerated_rotations_are_drawn_only(client):
     assert abs(th1) > 1e-3 and abs(th1x5 - 5 * th1) < 1e-6
     r = client.post("/api/respond", json={**body, "exaggerate": 500})
     assert r.status_code == 400 and r.json()["error"].startswith("exaggerate:")
+
+
+def test_an_unexpected_error_is_one_line_without_its_details(client, monkeypatch):
+    import archrock.limit
+
+    def broken(*a, **k):
+        raise RuntimeError("/home/someone/secret.py line 3")
+
+    monkeypatch.setattr(archrock.limit, "limit_analysis", broken)
+    r = client.post("/api/limit", json={"arch": OPPENHEIM})
+    assert r.status_code == 500
+    assert r.json()["error"].startswith("internal error (RuntimeError)")
+    assert "secret" not in r.text and "Traceback" not in r.text
+
+
+def test_the_command_serves_the_page_on_loopback():
+    """``archrock app --no-browser --port 0``: one line with the URL, the page served there, and
+    Ctrl-C (SIGINT) stops it."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    import httpx
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(Path(archrock.__file__).parents[1]), os.environ.get("PYTHONPATH", "")])}
+    proc = subprocess.Popen([sys.executable, "-m", "archrock", "app", "--no-browser", "--port", "0"],
+                            env=env, stderr=subprocess.PIPE, text=True)
+    try:
+        line = proc.stderr.readline()
+        m = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
+        assert m, line
+        r = httpx.get(m.group(1), timeout=30)
+        assert r.status_code == 200 and "archrock" in r.text
+    finally:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            raise

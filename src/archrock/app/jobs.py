@@ -70,6 +70,9 @@ class Jobs:
             except ArchrockError as exc:
                 job.error, job.state = " ".join(str(exc).split()), "failed"
             except Exception as exc:  # noqa: BLE001 - a bug: said in one line, never a traceback
+                import logging
+
+                logging.getLogger("archrock.app").error("job %s failed", job.id, exc_info=exc)
                 job.error, job.state = f"internal error ({type(exc).__name__})", "failed"
             else:
                 if result is None:

@@ -47,6 +47,10 @@ def _json(data, status: int = 200) -> JSONResponse:
 
 def _error(exc: Exception) -> JSONResponse:
     msg = " ".join(str(exc).split())
+    if not isinstance(exc, ArchrockError | CLIError):  # a bug: logged here, not shown
+        import logging
+
+        logging.getLogger("archrock.app").error("request failed", exc_info=exc)
     if isinstance(exc, Busy):
         return _json({"error": msg, "kind": "busy"}, 409)
     if isinstance(exc, (ArchInputError, CLIError)):
@@ -82,10 +86,6 @@ def _endpoint(func):
             body = await _body(request)
             return _json(await run_in_threadpool(func, body))
         except Exception as exc:  # noqa: BLE001 - every error is answered in one line
-            if not isinstance(exc, ArchrockError | CLIError):
-                import logging
-
-                logging.getLogger("archrock.app").exception("request failed")
             return _error(exc)
     return endpoint
 
