@@ -364,3 +364,15 @@ def test_the_command_serves_the_page_on_loopback():
         except subprocess.TimeoutExpired:
             proc.kill()
             raise
+
+
+def test_piers_as_the_command_lines(client):
+    from archrock.geometry import with_piers
+
+    body = {"arch": {**OPPENHEIM, "pier_height": 4.0, "pier_width": 2.5}}
+    r = client.post("/api/limit", json=body)
+    ref = archrock.limit_analysis(with_piers(archrock.oppenheim_arch(), 4.0, 2.5))
+    assert r.status_code == 200 and abs(r.json()["summary"]["k"] - ref.k) < 1e-9
+    assert r.json()["drawing"]["n"] == 9 and ref.k < 0.3
+    r = client.post("/api/limit", json={"arch": {**OPPENHEIM, "pier_height": 4.0}})
+    assert r.status_code == 400 and r.json()["error"].startswith("--pier-width: needed")

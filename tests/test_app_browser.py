@@ -125,3 +125,19 @@ def test_a_bad_value_shows_a_message_in_the_page(page):
     assert page.text_content("#k") == "k = 0.370"
     # only the refused request itself is logged by the browser (HTTP 400), no script error
     assert all("400" in e for e in page.errors), page.errors
+
+
+def test_an_ensemble_is_cancelled_and_friction_is_shown(page):
+    page.fill("#samples", "20000")
+    page.click("#run-ensemble")
+    wait(page, "window.__app.job && window.__app.job.done > 0")
+    page.click("#cancel-ensemble")
+    text = wait(page, "document.getElementById('ensemble-result').textContent")
+    assert text.startswith("cancelled after ") and text.endswith(" of 20000 arches")
+    assert page.is_enabled("#run-ensemble")
+    page.fill("#friction-mu", "0.3")
+    page.press("#friction-mu", "Enter")
+    page.locator("#friction-mu").blur()
+    got = wait(page, "document.getElementById('friction-k').textContent")
+    assert got.startswith("with friction mu = 0.300: k_l = 0.1472 g") and "sliding governs" in got
+    assert page.errors == []

@@ -56,9 +56,12 @@ async function post(url, body) {
 function archParams(withDefects = true) {
   const defects = withDefects ? [...state.defects].sort((a, b) => a - b)
                                   .map((i) => `${i}:thickness=0.5`) : [];
-  if (state.geometry) return {geometry: state.geometry, name: state.geometryName, defects};
+  const piers = {};
+  const h = $("pier-height").value.trim(), w = $("pier-width").value.trim();
+  if (h !== "" || w !== "") Object.assign(piers, {pier_height: h || null, pier_width: w || null});
+  if (state.geometry) return {geometry: state.geometry, name: state.geometryName, defects, ...piers};
   return {shape: state.shape, span: state.span, rise: state.rise, thickness: state.thickness,
-          voussoirs: state.voussoirs, joints: state.joints, defects};
+          voussoirs: state.voussoirs, joints: state.joints, defects, ...piers};
 }
 
 // ------------------------------------------------------------------ drawing helpers
@@ -115,6 +118,8 @@ async function runStatics() {
   inFlight = true;
   try {
     const body = {arch: archParams(), thrust_range: state.showRange};
+    const mu = $("friction-mu").value.trim();
+    if (mu !== "") body.friction = mu;
     const calls = [post("/api/limit", body)];
     if (state.defects.size) calls.push(post("/api/limit", {arch: archParams(false)}));
     const [res, base] = await Promise.all(calls);
@@ -164,6 +169,10 @@ function drawStatics(res, base) {
       `friction the collapse needs: mu = ${fmt(fl)} (l), ${fmt(fr)} (r)` : "";
   $("thrust").textContent = s.thrust_min ?
       `thrust range: H = ${fmt(s.thrust_min.H / 1e3, 1)} to ${fmt(s.thrust_max.H / 1e3, 1)} kN/m` : "";
+  $("friction-k").textContent = s.friction_mu !== undefined ?
+      `with friction mu = ${fmt(s.friction_mu)}: k_l = ${fmt(s.friction_k_l, 4)} g, ` +
+      `k_r = ${fmt(s.friction_k_r, 4)} g` +
+      (s.sliding_governs_l || s.sliding_governs_r ? " (sliding governs)" : "") : "";
   if (base && state.defects.size) {
     const b = base.summary.k;
     $("defect-loss").textContent = `defects: k ${fmt(b)} → ${fmt(s.k)} ` +
@@ -228,6 +237,9 @@ function bindControls() {
     showControls();
     requestStatics(performance.now());
   });
+  for (const id of ["pier-height", "pier-width", "friction-mu"]) {
+    $(id).addEventListener("change", () => requestStatics(performance.now()));
+  }
   $("show-range").addEventListener("change", (ev) => {
     state.showRange = ev.target.checked;
     requestStatics(performance.now());
