@@ -242,7 +242,7 @@ def test_ensemble_cancel_and_one_job_at_a_time(client):
     body = {"arch": OPPENHEIM, "samples": 20000, "pulse": PULSE}
     job = client.post("/api/ensemble", json=body).json()
     busy = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 10})
-    assert busy.status_code == 409 and "another ensemble" in busy.json()["error"]
+    assert busy.status_code == 409 and "another ensemble or curve" in busy.json()["error"]
     c = client.post(f"/api/jobs/{job['id']}/cancel")
     assert c.status_code == 200
     s = _wait(client, job["id"])
@@ -376,3 +376,30 @@ def test_piers_as_the_command_lines(client):
     assert r.json()["drawing"]["n"] == 9 and ref.k < 0.3
     r = client.post("/api/limit", json={"arch": {**OPPENHEIM, "pier_height": 4.0}})
     assert r.status_code == 400 and r.json()["error"].startswith("--pier-width: needed")
+
+
+def test_collapse_curve_job_is_ensemble_curves(client):
+    body = {"arch": OPPENHEIM, "samples": 6, "seed": 2, "durations": "0.2,0.5,1"}
+    r = client.post("/api/curve", json=body)
+    assert r.status_code == 200, r.text
+    s = _wait(client, r.json()["id"])
+    assert s["state"] == "done" and s["done"] == s["total"] == 18
+    res = s["result"]
+    # one call of the library over all three durations (archrock curves --samples 6 --seed 2)
+    lib = archrock.ensemble_curve(archrock.oppenheim_arch(), 6, 2, durations=(0.2, 0.5, 1.0))
+    assert res["durations"] == [0.2, 0.5, 1.0] and res["n_used"] == lib.n_samples == 6
+    assert np.allclose(res["nominal_g"], lib.nominal.amplitudes, rtol=1e-12)
+    assert np.allclose([res["q05_g"], res["q50_g"], res["q95_g"]], lib.bands, rtol=1e-12)
+    assert 1.0 < res["nominal_g"][0] < 1.6 and res["q05_g"][1] <= res["q95_g"][1]
+
+
+@pytest.mark.parametrize("body, field", [
+    ({"samples": 5000}, "samples"),
+    ({"durations": "0.1:1:100000000"}, "durations"),
+    ({"durations": "abc"}, "durations"),
+    ({"durations": "0.1,9"}, "durations"),
+    ({"samples": 200, "durations": "0.1:1:12"}, "samples"),
+])
+def test_bad_curve_requests(client, body, field):
+    r = client.post("/api/curve", json={"arch": OPPENHEIM, **body})
+    assert r.status_code == 400 and r.json()["error"].startswith(field + ":"), r.text

@@ -141,3 +141,14 @@ def test_an_ensemble_is_cancelled_and_friction_is_shown(page):
     got = wait(page, "document.getElementById('friction-k').textContent")
     assert got.startswith("with friction mu = 0.300: k_l = 0.1472 g") and "sliding governs" in got
     assert page.errors == []
+
+
+def test_a_collapse_curve_with_its_band(page):
+    page.fill("#curve-samples", "5")
+    page.fill("#curve-durations", "0.2,0.5,1")
+    page.click("#run-curve")
+    pts = wait(page, "document.getElementById('curve-svg').getAttribute('data-points')")
+    assert int(pts) == 3 and page.locator("#curve-svg polygon.band").count() == 1
+    assert page.locator("#curve-svg circle.marker").count() == 3
+    assert page.text_content("#curve-result").startswith("oppenheim pulse: 5 of 5 arches used")
+    assert page.errors == []

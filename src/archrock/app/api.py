@@ -395,6 +395,84 @@ def run_ensemble_job(config, progress, cancelled) -> dict | None:
             "wall_s": wall}
 
 
+# ---------------------------------------------------------------------------- collapse curve
+#: Collapse-acceleration curves: random arches, durations, and their product (each arch and
+#: duration is one bisection of about 20 responses: 100 x 7 take about 13 s here).
+MAX_CURVE_SAMPLES = 200
+MAX_CURVE_DURATIONS = 12
+MAX_CURVE_WORK = 1500
+
+
+def curve_request(params: dict) -> dict:
+    """The checked arguments of :func:`run_curve_job`: ``arch``, ``samples`` (1 to
+    :data:`MAX_CURVE_SAMPLES`), ``seed``, ``spreads`` as the ensemble's, ``durations`` [s]
+    (a list, or text such as "0.1,0.2,0.5"), ``kind`` of pulse (negative amplitudes, the
+    paper's)."""
+    from ..curves import parse_range
+    from ..sampling import Spreads
+
+    params = _request(params)
+    nominal = arch_from_params(_dict(params, "arch"))
+    samples = _number(params, "samples", 30, integer=True)
+    if not 1 <= samples <= MAX_CURVE_SAMPLES:
+        raise ArchInputError(f"samples: {samples}; allowed 1 to {MAX_CURVE_SAMPLES} for a curve "
+                             f"in the app (archrock curves for more)")
+    seed = _number(params, "seed", 0, integer=True)
+    if seed < 0:
+        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
+    sp = _dict(params, "spreads")
+    spreads = Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
+                                                       ("radius", 0.05), ("tilt", 0.0))))
+    d = params.get("durations", "0.1,0.2,0.3,0.5,0.8,1.2")
+    if isinstance(d, list):
+        d = ",".join(str(x) for x in d)
+    if not isinstance(d, str):
+        raise ArchInputError("durations: expected numbers such as 0.1,0.2,0.5 [s]")
+    parts = d.split(":")
+    if len(d) > 300 or (len(parts) == 3 and parts[2].strip().isdigit()
+                        and int(parts[2]) > MAX_CURVE_DURATIONS):
+        raise ArchInputError(f"durations: {d[:40]!r}; allowed 1 to {MAX_CURVE_DURATIONS} "
+                             f"durations")  # checked before parse_range builds the list
+    durations = [float(x) for x in parse_range(d, "durations")]
+    if not 1 <= len(durations) <= MAX_CURVE_DURATIONS or max(durations) > MAX_PULSE_S:
+        raise ArchInputError(f"durations: {len(durations)} of up to {max(durations):g} s; allowed "
+                             f"1 to {MAX_CURVE_DURATIONS} durations of at most {MAX_PULSE_S:g} s")
+    if samples * len(durations) > MAX_CURVE_WORK:
+        raise ArchInputError(f"samples: {samples} arches x {len(durations)} durations; the app "
+                             f"allows {MAX_CURVE_WORK} (archrock curves for more)")
+    kind = _choice(params, "kind", PULSE_KINDS, "oppenheim")
+    return {"nominal": nominal, "samples": samples, "seed": seed, "spreads": spreads,
+            "durations": durations, "kind": kind}
+
+
+def run_curve_job(req: dict, progress, cancelled) -> dict | None:
+    """The collapse-acceleration curve of the nominal arch and the 5/50/95% band over
+    ``samples`` random arches (:func:`archrock.curves.ensemble_curve`, as ``archrock curves
+    --samples``), one duration at a time so that it shows progress and can be cancelled between
+    durations (each arch and duration is searched on its own: the same numbers as one call).
+    Amplitudes [g] as magnitudes; null where no collapse up to 10 g."""
+    from ..curves import ensemble_curve
+
+    t0 = time.perf_counter()
+    out = {"durations": [], "nominal_g": [], "q05_g": [], "q50_g": [], "q95_g": []}
+    n_used, failed = None, 0
+    total = req["samples"] * len(req["durations"])
+    for i, d in enumerate(req["durations"]):
+        if cancelled():
+            return None
+        with COMPUTE_LOCK:
+            c = ensemble_curve(req["nominal"], req["samples"], req["seed"], req["spreads"],
+                               durations=(d,), kind=req["kind"])
+        out["durations"].append(d)
+        out["nominal_g"].append(float(c.nominal.amplitudes[0]))
+        for key, row in zip(("q05_g", "q50_g", "q95_g"), c.bands):
+            out[key].append(float(row[0]))
+        n_used, failed = c.n_samples, len(c.failed)
+        progress((i + 1) * req["samples"], total)
+    return {**out, "samples": req["samples"], "n_used": n_used, "left_out": failed,
+            "kind": req["kind"], "wall_s": time.perf_counter() - t0}
+
+
 # ---------------------------------------------------------------------------- export
 def export(params: dict) -> tuple[str, str, str]:
     """A download: (file name, media type, text). ``what``: "geometry" (the JSON geometry

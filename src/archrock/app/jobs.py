@@ -54,7 +54,7 @@ class Jobs:
     def start(self, total: int, work) -> Job:
         with self._lock:
             if any(j.state == "running" for j in self._jobs.values()):
-                raise Busy("ensemble: another ensemble is running; cancel it or wait for it")
+                raise Busy("job: another ensemble or curve is running; cancel it or wait for it")
             job = Job(f"job{next(self._ids)}", total)
             self._jobs[job.id] = job
             finished = [k for k, j in self._jobs.items() if j.state != "running"]

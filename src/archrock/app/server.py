@@ -7,6 +7,8 @@ Routes (JSON bodies; lengths m, accelerations g, times s):
 * ``POST /api/respond`` {arch, pulse: {kind, amplitude, duration}, t_end?}: :func:`.api.respond`;
 * ``POST /api/ensemble`` {arch, samples, seed, spreads, pulse?}: starts a job, returns its id;
   ``GET /api/jobs/{id}`` its progress and result; ``POST /api/jobs/{id}/cancel``;
+* ``POST /api/curve`` {arch, samples, seed, spreads, durations, kind}: the collapse-acceleration
+  curve and its band, a job as the ensemble;
 * ``POST /api/export`` {what, arch, pulse?}: a download (:func:`.api.export`).
 
 A bad value answers 400 with ``{"error": message}`` (the CLI's one-line message, naming the
@@ -113,6 +115,17 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
 
+    async def curve(request: Request):
+        try:
+            body = await _body(request)
+            req = await run_in_threadpool(api.curve_request, body)
+            job = jobs.start(req["samples"] * len(req["durations"]),
+                             lambda progress, cancelled: api.run_curve_job(req, progress,
+                                                                           cancelled))
+            return _json(job.to_dict())
+        except Exception as exc:  # noqa: BLE001
+            return _error(exc)
+
     async def job_status(request: Request):
         try:
             return _json(jobs.get(request.path_params["job"]).to_dict())
@@ -147,6 +160,7 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
         Route("/api/limit", _endpoint(api.limit), methods=["POST"]),
         Route("/api/respond", _endpoint(api.respond), methods=["POST"]),
         Route("/api/ensemble", ensemble, methods=["POST"]),
+        Route("/api/curve", curve, methods=["POST"]),
         Route("/api/jobs/{job}", job_status),
         Route("/api/jobs/{job}/cancel", job_cancel, methods=["POST"]),
         Route("/api/export", export, methods=["POST"]),

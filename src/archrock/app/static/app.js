@@ -265,6 +265,7 @@ function bindControls() {
   $("export-svg").addEventListener("click", exportSvg);
   $("play").addEventListener("click", play);
   $("run-ensemble").addEventListener("click", runEnsemble);
+  $("run-curve").addEventListener("click", runCurve);
   $("cancel-ensemble").addEventListener("click", cancelEnsemble);
 }
 
@@ -418,41 +419,59 @@ async function play() {
 // ------------------------------------------------------------------ ensemble
 let polling = null;
 
+function spreadsParams() {
+  return {span: $("spread-span").value.trim(), thickness: $("spread-thickness").value.trim(),
+          radius: $("spread-radius").value.trim()};
+}
+
 async function runEnsemble() {
   const t0 = performance.now();
   const body = {arch: archParams(), samples: $("samples").value.trim(), seed: $("seed").value.trim(),
-                spreads: {span: $("spread-span").value.trim(), thickness: $("spread-thickness").value.trim(),
-                          radius: $("spread-radius").value.trim()}};
+                spreads: spreadsParams()};
   if ($("with-pulse").checked) body.pulse = pulseParams();
-  let job;
-  try { job = await post("/api/ensemble", body); } catch (e) { if (!e.handled) console.warn(e); return; }
-  clearError();
-  app.job = job;
-  $("run-ensemble").disabled = true;
-  $("cancel-ensemble").disabled = false;
   $("hist-svg").replaceChildren();
   $("ensemble-result").textContent = "";
+  runJob("/api/ensemble", body, "arches", $("ensemble-result"), (s) => {
+    drawHistogram(s.result);
+    app.timings.ensemble.push({samples: s.total, ms: performance.now() - t0, server_s: s.result.wall_s});
+  });
+}
+
+async function runCurve() {
+  const body = {arch: archParams(), samples: $("curve-samples").value.trim(), seed: $("seed").value.trim(),
+                spreads: spreadsParams(), durations: $("curve-durations").value.trim(),
+                kind: $("pulse-kind").value};
+  $("curve-svg").replaceChildren();
+  $("curve-result").textContent = "";
+  runJob("/api/curve", body, "arch-durations", $("curve-result"), (s) => drawCurve(s.result));
+}
+
+// a background job: start it, poll its progress, then onDone(status) or say why it stopped
+async function runJob(url, body, unit, said, onDone) {
+  let job;
+  try { job = await post(url, body); } catch (e) { if (!e.handled) console.warn(e); return; }
+  clearError();
+  app.job = job;
+  for (const id of ["run-ensemble", "run-curve"]) $(id).disabled = true;
+  $("cancel-ensemble").disabled = false;
   const poll = async () => {
     let s;
     try {
       const resp = await fetch(`/api/jobs/${job.id}`);
       s = await resp.json();
       if (!resp.ok) throw new Error(s.error);
-    } catch (e) { showError(`ensemble: ${e.message}`); finish(); return; }
+    } catch (e) { showError(`job: ${e.message}`); finish(); return; }
     app.job = s;
     $("progress").value = s.total ? s.done / s.total : 0;
-    $("progress-text").textContent = `${s.done} / ${s.total} arches, ${s.elapsed_s.toFixed(1)} s`;
+    $("progress-text").textContent = `${s.done} / ${s.total} ${unit}, ${s.elapsed_s.toFixed(1)} s`;
     if (s.state === "running") { polling = setTimeout(poll, 150); return; }
     finish();
-    if (s.state === "done") {
-      drawHistogram(s.result);
-      app.timings.ensemble.push({samples: s.total, ms: performance.now() - t0, server_s: s.result.wall_s});
-    } else if (s.state === "cancelled") {
-      $("ensemble-result").textContent = `cancelled after ${s.done} of ${s.total} arches`;
-    } else showError(`ensemble: ${s.error}`);
+    if (s.state === "done") onDone(s);
+    else if (s.state === "cancelled") said.textContent = `cancelled after ${s.done} of ${s.total} ${unit}`;
+    else showError(s.error);
   };
   const finish = () => {
-    $("run-ensemble").disabled = false;
+    for (const id of ["run-ensemble", "run-curve"]) $(id).disabled = false;
     $("cancel-ensemble").disabled = true;
   };
   polling = setTimeout(poll, 100);
@@ -495,6 +514,40 @@ function drawHistogram(result) {
   }
   text += `; ${result.wall_s.toFixed(2)} s on the server`;
   $("ensemble-result").textContent = text;
+}
+
+function drawCurve(r) {
+  const svg = $("curve-svg");
+  svg.replaceChildren();
+  const W = 600, H = 200, L = 40, R = 10, T = 10, B = 30;
+  const all = [...r.nominal_g, ...r.q05_g, ...r.q50_g, ...r.q95_g].filter((v) => v !== null);
+  if (!all.length) { $("curve-result").textContent = "no collapse up to 10 g at these durations"; return; }
+  const d0 = 0, d1 = Math.max(...r.durations), amax = Math.min(10, 1.05 * Math.max(...all));
+  const cx = (d) => L + (W - L - R) * (d - d0) / (d1 - d0);
+  const cy = (a) => T + (H - T - B) * (1 - Math.min(a, amax) / amax);
+  el("line", {x1: L, x2: W - R, y1: H - B, y2: H - B, class: "axis"}, svg);
+  el("line", {x1: L, x2: L, y1: T, y2: H - B, class: "axis"}, svg);
+  const ok = r.durations.map((d, i) => r.q05_g[i] !== null && r.q95_g[i] !== null);
+  const up = r.durations.filter((d, i) => ok[i]).map((d) => [d, r.q95_g[r.durations.indexOf(d)]]);
+  const lo = r.durations.filter((d, i) => ok[i]).map((d) => [d, r.q05_g[r.durations.indexOf(d)]]);
+  if (up.length > 1) {
+    el("polygon", {class: "band", points: [...up, ...lo.reverse()].map(([d, a]) => `${cx(d)},${cy(a)}`).join(" ")}, svg);
+  }
+  const line = (vals, cls) => {
+    const p = r.durations.map((d, i) => [d, vals[i]]).filter(([, a]) => a !== null);
+    el("polyline", {class: cls, points: p.map(([d, a]) => `${cx(d)},${cy(a)}`).join(" ")}, svg);
+    return p;
+  };
+  line(r.q50_g, "median");
+  for (const [d, a] of line(r.nominal_g, "nominal-curve")) el("circle", {cx: cx(d), cy: cy(a), r: 2.5, class: "marker"}, svg);
+  const lab = (x, y, t, a = "middle") => { const e = el("text", {x, y, "text-anchor": a}, svg); e.textContent = t; };
+  for (const d of r.durations) lab(cx(d), H - B + 12, `${d}`);
+  for (let i = 0; i <= 4; i++) lab(L - 3, cy(amax * i / 4) + 3, (amax * i / 4).toFixed(2), "end");
+  lab(W - R, H - 3, "pulse duration t_p [s]", "end");
+  lab(L + 4, T + 8, "collapse amplitude |a| [g]: nominal (dots), median (dashed), 5-95% band", "start");
+  svg.setAttribute("data-points", r.durations.length);
+  $("curve-result").textContent = `${r.kind} pulse: ${r.n_used} of ${r.samples} arches used` +
+      (r.left_out ? ` (${r.left_out} left out)` : "") + `; ${r.wall_s.toFixed(1)} s on the server`;
 }
 
 // ------------------------------------------------------------------ start
