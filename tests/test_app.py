@@ -193,7 +193,7 @@ def test_pulse_response_is_the_librarys_with_its_frames(client):
     assert d["status"] == lib.status == "rest"
     assert abs(d["peak"] - lib.peak) < 1e-9 and len(d["impacts"]) == len(lib.impacts)
     frames = d["frames"]
-    assert len(frames) == 150 and frames[0][0] == 0.0 and frames[-1][0] > 2.9
+    assert len(frames) == 150 and abs(frames[0][0]) < 1e-12 and frames[-1][0] > 2.9
     moving = [f for f in frames if f[2] >= 0 and abs(f[1]) > 1e-3]
     assert moving, "the mechanism never opens in the frames"
     # a frame's link transforms move the voussoirs as the library's own drawing does
@@ -387,7 +387,7 @@ def test_collapse_curve_job_is_ensemble_curves(client):
     res = s["result"]
     # one call of the library over all three durations (archrock curves --samples 6 --seed 2)
     lib = archrock.ensemble_curve(archrock.oppenheim_arch(), 6, 2, durations=(0.2, 0.5, 1.0))
-    assert res["durations"] == [0.2, 0.5, 1.0] and res["n_used"] == lib.n_samples == 6
+    assert np.allclose(res["durations"], [0.2, 0.5, 1.0]) and res["n_used"] == lib.n_samples == 6
     assert np.allclose(res["nominal_g"], lib.nominal.amplitudes, rtol=1e-12)
     assert np.allclose([res["q05_g"], res["q50_g"], res["q95_g"]], lib.bands, rtol=1e-12)
     assert 1.0 < res["nominal_g"][0] < 1.6 and res["q05_g"][1] <= res["q95_g"][1]
