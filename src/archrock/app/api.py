@@ -225,7 +225,7 @@ def limit(params: dict) -> dict:
 
 
 # ---------------------------------------------------------------------------- dynamics
-def pulse_spec(params) -> "object":
+def pulse_spec(params):
     """The :class:`~archrock.groundmotion.PulseSpec` of ``{"kind", "amplitude", "duration"}``
     ([g], [s]), within the app's bounds."""
     from ..groundmotion import PulseSpec
