@@ -152,3 +152,24 @@ def test_a_collapse_curve_with_its_band(page):
     assert page.locator("#curve-svg circle.marker").count() == 3
     assert page.text_content("#curve-result").startswith("oppenheim pulse: 5 of 5 arches used")
     assert page.errors == []
+
+
+def test_open_a_geometry_file_and_download_it_again(page, tmp_path):
+    import json
+
+    import archrock
+
+    arch = archrock.oppenheim_arch().to_dict()
+    arch["voussoirs"][3]["thickness"] = 1.2  # a thinner key stone
+    f = tmp_path / "survey.json"
+    f.write_text(json.dumps(arch), encoding="utf-8")
+    page.set_input_files("#upload", str(f))
+    wait(page, "document.getElementById('arch-name').textContent.startsWith('survey')")
+    k = float(page.text_content("#k").split("=")[1])
+    ref = archrock.limit_analysis(archrock.arch_from_dict(arch)).k
+    assert abs(k - ref) < 5e-4 and ref < 0.37 and page.is_disabled("#thickness")
+    with page.expect_download() as dl:
+        page.click("button.export[data-what='geometry']")
+    back = json.loads(Path(dl.value.path()).read_text(encoding="utf-8"))
+    assert abs(back["voussoirs"][3]["thickness"] - 1.2) < 1e-12
+    assert dl.value.suggested_filename == "arch.json" and page.errors == []
