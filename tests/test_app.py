@@ -239,14 +239,15 @@ def test_ensemble_job_finishes_with_the_clis_summary(client):
 
 
 def test_ensemble_cancel_and_one_job_at_a_time(client):
-    body = {"arch": OPPENHEIM, "samples": 20000, "pulse": PULSE}
+    # 4000 arches: within the app's work bound with or without numba
+    body = {"arch": OPPENHEIM, "samples": 4000, "pulse": PULSE}
     job = client.post("/api/ensemble", json=body).json()
     busy = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 10})
     assert busy.status_code == 409 and "another ensemble or curve" in busy.json()["error"]
     c = client.post(f"/api/jobs/{job['id']}/cancel")
     assert c.status_code == 200
     s = _wait(client, job["id"])
-    assert s["state"] == "cancelled" and s["done"] < s["total"] == 20000 and s["result"] is None
+    assert s["state"] == "cancelled" and s["done"] < s["total"] == 4000 and s["result"] is None
     # the next job may start
     nxt = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 20})
     assert nxt.status_code == 200 and _wait(client, nxt.json()["id"])["state"] == "done"
