@@ -3,7 +3,7 @@
 Oppenheim's arch under the paper's pulse (a = -1 g, t_p = 0.2 s) for a fixed simulated window:
 * engine: archrock.contact.ContactArch (pymunk), the default EngineSettings (and the coarse
   ones of the default test suite), stepped through the window without the early stop at rest;
-* four-link: archrock.response.respond(integrator="fast"), RK4 at dt = 2 ms (numba when
+* four-link: archrock.dynamics.response.respond(integrator="fast"), RK4 at dt = 2 ms (numba when
   installed), run to rest as archrock does (its simulated span is the response's t_final).
 
 Usage: python benchmarks/bench_contact.py [--window 6] [--repeat 3] [--json FILE]
@@ -34,7 +34,7 @@ def main(argv=None):
     from archrock.contact import EngineSettings
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import oppenheim_pulse
-    from archrock.response import prepare, respond
+    from archrock.dynamics.response import prepare, respond
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--window", type=float, default=6.0, help="simulated seconds (default 6)")

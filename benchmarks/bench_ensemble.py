@@ -31,10 +31,10 @@ import numpy as np
 
 
 def _config(samples, seed=0):
-    from archrock.ensemble import EnsembleConfig
+    from archrock.studies.ensemble import EnsembleConfig
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import PulseSpec
-    from archrock.impact import ImpactSpec
+    from archrock.dynamics.impact import ImpactSpec
 
     return EnsembleConfig.from_arch(oppenheim_arch(), samples=samples, seed=seed, batch_size=500,
                                     motion=PulseSpec("oppenheim", -1.0, 0.2),
@@ -42,7 +42,7 @@ def _config(samples, seed=0):
 
 
 def _timed(config, **kw):
-    from archrock.ensemble import run_ensemble
+    from archrock.studies.ensemble import run_ensemble
 
     t0 = time.perf_counter()
     res = run_ensemble(config, progress=False, **kw)
@@ -52,8 +52,8 @@ def _timed(config, **kw):
 
 def naive(config, n):
     """prepare + respond arch by arch for the first n samples; returns (seconds, rows)."""
-    from archrock.ensemble import sample_arch
-    from archrock.response import prepare, respond
+    from archrock.studies.ensemble import sample_arch
+    from archrock.dynamics.response import prepare, respond
 
     motion = config.motion.build()
     arches = [sample_arch(config, i) for i in range(n)]
@@ -72,10 +72,10 @@ def naive(config, n):
 
 def pointed(samples):
     """Irregular pointed arches through limit analysis and the paper's pulse (fixed c_v)."""
-    from archrock.ensemble import EnsembleConfig
+    from archrock.studies.ensemble import EnsembleConfig
     from archrock.geometry import family_arch
     from archrock.groundmotion import PulseSpec
-    from archrock.impact import ImpactSpec
+    from archrock.dynamics.impact import ImpactSpec
 
     nom = family_arch("pointed", 10.0, 7.0, 1.0, 12, exact=False)
     cfg = EnsembleConfig.from_arch(nom, samples=samples, seed=0, batch_size=500,

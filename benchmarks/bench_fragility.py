@@ -58,8 +58,8 @@ def main(argv=None):
 
     from archrock._jit import HAVE_NUMBA, numba
     from archrock.geometry import nominal_arch
-    from archrock.ida import ida, random_models
-    from archrock.sweep import HAVE_EARLY_STOP
+    from archrock.studies.ida import ida, random_models
+    from archrock.dynamics.sweep import HAVE_EARLY_STOP
 
     threads = numba.get_num_threads() if HAVE_NUMBA else 1
     print(f"machine: {os.cpu_count()} cores, numba {'on' if HAVE_NUMBA else 'off'} "

@@ -42,7 +42,7 @@ if "--no-numba" in sys.argv:
 
 import numpy as np  # noqa: E402
 
-from archrock import limit  # noqa: E402
+from archrock.statics import limit  # noqa: E402
 from archrock.geometry import (Arch, as_polygon, family_arch, nominal_arch,  # noqa: E402
                                oppenheim_arch, random_spans_thicknesses_radii)
 

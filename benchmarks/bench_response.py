@@ -23,7 +23,7 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 from archrock import geometry, groundmotion as gm  # noqa: E402
-from archrock.response import prepare, respond  # noqa: E402
+from archrock.dynamics.response import prepare, respond  # noqa: E402
 
 
 def rate(fn, min_time=1.0, min_reps=3):

@@ -35,10 +35,10 @@ REPEATS = 3
 
 
 def _config(samples, early_stop=False, batch_size=500, seed=0):
-    from archrock.ensemble import EnsembleConfig
+    from archrock.studies.ensemble import EnsembleConfig
     from archrock.geometry import oppenheim_arch
     from archrock.groundmotion import PulseSpec
-    from archrock.impact import ImpactSpec
+    from archrock.dynamics.impact import ImpactSpec
 
     return EnsembleConfig.from_arch(oppenheim_arch(), samples=samples, seed=seed,
                                     batch_size=batch_size,
@@ -50,8 +50,9 @@ class KernelClock:
     """Wraps the compiled parallel loops of the package and adds up the seconds spent in them."""
 
     def __init__(self):
-        from archrock import batch, limit
-        from archrock.impact import compiled
+        from archrock.dynamics import batch
+        from archrock.statics import limit
+        from archrock.dynamics.impact import compiled
 
         self.seconds = 0.0
         self._saved = []
@@ -80,7 +81,7 @@ class KernelClock:
 def _run(cfg, threads):
     import numba
 
-    from archrock.ensemble import run_ensemble
+    from archrock.studies.ensemble import run_ensemble
 
     numba.set_num_threads(threads)
     clock = KernelClock()
@@ -159,7 +160,7 @@ def million(samples=1_000_000, batch_size=10_000):
     """samples arches batch by batch (only counts kept): wall, arches/s, peak RSS."""
     import numba
 
-    from archrock.ensemble import run_batch
+    from archrock.studies.ensemble import run_batch
 
     cfg = _config(samples, early_stop=True, batch_size=batch_size)
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)

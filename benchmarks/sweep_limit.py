@@ -6,8 +6,8 @@ time per arch and the worst |kinematic - static| (the figures of issue 17's clos
 Families with rise/span 0.05-1, t/span 0.02-0.3, 3 to max-n voussoirs, normal and vertical
 joints, half of them with a point load of half the arch's weight above a voussoir.  Up to 10
 voussoirs the kinematic enumeration of every mechanism with lift-off
-(:func:`archrock.limit.general_mechanisms`) is compared with the LP as well.  ``--friction``
-also times :func:`archrock.friction.friction_analysis` at mu = 0.5 on every arch that stands.
+(:func:`archrock.statics.limit.general_mechanisms`) is compared with the LP as well.  ``--friction``
+also times :func:`archrock.statics.friction.friction_analysis` at mu = 0.5 on every arch that stands.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from collections import Counter
 
 import numpy as np
 
-from archrock import limit
+from archrock.statics import limit
 from archrock.errors import ArchrockError, CannotStandError, GeometryOutcome
 from archrock.geometry import Load, family_arch
 
@@ -82,7 +82,7 @@ def main(argv=None):
                 g = limit.general_mechanisms(arch, d).multiplier
                 worst_gen = max(worst_gen, abs(g - res.mechanism(d).multiplier) / max(1.0, abs(g)))
         if args.friction:
-            from archrock.friction import friction_analysis
+            from archrock.statics.friction import friction_analysis
 
             t0 = time.perf_counter()
             friction_analysis(arch, 0.5)

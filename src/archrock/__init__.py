@@ -16,7 +16,7 @@ The Python API in one namespace, in the order data flows (docs/architecture.md):
 * impacts: :class:`ImpactSpec`, :data:`PAPER_PRACTICE`;
 * dynamics: :func:`prepare`, :func:`respond`, :func:`prepare_many`;
 * studies: :func:`collapse_curve`, :func:`ensemble_curve`, :class:`EnsembleConfig`,
-  :func:`run_ensemble` (incremental dynamic analysis: :mod:`archrock.ida`, whose function
+  :func:`run_ensemble` (incremental dynamic analysis: :mod:`archrock.studies.ida`, whose function
   ``ida`` shares the module's name and so is not lifted here);
 * errors: :class:`ArchrockError` and its subclasses.
 
@@ -26,6 +26,10 @@ Names are imported on first use, so ``import archrock`` stays cheap and the opti
 
 from importlib import import_module
 
+from . import _moved
+
+_moved.install()
+
 _EXPORTS = {
     "errors": ("ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
                "NoMechanismError", "NotFourHingeError", "InvalidSampleError", "ImpactModelError",
@@ -33,19 +37,19 @@ _EXPORTS = {
     "geometry": ("Arch", "PolygonArch", "VoussoirArch", "Load", "family_arch", "nominal_arch",
                  "oppenheim_arch", "random_arch", "as_polygon", "arch_from_dict", "Defect",
                  "apply_defect"),
-    "sampling": ("ArchSampler", "Spreads"),
-    "limit": ("limit_analysis", "minimum_thickness", "general_mechanisms"),
-    "thrust": ("thrust_range",),
-    "friction": ("friction_analysis", "friction_needed", "friction_minimum_thickness"),
+    "geometry.sampling": ("ArchSampler", "Spreads"),
+    "statics.limit": ("limit_analysis", "minimum_thickness", "general_mechanisms"),
+    "statics.thrust": ("thrust_range",),
+    "statics.friction": ("friction_analysis", "friction_needed", "friction_minimum_thickness"),
     "groundmotion": ("GroundMotion", "pulse", "oppenheim_pulse", "load_record", "PulseSpec",
                      "RecordSpec"),
-    "impact": ("ImpactSpec", "PAPER_PRACTICE"),
-    "response": ("prepare", "respond"),
-    "population": ("prepare_many",),
-    "curves": ("collapse_curve", "ensemble_curve"),
-    "ensemble": ("EnsembleConfig", "run_ensemble"),
-    "defectmap": ("defect_map",),
-    "sensitivity": ("sobol_indices",),
+    "dynamics.impact": ("ImpactSpec", "PAPER_PRACTICE"),
+    "dynamics.response": ("prepare", "respond"),
+    "dynamics.population": ("prepare_many",),
+    "studies.curves": ("collapse_curve", "ensemble_curve"),
+    "studies.ensemble": ("EnsembleConfig", "run_ensemble"),
+    "studies.defectmap": ("defect_map",),
+    "studies.sensitivity": ("sobol_indices",),
 }
 _OWNER = {name: module for module, names in _EXPORTS.items() for name in names}
 
@@ -54,6 +58,8 @@ __all__ = sorted(_OWNER)
 
 def __getattr__(name):
     module = _OWNER.get(name)
+    if module is None and name in _moved.MOVED:  # an old module path: archrock.limit
+        return import_module(f"{__name__}.{name}")
     if module is None:
         raise AttributeError(f"module 'archrock' has no attribute {name!r}")
     value = getattr(import_module(f".{module}", __name__), name)

@@ -1,6 +1,6 @@
 """The progress protocol of long computations: a callable given one line of text, or None.
 
-The library never prints: a study, or a block of limit analyses (:func:`archrock.limit.
+The library never prints: a study, or a block of limit analyses (:func:`archrock.statics.limit.
 limit_progress`), hands its progress lines to the callable it was given; the CLI passes one that
 prints them on stderr.  A foundation module, so every layer can check the argument the same way.
 """

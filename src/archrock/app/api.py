@@ -32,7 +32,7 @@ MAX_PULSE_S = 5.0
 MAX_AMPLITUDE_G = 10.0
 #: ... frames of an animation ...
 MAX_FRAMES = 300
-#: ... arches of an ensemble, and its estimated time [s] (archrock.work's costs).
+#: ... arches of an ensemble, and its estimated time [s] (archrock.studies.work's costs).
 MAX_SAMPLES = 20_000
 MAX_ENSEMBLE_WORK_S = 120.0
 #: Largest uploaded geometry (characters of JSON).
@@ -173,7 +173,7 @@ def _xy(a) -> list:
 def arch_drawing(arch) -> dict:
     """What the page draws of an arch: each voussoir's closed outline [[x, y], ...] [m], each
     joint's contact segment (intrados end, extrados end) [m] and the ground level [m]."""
-    from ..plots import springing_level, voussoir_outline
+    from ..reports.plots import springing_level, voussoir_outline
 
     outlines = [_xy(voussoir_outline(arch, i, points_per_rad=30.0)) for i in range(arch.n)]
     return {"name": arch.name, "n": int(arch.n), "outlines": outlines,
@@ -187,8 +187,8 @@ def limit(params: dict) -> dict:
     the multipliers at that friction; ``"thrust_range": true``: the least and greatest
     thrust), plus the drawing: voussoirs, both thrust lines (funicular polygons [m]) and the
     hinge points [m].  ``elapsed_ms``: the server's time."""
-    from ..friction import friction_analysis, friction_needed
-    from ..limit import limit_analysis
+    from ..statics.friction import friction_analysis, friction_needed
+    from ..statics.limit import limit_analysis
     from ..reports.limit import limit_summary
 
     params = _request(params)
@@ -203,7 +203,7 @@ def limit(params: dict) -> dict:
         extra = {"friction": friction_analysis(arch, mu) if mu is not None else None}
         extra["needed"] = friction_needed(arch) if mu is None else None
         if want_thrust:
-            from ..thrust import thrust_range
+            from ..statics.thrust import thrust_range
 
             extra["thrust"] = thrust_range(arch)
         summary = limit_summary(result, None, **extra)
@@ -250,12 +250,12 @@ def respond(params: dict) -> dict:
     rotation limit) and the animation: ``frames`` (at most :data:`MAX_FRAMES`), each
     ``[t, phi, row, th1, th2, th3, bx, by, cx, cy]``: the chain row open (-1 at rest) and the
     rotations [rad] of its three links and the moved hinges B, C [m] (the library's four-bar
-    kinematics, :func:`archrock.mechanism.configuration`) at ``exaggerate`` (1 to 50, default
-    1: to scale) times the rotation; ``chain_links`` gives, per row, the hinge points A, B, C,
-    D at rest and the voussoirs of each link."""
-    from ..mechanism import configuration
-    from ..response import prepare
-    from ..response import respond as respond_
+    kinematics, :func:`archrock.dynamics.fourlink.configuration`) at ``exaggerate`` (1 to 50,
+    default 1: to scale) times the rotation; ``chain_links`` gives, per row, the hinge points A,
+    B, C, D at rest and the voussoirs of each link."""
+    from ..dynamics.fourlink import configuration
+    from ..dynamics.response import prepare
+    from ..dynamics.response import respond as respond_
 
     params = _request(params)
     t0 = time.perf_counter()
@@ -296,7 +296,7 @@ def respond(params: dict) -> dict:
             frames.append([round(float(tk), 5), round(val, 7), -1, 0, 0, 0, 0, 0, 0, 0])
             continue
         fl = chain[row]
-        # the drawn rotation, ``ex`` times the computed one (archrock.animate's exaggerate)
+        # the drawn rotation, ``ex`` times the computed one (archrock.reports.animate's exaggerate)
         rot = max(0.0, (1.0 if fl.direction == "l" else -1.0) * val)
         bx, by, cx, cy, th1, th2, th3, ok = configuration(ex * rot, fl.geo)
         if not ok:  # the exaggerated chain would pass its dead point: drawn to scale
@@ -324,14 +324,15 @@ def respond(params: dict) -> dict:
 
 # ---------------------------------------------------------------------------- ensemble
 def ensemble_config(params: dict):
-    """The :class:`~archrock.ensemble.EnsembleConfig` of an ensemble request: ``arch``,
+    """The :class:`~archrock.studies.ensemble.EnsembleConfig` of an ensemble request: ``arch``,
     ``samples`` (1 to :data:`MAX_SAMPLES`), ``seed``, ``spreads`` ({span, thickness, radius,
     tilt}, the CLI's --spread-*), an optional ``pulse``; refused above
-    :data:`MAX_ENSEMBLE_WORK_S` by the package's cost of an arch (:mod:`archrock.work`)."""
-    from ..ensemble import EnsembleConfig
-    from ..sampling import Spreads
-    from ..work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
+    :data:`MAX_ENSEMBLE_WORK_S` by the package's cost of an arch
+    (:mod:`archrock.studies.work`)."""
     from .._jit import HAVE_NUMBA
+    from ..geometry.sampling import Spreads
+    from ..studies.ensemble import EnsembleConfig
+    from ..studies.work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
 
     params = _request(params)
     nominal = arch_from_params(_dict(params, "arch"))
@@ -358,16 +359,16 @@ def ensemble_config(params: dict):
 
 
 def run_ensemble_job(config, progress, cancelled) -> dict | None:
-    """Run ``config`` batch by batch (:func:`archrock.ensemble.compute.run_batches`, as
+    """Run ``config`` batch by batch (:func:`archrock.studies.ensemble.compute.run_batches`, as
     ``archrock ensemble`` does in-process), calling ``progress(done, total)`` after each and
     stopping (returning None) once ``cancelled()``; the summary is the CLI's
-    (:meth:`~archrock.ensemble.summary.EnsembleResult.summary`) with the histogram of
+    (:meth:`~archrock.studies.ensemble.summary.EnsembleResult.summary`) with the histogram of
     k = min(k_l, k_r) [g]."""
     import pandas as pd
 
-    from ..ensemble.compute import run_batches
-    from ..ensemble.run import _impact_info, _nominal_info
-    from ..ensemble.summary import EnsembleResult
+    from ..studies.ensemble.compute import run_batches
+    from ..studies.ensemble.run import _impact_info, _nominal_info
+    from ..studies.ensemble.summary import EnsembleResult
 
     t0 = time.perf_counter()
     with COMPUTE_LOCK:
@@ -408,8 +409,8 @@ def curve_request(params: dict) -> dict:
     :data:`MAX_CURVE_SAMPLES`), ``seed``, ``spreads`` as the ensemble's, ``durations`` [s]
     (a list, or text such as "0.1,0.2,0.5"), ``kind`` of pulse (negative amplitudes, the
     paper's)."""
-    from ..curves import parse_range
-    from ..sampling import Spreads
+    from ..geometry.sampling import Spreads
+    from ..studies.curves import parse_range
 
     params = _request(params)
     nominal = arch_from_params(_dict(params, "arch"))
@@ -450,11 +451,11 @@ def curve_request(params: dict) -> dict:
 
 def run_curve_job(req: dict, progress, cancelled) -> dict | None:
     """The collapse-acceleration curve of the nominal arch and the 5/50/95% band over
-    ``samples`` random arches (:func:`archrock.curves.ensemble_curve`, as ``archrock curves
-    --samples``), one duration at a time so that it shows progress and can be cancelled between
-    durations (each arch and duration is searched on its own: the same numbers as one call).
-    Amplitudes [g] as magnitudes; null where no collapse up to 10 g."""
-    from ..curves import ensemble_curve
+    ``samples`` random arches (:func:`archrock.studies.curves.ensemble_curve`, as
+    ``archrock curves --samples``), one duration at a time so that it shows progress and can be
+    cancelled between durations (each arch and duration is searched on its own: the same numbers
+    as one call).  Amplitudes [g] as magnitudes; null where no collapse up to 10 g."""
+    from ..studies.curves import ensemble_curve
 
     t0 = time.perf_counter()
     out = {"durations": [], "nominal_g": [], "q05_g": [], "q50_g": [], "q95_g": []}
@@ -502,7 +503,7 @@ def export(params: dict) -> tuple[str, str, str]:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     if what == "thrust-csv":
-        from ..limit import limit_analysis
+        from ..statics.limit import limit_analysis
 
         arch = arch_from_params(_dict(params, "arch"))
         with COMPUTE_LOCK:

@@ -68,11 +68,11 @@ def _record_files(items) -> tuple:
 
 
 def run_assess(args) -> int:
-    from ..assessment import AssessConfig, assess
-    from ..curves import parse_range
+    from ..studies.assessment import AssessConfig, assess
+    from ..studies.curves import parse_range
     from ..reports.html import write_pdf, write_report
 
-    from ..plots import _require_matplotlib
+    from ..reports.plots import _require_matplotlib
 
     _require_matplotlib()  # the figures need it: say so before minutes of work, not after
     if not args.out.lower().endswith((".html", ".htm")):

@@ -25,7 +25,7 @@ def add_spectrum_options(p):
 
 
 def spectrum_from_args(args):
-    from ..codecheck import SiteSpectrum
+    from ..studies.codecheck import SiteSpectrum
 
     if args.spectrum:
         if args.ag is not None or args.f0 is not None or args.tc_star is not None:
@@ -62,7 +62,7 @@ def add_codecheck_options(p):
 
 
 def codecheck_config_from_args(args):
-    from ..codecheck import CodeCheckConfig
+    from ..studies.codecheck import CodeCheckConfig
 
     control = args.control
     if control != "centre":
@@ -88,7 +88,7 @@ def add_codecheck_parser(subparsers):
 
 
 def run_codecheck(args) -> int:
-    from ..codecheck import code_check
+    from ..studies.codecheck import code_check
     from ..reports.codecheck import format_codecheck
 
     cfg = codecheck_config_from_args(args)

@@ -54,9 +54,9 @@ def add_curves_parser(subparsers):
 
 
 def run_curves(args) -> int:
-    from ..curves import collapse_curve, ensemble_curve, parse_range
+    from ..studies.curves import collapse_curve, ensemble_curve, parse_range
     from ..reports.curves import curves_summary, format_curves
-    from ..response import prepare
+    from ..dynamics.response import prepare
 
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
@@ -92,7 +92,7 @@ def run_curves(args) -> int:
     except KeyboardInterrupt:
         return interrupted_study(out)
     if plot:
-        from ..plots import plot_collapse_curve
+        from ..reports.plots import plot_collapse_curve
 
         plot_collapse_curve(curve, plot, band=band,
                             title=f"{nominal.name}: {args.pulse} pulse, sign {args.sign:+d}")

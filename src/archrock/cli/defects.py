@@ -61,7 +61,7 @@ def _say(line: str) -> None:
 
 
 def run_defects(args) -> int:
-    from ..defectmap import defect_map
+    from ..studies.defectmap import defect_map
     from ..reports.defects import defects_summary, format_defects
     from ._parser import CLIError
     from .options import impact_spec_from_args
@@ -82,7 +82,7 @@ def run_defects(args) -> int:
                       progress=None if args.pulse_duration is None or args.no_progress
                       else _say)
     if plot:
-        from ..plots import plot_defect_map
+        from ..reports.plots import plot_defect_map
 
         plot_defect_map(dmap, plot)
     if args.json:

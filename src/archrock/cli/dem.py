@@ -104,7 +104,7 @@ def run_dem(args) -> int:
     progress = None if quiet else _progress
     if args.ramp:
         from ..contact import ramp
-        from ..limit import limit_analysis
+        from ..statics.limit import limit_analysis
         from ..reports.contact import format_ramp, ramp_dict
 
         limit = limit_analysis(arch)
@@ -117,7 +117,7 @@ def run_dem(args) -> int:
         return 0
     from ..contact import engine_respond
     from ..reports.contact import engine_response_dict, format_engine_response
-    from ..response import prepare, respond
+    from ..dynamics.response import prepare, respond
 
     motion = spec.build()
     # the engine uses no impact law; the four-link run beside it does: the impact options are
@@ -138,11 +138,11 @@ def run_dem(args) -> int:
     if fl_note is None or fl_note.startswith("four-link model with"):
         fl = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out)
     if plot:
-        from ..contactplots import save_engine_figure
+        from ..reports.contactplots import save_engine_figure
 
         plot = save_engine_figure(res, fl, plot)
     if animation:
-        from ..contactplots import animate_engine
+        from ..reports.contactplots import animate_engine
 
         animation = animate_engine(res, fl, arch, animation)
     if args.json:

@@ -62,7 +62,7 @@ def _kept(out, n_batches: int) -> str:
 
 
 def run_ensemble_cmd(args) -> int:
-    from ..ensemble import PAPER_RANDOM_ARCHES, EnsembleConfig, run_ensemble
+    from ..studies.ensemble import PAPER_RANDOM_ARCHES, EnsembleConfig, run_ensemble
     from ..reports.ensemble import format_ensemble
 
     if args.workers < 1:
@@ -97,7 +97,7 @@ def run_ensemble_cmd(args) -> int:
         return EXIT_INTERRUPTED
     summary = result.summary()
     if plot:
-        from ..plots import plot_multiplier_histograms
+        from ..reports.plots import plot_multiplier_histograms
 
         ref = {"nominal": (summary["nominal"]["k_l"], summary["nominal"]["k_r"]),
                **PAPER_RANDOM_ARCHES}

@@ -61,12 +61,12 @@ def add_fragility_parser(subparsers):
 
 
 def run_fragility(args) -> int:
-    from ..curves import parse_range
+    from ..studies.curves import parse_range
     from ..groundmotion.intensity import parse_im
     from ..groundmotion.suite import read_records
-    from ..ida import default_stripe_levels, ida, msa, random_models
+    from ..studies.ida import default_stripe_levels, ida, msa, random_models
     from ..reports.fragility import format_fragility, fragility_summary
-    from ..response import prepare
+    from ..dynamics.response import prepare
 
     if args.bootstrap == 1:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
@@ -103,7 +103,7 @@ def run_fragility(args) -> int:
     except KeyboardInterrupt:
         return interrupted_study(out)
     if plot:
-        from ..plots import plot_fragility
+        from ..reports.plots import plot_fragility
 
         plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, plot,
                        ida=res_ida)

@@ -9,7 +9,7 @@ from pathlib import Path
 from ._parser import CLIError, emit_json, positive_float
 from .options import GEOMETRY_DEFAULTS, folder_arg
 
-UNIT_CHOICES = ("m", "cm", "mm")  # archrock.dxf.UNITS, spelled out so that --help needs no numpy
+UNIT_CHOICES = ("m", "cm", "mm")  # archrock.geometry.dxf.UNITS, spelled out so that --help needs no numpy
 
 
 def add_import_dxf_parser(subparsers):
@@ -35,7 +35,7 @@ def add_import_dxf_parser(subparsers):
 
 
 def run_import_dxf(args) -> int:
-    from ..dxf import read_dxf
+    from ..geometry.dxf import read_dxf
 
     out = folder_arg(args.out, "--out", "a file name (omit --out for stdout)")
     arch, handles = read_dxf(args.drawing, args.layer, args.units, density=args.density,
@@ -43,7 +43,7 @@ def run_import_dxf(args) -> int:
     meta = {"generator": "archrock import-dxf", "drawing": str(args.drawing),
             "layer": args.layer, "units": args.units, "handles": list(handles)}
     if out:
-        from ..files import write_arch
+        from ..geometry.files import write_arch
 
         try:
             Path(out).parent.mkdir(parents=True, exist_ok=True)

@@ -33,8 +33,8 @@ def add_limit_parser(subparsers):
 
 def run_limit(args) -> int:
     from ..errors import CannotStandError
-    from ..friction import friction_analysis, friction_minimum_thickness, friction_needed
-    from ..limit import limit_analysis, minimum_thickness
+    from ..statics.friction import friction_analysis, friction_minimum_thickness, friction_needed
+    from ..statics.limit import limit_analysis, minimum_thickness
     from ..reports.limit import format_limit_table, limit_summary
 
     arch = arch_from_args(args)
@@ -54,7 +54,7 @@ def run_limit(args) -> int:
     needed = None if fr is not None else friction_needed(arch)
     extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
     if args.thrust_range:
-        from ..thrust import thrust_range
+        from ..statics.thrust import thrust_range
 
         extra["thrust"] = thrust_range(arch)
     if args.json:
@@ -100,7 +100,7 @@ def run_random_arch(args) -> int:
             "spread_radius": args.spread_radius,
             **({"spread_tilt_deg": args.spread_tilt} if args.spread_tilt else {})}
     if out:
-        from ..files import write_arch
+        from ..geometry.files import write_arch
 
         try:
             Path(args.out).parent.mkdir(parents=True, exist_ok=True)
@@ -129,8 +129,8 @@ def add_plot_limit_parser(subparsers):
 
 
 def run_plot_limit(args) -> int:
-    from ..limit import limit_analysis
-    from ..plots import save_limit_figure
+    from ..statics.limit import limit_analysis
+    from ..reports.plots import save_limit_figure
 
     out = figure_arg(args.out)
     arch = arch_from_args(args)

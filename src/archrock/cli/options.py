@@ -22,7 +22,7 @@ def figure_arg(path):
     any work: a format matplotlib writes, not a folder ('.png' added without an extension)."""
     if path is None:
         return None
-    from ..plots import figure_path
+    from ..reports.plots import figure_path
 
     return figure_path(path)
 
@@ -31,7 +31,7 @@ def animation_arg(path):
     """The file of --animate (None if not given), checked before any work (.gif or .mp4)."""
     if path is None:
         return None
-    from ..animate import animation_path
+    from ..reports.animate import animation_path
 
     return animation_path(path)
 
@@ -156,7 +156,7 @@ def _undamaged_arch_from_args(args: argparse.Namespace):
         if given:
             raise CLIError(f"--geometry: cannot be combined with "
                            f"{', '.join(flag[f] for f in given)}; the file holds the whole geometry")
-        from ..files import read_arch
+        from ..geometry.files import read_arch
 
         return read_arch(args.geometry)
     family = [f for f in fam if f in given]
@@ -213,8 +213,8 @@ def add_random_arches_options(p: argparse.ArgumentParser,
 
 
 def spreads(args: argparse.Namespace):
-    """The :class:`~archrock.sampling.Spreads` of :func:`add_spread_options`."""
-    from ..sampling import Spreads
+    """The :class:`~archrock.geometry.sampling.Spreads` of :func:`add_spread_options`."""
+    from ..geometry.sampling import Spreads
 
     return Spreads(args.spread_span, args.spread_thickness, args.spread_radius,
                    getattr(args, "spread_tilt", 0.0))
@@ -275,7 +275,7 @@ def motion_from_args(args: argparse.Namespace):
 
 # ---------------------------------------------------------------------------- impact
 def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
-    """Add the impact group, with one meaning in every command (archrock.impact.ImpactSpec):
+    """Add the impact group, with one meaning in every command (archrock.dynamics.impact.ImpactSpec):
     --impact MODEL, --cv X, --literal-cv, --impact-on arch|nominal."""
     g = parser.add_argument_group(
         "impact", "the impact law at each closing of the mechanism. Default: the paper's practice, "
@@ -300,9 +300,9 @@ def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPars
 
 
 def impact_spec_from_args(args: argparse.Namespace):
-    """The :class:`~archrock.impact.ImpactSpec` of the impact options (the same in every
+    """The :class:`~archrock.dynamics.impact.ImpactSpec` of the impact options (the same in every
     command)."""
-    from ..impact import PAPER_PRACTICE, ImpactSpec
+    from ..dynamics.impact import PAPER_PRACTICE, ImpactSpec
 
     if args.cv is not None and args.impact is not None:
         raise CLIError("--cv: cannot be combined with --impact; choose one")
@@ -331,7 +331,7 @@ def impact_spec_from_args(args: argparse.Namespace):
 
 def model_from_args(args: argparse.Namespace, arch=None):
     """The prepared DynamicModel (limit analysis, mechanisms, impact law) of one arch."""
-    from ..response import prepare
+    from ..dynamics.response import prepare
 
     arch = arch_from_args(args) if arch is None else arch
     return prepare(arch, impact_spec_from_args(args))

@@ -13,9 +13,9 @@ def add_paper_parser(subparsers):
 
 
 def run_paper(args) -> int:
-    from ..study import run_paper_study
-
+    from ..reports.plots import PAPER_FIGURES
+    from ..studies.paper import run_paper_study
     from .options import folder_arg
 
-    run_paper_study(folder_arg(args.out), progress=print)
+    run_paper_study(folder_arg(args.out), progress=print, figures=PAPER_FIGURES)
     return 0

@@ -40,7 +40,7 @@ def add_respond_parser(subparsers):
 
 def run_respond(args) -> int:
     from ..reports.response import format_response
-    from ..response import prepare, respond
+    from ..dynamics.response import prepare, respond
 
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     motion = motion_from_args(args)
@@ -50,7 +50,7 @@ def run_respond(args) -> int:
     res = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out, integrator=args.integrator)
     shown = res
     if plot or animation:
-        from ..plots import figure_t_end
+        from ..reports.plots import figure_t_end
 
         # the figures show the run to rest or collapse, also past --t-end (capped); the JSON and
         # the report keep --t-end.  The run itself does not depend on the output window.
@@ -59,11 +59,11 @@ def run_respond(args) -> int:
             shown = respond(model, motion, t_end=t_fig, dt_out=args.dt_out,
                             integrator=args.integrator)
     if plot:
-        from ..plots import save_response_figure
+        from ..reports.plots import save_response_figure
 
         plot = save_response_figure([shown], plot, labels=[model.arch.name])
     if animation:
-        from ..animate import animate_response
+        from ..reports.animate import animate_response
 
         animation = animate_response(shown, animation)
     if args.json:

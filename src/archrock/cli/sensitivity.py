@@ -47,7 +47,7 @@ def _say(line: str) -> None:
 
 def run_sensitivity(args) -> int:
     from ..reports.sensitivity import format_sensitivity, sensitivity_summary
-    from ..sensitivity import PAPER_PULSE, sobol_indices
+    from ..studies.sensitivity import PAPER_PULSE, sobol_indices
     from ._parser import CLIError
 
     motion = motion_spec_from_args(args)

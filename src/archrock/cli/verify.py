@@ -45,7 +45,7 @@ def add_verify_parser(subparsers):
 def run_verify(args) -> int:
     from ..contact import import_pymunk
     from ..reports.verification import format_verify
-    from ..verification import verify
+    from ..studies.verification import verify
 
     plot = figure_arg(args.plot)
     if any(a == 0 for a in args.amplitudes):
@@ -58,7 +58,7 @@ def run_verify(args) -> int:
     res = verify(arch, args.amplitudes, args.durations, pulse=args.pulse,
                  settings=engine_settings_from_args(args), progress=progress)
     if plot:
-        from ..contactplots import save_verify_figure
+        from ..reports.contactplots import save_verify_figure
 
         plot = save_verify_figure(res, plot)
     if args.json:

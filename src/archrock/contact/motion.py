@@ -8,7 +8,7 @@ that falls drops by metres), so the engine's collapse time is later than the fou
 (the last passage of the unstable rotation).
 
 The equivalent four-link rotation: phi_l = (rotation of the voussoir of M_l's link 1 that rests
-on its ground hinge A) / s_l, with s_l the sign of :class:`~archrock.mechanism.FourLink` (theta_1 =
+on its ground hinge A) / s_l, with s_l the sign of :class:`~archrock.dynamics.fourlink.FourLink` (theta_1 =
 s phi), likewise phi_r for M_r; the signed rotation is +phi_l where phi_l >= phi_r, else -phi_r
 (0 when both are <= 0), as ``respond``'s signed response (+phi in M_l, -phi in M_r).  It is the four-link phi exactly
 while the engine moves in the limit mechanism; when the engine opens another one (impulsive
@@ -86,7 +86,7 @@ def _link1(model, direction):
 
 def equivalent_rotation(model, rotations: np.ndarray) -> np.ndarray:
     """Signed four-link rotation (module docstring) of voussoir rotations (k, n) [rad], for a
-    prepared :class:`~archrock.response.DynamicModel` of the same arch."""
+    prepared :class:`~archrock.dynamics.response.DynamicModel` of the same arch."""
     rot = np.atleast_2d(np.asarray(rotations, float))
     il, sl = _link1(model, "l")
     ir, sr = _link1(model, "r")
@@ -103,7 +103,7 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
                    progress=None) -> ContactResponse:
     """The engine's response of ``arch`` to ``motion``.
 
-    model: a prepared :class:`~archrock.response.DynamicModel`, for the equivalent rotation (only
+    model: a prepared :class:`~archrock.dynamics.response.DynamicModel`, for the equivalent rotation (only
     its mechanisms are used: the engine has no impact law; default ``prepare(arch, "momentum")``,
     which any arch with a mechanism admits); t_end, dt_out [s]: output window and sampling; t_free [T]: free
     motion after the ground motion at most; collapse_drop: drop of a mass centre, as a fraction
@@ -117,7 +117,7 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     if dt_out > t_end:
         raise ArchInputError(f"dt_out: {dt_out} s; allowed <= t_end = {t_end} s")
     if model is None:
-        from ..response import prepare
+        from ..dynamics.response import prepare
 
         model = prepare(arch, "momentum")
     settings = settings or EngineSettings()

@@ -226,7 +226,7 @@ def ramp(arch: VoussoirArch, settings: EngineSettings | None = None, progress=No
     """:func:`ramp_direction` in both directions ('l' then 'r').
 
     lambda_max: the ramp's upper end in both directions; None (default): :func:`ramp_range` of
-    each direction's multiplier in ``limit`` (the arch's :class:`~archrock.limit.LimitResult`;
+    each direction's multiplier in ``limit`` (the arch's :class:`~archrock.statics.limit.LimitResult`;
     computed when not given), with the start it gives.  The ranges used are in
     ``result.ramp["lambda_max"]`` and ``["lambda_start"]``."""
     settings = settings or EngineSettings()
@@ -236,7 +236,7 @@ def ramp(arch: VoussoirArch, settings: EngineSettings | None = None, progress=No
             ranges[d] = (kwargs.get("lambda_start", 0.0), float(lambda_max))
             continue
         if limit is None:
-            from ..limit import limit_analysis
+            from ..statics.limit import limit_analysis
 
             limit = limit_analysis(arch, verify=False)
         ranges[d] = ramp_range(getattr(limit, f"k_{d}"))

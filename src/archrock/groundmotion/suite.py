@@ -2,7 +2,7 @@
 
 A fragility study runs every record of a suite on every arch at many scale factors.  The suite is
 read here once (:func:`read_suite`); the study packs the records end to end
-(:class:`archrock.sweep.SweepMotions`) and hands them to every worker once, and the results name
+(:class:`archrock.dynamics.sweep.SweepMotions`) and hands them to every worker once, and the results name
 each record with the sha256 of its file, so a result can be traced to the exact files.
 """
 

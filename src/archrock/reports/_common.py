@@ -14,7 +14,7 @@ def impact_summary(impact, cv: float | None = None, note: str | None = None) -> 
 def format_left_out(left_out: dict, what: str) -> str:
     """One line: what a study's statistics are over, and the arches left out by reason (the
     ``left_out`` dict of a result's JSON)."""
-    from ..population import LEFT_OUT
+    from ..dynamics.population import LEFT_OUT
 
     why = ", ".join(f"{LEFT_OUT[k].split(' (')[0]} {v}" for k, v in left_out["by_reason"].items()
                     if v)

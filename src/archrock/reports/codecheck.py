@@ -1,4 +1,4 @@
-"""Report of a code check (:mod:`archrock.codecheck`): the ``archrock codecheck`` table."""
+"""Report of a code check (:mod:`archrock.studies.codecheck`): the ``archrock codecheck`` table."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Report of a defect map (:class:`archrock.defectmap.DefectMap`): the ``archrock defects
+"""Report of a defect map (:class:`archrock.studies.defectmap.DefectMap`): the ``archrock defects
 --json`` object and the readable table."""
 
 from __future__ import annotations

@@ -1,10 +1,10 @@
-"""One self-contained HTML report of an :class:`~archrock.assessment.Assessment`, its JSON, and a
+"""One self-contained HTML report of an :class:`~archrock.studies.assessment.Assessment`, its JSON, and a
 printable PDF through headless Chromium when it is installed.
 
 Self-contained: the style sheet is inline and every figure is a PNG embedded as a ``data:`` URI,
 so the file opens without a network; references are text, never links.  Every string from the
 sections is escaped (:func:`html.escape`).  Figures: ``FIGURES[kind](payload) -> matplotlib
-Figure``; a section's :class:`~archrock.assessment.Figure` block names its kind.
+Figure``; a section's :class:`~archrock.studies.assessment.Figure` block names its kind.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..assessment import Figure, Paragraph, Table
+from ..studies.assessment import Figure, Paragraph, Table
 from ..errors import ArchInputError, ArchrockError
 
 __all__ = ["render_html", "write_report", "write_pdf", "find_chromium", "FIGURES",
@@ -36,7 +36,7 @@ CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic
 
 # ---------------------------------------------------------------------------- figures
 def _fig_arch(arch):
-    from ..plots import draw_arch, new_figure
+    from .plots import draw_arch, new_figure
 
     fig, axes = new_figure(1, 1, figsize=(6.4, 3.4))
     ax = axes[0][0]
@@ -48,7 +48,7 @@ def _fig_arch(arch):
 
 
 def _fig_limit(lim):
-    from ..plots import new_figure, plot_limit
+    from .plots import new_figure, plot_limit
 
     fig, axes = new_figure(1, 2, figsize=(12.6, 4.6))
     for ax, d in zip(axes[0], ("l", "r")):
@@ -57,7 +57,7 @@ def _fig_limit(lim):
 
 
 def _fig_response(res):
-    from ..plots import new_figure, plot_ground_motion, plot_response
+    from .plots import new_figure, plot_ground_motion, plot_response
 
     fig, axes = new_figure(2, 1, figsize=(7.0, 5.2), sharex=True,
                            gridspec_kw={"height_ratios": [1, 2]})
@@ -69,14 +69,14 @@ def _fig_response(res):
 
 
 def _fig_curves(payload):
-    from ..plots import plot_collapse_curve
+    from .plots import plot_collapse_curve
 
     curve, band = payload
     return plot_collapse_curve(curve, None, band=band)
 
 
 def _fig_fragility(payload):
-    from ..plots import plot_fragility
+    from .plots import plot_fragility
 
     fit, stripes, ida = payload
     return plot_fragility(fit, stripes, None, ida=ida)
@@ -103,7 +103,7 @@ def _fig_codecheck(res):
     secant line, and the demand S_De(T_s) when a spectrum is given.  Where both mechanisms
     draw the same lines (a symmetric arch) they are drawn and listed once, as "M_l = M_r":
     drawn twice, the second hid the first and the legend listed curves that cannot be seen."""
-    from ..plots import new_figure
+    from .plots import new_figure
 
     fig, axes = new_figure(1, 1, figsize=(6.6, 4.2))
     ax = axes[0][0]
@@ -138,8 +138,8 @@ def _fig_codecheck(res):
 
 
 def _fig_defects(res):
-    """The defect map, drawn by archrock.plots when it has a function for it."""
-    from .. import plots
+    """The defect map, drawn by archrock.reports.plots when it has a function for it."""
+    from . import plots
 
     draw = getattr(plots, "plot_defect_map", None)
     if draw is None:

@@ -26,10 +26,10 @@ def _voussoir_properties(arch) -> list[dict]:
 def limit_summary(result, min_thickness=None, needed=None, friction=None,
                   min_thickness_friction=None, thrust=None) -> dict:
     """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object); ``needed``
-    ({"l", "r"}, :func:`archrock.friction.friction_needed`) and ``friction`` (a
-    :class:`~archrock.friction.FrictionResult`) add the keys of :func:`friction_summary`;
+    ({"l", "r"}, :func:`archrock.statics.friction.friction_needed`) and ``friction`` (a
+    :class:`~archrock.statics.friction.FrictionResult`) add the keys of :func:`friction_summary`;
     ``min_thickness_friction``: the friction coefficient ``min_thickness`` was found with;
-    ``thrust`` (a :class:`~archrock.thrust.ThrustRange`) adds ``thrust_min`` and ``thrust_max``
+    ``thrust`` (a :class:`~archrock.statics.thrust.ThrustRange`) adds ``thrust_min`` and ``thrust_max``
     (each ``H`` [N/m], ``hinges`` [{joint, edge}], ``points`` [[x, y]] [m])."""
     arch = result.arch
     d = result.to_dict()
@@ -86,7 +86,7 @@ def friction_summary(needed=None, friction=None) -> dict:
         reasons = _needed_reasons(needed, friction)
         out["friction_needed_l"] = needed["l"]
         out["friction_needed_r"] = needed["r"]
-        # null above: why (no mechanism, or no finite friction: archrock.friction.MU_CAP)
+        # null above: why (no mechanism, or no finite friction: archrock.statics.friction.MU_CAP)
         out["friction_needed_reason_l"] = reasons["l"]
         out["friction_needed_reason_r"] = reasons["r"]
     if friction is not None:
@@ -101,7 +101,7 @@ def friction_summary(needed=None, friction=None) -> dict:
 
 
 def _needed_reasons(needed, friction) -> dict:
-    """Why a friction needed is None: ``needed.reasons`` (archrock.friction.FrictionNeeded) or
+    """Why a friction needed is None: ``needed.reasons`` (archrock.statics.friction.FrictionNeeded) or
     the FrictionResult's ``friction_needed_reason``; None where unknown or a number."""
     reasons = getattr(needed, "reasons", None)
     if reasons is None and friction is not None:
@@ -167,7 +167,7 @@ def _general_lines(arch) -> list[str]:
 
 
 def thrust_range_line(thrust) -> str:
-    """One line of a :class:`~archrock.thrust.ThrustRange`: H_min and H_max [kN/m] and the
+    """One line of a :class:`~archrock.statics.thrust.ThrustRange`: H_min and H_max [kN/m] and the
     hinges (joint edge) of each line of thrust."""
     def part(name, H, hinges):
         if not math.isfinite(H):

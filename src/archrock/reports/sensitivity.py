@@ -1,4 +1,4 @@
-"""Report of Sobol indices (:class:`archrock.sensitivity.SobolResult`): the ``archrock
+"""Report of Sobol indices (:class:`archrock.studies.sensitivity.SobolResult`): the ``archrock
 sensitivity --json`` object and the readable table."""
 
 from __future__ import annotations

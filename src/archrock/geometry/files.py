@@ -1,0 +1,78 @@
+"""Reading and writing arch geometry files (JSON).
+
+Two formats (docs/geometry.md), voussoirs ordered from the left springing, lengths in metres,
+density in kg/m^3 (optional), loads optional in both ([kg per metre of depth] at [x, y])::
+
+    {"voussoirs": [{"span_deg": 22.5, "radius": 10.0, "thickness": 1.5}, ...],
+     "density": 2000, "loads": [{"voussoir": 3, "mass": 8000.0, "at": [0.0, 11.0]}]}
+
+a circular :class:`~archrock.geometry.Arch` (spans in degrees), or::
+
+    {"voussoirs": [{"intrados": [[x, y], ...], "extrados": [[x, y], ...]}, ...],
+     "density": 2000, "loads": [{"voussoir": 5, "mass": 8000.0, "at": [6.0, 9.0]}]}
+
+a :class:`~archrock.geometry.PolygonArch` (each line from left to right).
+
+Every error is an :class:`~archrock.errors.ArchInputError` whose one-line message names the
+file and the offending field.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+from ..errors import ArchInputError
+from . import VoussoirArch, arch_from_dict
+
+__all__ = ["read_arch", "write_arch"]
+
+
+def read_arch(path: str | os.PathLike) -> VoussoirArch:
+    """Read an arch from a JSON geometry file of either format (module docstring); name = file
+    stem."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ArchInputError(f"{p}: geometry file not found") from None
+    except IsADirectoryError:
+        raise ArchInputError(f"{p}: is a directory, expected a JSON geometry file") from None
+    except UnicodeDecodeError as exc:
+        raise ArchInputError(f"{p}: not a text file (UTF-8 decoding failed at byte {exc.start})") from None
+    except OSError as exc:
+        raise ArchInputError(f"{p}: cannot read the geometry file ({exc.strerror or exc})") from None
+    try:
+        # NaN/Infinity tokens (not JSON, but Python writes them) are parsed here and refused
+        # by the arch's from_dict, whose message names the voussoir and field that hold them.
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ArchInputError(
+            f"{p}: invalid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}") from None
+    except RecursionError:
+        raise ArchInputError(f"{p}: invalid JSON: nested too deeply") from None
+    try:
+        return arch_from_dict(data, name=p.stem)
+    except ArchInputError as exc:
+        raise ArchInputError(f"{p}: {exc}") from None
+
+
+def write_arch(arch: VoussoirArch, path: str | os.PathLike, metadata: dict | None = None) -> Path:
+    """Write ``arch`` (circular or polygon) as a JSON geometry file; ``metadata`` (JSON-serialisable) is stored
+    under the key ``"metadata"`` and ignored by :func:`read_arch`. Returns the path."""
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected an arch (Arch or PolygonArch), got "
+                             f"{type(arch).__name__}")
+    p = Path(path)
+    data = arch.to_dict()
+    if metadata:
+        data["metadata"] = metadata
+    # repr-precision floats: read_arch(write_arch(a)) reproduces the arch to the last bit of
+    # radius/thickness and of polygon points (spans go through degrees, exact to ~1e-16 rad).
+    text = json.dumps(data, indent=2, allow_nan=False) + "\n"
+    try:
+        p.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise ArchInputError(f"{p}: cannot write the geometry file ({exc.strerror or exc})") from None
+    return p

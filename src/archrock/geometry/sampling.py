@@ -1,0 +1,225 @@
+"""Irregular arches drawn around a nominal one: the one sampler of every study.
+
+Random arch i of a study is a function of (nominal arch, spreads, seed, i) alone, whichever
+command draws it (``ensemble``, ``curves``, ``fragility``), however the work is cut into batches
+and however many workers run it.  The draws follow docs/method.md, Geometry (see
+:func:`archrock.geometry.perturb_voussoirs`): for each voussoir, independent U on [-1, 1] for the
+span, the thickness and the radius.
+
+Streams: samples are grouped in blocks of :data:`BLOCK` (= 500) consecutive indices; block k
+draws from numpy's ``SeedSequence(seed, spawn_key=(k,))`` (= ``SeedSequence(seed).spawn(K)[k]``),
+the 3 n uniforms of its samples one after the other.  (This is archrock 0.1.0's ensemble stream
+with its default batch size, so its published ensembles are unchanged.)  Each sample's draws,
+shape (rows, n): row 0 the span (length along the centreline), row 1 the thickness, row 2 the
+radius (normal offset of the centreline); with a joint tilt (``Spreads.tilt`` > 0) a fourth
+row, whose entries 0 .. n-2 tilt the interior joints 1 .. n-1 (entry n-1 is drawn and unused),
+so such a sample reads 4 n uniforms.  Without tilt every family reads 3 n, and a circular arch's
+draws and arches are 0.1.0's.
+
+Nominal arches: a circular :class:`~archrock.geometry.Arch` (voussoirs perturbed as annular
+sectors, :func:`~archrock.geometry.perturb_voussoirs`) or a family arch
+(:class:`~archrock.geometry.FamilyArch`, perturbed through its recipe,
+:func:`~archrock.geometry.families.perturb_family`).  A polygon arch without a recipe (a
+surveyed arch) has no family to perturb within and is refused.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import published
+from ..errors import ArchInputError, InvalidSampleError
+from . import Arch, FamilyArch, PolygonArch, VoussoirArch, perturb_voussoirs
+from .families import perturb_family
+
+__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS"]
+
+#: Samples per random stream.
+BLOCK = 500
+
+
+@dataclass(frozen=True)
+class Spreads:
+    """Half-widths of the uniform irregularities (dimensionless, 0 <= s < 1): ``span`` s_a and
+    ``thickness`` s_t relative to the nominal voussoir's, ``radius`` s_R as a fraction of its
+    thickness (for a family arch: the voussoir's length along the centreline, its thickness,
+    the normal offset of its centreline); ``tilt`` [deg], 0 <= tilt < 45: each interior joint
+    of a family arch rotated about its centreline point by U x tilt (0: joints as the family's).
+    Frozen; ``to_dict``/``from_dict`` use the keys spread_span, spread_thickness,
+    spread_radius and spread_tilt_deg (the command-line names); spread_tilt_deg is written only
+    when the tilt is not 0, so configurations without tilt (and their hashes) are 0.1.0's."""
+
+    span: float = 0.1
+    thickness: float = 0.1
+    radius: float = 0.05
+    tilt: float = 0.0
+
+    def __post_init__(self):
+        v = self.tilt
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or \
+                not (math.isfinite(float(v)) and 0.0 <= float(v) < 45.0):
+            raise ArchInputError(f"spread tilt: {v!r}; allowed 0 <= tilt < 45 degrees")
+        object.__setattr__(self, "tilt", float(v))
+        for name in ("span", "thickness", "radius"):
+            v = getattr(self, name)
+            label = f"spread {name}"
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+                raise ArchInputError(f"{label}: {v!r}; allowed a number 0 <= s < 1")
+            v = float(v)
+            if not (math.isfinite(v) and 0.0 <= v < 1.0):
+                raise ArchInputError(f"{label}: {v:g}; allowed 0 <= s < 1")
+            object.__setattr__(self, name, v)
+
+    def to_dict(self) -> dict:
+        d = {"spread_span": self.span, "spread_thickness": self.thickness,
+             "spread_radius": self.radius}
+        if self.tilt:
+            d["spread_tilt_deg"] = self.tilt
+        return d
+
+    @classmethod
+    def from_dict(cls, data) -> "Spreads":
+        if data is None:
+            return cls()
+        if isinstance(data, Spreads):
+            return data
+        if not isinstance(data, dict):
+            raise ArchInputError(f"spreads: {data!r}; allowed an object with spread_span, "
+                                 f"spread_thickness, spread_radius")
+        keys = {"spread_span": "span", "spread_thickness": "thickness", "spread_radius": "radius",
+                "spread_tilt_deg": "tilt"}
+        unknown = set(data) - set(keys)
+        if unknown:
+            raise ArchInputError(f"spreads: unknown key(s) {sorted(unknown)}; allowed "
+                                 f"{', '.join(keys)}")
+        return cls(**{keys[k]: v for k, v in data.items()})
+
+
+#: The spreads that give multipliers spread like the paper's RA-1 and RA-2 (docs/method.md, Geometry).
+DEFAULT_SPREADS = Spreads.from_dict(published.DEFAULT_SPREADS)
+
+
+def _seed(seed) -> int:
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ArchInputError(f"seed: {seed!r}; allowed an integer >= 0")
+    return int(seed)
+
+
+@dataclass(frozen=True, eq=False)
+class ArchSampler:
+    """Random arches around ``nominal`` (a circular Arch or a family arch) with ``spreads``,
+    reproducible from ``seed`` (module docstring)."""
+
+    nominal: VoussoirArch
+    spreads: Spreads = DEFAULT_SPREADS
+    seed: int = 0
+
+    def __post_init__(self):
+        object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
+        object.__setattr__(self, "seed", _seed(self.seed))
+        a = self.nominal
+        if isinstance(a, Arch):
+            if self.spreads.tilt:
+                raise ArchInputError(
+                    "spread tilt: the circular Arch has radial joints only; for tilted joints give "
+                    "the nominal as family_arch('circular', span, rise, t, n, exact=False) "
+                    "(--shape circular with --joints or --thickness-crown on the command line)")
+        elif isinstance(a, PolygonArch) and getattr(a, "recipe", None) is None:
+            raise ArchInputError(
+                f"nominal: {a.name!r} is a polygon arch without a family (e.g. surveyed): it "
+                f"cannot be perturbed; allowed a circular Arch or an arch of family_arch")
+        elif not isinstance(a, FamilyArch):
+            raise ArchInputError(f"nominal: expected an Arch or a FamilyArch, got "
+                                 f"{type(a).__name__}")
+
+    @property
+    def circular(self) -> bool:
+        """Whether the nominal is a circular Arch (draws as arrays, :meth:`draw`)."""
+        return isinstance(self.nominal, Arch)
+
+    @property
+    def rows(self) -> int:
+        """Rows of uniforms per sample: 3, or 4 with a joint tilt."""
+        return 4 if self.spreads.tilt else 3
+
+    def uniforms(self, start: int, count: int) -> np.ndarray:
+        """The uniform draws U of samples start .. start + count - 1, shape (count, rows, n)."""
+        if isinstance(start, bool) or int(start) != start or start < 0:
+            raise ArchInputError(f"start: {start!r}; allowed an integer >= 0")
+        if isinstance(count, bool) or int(count) != count or count < 0:
+            raise ArchInputError(f"count: {count!r}; allowed an integer >= 0")
+        start, count, n, rows = int(start), int(count), self.nominal.n, self.rows
+        out = np.empty((count, rows, n))
+        end = start + count
+        k = start // BLOCK
+        while k * BLOCK < end:
+            lo, hi = max(start, k * BLOCK), min(end, (k + 1) * BLOCK)
+            rng = np.random.default_rng(np.random.SeedSequence(self.seed, spawn_key=(k,)))
+            # a block's stream is read from its start: sample j of the block is its j-th rows x n
+            # draws
+            u = rng.uniform(-1.0, 1.0, size=(hi - k * BLOCK, rows, n))
+            out[lo - start:hi - start] = u[lo - k * BLOCK:]
+            k += 1
+        return out
+
+    def draw(self, start: int, count: int):
+        """(spans [rad], thicknesses [m], radii [m]) of samples start .. start + count - 1,
+        each of shape (count, n), for a circular nominal; nothing is validated (see :meth:`arch`;
+        :meth:`arches` for any family)."""
+        if not self.circular:
+            raise ArchInputError("draw: the arrays of circular arches; a family arch's samples "
+                                 "are arches: use ArchSampler.arches(start, count) or arch(i)")
+        a = self.nominal
+        s = self.spreads
+        return perturb_voussoirs(a.spans, a.thicknesses, a.radii, self.uniforms(start, count),
+                                 s.span, s.thickness, s.radius)
+
+    def arch(self, index: int) -> VoussoirArch:
+        """Random arch ``index`` (an Arch around a circular Arch, a PolygonArch around a family
+        arch); :class:`InvalidSampleError` if the draw is not a valid arch."""
+        if self.circular:
+            spans, thick, radii = self.draw(index, 1)
+            try:
+                return Arch(spans[0], radii[0], thick[0], self.nominal.density,
+                            name=f"sample {int(index)}")
+            except ArchInputError as exc:
+                raise InvalidSampleError(f"not a valid arch: {exc}") from None
+        return self._family(self.uniforms(index, 1)[0], int(index))
+
+    def _family(self, u, index: int):
+        s = self.spreads
+        try:
+            return perturb_family(self.nominal, u, s.span, s.thickness, s.radius, s.tilt,
+                                  name=f"sample {index}")
+        except ArchInputError as exc:
+            raise InvalidSampleError(f"not a valid arch: {exc}") from None
+
+    def arches(self, start: int, count: int) -> list:
+        """Samples start .. start + count - 1 of any family as a list: each entry the arch, or
+        the :class:`InvalidSampleError` saying why its draw is not a valid arch (what
+        :func:`archrock.dynamics.batch.prepare_batch` takes)."""
+        out = []
+        if self.circular:
+            spans, thick, radii = self.draw(start, count)
+        else:
+            u = self.uniforms(start, count)
+        for j in range(count):
+            try:
+                if self.circular:
+                    try:
+                        out.append(Arch(spans[j], radii[j], thick[j], self.nominal.density,
+                                        name=f"sample {start + j}"))
+                    except ArchInputError as exc:
+                        raise InvalidSampleError(f"not a valid arch: {exc}") from None
+                else:
+                    out.append(self._family(u[j], start + j))
+            except InvalidSampleError as exc:
+                out.append(exc)
+        return out
+
+    def to_dict(self) -> dict:
+        return {"nominal": self.nominal.to_dict(), **self.spreads.to_dict(), "seed": self.seed,
+                "block": BLOCK}

@@ -1,0 +1,772 @@
+"""Collapse-acceleration curves: the smallest pulse amplitude that collapses an arch, against t_p.
+
+The headline results of De Lorenzis, DeJong and Ochsendorf (2007, EESD 36): for a pulse of kind
+``kind`` (Oppenheim's by default), duration ``t_p`` and amplitude ``a`` in g with the sign
+``sign`` = the sign of ``a``, i.e. of the pulse's main lobe (-1: xg'' = a < 0 there, which opens
+M_l at |a| > k_l; +1: it opens M_r at |a| > k_r), find the first collapse amplitude.  For the
+Oppenheim, rectangular, half-sine and one-sine pulses the main lobe is the first push; the Ricker
+pulse's first lobe has the opposite sign (-0.446 a) and precedes its main lobe a.
+
+Collapse is **not** monotonic in the amplitude (a stronger pulse can be survived, docs/curves.md),
+so :func:`collapse_amplitude` does not bisect blindly:
+
+1. scan |a| on a geometric grid of ``n_scan`` points from just above the activation threshold
+   (k of the loaded mechanism) to ``a_max``;
+2. bisect between the last survival below the first collapse on the grid and that collapse, to
+   ``tol`` [g]: the result is a true boundary (|a| - tol or less survives, |a| collapses);
+3. report the survival windows above the first collapse, each edge refined by bisection too.
+
+A collapse window narrower than the grid spacing below the first grid collapse can be missed; the
+grid spacing is reported (``CollapseAmplitude.scan``) so the caller can refine it.
+
+Impact: by default the paper's practice (:data:`archrock.dynamics.impact.PAPER_PRACTICE`): the "paper"
+model on the nominal arch, and its c_v (0.8754 for Oppenheim's arch) as a fixed coefficient on
+every random arch of an ensemble.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._records import readonly_arrays
+from ..errors import ArchInputError, LimitExceededError
+from ..geometry import Arch, VoussoirArch
+from ..groundmotion import MAX_PGA_G, pulse, pulse_kind
+from ..dynamics.impact import ImpactSpec
+from ..dynamics.population import left_out_summary, prepare_sample
+from ..dynamics.response import DynamicModel, prepare, respond
+from ..geometry.sampling import ArchSampler, Spreads
+from .work import PROGRESS_S, check_work, response_cost_s
+
+__all__ = [
+    "CollapseAmplitude",
+    "CollapseCurve",
+    "EnsembleCurve",
+    "collapse_amplitude",
+    "collapse_curve",
+    "ensemble_curve",
+    "collapse_mode",
+    "parse_range",
+    "ENGINES",
+]
+
+#: Allowed range of ``tol``, the bisection's tolerance on the amplitude [g]: below 1e-9 g the
+#: boundary is finer than the integrator resolves it (and a bisection to 1e-300 would stall at one
+#: ulp); above 0.1 g the "boundary" is coarser than the activation thresholds of slender arches
+#: (0.05-0.4 g) and than the default grid's spacing, i.e. no bisection at all.
+TOL_MIN_G, TOL_MAX_G = 1e-9, 0.1
+#: Bound on the steps of one bisection (:func:`bisect_boundary`, the batch engine's rounds).
+#: From a bracket of at most MAX_PGA_G = 20 g to TOL_MIN_G takes 35 halvings (a relative
+#: tolerance of 1e-9 on a bracket [lo, hi] with lo >= 0: 30), so the bound only turns a
+#: pathological ``test`` into an error instead of an endless loop.
+MAX_BISECTIONS = 64
+
+#: Response settings used by every collapse test (outcome only: coarse output sampling).
+_RESPOND = {"t_end": 0.5, "dt_out": 0.5, "max_events": 20_000}
+
+
+# ---------------------------------------------------------------------------- helpers
+def _check_real(name: str, value, lo: float | None = None, allowed: str = "") -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ArchInputError(f"{name}: {value!r}; allowed {allowed or 'a finite number'}")
+    v = float(value)
+    if not math.isfinite(v) or (lo is not None and v <= lo):
+        raise ArchInputError(f"{name}: {value!r}; allowed {allowed or 'a finite number'}")
+    return v
+
+
+def check_tol(value, name: str = "tol") -> float:
+    """The amplitude tolerance [g] as a float, or ArchInputError naming ``name`` and the
+    allowed range TOL_MIN_G <= tol <= TOL_MAX_G."""
+    allowed = (f"a tolerance on the collapse amplitude, {TOL_MIN_G:g} g <= {name} <= "
+               f"{TOL_MAX_G:g} g")
+    v = _check_real(name, value, 0.0, allowed)
+    if not TOL_MIN_G <= v <= TOL_MAX_G:
+        raise ArchInputError(f"{name}: {value!r}; allowed {allowed}")
+    return v
+
+
+def _check_int(name: str, value, lo: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise ArchInputError(f"{name}: {value!r}; allowed an integer >= {lo}")
+    return int(value)
+
+
+def _check_sign(sign) -> int:
+    if isinstance(sign, bool) or sign not in (-1, 1):
+        raise ArchInputError(f"sign: {sign!r}; allowed -1 (main lobe xg'' = a < 0, opens M_l) "
+                             f"or +1 (opens M_r)")
+    return int(sign)
+
+
+def parse_range(text: str, name: str = "durations") -> np.ndarray:
+    """``"lo:hi:n"`` (n >= 2 evenly spaced values, both ends included) or ``"a,b,c"`` -> array of
+    floats > 0."""
+    if not isinstance(text, str) or not text.strip():
+        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' or a comma list of numbers > 0")
+    try:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise ValueError
+            lo, hi, n = float(parts[0]), float(parts[1]), int(parts[2])
+            if n < 2 or not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
+                raise ValueError
+            vals = np.linspace(lo, hi, n)
+        else:
+            vals = np.array([float(p) for p in text.split(",")])
+    except ValueError:
+        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' (lo < hi, n >= 2: both ends "
+                             f"included; one value: write it alone) or a comma list "
+                             f"of numbers > 0") from None
+    if vals.size == 0 or not np.all(np.isfinite(vals)) or np.any(vals <= 0):
+        raise ArchInputError(f"{name}: {text!r}; allowed numbers > 0")
+    return vals
+
+
+def collapse_mode(response) -> str | None:
+    """'before first impact', 'after N impacts' for a collapsed response, None otherwise."""
+    if not response.collapsed:
+        return None
+    n = len(response.impacts)
+    return "before first impact" if n == 0 else f"after {n} impact{'s' if n > 1 else ''}"
+
+
+def _model(arch_or_model, impact, cv, literal_cv=False):
+    if isinstance(arch_or_model, DynamicModel):
+        given = [n for n, v in (("impact", impact), ("cv", cv), ("literal_cv", literal_cv))
+                 if v is not None and v is not False]
+        if given:
+            raise ArchInputError(f"{given[0]}: the model is already prepared with its impact law "
+                                 f"({arch_or_model.impact.model}); allowed only with an Arch (or "
+                                 f"prepare the model with the impact law wanted)")
+        return arch_or_model
+    if not isinstance(arch_or_model, Arch):
+        raise ArchInputError(f"model: expected an Arch or a DynamicModel, got {type(arch_or_model).__name__}")
+    # one arch analysed alone is its own nominal arch: the model on it (ImpactSpec docs)
+    return prepare(arch_or_model, ImpactSpec.parse(impact, cv=cv, literal=literal_cv))
+
+
+# ---------------------------------------------------------------------------- one duration
+@dataclass(frozen=True)
+class CollapseAmplitude:
+    """First collapse amplitude of one pulse duration.
+
+    amplitude: first collapse |a| [g] (None if no collapse up to ``a_max``); the signed amplitude
+    is ``sign * amplitude``.  bracket: (last survival, first collapse) after bisection, |a| [g],
+    hi - lo <= tol.  mode: 'before first impact' or 'after N impacts' at the first collapse;
+    t_collapse [s] there: the last upward passage of the unstable position before the rotation
+    limit (:attr:`archrock.dynamics.response.Response.t_collapse`; the limit, a numerical stop, does not
+    move it).  windows: survival windows above the first collapse, (lo, hi) in |a| [g]:
+    lo is the smallest and hi the largest surviving amplitude found (edges bisected to ``tol``;
+    hi = a_max when the arch still survives at a_max).  threshold: activation threshold |a| [g]
+    (k_l for sign -1, k_r for sign +1).  scan_amplitudes / scan_collapsed: the grid and outcomes.
+    """
+
+    duration: float
+    kind: str
+    sign: int
+    amplitude: float | None
+    bracket: tuple[float, float] | None
+    mode: str | None
+    t_collapse: float | None
+    windows: tuple[tuple[float, float], ...]
+    threshold: float
+    a_max: float
+    tol: float
+    scan_amplitudes: np.ndarray = field(repr=False)
+    scan_collapsed: np.ndarray = field(repr=False)
+    n_responses: int = 0
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    def to_dict(self) -> dict:
+        return {
+            "duration": self.duration, "kind": self.kind, "sign": self.sign,
+            "amplitude_g": self.amplitude,
+            "bracket_g": None if self.bracket is None else list(self.bracket),
+            "mode": self.mode, "t_collapse": self.t_collapse,
+            "survival_windows_g": [list(w) for w in self.windows],
+            "threshold_g": self.threshold, "a_max_g": self.a_max, "tol_g": self.tol,
+            "scan_amplitudes_g": self.scan_amplitudes.tolist(),
+            "scan_collapsed": [bool(c) for c in self.scan_collapsed],
+            "n_responses": self.n_responses,
+        }
+
+
+def survival_runs(flags, i0: int):
+    """(j, k) of each run of survivals flags[j..k] (False) after the first collapse at i0:
+    collapse at j - 1, and at k + 1 unless k is the last grid point."""
+    n = len(flags)
+    j = i0
+    while j < n:
+        if flags[j]:
+            j += 1
+            continue
+        k = j
+        while k + 1 < n and not flags[k + 1]:
+            k += 1
+        yield j, k
+        j = k + 1
+
+
+def bisect_boundary(test, lo, hi, lo_val, tol, relative=False):
+    """Boundary between lo (outcome ``test(lo) == lo_val``) and hi (the other outcome), narrowed
+    until hi - lo <= tol (or tol * hi with ``relative``); returns the final (lo, hi).
+
+    The one bisection of the package: collapse amplitudes here, IDA scale factors in
+    :mod:`archrock.studies.ida`.  Collapse is not monotonic, so the result is *a* boundary between the
+    given ends, not necessarily the lowest one.  Bounded: it also stops where the bracket is
+    one or two ulps wide (a tolerance below the floats' resolution), and raises
+    LimitExceededError after MAX_BISECTIONS steps (never reached with the tolerances the
+    callers allow: 35 steps at most)."""
+    for _ in range(MAX_BISECTIONS):
+        if not _wider(lo, hi, tol, relative):
+            return lo, hi
+        mid = 0.5 * (lo + hi)
+        if test(mid) == lo_val:
+            lo = mid
+        else:
+            hi = mid
+    if _wider(lo, hi, tol, relative):
+        raise LimitExceededError(f"bisection: [{lo:.17g}, {hi:.17g}] still wider than the "
+                                 f"tolerance {tol:g}{' relative' if relative else ''} after "
+                                 f"{MAX_BISECTIONS} steps")
+    return lo, hi
+
+
+def _wider(lo, hi, tol, relative=False):
+    """hi - lo above the tolerance (``tol`` or ``tol * hi``) and above the floats' resolution
+    at hi (4 ulps: the midpoint of a narrower bracket is one of its ends).  Arrays too."""
+    width = np.abs(hi) * tol if relative else tol
+    return (hi - lo > width) & (hi - lo > 4 * np.finfo(float).eps * np.abs(hi))
+
+
+def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: int = -1, *,
+                       a_max: float = 10.0, n_scan: int = 150, tol: float = 1e-3,
+                       impact=None, cv: float | None = None, literal_cv: bool = False,
+                       dt: float | None = None) -> CollapseAmplitude:
+    """First collapse amplitude [g] of a ``kind`` pulse of duration ``duration`` [s] (module doc).
+
+    model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``/
+    ``literal_cv`` as :func:`~archrock.dynamics.response.prepare` reads them; default the paper's model
+    on that arch; ``literal_cv=True`` applies a fixed c_v to the rates, docs/method.md, Impact); a prepared
+    model carries its own impact law, so ``impact``/``cv``/``literal_cv`` are refused with it.
+    sign: -1 or +1, the sign of the amplitude a (of the main lobe; for the Ricker pulse not the
+    first push, module doc).
+    a_max [g]: top of the scan; n_scan: grid points (geometric spacing); tol [g]: bisection
+    tolerance; dt [s]: RK4 step of the fast integrator (default: from the arch's size,
+    :func:`archrock.dynamics.response.default_steps`).
+    """
+    model = _model(model, impact, cv, literal_cv)
+    kind = pulse_kind(kind)
+    sign = _check_sign(sign)
+    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
+    tol = check_tol(tol)
+    n_scan = _check_int("n_scan", n_scan, 2)
+    thr = float(model.k_l if sign < 0 else model.k_r)
+    a_max = _check_real("a_max", a_max, None, f"a finite number > the activation threshold {thr:.4f} g")
+    if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
+        raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation threshold "
+                             f"{thr:.4f} g and <= {MAX_PGA_G:g} g")
+    count = [0]
+    cache: dict[float, object] = {}
+
+    def run(a):
+        if a not in cache:
+            count[0] += 1
+            cache[a] = respond(model, pulse(kind, sign * a, tp), dt=dt, **_RESPOND)
+        return cache[a]
+
+    def test(a):
+        return run(a).collapsed
+
+    grid = np.geomspace(thr * (1 + 1e-6), a_max, n_scan)
+    flags = np.array([test(float(a)) for a in grid])
+    hits = np.flatnonzero(flags)
+    if hits.size == 0:
+        return CollapseAmplitude(tp, kind, sign, None, None, None, None, (), thr, a_max, tol, grid,
+                                 flags, count[0])
+    i0 = int(hits[0])
+    if i0 == 0:
+        lo, hi = thr, float(grid[0])  # collapse right at activation: the threshold is the boundary
+    else:
+        lo, hi = bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, tol)
+    r = run(hi)
+    # survival windows above the first collapse, edges bisected
+    windows = []
+    n = grid.size
+    for j, k in survival_runs(flags, i0):
+        _, w_lo = bisect_boundary(test, float(grid[j - 1]), float(grid[j]), True, tol)
+        if k + 1 < n:
+            w_hi, _ = bisect_boundary(test, float(grid[k]), float(grid[k + 1]), False, tol)
+        else:
+            w_hi = float(grid[k])
+        windows.append((w_lo, w_hi))
+    return CollapseAmplitude(tp, kind, sign, hi, (lo, hi), collapse_mode(r), r.t_collapse,
+                             tuple(windows), thr, a_max, tol, grid, flags, count[0])
+
+
+# ---------------------------------------------------------------------------- batch engine
+#: items per sweep call of the curves' batch engine (each item carries its own pulse)
+_CHUNK = 4096
+ENGINES = ("batch", "respond")
+
+
+def _engine(engine: str) -> str:
+    if engine not in ENGINES:
+        raise ArchInputError(f"engine: {engine!r}; allowed one of {', '.join(ENGINES)}")
+    return engine
+
+
+class _PulseRunner:
+    """Collapse tests of (model, pulse duration, |a|) items, each item with its own
+    ``pulse(kind, sign * a, t_p)`` (the very motion ``respond`` gets in
+    :func:`collapse_amplitude`), on the executor of a :class:`archrock.studies.runner.SweepRunner`
+    (threads, a process pool or Dask; finished items kept in ``out``), remembered per
+    (model, duration, |a|)."""
+
+    def __init__(self, models, d, kind, sign, dt, bar=None, *, workers=None, scheduler=None,
+                 out=None):
+        from .runner import ResultStore, SweepRunner
+        from ..dynamics.sweep import SweepArches, SweepMotions
+
+        arches = SweepArches.from_models(models, dt)
+        # the unit pulses of the durations: what defines the items besides the arches (and
+        # what the digest of a kept folder reads); item (m, j, a) is pulse j scaled to |a|
+        units = SweepMotions.of([pulse(kind, float(sign), float(tp)) for tp in d])
+        self.index = {float(tp): j for j, tp in enumerate(d)}
+        store = None
+        if out is not None:
+            store = ResultStore(out, arches, units,
+                                about={"study": "collapse-acceleration curves", "pulse": kind,
+                                       "sign": sign, "durations": [float(x) for x in d],
+                                       "arches": len(models)},
+                                settings={"study": "curves", "kind": kind, "sign": sign,
+                                          "max_events": _RESPOND["max_events"]})
+        self.runner = SweepRunner(arches, units, workers=workers, scheduler=scheduler,
+                                  max_events=_RESPOND["max_events"], bar=bar, store=store,
+                                  pulses=(kind, sign, d))
+        self.cache: dict = {}
+
+    def __enter__(self):
+        self.runner.__enter__()
+        return self
+
+    def __exit__(self, *exc):
+        return self.runner.__exit__(*exc)
+
+    def __call__(self, keys):
+        """Outcomes (collapsed) of the (model, duration, |a|) keys, running those not yet run."""
+        todo = list(dict.fromkeys(k for k in keys if k not in self.cache))
+        if todo:
+            res = self.runner([m for m, _, _ in todo], [self.index[tp] for _, tp, _ in todo],
+                              [a for _, _, a in todo])
+            for k, st, tc in zip(todo, res["status"], res["t_collapse"]):
+                self.cache[k] = (bool(st == 1), None if np.isnan(tc) else float(tc))
+        return [self.cache[k][0] for k in keys]
+
+
+def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None, workers=None,
+                      scheduler=None, out=None) -> list:
+    """:func:`collapse_amplitude` of every (model, duration), arch-major: the grids of all in
+    one sweep, then the bisections of every first collapse and survival-window edge together,
+    one step per sweep (the same midpoints as :func:`bisect_boundary`); on the executor of
+    ``workers``/``scheduler``, the finished responses kept in ``out`` (:class:`_PulseRunner`)."""
+    kind = pulse_kind(kind)
+    sign = _check_sign(sign)
+    tol = check_tol(tol)
+    n_scan = _check_int("n_scan", n_scan, 2)
+    thrs = [float(m.k_l if sign < 0 else m.k_r) for m in models]
+    for thr in thrs:
+        if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
+            raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation "
+                                 f"threshold {thr:.4f} g and <= {MAX_PGA_G:g} g")
+    with _PulseRunner(models, d, kind, sign, dt, bar, workers=workers, scheduler=scheduler,
+                      out=out) as run:
+        return _search(run, models, d, kind, sign, thrs, a_max=a_max, n_scan=n_scan, tol=tol,
+                       dt=dt)
+
+
+def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list:
+    searches = [(m, float(tp)) for m in range(len(models)) for tp in d]
+    grids = {s: np.geomspace(thrs[s[0]] * (1 + 1e-6), a_max, n_scan) for s in searches}
+    keys = [(m, tp, float(a)) for (m, tp) in searches for a in grids[(m, tp)]]
+    flags = dict(zip(searches, np.array(run(keys)).reshape(len(searches), n_scan)))
+    # bisection tasks: [search, lo, hi, lo_val, role]; role 'first', ('wlo', w) or ('whi', w)
+    tasks, first, windows = [], {}, {}
+    for s in searches:
+        grid, fl = grids[s], flags[s]
+        hits = np.flatnonzero(fl)
+        if hits.size == 0:
+            continue
+        i0 = int(hits[0])
+        if i0 == 0:
+            first[s] = (thrs[s[0]], float(grid[0]))
+        else:
+            tasks.append([s, float(grid[i0 - 1]), float(grid[i0]), False, "first"])
+        ws = []
+        for j, k in survival_runs(fl, i0):
+            w = len(ws)
+            ws.append([None, float(grid[k])])
+            tasks.append([s, float(grid[j - 1]), float(grid[j]), True, ("wlo", w)])
+            if k + 1 < grid.size:
+                tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w)])
+        windows[s] = ws
+    for _ in range(MAX_BISECTIONS + 1):  # the rounds of bisect_boundary, bounded the same way
+        act = [t for t in tasks if _wider(t[1], t[2], tol)]
+        if not act:
+            break
+        mids = [0.5 * (t[1] + t[2]) for t in act]
+        out = run([(t[0][0], t[0][1], x) for t, x in zip(act, mids)])
+        for t, x, c in zip(act, mids, out):
+            if c == t[3]:
+                t[1] = x
+            else:
+                t[2] = x
+    else:
+        raise LimitExceededError(f"curves: {len(act)} bisections still wider than the tolerance "
+                                 f"{tol:g} g after {MAX_BISECTIONS} steps")
+    for s, lo, hi, _, role in tasks:
+        if role == "first":
+            first[s] = (lo, hi)
+        elif role[0] == "wlo":
+            windows[s][role[1]][0] = hi
+        else:
+            windows[s][role[1]][1] = lo
+    counts: dict = {}
+    for (m, tp, _) in run.cache:
+        counts[(m, tp)] = counts.get((m, tp), 0) + 1
+    points = []
+    for s in searches:
+        m, tp = s
+        grid, fl = grids[s], flags[s]
+        if s not in first:
+            points.append(CollapseAmplitude(tp, kind, sign, None, None, None, None, (), thrs[m],
+                                            a_max, tol, grid, fl, counts[s]))
+            continue
+        lo, hi = first[s]
+        # the collapse mode needs the impacts of the response at the boundary: that one response
+        # again through respond (the outcome and t_collapse are the sweep's, identical)
+        r = respond(models[m], pulse(kind, sign * hi, tp), dt=dt, **_RESPOND)
+        points.append(CollapseAmplitude(tp, kind, sign, hi, (lo, hi), collapse_mode(r),
+                                        r.t_collapse, tuple(tuple(w) for w in windows[s]),
+                                        thrs[m], a_max, tol, grid, fl, counts[s]))
+    return points
+
+
+def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None, workers=None,
+                  scheduler=None, out=None) -> list:
+    pts = _amplitudes_batch(models, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt,
+                            bar=bar, workers=workers, scheduler=scheduler, out=out)
+    out = []
+    for i, model in enumerate(models):
+        mine = tuple(pts[i * d.size:(i + 1) * d.size])
+        amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in mine])
+        out.append(CollapseCurve(d, amps, tuple(p.mode for p in mine),
+                                 tuple(p.windows for p in mine), mine, float(model.k_l),
+                                 float(model.k_r),
+                                 (float(model.impact.l_to_r), float(model.impact.r_to_l))))
+    return out
+
+
+# ---------------------------------------------------------------------------- a curve
+@dataclass(frozen=True)
+class CollapseCurve:
+    """First collapse amplitude against pulse duration for one arch.
+
+    durations [s]; amplitudes [g] (NaN where no collapse up to a_max); modes; windows (survival
+    windows above the first collapse, per duration); points: the full :class:`CollapseAmplitude`s.
+    """
+
+    durations: np.ndarray
+    amplitudes: np.ndarray
+    modes: tuple
+    windows: tuple
+    points: tuple = field(repr=False)
+    k_l: float = float("nan")
+    k_r: float = float("nan")
+    cv: tuple[float, float] | None = None
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    def to_dict(self, scan: bool = False) -> dict:
+        pts = []
+        for p in self.points:
+            d = p.to_dict()
+            if not scan:
+                d.pop("scan_amplitudes_g")
+                d.pop("scan_collapsed")
+            pts.append(d)
+        return {
+            "durations": self.durations.tolist(),
+            "amplitudes_g": [None if not math.isfinite(a) else float(a) for a in self.amplitudes],
+            "modes": list(self.modes),
+            "survival_windows_g": [[list(w) for w in ws] for ws in self.windows],
+            "k_l": self.k_l, "k_r": self.k_r,
+            "restitution": None if self.cv is None else {"l_to_r": self.cv[0], "r_to_l": self.cv[1]},
+            "points": pts,
+        }
+
+
+def _durations(durations) -> np.ndarray:
+    try:
+        d = np.atleast_1d(np.asarray(durations, dtype=float))
+    except (TypeError, ValueError):
+        raise ArchInputError(f"durations: {durations!r}; allowed a list of numbers > 0 s") from None
+    if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d)) or np.any(d <= 0):
+        raise ArchInputError(f"durations: {durations!r}; allowed a non-empty list of numbers > 0 s")
+    return d
+
+
+def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: int = 1) -> float:
+    """Estimated seconds of the curves of ``arches`` x ``durations`` (work bound, module
+    :mod:`archrock.studies.work`): a scan of n_scan responses plus its bisections per duration."""
+    n_scan = _check_int("n_scan", n_scan, 2)
+    a_max = _check_real("a_max", a_max, 0.0, "a finite number > 0 g")
+    tol = check_tol(tol)
+    per_curve = n_scan + 3 * max(1, math.ceil(math.log2(max(a_max / tol, 2.0))))
+    return check_work("curves", arches * durations * per_curve, "responses", response_cost_s(),
+                      "reduce --n-scan (150 resolves the windows), the durations or --samples",
+                      workers)
+
+
+def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
+                   n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
+                   literal_cv: bool = False, dt: float | None = None,
+                   engine: str = "batch", workers: int | None = None, scheduler=None,
+                   out=None) -> CollapseCurve:
+    """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
+    of :mod:`archrock.studies.work`.  engine: "batch" (default) runs the scans of every duration in one
+    parallel sweep, then every bisection step of all of them in one more
+    (:mod:`archrock.dynamics.sweep`); "respond" runs response after response (0.1.0's path).  Both give
+    the same curve, bit for bit.  Batch engine only: ``workers`` N > 1 a local process pool,
+    ``scheduler`` a Dask cluster (address or Client), ``out`` a folder keeping every finished
+    response so that the same call again recomputes nothing it had finished
+    (:mod:`archrock.studies.runner`)."""
+    model = _model(model, impact, cv, literal_cv)
+    d = _durations(durations)
+    engine = _engine(engine)
+    workers = _check_batch_run(engine, workers, scheduler, out)
+    _check_curve_work(1, d.size, n_scan, a_max, tol, workers or 1)
+    if engine == "batch":
+        _check_real("a_max", a_max, None, "a finite number > the activation threshold")
+        return _curves_batch([model], d, kind, sign, a_max=float(a_max), n_scan=n_scan,
+                             tol=tol, dt=dt, workers=workers, scheduler=scheduler, out=out)[0]
+    return _curve(model, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+
+
+def _check_batch_run(engine, workers, scheduler, out) -> int | None:
+    """``workers`` checked (None or >= 1); ``scheduler`` and ``out`` only with the batch engine."""
+    from .runner import check_workers
+
+    workers = check_workers(workers)
+    if engine != "batch":
+        for name, v in (("scheduler", scheduler), ("out", out)):
+            if v is not None:
+                raise ArchInputError(f"{name}: run by the batch engine; allowed with "
+                                     f"engine='batch'")
+    return workers
+
+
+def _curve(model, d, kind, sign, *, a_max, n_scan, tol, dt) -> CollapseCurve:
+    pts = tuple(collapse_amplitude(model, float(tp), kind, sign, a_max=a_max, n_scan=n_scan, tol=tol,
+                                   dt=dt) for tp in d)
+    amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in pts])
+    return CollapseCurve(d, amps, tuple(p.mode for p in pts), tuple(p.windows for p in pts), pts,
+                         float(model.k_l), float(model.k_r),
+                         (float(model.impact.l_to_r), float(model.impact.r_to_l)))
+
+
+# ---------------------------------------------------------------------------- ensembles
+@dataclass(frozen=True)
+class EnsembleCurve:
+    """Quantile bands of the first collapse amplitude over random arches.
+
+    durations [s]; quantiles (levels); bands[q_index, d_index] [g] (inf where the quantile lies
+    among arches that did not collapse up to a_max; NaN: not estimated, see band_note); amplitudes[row, d_index] [g] (inf: no
+    collapse), one row per usable arch, row i being sample ``samples[i]``; nominal: the nominal
+    arch's curve; seed, spreads (:class:`~archrock.geometry.sampling.Spreads`), impact (the
+    :class:`~archrock.dynamics.impact.ImpactSpec` as given) and cv (the fixed c_v applied to the random
+    arches, None for a per-arch law) as used.  n_samples: usable arches (the quantiles are over
+    them); n_requested: arches drawn; failed: (sample index, reason) of each drawn arch that could
+    not be analysed (e.g. it cannot stand), left out of the quantiles.  band_note: why the
+    bands are not estimated (one usable arch: bands all NaN), None otherwise.
+    """
+
+    durations: np.ndarray
+    quantiles: tuple[float, ...]
+    bands: np.ndarray
+    amplitudes: np.ndarray
+    nominal: CollapseCurve
+    seed: int
+    spreads: Spreads
+    impact: ImpactSpec
+    cv: float | None
+    n_samples: int
+    failed: tuple = ()
+    samples: tuple = ()
+    n_requested: int = 0
+    band_note: str | None = None
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    def to_dict(self) -> dict:
+        def f(v):
+            return None if not math.isfinite(v) else float(v)
+        return {
+            "durations": self.durations.tolist(),
+            "quantiles": list(self.quantiles),
+            # null inside: no collapse up to a_max; null as a whole: not estimated (band_note)
+            "bands_g": None if self.band_note else [[f(v) for v in row] for row in self.bands],
+            "band_note": self.band_note,
+            "left_out": left_out_summary(self.failed, self.n_samples, "the quantiles are"),
+            "amplitudes_g": [[f(v) for v in row] for row in self.amplitudes],
+            "n_samples": self.n_samples, "n_requested": self.n_requested,
+            "samples": list(self.samples), "n_failed": len(self.failed),
+            "seed": self.seed, "spreads": self.spreads.to_dict(),
+            "impact": self.impact.to_dict(), "cv": self.cv, "failed": [list(x) for x in self.failed],
+            "nominal": self.nominal.to_dict(),
+        }
+
+
+def _one_sample(job):
+    """(row of first collapse amplitudes, None), or (None, reason) for an unusable arch."""
+    sampler, index, impact, durations, kwargs = job
+    model, why = prepare_sample(sampler, index, impact)
+    if model is None:
+        return None, why
+    curve = _curve(model, durations, **kwargs)
+    return np.where(np.isfinite(curve.amplitudes), curve.amplitudes, np.inf), None
+
+
+def _batch_rows(nominal, sampler, samples, impact, d, kwargs, bar, run) -> tuple:
+    """(the nominal model's curve, the rows of :func:`_one_sample` for samples 0 .. samples - 1),
+    the nominal and every usable random arch in one batch (``run``: workers, scheduler, out)."""
+    prepared = [prepare_sample(sampler, i, impact) for i in range(samples)]
+    usable = [m for m, _ in prepared if m is not None]
+    kw = {k: v for k, v in kwargs.items() if k != "a_max"}
+    curves = iter(_curves_batch([nominal] + usable, d, a_max=float(kwargs["a_max"]), bar=bar,
+                                **kw, **run))
+    nominal_curve = next(curves)
+    rows = []
+    for model, why in prepared:
+        if model is None:
+            rows.append((None, why))
+        else:
+            amps = next(curves).amplitudes
+            rows.append((np.where(np.isfinite(amps), amps, np.inf), None))
+    return nominal_curve, rows
+
+
+def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
+                   durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
+                   literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
+                   tol: float = 1e-3, dt: float | None = None, workers: int = 1,
+                   progress: bool = False, engine: str = "batch", scheduler=None,
+                   out=None) -> EnsembleCurve:
+    """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
+
+    Arch i is sample i of :class:`~archrock.geometry.sampling.ArchSampler` (nominal, spreads, seed): the
+    same arch as sample i of ``ensemble`` and ``fragility``; results do not depend on ``workers``.
+    spreads: a :class:`~archrock.geometry.sampling.Spreads` or a dict with keys spread_span,
+    spread_thickness, spread_radius (default the default spreads).  impact: an ImpactSpec or what
+    ``ImpactSpec.parse`` reads; None = the paper's practice (the "paper" model on the nominal
+    arch, its c_v fixed on every random arch).  An arch with no answer under the model
+    (:data:`archrock.errors.UNUSABLE_ARCH`: it cannot stand, voussoirs do not overlap, ...) is left
+    out and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv: apply a
+    fixed c_v to the rates literally instead of energy-consistently (docs/method.md, Impact).
+    engine "batch" (default): the nominal and every random arch and duration of a search step in
+    one sweep (:func:`collapse_curve`): in-process numba threads, ``workers`` > 1 a local process
+    pool, ``scheduler`` a Dask cluster; ``out`` a folder keeping every finished response (a rerun
+    recomputes nothing it had finished; :mod:`archrock.studies.runner`).  "respond": arch after arch,
+    ``workers`` > 1 of them at once in a process pool (workers die with this process; no
+    ``scheduler`` nor ``out``).  Both give the same curves, bit for bit.  The work is
+    estimated first and refused beyond the bound of :mod:`archrock.studies.work`; ``progress`` shows
+    the arches done on stderr when the estimate exceeds a few seconds.
+    """
+    if not isinstance(nominal, VoussoirArch):
+        raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
+    samples = _check_int("samples", samples, 1)
+    workers = _check_int("workers", workers, 1)
+    sampler = ArchSampler(nominal, Spreads.from_dict(spreads), seed)
+    q = np.asarray(quantiles, dtype=float)
+    if q.ndim != 1 or q.size == 0 or np.any(~np.isfinite(q)) or np.any((q < 0) | (q > 1)):
+        raise ArchInputError(f"quantiles: {quantiles!r}; allowed numbers between 0 and 1")
+    d = _durations(durations)
+    est = _check_curve_work(samples + 1, d.size, n_scan, a_max, tol, workers)
+    spec = ImpactSpec.parse(impact, literal=literal_cv)
+    resolved = spec.resolved(nominal)
+    kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+    engine = _engine(engine)
+    _check_batch_run(engine, workers, scheduler, out)
+    if engine == "batch":  # the checks of collapse_curve, before the arches are drawn
+        _check_real("a_max", a_max, None, "a finite number > the activation threshold")
+        nominal_model = prepare(nominal, spec)
+    else:
+        nominal_curve = collapse_curve(prepare(nominal, spec), d, engine=engine, **kwargs)
+    jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
+    from .ensemble.progress import Progress
+
+    if engine == "batch":
+        # responses: the scan and (about) three bisections per arch and duration
+        per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
+            max(float(a_max) / float(tol), 2.0))))
+        bar = Progress((samples + 1) * d.size * per_curve, bool(progress) and est > PROGRESS_S,
+                       desc="curves", unit="response")
+        run = dict(workers=workers if workers > 1 else None, scheduler=scheduler, out=out)
+        try:
+            nominal_curve, rows = _batch_rows(nominal_model, sampler, samples, resolved, d,
+                                              kwargs, bar, run)
+        finally:
+            bar.close()
+    else:
+        bar = Progress(samples, bool(progress) and est > PROGRESS_S, desc="curves", unit="arch")
+        try:
+            if workers == 1:
+                rows = []
+                for j in jobs:
+                    rows.append(_one_sample(j))
+                    bar.update(1)
+            else:
+                from .ensemble.executors import worker_pool
+
+                with worker_pool(min(workers, os.cpu_count() or 1)) as ex:
+                    rows = []
+                    for row in ex.map(_one_sample, jobs):
+                        rows.append(row)
+                        bar.update(1)
+        finally:
+            bar.close()
+    failed = tuple((i, why) for i, (_, why) in enumerate(rows) if why is not None)
+    kept = tuple(i for i, (row, _) in enumerate(rows) if row is not None)
+    if not kept:
+        i, why = failed[0]
+        raise ArchInputError(f"samples: none of the {samples} random arches is usable (sample {i}: "
+                             f"{why}); allowed spreads that give arches able to stand")
+    amps = np.array([rows[i][0] for i in kept])
+    requested, samples = samples, len(kept)
+    # quantiles with non-collapsing arches as +inf: order statistics, linear interpolation
+    srt = np.sort(amps, axis=0)
+    pos = q[:, None] * (samples - 1)
+    lo_i = np.floor(pos).astype(int)
+    hi_i = np.minimum(lo_i + 1, samples - 1)
+    frac = pos - lo_i
+    cols = np.arange(d.size)[None, :]
+    a_lo, a_hi = srt[lo_i, cols], srt[hi_i, cols]
+    with np.errstate(invalid="ignore"):
+        bands = np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
+                         a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
+    note = None
+    if samples == 1:  # every quantile of one arch is its value: a band of zero width
+        bands, note = np.full_like(bands, np.nan), "not estimated: one usable arch"
+    return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
+                         sampler.seed, sampler.spreads, spec, resolved.cv, samples,
+                         failed, kept, requested, note)

@@ -1,0 +1,132 @@
+"""One batch of an ensemble: draw its random arches, analyse them and tabulate the results.
+
+Each sample is an irregular arch (docs/method.md, Geometry: span_i = (alpha/n)(1 + s_a U),
+t_i = t (1 + s_t U), R_i = R + s_R t U, spans rescaled to the embrace) whose collapse multipliers
+k_l, k_r and mechanisms are found by limit analysis and, under a ground motion, whose response is
+integrated to rest or collapse (:mod:`archrock.dynamics.batch`).
+
+Reproducibility: sample i is arch i of the configuration's :class:`~archrock.geometry.sampling.ArchSampler`
+(nominal, spreads, seed), so it depends on neither the batch size, nor the number of workers, nor
+the order in which batches finish, and it is the same arch as sample i of ``curves`` and
+``fragility``.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+import numpy as np
+
+from ...dynamics.batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, prepare_batch, simulate_batch
+from ...errors import ArchInputError
+from .config import EnsembleConfig
+
+__all__ = ["COLUMNS", "run_batch", "run_batches", "sample_arch"]
+
+#: Columns of a batch's table (one row per sample).  Times [s]: t_collapse, the last upward
+#: passage of the unstable position before the rotation limit (the physical collapse time, which
+#: the limit does not move); t_limit, when the limit (a numerical stop) was reached; t_unstable,
+#: the first passage of the unstable position (NaN if never).  early_stopped: the arch was no
+#: longer followed once it could not collapse (EnsembleConfig.early_stop; status "stopped":
+#: peak final, n_impacts / n_activations only those before the stop, no rest).
+COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
+           "status", "peak", "t_collapse", "t_limit", "t_unstable", "n_impacts", "n_activations",
+           "events_truncated", "early_stopped", "error"]
+
+
+def sample_arch(config: EnsembleConfig, index: int):
+    """The random arch of sample ``index`` (0-based) of the ensemble, rebuilt from the seed."""
+    if isinstance(index, bool) or int(index) != index or not 0 <= index < config.samples:
+        raise ArchInputError(f"index: {index!r}; allowed 0..{config.samples - 1}")
+    return config.sampler.arch(int(index))
+
+
+def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
+    """Compute batch ``b`` of an ensemble (self-contained: only the config and b are needed).
+
+    Returns (DataFrame with the columns of :data:`COLUMNS`, timings dict).  ``parallel`` uses
+    the numba parallel loop; process-pool and Dask workers run it serially.
+    """
+    cfg = config if isinstance(config, EnsembleConfig) else EnsembleConfig.from_dict(config)
+    if not 0 <= b < cfg.n_batches:
+        raise ArchInputError(f"batch: {b}; allowed 0..{cfg.n_batches - 1}")
+    return run_batches(cfg, [b], parallel)[0][1:]
+
+
+def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
+    """:func:`run_batch` of consecutive batches (b, b + 1, ...) computed together: one
+    preparation and one response call for all their arches, then one table per batch.  The
+    rows are those of :func:`run_batch` batch by batch (every arch is computed on its own);
+    only the Python around the compiled loops is paid once.  Timings are shared out in
+    proportion to the batches' sizes.  Returns [(b, DataFrame, timings), ...]."""
+    import pandas as pd
+
+    t0 = time.perf_counter()
+    bs = [int(b) for b in batches]
+    if not bs or any(not 0 <= b < cfg.n_batches for b in bs):
+        raise ArchInputError(f"batches: {bs}; allowed consecutive batches in 0..{cfg.n_batches - 1}")
+    if bs != list(range(bs[0], bs[0] + len(bs))):
+        raise ArchInputError(f"batches: {bs}; allowed consecutive batches")
+    sampler = cfg.sampler
+    start = cfg.batch_range(bs[0])[0]
+    last, n_last = cfg.batch_range(bs[-1])
+    nb = last + n_last - start
+    if sampler.circular:
+        spans, thick, radii = sampler.draw(start, nb)
+        pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
+                           impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
+    else:  # any other family: the arches themselves (invalid draws carry their reason)
+        pb = prepare_batch(sampler.arches(start, nb), impact=cfg.impact.resolved(sampler.nominal),
+                           parallel=parallel)
+    motion = cfg.motion.build() if cfg.motion is not None else None
+    error = pb.error.copy()
+    if motion is not None:
+        res = simulate_batch(pb, motion, dt=cfg.dt, t_free=cfg.t_free, parallel=parallel,
+                             tabulate=cfg.tabulate, max_events=MAX_EVENTS,
+                             early_stop=cfg.early_stop)
+        st = res["status"]
+        # status names by table look-up (codes -1 .. 3), not arch by arch
+        names = np.array(["failed"] + [STATUS_NAMES.get(c, "failed") for c in range(4)],
+                         dtype=object)
+        status = names[np.clip(st, ST_NOT_RUN, 3) + 1]
+        sim_seconds = res["seconds"]
+    else:
+        res = {"peak": np.full(nb, np.nan), "t_collapse": np.full(nb, np.nan),
+               "t_limit": np.full(nb, np.nan), "t_unstable": np.full(nb, np.nan), "n_impacts": np.zeros(nb, dtype=np.int64),
+               "n_activations": np.zeros(nb, dtype=np.int64),
+               "events_truncated": np.zeros(nb, dtype=bool),
+               "early_stopped": np.zeros(nb, dtype=bool)}
+        status = np.where(error == "", "limit-only", "failed").astype(object)
+        sim_seconds = 0.0
+    # one table for the group, cut into the batches' tables (copy-on-write slices: building a
+    # table per batch converted every string column again)
+    batch_of = np.concatenate([np.full(cfg.batch_range(b)[1], b, dtype=np.int64) for b in bs])
+    table = pd.DataFrame({
+        "batch": batch_of,
+        "index": np.arange(start, start + nb, dtype=np.int64),
+        "k_l": pb.k_l, "k_r": pb.k_r,
+        # object arrays of str: pandas makes them its string columns without a numpy copy
+        "mech_l": pb.mech_l, "mech_r": pb.mech_r,
+        "c_l_to_r": pb.c_l_to_r, "c_r_to_l": pb.c_r_to_l,
+        "collapsed": status == "collapsed",
+        "status": status,
+        "peak": res["peak"], "t_collapse": res["t_collapse"], "t_limit": res["t_limit"],
+        "t_unstable": res["t_unstable"],
+        "n_impacts": res["n_impacts"].astype(np.int64),
+        "n_activations": res["n_activations"].astype(np.int64),
+        "events_truncated": res["events_truncated"].astype(bool),
+        "early_stopped": res["early_stopped"].astype(bool),
+        "error": error,
+    }, columns=COLUMNS)
+    prepare_s = float(sum(pb.seconds.values()))
+    total_s = time.perf_counter() - t0
+    out = []
+    for b in bs:
+        lo, count = cfg.batch_range(b)
+        lo -= start
+        df = table.iloc[lo:lo + count].reset_index(drop=True)
+        share = count / nb
+        out.append((b, df, {"prepare_s": prepare_s * share, "response_s": float(sim_seconds) * share,
+                            "total_s": total_s * share, "pid": os.getpid()}))
+    return out

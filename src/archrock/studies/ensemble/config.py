@@ -1,0 +1,142 @@
+"""The configuration of an ensemble: everything that determines its results, JSON-serialisable.
+
+Its JSON (``to_json``, sorted keys) is hashed into each batch file's provenance and stored in the
+manifest, so a field's serialised form must not change without a format change.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import json
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ...errors import ArchInputError
+from ...geometry import VoussoirArch, arch_from_dict
+from ...groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
+from ...dynamics.impact import PAPER_PRACTICE, ImpactSpec
+from ...dynamics.response import default_steps
+from ...geometry.sampling import DEFAULT_SPREADS, ArchSampler, Spreads
+
+__all__ = ["EnsembleConfig"]
+
+
+def int_field(name, value, lo):
+    """``value`` as an int >= ``lo``, or ArchInputError naming the field ``name``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise ArchInputError(f"{name}: {value!r}; allowed an integer >= {lo}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class EnsembleConfig:
+    """Everything that determines an ensemble's results (JSON-serialisable).
+
+    nominal: the nominal geometry as ``Arch.to_dict()`` or a family arch's ``FamilyArch.to_dict()``
+    (with its recipe under "family"; an arch object is turned into its dict); samples >= 1; seed >= 0; spreads: a
+    :class:`~archrock.geometry.sampling.Spreads` (or its dict): sample i is arch i of
+    ``ArchSampler(nominal, spreads, seed)``, the same arch as in ``curves`` and ``fragility``;
+    batch_size >= 1: samples per batch, the unit of work, of parallelism and of resumption (the
+    draws do not depend on it); motion: None (limit analysis only), a
+    :class:`~archrock.groundmotion.PulseSpec` or :class:`~archrock.groundmotion.RecordSpec`, or
+    the dict of one (``to_dict()``, as in a manifest), kept as the specification; impact: an
+    :class:`~archrock.dynamics.impact.ImpactSpec` (or what ``ImpactSpec.parse`` reads; default the paper's
+    practice, the 'paper' model's c_v of the nominal arch fixed on every sample); dt [s]: RK4
+    step; t_free [s]: free motion allowed after the ground motion (both by default from the nominal
+    arch's size, :func:`archrock.dynamics.response.default_steps`); tabulate: the RK4 kernel reads
+    the equation's coefficients from tables (as ``respond``'s default; ~1e-9 relative,
+    about 3x faster) instead of the exact loop closure; early_stop: stop following an arch once,
+    after the ground motion, it can no longer collapse (:func:`archrock.dynamics.batch.simulate_batch`:
+    outcome and peak exact, impacts and time to rest not followed; written to the JSON only when
+    true, so other configurations and their hashes are unchanged).
+    """
+
+    nominal: dict
+    samples: int = 1000
+    seed: int = 0
+    spreads: Spreads | dict = DEFAULT_SPREADS
+    batch_size: int = 500
+    motion: PulseSpec | RecordSpec | dict | None = None
+    impact: ImpactSpec | dict | str | None = PAPER_PRACTICE
+    dt: float | None = None
+    t_free: float | None = None
+    tabulate: bool = True
+    early_stop: bool = False
+
+    def __post_init__(self):
+        if isinstance(self.nominal, VoussoirArch):
+            object.__setattr__(self, "nominal", self.nominal.to_dict())
+        arch = arch_from_dict(self.nominal, name="nominal")  # validates
+        object.__setattr__(self, "samples", int_field("samples", self.samples, 1))
+        object.__setattr__(self, "seed", int_field("seed", self.seed, 0))
+        object.__setattr__(self, "batch_size", int_field("batch size", self.batch_size, 1))
+        object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
+        # the sampler refuses what cannot be sampled (a surveyed polygon, tilt on a circular Arch)
+        # and is kept: the cached :attr:`sampler`
+        object.__setattr__(self, "sampler", ArchSampler(arch, self.spreads, self.seed))
+        object.__setattr__(self, "impact", ImpactSpec.parse(self.impact))
+        # default steps follow the nominal arch's size (response.default_steps): 2e-3 s and 60 s
+        # for arches of 0.4-14 m, so configurations (and their hashes) of such arches are 0.1.0's
+        steps = dict(zip(("dt", "t_free"), default_steps(arch)))
+        for name in ("dt", "t_free"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, steps[name])
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
+                raise ArchInputError(f"{name}: {v!r}; allowed a finite number > 0 s")
+            object.__setattr__(self, name, float(v))
+        if not isinstance(self.tabulate, bool):
+            raise ArchInputError(f"tabulate: {self.tabulate!r}; allowed true or false")
+        if not isinstance(self.early_stop, bool):
+            raise ArchInputError(f"early_stop: {self.early_stop!r}; allowed true or false")
+        motion = self.motion
+        if isinstance(motion, dict):
+            motion = motion_spec_from_dict(motion)  # checked as it is built
+        elif motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):
+            raise ArchInputError(f"motion: {motion!r}; allowed None, a PulseSpec or RecordSpec, "
+                                 "or the dict of one")
+        object.__setattr__(self, "motion", motion)
+
+    @classmethod
+    def from_arch(cls, nominal: VoussoirArch, **kwargs) -> "EnsembleConfig":
+        return cls(nominal.to_dict(), **kwargs)
+
+    @cached_property
+    def sampler(self) -> ArchSampler:
+        """The sampler of this ensemble's random arches (built and checked at construction)."""
+        return ArchSampler(arch_from_dict(self.nominal, name="nominal"), self.spreads, self.seed)
+
+    @property
+    def n_batches(self) -> int:
+        return -(-self.samples // self.batch_size)
+
+    def batch_range(self, b: int) -> tuple[int, int]:
+        """(first sample index, number of samples) of batch b."""
+        start = b * self.batch_size
+        return start, min(self.batch_size, self.samples - start)
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict; the motion as its specification's dict (the manifests' format)."""
+        d = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        d["nominal"] = copy.deepcopy(self.nominal)
+        d["motion"] = None if self.motion is None else self.motion.to_dict()
+        d["spreads"] = self.spreads.to_dict()
+        d["impact"] = self.impact.to_dict()
+        if not self.early_stop:
+            del d["early_stop"]
+        return d
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "EnsembleConfig":
+        names = {f.name for f in dataclasses.fields(cls)}
+        unknown = set(data) - names
+        if unknown:
+            raise ArchInputError(f"ensemble configuration: unknown field(s) {sorted(unknown)}")
+        return cls(**data)

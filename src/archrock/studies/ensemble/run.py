@@ -1,0 +1,149 @@
+"""Run (or resume) an ensemble: the batches missing from the output folder are computed, the
+others loaded, and the per-sample tables joined into an :class:`EnsembleResult`."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from ...errors import ArchInputError
+from ...geometry import Arch, arch_from_dict
+from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
+from .config import EnsembleConfig, int_field
+from .executors import execute
+from .progress import Progress
+from .store import Manifest, batch_path, read_batch, write_batch
+from .summary import EnsembleResult
+
+__all__ = ["run_ensemble"]
+
+
+def _nominal_info(config: EnsembleConfig) -> dict:
+    from ...dynamics.batch import mechanism_label
+    from ...statics.limit import (arch_sums, certify_candidates, kinematic_mechanisms,
+                                  kinematic_multipliers_batch)
+
+    arch = arch_from_dict(config.nominal)
+    if not isinstance(arch, Arch):
+        m_l, m_r = kinematic_mechanisms(arch)
+        return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
+                "mech_r": m_r.label}
+    k_l, k_r, i_l, i_r = kinematic_multipliers_batch(arch.spans[None], arch.radii[None],
+                                                     arch.thicknesses[None])
+    gov_l, gov_r = certify_candidates(arch_sums(arch), arch.n, i_l, i_r)
+    if not (gov_l[0] and gov_r[0]):
+        # a joint of the nominal arch lifts off: its Heyman multipliers and mechanisms, as for
+        # every other shape (the batch's numbers, above, are those of the samples otherwise)
+        m_l, m_r = kinematic_mechanisms(arch)
+        return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
+                "mech_r": m_r.label}
+    return {"k_l": float(k_l[0]), "k_r": float(k_r[0]), "mech_l": mechanism_label(arch.n, int(i_l[0])),
+            "mech_r": mechanism_label(arch.n, int(i_r[0]))}
+
+
+def _impact_info(config: EnsembleConfig) -> dict:
+    """The impact spec as given, as applied to the samples, and in words (manifest, summary)."""
+    applied = config.impact.resolved(config.sampler.nominal)
+    return {**config.impact.to_dict(), "applied": applied.to_dict(),
+            "description": config.impact.describe()
+            + (f": c_v = {applied.cv:.6g}" if applied is not config.impact else "")}
+
+
+def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
+    """Estimated seconds of the whole ensemble (before resuming: a bound on what is left)."""
+    each = SAMPLE_LIMIT_S
+    if config.motion is not None:
+        each = SAMPLE_RESPONSE_S + (RECORD_RESPONSE_S_PER_S * config.motion.build().duration
+                                    if config.motion.to_dict()["type"] == "record" else 0.0)
+    import os
+
+    cores = workers if workers > 1 else (os.cpu_count() or 1)  # in-process: numba threads
+    return check_work("ensemble", config.samples, "arches", each,
+                      "reduce --samples (10,000 give P(collapse) to about 1%), or run on a Dask "
+                      "cluster (--scheduler)", cores)
+
+
+def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, scheduler=None,
+                 progress: bool = True, keep_frame: bool = True) -> EnsembleResult:
+    """Run (or resume) an ensemble.
+
+    out_dir: folder for the batches and manifest (None: nothing written); workers: 1 runs
+    in-process (numba parallel loop), > 1 a local process pool over batches; scheduler: address
+    of a Dask scheduler (or a ``distributed.Client``), which takes precedence over ``workers``;
+    progress: a progress bar on stderr; keep_frame: False keeps no per-sample table in memory
+    (needs ``out_dir``): each batch is written and dropped, the result's ``frame`` is None and
+    its summary is computed from the stored batches (:mod:`archrock.studies.ensemble.streaming`), so
+    memory stays that of one batch however many samples (10^7 and more).
+    """
+    import pandas as pd
+
+    if not isinstance(config, EnsembleConfig):
+        raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
+    workers = int_field("workers", workers, 1)
+    if not isinstance(keep_frame, bool):
+        raise ArchInputError(f"keep_frame: {keep_frame!r}; allowed true or false")
+    if not keep_frame and out_dir is None:
+        raise ArchInputError("keep_frame: False needs out_dir (the summary is then read from "
+                             "the stored batches)")
+    _check_ensemble_work(config, workers if scheduler is None else 1)
+    t_start = time.perf_counter()
+    impact = _impact_info(config)
+    nominal = _nominal_info(config)
+    out = Path(out_dir) if out_dir is not None else None
+    manifest = Manifest(out, config, impact, nominal) if out is not None else None
+    frames: dict[int, object] = {}
+    done: set[int] = set()
+    batch_timings: dict[int, dict] = {}
+    todo = []
+    recomputed: dict[int, str] = {}
+    bar = Progress(config.samples, progress)
+    try:
+        for b in range(config.n_batches):
+            nb = config.batch_range(b)[1]
+            df, why = read_batch(out, b, config) if out is not None else (None, None)
+            if df is not None:
+                done.add(b)
+                if keep_frame:
+                    frames[b] = df
+                del df
+                manifest.batch_done(b, nb, {}, computed=False)
+                bar.update(nb)
+            else:
+                todo.append(b)
+                if why is not None:
+                    recomputed[b] = why
+                    manifest.run["recomputed"][str(b)] = why
+                    bar.note(f"ensemble: recomputing batch {b}: "
+                             f"{batch_path(out, b).name} {why}")
+        if manifest is not None:
+            manifest.save()
+
+        def finished(b, df, timings):
+            done.add(b)
+            if keep_frame:
+                frames[b] = df
+            batch_timings[b] = timings
+            if out is not None:
+                write_batch(out, b, df, config)
+                manifest.batch_done(b, len(df), timings, computed=True)
+                manifest.save()
+            bar.update(len(df))
+
+        executor = execute(config, todo, finished, workers, scheduler)
+    finally:
+        bar.close()
+        if manifest is not None:
+            manifest.finish(complete=len(done) == config.n_batches)
+    frame = pd.concat([frames[b] for b in sorted(frames)], ignore_index=True) if keep_frame else None
+    wall = time.perf_counter() - t_start
+    computed = sorted(batch_timings)
+    n_computed = int(sum(config.batch_range(b)[1] for b in computed))
+    timing = {"wall_s": wall, "executor": executor, "workers": workers,
+              "computed_batches": computed, "loaded_batches": sorted(done - set(computed)),
+              "recomputed_batches": {str(b): why for b, why in sorted(recomputed.items())},
+              "computed_samples": n_computed,
+              "samples_per_s": n_computed / wall if n_computed and wall > 0 else None,
+              "prepare_s": float(sum(t["prepare_s"] for t in batch_timings.values())),
+              "response_s": float(sum(t["response_s"] for t in batch_timings.values()))}
+    return EnsembleResult(config, frame, nominal, impact, timing,
+                          str(out) if out is not None else None)

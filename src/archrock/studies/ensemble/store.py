@@ -1,0 +1,254 @@
+"""An ensemble's output folder: Parquet batch files with provenance, and the manifest.
+
+Layout: ``manifest.json`` (configuration, seeds, versions, runs) next to
+``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID`` then rename).  Each batch
+file carries in its Parquet metadata (key ``archrock.ensemble``) the configuration's sha256, its
+batch number and the sha256 of the package's sources; a file whose metadata, ``batch`` or
+``index`` columns do not match (or that cannot be read) is recomputed, with the reason.  Batch
+files without ``manifest.json`` are refused; ``*.tmp-PID`` files of killed writes are removed
+when a run starts.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+import os
+import platform
+import re
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import ArchInputError
+from .compute import COLUMNS
+from .config import EnsembleConfig
+
+__all__ = ["EnsembleConfigMismatch", "Manifest", "batch_path", "read_batch", "write_batch",
+           "MANIFEST", "FORMAT", "PROVENANCE_KEY"]
+
+MANIFEST = "manifest.json"
+# 2: spreads and impact as objects; draws by ArchSampler.  3: t_collapse is the last passage of
+# the unstable position (no longer the rotation limit), t_limit a new column.  4: early_stopped
+FORMAT = "archrock-ensemble/4"
+PROVENANCE_KEY = b"archrock.ensemble"
+
+
+class EnsembleConfigMismatch(ArchInputError):
+    """An output folder holds an ensemble with a different configuration."""
+
+
+def _versions() -> dict:
+    from importlib import metadata
+
+    out = {"python": platform.python_version()}
+    for pkg in ("archrock", "numpy", "scipy", "numba", "pandas", "pyarrow", "dask", "distributed"):
+        try:
+            out[pkg] = metadata.version(pkg)
+        except metadata.PackageNotFoundError:
+            out[pkg] = None
+    return out
+
+
+def _now() -> str:
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+def _write_json_atomic(path: Path, obj) -> None:
+    tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
+    tmp.write_text(json.dumps(obj, indent=2, allow_nan=False), encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def batch_path(out: Path, b: int) -> Path:
+    """The file of batch ``b`` in the output folder ``out``."""
+    return out / "batches" / f"batch-{b:05d}.parquet"
+
+
+@lru_cache(maxsize=1)
+def _code_digest() -> str:
+    """sha256 of the package's sources: batches written by other code are recomputed."""
+    from ..._jit import _package_digest
+
+    return _package_digest()
+
+
+def _config_hash(config: EnsembleConfig) -> str:
+    return hashlib.sha256(config.to_json().encode()).hexdigest()
+
+
+def _provenance(config: EnsembleConfig, b: int) -> dict:
+    return {"format": FORMAT, "config_sha256": _config_hash(config), "batch": int(b),
+            "code_sha256": _code_digest()}
+
+
+def write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
+    """Write batch ``b``'s table atomically, with its provenance in the Parquet metadata."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    # pyarrow's own SIGINT handling can swallow a Ctrl-C that arrives while it writes (the run
+    # then goes on to the end); Python's handler must see it so the ensemble stops and says
+    # which batches it kept
+    pa.enable_signal_handlers(False)
+    path = batch_path(out, b)
+    tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    meta = dict(table.schema.metadata or {})
+    meta[PROVENANCE_KEY] = json.dumps(_provenance(config, b), sort_keys=True).encode()
+    pq.write_table(table.replace_schema_metadata(meta), tmp)
+    os.replace(tmp, path)
+
+
+def read_batch(out: Path, b: int, config: EnsembleConfig):
+    """(DataFrame, None) for a verified batch file; (None, None) when there is none; (None,
+    reason) when the file exists but cannot be used (it is then recomputed)."""
+    import pyarrow.parquet as pq
+
+    path = batch_path(out, b)
+    if not path.is_file():
+        return None, None
+    try:
+        table = pq.read_table(path)
+        meta = json.loads((table.schema.metadata or {}).get(PROVENANCE_KEY, b"null"))
+        df = table.to_pandas()
+    except Exception as exc:  # a damaged file is recomputed
+        return None, f"unreadable ({type(exc).__name__})"
+    if not isinstance(meta, dict):
+        return None, "no provenance metadata (written by older code)"
+    want = _provenance(config, b)
+    if meta.get("format") != FORMAT:
+        return None, f"format {meta.get('format')!r}, expected {FORMAT!r}"
+    if meta.get("config_sha256") != want["config_sha256"]:
+        return None, "written for another configuration"
+    if meta.get("batch") != b:
+        return None, f"holds batch {meta.get('batch')!r}"
+    if meta.get("code_sha256") != want["code_sha256"]:
+        return None, "written by other archrock code"
+    start, nb = config.batch_range(b)
+    if list(df.columns) != COLUMNS or len(df) != nb:
+        return None, "unexpected columns or number of rows"
+    if not ((df["batch"].to_numpy() == b).all()
+            and np.array_equal(df["index"].to_numpy(), np.arange(start, start + nb))):
+        return None, f"its batch/index columns are not batch {b}, samples {start}..{start + nb - 1}"
+    return df, None
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError, ValueError):
+        return pid > 0
+    return pid > 0
+
+
+def _remove_stale_tmp(out: Path) -> list[str]:
+    """Remove the ``*.tmp-PID`` files of killed writes (not those of a live process)."""
+    removed = []
+    for folder in (out, out / "batches"):
+        for p in folder.glob("*.tmp-*"):
+            m = re.fullmatch(r".*\.tmp-(\d+)", p.name)
+            if not m or not p.is_file():
+                continue
+            pid = int(m.group(1))
+            if pid != os.getpid() and _pid_alive(pid):
+                continue
+            try:
+                p.unlink()
+                removed.append(p.name)
+            except OSError:
+                pass
+    return removed
+
+
+class Manifest:
+    """``manifest.json`` of an output folder: created, or checked against ``config`` (raises
+    :class:`EnsembleConfigMismatch` naming the first differing field); each run is appended."""
+
+    def __init__(self, out: Path, config: EnsembleConfig, impact: dict, nominal: dict):
+        self.out = out
+        self.path = out / MANIFEST
+        try:
+            (out / "batches").mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ArchInputError(f"out: cannot create {str(out)!r} ({exc.strerror or exc})") from None
+        cfg = config.to_dict()
+        if not self.path.is_file() and any((out / "batches").glob("*.parquet")):
+            raise ArchInputError(
+                f"out: {str(out / 'batches')!r} holds batch files but {str(self.path)!r} is "
+                f"missing, so their configuration is unknown; use another output folder or "
+                f"delete that folder")
+        if self.path.is_file():
+            try:
+                data = json.loads(self.path.read_text(encoding="utf-8"))
+            except (OSError, ValueError) as exc:
+                raise ArchInputError(f"out: {str(self.path)!r} is not a readable manifest ({exc})") from None
+            old = data.get("config", {})
+            diff = _config_differences(old, cfg)
+            if diff:
+                a, b = _flatten(old), _flatten(cfg)
+                f = diff[0]
+                raise EnsembleConfigMismatch(
+                    f"out: {str(out)!r} holds an ensemble with a different configuration: field "
+                    f"{f!r} is {a.get(f, '<absent>')!r} there and {b.get(f, '<absent>')!r} here"
+                    + (f" (and {len(diff) - 1} more)" if len(diff) > 1 else "")
+                    + "; use another output folder or the same options")
+            self.data = data
+        else:
+            self.data = {
+                "format": FORMAT, "config": cfg, "n_batches": config.n_batches,
+                "seeds": {"entropy": config.seed,
+                          "streams": "sample i is archrock.sampling.ArchSampler(nominal, spreads, "
+                                     "seed).arch(i): block k = i // 500 reads numpy "
+                                     "SeedSequence(entropy, spawn_key=(k,))"},
+                "impact": impact, "nominal": nominal, "versions": _versions(),
+                "started": _now(), "finished": None, "batches": {}, "runs": []}
+        self.data["versions"] = _versions()
+        self.run = {"started": _now(), "finished": None, "code_sha256": _code_digest(),
+                    "computed": [], "loaded": [], "recomputed": {},
+                    "removed_tmp": _remove_stale_tmp(out)}
+        self.data["runs"].append(self.run)
+        self.save()
+
+    def save(self):
+        _write_json_atomic(self.path, self.data)
+
+    def batch_done(self, b: int, nb: int, timings: dict, computed: bool):
+        (self.run["computed"] if computed else self.run["loaded"]).append(b)
+        if computed or str(b) not in self.data["batches"]:
+            self.data["batches"][str(b)] = {
+                "file": str(batch_path(self.out, b).relative_to(self.out)), "samples": nb,
+                "spawn_key": [b], "run": len(self.data["runs"]) - 1,
+                **{k: v for k, v in timings.items() if k != "pid"}}
+
+    def finish(self, complete: bool):
+        self.run["finished"] = _now()
+        self.run["computed"].sort()
+        self.run["loaded"].sort()
+        if complete:
+            self.data["finished"] = _now()
+        self.save()
+
+
+
+def _flatten(d, prefix=""):
+    out = {}
+    if isinstance(d, dict):
+        for k, v in d.items():
+            out.update(_flatten(v, f"{prefix}.{k}" if prefix else str(k)))
+    elif isinstance(d, list):
+        out[prefix + ".length"] = len(d)
+        for i, v in enumerate(d):
+            out.update(_flatten(v, f"{prefix}[{i}]"))
+    else:
+        out[prefix] = d
+    return out
+
+
+def _config_differences(old: dict, new: dict) -> list[str]:
+    a, b = _flatten(old), _flatten(new)
+    return [k for k in sorted(set(a) | set(b)) if a.get(k, "<absent>") != b.get(k, "<absent>")]
