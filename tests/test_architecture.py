@@ -17,7 +17,7 @@ LAYER = {
     "dynamics": 4,
     "contact": 5,
     "studies": 6,
-    "reports": 7, "cli": 7, "__main__": 7,
+    "reports": 7, "cli": 7, "app": 7, "__main__": 7,
 }
 #: same layer, kept apart: neither may import the other
 APART: set = set()

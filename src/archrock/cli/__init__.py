@@ -14,8 +14,8 @@ NaN/inf), sets ``parser.set_defaults(func=run_<name>)`` and returns the parser; 
 
 from __future__ import annotations
 
-from . import (assess, codecheck, curves, defects, dem, ensemble, fragility, importdxf, limit,
-               paper, respond, sensitivity, verify)
+from . import (app, assess, codecheck, curves, defects, dem, ensemble, fragility, importdxf,
+               limit, paper, respond, sensitivity, verify)
 from ._parser import (SUBCOMMANDS, CLIError, emit_json, finite_float, new_parser,
                       non_negative_int, positive_float, run_command, subcommand)
 from .options import (GEOMETRY_DEFAULTS, add_geometry_options, add_impact_options,
@@ -47,6 +47,7 @@ SUBCOMMANDS.update({
     "sensitivity": sensitivity.add_sensitivity_parser,
     "dem": dem.add_dem_parser,
     "verify": verify.add_verify_parser,
+    "app": app.add_app_parser,
 })
 
 

@@ -1,0 +1,519 @@
+"""What the app's endpoints compute, without the web framework: JSON in, JSON-ready dicts out.
+
+Every function here validates its request as the command line does (the same option names,
+the same library checks: :func:`archrock.cli.options.arch_from_args` builds the arch) and calls
+the same library functions as the CLI (``limit``, ``respond``, ``ensemble``); nothing here is
+physics.  A bad value raises :class:`~archrock.errors.ArchInputError` (or the CLI's
+``CLIError``), whose one-line message names the field; the server turns it into HTTP 400.
+
+Lengths in m, angles in degrees, accelerations in g, times in s, rotations in rad.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import math
+import threading
+import time
+
+import numpy as np
+
+from ..errors import ArchInputError
+
+#: Work bounds of one request (the CLI allows more; an interactive page should answer in
+#: about a second): voussoirs of an arch, ...
+MAX_VOUSSOIRS = 120
+#: ... end of a response's output window [s] and the pulse's duration [s] ...
+MAX_T_END_S = 20.0
+MAX_PULSE_S = 5.0
+#: ... |amplitude| [g] of a pulse ...
+MAX_AMPLITUDE_G = 10.0
+#: ... frames of an animation ...
+MAX_FRAMES = 300
+#: ... arches of an ensemble, and its estimated time [s] (archrock.studies.work's costs).
+MAX_SAMPLES = 20_000
+MAX_ENSEMBLE_WORK_S = 120.0
+#: Largest uploaded geometry (characters of JSON).
+MAX_UPLOAD_CHARS = 2_000_000
+
+#: Library calls are made one at a time: numba's parallel loops (ensemble batches) must not
+#: run in two threads at once, and a local app has one user.
+COMPUTE_LOCK = threading.RLock()
+
+SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
+JOINTS = ("normal", "vertical")
+PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
+
+
+# ---------------------------------------------------------------------------- field checks
+def _number(params: dict, name: str, default=None, *, integer: bool = False):
+    """``params[name]`` as a finite float (or int), ``default`` when absent or null;
+    ArchInputError naming ``name`` otherwise."""
+    v = params.get(name, default)
+    if v is None:
+        return None
+    if isinstance(v, str):
+        try:
+            v = float(v.strip())
+        except ValueError:
+            raise ArchInputError(f"{name}: expected a number, got {v!r}") from None
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise ArchInputError(f"{name}: expected a number, got {v!r}")
+    if not math.isfinite(v):
+        raise ArchInputError(f"{name}: must be a finite number, got {v!r}")
+    if integer:
+        if int(v) != v:
+            raise ArchInputError(f"{name}: expected an integer, got {v!r}")
+        return int(v)
+    return float(v)
+
+
+def _choice(params: dict, name: str, allowed, default=None):
+    v = params.get(name, default)
+    if v is None:
+        return None
+    if v not in allowed:
+        raise ArchInputError(f"{name}: {v!r}; allowed one of {', '.join(allowed)}")
+    return v
+
+
+def _dict(params, name: str) -> dict:
+    v = params.get(name) if isinstance(params, dict) else None
+    if v is None:
+        return {}
+    if not isinstance(v, dict):
+        raise ArchInputError(f"{name}: expected an object, got {type(v).__name__}")
+    return v
+
+
+def _request(body) -> dict:
+    if not isinstance(body, dict):
+        raise ArchInputError(f"request: expected a JSON object, got {type(body).__name__}")
+    return body
+
+
+# ---------------------------------------------------------------------------- the arch
+def arch_from_params(params: dict):
+    """The arch of ``params`` (the JSON form of the CLI's geometry options):
+
+    ``{"geometry": {...}}`` an uploaded geometry file's JSON (either format), or
+    ``{"shape", "span", "rise", "thickness", "thickness_crown", "joints", "voussoirs",
+    "density"}`` an arch of a family, or ``{"radius", "embrace", ...}`` a circular arch; with
+    ``"defects": ["3:thickness=0.5", ...]`` and ``"pier_height"``/``"pier_width"``/
+    ``"pier_courses"`` as the CLI's --defect and --pier-* options.  Built by the CLI's own
+    :func:`~archrock.cli.options.arch_from_args`."""
+    from ..cli.options import arch_from_args
+
+    params = _request(params)
+    n = _number(params, "voussoirs", integer=True)
+    if n is not None and n > MAX_VOUSSOIRS:
+        raise ArchInputError(f"voussoirs: {n}; the app allows 3 to {MAX_VOUSSOIRS} "
+                             f"(the command line up to 2000)")
+    defects = params.get("defects") or []
+    if not isinstance(defects, list) or not all(isinstance(d, str) for d in defects):
+        raise ArchInputError("defects: expected a list of defect specifications such as "
+                             "'3:thickness=0.5'")
+    if len(defects) > 50:
+        raise ArchInputError(f"defects: {len(defects)}; allowed at most 50")
+    ns = argparse.Namespace(
+        radius=_number(params, "radius"), embrace=_number(params, "embrace"),
+        shape=_choice(params, "shape", SHAPES), span=_number(params, "span"),
+        rise=_number(params, "rise"), thickness=_number(params, "thickness"),
+        thickness_crown=_number(params, "thickness_crown"),
+        joints=_choice(params, "joints", JOINTS), voussoirs=n,
+        density=_number(params, "density"), geometry=None, defect=defects or None,
+        pier_height=_number(params, "pier_height"), pier_width=_number(params, "pier_width"),
+        pier_courses=_number(params, "pier_courses", integer=True))
+    geometry = params.get("geometry")
+    if geometry is not None:
+        arch = _uploaded_arch(geometry, ns, params.get("name"))
+    else:
+        arch = arch_from_args(ns)
+    if arch.n > MAX_VOUSSOIRS:
+        raise ArchInputError(f"voussoirs: {arch.n}; the app allows 3 to {MAX_VOUSSOIRS}")
+    return arch
+
+
+def _uploaded_arch(data, ns, name):
+    """The arch of an uploaded geometry file's parsed JSON (``archrock random-arch`` writes
+    one), with the request's defects and piers; the geometry flags are refused beside it, as
+    the CLI refuses them beside --geometry."""
+    from ..cli.options import _piers_from_args
+    from ..geometry import apply_defects, arch_from_dict
+
+    given = [f for f in ("radius", "embrace", "shape", "span", "rise", "thickness",
+                         "thickness_crown", "joints", "voussoirs", "density")
+             if getattr(ns, f) is not None]
+    if given:
+        raise ArchInputError(f"geometry: cannot be combined with {', '.join(given)}; the file "
+                             f"holds the whole geometry")
+    if not isinstance(data, dict):
+        raise ArchInputError("geometry: expected the JSON object of a geometry file")
+    vs = data.get("voussoirs")
+    if isinstance(vs, list) and len(vs) > MAX_VOUSSOIRS:
+        raise ArchInputError(f"geometry: {len(vs)} voussoirs; the app allows 3 to {MAX_VOUSSOIRS}")
+    label = name if isinstance(name, str) and name.strip() else "uploaded"
+    try:
+        arch = arch_from_dict(data, name=label[:80])
+    except ArchInputError as exc:
+        raise ArchInputError(f"geometry: {exc}") from None
+    except (TypeError, ValueError, KeyError) as exc:  # a malformed file the library did not name
+        raise ArchInputError(f"geometry: not a geometry file ({exc})") from None
+    if ns.defect:
+        arch = apply_defects(arch, ns.defect)
+    return _piers_from_args(ns, arch)
+
+
+def _xy(a) -> list:
+    return np.round(np.asarray(a, float), 6).tolist()
+
+
+def arch_drawing(arch) -> dict:
+    """What the page draws of an arch: each voussoir's closed outline [[x, y], ...] [m], each
+    joint's contact segment (intrados end, extrados end) [m] and the ground level [m]."""
+    from ..reports.plots import springing_level, voussoir_outline
+
+    outlines = [_xy(voussoir_outline(arch, i, points_per_rad=30.0)) for i in range(arch.n)]
+    return {"name": arch.name, "n": int(arch.n), "outlines": outlines,
+            "joints": _xy(arch.joint_points), "ground": springing_level(arch),
+            "kind": type(arch).__name__}
+
+
+# ---------------------------------------------------------------------------- statics
+def limit(params: dict) -> dict:
+    """``archrock limit --json`` of the arch of ``params["arch"]`` (with ``"friction": MU``:
+    the multipliers at that friction; ``"thrust_range": true``: the least and greatest
+    thrust), plus the drawing: voussoirs, both thrust lines (funicular polygons [m]) and the
+    hinge points [m].  ``elapsed_ms``: the server's time."""
+    from ..statics.friction import friction_analysis, friction_needed
+    from ..statics.limit import limit_analysis
+    from ..reports.limit import limit_summary
+
+    params = _request(params)
+    t0 = time.perf_counter()
+    arch = arch_from_params(_dict(params, "arch"))
+    mu = _number(params, "friction")
+    if mu is not None and mu <= 0:
+        raise ArchInputError(f"friction: {mu:g}; allowed a finite number > 0")
+    want_thrust = bool(params.get("thrust_range", False))
+    with COMPUTE_LOCK:
+        result = limit_analysis(arch, verify=True)
+        extra = {"friction": friction_analysis(arch, mu) if mu is not None else None}
+        extra["needed"] = friction_needed(arch) if mu is None else None
+        if want_thrust:
+            from ..statics.thrust import thrust_range
+
+            extra["thrust"] = thrust_range(arch)
+        summary = limit_summary(result, None, **extra)
+    for key in ("geometry", "voussoirs"):
+        summary.pop(key, None)  # the drawing below says it at the page's precision
+    hinges = {}
+    for d in ("l", "r"):
+        m = result.mechanism(d)
+        hinges[d] = [{"label": lab, "joint": int(h.joint), "edge": h.edge,
+                      "point": _xy(arch.joint_point(h.joint, h.edge))}
+                     for lab, h in m.labelled()]
+    lines = {d: _xy((result.thrust_l if d == "l" else result.thrust_r).polyline)
+             for d in ("l", "r")}
+    if want_thrust:
+        tr = extra["thrust"]
+        lines["min"], lines["max"] = _xy(tr.line_min.polyline), _xy(tr.line_max.polyline)
+    return {"summary": summary, "drawing": arch_drawing(arch), "thrust_lines": lines,
+            "hinges": hinges, "elapsed_ms": 1e3 * (time.perf_counter() - t0)}
+
+
+# ---------------------------------------------------------------------------- dynamics
+def pulse_spec(params):
+    """The :class:`~archrock.groundmotion.PulseSpec` of ``{"kind", "amplitude", "duration"}``
+    ([g], [s]), within the app's bounds."""
+    from ..groundmotion import PulseSpec
+
+    if not isinstance(params, dict):
+        raise ArchInputError("pulse: expected an object with kind, amplitude [g], duration [s]")
+    kind = _choice(params, "kind", PULSE_KINDS, "oppenheim")
+    a = _number(params, "amplitude")
+    tp = _number(params, "duration")
+    if a is None or tp is None:
+        raise ArchInputError("pulse: amplitude [g] and duration [s] are both needed")
+    if a == 0 or abs(a) > MAX_AMPLITUDE_G:
+        raise ArchInputError(f"amplitude: {a:g}; allowed 0 < |amplitude| <= {MAX_AMPLITUDE_G:g} g")
+    if not 0 < tp <= MAX_PULSE_S:
+        raise ArchInputError(f"duration: {tp:g}; allowed 0 < duration <= {MAX_PULSE_S:g} s")
+    return PulseSpec(kind, a, tp)
+
+
+def respond(params: dict) -> dict:
+    """``archrock respond --json`` of ``params["arch"]`` under ``params["pulse"]``, with the
+    time history (``time`` [s], ``phi`` [rad], signed: + in M_l, - in M_r, null after the
+    rotation limit) and the animation: ``frames`` (at most :data:`MAX_FRAMES`), each
+    ``[t, phi, row, th1, th2, th3, bx, by, cx, cy]``: the chain row open (-1 at rest) and the
+    rotations [rad] of its three links and the moved hinges B, C [m] (the library's four-bar
+    kinematics, :func:`archrock.dynamics.fourlink.configuration`) at ``exaggerate`` (1 to 50,
+    default 1: to scale) times the rotation; ``chain_links`` gives, per row, the hinge points A,
+    B, C, D at rest and the voussoirs of each link."""
+    from ..dynamics.fourlink import configuration
+    from ..dynamics.response import prepare
+    from ..dynamics.response import respond as respond_
+
+    params = _request(params)
+    t0 = time.perf_counter()
+    arch = arch_from_params(_dict(params, "arch"))
+    spec = pulse_spec(params.get("pulse"))
+    t_end = _number(params, "t_end", 3.0)
+    if not 0 < t_end <= MAX_T_END_S:
+        raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= {MAX_T_END_S:g} s")
+    ex = _number(params, "exaggerate", 1.0)
+    if not 1 <= ex <= 50:
+        raise ArchInputError(f"exaggerate: {ex:g}; allowed 1 to 50 (the drawn rotations' factor)")
+    dt_out = max(0.002, t_end / 2000)
+    motion = spec.build()
+    with COMPUTE_LOCK:
+        model = prepare(arch)
+        res = respond_(model, motion, t_end=t_end, dt_out=dt_out)
+    out = res.to_dict(samples=False)
+    out.pop("arch", None)
+    t, phi = np.asarray(res.time, float), np.asarray(res.response, float)
+    held = phi.copy()
+    finite = np.isfinite(held)
+    if not finite.all():  # after the rotation limit: hold the last computed position
+        last = np.flatnonzero(finite)
+        held[~finite] = held[last[-1]] if last.size else 0.0
+    nf = int(min(MAX_FRAMES, max(2, round(t_end * 50))))
+    ft = np.linspace(0.0, float(t[-1]), nf)
+    rows = np.asarray(res.rows_at(ft), int)
+    if res.collapsed and res.t_limit is not None:
+        lim = [e for e in res.events if e.kind == "limit"]
+        if lim:
+            rows[ft >= res.t_limit] = lim[-1].row_before
+    frames = []
+    chain = model.chain[0]
+    for tk, row in zip(ft, rows):
+        val = float(np.interp(tk, t, held))
+        row = int(row)
+        if row < 0:
+            frames.append([round(float(tk), 5), round(val, 7), -1, 0, 0, 0, 0, 0, 0, 0])
+            continue
+        fl = chain[row]
+        # the drawn rotation, ``ex`` times the computed one (archrock.reports.animate's exaggerate)
+        rot = max(0.0, (1.0 if fl.direction == "l" else -1.0) * val)
+        bx, by, cx, cy, th1, th2, th3, ok = configuration(ex * rot, fl.geo)
+        if not ok:  # the exaggerated chain would pass its dead point: drawn to scale
+            bx, by, cx, cy, th1, th2, th3, ok = configuration(rot, fl.geo)
+        frames.append([round(float(tk), 5), round(val, 7), row,
+                       *(round(float(x), 8) for x in (th1, th2, th3)),
+                       *(round(float(x), 6) for x in (bx, by, cx, cy))])
+    step = max(1, len(t) // 1500)
+    out.update({
+        "drawing": arch_drawing(arch),
+        "chain_links": [{"direction": fl.direction, "points": _xy(fl.points),
+                         "links": [list(map(int, v)) for v in fl.link_voussoirs],
+                         "label": lab}
+                        for fl, lab in zip(chain, model.labels)],
+        "time": _xy(t[::step]),
+        "phi": [None if not math.isfinite(x) else round(float(x), 7) for x in phi[::step]],
+        "ground": {"time": _xy(motion.times), "accel_g": _xy(np.asarray(motion.accel) / 9.80665)},
+        "frames": frames,
+        "pulse": spec.to_dict(),
+        "exaggerate": ex,
+        "elapsed_ms": 1e3 * (time.perf_counter() - t0),
+    })
+    return out
+
+
+# ---------------------------------------------------------------------------- ensemble
+def ensemble_config(params: dict):
+    """The :class:`~archrock.studies.ensemble.EnsembleConfig` of an ensemble request: ``arch``,
+    ``samples`` (1 to :data:`MAX_SAMPLES`), ``seed``, ``spreads`` ({span, thickness, radius,
+    tilt}, the CLI's --spread-*), an optional ``pulse``; refused above
+    :data:`MAX_ENSEMBLE_WORK_S` by the package's cost of an arch
+    (:mod:`archrock.studies.work`)."""
+    from .._jit import HAVE_NUMBA
+    from ..geometry.sampling import Spreads
+    from ..studies.ensemble import EnsembleConfig
+    from ..studies.work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
+
+    params = _request(params)
+    nominal = arch_from_params(_dict(params, "arch"))
+    samples = _number(params, "samples", 1000, integer=True)
+    if not 1 <= samples <= MAX_SAMPLES:
+        raise ArchInputError(f"samples: {samples}; allowed 1 to {MAX_SAMPLES} in the app "
+                             f"(archrock ensemble for more)")
+    seed = _number(params, "seed", 0, integer=True)
+    if seed < 0:
+        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
+    sp = _dict(params, "spreads")
+    spreads = Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
+                                                       ("radius", 0.05), ("tilt", 0.0))))
+    motion = pulse_spec(params["pulse"]) if params.get("pulse") is not None else None
+    each = (SAMPLE_RESPONSE_S if motion is not None else SAMPLE_LIMIT_S) * (1 if HAVE_NUMBA else 50)
+    est = samples * each
+    if est > MAX_ENSEMBLE_WORK_S:
+        raise ArchInputError(f"samples: {samples} arches, estimated {format_duration(est)} here; "
+                             f"the app runs up to {format_duration(MAX_ENSEMBLE_WORK_S)} "
+                             f"(archrock ensemble for more)")
+    batch = int(min(500, max(50, math.ceil(samples / 20))))
+    return EnsembleConfig.from_arch(nominal, samples=samples, seed=seed, spreads=spreads,
+                                    batch_size=batch, motion=motion)
+
+
+def run_ensemble_job(config, progress, cancelled) -> dict | None:
+    """Run ``config`` batch by batch (:func:`archrock.studies.ensemble.compute.run_batches`, as
+    ``archrock ensemble`` does in-process), calling ``progress(done, total)`` after each and
+    stopping (returning None) once ``cancelled()``; the summary is the CLI's
+    (:meth:`~archrock.studies.ensemble.summary.EnsembleResult.summary`) with the histogram of
+    k = min(k_l, k_r) [g]."""
+    import pandas as pd
+
+    from ..studies.ensemble.compute import run_batches
+    from ..studies.ensemble.run import _impact_info, _nominal_info
+    from ..studies.ensemble.summary import EnsembleResult
+
+    t0 = time.perf_counter()
+    with COMPUTE_LOCK:
+        nominal, impact = _nominal_info(config), _impact_info(config)
+    frames, done = [], 0
+    for b in range(config.n_batches):
+        if cancelled():
+            return None
+        with COMPUTE_LOCK:
+            _, df, _ = run_batches(config, [b], parallel=True)[0]
+        frames.append(df)
+        done += len(df)
+        progress(done, config.samples)
+    frame = pd.concat(frames, ignore_index=True)
+    wall = time.perf_counter() - t0
+    summary = EnsembleResult(config, frame, nominal, impact,
+                             {"wall_s": wall, "executor": "app (in-process)"}).summary()
+    kl, kr = frame["k_l"].to_numpy(float), frame["k_r"].to_numpy(float)
+    with np.errstate(invalid="ignore"):
+        ok = np.isfinite(kl) & np.isfinite(kr) & (kl > 0) & (kr > 0)
+    k = np.minimum(kl, kr)[ok]
+    counts, edges = (np.histogram(k, bins=30) if k.size else (np.zeros(0), np.zeros(0)))
+    return {"summary": summary, "histogram": {"edges": _xy(edges), "counts": counts.tolist(),
+                                              "of": "k = min(k_l, k_r) [g]"},
+            "wall_s": wall}
+
+
+# ---------------------------------------------------------------------------- collapse curve
+#: Collapse-acceleration curves: random arches, durations, and their product (each arch and
+#: duration is one bisection of about 20 responses: 100 x 7 take about 13 s here).
+MAX_CURVE_SAMPLES = 200
+MAX_CURVE_DURATIONS = 12
+MAX_CURVE_WORK = 1500
+
+
+def curve_request(params: dict) -> dict:
+    """The checked arguments of :func:`run_curve_job`: ``arch``, ``samples`` (1 to
+    :data:`MAX_CURVE_SAMPLES`), ``seed``, ``spreads`` as the ensemble's, ``durations`` [s]
+    (a list, or text such as "0.1,0.2,0.5"), ``kind`` of pulse (negative amplitudes, the
+    paper's)."""
+    from ..geometry.sampling import Spreads
+    from ..studies.curves import parse_range
+
+    params = _request(params)
+    nominal = arch_from_params(_dict(params, "arch"))
+    samples = _number(params, "samples", 30, integer=True)
+    if not 1 <= samples <= MAX_CURVE_SAMPLES:
+        raise ArchInputError(f"samples: {samples}; allowed 1 to {MAX_CURVE_SAMPLES} for a curve "
+                             f"in the app (archrock curves for more)")
+    seed = _number(params, "seed", 0, integer=True)
+    if seed < 0:
+        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
+    sp = _dict(params, "spreads")
+    spreads = Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
+                                                       ("radius", 0.05), ("tilt", 0.0))))
+    d = params.get("durations", "0.1,0.2,0.3,0.5,0.8,1.2")
+    if isinstance(d, list):
+        d = ",".join(str(x) for x in d)
+    if not isinstance(d, str):
+        raise ArchInputError("durations: expected numbers such as 0.1,0.2,0.5 [s]")
+    parts = d.split(":")
+    if len(d) > 300 or (len(parts) == 3 and parts[2].strip().isdigit()
+                        and int(parts[2]) > MAX_CURVE_DURATIONS):
+        raise ArchInputError(f"durations: {d[:40]!r}; allowed 1 to {MAX_CURVE_DURATIONS} "
+                             f"durations")  # checked before parse_range builds the list
+    durations = [float(x) for x in parse_range(d, "durations")]
+    if not 1 <= len(durations) <= MAX_CURVE_DURATIONS or max(durations) > MAX_PULSE_S:
+        raise ArchInputError(f"durations: {len(durations)} of up to {max(durations):g} s; allowed "
+                             f"1 to {MAX_CURVE_DURATIONS} durations of at most {MAX_PULSE_S:g} s")
+    from .._jit import HAVE_NUMBA
+
+    bound = MAX_CURVE_WORK if HAVE_NUMBA else MAX_CURVE_WORK // 50  # pure Python: ~50x slower
+    if samples * len(durations) > bound:
+        raise ArchInputError(f"samples: {samples} arches x {len(durations)} durations; the app "
+                             f"allows {bound} here (archrock curves for more)")
+    kind = _choice(params, "kind", PULSE_KINDS, "oppenheim")
+    return {"nominal": nominal, "samples": samples, "seed": seed, "spreads": spreads,
+            "durations": durations, "kind": kind}
+
+
+def run_curve_job(req: dict, progress, cancelled) -> dict | None:
+    """The collapse-acceleration curve of the nominal arch and the 5/50/95% band over
+    ``samples`` random arches (:func:`archrock.studies.curves.ensemble_curve`, as
+    ``archrock curves --samples``), one duration at a time so that it shows progress and can be
+    cancelled between durations (each arch and duration is searched on its own: the same numbers
+    as one call).  Amplitudes [g] as magnitudes; null where no collapse up to 10 g."""
+    from ..studies.curves import ensemble_curve
+
+    t0 = time.perf_counter()
+    out = {"durations": [], "nominal_g": [], "q05_g": [], "q50_g": [], "q95_g": []}
+    n_used, failed = None, 0
+    total = req["samples"] * len(req["durations"])
+    for i, d in enumerate(req["durations"]):
+        if cancelled():
+            return None
+        with COMPUTE_LOCK:
+            c = ensemble_curve(req["nominal"], req["samples"], req["seed"], req["spreads"],
+                               durations=(d,), kind=req["kind"])
+        out["durations"].append(d)
+        out["nominal_g"].append(float(c.nominal.amplitudes[0]))
+        for key, row in zip(("q05_g", "q50_g", "q95_g"), c.bands):
+            out[key].append(float(row[0]))
+        n_used, failed = c.n_samples, len(c.failed)
+        progress((i + 1) * req["samples"], total)
+    return {**out, "samples": req["samples"], "n_used": n_used, "left_out": failed,
+            "kind": req["kind"], "wall_s": time.perf_counter() - t0}
+
+
+# ---------------------------------------------------------------------------- export
+def export(params: dict) -> tuple[str, str, str]:
+    """A download: (file name, media type, text). ``what``: "geometry" (the JSON geometry
+    file, as ``archrock random-arch --out`` writes), "limit" (``archrock limit --json``),
+    "thrust-csv" (each joint's thrust-line crossings [m], both directions) or
+    "response-csv" (t [s], phi [rad] of the pulse response)."""
+    import json
+
+    from ..cli._parser import json_safe
+
+    params = _request(params)
+    what = _choice(params, "what", ("geometry", "limit", "thrust-csv", "response-csv"))
+    if what is None:
+        raise ArchInputError("what: needed; allowed one of geometry, limit, thrust-csv, "
+                             "response-csv")
+    if what == "geometry":
+        arch = arch_from_params(_dict(params, "arch"))
+        data = {**arch.to_dict(), "metadata": {"generator": "archrock app"}}
+        return "arch.json", "application/json", json.dumps(json_safe(data), indent=2) + "\n"
+    if what == "limit":
+        res = limit(params)
+        return "limit.json", "application/json", json.dumps(json_safe(res["summary"]),
+                                                            indent=2) + "\n"
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    if what == "thrust-csv":
+        from ..statics.limit import limit_analysis
+
+        arch = arch_from_params(_dict(params, "arch"))
+        with COMPUTE_LOCK:
+            r = limit_analysis(arch, verify=True)
+        w.writerow(["joint", "x_l_m", "y_l_m", "x_r_m", "y_r_m"])
+        for j, (pl, pr) in enumerate(zip(r.thrust_l.points, r.thrust_r.points)):
+            w.writerow([j, *(f"{v:.6f}" for v in (*pl, *pr))])
+        return "thrust.csv", "text/csv", buf.getvalue()
+    res = respond(params)
+    w.writerow(["t_s", "phi_rad"])
+    for tk, ph in zip(res["time"], res["phi"]):
+        w.writerow([f"{tk:.5f}", "" if ph is None else f"{ph:.7f}"])
+    return "response.csv", "text/csv", buf.getvalue()
