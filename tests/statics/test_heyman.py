@@ -10,7 +10,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from archrock.statics import limit
+from archrock.statics import kinematic, limit
 from archrock.dynamics.batch import prepare_batch
 from archrock.errors import CannotStandError, GeometryOutcome, NotFourHingeError
 from archrock.geometry import Arch, Load, family_arch, nominal_arch, oppenheim_arch
@@ -266,7 +266,7 @@ def test_batch_of_many_voussoirs_leaves_lift_off_out_without_a_full_enumeration(
     def refuse(*args, **kwargs):
         raise AssertionError("the batch ran a full enumeration")
 
-    monkeypatch.setattr(limit, "_full_enumeration", refuse)
+    monkeypatch.setattr(kinematic, "_full_enumeration", refuse)
     pb = prepare_batch([arch], impact="momentum")
     assert left_out_outcome(pb.error[0]) == "lift_off"
     np.testing.assert_allclose([pb.k_l[0], pb.k_r[0]], [res.k_l, res.k_r], rtol=1e-7)

@@ -8,7 +8,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from archrock.statics import limit
+from archrock.statics import kinematic, limit
 from archrock.errors import ArchInputError, CannotStandError, LimitExceededError
 from archrock.geometry import Arch, nominal_arch, oppenheim_arch, random_arch
 from archrock.statics.limit import Hinge, Mechanism
@@ -229,7 +229,7 @@ def test_numpy_and_compiled_paths_agree(monkeypatch):
     """The optional numba kernel and the numpy enumeration give identical results."""
     arches, (S, R, T) = _batch(7, 60, 7)
     ref = limit.kinematic_multipliers_batch(S, R, T)
-    monkeypatch.setattr(limit, "_NUMBA_ENABLED", False)
+    monkeypatch.setattr(kinematic, "_NUMBA_ENABLED", False)
     out = limit.kinematic_multipliers_batch(S, R, T)
     for x, y in zip(ref, out):
         np.testing.assert_array_equal(x, y)

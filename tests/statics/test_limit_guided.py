@@ -11,7 +11,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from archrock.statics import limit
+from archrock.statics import kinematic, limit
 from archrock.errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
 from archrock.geometry import nominal_arch, oppenheim_arch, random_arch
 
@@ -132,7 +132,7 @@ def test_candidate_index_inverts_candidate_hinges():
 def test_search_falls_back_to_the_enumeration(monkeypatch):
     arch = random_arch(nominal_arch(10.0, 157.5, 1.5, 44), seed=2)
     ref = limit.kinematic_multipliers_batch(*_rows(arch), method="enumeration")
-    monkeypatch.setattr(limit, "_CONFIRM_RTOL", -1.0)  # no mechanism is ever confirmed
+    monkeypatch.setattr(kinematic, "_CONFIRM_RTOL", -1.0)  # no mechanism is ever confirmed
     out = limit.kinematic_multipliers_batch(*_rows(arch), method="guided")
     for x, y in zip(ref, out):
         np.testing.assert_array_equal(x, y)
@@ -152,21 +152,21 @@ def test_full_enumeration_estimates_its_work(monkeypatch):
         limit.kinematic_mechanisms(arch, method="enumeration", max_seconds=1e-3)
     limit.kinematic_mechanisms(arch, method="enumeration", max_seconds=1.0)
     # without numba the candidate list must fit in memory
-    monkeypatch.setattr(limit, "_NUMBA_ENABLED", False)
+    monkeypatch.setattr(kinematic, "_NUMBA_ENABLED", False)
     with pytest.raises(LimitExceededError, match=r"memory.*GB.*'fast' extra"):
         limit.kinematic_mechanisms(nominal_arch(10.0, 157.5, 1.5, 60), method="enumeration")
 
 
 @pytest.mark.parametrize("numba", [True, False])
 def test_long_enumeration_reports_progress(monkeypatch, capsys, numba):
-    if numba and not limit._NUMBA_ENABLED:
+    if numba and not kinematic._NUMBA_ENABLED:
         pytest.skip("numba not available")
-    monkeypatch.setattr(limit, "_NUMBA_ENABLED", numba)
+    monkeypatch.setattr(kinematic, "_NUMBA_ENABLED", numba)
     arch = random_arch(nominal_arch(10.0, 157.5, 1.5, 14), seed=1)
     ref = limit.kinematic_multipliers_batch(*_rows(arch), method="enumeration")
     assert capsys.readouterr().err == ""
-    monkeypatch.setattr(limit, "_PROGRESS_SECONDS", 0.0)
-    monkeypatch.setattr(limit, "_BLOCK_ELEMENTS", 512)  # several numpy blocks
+    monkeypatch.setattr(kinematic, "_PROGRESS_SECONDS", 0.0)
+    monkeypatch.setattr(kinematic, "_BLOCK_ELEMENTS", 512)  # several numpy blocks
     # the library never prints: the lines go to the callable of limit_progress, if any
     limit.kinematic_multipliers_batch(*_rows(arch), method="enumeration", chunk=1)
     assert capsys.readouterr().err == ""
@@ -231,7 +231,7 @@ def test_cli_prints_the_progress_of_a_long_enumeration(monkeypatch, capsys):
     itself stays silent (above)."""
     from archrock.cli import main
 
-    monkeypatch.setattr(limit, "_PROGRESS_SECONDS", 0.0)
+    monkeypatch.setattr(kinematic, "_PROGRESS_SECONDS", 0.0)
     assert main(["limit", "--voussoirs", "14", "--json"]) == 0
     err = capsys.readouterr().err
     assert "archrock limit analysis: full enumeration of" in err and "done in" in err

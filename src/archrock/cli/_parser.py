@@ -188,7 +188,7 @@ def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse: --help/--version (0) or a usage error (2)
         return int(exc.code) if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_USAGE)
-    from ..statics.limit import limit_progress
+    from ..statics.kinematic import limit_progress
 
     # long limit analyses (a full enumeration above about 5 s) say how far they are, on stderr,
     # unless the command was asked for no progress

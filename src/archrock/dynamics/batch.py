@@ -36,9 +36,11 @@ from ..errors import ArchInputError, ArchrockError
 from .impact import ImpactSpec, fallback_note
 from ..geometry import Arch, power_of_two_near, sector_properties
 from ..groundmotion import G, GroundMotion
-from ..statics.limit import (LIFT_OFF_REASON, _batch_sums, _mechanism_from_candidate, arch_sums,
-                             candidate_hinges, certify_candidates, kinematic_multipliers_arches,
-                             kinematic_multipliers_batch, static_multiplier)
+from ..statics.hinges import _mechanism_from_candidate, candidate_hinges
+from ..statics.kinematic import kinematic_multipliers_arches, kinematic_multipliers_batch
+from ..statics.liftoff import LIFT_OFF_REASON, certify_candidates
+from ..statics.lp import static_multiplier
+from ..statics.sums import _batch_sums, arch_sums
 from .fourlink import (GEO_ERRORS, GEO_SIZE, check_table_intervals, coefficients, dead_point,
                        init_table, mechanism_geo, rest_rate, rotation_limit, table_range,
                        table_size, unstable_rotation)

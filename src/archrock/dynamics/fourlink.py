@@ -27,7 +27,7 @@ from .._jit import maybe_njit
 from .._records import readonly_arrays
 from ..errors import ArchInputError, NotFourHingeError
 from ..geometry import VoussoirArch
-from ..statics.limit import EDGES, Mechanism
+from ..statics.hinges import EDGES, Mechanism
 from ..units import G
 
 __all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",

@@ -3,7 +3,7 @@ joints may slide as well as hinge, the friction the no-sliding (Heyman) collapse
 friction-limited minimum thickness.
 
 Any :class:`~archrock.geometry.VoussoirArch` (circular, polygon, families, with loads, tilted
-joints).  The static problem is :mod:`archrock.statics.limit`'s linear program on the redundants
+joints).  The static problem is :mod:`archrock.statics.lp`'s linear program on the redundants
 x = (F0x, F0y, M0, lambda) (forces per total weight W) with two more rows per joint.  Across
 joint j the part on its left transmits F_j; with u_j the unit vector along the joint's contact
 segment (intrados end -> extrados end) and nu_j = (u_y, -u_x) its compressive normal,
@@ -49,8 +49,9 @@ from scipy.optimize import linprog
 from .._records import readonly_arrays
 from ..errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
 from ..geometry import VoussoirArch
-from .limit import (DIRECTIONS, MinimumThickness, ThrustLine, _statics, _Statics, _thrust_from_x,
-                    thickness_bisection)
+from .hinges import DIRECTIONS
+from .lp import ThrustLine, _statics, _Statics, _thrust_from_x
+from .thickness import MinimumThickness, thickness_bisection
 
 __all__ = ["FrictionDirection", "FrictionResult", "FrictionNeeded", "friction_analysis",
            "friction_needed", "friction_minimum_thickness", "joint_shear_normal",
@@ -134,7 +135,7 @@ def _force_rows(st: _Statics):
 
 class _FrictionStatics:
     """The static program of one arch and direction with Coulomb rows at friction mu:
-    ``A x <= b`` with the no-tension rows of :func:`archrock.statics.limit._statics` first, then
+    ``A x <= b`` with the no-tension rows of :func:`archrock.statics.lp._statics` first, then
     T - mu N <= 0 and -T - mu N <= 0 for every joint."""
 
     def __init__(self, arch: VoussoirArch, direction: str):
@@ -163,7 +164,7 @@ class _FrictionStatics:
     def margin(self, lam: float, mu: float | None):
         """(s, x): the largest common slack s <= 1 of every row at multiplier ``lam``: s >= 0
         where a state admissible with friction mu exists (deciding on the sign of an optimum,
-        not on the solver's feasibility verdict, as :func:`archrock.statics.limit._stands`)."""
+        not on the solver's feasibility verdict, as :func:`archrock.statics.lp._stands`)."""
         A, b = self.rows(mu)
         # unknowns (F0x, F0y, M0, s); lambda fixed
         A_s = np.column_stack([A[:, :3], np.ones(A.shape[0])])

@@ -7,8 +7,8 @@ The minimum thrust is the one an arch settles to when its supports spread, the m
 takes when they close; the joints where each extreme line of thrust touches the intrados or the
 extrados are the hinges that open then.
 
-Both extremes are linear programs (HiGHS) on the static program of :mod:`archrock.statics.limit`
-(:func:`archrock.statics.limit._statics`, direction 'l'): the unknowns x = (F0x, F0y, M0, lambda) are the
+Both extremes are linear programs (HiGHS) on the static program of :mod:`archrock.statics.lp`
+(:func:`archrock.statics.lp._statics`, direction 'l'): the unknowns x = (F0x, F0y, M0, lambda) are the
 reactions at the left springing per total weight W and per W times the reference length, lambda is
 fixed at 0, and F0x, the horizontal force the left support exerts on the arch, is minimised and
 maximised.  F0x > 0 is compression pushing the springings apart (the left support pushes the arch
@@ -26,7 +26,8 @@ from scipy.optimize import linprog
 
 from ..errors import ArchInputError, CannotStandError, LimitExceededError
 from ..geometry import VoussoirArch
-from .limit import EDGES, Hinge, ThrustLine, _statics, _thrust_from_x
+from .hinges import EDGES, Hinge
+from .lp import ThrustLine, _statics, _thrust_from_x
 from ..units import G
 
 __all__ = ["ThrustRange", "thrust_range", "TOUCH_TOL"]

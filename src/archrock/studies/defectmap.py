@@ -24,7 +24,7 @@ from .._records import readonly_arrays
 from ..errors import UNUSABLE_ARCH, ArchInputError, CannotStandError, GeometryOutcome
 from ..geometry import Defect, VoussoirArch, apply_defect
 from ..geometry.defect import defect_base
-from ..statics.limit import kinematic_mechanisms
+from ..statics.kinematic import kinematic_mechanisms
 from .._progress import check_progress
 
 __all__ = ["DefectMap", "defect_map"]

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from itertools import combinations, product
 
 from ...errors import ArchInputError
-from ...statics.limit import EDGES, Hinge, Mechanism
+from ...statics.hinges import EDGES, Hinge, Mechanism
 from ..fourlink import FourLink, four_link
 from .laws import _m0, momentum_rate_ratio
 

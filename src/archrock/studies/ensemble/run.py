@@ -22,8 +22,9 @@ __all__ = ["run_ensemble"]
 
 def _nominal_info(config: EnsembleConfig) -> dict:
     from ...dynamics.batch import mechanism_label
-    from ...statics.limit import (arch_sums, certify_candidates, kinematic_mechanisms,
-                                  kinematic_multipliers_batch)
+    from ...statics.kinematic import kinematic_mechanisms, kinematic_multipliers_batch
+    from ...statics.liftoff import certify_candidates
+    from ...statics.sums import arch_sums
 
     arch = arch_from_dict(config.nominal)
     if not isinstance(arch, Arch):

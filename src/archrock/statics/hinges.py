@@ -1,0 +1,199 @@
+"""Hinges and four-hinge mechanisms of a voussoir arch, and the one enumeration of candidates.
+
+Joints are numbered 0..n from the left springing (joint 0 the left springing, n the right).  A
+hinge sits at the intrados or the extrados end of a joint's contact segment (``EDGES``, edge
+index 0 and 1).  Direction 'l' means horizontal loads toward +x (mechanism M_l), 'r' toward -x
+(M_r).  A :class:`Mechanism` carries its multiplier: the horizontal load, per unit weight, that
+activates it (kinematic theorem).
+
+Four-hinge candidates: every quadruple of joints a < b < c < d in lexicographic order, with the
+16 edge patterns of each (pattern bits: joint a's edge is bit 3, ..., joint d's bit 0); a
+candidate's index is rank(quadruple) * 16 + pattern.  :func:`_candidates` lists them,
+:func:`candidate_hinges` and :func:`_candidate_index` convert between an index and its hinges
+without the list; every search in :mod:`archrock.statics` uses this order (ties resolve to the
+first candidate in it).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+from itertools import combinations
+
+import numpy as np
+
+__all__ = ["Hinge", "Mechanism", "HINGE_LABELS", "EDGES", "DIRECTIONS", "candidate_hinges"]
+
+
+EDGES = ("intrados", "extrados")
+DIRECTIONS = ("l", "r")
+# Sign s_e such that a hinge at edge e opens when s_e * (omega_right - omega_left) > 0.
+_EDGE_SIGN = np.array([-1.0, 1.0])
+_ADMISSIBLE_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class Hinge:
+    """A hinge at the intrados or extrados end of joint ``joint`` (0 = left springing)."""
+
+    joint: int
+    edge: str
+
+    def to_dict(self) -> dict:
+        return {"joint": int(self.joint), "edge": self.edge}
+
+
+#: Hinge labels from the leading side of a mechanism (docs/method.md, Four-link equation).
+HINGE_LABELS = ("A", "B", "C", "D")
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A collapse mechanism; hinges ordered from the left springing.
+
+    direction: 'l' (loads toward +x, M_l) or 'r' (loads toward -x, M_r).
+    multiplier: the horizontal load multiplier lambda that activates it (kinematic theorem).
+    hinges: the joints that rotate about one end of their contact segment.
+    lift_off: the joints that open at both ends (the parts separate across them, with no
+    sliding); empty for the four-hinge rocking chain of Oppenheim's model.  A mechanism with
+    lift-off has fewer than four hinges (kind 'lift-off'); the four-link model does not
+    describe it (docs/method.md, The Heyman optimum).
+    """
+
+    direction: str
+    hinges: tuple[Hinge, ...]
+    multiplier: float
+    lift_off: tuple[int, ...] = ()
+
+    @property
+    def kind(self) -> str:
+        """'four-hinge' (a rocking chain of three links), 'lift-off', or 'three-hinge' (three
+        hinges on one line: a degenerate chain the dual can give, no four-link model either)."""
+        if self.lift_off:
+            return "lift-off"
+        return "four-hinge" if len(self.hinges) == 4 else f"{len(self.hinges)}-hinge".replace(
+            "3-", "three-")
+
+    @property
+    def is_four_hinge(self) -> bool:
+        return not self.lift_off and len(self.hinges) == 4
+
+    @property
+    def joints(self) -> tuple[int, ...]:
+        return tuple(h.joint for h in self.hinges)
+
+    @property
+    def label(self) -> str:
+        """Compact hinge label, joints from the left springing with their edge (i = intrados,
+        e = extrados, s = separates: lift-off), e.g. '0i-3e-5i-7e' or '0s-4i-7e'."""
+        parts = [(h.joint, f"{h.joint}{h.edge[0]}") for h in self.hinges]
+        parts += [(j, f"{j}s") for j in self.lift_off]
+        return "-".join(p for _, p in sorted(parts))
+
+    def describe(self) -> str:
+        """One line for people: the kind, the hinges and the joints that lift off."""
+        if not self.lift_off:
+            return f"{self.kind} mechanism {self.label}"
+        lifts = ", ".join(str(j) for j in self.lift_off)
+        return (f"mechanism with lift-off at joint{'s' if len(self.lift_off) > 1 else ''} "
+                f"{lifts} ({self.label})")
+
+    def labelled(self) -> list[tuple[str, Hinge]]:
+        """(label, hinge) pairs: A..D from the mechanism's leading side (docs/method.md, Four-link equation): for
+        M_l, A is the leftmost hinge; for M_r, A is the rightmost."""
+        hinges = list(self.hinges)
+        if self.direction == "r":
+            hinges = hinges[::-1]
+        return list(zip(HINGE_LABELS, hinges))
+
+    def mirrored(self, n: int) -> "Mechanism":
+        """The same mechanism on the mirror image of an n-voussoir arch."""
+        hinges = tuple(Hinge(n - h.joint, h.edge) for h in reversed(self.hinges))
+        return Mechanism("r" if self.direction == "l" else "l", hinges, self.multiplier,
+                         tuple(sorted(n - j for j in self.lift_off)))
+
+    def to_dict(self) -> dict:
+        return {"direction": self.direction, "multiplier": self.multiplier,
+                "hinges": [h.to_dict() for h in self.hinges], "kind": self.kind,
+                "lift_off": [int(j) for j in self.lift_off], "label": self.label}
+
+
+@lru_cache(maxsize=64)
+def _candidates(n: int):
+    """All (joint quadruple, edge pattern) candidates for n voussoirs, as index arrays."""
+    quads = np.array(list(combinations(range(n + 1), 4)), dtype=np.int64)
+    edges = np.array([[(p >> k) & 1 for k in (3, 2, 1, 0)] for p in range(16)], dtype=np.int64)
+    jq = np.repeat(quads, 16, axis=0)
+    eq = np.tile(edges, (len(quads), 1))
+    return jq, eq
+
+
+@lru_cache(maxsize=64)
+def _active_candidates(n: int):
+    """Indices (into :func:`_candidates`) of the candidates that can ever be admissible, with
+    precomputed gather indices.
+
+    The four relative hinge rotations q = (w1, w2 - w1, w3 - w2, -w3) add up to zero, so they
+    cannot all open a hinge at the same edge: the patterns with four intrados or four extrados
+    hinges are never admissible and are dropped (2 of the 16 patterns).  The remaining order is
+    the original one, so ties resolve to the same candidate as a full scan.
+    Returns (idx, point index per hinge (4, K'), segment-pair index per link (3, K')) with point
+    index = 2*joint + edge into the flattened (n+1, 2) point arrays and pair index = i*(n+1) + j
+    into the flattened (n+1, n+1) table of prefix-sum differences.
+    """
+    jq, eq = _candidates(n)
+    keep = ~(np.all(eq == 0, axis=1) | np.all(eq == 1, axis=1))
+    idx = np.flatnonzero(keep)
+    j, e = jq[idx], eq[idx]
+    pt = (2 * j + e).T.copy()
+    m = n + 1
+    pair = np.stack([j[:, 0] * m + j[:, 1], j[:, 1] * m + j[:, 2], j[:, 2] * m + j[:, 3]])
+    sign = _EDGE_SIGN[e].T.copy()
+    for arr in (idx, pt, pair, sign):
+        arr.setflags(write=False)
+    return idx, pt, pair, sign
+
+
+def _candidate_index(n: int, joints, edges) -> np.ndarray:
+    """Indices in the order of :func:`_candidates` of candidates given by their joints (K, 4),
+    increasing, and edges (K, 4): the inverse of :func:`candidate_hinges`, vectorised."""
+    j = np.asarray(joints, dtype=np.int64)
+    e = np.asarray(edges, dtype=np.int64)
+    m = n + 1
+    x = m - 1 - j  # combinations after a quadruple, counted by its complement (combinadic)
+    after = (x[:, 0] * (x[:, 0] - 1) * (x[:, 0] - 2) * (x[:, 0] - 3) // 24
+             + x[:, 1] * (x[:, 1] - 1) * (x[:, 1] - 2) // 6
+             + x[:, 2] * (x[:, 2] - 1) // 2 + x[:, 3])
+    rank = math.comb(m, 4) - 1 - after
+    return rank * 16 + (e[:, 0] << 3 | e[:, 1] << 2 | e[:, 2] << 1 | e[:, 3])
+
+
+_PATTERNS = np.array([[(p >> k) & 1 for k in (3, 2, 1, 0)] for p in range(16)], dtype=np.int64)
+
+
+def candidate_hinges(n: int, idx: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """(joints, edges) of candidate ``idx`` in the order of :func:`_candidates` (quadruples
+    a < b < c < d in lexicographic order, 16 edge patterns each), without building the list."""
+    rank, pattern = divmod(int(idx), 16)
+    m = n + 1
+    joints = []
+    x = 0
+    for slot in range(4):
+        left = 3 - slot
+        while True:
+            count = math.comb(m - x - 1, left)  # combinations whose slot-th joint is x
+            if rank < count:
+                joints.append(x)
+                x += 1
+                break
+            rank -= count
+            x += 1
+    edges = tuple((pattern >> k) & 1 for k in (3, 2, 1, 0))
+    return tuple(joints), edges
+
+
+def _mechanism_from_candidate(n: int, idx: int, direction: str, k: float) -> Mechanism:
+    joints, edges = candidate_hinges(n, idx)
+    hinges = tuple(Hinge(j, EDGES[e]) for j, e in zip(joints, edges))
+    return Mechanism(direction, hinges, float(k))
