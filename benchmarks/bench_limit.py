@@ -42,7 +42,7 @@ if "--no-numba" in sys.argv:
 
 import numpy as np  # noqa: E402
 
-from archrock.statics import limit  # noqa: E402
+from archrock.statics import kinematic, limit  # noqa: E402
 from archrock.geometry import (Arch, as_polygon, family_arch, nominal_arch,  # noqa: E402
                                oppenheim_arch, random_spans_thicknesses_radii)
 
@@ -122,7 +122,7 @@ def main(argv=None) -> int:
                     help="run the full enumeration where its estimate is below this (s)")
     args = ap.parse_args(argv)
 
-    backend = "numba kernel" if limit._NUMBA_ENABLED else "numpy (vectorised, blocked)"
+    backend = "numba kernel" if kinematic._NUMBA_ENABLED else "numpy (vectorised, blocked)"
     print(f"archrock limit-analysis benchmark; kinematic backend: {backend}; threads = 1")
     rows = []
     for n, n_batch in ((7, args.arches), (20, max(200, args.arches // 50))):
@@ -219,7 +219,7 @@ def bench_large(counts, enum_max_seconds: float) -> bool:
         diff = max(abs(res.k_l - res.static_k_l), abs(res.k_r - res.static_k_r))
         ok &= diff <= 1e-9
         est = limit.enumeration_estimate(n)
-        if est["seconds"] <= enum_max_seconds and (limit._NUMBA_ENABLED or n <= limit._NUMPY_MAX_VOUSSOIRS):
+        if est["seconds"] <= enum_max_seconds and (kinematic._NUMBA_ENABLED or n <= kinematic._NUMPY_MAX_VOUSSOIRS):
             t0 = time.perf_counter()
             full = limit.kinematic_mechanisms(arch, method="enumeration", max_seconds=enum_max_seconds * 2)
             t_en = time.perf_counter() - t0

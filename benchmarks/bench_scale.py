@@ -51,13 +51,13 @@ class KernelClock:
 
     def __init__(self):
         from archrock.dynamics import batch
-        from archrock.statics import limit
+        from archrock.statics import kinematic
         from archrock.dynamics.impact import compiled
 
         self.seconds = 0.0
         self._saved = []
         for mod, name in ((batch, "_prepare_loop_nb"), (batch, "_simulate_loop_nb"),
-                          (limit, "_numba_kernel_par"), (compiled, "_loop_nb")):
+                          (kinematic, "_numba_kernel_par"), (compiled, "_loop_nb")):
             fn = getattr(mod, name)
             if fn is None:
                 continue

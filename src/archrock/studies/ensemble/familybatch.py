@@ -28,7 +28,8 @@ from ...errors import InvalidSampleError
 from ...geometry import power_of_two_near
 from ...geometry.batchdraw import OK, REFUSED, batch_properties, compiled_drawing, family_plan, \
     refusal_message
-from ...statics.limit import ENUMERATION_MAX_VOUSSOIRS, _check_method, _full_enumeration, arch_sums
+from ...statics.kinematic import ENUMERATION_MAX_VOUSSOIRS, _check_method, _full_enumeration
+from ...statics.sums import arch_sums
 
 __all__ = ["prepare_family_batch"]
 
