@@ -356,7 +356,7 @@ def test_paper_given_by_name_still_refuses(semicircle17, spec):
     from archrock.dynamics.impact import ImpactSpec
     from archrock.dynamics.response import prepare
 
-    with pytest.raises(EnergyGainError, match="creates energy.*use --impact momentum"):
+    with pytest.raises(EnergyGainError, match="creates energy.*use the momentum law"):
         prepare(semicircle17, spec)                   # the arch alone
     with pytest.raises(EnergyGainError, match="creates energy"):
         # a study around it: the spec resolved on it as the nominal arch

@@ -405,7 +405,8 @@ def _with_outcomes(base):
               "geometry: two neighbouring voussoirs do not overlap radially",
               "limit analysis: no admissible four-hinge mechanism",
               "impact l_to_r: the 'paper' model creates energy on this geometry (kinetic energy "
-              "ratio 1.2, rate ratio 0.9); use --impact momentum or a fixed --cv"]
+              "ratio 1.2, rate ratio 0.9); use the momentum law (ImpactSpec model "
+              "'momentum'; --impact momentum) or a fixed c_v (ImpactSpec cv; --cv)"]
     for i, e in enumerate(errors):
         df.loc[i, ["error", "status", "mech_l", "mech_r"]] = [e, "failed", "", ""]
         df.loc[i, "collapsed"] = False

@@ -548,6 +548,7 @@ def _impact_batch(model, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, g
     """'paper' / 'momentum' rate ratios of the usable rows, compiled over the batch; the checks
     and messages of :func:`archrock.dynamics.impact.impact_law` (only the failing rows are worded)."""
     from .impact.compiled import SINGULAR, rate_ratios_batch
+    from .impact.laws import OR_FIXED_CV, USE_MOMENTUM
 
     mref = np.asarray(power_of_two_near(np.sum(mass, axis=1)), float).reshape(-1)
     lr, rl, code_lr, code_rl = rate_ratios_batch(model, ok, px, py, mass, cen, inert, jl, el, jr,
@@ -556,7 +557,7 @@ def _impact_batch(model, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, g
         singular = ok & ((code_lr == SINGULAR) | (code_rl == SINGULAR))
         for b in np.flatnonzero(singular):
             error[b] = ("impact: the 'paper' model's momentum equations are singular for this "
-                        "geometry; use --impact momentum")
+                        "geometry; " + USE_MOMENTUM)
         with np.errstate(invalid="ignore"):
             e_lr = lr**2 * m0_r / m0_l
             e_rl = rl**2 * m0_l / m0_r
@@ -565,12 +566,12 @@ def _impact_batch(model, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, g
             for name, e, c in (("l_to_r", e_lr[b], lr[b]), ("r_to_l", e_rl[b], rl[b])):
                 if e > 1.0 + 1e-9:
                     error[b] = (f"impact {name}: the 'paper' model creates energy on this geometry "
-                                f"(kinetic energy ratio {e:.4f} > 1, rate ratio {c:.4f}); use "
-                                f"--impact momentum or a fixed --cv")
+                                f"(kinetic energy ratio {e:.4f} > 1, rate ratio {c:.4f}); "
+                                + USE_MOMENTUM + OR_FIXED_CV)
                     break
                 if c < 0:
                     error[b] = (f"impact {name}: the 'paper' model gives a negative rate ratio "
-                                f"{c:.4f} on this geometry; use --impact momentum")
+                                f"{c:.4f} on this geometry; " + USE_MOMENTUM)
                     break
     use = error == ""
     c_lr[use] = lr[use]

@@ -80,11 +80,17 @@ class ImpactLaw:
         return d
 
 
+#: The advice that ends the paper model's refusals, in the vocabulary of the spec first (a
+#: Python user sets ImpactSpec's field; the command line's flag is named after it).
+USE_MOMENTUM = "use the momentum law (ImpactSpec model 'momentum'; --impact momentum)"
+OR_FIXED_CV = " or a fixed c_v (ImpactSpec cv; --cv)"
+
+
 def fallback_note(refusal: str, fallback: str = "momentum") -> str:
     """The note of a law used instead of the paper model: the paper model's refusal (the message
     of its :class:`ImpactModelError`, without the advice that follows it) and the law used.
     The one-arch and the batch paths word their refusals alike, so their notes are the same."""
-    reason = " ".join(str(refusal).split()).split("; use --impact")[0]
+    reason = " ".join(str(refusal).split()).split("; " + USE_MOMENTUM)[0]
     return f"{reason}; {fallback} law used"
 
 
@@ -181,11 +187,11 @@ def paper_rate_ratio(old: FourLink, new: FourLink) -> float:
         x = np.linalg.solve(A, b)
     except np.linalg.LinAlgError:
         raise ImpactModelError("impact: the 'paper' model's momentum equations are singular for "
-                             "this geometry; use --impact momentum") from None
+                             "this geometry; " + USE_MOMENTUM) from None
     return float(x[0])
 
 
-def impact_law(mech_l: FourLink, mech_r: FourLink, model: str = "momentum", cv: float | None = None,
+def impact_law(mech_l: FourLink, mech_r: FourLink, model: str, cv: float | None = None,
                literal: bool = False, *, fallback: str | None = None,
                note: str | None = None) -> ImpactLaw:
     """Rate ratios of an arch's two mechanisms for the chosen impact model.
@@ -226,11 +232,10 @@ def impact_law(mech_l: FourLink, mech_r: FourLink, model: str = "momentum", cv: 
             if e > 1.0 + 1e-9:
                 raise EnergyGainError(
                     f"impact {name}: the 'paper' model creates energy on this geometry (kinetic "
-                    f"energy ratio {e:.4f} > 1, rate ratio {c:.4f}); use --impact momentum or a "
-                    f"fixed --cv")
+                    f"energy ratio {e:.4f} > 1, rate ratio {c:.4f}); " + USE_MOMENTUM + OR_FIXED_CV)
             if c < 0:
                 raise ImpactModelError(f"impact {name}: the 'paper' model gives a negative rate "
-                                     f"ratio {c:.4f} on this geometry; use --impact momentum")
+                                     f"ratio {c:.4f} on this geometry; " + USE_MOMENTUM)
     if max(e_lr, e_rl) > 1.0 + 1e-9:
         warnings.warn(f"impact law {model!r} gains kinetic energy at impact "
                       f"(ratios l_to_r {e_lr:.4f}, r_to_l {e_rl:.4f})", EnergyGainWarning, stacklevel=2)

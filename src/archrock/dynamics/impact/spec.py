@@ -237,7 +237,8 @@ def _evaluate_cv(arch, model: str, fallback: str | None) -> tuple[float, str | N
             raise ImpactModelError(
                 f"impact: the {model} model's c_v is evaluated on the nominal arch, where no "
                 f"four-hinge mechanism loads direction {d!r} ({lim.not_four_hinge(d)}); give a "
-                f"fixed c_v (--cv), or --impact momentum (evaluated on each arch)")
+                f"fixed c_v (ImpactSpec cv; --cv), or the momentum law (ImpactSpec model "
+                f"'momentum'; --impact momentum), evaluated on each arch")
         mechs.append(m)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
