@@ -48,3 +48,20 @@ def _rocking_frame(b, h, beam_depth, span=6.0, density=2000.0, loads=()):
 def rocking_frame():
     """The builder of Makris & Vassiliou's rocking frame (:func:`_rocking_frame`)."""
     return _rocking_frame
+
+
+@pytest.fixture(scope="session")
+def oppenheim():
+    """Oppenheim's arch built once for the whole run: ``.arch``, ``.limit`` (limit_analysis with
+    its thrust-line check), ``.left`` and ``.right`` (the four-link models of its two
+    mechanisms). Every test module that needs the paper's arch takes it from here."""
+    from types import SimpleNamespace
+
+    from archrock.dynamics.fourlink import four_link
+    from archrock.geometry import oppenheim_arch
+    from archrock.statics.limit import limit_analysis
+
+    arch = oppenheim_arch()
+    lim = limit_analysis(arch, verify=True)
+    return SimpleNamespace(arch=arch, limit=lim, left=four_link(arch, lim.mechanism_l),
+                           right=four_link(arch, lim.mechanism_r))

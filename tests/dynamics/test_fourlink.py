@@ -31,8 +31,8 @@ def _mechs(arch):
 
 
 @pytest.fixture(scope="module")
-def opp():
-    return _mechs(geometry.oppenheim_arch())
+def opp(oppenheim):
+    return oppenheim.limit, oppenheim.left, oppenheim.right
 
 
 @pytest.fixture(scope="module")

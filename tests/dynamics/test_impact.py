@@ -26,8 +26,8 @@ def _m0(fl):
 
 
 @pytest.fixture(scope="module")
-def opp():
-    return _mechs(geometry.oppenheim_arch())
+def opp(oppenheim):
+    return oppenheim.left, oppenheim.right
 
 
 @pytest.fixture(scope="module")

@@ -29,10 +29,8 @@ PHIS = np.linspace(0.0, 0.12, 7)  # past Oppenheim's unstable rotation (0.069 ra
 
 
 @pytest.fixture(scope="module")
-def opp():
-    arch = geometry.oppenheim_arch()
-    lim = limit.limit_analysis(arch, verify=False)
-    return arch, lim, four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
+def opp(oppenheim):
+    return oppenheim.arch, oppenheim.limit, oppenheim.left, oppenheim.right
 
 
 def polygon_limit(poly, circular_limit) -> LimitResult:

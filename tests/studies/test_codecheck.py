@@ -21,9 +21,8 @@ K_OPPENHEIM = 0.370010
 
 
 @pytest.fixture(scope="module")
-def opp():
-    arch = oppenheim_arch()
-    return arch, limit_analysis(arch, verify=True)
+def opp(oppenheim):
+    return oppenheim.arch, oppenheim.limit
 
 
 # ---------------------------------------------------------------------------- rigid block
