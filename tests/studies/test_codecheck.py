@@ -13,7 +13,6 @@ from archrock.studies.codecheck import (CodeCheckConfig, SiteSpectrum, block_kin
                                         ntc_spectrum_parameters)
 from archrock.errors import ArchInputError
 from archrock.geometry import oppenheim_arch, random_arch
-from archrock.statics.limit import limit_analysis
 from archrock.dynamics.fourlink import four_link, potential
 from archrock.units import G
 
