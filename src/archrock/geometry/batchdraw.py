@@ -31,6 +31,7 @@ import math
 import numpy as np
 
 from .._jit import HAVE_NUMBA, maybe_njit, numba
+from .._pairwise import np_sum
 from ..errors import ArchInputError
 from .families import _catenary_parameter, _vertical_joints_that_cut, circular_radius, \
     three_centred_radii
@@ -172,75 +173,6 @@ def compiled_drawing(sampler) -> bool:
 def _arc_par(cx, cy, r, th0, th1):
     """Parameters of an arc piece as :func:`~archrock.geometry.families._arc` evaluates them."""
     return (ARC, [cx, cy, r, th0, th1 - th0, -(th1 - th0) * r, (th1 - th0) * r])
-
-
-# ---------------------------------------------------------------------------- numpy's sums
-@maybe_njit
-def _block(a, lo, n):
-    """numpy's pairwise summation of a[lo:lo + n], n <= 128 (as
-    archrock.dynamics.impact.compiled)."""
-    if n < 8:
-        res = 0.0
-        for i in range(lo, lo + n):
-            res += a[i]
-        return res
-    r0, r1, r2, r3 = a[lo], a[lo + 1], a[lo + 2], a[lo + 3]
-    r4, r5, r6, r7 = a[lo + 4], a[lo + 5], a[lo + 6], a[lo + 7]
-    i = 8
-    while i < n - (n % 8):
-        r0 += a[lo + i]
-        r1 += a[lo + i + 1]
-        r2 += a[lo + i + 2]
-        r3 += a[lo + i + 3]
-        r4 += a[lo + i + 4]
-        r5 += a[lo + i + 5]
-        r6 += a[lo + i + 6]
-        r7 += a[lo + i + 7]
-        i += 8
-    res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
-    while i < n:
-        res += a[lo + i]
-        i += 1
-    return res
-
-
-@maybe_njit
-def np_sum(a):
-    """``np.sum`` of a contiguous 1-d float array in numpy's order: above 128 terms the sum of
-    two halves (the first a multiple of 8), with an explicit stack (no recursion in numba's
-    cache)."""
-    n = a.size
-    if n <= 128:
-        return _block(a, 0, n)
-    st_lo = np.empty(64, dtype=np.int64)
-    st_n = np.empty(64, dtype=np.int64)
-    st_state = np.empty(64, dtype=np.int64)
-    st_left = np.empty(64)
-    st_lo[0], st_n[0], st_state[0] = 0, n, 0
-    sp = 1
-    ret = 0.0
-    while sp > 0:
-        top = sp - 1
-        lo, m = st_lo[top], st_n[top]
-        if m <= 128:
-            ret = _block(a, lo, m)
-            sp -= 1
-            continue
-        n2 = m // 2
-        n2 -= n2 % 8
-        if st_state[top] == 0:
-            st_state[top] = 1
-            st_lo[sp], st_n[sp], st_state[sp] = lo, n2, 0
-            sp += 1
-        elif st_state[top] == 1:
-            st_left[top] = ret
-            st_state[top] = 2
-            st_lo[sp], st_n[sp], st_state[sp] = lo + n2, m - n2, 0
-            sp += 1
-        else:
-            ret = st_left[top] + ret
-            sp -= 1
-    return ret
 
 
 @maybe_njit
