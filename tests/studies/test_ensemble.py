@@ -580,6 +580,8 @@ def test_a_folder_written_by_0_4_0_resumes_by_verification(tmp_path, capsys):
 
     out = tmp_path / "ens"
     shutil.copytree(DATA / "ensemble-0.4.0", out)
+    assert sorted(p.name for p in (out / "batches").iterdir()) == [
+        f"batch-{b:05d}.parquet" for b in range(3)]
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["versions"]["archrock"] == "0.4.0"
     res = run_ensemble(EnsembleConfig.from_dict(manifest["config"]), out_dir=out, progress=True)
