@@ -804,8 +804,9 @@ def run_report_job(req: dict, progress, cancelled) -> dict | None:
     (:func:`archrock.studies.assessment.assess`, then
     :func:`archrock.reports.html.render_html`): the section functions of
     :data:`~archrock.studies.assessment.SECTIONS` (without the contact check unless asked),
-    each under :data:`COMPUTE_LOCK`, counted by ``progress`` and cancelled between sections.
+    each but the contact check under :data:`COMPUTE_LOCK`, counted by ``progress`` and cancelled between sections.
     Returns the summary shown in the page and, under ``"_download"``, the HTML file."""
+    import contextlib
     import functools
     import re
 
@@ -817,10 +818,16 @@ def run_report_job(req: dict, progress, cancelled) -> dict | None:
     done = [0]
 
     def counted(func):
+        # the contact-engine check (pymunk, about 6 s; no numba kernel: the limit analysis it
+        # compares with is computed before) runs without the lock, so the page's statics and
+        # responses are answered meanwhile
+        lock = (contextlib.nullcontext() if getattr(func, "key", "") == "contact"
+                else COMPUTE_LOCK)
+
         @functools.wraps(func)
         def section(ctx):
             try:
-                with COMPUTE_LOCK:
+                with lock:
                     return func(ctx)
             finally:
                 done[0] += 1
