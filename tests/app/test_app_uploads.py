@@ -235,3 +235,17 @@ def test_the_report_request_is_bounded(client):
     assert r.status_code == 400 and r.json()["error"].startswith("thickness: ")
     r = client.get("/api/jobs/nojob/download")
     assert r.status_code == 400
+
+
+def test_the_report_is_cancelled_between_sections(client):
+    """Cancelled at once, the report stops before its contact check (the 9th section) and has
+    no file; the next job may start."""
+    pytest.importorskip("matplotlib")
+    job = client.post("/api/report", json={"arch": OPPENHEIM, "samples": 0}).json()
+    assert job["estimate_s"] >= api.CONTACT_CHECK_S
+    client.post(f"/api/jobs/{job['id']}/cancel")
+    s = _wait(client, job["id"])
+    assert s["state"] == "cancelled" and s["result"] is None and s["done"] < 9
+    assert client.get(f"/api/jobs/{job['id']}/download").status_code == 400
+    nxt = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 10})
+    assert nxt.status_code == 200 and _wait(client, nxt.json()["id"])["state"] == "done"
