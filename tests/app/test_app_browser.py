@@ -173,3 +173,84 @@ def test_open_a_geometry_file_and_download_it_again(page, tmp_path):
     back = json.loads(Path(dl.value.path()).read_text(encoding="utf-8"))
     assert abs(back["voussoirs"][3]["thickness"] - 1.2) < 1e-12
     assert dl.value.suggested_filename == "arch.json" and page.errors == []
+
+
+def test_a_record_file_is_opened_and_its_response_plays(page, tmp_path):
+    """A two-column record (a sampled half-sine pulse in cm/s2) opened in the page: read by the
+    server, then played instead of the pulse; the outcome is the pulse's, as the API test
+    shows to 1e-9."""
+    from archrock.groundmotion import pulse
+
+    m = pulse("half-sine", -1.0, 0.3)
+    f = tmp_path / "halfsine.txt"
+    f.write_text("".join(f"{float(t)!r}, {float(a) * 100!r}\n" for t, a in zip(m.times, m.accel)),
+                 encoding="utf-8")
+    page.select_option("#record-units", "cm/s2")
+    plays = page.evaluate("window.__app.plays")
+    page.set_input_files("#record-file", str(f))
+    wait(page, f"window.__app.plays > {plays} && window.__app.timings.record.length > 0")
+    assert page.input_value("#motion") == "record" and page.input_value("#t-end") == "3"
+    info = page.text_content("#record-info")
+    assert info.startswith("halfsine.txt (halfsine): 201 samples") and "PGA = 1.000 g" in info
+    res = page.evaluate("window.__app.lastResponse")
+    assert res["record"]["name"] == "halfsine.txt" and res["pulse"] is None
+    first = wait(page, "window.__app.frames > 0 && window.__app.frame")
+    time.sleep(0.6)
+    assert page.evaluate("window.__app.frame") > first >= 0
+    assert page.text_content("#outcome").startswith("rest: peak phi = ")
+    # a bad file: the library's one-line message in the page
+    bad = tmp_path / "bad.txt"
+    bad.write_text("0 0\n0.01 0.2\n0.02 oops\n", encoding="utf-8")
+    page.set_input_files("#record-file", str(bad))
+    msg = wait(page, "!document.getElementById('message').hidden && "
+                     "document.getElementById('message').textContent")
+    assert msg == "record bad.txt: line 3: 'oops' is not a number"
+    assert all("400" in e for e in page.errors), page.errors
+
+
+def test_a_dxf_survey_is_opened_as_the_arch(page, tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    import archrock
+    from archrock.geometry import as_polygon
+    from archrock.geometry.dxf import read_dxf
+
+    arch = as_polygon(archrock.oppenheim_arch(), 20)
+    doc = ezdxf.new()
+    for i in range(arch.n):
+        doc.modelspace().add_lwpolyline(arch.outline(i).tolist(), close=True)
+    f = tmp_path / "bridge.dxf"
+    doc.saveas(f)
+    page.set_input_files("#upload-dxf", str(f))
+    wait(page, "document.getElementById('arch-name').textContent.startsWith('bridge')")
+    k = float(page.text_content("#k").split("=")[1])
+    ref = archrock.limit_analysis(read_dxf(f)[0]).k
+    assert abs(k - ref) < 5e-4 and page.locator("#arch-svg polygon.voussoir").count() == 7
+    assert page.is_disabled("#thickness") and page.errors == []
+
+
+def test_a_figure_is_exported_as_png(page):
+    page.click("#play")
+    wait(page, "window.__app.frames > 0")
+    for svg, name in (("arch-svg", "arch.png"), ("history-svg", "response.png")):
+        with page.expect_download() as dl:
+            page.click(f"button.png[data-svg='{svg}']")
+        data = Path(dl.value.path()).read_bytes()
+        assert dl.value.suggested_filename == name
+        assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 2000
+        w, h = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+        box = page.locator(f"#{svg}").bounding_box()
+        assert (w, h) == (2 * round(box["width"]), 2 * round(box["height"]))
+    assert page.errors == []
+
+
+def test_the_report_button_downloads_the_html_report(page):
+    page.fill("#report-samples", "2")
+    with page.expect_download(timeout=180_000) as dl:
+        page.click("#run-report")
+    assert dl.value.suggested_filename == "assessment-circular.html"  # the family arch shown
+    html = Path(dl.value.path()).read_text(encoding="utf-8")
+    assert "0.370" in html and "Contact-engine check" in html
+    said = wait(page, "document.getElementById('report-status').textContent.startsWith('report of')"
+                      " && document.getElementById('report-status').textContent")
+    assert said.startswith("report of circular: k = 0.370, 11 sections")
+    assert page.is_enabled("#run-report") and page.errors == []

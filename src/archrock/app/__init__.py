@@ -1,8 +1,9 @@
 """``archrock app``: the arch in the browser (a local web application; docs/app.md).
 
 :func:`create_app` builds the ASGI application (Starlette); :mod:`.api` holds what its
-endpoints compute, calling the same library functions as the command line; :mod:`.jobs` runs
-the ensemble in the background.  Needs the ``app`` extra: ``pip install 'archrock[app]'``.
+endpoints compute, calling the same library functions as the command line (an opened record
+or DXF survey is read by the library's readers); :mod:`.jobs` runs the ensemble, the curve and
+the assessment report in the background.  Needs the ``app`` extra: ``pip install 'archrock[app]'``.
 """
 
 from __future__ import annotations

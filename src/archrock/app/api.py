@@ -244,8 +244,11 @@ def pulse_spec(params):
     return PulseSpec(kind, a, tp)
 
 
-def respond(params: dict) -> dict:
-    """``archrock respond --json`` of ``params["arch"]`` under ``params["pulse"]``, with the
+def respond(params: dict, records: RecordStore | None = None) -> dict:
+    """``archrock respond --json`` of ``params["arch"]`` under ``params["pulse"]`` (or
+    ``params["record"]``: ``{"id"}`` of a record loaded in ``records`` by
+    :func:`load_record_upload`; its window up to :data:`MAX_RECORD_T_END_S` and the package's
+    work estimate up to :data:`MAX_RESPONSE_WORK_S`), with the
     time history (``time`` [s], ``phi`` [rad], signed: + in M_l, - in M_r, null after the
     rotation limit) and the animation: ``frames`` (at most :data:`MAX_FRAMES`), each
     ``[t, phi, row, th1, th2, th3, bx, by, cx, cy]``: the chain row open (-1 at rest) and the
@@ -256,19 +259,38 @@ def respond(params: dict) -> dict:
     from ..dynamics.fourlink import configuration
     from ..dynamics.response import prepare
     from ..dynamics.response import respond as respond_
+    from ..units import G
 
     params = _request(params)
     t0 = time.perf_counter()
     arch = arch_from_params(_dict(params, "arch"))
-    spec = pulse_spec(params.get("pulse"))
-    t_end = _number(params, "t_end", 3.0)
-    if not 0 < t_end <= MAX_T_END_S:
-        raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= {MAX_T_END_S:g} s")
+    record = params.get("record")
+    if record is not None:
+        from ..studies.work import format_duration, response_cost_s
+        from .._jit import HAVE_NUMBA
+
+        motion, info = record_motion(record, records)
+        spec = None
+        t_end = _number(params, "t_end", min(MAX_RECORD_T_END_S, info["duration_s"] + 2.0))
+        if not 0 < t_end <= MAX_RECORD_T_END_S:
+            raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= "
+                                 f"{MAX_RECORD_T_END_S:g} s for a record")
+        est = response_cost_s(min(t_end, info["duration_s"])) * (1 if HAVE_NUMBA else 50)
+        if est > MAX_RESPONSE_WORK_S:
+            raise ArchInputError(f"t_end: {t_end:g} s of record, estimated "
+                                 f"{format_duration(est)} here; the app allows "
+                                 f"{format_duration(MAX_RESPONSE_WORK_S)} (archrock respond "
+                                 f"--record for more)")
+    else:
+        spec = pulse_spec(params.get("pulse"))
+        motion = spec.build()
+        t_end = _number(params, "t_end", 3.0)
+        if not 0 < t_end <= MAX_T_END_S:
+            raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= {MAX_T_END_S:g} s")
     ex = _number(params, "exaggerate", 1.0)
     if not 1 <= ex <= 50:
         raise ArchInputError(f"exaggerate: {ex:g}; allowed 1 to 50 (the drawn rotations' factor)")
     dt_out = max(0.002, t_end / 2000)
-    motion = spec.build()
     with COMPUTE_LOCK:
         model = prepare(arch)
         res = respond_(model, motion, t_end=t_end, dt_out=dt_out)
@@ -313,9 +335,11 @@ def respond(params: dict) -> dict:
                         for fl, lab in zip(chain, model.labels)],
         "time": _xy(t[::step]),
         "phi": [None if not math.isfinite(x) else round(float(x), 7) for x in phi[::step]],
-        "ground": {"time": _xy(motion.times), "accel_g": _xy(np.asarray(motion.accel) / 9.80665)},
+        "ground": _trace(motion.times, np.asarray(motion.accel) / G),
         "frames": frames,
-        "pulse": spec.to_dict(),
+        "pulse": spec.to_dict() if spec is not None else None,
+        "record": None if spec is not None else {k: v for k, v in info.items()
+                                                 if k != "warnings"},
         "exaggerate": ex,
         "elapsed_ms": 1e3 * (time.perf_counter() - t0),
     })
@@ -478,7 +502,7 @@ def run_curve_job(req: dict, progress, cancelled) -> dict | None:
 
 
 # ---------------------------------------------------------------------------- export
-def export(params: dict) -> tuple[str, str, str]:
+def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, str]:
     """A download: (file name, media type, text). ``what``: "geometry" (the JSON geometry
     file, as ``archrock random-arch --out`` writes), "limit" (``archrock limit --json``),
     "thrust-csv" (each joint's thrust-line crossings [m], both directions) or
@@ -512,8 +536,322 @@ def export(params: dict) -> tuple[str, str, str]:
         for j, (pl, pr) in enumerate(zip(r.thrust_l.points, r.thrust_r.points)):
             w.writerow([j, *(f"{v:.6f}" for v in (*pl, *pr))])
         return "thrust.csv", "text/csv", buf.getvalue()
-    res = respond(params)
+    res = respond(params, records)
     w.writerow(["t_s", "phi_rad"])
     for tk, ph in zip(res["time"], res["phi"]):
         w.writerow([f"{tk:.5f}", "" if ph is None else f"{ph:.7f}"])
     return "response.csv", "text/csv", buf.getvalue()
+
+
+# ---------------------------------------------------------------------------- uploaded files
+#: Largest uploaded file (a record or a DXF drawing) [bytes].
+MAX_FILE_BYTES = 20_000_000
+#: A recorded ground motion: the response window [s] (the record's own length is free; the
+#: response runs to the window's end) and the package's estimate of one response's time [s]
+#: (archrock.studies.work.response_cost_s; without numba about 50 times more).
+MAX_RECORD_T_END_S = 120.0
+MAX_RESPONSE_WORK_S = 2.0
+#: Loaded records kept in memory (the oldest is forgotten first).
+KEEP_RECORDS = 4
+RECORD_UNITS = ("g", "m/s2", "cm/s2")
+DXF_UNITS = ("m", "cm", "mm")
+
+
+class TooLarge(ArchInputError):
+    """An upload above :data:`MAX_FILE_BYTES` (HTTP 413)."""
+
+
+def too_large(field: str, size: int) -> TooLarge:
+    return TooLarge(f"{field}: {size:,} bytes; the app reads files of up to "
+                    f"{MAX_FILE_BYTES // 1_000_000} MB ({MAX_FILE_BYTES:,} bytes)")
+
+
+def safe_name(name, default: str) -> str:
+    """A file name safe to create in the server's own temporary folder: the last path part of
+    ``name``, letters, digits and ``._-`` only, at most 80 characters (the suffix kept: the
+    readers choose by it), ``default`` when nothing is left."""
+    import re
+
+    base = str(name or "").replace("\\", "/").rsplit("/", 1)[-1]
+    base = re.sub(r"[^A-Za-z0-9._-]", "_", base).lstrip(".")
+    if len(base) > 80:
+        stem, dot, suffix = base.rpartition(".")
+        base = (stem[:70] + dot + suffix[:9]) if dot else base[:80]
+    return base or default
+
+
+def _parse_in_tempdir(data: bytes, name: str, read):
+    """``read(path)`` of ``data`` written as ``name`` in a new temporary folder of this
+    process (mode 0700), deleted when ``read`` returns; messages name the file, not the
+    folder."""
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory(prefix="archrock-app-") as tmp:
+        path = Path(tmp) / name
+        path.write_bytes(data)
+        try:
+            return read(path)
+        except ArchInputError as exc:
+            raise type(exc)(str(exc).replace(str(path), name).replace(tmp + "/", "")) from None
+
+
+class RecordStore:
+    """The records loaded in this server: id -> (GroundMotion, info), the last
+    :data:`KEEP_RECORDS` kept."""
+
+    def __init__(self):
+        from collections import OrderedDict
+
+        self._items = OrderedDict()
+        self._lock = threading.Lock()
+
+    def put(self, key: str, motion, info: dict) -> None:
+        with self._lock:
+            self._items[key] = (motion, info)
+            self._items.move_to_end(key)
+            while len(self._items) > KEEP_RECORDS:
+                self._items.popitem(last=False)
+
+    def get(self, key):
+        with self._lock:
+            item = self._items.get(key) if isinstance(key, str) else None
+        if item is None:
+            raise ArchInputError(f"record: {str(key)[:20]!r} is not loaded in this server (it "
+                                 f"keeps the last {KEEP_RECORDS}); open the record file again")
+        return item
+
+
+def _trace(times, accel_g, points: int = 2000) -> dict:
+    """A record drawn small: the least and greatest value of each of ``points`` stretches
+    (the peaks kept), or every sample of a short one."""
+    t, a = np.asarray(times, float), np.asarray(accel_g, float)
+    if len(t) <= 2 * points:
+        return {"time": _xy(t), "accel_g": _xy(a)}
+    edges = np.linspace(0, len(t), points + 1).astype(int)
+    ts, vs = [], []
+    for i0, i1 in zip(edges[:-1], edges[1:]):
+        seg = a[i0:i1]
+        lo, hi = i0 + int(np.argmin(seg)), i0 + int(np.argmax(seg))
+        for j in sorted((lo, hi)):
+            ts.append(t[j])
+            vs.append(a[j])
+    return {"time": _xy(ts), "accel_g": _xy(vs)}
+
+
+def load_record_upload(data: bytes, params: dict, store: RecordStore) -> dict:
+    """Read an uploaded record file (``data``, its ``name``: ``.AT2`` is a PEER file in g,
+    anything else two columns "time accel"), with ``units`` (g, m/s2, cm/s2) and ``scale``, by
+    the library's :class:`~archrock.groundmotion.RecordSpec` (``load_record`` and the scale's
+    check) in a temporary folder of the server; keep it in ``store``.  Returns its id and
+    what the page shows of it: name, samples, time step, duration, PGA [g], sha256 and a small
+    trace of it."""
+    import hashlib
+    import warnings
+
+    from ..groundmotion import RecordSpec
+    from ..units import G
+
+    if len(data) > MAX_FILE_BYTES:
+        raise too_large("record", len(data))
+    if not data:
+        raise ArchInputError("record: the file is empty; allowed a PEER .AT2 file or two "
+                             "columns 'time accel'")
+    name = safe_name(params.get("name"), "record.txt")
+    units = _choice(params, "units", RECORD_UNITS)
+    scale = _number(params, "scale", 1.0)
+    if scale == 0:
+        raise ArchInputError("scale: 0; allowed a finite nonzero factor on the record")
+    if name.lower().endswith(".at2") and units not in (None, "g"):
+        raise ArchInputError(f"units: {units!r} for {name}; allowed g (PEER .AT2 values are in g)")
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        motion = _parse_in_tempdir(
+            data, name, lambda p: RecordSpec.from_file(p, None if name.lower().endswith(".at2")
+                                                       else units, scale).build())
+    sha = hashlib.sha256(data).hexdigest()
+    key = f"{sha[:16]}-{units or 'g'}-{scale!r}"
+    t = np.asarray(motion.times, float)
+    dt = np.diff(t)
+    info = {"id": key, "name": name, "units": units or "g", "scale": scale, "sha256": sha,
+            "samples": int(len(t)), "dt_s": float(np.median(dt)) if len(dt) else None,
+            "duration_s": float(t[-1]), "pga_g": float(motion.pga / G),
+            "title": str(motion.name)[:120],
+            "warnings": [" ".join(str(w.message).split()) for w in said]}
+    store.put(key, motion, info)
+    return {**info, "trace": _trace(t, np.asarray(motion.accel, float) / G)}
+
+
+def record_motion(params, store: RecordStore | None):
+    """The loaded record named by ``{"id": ...}`` and its info."""
+    if store is None:
+        raise ArchInputError("record: no record can be loaded here")
+    if not isinstance(params, dict):
+        raise ArchInputError("record: expected an object {id} of a loaded record")
+    return store.get(params.get("id"))
+
+
+def load_dxf_upload(data: bytes, params: dict) -> dict:
+    """Read an uploaded DXF survey (one closed polyline per voussoir) as ``archrock
+    import-dxf`` does (:func:`archrock.geometry.dxf.read_dxf_outlines` then
+    :func:`~archrock.geometry.dxf.arch_from_outlines`, the steps of ``read_dxf``, with its
+    defaults: every layer, drawing units m, density 2000 kg/m^3), the number of voussoirs
+    checked before the chain is built.  Returns the geometry file's JSON (what the page then
+    sends as an opened geometry file), the name and the DXF handles from the left springing."""
+    from ..cli.options import GEOMETRY_DEFAULTS
+    from ..geometry.dxf import arch_from_outlines, read_dxf_outlines
+
+    if len(data) > MAX_FILE_BYTES:
+        raise too_large("dxf", len(data))
+    if not data:
+        raise ArchInputError("dxf: the file is empty; allowed a DXF drawing")
+    name = safe_name(params.get("name"), "survey.dxf")
+    layer = params.get("layer") or None
+    if layer is not None and (not isinstance(layer, str) or len(layer) > 255):
+        raise ArchInputError("layer: expected a layer name")
+    units = _choice(params, "units", DXF_UNITS, "m")
+    density = _number(params, "density", GEOMETRY_DEFAULTS["density"])
+    if not density > 0:
+        raise ArchInputError(f"density: {density:g}; allowed > 0 kg/m^3")
+    stem = name.rsplit(".", 1)[0] or "survey"
+
+    def read(path):
+        found = read_dxf_outlines(path, layer, units)
+        if len(found) > MAX_VOUSSOIRS:
+            raise ArchInputError(f"{name}: {len(found)} closed polylines; the app allows 3 to "
+                                 f"{MAX_VOUSSOIRS} voussoirs")
+        handles = [h for h, _ in found]
+        try:
+            arch, order = arch_from_outlines([p for _, p in found], handles, density=density,
+                                             name=stem)
+        except ArchInputError as exc:
+            raise ArchInputError(f"{name}: {exc}") from None
+        return arch, [handles[i] for i in order]
+
+    try:
+        with COMPUTE_LOCK:
+            arch, handles = _parse_in_tempdir(data, name, read)
+    except ImportError as exc:  # ezdxf missing: the extra to install
+        raise ArchInputError(f"dxf: {exc}") from None
+    except ArchInputError as exc:
+        raise ArchInputError(f"dxf: {exc}") from None
+    from ..cli._parser import json_safe
+
+    geometry = {**arch.to_dict(), "metadata": {"generator": "archrock app (import-dxf)",
+                                               "drawing": name, "layer": layer,
+                                               "units": units, "handles": handles}}
+    return {"geometry": json_safe(geometry), "name": stem, "n": int(arch.n),
+            "handles": handles}
+
+
+# ---------------------------------------------------------------------------- report
+#: The report's estimated work [s] (archrock.studies.work's cost of a response: the curve's
+#: amplitude scan over durations x arches) and the random arches of its band.
+MAX_REPORT_WORK_S = 20.0
+MAX_REPORT_SAMPLES = 50
+#: The contact-engine check's time here (pymunk, both directions: about 6 s on Oppenheim's
+#: arch), added to the estimate when it is part of the report.
+CONTACT_CHECK_S = 6.0
+
+
+def report_request(params: dict) -> dict:
+    """The checked arguments of :func:`run_report_job`: the ``arch``, ``samples`` (0 to
+    :data:`MAX_REPORT_SAMPLES`, default 12 as ``archrock assess``), ``seed`` and ``spreads``
+    as the ensemble's, ``contact`` (the contact-engine check, default true).  The rest is
+    ``archrock assess``'s defaults (the paper's pulse, durations 0.1 to 1 s, 60 amplitudes,
+    no records: no fragility section, no site spectrum: no verdict)."""
+    from ..geometry.sampling import Spreads
+    from ..studies.assessment import AssessConfig
+    from ..studies.work import format_duration, response_cost_s
+    from .._jit import HAVE_NUMBA
+
+    params = _request(params)
+    arch = arch_from_params(_dict(params, "arch"))
+    samples = _number(params, "samples", 12, integer=True)
+    if not 0 <= samples <= MAX_REPORT_SAMPLES:
+        raise ArchInputError(f"samples: {samples}; allowed 0 to {MAX_REPORT_SAMPLES} random "
+                             f"arches for the report in the app (archrock assess for more)")
+    seed = _number(params, "seed", 0, integer=True)
+    if seed < 0:
+        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
+    sp = _dict(params, "spreads")
+    spreads = Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
+                                                       ("radius", 0.05), ("tilt", 0.0))))
+    contact = bool(params.get("contact", True))
+    cfg = AssessConfig(samples=samples, seed=seed, spreads=spreads)
+    responses = (samples + 1) * len(cfg.durations) * cfg.n_scan
+    est = responses * response_cost_s() * (1 if HAVE_NUMBA else 50)
+    if est > MAX_REPORT_WORK_S:
+        raise ArchInputError(f"samples: {samples} arches, estimated {format_duration(est)} here; "
+                             f"the app's report runs up to {format_duration(MAX_REPORT_WORK_S)} "
+                             f"(archrock assess for more)")
+    try:
+        from ..reports.plots import _require_matplotlib
+
+        _require_matplotlib()
+    except Exception as exc:  # noqa: BLE001 - the extra to install, in one line
+        raise ArchInputError(f"report: {' '.join(str(exc).split())}") from None
+    return {"arch": arch, "config": cfg, "contact": contact,
+            "estimate_s": est + (CONTACT_CHECK_S if contact else 0.0)}
+
+
+class _Cancelled(Exception):
+    """Raised from the report's progress callback between sections once cancelled."""
+
+
+def run_report_job(req: dict, progress, cancelled) -> dict | None:
+    """``archrock assess`` of the request's arch
+    (:func:`archrock.studies.assessment.assess`, then
+    :func:`archrock.reports.html.render_html`): the section functions of
+    :data:`~archrock.studies.assessment.SECTIONS` (without the contact check unless asked),
+    each but the contact check under :data:`COMPUTE_LOCK`, counted by ``progress`` and cancelled between sections.
+    Returns the summary shown in the page and, under ``"_download"``, the HTML file."""
+    import contextlib
+    import functools
+    import re
+
+    from ..reports.html import render_html
+    from ..studies.assessment import SECTIONS, assess
+
+    chosen = [f for f in SECTIONS if req["contact"] or getattr(f, "key", "") != "contact"]
+    total = len(chosen) + 1  # the sections, then drawing the figures
+    done = [0]
+
+    def counted(func):
+        # the contact-engine check (pymunk, about 6 s; no numba kernel: the limit analysis it
+        # compares with is computed before) runs without the lock, so the page's statics and
+        # responses are answered meanwhile
+        lock = (contextlib.nullcontext() if getattr(func, "key", "") == "contact"
+                else COMPUTE_LOCK)
+
+        @functools.wraps(func)
+        def section(ctx):
+            try:
+                with lock:
+                    return func(ctx)
+            finally:
+                done[0] += 1
+                progress(done[0], total)
+        return section
+
+    def said(msg):  # called by assess before each section, outside its error handling
+        if cancelled():
+            raise _Cancelled
+
+    t0 = time.perf_counter()
+    try:
+        result = assess(req["arch"], req["config"], progress=said,
+                        sections=[counted(f) for f in chosen])
+    except _Cancelled:
+        return None
+    if cancelled():
+        return None
+    html = render_html(result)
+    progress(total, total)
+    safe = re.sub(r"[^A-Za-z0-9._-]", "_", result.arch.name)[:60] or "arch"
+    k = result.section("limit").data
+    return {"name": result.arch.name, "sections": [s.title for s in result.sections],
+            "headline": [list(h) for h in result.headline], "verdict": result.verdict,
+            "k": k.get("k") if isinstance(k, dict) else None,
+            "seconds": time.perf_counter() - t0, "bytes": len(html.encode("utf-8")),
+            "_download": (f"assessment-{safe}.html", "text/html; charset=utf-8", html)}

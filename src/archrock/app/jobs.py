@@ -1,4 +1,5 @@
-"""Background jobs of the app (the ensemble): one thread each, progress polled, cancellable.
+"""Background jobs of the app (the ensemble, the curve, the report): one thread each, progress
+polled, cancellable; a job's file (the report) is kept beside its result for one download.
 
 One job runs at a time (a second is refused until the first ends or is cancelled); the last
 :data:`KEEP` finished jobs are kept for polling.
@@ -32,6 +33,9 @@ class Job:
     done: int = 0
     result: dict | None = None
     error: str | None = None
+    #: (file name, media type, text) of a job that makes a file: the ``"_download"`` entry of
+    #: its work's result, kept out of the polled JSON.
+    download: tuple | None = field(default=None, repr=False)
     started: float = field(default_factory=time.perf_counter)
     elapsed_s: float = 0.0
     cancel: threading.Event = field(default_factory=threading.Event, repr=False)
@@ -54,7 +58,8 @@ class Jobs:
     def start(self, total: int, work) -> Job:
         with self._lock:
             if any(j.state == "running" for j in self._jobs.values()):
-                raise Busy("job: another ensemble or curve is running; cancel it or wait for it")
+                raise Busy("job: another ensemble, curve or report is running; cancel it or wait "
+                           "for it")
             job = Job(f"job{next(self._ids)}", total)
             self._jobs[job.id] = job
             finished = [k for k, j in self._jobs.items() if j.state != "running"]
@@ -78,6 +83,7 @@ class Jobs:
                 if result is None:
                     job.state = "cancelled"
                 else:
+                    job.download = result.pop("_download", None)
                     job.result, job.state = result, "done"
             job.elapsed_s = time.perf_counter() - job.started
 

@@ -9,11 +9,20 @@ Routes (JSON bodies; lengths m, accelerations g, times s):
   ``GET /api/jobs/{id}`` its progress and result; ``POST /api/jobs/{id}/cancel``;
 * ``POST /api/curve`` {arch, samples, seed, spreads, durations, kind}: the collapse-acceleration
   curve and its band, a job as the ensemble;
-* ``POST /api/export`` {what, arch, pulse?}: a download (:func:`.api.export`).
+* ``POST /api/export`` {what, arch, pulse?}: a download (:func:`.api.export`);
+* ``POST /api/record?name=&units=&scale=`` the bytes of a record file (PEER .AT2 or two
+  columns): read by the library in a temporary folder of the server, kept in memory; its id then
+  stands for the pulse in ``/api/respond`` {arch, record: {id}, t_end?} (:func:`.api.load_record_upload`);
+* ``POST /api/dxf?name=&layer=&units=&density=`` the bytes of a DXF survey: its polygon arch's
+  geometry file JSON (:func:`.api.load_dxf_upload`);
+* ``POST /api/report`` {arch, samples, seed, spreads, contact}: ``archrock assess`` as a job;
+  ``GET /api/jobs/{id}/download`` its HTML file.
 
 A bad value answers 400 with ``{"error": message}`` (the CLI's one-line message, naming the
 field); a valid arch with no answer of the kind asked (cannot stand, no mechanism) 422; never a
-traceback.  Only the request bodies are read and only the downloads written: no file on disk.
+traceback; an upload above api.MAX_FILE_BYTES 413.  Only the request bodies are read and only the
+downloads written; an uploaded file is written only into a new temporary folder of the server
+(mode 0700), read by the library and deleted with it in the same request.
 """
 
 from __future__ import annotations
@@ -53,6 +62,8 @@ def _error(exc: Exception) -> JSONResponse:
         import logging
 
         logging.getLogger("archrock.app").error("request failed", exc_info=exc)
+    if isinstance(exc, api.TooLarge):
+        return _json({"error": msg, "kind": "too-large"}, 413)
     if isinstance(exc, Busy):
         return _json({"error": msg, "kind": "busy"}, 409)
     if isinstance(exc, (ArchInputError, CLIError)):
@@ -81,6 +92,21 @@ async def _body(request: Request) -> dict:
     return data
 
 
+async def _upload(request: Request, field: str) -> bytes:
+    """The raw body of a file upload, refused (413) above api.MAX_FILE_BYTES before or while
+    it is read."""
+    size = request.headers.get("content-length")
+    if size is not None and size.isdigit() and int(size) > api.MAX_FILE_BYTES:
+        raise api.too_large(field, int(size))
+    chunks, n = [], 0
+    async for chunk in request.stream():
+        n += len(chunk)
+        if n > api.MAX_FILE_BYTES:
+            raise api.too_large(field, n)
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
 def _endpoint(func):
     """A POST endpoint running ``func(body)`` in a worker thread; errors as JSON."""
     async def endpoint(request: Request):
@@ -97,6 +123,7 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
     against DNS rebinding); ``warm_up``: compile the numba kernels in a background thread at
     start (the first answer then does not wait for them)."""
     jobs = Jobs()
+    records = api.RecordStore()
 
     async def index(request):
         return FileResponse(STATIC / "index.html", headers={"Cache-Control": "no-store"})
@@ -126,6 +153,37 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
 
+    async def report(request: Request):
+        try:
+            body = await _body(request)
+            req = await run_in_threadpool(api.report_request, body)
+            job = jobs.start(1, lambda progress, cancelled: api.run_report_job(req, progress,
+                                                                               cancelled))
+            return _json({**job.to_dict(), "estimate_s": req["estimate_s"]})
+        except Exception as exc:  # noqa: BLE001
+            return _error(exc)
+
+    async def job_download(request: Request):
+        try:
+            job = jobs.get(request.path_params["job"])
+            if job.download is None:
+                raise ArchInputError(f"job: {job.id} has no file ({job.state})")
+        except Exception as exc:  # noqa: BLE001
+            return _error(exc)
+        name, media, text = job.download
+        return Response(text, media_type=media,
+                        headers={"Content-Disposition": f'attachment; filename="{name}"'})
+
+    def _uploader(field, func):
+        async def endpoint(request: Request):
+            try:
+                data = await _upload(request, field)
+                params = dict(request.query_params)
+                return _json(await run_in_threadpool(func, data, params))
+            except Exception as exc:  # noqa: BLE001
+                return _error(exc)
+        return endpoint
+
     async def job_status(request: Request):
         try:
             return _json(jobs.get(request.path_params["job"]).to_dict())
@@ -141,7 +199,7 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
     async def export(request: Request):
         try:
             body = await _body(request)
-            name, media, text = await run_in_threadpool(api.export, body)
+            name, media, text = await run_in_threadpool(api.export, body, records)
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
         return Response(text, media_type=media,
@@ -151,14 +209,24 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
         return _json({"max_voussoirs": api.MAX_VOUSSOIRS, "max_samples": api.MAX_SAMPLES,
                       "max_t_end_s": api.MAX_T_END_S, "max_pulse_s": api.MAX_PULSE_S,
                       "max_amplitude_g": api.MAX_AMPLITUDE_G, "shapes": api.SHAPES,
-                      "joints": api.JOINTS, "pulses": api.PULSE_KINDS})
+                      "joints": api.JOINTS, "pulses": api.PULSE_KINDS,
+                      "max_file_bytes": api.MAX_FILE_BYTES,
+                      "max_record_t_end_s": api.MAX_RECORD_T_END_S,
+                      "record_units": api.RECORD_UNITS, "dxf_units": api.DXF_UNITS,
+                      "max_report_samples": api.MAX_REPORT_SAMPLES})
 
     routes = [
         Route("/", index),
         Route("/favicon.ico", favicon),
         Route("/api/limits", limits),
         Route("/api/limit", _endpoint(api.limit), methods=["POST"]),
-        Route("/api/respond", _endpoint(api.respond), methods=["POST"]),
+        Route("/api/respond", _endpoint(lambda body: api.respond(body, records)),
+              methods=["POST"]),
+        Route("/api/record", _uploader("record", lambda data, params: api.load_record_upload(
+            data, params, records)), methods=["POST"]),
+        Route("/api/dxf", _uploader("dxf", api.load_dxf_upload), methods=["POST"]),
+        Route("/api/report", report, methods=["POST"]),
+        Route("/api/jobs/{job}/download", job_download),
         Route("/api/ensemble", ensemble, methods=["POST"]),
         Route("/api/curve", curve, methods=["POST"]),
         Route("/api/jobs/{job}", job_status),

@@ -29,8 +29,10 @@ def add_app_parser(subparsers):
         "app", help="the arch in the browser: a local web application (needs archrock[app])",
         description="Starts a local web server and opens the page in the browser: the arch "
                     "drawn to scale, its thrust lines and collapse multipliers as its "
-                    "parameters move, a pulse response played as an animation, an ensemble of "
-                    "irregular arches with its histogram. Ctrl-C stops it.")
+                    "parameters move (or a geometry file or DXF survey opened), a pulse or a "
+                    "recorded ground motion played as an animation, an ensemble of irregular "
+                    "arches with its histogram, PNG figures and the assessment report. Ctrl-C "
+                    "stops it.")
     p.add_argument("--port", type=_port, default=DEFAULT_PORT,
                    help=f"TCP port (default {DEFAULT_PORT}; 0: any free port)")
     p.add_argument("--host", default=DEFAULT_HOST,

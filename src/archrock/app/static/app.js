@@ -13,7 +13,10 @@ const state = {...OPPENHEIM, geometry: null, geometryName: null, defects: new Se
                showRange: false};
 // measurements and counters read by the tests (performance.now(), ms)
 const app = window.__app = {redraws: 0, frame: -1, frames: 0, timings: {slider: [], pulse: [],
-                            ensemble: []}, lastLimit: null, lastResponse: null, job: null};
+                            ensemble: [], record: [], png: []}, lastLimit: null,
+                            lastResponse: null, job: null, record: null, report: null, plays: 0};
+// the largest file the server reads (api.MAX_FILE_BYTES)
+const MAX_FILE_BYTES = 20e6;
 
 const $ = (id) => document.getElementById(id);
 
@@ -263,6 +266,18 @@ function bindControls() {
     b.addEventListener("click", () => download(b.dataset.what));
   }
   $("export-svg").addEventListener("click", exportSvg);
+  for (const b of document.querySelectorAll("button.png")) {
+    b.addEventListener("click", () => exportPng(b.dataset.svg, b.dataset.name));
+  }
+  $("record-file").addEventListener("change", loadRecord);
+  for (const id of ["record-units", "record-scale"]) $(id).addEventListener("change", loadRecord);
+  $("upload-dxf").addEventListener("change", loadDxf);
+  $("run-report").addEventListener("click", runReport);
+  $("cancel-report").addEventListener("click", () => {
+    if (app.report && app.report.state === "running") {
+      post(`/api/jobs/${app.report.id}/cancel`, {}).catch(() => null);
+    }
+  });
   $("play").addEventListener("click", play);
   $("run-ensemble").addEventListener("click", runEnsemble);
   $("run-curve").addEventListener("click", runCurve);
@@ -281,7 +296,9 @@ function saveBlob(blob, name) {
 }
 
 async function download(what) {
-  const body = {what, arch: archParams(), pulse: pulseParams(), t_end: $("t-end").value};
+  let motion;
+  try { motion = what === "response-csv" ? motionParams() : {pulse: pulseParams()}; } catch (e) { return; }
+  const body = {what, arch: archParams(), ...motion, t_end: $("t-end").value};
   const resp = await fetch("/api/export", {method: "POST", headers: {"Content-Type": "application/json"},
                                            body: JSON.stringify(body)});
   if (!resp.ok) {
@@ -294,15 +311,52 @@ async function download(what) {
   saveBlob(await resp.blob(), name ? name[1] : what);
 }
 
-function exportSvg() {
-  const svg = $("arch-svg").cloneNode(true);
+// a figure of the page as a stand-alone SVG document: its drawing, the style rules of its
+// classes and text, and its size on the screen [px]
+function figureSvg(id) {
+  const src = $(id);
+  const box = src.getBoundingClientRect();
+  const w = Math.max(1, Math.round(box.width)), h = Math.max(1, Math.round(box.height));
+  const svg = src.cloneNode(true);
   svg.setAttribute("xmlns", SVGNS);
+  svg.setAttribute("width", w);
+  svg.setAttribute("height", h);
   const style = document.createElementNS(SVGNS, "style");
   style.textContent = [...document.styleSheets[0].cssRules].map((r) => r.cssText)
-      .filter((t) => /^\.(voussoir|thrust|hinge|ground)/.test(t)).join("\n");
+      .filter((t) => /^(\.[a-z]|text\b)/.test(t)).join("\n");
   svg.insertBefore(style, svg.firstChild);
-  saveBlob(new Blob([new XMLSerializer().serializeToString(svg)], {type: "image/svg+xml"}),
-           "arch.svg");
+  return {text: new XMLSerializer().serializeToString(svg), w, h};
+}
+
+function exportSvg() {
+  saveBlob(new Blob([figureSvg("arch-svg").text], {type: "image/svg+xml"}), "arch.svg");
+}
+
+// PNG in the browser: the SVG drawn on a canvas (twice its screen size, white ground)
+async function exportPng(id, name) {
+  const t0 = performance.now();
+  const {text, w, h} = figureSvg(id);
+  const url = URL.createObjectURL(new Blob([text], {type: "image/svg+xml"}));
+  try {
+    const img = new Image();
+    img.src = url;
+    await img.decode();
+    const scale = 2, canvas = document.createElement("canvas");
+    canvas.width = w * scale;
+    canvas.height = h * scale;
+    const ctx = canvas.getContext("2d");
+    ctx.fillStyle = "#fff";
+    ctx.fillRect(0, 0, canvas.width, canvas.height);
+    ctx.drawImage(img, 0, 0, canvas.width, canvas.height);
+    const blob = await new Promise((ok) => canvas.toBlob(ok, "image/png"));
+    if (!blob) throw new Error("the browser made no PNG");
+    saveBlob(blob, name);
+    app.timings.png.push(performance.now() - t0);
+  } catch (e) {
+    showError(`PNG export of ${name}: ${e.message || e}`);
+  } finally {
+    URL.revokeObjectURL(url);
+  }
 }
 
 // ------------------------------------------------------------------ dynamics
@@ -311,7 +365,76 @@ function pulseParams() {
           duration: $("duration").value.trim()};
 }
 
+// the ground motion of a response: {pulse} or, when chosen and loaded, {record: {id}}
+function motionParams() {
+  if ($("motion").value === "record") {
+    if (!app.record) {
+      showError("record: open a record file first (PEER .AT2 or two columns 'time accel')");
+      const err = new Error("no record");
+      err.handled = true;
+      throw err;
+    }
+    return {record: {id: app.record.id}};
+  }
+  return {pulse: pulseParams()};
+}
+
+// send a file's bytes (a record or a DXF survey) to the server, which reads it with the library
+async function upload(url, file, params) {
+  if (file.size > MAX_FILE_BYTES) {
+    showError(`${file.name}: ${file.size} bytes; the app reads files of up to 20 MB`);
+    return null;
+  }
+  const q = new URLSearchParams({name: file.name, ...params});
+  let resp;
+  try {
+    resp = await fetch(`${url}?${q}`, {method: "POST", body: file,
+                                       headers: {"Content-Type": "application/octet-stream"}});
+  } catch (e) {
+    showError("the archrock server does not answer (is `archrock app` still running?)");
+    return null;
+  }
+  const data = await resp.json().catch(() => ({error: `HTTP ${resp.status}`}));
+  if (!resp.ok) { showError(data.error || `HTTP ${resp.status}`); return null; }
+  clearError();
+  return data;
+}
+
+async function loadRecord() {
+  const file = $("record-file").files[0];
+  if (!file) return;
+  const t0 = performance.now();
+  const r = await upload("/api/record", file, {units: $("record-units").value,
+                                               scale: $("record-scale").value.trim()});
+  if (!r) return;
+  app.record = r;
+  $("motion").value = "record";
+  $("t-end").value = String(Math.min(120, Math.ceil(r.duration_s + 2)));
+  $("record-info").textContent = `${r.name} (${r.title}): ${r.samples} samples, dt = ` +
+      `${fmt(r.dt_s, 4)} s, ${fmt(r.duration_s, 2)} s, PGA = ${fmt(r.pga_g)} g` +
+      (r.scale !== 1 ? ` (scaled by ${r.scale})` : "") + `, units ${r.units}` +
+      (r.warnings.length ? `; ${r.warnings.join("; ")}` : "");
+  recordStart = t0;  // timed to the first frame drawn (play)
+  await play();
+}
+
+async function loadDxf() {
+  const file = $("upload-dxf").files[0];
+  if (!file) return;
+  const params = {units: $("dxf-units").value};
+  const layer = $("dxf-layer").value.trim();
+  if (layer) params.layer = layer;
+  const r = await upload("/api/dxf", file, params);
+  if (!r) return;
+  state.geometry = r.geometry;
+  state.geometryName = r.name;
+  state.defects.clear();
+  showControls();
+  requestStatics(performance.now());
+}
+
 let animation = null;
+let recordStart = null;  // when a record file was chosen: its first frame is timed
 
 function rot(p, c, th, to) {
   const cs = Math.cos(th), sn = Math.sin(th), dx = p[0] - c[0], dy = p[1] - c[1];
@@ -386,11 +509,12 @@ async function play() {
   if (animation) cancelAnimationFrame(animation);
   let res;
   try {
-    res = await post("/api/respond", {arch: archParams(), pulse: pulseParams(), t_end: $("t-end").value.trim(),
+    res = await post("/api/respond", {arch: archParams(), ...motionParams(), t_end: $("t-end").value.trim(),
                                       exaggerate: Number($("exaggerate").value)});
-  } catch (e) { if (!e.handled) console.warn(e); return; }
+  } catch (e) { recordStart = null; if (!e.handled) console.warn(e); return; }
   clearError();
   app.lastResponse = res;
+  app.plays += 1;
   const svg = $("anim-svg");
   drawArch(svg, res.drawing, false);
   const polys = [...svg.querySelectorAll("polygon")];
@@ -409,7 +533,11 @@ async function play() {
     let k = res.frames.findIndex((f) => f[0] > t) - 1;
     if (k < 0) k = t >= res.frames[res.frames.length - 1][0] ? res.frames.length - 1 : 0;
     drawFrame(res, polys, hingeMarks, k);
-    if (first) { first = false; app.timings.pulse.push(performance.now() - t0); }
+    if (first) {
+      first = false;
+      app.timings.pulse.push(performance.now() - t0);
+      if (recordStart !== null) { app.timings.record.push(performance.now() - recordStart); recordStart = null; }
+    }
     if (k < res.frames.length - 1) animation = requestAnimationFrame(step);
     else animation = null;
   };
@@ -479,6 +607,50 @@ async function runJob(url, body, unit, said, onDone) {
 
 async function cancelEnsemble() {
   if (app.job) await post(`/api/jobs/${app.job.id}/cancel`, {}).catch(() => null);
+}
+
+// the assessment report: `archrock assess` of the arch shown, a job on the server; its HTML
+// file is downloaded when it is done
+async function runReport() {
+  const body = {arch: archParams(), samples: $("report-samples").value.trim(),
+                seed: $("seed").value.trim(), spreads: spreadsParams(),
+                contact: $("report-contact").checked};
+  const t0 = performance.now();
+  let job;
+  try { job = await post("/api/report", body); } catch (e) { if (!e.handled) console.warn(e); return; }
+  clearError();
+  app.report = job;
+  const said = $("report-status");
+  said.textContent = `computing the report (about ${Math.max(1, Math.round(job.estimate_s + 2))} s) ...`;
+  $("run-report").disabled = true;
+  $("cancel-report").disabled = false;
+  const finish = () => { $("run-report").disabled = false; $("cancel-report").disabled = true; };
+  const poll = async () => {
+    let s;
+    try {
+      const resp = await fetch(`/api/jobs/${job.id}`);
+      s = await resp.json();
+      if (!resp.ok) throw new Error(s.error);
+    } catch (e) { showError(`report: ${e.message}`); finish(); return; }
+    app.report = s;
+    if (s.state === "running") {
+      said.textContent = `computing the report: ${s.done} of ${s.total} steps, ${s.elapsed_s.toFixed(1)} s`;
+      setTimeout(poll, 200);
+      return;
+    }
+    finish();
+    if (s.state === "cancelled") { said.textContent = "report cancelled"; return; }
+    if (s.state !== "done") { showError(s.error); said.textContent = ""; return; }
+    const resp = await fetch(`/api/jobs/${job.id}/download`);
+    if (!resp.ok) { showError(`report: HTTP ${resp.status}`); return; }
+    const name = (resp.headers.get("Content-Disposition") || "").match(/filename="([^"]+)"/);
+    saveBlob(await resp.blob(), name ? name[1] : "assessment.html");
+    const r = s.result;
+    said.textContent = `report of ${r.name}: k = ${fmt(r.k)}, ${r.sections.length} sections, ` +
+        `${(r.bytes / 1e6).toFixed(1)} MB, ${r.seconds.toFixed(1)} s on the server`;
+    app.timings.report = performance.now() - t0;
+  };
+  setTimeout(poll, 200);
 }
 
 function drawHistogram(result) {
