@@ -172,6 +172,18 @@ def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     assert manifest["batches"]["2"]["run"] == 1 and manifest["batches"]["0"]["run"] == 0
 
 
+def test_progress_callable_receives_the_resume_notes(base, tmp_path, capsys):
+    out = tmp_path / "ens"
+    run_ensemble(config(), out_dir=out, progress=None)
+    (out / "batches" / "batch-00001.parquet").write_bytes(b"damaged")
+    lines = []
+    again = run_ensemble(config(), out_dir=out, progress=lines.append)
+    pd.testing.assert_frame_equal(again.frame, base.frame)
+    assert capsys.readouterr().err == ""
+    assert any("recomputing batch 1: batch-00001.parquet unreadable" in x for x in lines)
+    assert lines[-1].startswith("ensemble: ") and lines[-1].endswith("(100%)")
+
+
 def test_resume_refuses_another_configuration(tmp_path):
     out = tmp_path / "ens"
     run_ensemble(config(samples=10), out_dir=out, progress=False)

@@ -473,6 +473,27 @@ def test_progress_lines_are_throttled(capsys, monkeypatch):
     assert capsys.readouterr().err == ""
 
 
+def test_progress_callable_gets_the_lines_and_nothing_is_printed(capsys, monkeypatch):
+    """The one progress protocol: a callable receives the same throttled lines (and notes)
+    that True prints on stderr; the library prints nothing then; anything else is refused."""
+    import archrock.studies.ensemble.progress as progress
+
+    clock = [0.0]
+    monkeypatch.setattr(progress.time, "monotonic", lambda: clock[0])
+    got = []
+    bar = progress.Progress(200, got.append, desc="curves", unit="arch")
+    bar.note("curves: starting")
+    for _ in range(200):
+        clock[0] += 2.0
+        bar.update(1)
+    bar.close()
+    assert capsys.readouterr().err == ""
+    assert got[0] == "curves: starting" and got[-1] == "curves: 200/200 arches (100%)"
+    assert len(got) == 101  # 1% of 200 is two arches: a line every other update, and the note
+    with pytest.raises(ArchInputError, match="progress: 'yes'; allowed None or a callable"):
+        progress.Progress(10, "yes")
+
+
 def test_cli_one_scale_without_collapse_names_scales(capsys, tmp_path):
     """`fragility --scales 2` on a record that never collapses the arch: the message names
     --scales (the option given), not --levels."""

@@ -670,7 +670,7 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
                    tol: float = 1e-3, dt: float | None = None, workers: int = 1,
-                   progress: bool = False, engine: str = "batch", scheduler=None,
+                   progress=False, engine: str = "batch", scheduler=None,
                    out=None) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
@@ -689,8 +689,9 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     recomputes nothing it had finished; :mod:`archrock.studies.runner`).  "respond": arch after arch,
     ``workers`` > 1 of them at once in a process pool (workers die with this process; no
     ``scheduler`` nor ``out``).  Both give the same curves, bit for bit.  The work is
-    estimated first and refused beyond the bound of :mod:`archrock.studies.work`; ``progress`` shows
-    the arches done on stderr when the estimate exceeds a few seconds.
+    estimated first and refused beyond the bound of :mod:`archrock.studies.work`; ``progress`` reports
+    the arches done when the estimate exceeds a few seconds (True: on stderr; a callable: given
+    each line).
     """
     if not isinstance(nominal, VoussoirArch):
         raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
@@ -719,7 +720,7 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
         # responses: the scan and (about) three bisections per arch and duration
         per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
             max(float(a_max) / float(tol), 2.0))))
-        bar = Progress((samples + 1) * d.size * per_curve, bool(progress) and est > PROGRESS_S,
+        bar = Progress((samples + 1) * d.size * per_curve, progress if est > PROGRESS_S else None,
                        desc="curves", unit="response")
         run = dict(workers=workers if workers > 1 else None, scheduler=scheduler, out=out)
         try:
@@ -728,7 +729,8 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
         finally:
             bar.close()
     else:
-        bar = Progress(samples, bool(progress) and est > PROGRESS_S, desc="curves", unit="arch")
+        bar = Progress(samples, progress if est > PROGRESS_S else None, desc="curves",
+                       unit="arch")
         try:
             if workers == 1:
                 rows = []

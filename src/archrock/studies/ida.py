@@ -169,7 +169,7 @@ def _check_analyses(what, recs, n_models, per_pair, n_boot, fit_s) -> float:
 def _progress(what, total, est, progress, unit="analysis"):
     from .ensemble.progress import Progress
 
-    return Progress(total, bool(progress) and est > PROGRESS_S, desc=what, unit=unit)
+    return Progress(total, progress if est > PROGRESS_S else None, desc=what, unit=unit)
 
 
 ENGINES = ("batch", "respond")
@@ -441,11 +441,12 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
         seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress: bool = False, engine: str = "batch", workers: int | None = None,
+        progress=False, engine: str = "batch", workers: int | None = None,
         scheduler=None, early_stop: bool = False, out=None) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
-    (:mod:`archrock.studies.work`); ``progress``: the responses (or curves) done on stderr for a long run.
+    (:mod:`archrock.studies.work`); ``progress``: the responses (or curves) done, for a long run
+    (True: on stderr; a callable: given each line; :mod:`archrock.studies.ensemble.progress`).
 
     engine: "batch" (default) runs every (arch, record, scale) of a round (the grid scan, then
     each bisection step) in one parallel call (:mod:`archrock.studies.runner`: in-process numba
@@ -540,7 +541,7 @@ class StripeResult:
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress: bool = False, engine: str = "batch", workers: int | None = None,
+        progress=False, engine: str = "batch", workers: int | None = None,
         scheduler=None, early_stop: bool = False, out=None) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or

@@ -1,11 +1,20 @@
-"""Progress output of an ensemble run, on stderr."""
+"""Progress of a long study: counted units, handed on as lines of text.
+
+One protocol for every study (:mod:`archrock._progress`): ``progress`` is None/False (silent),
+a callable given one line of text at a time (the library itself then prints nothing: the caller
+renders, as the app does), or True, the command line's renderer: a tqdm bar on stderr when it is
+a terminal, plain lines otherwise."""
 
 from __future__ import annotations
 
 import sys
 import time
 
+from ..._progress import check_progress
+
 __all__ = ["Progress"]
+
+_PLURAL = {"arch": "arches", "analysis": "analyses"}
 
 
 def _terminal() -> bool:
@@ -31,16 +40,19 @@ class Progress:
     MIN_FRACTION = 0.01
     HEARTBEAT_S = 60.0
 
-    def __init__(self, total: int, enabled: bool, desc: str = "ensemble", unit: str = "arch"):
+    def __init__(self, total: int, enabled, desc: str = "ensemble", unit: str = "arch"):
         self.bar = None
+        # a callable receives the plain lines (never a bar); True renders on stderr
+        self.sink = None if enabled is True else check_progress(enabled)
+        enabled = enabled is True or self.sink is not None
         self.enabled = enabled
         self.total = total
         self.done = 0
         self.printed = 0  # done at the last plain line
         self.last = time.monotonic()
         self.desc = desc
-        self.plural = "samples" if desc == "ensemble" else unit + "s"
-        if not enabled or not _terminal():
+        self.plural = "samples" if desc == "ensemble" else _PLURAL.get(unit, unit + "s")
+        if not enabled or self.sink is not None or not _terminal():
             return
         try:
             from tqdm import tqdm
@@ -69,8 +81,13 @@ class Progress:
         if self._due(now):
             self.last, self.printed = now, self.done
             pct = f" ({100 * self.done / self.total:.0f}%)" if self.total > 0 else ""
-            print(f"{self.desc}: {self.done}/{self.total} {self.plural}{pct}", file=sys.stderr,
-                  flush=True)
+            self._line(f"{self.desc}: {self.done}/{self.total} {self.plural}{pct}")
+
+    def _line(self, text: str):
+        if self.sink is not None:
+            self.sink(text)
+        else:
+            print(text, file=sys.stderr, flush=True)
 
     def note(self, text: str):
         """A line of progress output (above the bar)."""
@@ -79,7 +96,7 @@ class Progress:
         if self.bar is not None:
             self.bar.write(text, file=sys.stderr)
         else:
-            print(text, file=sys.stderr, flush=True)
+            self._line(text)
 
     def close(self):
         if self.bar is not None:

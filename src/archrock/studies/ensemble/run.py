@@ -67,13 +67,14 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
 
 
 def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, scheduler=None,
-                 progress: bool = True, keep_frame: bool = True) -> EnsembleResult:
+                 progress=True, keep_frame: bool = True) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
     out_dir: folder for the batches and manifest (None: nothing written); workers: 1 runs
     in-process (numba parallel loop), > 1 a local process pool over batches; scheduler: address
     of a Dask scheduler (or a ``distributed.Client``), which takes precedence over ``workers``;
-    progress: a progress bar on stderr; keep_frame: False keeps no per-sample table in memory
+    progress: True, a progress bar on stderr; a callable, given each
+    progress line (nothing printed); None/False, silent; keep_frame: False keeps no per-sample table in memory
     (needs ``out_dir``): each batch is written and dropped, the result's ``frame`` is None and
     its summary is computed from the stored batches (:mod:`archrock.studies.ensemble.streaming`), so
     memory stays that of one batch however many samples (10^7 and more).
