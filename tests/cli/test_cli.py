@@ -632,7 +632,7 @@ def test_interrupted_ensemble_with_out_counts_the_kept_batches(capsys, monkeypat
 
     out = tmp_path / "run"
 
-    def interrupted(config, out_dir=None, **kw):
+    def interrupted(config, out_folder=None, **kw):
         (out / "batches").mkdir(parents=True)
         for b in (0, 1):  # two batches finished before the Ctrl-C
             (out / "batches" / f"batch-{b:05d}.parquet").write_bytes(b"")

@@ -149,7 +149,7 @@ def test_in_process_groups_runs_of_consecutive_batches(monkeypatch):
 
 def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     out = tmp_path / "ens"
-    first = run_ensemble(config(), out_dir=out, progress=False)
+    first = run_ensemble(config(), out=out, progress=False)
     pd.testing.assert_frame_equal(first.frame, base.frame)
     files = sorted(p.name for p in (out / "batches").iterdir())
     assert files == [f"batch-{b:05d}.parquet" for b in range(4)]
@@ -157,7 +157,7 @@ def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     # a half-written file of a killed run (its process is gone) is removed
     stale = out / "batches" / "batch-00003.parquet.tmp-99999999"
     stale.write_bytes(b"partial")
-    again = run_ensemble(config(), out_dir=out, progress=False)
+    again = run_ensemble(config(), out=out, progress=False)
     pd.testing.assert_frame_equal(again.frame, base.frame)
     assert again.timing["computed_batches"] == [2]
     assert again.timing["loaded_batches"] == [0, 1, 3]
@@ -174,21 +174,31 @@ def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
 
 def test_progress_callable_receives_the_resume_notes(base, tmp_path, capsys):
     out = tmp_path / "ens"
-    run_ensemble(config(), out_dir=out, progress=None)
+    run_ensemble(config(), out=out, progress=None)
     (out / "batches" / "batch-00001.parquet").write_bytes(b"damaged")
     lines = []
-    again = run_ensemble(config(), out_dir=out, progress=lines.append)
+    again = run_ensemble(config(), out=out, progress=lines.append)
     pd.testing.assert_frame_equal(again.frame, base.frame)
     assert capsys.readouterr().err == ""
     assert any("recomputing batch 1: batch-00001.parquet unreadable" in x for x in lines)
     assert lines[-1].startswith("ensemble: ") and lines[-1].endswith("(100%)")
 
 
+def test_out_dir_is_the_old_name_of_out(base, tmp_path):
+    with pytest.warns(DeprecationWarning, match=r"run_ensemble\(out_dir=...\) is now out="):
+        res = run_ensemble(config(), out_dir=tmp_path / "a", progress=None)
+    assert res.timing["computed_batches"] == [0, 1, 2, 3]
+    assert run_ensemble(config(), tmp_path / "a", progress=None).timing["loaded_batches"] == [
+        0, 1, 2, 3]
+    with pytest.raises(ArchInputError, match="out_dir: give the folder once"):
+        run_ensemble(config(), out=tmp_path / "a", out_dir=tmp_path / "b", progress=None)
+
+
 def test_resume_refuses_another_configuration(tmp_path):
     out = tmp_path / "ens"
-    run_ensemble(config(samples=10), out_dir=out, progress=False)
+    run_ensemble(config(samples=10), out=out, progress=False)
     with pytest.raises(EnsembleConfigMismatch, match="'seed' is 11 there and 12 here"):
-        run_ensemble(config(samples=10, seed=12), out_dir=out, progress=False)
+        run_ensemble(config(samples=10, seed=12), out=out, progress=False)
 
 
 def test_dask_local_cluster(base):
@@ -505,20 +515,20 @@ def test_histograms_say_how_many_samples_are_not_shown(base, tmp_path, monkeypat
 @pytest.fixture
 def written(base, tmp_path):
     out = tmp_path / "ens"
-    run_ensemble(config(), out_dir=out, progress=False)
+    run_ensemble(config(), out=out, progress=False)
     return out
 
 
 def _resume(out, capsys):
     capsys.readouterr()
-    res = run_ensemble(config(), out_dir=out, progress=True)
+    res = run_ensemble(config(), out=out, progress=True)
     return res, capsys.readouterr().err
 
 
 def test_resume_without_manifest_is_refused(written):
     (written / "manifest.json").unlink()
     with pytest.raises(ArchInputError, match=r"batches'? holds batch files but .*manifest.json"):
-        run_ensemble(config(seed=12), out_dir=written, progress=False)
+        run_ensemble(config(seed=12), out=written, progress=False)
     assert len(list((written / "batches").iterdir())) == 4  # nothing touched
 
 
@@ -540,7 +550,7 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     from archrock.studies.ensemble import store
 
     other = written.parent / "other"
-    run_ensemble(config(seed=12), out_dir=other, progress=False)
+    run_ensemble(config(seed=12), out=other, progress=False)
     batches = written / "batches"
     (other / "batches" / "batch-00002.parquet").replace(batches / "batch-00002.parquet")
     # right metadata, wrong index column
@@ -596,7 +606,7 @@ def test_a_folder_written_by_0_4_0_resumes_by_verification(tmp_path, capsys):
         f"batch-{b:05d}.parquet" for b in range(3)]
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["versions"]["archrock"] == "0.4.0"
-    res = run_ensemble(EnsembleConfig.from_dict(manifest["config"]), out_dir=out, progress=True)
+    res = run_ensemble(EnsembleConfig.from_dict(manifest["config"]), out=out, progress=True)
     err = capsys.readouterr().err
     if res.timing["loaded_batches"] == [1, 2]:  # the numbers of this installation's numpy/numba
         assert res.timing["computed_batches"] == [0]
@@ -616,7 +626,7 @@ def test_tmp_files_of_live_processes_are_kept(written):
     dead = written / "manifest.json.tmp-99999999"
     mine.write_bytes(b"x")
     dead.write_bytes(b"x")
-    run_ensemble(config(), out_dir=written, progress=False)
+    run_ensemble(config(), out=written, progress=False)
     assert mine.exists() and not dead.exists()
     manifest = json.loads((written / "manifest.json").read_text())
     assert manifest["runs"][-1]["removed_tmp"] == ["manifest.json.tmp-99999999"]

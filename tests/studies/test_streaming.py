@@ -34,8 +34,8 @@ def test_streamed_summary_equals_in_memory(tmp_path, early_stop):
                                    spreads=Spreads(0.2, 0.3, 0.3), early_stop=early_stop,
                                    motion=PulseSpec("oppenheim", -1.0, 0.2),
                                    impact=ImpactSpec.fixed(0.8754))
-    full = run_ensemble(cfg, out_dir=tmp_path / "a", progress=False)
-    lean = run_ensemble(cfg, out_dir=tmp_path / "a", progress=False, keep_frame=False)
+    full = run_ensemble(cfg, out=tmp_path / "a", progress=False)
+    lean = run_ensemble(cfg, out=tmp_path / "a", progress=False, keep_frame=False)
     assert lean.frame is None and lean.timing["loaded_batches"] == list(range(cfg.n_batches))
     ref, got = full.summary(), lean.summary()
     assert got.pop("streamed")["passes"] == 3

@@ -89,7 +89,7 @@ def run_ensemble_cmd(args) -> int:
                                       impact=impact_spec_from_args(args),
                                       early_stop=bool(args.early_stop))
     try:
-        result = run_ensemble(config, out_dir=out, workers=args.workers,
+        result = run_ensemble(config, out=out, workers=args.workers,
                               scheduler=args.scheduler, progress=not args.no_progress,
                               keep_frame=not args.low_memory)
     except KeyboardInterrupt:

@@ -9,8 +9,8 @@ which batches finish, and it is sample i of ``curves`` and ``fragility`` too.
 
 Execution: in-process by default (numba ``prange`` over the arches of a batch), ``workers > 1``
 for a local process pool over batches, ``scheduler=ADDRESS`` for an existing Dask cluster.
-With ``out_dir`` every finished batch is written as a Parquet file next to ``manifest.json``;
-running again with the same ``out_dir`` and configuration computes only the missing batches.
+With ``out`` every finished batch is written as a Parquet file next to ``manifest.json``;
+running again with the same ``out`` and configuration computes only the missing batches.
 
 Modules: :mod:`.config` (:class:`EnsembleConfig`), :mod:`.compute` (one batch: :func:`run_batch`, :func:`sample_arch`), :mod:`.store`
 (batch files with provenance, manifest), :mod:`.progress`, :mod:`.summary`

@@ -66,16 +66,17 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
                       "cluster (--scheduler)", cores)
 
 
-def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, scheduler=None,
-                 progress=True, keep_frame: bool = True) -> EnsembleResult:
+def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=None,
+                 progress=True, keep_frame: bool = True, *, out_dir=None) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
-    out_dir: folder for the batches and manifest (None: nothing written); workers: 1 runs
+    out: folder for the batches and manifest (None: nothing written; ``out_dir``, its 0.5 name,
+    still read with a DeprecationWarning, as ``out`` is spelled in every study); workers: 1 runs
     in-process (numba parallel loop), > 1 a local process pool over batches; scheduler: address
     of a Dask scheduler (or a ``distributed.Client``), which takes precedence over ``workers``;
     progress: True, a progress bar on stderr; a callable, given each
     progress line (nothing printed); None/False, silent; keep_frame: False keeps no per-sample table in memory
-    (needs ``out_dir``): each batch is written and dropped, the result's ``frame`` is None and
+    (needs ``out``): each batch is written and dropped, the result's ``frame`` is None and
     its summary is computed from the stored batches (:mod:`archrock.studies.ensemble.streaming`), so
     memory stays that of one batch however many samples (10^7 and more).
     """
@@ -86,14 +87,22 @@ def run_ensemble(config: EnsembleConfig, out_dir=None, workers: int = 1, schedul
     workers = int_field("workers", workers, 1)
     if not isinstance(keep_frame, bool):
         raise ArchInputError(f"keep_frame: {keep_frame!r}; allowed true or false")
-    if not keep_frame and out_dir is None:
-        raise ArchInputError("keep_frame: False needs out_dir (the summary is then read from "
+    if out_dir is not None:
+        import warnings
+
+        if out is not None:
+            raise ArchInputError("out_dir: give the folder once, as out (out_dir is its old name)")
+        warnings.warn("run_ensemble(out_dir=...) is now out=... (one name in every study); "
+                      "out_dir goes in archrock 0.7", DeprecationWarning, stacklevel=2)
+        out = out_dir
+    if not keep_frame and out is None:
+        raise ArchInputError("keep_frame: False needs out (the summary is then read from "
                              "the stored batches)")
     _check_ensemble_work(config, workers if scheduler is None else 1)
     t_start = time.perf_counter()
     impact = _impact_info(config)
     nominal = _nominal_info(config)
-    out = Path(out_dir) if out_dir is not None else None
+    out = Path(out) if out is not None else None
     manifest = Manifest(out, config, impact, nominal) if out is not None else None
     frames: dict[int, object] = {}
     done: set[int] = set()
