@@ -11,7 +11,7 @@ pymunk = pytest.importorskip("pymunk")
 
 from archrock.contact import (FINE_CUT, ContactArch, EngineSettings, convex_pieces,  # noqa: E402
                               engine_scales, outline_deviation, ramp, simplify_outline)
-from archrock.contact.convex import signed_area  # noqa: E402
+from archrock.contact.convex import signed_area, strip_pieces  # noqa: E402
 from archrock.errors import ArchInputError  # noqa: E402
 from archrock.geometry import family_arch, oppenheim_arch, random_arch  # noqa: E402
 from archrock.statics.limit import limit_analysis  # noqa: E402
@@ -53,10 +53,17 @@ def test_simplified_outline_within_tolerance_corners_exact(arch):
         for q in corners:
             assert _to_boundary(q, simple) < 1e-12 * arch.size
         # its convex pieces tile it exactly, far fewer than the fine cut's
-        pieces = convex_pieces(simple)
+        pieces = strip_pieces(simple)
         assert sum(signed_area(p) for p in pieces) == pytest.approx(abs(signed_area(simple)),
                                                                      rel=1e-12)
-        assert len(pieces) <= 16 and len(pieces) <= 0.7 * len(convex_pieces(fine))
+        for p in pieces:  # every piece convex, counter-clockwise
+            d = np.roll(p, -1, axis=0) - p
+            assert np.all(d[:, 0] * np.roll(d[:, 1], -1) - d[:, 1] * np.roll(d[:, 0], -1)
+                          >= -1e-12 * arch.size ** 2)
+        assert len(pieces) <= 9 and 20 <= len(convex_pieces(fine))
+        # each joint's contact ends lie in one piece only (no fan of slivers at a hinge)
+        for q in corners:
+            assert sum(_to_boundary(q, p) < 1e-9 * arch.size for p in pieces) == 1
 
 
 def test_pieces_per_voussoir_on_the_pointed_arch():
@@ -66,14 +73,27 @@ def test_pieces_per_voussoir_on_the_pointed_arch():
     n_fine = [len(p) for p in fine.pieces]
     n_simple = [len(p) for p in simple.pieces]
     assert max(n_fine) == 32 and min(n_fine) == 29
-    assert n_simple == [8] * a.n
+    assert n_simple == [4] * a.n
     # the fine cut keeps every outline vertex; the simplified one only a few
     assert all(len(o) == len(a.outline(i)) for i, o in enumerate(fine.outlines))
-    assert all(len(o) == 18 for o in simple.outlines)  # of 66
+    assert all(len(o) == 14 for o in simple.outlines)  # of 66
     # the bodies are the same: the exact mass properties, whatever the cut
     for bf, bs in zip(fine.bodies, simple.bodies):
         assert bf.mass == bs.mass and bf.moment == bs.moment
         assert tuple(bf.position) == tuple(bs.position)
+
+
+def test_strip_pieces_of_a_mirrored_outline_are_mirrored():
+    a = _pointed()
+    tol = EngineSettings().outline_tol * a.size
+    jp = np.asarray(a.joint_points)
+    i, k = 2, a.n - 1 - 2
+    left = strip_pieces(simplify_outline(a.outline(i), tol, jp[[i, i + 1]].reshape(-1, 2)))
+    right = strip_pieces(simplify_outline(a.outline(k), tol, jp[[k, k + 1]].reshape(-1, 2)))
+    key = lambda ps: sorted(round(float(signed_area(p)), 9) for p in ps)  # noqa: E731
+    assert key(left) == key(right)
+    cx = sorted(round(float(p[:, 0].mean()), 6) for p in left)
+    assert cx == sorted(round(-float(p[:, 0].mean()), 6) for p in right)
 
 
 def test_simplify_outline_bad_input_and_zero_tolerance():
@@ -106,7 +126,7 @@ def test_engine_scales_follow_the_size_and_period_of_the_arch():
     assert sb.time_scale / sb.dt == pytest.approx(sa.time_scale / sa.dt, rel=1e-12)
     for f in ("slop", "rounding", "outline_tol"):
         assert getattr(sb, f) == pytest.approx(100.0 * getattr(sa, f), rel=1e-12)
-    assert sa.outline_tol == pytest.approx(2e-4 * 10.0, rel=1e-12)  # 2 mm on the 10 m arch
+    assert sa.outline_tol == pytest.approx(5e-4 * 10.0, rel=1e-12)  # 5 mm on the 10 m arch
     ca = ContactArch(a, s.replace(steps_per_T=100))
     assert ca.dt == engine_scales(a, s.replace(steps_per_T=100)).dt
     assert ca.space.collision_slop == pytest.approx(sa.slop, rel=1e-15)
@@ -114,10 +134,10 @@ def test_engine_scales_follow_the_size_and_period_of_the_arch():
 
 @pytest.mark.slow
 def test_ramp_on_the_pointed_arch_simplified_against_the_fine_cut():
-    """docs/verification.md, Contact engine: the same hinges both ways; the simplified cut's
-    activation within 1% of the fine cut's on average over the two directions (M_l +0.6%,
-    M_r +1.0%: the fine cut, with 32 pieces a voussoir, is the more compliant and not even
-    symmetric) and at least 3 times faster."""
+    """docs/verification.md, Contact engine: the same hinges and edges with both cuts; the
+    simplified cut's activation within 1% of the fine cut's in each direction (measured +0.2%,
+    +0.6%: the fine cut, 32 pieces a voussoir, is the more compliant and not even symmetric),
+    within 2% of the limit analysis, and at least 3 times faster."""
     import time
 
     a = _pointed()
@@ -132,10 +152,7 @@ def test_ramp_on_the_pointed_arch_simplified_against_the_fine_cut():
     assert simple.l.edges == fine.l.edges
     assert simple.r.edges == fine.r.edges
     for d in ("l", "r"):
-        assert getattr(simple, f"k_{d}") == pytest.approx(getattr(fine, f"k_{d}"), rel=0.015)
-    mean_s = 0.5 * (simple.k_l + simple.k_r)
-    mean_f = 0.5 * (fine.k_l + fine.k_r)
-    assert mean_s == pytest.approx(mean_f, rel=0.01)
-    # both within the engine's compliance of the limit analysis (k = 0.24868)
-    assert simple.k_l == pytest.approx(lim.k_l, rel=0.02)
+        assert getattr(simple, f"k_{d}") == pytest.approx(getattr(fine, f"k_{d}"), rel=0.01)
+        # within the engine's compliance of the limit analysis (k = 0.24868)
+        assert getattr(simple, f"k_{d}") == pytest.approx(getattr(lim, f"k_{d}"), rel=0.02)
     assert (t1 - t0) > 3.0 * (t2 - t1)

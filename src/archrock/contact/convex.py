@@ -19,7 +19,8 @@ import numpy as np
 
 from ..errors import ArchInputError
 
-__all__ = ["convex_pieces", "signed_area", "simplify_outline", "outline_deviation"]
+__all__ = ["convex_pieces", "strip_pieces", "signed_area", "simplify_outline",
+           "outline_deviation"]
 
 
 def signed_area(p: np.ndarray) -> float:
@@ -141,6 +142,104 @@ def convex_pieces(outline, tol: float | None = None) -> list[np.ndarray]:
             if merged:
                 break
     return [p[pc] for pc in pieces]
+
+
+def _ray_hit(p: np.ndarray, i: int, d: np.ndarray, tol: float):
+    """First crossing of the ray from vertex i of polygon p along d with an edge not at vertex
+    i: (edge index j, point), or None."""
+    m = len(p)
+    b = p[i]
+    best = None
+    for j in range(m):
+        if j == i or (j + 1) % m == i:
+            continue
+        a, c = p[j], p[(j + 1) % m]
+        e = c - a
+        den = d[0] * e[1] - d[1] * e[0]
+        if abs(den) <= 1e-15 * np.hypot(*e):
+            continue
+        w = a - b
+        t = (w[0] * e[1] - w[1] * e[0]) / den
+        u = (w[0] * d[1] - w[1] * d[0]) / den
+        if t > tol and -1e-12 <= u <= 1 + 1e-12 and (best is None or t < best[0]):
+            best = (t, j, min(max(u, 0.0), 1.0))
+    if best is None:
+        return None
+    t, j, u = best
+    return j, u, b + t * d
+
+
+def _split_at_reflex(p: np.ndarray, tol: float, depth: int = 0) -> list[np.ndarray]:
+    m = len(p)
+    ang = []
+    for i in range(m):
+        a, b, c = p[i - 1], p[i], p[(i + 1) % m]
+        ang.append(_cross(a, b, c))
+    reflex = [i for i in range(m) if ang[i] < -tol * tol]
+    if not reflex:
+        return [p]
+    if depth > 4 * m:
+        raise ArchInputError("voussoir outline: cuts at its reflex corners did not end")
+    # the most reflex corner first (smallest signed turn), cut along its interior bisector
+    i = min(reflex, key=lambda k: ang[k] / (np.hypot(*(p[k] - p[k - 1]))
+                                             * np.hypot(*(p[(k + 1) % m] - p[k]))))
+    e1 = p[i] - p[i - 1]
+    e2 = p[(i + 1) % m] - p[i]
+    n1 = np.array([-e1[1], e1[0]]) / np.hypot(*e1)
+    n2 = np.array([-e2[1], e2[0]]) / np.hypot(*e2)
+    d = n1 + n2
+    d = d / np.hypot(*d)
+    hit = _ray_hit(p, i, d, tol)
+    if hit is None:
+        raise ArchInputError("voussoir outline: a cut from a reflex corner found no edge")
+    j, u, x = hit
+    # the hit as a vertex: an existing one at either end of edge j, else a new one after j
+    if u <= 1e-9:
+        k, q = j, p
+    elif u >= 1 - 1e-9:
+        k, q = (j + 1) % m, p
+    else:
+        q = np.insert(p, j + 1, x, axis=0)
+        k = j + 1
+        if i > j:
+            i += 1
+    mq = len(q)
+    first = [q[(i + s) % mq] for s in range((k - i) % mq + 1)]
+    second = [q[(k + s) % mq] for s in range((i - k) % mq + 1)]
+    out = []
+    for part in (np.array(first), np.array(second)):
+        if len(part) < 3 or signed_area(part) <= 0:
+            raise ArchInputError("voussoir outline: a cut from a reflex corner left a "
+                                 "degenerate piece")
+        out += _split_at_reflex(part, tol, depth + 1)
+    return out
+
+
+def strip_pieces(outline, tol: float | None = None) -> list[np.ndarray]:
+    """Convex polygons that tile the simple polygon ``outline`` exactly, cut from each reflex
+    corner along its interior bisector to the opposite side (a new vertex there): on a
+    voussoir, whose intrados alone is concave, one strip from intrados to extrados per chord of
+    the intrados, each joint's face and both its ends in one piece, and a mirrored outline cut
+    into mirrored pieces.  Falls back to :func:`convex_pieces` where a cut fails."""
+    p = np.asarray(outline, float)
+    if p.ndim != 2 or p.shape[1] != 2 or len(p) < 3 or not np.all(np.isfinite(p)):
+        raise ArchInputError("voussoir outline: expected a polygon of >= 3 finite (x, y) points")
+    size = float(np.ptp(p, axis=0).max())
+    tol = 1e-9 * size if tol is None else tol
+    q = _clean(p, tol)
+    if len(q) < 3:
+        raise ArchInputError("voussoir outline: degenerate polygon (fewer than 3 distinct corners)")
+    if signed_area(q) < 0:
+        q = q[::-1].copy()
+    try:
+        pieces = [_clean(x, tol) for x in _split_at_reflex(q, tol)]
+    except ArchInputError:
+        return convex_pieces(p, tol)
+    area = abs(signed_area(q))
+    if (any(len(x) < 3 or not _convex(list(range(len(x))), x, tol) for x in pieces)
+            or abs(sum(signed_area(x) for x in pieces) - area) > 1e-9 * area):
+        return convex_pieces(p, tol)
+    return pieces
 
 
 def _seg_dist(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import ArchInputError
 from ..geometry import VoussoirArch
 from ..units import G
-from .convex import convex_pieces, inset, simplify_outline
+from .convex import convex_pieces, inset, simplify_outline, strip_pieces
 from .settings import EngineSettings, engine_scales
 
 __all__ = ["ContactArch", "import_pymunk"]
@@ -92,7 +92,7 @@ class ContactArch:
             if sc.outline_tol > 0:
                 simple = simplify_outline(outline, sc.outline_tol, jp[[i, i + 1]].reshape(-1, 2))
                 try:
-                    pieces = convex_pieces(simple)
+                    pieces = strip_pieces(simple)
                     outline = simple
                 except ArchInputError:  # not simple any more: keep the fine cut
                     pieces = None
