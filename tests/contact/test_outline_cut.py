@@ -60,7 +60,7 @@ def test_simplified_outline_within_tolerance_corners_exact(arch):
             d = np.roll(p, -1, axis=0) - p
             assert np.all(d[:, 0] * np.roll(d[:, 1], -1) - d[:, 1] * np.roll(d[:, 0], -1)
                           >= -1e-12 * arch.size ** 2)
-        assert len(pieces) <= 9 and 20 <= len(convex_pieces(fine))
+        assert len(pieces) <= 4 and 20 <= len(convex_pieces(fine))
         # each joint's contact ends lie in one piece only (no fan of slivers at a hinge)
         for q in corners:
             assert sum(_to_boundary(q, p) < 1e-9 * arch.size for p in pieces) == 1
@@ -73,10 +73,10 @@ def test_pieces_per_voussoir_on_the_pointed_arch():
     n_fine = [len(p) for p in fine.pieces]
     n_simple = [len(p) for p in simple.pieces]
     assert max(n_fine) == 32 and min(n_fine) == 29
-    assert n_simple == [4] * a.n
+    assert n_simple == [2] * a.n
     # the fine cut keeps every outline vertex; the simplified one only a few
     assert all(len(o) == len(a.outline(i)) for i, o in enumerate(fine.outlines))
-    assert all(len(o) == 14 for o in simple.outlines)  # of 66
+    assert all(len(o) == 8 for o in simple.outlines)  # of 66
     # the bodies are the same: the exact mass properties, whatever the cut
     for bf, bs in zip(fine.bodies, simple.bodies):
         assert bf.mass == bs.mass and bf.moment == bs.moment
@@ -126,7 +126,7 @@ def test_engine_scales_follow_the_size_and_period_of_the_arch():
     assert sb.time_scale / sb.dt == pytest.approx(sa.time_scale / sa.dt, rel=1e-12)
     for f in ("slop", "rounding", "outline_tol"):
         assert getattr(sb, f) == pytest.approx(100.0 * getattr(sa, f), rel=1e-12)
-    assert sa.outline_tol == pytest.approx(5e-4 * 10.0, rel=1e-12)  # 5 mm on the 10 m arch
+    assert sa.outline_tol == pytest.approx(2e-3 * 10.0, rel=1e-12)  # 2 cm on the 10 m arch
     ca = ContactArch(a, s.replace(steps_per_T=100))
     assert ca.dt == engine_scales(a, s.replace(steps_per_T=100)).dt
     assert ca.space.collision_slop == pytest.approx(sa.slop, rel=1e-15)
@@ -135,8 +135,8 @@ def test_engine_scales_follow_the_size_and_period_of_the_arch():
 @pytest.mark.slow
 def test_ramp_on_the_pointed_arch_simplified_against_the_fine_cut():
     """docs/verification.md, Contact engine: the same hinges and edges with both cuts; the
-    simplified cut's activation within 1% of the fine cut's in each direction (measured +0.2%,
-    +0.6%: the fine cut, 32 pieces a voussoir, is the more compliant and not even symmetric),
+    simplified cut's activation within 1% of the fine cut's in each direction (measured +0.8%,
+    +0.8%: the fine cut, 32 pieces a voussoir, is the more compliant and not even symmetric),
     within 2% of the limit analysis, and at least 3 times faster."""
     import time
 

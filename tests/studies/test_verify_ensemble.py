@@ -88,7 +88,7 @@ def test_verify_ensemble_six_irregular_pointed_arches_in_a_pool():
     hinges differ."""
     s = ArchSampler(family_arch("pointed", 10.0, 7.0, 1.0, 9), Spreads(0.1, 0.1, 0.05, 5.0),
                     seed=1)
-    eng = EngineSettings(steps_per_T=150, iterations=20)
+    eng = EngineSettings()  # the coarse settings are not converged enough on these arches
     opts = {"tol": 0.02, "rate": 0.1, "hold": 2.0}
     lines = []
     pool = verify_ensemble(s, 6, settings=eng, ramp_options=opts, workers=2,
@@ -102,7 +102,7 @@ def test_verify_ensemble_six_irregular_pointed_arches_in_a_pool():
         assert a.l.k_four_link == lim.k_l and a.r.k_four_link == lim.k_r
         for c in (a.l, a.r):
             assert c.mode == "rocking"
-            assert abs(c.k_error) < 0.08
+            assert abs(c.k_error) < 0.05
             assert c.agree == (not c.missing and not c.extra and abs(c.k_error) <= 0.05)
     n_bad = sum(not a.agree for a in pool.arches)
     assert pool.disagreement_rate == pytest.approx(n_bad / 6)

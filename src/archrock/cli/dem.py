@@ -28,7 +28,7 @@ def add_engine_options(p):
                    help="impulse-solver iterations per step (default 40)")
     g.add_argument("--outline-tol", type=finite_float, default=None, metavar="F",
                    help="largest deviation of the contact shapes from a voussoir's outline, as a "
-                        "fraction of the size, 0..0.01 (default 5e-4; 0: the fine cut)")
+                        "fraction of the size, 0..0.01 (default 2e-3; 0: the fine cut)")
     return p
 
 

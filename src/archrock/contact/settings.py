@@ -17,7 +17,7 @@ DEFAULT_FRICTION = 0.8
 
 #: How far the contact shapes' outline may deviate from a voussoir's, as a fraction of the arch's
 #: size (0: the fine cut, every outline vertex kept).
-DEFAULT_OUTLINE_TOL = 5e-4
+DEFAULT_OUTLINE_TOL = 2e-3
 
 
 def _num(name, value, lo, hi, allowed, integer=False):
@@ -45,7 +45,7 @@ class EngineSettings:
     restitution: coefficient of restitution of every contact (0: no bounce);
     outline_tol: the contact shapes' outline may deviate from the voussoir's by this fraction of
     the size (:func:`~archrock.contact.convex.simplify_outline`; the joints' ends stay exact):
-    the default 5e-4 (5 mm on a 10 m arch) cuts a voussoir into 4 to 9 convex pieces instead of
+    the default 2e-3 (2 cm on a 10 m arch) cuts a voussoir into 2 to 4 convex pieces instead of
     20 to 60; 0 is the fine cut, every vertex of the outline (as sampled by ``arch.outline``).
     Defaults are those of the convergence study in docs/verification.md; how they become
     seconds and metres on a given arch is :func:`engine_scales`.
