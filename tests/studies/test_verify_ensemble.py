@@ -79,6 +79,8 @@ def test_cli_verify_samples_table_and_flags(capsys):
     assert "--workers: applies with --samples" in capsys.readouterr().err
     assert main(["verify", "--samples", "1", "--k-tol", "1.5"]) == 2
     assert "k_tol" in capsys.readouterr().err
+    assert main(["verify", "--samples", "1", "--durations", "0.3"]) == 2
+    assert "--durations: the pulse grid's; not with --samples" in capsys.readouterr().err
 
 
 @pytest.mark.slow

@@ -9,6 +9,10 @@ from .dem import add_engine_options, engine_settings_from_args
 from .options import add_geometry_options, add_spread_options, arch_from_args, figure_arg, spreads
 
 
+DEFAULT_AMPLITUDES = [-0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0]
+DEFAULT_DURATIONS = [0.1, 0.2, 0.4]
+
+
 def _floats(text):
     import argparse
 
@@ -35,9 +39,9 @@ def add_verify_parser(subparsers):
     p.add_argument("--pulse", default="oppenheim", metavar="KIND",
                    help="pulse kind (default oppenheim: a for t_p, -a/2 for 2 t_p)")
     p.add_argument("--amplitudes", type=_floats, metavar="A1,A2,...",
-                   default=[-0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0],
+                   default=list(DEFAULT_AMPLITUDES),
                    help="pulse amplitudes [g], signed (default -0.5,...,-3)")
-    p.add_argument("--durations", type=_floats, metavar="T1,T2,...", default=[0.1, 0.2, 0.4],
+    p.add_argument("--durations", type=_floats, metavar="T1,T2,...", default=list(DEFAULT_DURATIONS),
                    help="pulse durations [s] (default 0.1,0.2,0.4)")
     g = p.add_argument_group("over an ensemble", "--samples N: random arches around the given "
                                                  "one instead of the pulse grid")
@@ -66,6 +70,12 @@ def _run_ensemble(args) -> int:
 
     if args.plot:
         raise CLIError("--plot: the pulse grid's figure; not with --samples")
+    for flag, value, default in (("--amplitudes", args.amplitudes, DEFAULT_AMPLITUDES),
+                                 ("--durations", args.durations, DEFAULT_DURATIONS),
+                                 ("--pulse", args.pulse, "oppenheim")):
+        if value != default:
+            raise CLIError(f"{flag}: the pulse grid's; not with --samples (the ensemble is "
+                           f"checked by the engine's ramp)")
     nominal = arch_from_args(args)
     sampler = ArchSampler(nominal, spreads(args), args.seed)
     import_pymunk()

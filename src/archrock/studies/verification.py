@@ -121,8 +121,8 @@ def verify(arch: VoussoirArch, amplitudes, durations, *, pulse: str = "oppenheim
 
 # ---------------------------------------------------------------------------- over an ensemble
 #: Seconds of the engine's ramp in both directions on one arch of about 10 voussoirs at the
-#: default settings (the pointed arch of docs/geometry.md: 3.6 s on the 2-core development
-#: machine), for the work estimate.
+#: default settings, for the work estimate (2 to 2.5 s on the 2-core development machine for the
+#: arches of docs/verification.md, 4 s leaves room for a loaded machine).
 ENGINE_RAMP_S = 4.0
 #: Relative difference of the engine's activation multiplier from the limit analysis's beyond
 #: which an arch counts as a disagreement (the engine's compliance alone gives up to 3%).
@@ -297,7 +297,11 @@ def _check_arch(index: int, arch: VoussoirArch, settings: EngineSettings, k_tol:
 
 
 def _pool_check(index, source, settings_dict, k_tol, ramp_options):
-    arch = source.arch(index) if hasattr(source, "arch") else source
+    """One arch in a pool worker: ``source`` the sampler (arch ``index`` drawn there) or the
+    arch itself."""
+    from ..geometry.sampling import ArchSampler
+
+    arch = source.arch(index) if isinstance(source, ArchSampler) else source
     return _check_arch(index, arch, EngineSettings.from_dict(settings_dict), k_tol, ramp_options)
 
 
