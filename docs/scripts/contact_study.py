@@ -4,7 +4,15 @@ Writes docs/figures/contact_convergence.json, docs/figures/verify_<arch>.json an
 docs/figures/verify_contact.png (first-collapse amplitudes of Oppenheim's arch and of the 2 m
 arch of the same proportions), and prints the markdown tables.
 
+The published convergence table, pulse figure and verification grid were computed with the
+fine cut (every outline vertex, ``outline_tol = 0``, the engine before issue 21), which stays
+this script's default (``--cut fine``); ``--cut simplified`` runs them with the default
+``EngineSettings`` (outline within 2e-3 x size), written beside them with the suffix
+``_simplified``.  ``--activation`` prints the activation table (four arches, both directions)
+for the chosen cut.
+
 Usage: PYTHONPATH=src python docs/scripts/contact_study.py [--quick] [--skip-convergence]
+       [--cut fine|simplified] [--activation]
 """
 
 from __future__ import annotations
@@ -18,6 +26,57 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parents[1]
 FIG = HERE / "figures"
+#: "fine" (outline_tol = 0, the published figures) or "simplified" (the default settings)
+CUT = {"cut": "fine"}
+
+
+def base_settings():
+    from archrock.contact import FINE_CUT, EngineSettings
+
+    return FINE_CUT if CUT["cut"] == "fine" else EngineSettings()
+
+
+def _suffix() -> str:
+    return "" if CUT["cut"] == "fine" else "_simplified"
+
+
+def activation():
+    """The activation table of docs/verification.md: engine ramp beside the limit analysis."""
+    from archrock.contact import ContactArch, ramp
+    from archrock.geometry import family_arch, oppenheim_arch, random_arch
+    from archrock.statics.limit import limit_analysis
+
+    s = base_settings()
+    cases = [("Oppenheim", oppenheim_arch()),
+             ("pointed S 10, F 7, t 1 m, 9 voussoirs", family_arch("pointed", 10.0, 7.0, 1.0, 9)),
+             ("irregular circular (random_arch(seed=3))", random_arch(seed=3)),
+             ("irregular pointed (seed 1, tilt 5 deg)",
+              random_arch(family_arch("pointed", 10.0, 7.0, 1.0, 9), seed=1, spread_tilt_deg=5.0)),
+             ("pointed S 10, F 7, t 1 m, 12 voussoirs (docs/geometry.md)",
+              family_arch("pointed", 10.0, 7.0, 1.0, 12))]
+    rows = []
+    for name, arch in cases:
+        lim = limit_analysis(arch)
+        pieces = max(len(p) for p in ContactArch(arch, s).pieces)
+        t0 = time.perf_counter()
+        r = ramp(arch, s, limit=lim)
+        rows.append({"arch": name, "pieces": pieces, "seconds": time.perf_counter() - t0,
+                     "k_l": r.k_l, "k_r": r.k_r, "limit_k_l": lim.k_l, "limit_k_r": lim.k_r,
+                     "hinges_l": list(r.l.hinges), "hinges_r": list(r.r.hinges),
+                     "edges_l": list(r.l.edges), "edges_r": list(r.r.edges)})
+        print(rows[-1], file=sys.stderr, flush=True)
+    (FIG / f"contact_activation{_suffix()}.json").write_text(json.dumps(
+        {"engine": s.to_dict(), "rows": rows}, indent=1))
+    out = ["| arch | pieces a voussoir | engine k_l, k_r | limit analysis k_l, k_r | error | "
+           "engine hinges (M_l; M_r) | ramp [s] |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        out.append(f"| {r['arch']} | {r['pieces']} | {r['k_l']:.4f}, {r['k_r']:.4f} | "
+                   f"{r['limit_k_l']:.4f}, {r['limit_k_r']:.4f} | "
+                   f"{100 * (r['k_l'] / r['limit_k_l'] - 1):+.1f}%, "
+                   f"{100 * (r['k_r'] / r['limit_k_r'] - 1):+.1f}% | "
+                   f"{'-'.join(map(str, r['hinges_l']))}; {'-'.join(map(str, r['hinges_r']))} | "
+                   f"{r['seconds']:.1f} |")
+    return "\n".join(out)
 
 
 def convergence():
@@ -28,7 +87,7 @@ def convergence():
 
     arch = oppenheim_arch()
     model = prepare(arch)
-    base = EngineSettings()
+    base = base_settings()
     rows = []
     variants = [("steps_per_T", v) for v in (100, 200, 400, 800)] + \
                [("iterations", v) for v in (10, 20, 80)] + \
@@ -45,7 +104,7 @@ def convergence():
                      "status": e.status, "ramp_seconds": t1 - t0, "pulse_seconds": t2 - t1,
                      "simulated": e.t_final})
         print(rows[-1], file=sys.stderr, flush=True)
-    (FIG / "contact_convergence.json").write_text(json.dumps(rows, indent=1))
+    (FIG / f"contact_convergence{_suffix()}.json").write_text(json.dumps(rows, indent=1))
     return rows
 
 
@@ -69,9 +128,9 @@ def pulse_figure():
 
     arch, motion = oppenheim_arch(), oppenheim_pulse(-1.0, 0.2)
     model = prepare(arch)
-    e = engine_respond(arch, motion, model=model, t_end=6.0)
+    e = engine_respond(arch, motion, base_settings(), model=model, t_end=6.0)
     f = respond(model, motion, t_end=6.0)
-    save_engine_figure(e, f, FIG / "dem_oppenheim_pulse.png")
+    save_engine_figure(e, f, FIG / f"dem_oppenheim_pulse{_suffix()}.png")
     i = [int(t / e.run["dt_out"]) for t in (0.1, 0.2, 0.3)]
     print(f"engine: {e.status}, peak {e.peak:.4f}, max sliding "
           f"{[round(v * 1e3, 2) for v in e.max_sliding]} mm; four-link: {f.status}, peak "
@@ -97,12 +156,13 @@ def study(quick=False):
     fig, axes = new_figure(1, 2, figsize=(11.0, 4.4))
     texts = []
     for k, (arch, durs) in enumerate(cases):
-        res = verify(arch, amps, durs, progress=lambda m: print(m, file=sys.stderr, flush=True))
+        res = verify(arch, amps, durs, settings=base_settings(),
+                     progress=lambda m: print(m, file=sys.stderr, flush=True))
         tag = "oppenheim" if k == 0 else "2m"
-        (FIG / f"verify_{tag}.json").write_text(json.dumps(res.to_dict(), indent=1))
+        (FIG / f"verify_{tag}{_suffix()}.json").write_text(json.dumps(res.to_dict(), indent=1))
         save_verify_figure(res, None, ax=axes[0][k])
         texts.append(format_verify(res) + "\n\n" + verify_markdown(res))
-    save_figure(fig, FIG / "verify_contact.png")
+    save_figure(fig, FIG / f"verify_contact{_suffix()}.png")
     return texts
 
 
@@ -112,7 +172,14 @@ if __name__ == "__main__":
     ap.add_argument("--skip-convergence", action="store_true")
     ap.add_argument("--skip-study", action="store_true")
     ap.add_argument("--skip-pulse", action="store_true")
+    ap.add_argument("--cut", choices=("fine", "simplified"), default="fine",
+                    help="the voussoirs' outline cut (default fine: the published figures)")
+    ap.add_argument("--activation", action="store_true",
+                    help="print the activation table for the cut")
     a = ap.parse_args()
+    CUT["cut"] = a.cut
+    if a.activation:
+        print(activation())
     if not a.skip_convergence:
         print(convergence_markdown(convergence()))
     if not a.skip_pulse:

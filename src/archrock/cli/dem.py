@@ -26,6 +26,9 @@ def add_engine_options(p):
                    help="time steps per T = sqrt(size/g) (default 400)")
     g.add_argument("--iterations", type=int, default=None, metavar="N",
                    help="impulse-solver iterations per step (default 40)")
+    g.add_argument("--outline-tol", type=finite_float, default=None, metavar="F",
+                   help="largest deviation of the contact shapes from a voussoir's outline, as a "
+                        "fraction of the size, 0..0.01 (default 2e-3; 0: the fine cut)")
     return p
 
 
@@ -37,6 +40,8 @@ def engine_settings_from_args(args):
         kw["steps_per_T"] = args.steps_per_T
     if args.iterations is not None:
         kw["iterations"] = args.iterations
+    if getattr(args, "outline_tol", None) is not None:
+        kw["outline_tol"] = args.outline_tol
     return EngineSettings(**kw)
 
 

@@ -4,9 +4,13 @@ from __future__ import annotations
 
 import sys
 
-from ._parser import CLIError, emit_json
+from ._parser import CLIError, _int, emit_json, finite_float, non_negative_int
 from .dem import add_engine_options, engine_settings_from_args
-from .options import add_geometry_options, arch_from_args, figure_arg
+from .options import add_geometry_options, add_spread_options, arch_from_args, figure_arg, spreads
+
+
+DEFAULT_AMPLITUDES = [-0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0]
+DEFAULT_DURATIONS = [0.1, 0.2, 0.4]
 
 
 def _floats(text):
@@ -26,20 +30,65 @@ def add_verify_parser(subparsers):
         "verify", help="contact engine vs four-link model on a grid of pulses",
         description="Runs the contact engine (pymunk) and the four-link model with the paper's "
                     "and the momentum impact laws on every pulse of a grid, tabulates their "
-                    "collapse decisions and each model's first-collapse amplitude per duration.")
+                    "collapse decisions and each model's first-collapse amplitude per duration. "
+                    "With --samples N: the engine's activation and hinges against the four-link "
+                    "model's mechanism (limit analysis) on N random arches around the given one, "
+                    "arch by arch, with the disagreement rate and where it occurs.")
     add_geometry_options(p)
     add_engine_options(p)
     p.add_argument("--pulse", default="oppenheim", metavar="KIND",
                    help="pulse kind (default oppenheim: a for t_p, -a/2 for 2 t_p)")
     p.add_argument("--amplitudes", type=_floats, metavar="A1,A2,...",
-                   default=[-0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0],
+                   default=list(DEFAULT_AMPLITUDES),
                    help="pulse amplitudes [g], signed (default -0.5,...,-3)")
-    p.add_argument("--durations", type=_floats, metavar="T1,T2,...", default=[0.1, 0.2, 0.4],
+    p.add_argument("--durations", type=_floats, metavar="T1,T2,...", default=list(DEFAULT_DURATIONS),
                    help="pulse durations [s] (default 0.1,0.2,0.4)")
+    g = p.add_argument_group("over an ensemble", "--samples N: random arches around the given "
+                                                 "one instead of the pulse grid")
+    g.add_argument("--samples", type=non_negative_int, default=0, metavar="N",
+                   help="random arches to check (default 0: the pulse grid on the arch itself)")
+    g.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
+    g.add_argument("--workers", type=_int, default=1, metavar="N",
+                   help="processes, one arch per task (default 1)")
+    g.add_argument("--k-tol", type=finite_float, default=None, metavar="F",
+                   help="relative difference of the multipliers that counts as a disagreement, "
+                        "0 < F < 1 (default 0.05)")
+    g.add_argument("--ramp-tol", type=finite_float, default=None, metavar="F",
+                   help="relative width of the ramp's final bracket (default 0.005)")
+    add_spread_options(g, tilt=True)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="figure of the first-collapse amplitudes")
     p.set_defaults(func=run_verify)
     return p
+
+
+def _run_ensemble(args) -> int:
+    from ..contact import import_pymunk
+    from ..geometry.sampling import ArchSampler
+    from ..reports.verification import format_verify_ensemble
+    from ..studies.verification import DEFAULT_K_TOL, verify_ensemble
+
+    if args.plot:
+        raise CLIError("--plot: the pulse grid's figure; not with --samples")
+    for flag, value, default in (("--amplitudes", args.amplitudes, DEFAULT_AMPLITUDES),
+                                 ("--durations", args.durations, DEFAULT_DURATIONS),
+                                 ("--pulse", args.pulse, "oppenheim")):
+        if value != default:
+            raise CLIError(f"{flag}: the pulse grid's; not with --samples (the ensemble is "
+                           f"checked by the engine's ramp)")
+    nominal = arch_from_args(args)
+    sampler = ArchSampler(nominal, spreads(args), args.seed)
+    import_pymunk()
+    progress = None if args.json else (lambda m: print(m, file=sys.stderr, flush=True))
+    opts = {} if args.ramp_tol is None else {"tol": args.ramp_tol}
+    res = verify_ensemble(sampler, args.samples, settings=engine_settings_from_args(args),
+                          k_tol=DEFAULT_K_TOL if args.k_tol is None else args.k_tol,
+                          workers=args.workers, ramp_options=opts, progress=progress)
+    if args.json:
+        emit_json(res.to_dict())
+    else:
+        print(format_verify_ensemble(res))
+    return 0
 
 
 def run_verify(args) -> int:
@@ -47,6 +96,12 @@ def run_verify(args) -> int:
     from ..reports.verification import format_verify
     from ..studies.verification import verify
 
+    if args.samples:
+        return _run_ensemble(args)
+    for flag, given in (("--workers", args.workers != 1), ("--k-tol", args.k_tol is not None),
+                        ("--ramp-tol", args.ramp_tol is not None)):
+        if given:
+            raise CLIError(f"{flag}: applies with --samples N (N >= 1) only")
     plot = figure_arg(args.plot)
     if any(a == 0 for a in args.amplitudes):
         raise CLIError("--amplitudes: allowed nonzero amplitudes [g]")

@@ -7,17 +7,21 @@ check of the four-link model's idealisations (one mechanism, no sliding).
 * :mod:`.ramp` -- :func:`ramp`, the activation multiplier and hinges in each direction;
 * :mod:`.motion` -- :func:`engine_respond`, the response to a pulse or record, with the
   equivalent four-link rotation;
-* :mod:`.settings` -- :class:`EngineSettings`; :mod:`.convex` -- exact convex decomposition.
+* :mod:`.settings` -- :class:`EngineSettings` and :func:`engine_scales` (the settings in metres
+  and seconds for an arch); :mod:`.convex` -- outline simplification within a tolerance and
+  exact convex decomposition.
 
 pymunk is optional (``pip install "archrock[dem]"``): it is imported when an engine is built.
 """
 
-from .convex import convex_pieces
+from .convex import convex_pieces, outline_deviation, simplify_outline
 from .motion import ContactResponse, engine_respond, equivalent_rotation
 from .ramp import RampDirection, RampResult, ramp, ramp_direction, ramp_range
-from .settings import DEFAULT_FRICTION, EngineSettings
+from .settings import (DEFAULT_FRICTION, DEFAULT_OUTLINE_TOL, FINE_CUT, EngineScales,
+                       EngineSettings, engine_scales)
 from .engine import ContactArch, import_pymunk
 
 __all__ = ["ContactArch", "EngineSettings", "DEFAULT_FRICTION", "RampDirection", "RampResult",
            "ramp", "ramp_direction", "ramp_range", "ContactResponse", "engine_respond", "equivalent_rotation",
-           "convex_pieces", "import_pymunk"]
+           "convex_pieces", "simplify_outline", "outline_deviation", "import_pymunk",
+           "DEFAULT_OUTLINE_TOL", "FINE_CUT", "EngineScales", "engine_scales"]

@@ -28,10 +28,11 @@ import math
 
 import numpy as np
 
+from ..errors import ArchInputError
 from ..geometry import VoussoirArch
 from ..units import G
-from .convex import convex_pieces, inset
-from .settings import EngineSettings
+from .convex import convex_pieces, inset, simplify_outline, strip_pieces
+from .settings import EngineSettings, engine_scales
 
 __all__ = ["ContactArch", "import_pymunk"]
 
@@ -56,12 +57,13 @@ class ContactArch:
         pymunk = import_pymunk()
         self.arch = arch
         self.settings = settings = settings or EngineSettings()
-        self.size = float(arch.size)
-        self.time_scale = math.sqrt(self.size / G)
-        self.dt = self.time_scale / settings.steps_per_T
+        self.scales = sc = engine_scales(arch, settings)
+        self.size = sc.size
+        self.time_scale = sc.time_scale
+        self.dt = sc.dt
         space = pymunk.Space()
         space.iterations = settings.iterations
-        space.collision_slop = settings.slop * self.size
+        space.collision_slop = sc.slop
         space.collision_bias = (1.0 - settings.bias) ** (1.0 / self.dt) if settings.bias < 1 else 0.0
         space.gravity = (0.0, -G)
         space.damping = 1.0
@@ -71,19 +73,32 @@ class ContactArch:
         # Shapes are their pieces with corners rounded by r: cores inset by r, radius r.  Two
         # voussoirs' cores then never touch exactly, where Chipmunk's GJK contact is degenerate
         # (wrong normals, metre-deep false overlaps were seen on flush joints).
-        r = settings.rounding * self.size
+        r = sc.rounding
         e = math.sqrt(settings.restitution)
         self.masses = np.asarray(arch.masses, float)
         self.centroids0 = np.asarray(arch.centroids, float)
         self.inertias = np.asarray(arch.inertias, float)
         self.bodies = []
         self.pieces = []
+        self.outlines = []
+        jp = np.asarray(arch.joint_points, float)
         for i in range(arch.n):
             body = pymunk.Body(float(self.masses[i]), float(self.inertias[i]), pymunk.Body.DYNAMIC)
             c = self.centroids0[i]
             body.position = (float(c[0]), float(c[1]))
             body.center_of_gravity = (0.0, 0.0)
-            pieces = convex_pieces(arch.outline(i))
+            outline = arch.outline(i)
+            pieces = None
+            if sc.outline_tol > 0:
+                simple = simplify_outline(outline, sc.outline_tol, jp[[i, i + 1]].reshape(-1, 2))
+                try:
+                    pieces = strip_pieces(simple)
+                    outline = simple
+                except ArchInputError:  # not simple any more: keep the fine cut
+                    pieces = None
+            if pieces is None:
+                pieces = convex_pieces(outline)
+            self.outlines.append(np.asarray(outline, float))
             self.pieces.append(pieces)
             shapes = []
             for pc in pieces:

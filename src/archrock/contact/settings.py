@@ -6,12 +6,18 @@ import math
 from dataclasses import asdict, dataclass, fields
 
 from ..errors import ArchInputError
+from ..units import G
 
-__all__ = ["EngineSettings", "DEFAULT_FRICTION"]
+__all__ = ["EngineSettings", "EngineScales", "engine_scales", "DEFAULT_FRICTION",
+           "DEFAULT_OUTLINE_TOL", "FINE_CUT"]
 
 #: Coulomb coefficient of every contact unless --friction says otherwise: well above what the
 #: thrust of ordinary arches needs, so that the default run is Heyman's no-sliding masonry.
 DEFAULT_FRICTION = 0.8
+
+#: How far the contact shapes' outline may deviate from a voussoir's, as a fraction of the arch's
+#: size (0: the fine cut, every outline vertex kept).
+DEFAULT_OUTLINE_TOL = 2e-3
 
 
 def _num(name, value, lo, hi, allowed, integer=False):
@@ -36,8 +42,13 @@ class EngineSettings:
     rounding: corner radius of the contact shapes, as a fraction of the size (their cores are
     inset by it, so that flush joints are not degenerate for the contact search);
     friction: Coulomb coefficient of every contact (voussoir-voussoir and voussoir-abutment);
-    restitution: coefficient of restitution of every contact (0: no bounce).
-    Defaults are those of the convergence study in docs/verification.md.
+    restitution: coefficient of restitution of every contact (0: no bounce);
+    outline_tol: the contact shapes' outline may deviate from the voussoir's by this fraction of
+    the size (:func:`~archrock.contact.convex.simplify_outline`; the joints' ends stay exact):
+    the default 2e-3 (2 cm on a 10 m arch) cuts a voussoir into 2 to 4 convex pieces instead of
+    20 to 60; 0 is the fine cut, every vertex of the outline (as sampled by ``arch.outline``).
+    Defaults are those of the convergence study in docs/verification.md; how they become
+    seconds and metres on a given arch is :func:`engine_scales`.
     """
 
     steps_per_T: float = 400.0
@@ -47,6 +58,7 @@ class EngineSettings:
     rounding: float = 1e-5
     friction: float = DEFAULT_FRICTION
     restitution: float = 0.0
+    outline_tol: float = DEFAULT_OUTLINE_TOL
 
     def __post_init__(self):
         object.__setattr__(self, "steps_per_T", _num("steps_per_T", self.steps_per_T, 10, 1e6,
@@ -61,6 +73,9 @@ class EngineSettings:
                                                   "0 <= friction (MU) <= 100"))
         object.__setattr__(self, "restitution", _num("restitution", self.restitution, 0.0, 1.0,
                                                      "0 <= restitution <= 1"))
+        object.__setattr__(self, "outline_tol", _num("outline_tol", self.outline_tol, 0.0, 0.01,
+                                                     "0 <= outline_tol <= 0.01 (fraction of the "
+                                                     "size; 0: the fine cut)"))
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -76,3 +91,41 @@ class EngineSettings:
 
     def replace(self, **changes) -> "EngineSettings":
         return EngineSettings.from_dict({**self.to_dict(), **changes})
+
+
+@dataclass(frozen=True)
+class EngineScales:
+    """The engine settings made concrete for one arch (:func:`engine_scales`).
+
+    size [m]: the arch's size; time_scale T = sqrt(size/g) [s]: its characteristic period (a
+    pendulum of length ``size`` swings with period 2 pi T, and the four-link rocking frequency p
+    of geometrically similar arches scales as 1/T); dt = T / steps_per_T [s]: the time step;
+    slop, rounding, outline_tol [m]: the settings' fractions of the size."""
+
+    size: float
+    time_scale: float
+    dt: float
+    slop: float
+    rounding: float
+    outline_tol: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def engine_scales(arch, settings: EngineSettings | None = None) -> EngineScales:
+    """How ``settings`` (default :class:`EngineSettings`) are chosen for ``arch``: every length
+    is a fraction of ``arch.size`` and every duration a fraction of T = sqrt(size/g), so an arch
+    a hundred times larger runs with a ten times longer step and the same number of steps per
+    rocking period, and contact tolerances a hundred times larger."""
+    settings = settings or EngineSettings()
+    size = float(arch.size)
+    if not math.isfinite(size) or size <= 0:
+        raise ArchInputError(f"arch size: {size!r} m; allowed a finite length > 0")
+    t = math.sqrt(size / G)
+    return EngineScales(size, t, t / settings.steps_per_T, settings.slop * size,
+                        settings.rounding * size, settings.outline_tol * size)
+
+
+#: The fine cut: every vertex of each voussoir's outline kept (the engine before issue 21).
+FINE_CUT = EngineSettings(outline_tol=0.0)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["format_verify", "verify_markdown"]
+__all__ = ["format_verify", "verify_markdown", "format_verify_ensemble"]
 
 
 def _cell(res, i, j) -> str:
@@ -38,3 +38,44 @@ def verify_markdown(res) -> str:
     for i, d in enumerate(res.durations):
         rows.append(f"| {d:g} | " + " | ".join(_cell(res, i, j) for j in range(len(amps))) + " |")
     return "\n".join(rows)
+
+
+def _hinges(h) -> str:
+    return "-".join(map(str, h)) or "-"
+
+
+def format_verify_ensemble(res) -> str:
+    """The table of :func:`~archrock.studies.verification.verify_ensemble`: per arch and
+    direction the four-link (limit analysis) and engine multipliers and hinges, and what
+    differs; then the disagreement rate and where."""
+    s = res.settings
+    lines = [f"Verification over {res.n} arches: engine (MU = {s.friction:g}, "
+             f"{s.steps_per_T:g} steps per T, {s.iterations} iterations, outline_tol "
+             f"{s.outline_tol:g}) against the four-link model's mechanism (limit analysis); "
+             f"k within {100 * res.k_tol:g}%",
+             f"  {'arch':>4} {'dir':>3} | {'k 4-link':>8} {'k engine':>8} {'error':>7} | "
+             f"{'4-link hinges':<14} {'engine hinges':<14} | differs"]
+    for a in res.arches:
+        for d in (a.l, a.r):
+            ke = "-" if np.isnan(d.k_engine) else f"{d.k_engine:.4f}"
+            err = "-" if np.isnan(d.k_error) else f"{100 * d.k_error:+.1f}%"
+            lines.append(f"  {a.index:>4} {d.direction:>3} | {d.k_four_link:8.4f} {ke:>8} "
+                         f"{err:>7} | {_hinges(d.hinges_four_link):<14} "
+                         f"{_hinges(d.hinges_engine):<14} | "
+                         f"{'; '.join(d.differences) if not d.agree else 'agree'}")
+    lines.append(f"  disagreement rate: {100 * res.disagreement_rate:.0f}% of the arches "
+                 f"({sum(not a.agree for a in res.arches)} of {res.n})")
+    for d, w in sorted(res.where.items()):
+        parts = []
+        if w["missing"]:
+            parts.append("hinge not opened at joint " + ", ".join(
+                f"{j} ({c}x)" for j, c in sorted(w["missing"].items())))
+        if w["extra"]:
+            parts.append("extra hinge at joint " + ", ".join(
+                f"{j} ({c}x)" for j, c in sorted(w["extra"].items())))
+        for key, what in (("sliding", "slides first"), ("rests", "no motion in range"),
+                          ("k", f"k beyond {100 * res.k_tol:g}%")):
+            if w[key]:
+                parts.append(f"{what} ({w[key]}x)")
+        lines.append(f"  where, M_{d}: " + "; ".join(parts))
+    return "\n".join(lines)
