@@ -6,7 +6,6 @@ a job that finishes or is cancelled."""
 
 import math
 import re
-import time
 from pathlib import Path
 
 import numpy as np
@@ -25,30 +24,6 @@ OPPENHEIM_FAMILY = {"shape": "circular", "span": 20 * math.sin(math.radians(78.7
                     "rise": 10 * (1 - math.cos(math.radians(78.75))), "thickness": 1.5,
                     "voussoirs": 7, "joints": "normal"}
 PULSE = {"kind": "oppenheim", "amplitude": -1.0, "duration": 0.2}
-
-
-@pytest.fixture(scope="module")
-def client():
-    import warnings
-
-    with warnings.catch_warnings():  # newer Starlette prefers httpx2; httpx still works
-        warnings.simplefilter("ignore")
-        from starlette.testclient import TestClient
-
-    from archrock.app import create_app
-
-    with TestClient(create_app()) as c:
-        yield c
-
-
-def _wait(client, job_id, timeout=180.0):
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        s = client.get(f"/api/jobs/{job_id}").json()
-        if s["state"] != "running":
-            return s
-        time.sleep(0.05)
-    raise AssertionError(f"job {job_id} still running after {timeout} s")
 
 
 # ---------------------------------------------------------------------------- the page
@@ -220,11 +195,11 @@ def test_a_collapse_is_reported(client):
 
 
 # ---------------------------------------------------------------------------- ensemble
-def test_ensemble_job_finishes_with_the_clis_summary(client):
+def test_ensemble_job_finishes_with_the_clis_summary(client, wait_job):
     body = {"arch": OPPENHEIM, "samples": 200, "seed": 3, "pulse": {**PULSE, "amplitude": -0.6}}
     r = client.post("/api/ensemble", json=body)
     assert r.status_code == 200, r.text
-    s = _wait(client, r.json()["id"])
+    s = wait_job(client, r.json()["id"])
     assert s["state"] == "done" and s["done"] == s["total"] == 200
     res = s["result"]
     counts = res["histogram"]["counts"]
@@ -238,7 +213,7 @@ def test_ensemble_job_finishes_with_the_clis_summary(client):
     assert 0 <= pc["low"] <= pc["p"] <= pc["high"] <= 1
 
 
-def test_ensemble_cancel_and_one_job_at_a_time(client):
+def test_ensemble_cancel_and_one_job_at_a_time(client, wait_job):
     # 4000 arches: within the app's work bound with or without numba
     body = {"arch": OPPENHEIM, "samples": 4000, "pulse": PULSE}
     job = client.post("/api/ensemble", json=body).json()
@@ -246,11 +221,11 @@ def test_ensemble_cancel_and_one_job_at_a_time(client):
     assert busy.status_code == 409 and "another ensemble, curve or report" in busy.json()["error"]
     c = client.post(f"/api/jobs/{job['id']}/cancel")
     assert c.status_code == 200
-    s = _wait(client, job["id"])
+    s = wait_job(client, job["id"])
     assert s["state"] == "cancelled" and s["done"] < s["total"] == 4000 and s["result"] is None
     # the next job may start
     nxt = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 20})
-    assert nxt.status_code == 200 and _wait(client, nxt.json()["id"])["state"] == "done"
+    assert nxt.status_code == 200 and wait_job(client, nxt.json()["id"])["state"] == "done"
 
 
 # ---------------------------------------------------------------------------- export
@@ -379,11 +354,11 @@ def test_piers_as_the_command_lines(client):
     assert r.status_code == 400 and r.json()["error"].startswith("--pier-width: needed")
 
 
-def test_collapse_curve_job_is_ensemble_curves(client):
+def test_collapse_curve_job_is_ensemble_curves(client, wait_job):
     body = {"arch": OPPENHEIM, "samples": 6, "seed": 2, "durations": "0.2,0.5,1"}
     r = client.post("/api/curve", json=body)
     assert r.status_code == 200, r.text
-    s = _wait(client, r.json()["id"])
+    s = wait_job(client, r.json()["id"])
     assert s["state"] == "done" and s["done"] == s["total"] == 18
     res = s["result"]
     # one call of the library over all three durations (archrock curves --samples 6 --seed 2)

@@ -8,7 +8,6 @@ file answers 400 with the library's one-line message, a file above the limit 413
 report is ``archrock assess``'s."""
 
 import json
-import time
 
 import numpy as np
 import pytest
@@ -22,30 +21,6 @@ from archrock.app import api  # noqa: E402
 from archrock.units import G  # noqa: E402
 
 OPPENHEIM = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7}
-
-
-@pytest.fixture(scope="module")
-def client():
-    import warnings
-
-    with warnings.catch_warnings():  # newer Starlette prefers httpx2; httpx still works
-        warnings.simplefilter("ignore")
-        from starlette.testclient import TestClient
-
-    from archrock.app import create_app
-
-    with TestClient(create_app()) as c:
-        yield c
-
-
-def _wait(client, job_id, timeout=120.0):
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        s = client.get(f"/api/jobs/{job_id}").json()
-        if s["state"] != "running":
-            return s
-        time.sleep(0.05)
-    raise AssertionError(f"job {job_id} still running after {timeout} s")
 
 
 def _two_column(motion, per=G, header="time accel") -> bytes:
@@ -209,13 +184,13 @@ def test_a_bad_dxf_answers_400_naming_the_field(client):
 
 
 # ---------------------------------------------------------------------------- report
-def test_the_report_of_oppenheims_arch_says_k_0370(client):
+def test_the_report_of_oppenheims_arch_says_k_0370(client, wait_job):
     """``archrock assess`` of the arch shown, as a job; its HTML file is downloaded (the fast
     configuration: no random arches, no contact-engine check)."""
     pytest.importorskip("matplotlib")
     r = client.post("/api/report", json={"arch": OPPENHEIM, "samples": 0, "contact": False})
     assert r.status_code == 200, r.text
-    s = _wait(client, r.json()["id"])
+    s = wait_job(client, r.json()["id"])
     assert s["state"] == "done", s
     res = s["result"]
     assert res["k"] == pytest.approx(0.3700097, abs=1e-7) and "_download" not in res
@@ -237,15 +212,15 @@ def test_the_report_request_is_bounded(client):
     assert r.status_code == 400
 
 
-def test_the_report_is_cancelled_between_sections(client):
+def test_the_report_is_cancelled_between_sections(client, wait_job):
     """Cancelled at once, the report stops before its contact check (the 9th section) and has
     no file; the next job may start."""
     pytest.importorskip("matplotlib")
     job = client.post("/api/report", json={"arch": OPPENHEIM, "samples": 0}).json()
     assert job["estimate_s"] >= api.CONTACT_CHECK_S
     client.post(f"/api/jobs/{job['id']}/cancel")
-    s = _wait(client, job["id"])
+    s = wait_job(client, job["id"])
     assert s["state"] == "cancelled" and s["result"] is None and s["done"] < 9
     assert client.get(f"/api/jobs/{job['id']}/download").status_code == 400
     nxt = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 10})
-    assert nxt.status_code == 200 and _wait(client, nxt.json()["id"])["state"] == "done"
+    assert nxt.status_code == 200 and wait_job(client, nxt.json()["id"])["state"] == "done"

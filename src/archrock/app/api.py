@@ -48,6 +48,18 @@ PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 
 
 # ---------------------------------------------------------------------------- field checks
+def _seed_and_spreads(params: dict):
+    """The random arches' seed (integer >= 0) and spreads of a request, as the CLI reads them."""
+    from ..geometry.sampling import Spreads
+
+    seed = _number(params, "seed", 0, integer=True)
+    if seed < 0:
+        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
+    sp = _dict(params, "spreads")
+    return seed, Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
+                                                          ("radius", 0.05), ("tilt", 0.0))))
+
+
 def _number(params: dict, name: str, default=None, *, integer: bool = False):
     """``params[name]`` as a finite float (or int), ``default`` when absent or null;
     ArchInputError naming ``name`` otherwise."""
@@ -354,7 +366,6 @@ def ensemble_config(params: dict):
     :data:`MAX_ENSEMBLE_WORK_S` by the package's cost of an arch
     (:mod:`archrock.studies.work`)."""
     from .._jit import HAVE_NUMBA
-    from ..geometry.sampling import Spreads
     from ..studies.ensemble import EnsembleConfig
     from ..studies.work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
 
@@ -364,12 +375,7 @@ def ensemble_config(params: dict):
     if not 1 <= samples <= MAX_SAMPLES:
         raise ArchInputError(f"samples: {samples}; allowed 1 to {MAX_SAMPLES} in the app "
                              f"(archrock ensemble for more)")
-    seed = _number(params, "seed", 0, integer=True)
-    if seed < 0:
-        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
-    sp = _dict(params, "spreads")
-    spreads = Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
-                                                       ("radius", 0.05), ("tilt", 0.0))))
+    seed, spreads = _seed_and_spreads(params)
     motion = pulse_spec(params["pulse"]) if params.get("pulse") is not None else None
     each = (SAMPLE_RESPONSE_S if motion is not None else SAMPLE_LIMIT_S) * (1 if HAVE_NUMBA else 50)
     est = samples * each
@@ -433,7 +439,6 @@ def curve_request(params: dict) -> dict:
     :data:`MAX_CURVE_SAMPLES`), ``seed``, ``spreads`` as the ensemble's, ``durations`` [s]
     (a list, or text such as "0.1,0.2,0.5"), ``kind`` of pulse (negative amplitudes, the
     paper's)."""
-    from ..geometry.sampling import Spreads
     from ..studies.curves import parse_range
 
     params = _request(params)
@@ -442,12 +447,7 @@ def curve_request(params: dict) -> dict:
     if not 1 <= samples <= MAX_CURVE_SAMPLES:
         raise ArchInputError(f"samples: {samples}; allowed 1 to {MAX_CURVE_SAMPLES} for a curve "
                              f"in the app (archrock curves for more)")
-    seed = _number(params, "seed", 0, integer=True)
-    if seed < 0:
-        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
-    sp = _dict(params, "spreads")
-    spreads = Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
-                                                       ("radius", 0.05), ("tilt", 0.0))))
+    seed, spreads = _seed_and_spreads(params)
     d = params.get("durations", "0.1,0.2,0.3,0.5,0.8,1.2")
     if isinstance(d, list):
         d = ",".join(str(x) for x in d)
@@ -760,7 +760,6 @@ def report_request(params: dict) -> dict:
     as the ensemble's, ``contact`` (the contact-engine check, default true).  The rest is
     ``archrock assess``'s defaults (the paper's pulse, durations 0.1 to 1 s, 60 amplitudes,
     no records: no fragility section, no site spectrum: no verdict)."""
-    from ..geometry.sampling import Spreads
     from ..studies.assessment import AssessConfig
     from ..studies.work import format_duration, response_cost_s
     from .._jit import HAVE_NUMBA
@@ -771,12 +770,7 @@ def report_request(params: dict) -> dict:
     if not 0 <= samples <= MAX_REPORT_SAMPLES:
         raise ArchInputError(f"samples: {samples}; allowed 0 to {MAX_REPORT_SAMPLES} random "
                              f"arches for the report in the app (archrock assess for more)")
-    seed = _number(params, "seed", 0, integer=True)
-    if seed < 0:
-        raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
-    sp = _dict(params, "spreads")
-    spreads = Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
-                                                       ("radius", 0.05), ("tilt", 0.0))))
+    seed, spreads = _seed_and_spreads(params)
     contact = bool(params.get("contact", True))
     cfg = AssessConfig(samples=samples, seed=seed, spreads=spreads)
     responses = (samples + 1) * len(cfg.durations) * cfg.n_scan
