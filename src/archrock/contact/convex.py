@@ -94,10 +94,9 @@ def _convex(poly: list[int], p: np.ndarray, tol: float) -> bool:
                for k in range(m))
 
 
-def convex_pieces(outline, tol: float | None = None) -> list[np.ndarray]:
-    """Convex polygons (each (k, 2), counter-clockwise) that tile the simple polygon
-    ``outline`` exactly, their vertices the outline's own; ``tol`` [m] (default 1e-9 times the
-    outline's size) merges repeated and collinear vertices."""
+def _checked_outline(outline, tol):
+    """(the outline counter-clockwise with repeated and collinear corners merged, the
+    tolerance [m]: ``tol`` or 1e-9 times its size); ArchInputError for a bad polygon."""
     p = np.asarray(outline, float)
     if p.ndim != 2 or p.shape[1] != 2 or len(p) < 3 or not np.all(np.isfinite(p)):
         raise ArchInputError("voussoir outline: expected a polygon of >= 3 finite (x, y) points")
@@ -108,6 +107,14 @@ def convex_pieces(outline, tol: float | None = None) -> list[np.ndarray]:
         raise ArchInputError("voussoir outline: degenerate polygon (fewer than 3 distinct corners)")
     if signed_area(p) < 0:
         p = p[::-1].copy()
+    return p, tol
+
+
+def convex_pieces(outline, tol: float | None = None) -> list[np.ndarray]:
+    """Convex polygons (each (k, 2), counter-clockwise) that tile the simple polygon
+    ``outline`` exactly, their vertices the outline's own; ``tol`` [m] (default 1e-9 times the
+    outline's size) merges repeated and collinear vertices."""
+    p, tol = _checked_outline(outline, tol)
     if _convex(list(range(len(p))), p, tol):
         return [p]
     pieces = [list(t) for t in _triangulate(p, tol)]
@@ -221,24 +228,15 @@ def strip_pieces(outline, tol: float | None = None) -> list[np.ndarray]:
     voussoir, whose intrados alone is concave, one strip from intrados to extrados per chord of
     the intrados, each joint's face and both its ends in one piece, and a mirrored outline cut
     into mirrored pieces.  Falls back to :func:`convex_pieces` where a cut fails."""
-    p = np.asarray(outline, float)
-    if p.ndim != 2 or p.shape[1] != 2 or len(p) < 3 or not np.all(np.isfinite(p)):
-        raise ArchInputError("voussoir outline: expected a polygon of >= 3 finite (x, y) points")
-    size = float(np.ptp(p, axis=0).max())
-    tol = 1e-9 * size if tol is None else tol
-    q = _clean(p, tol)
-    if len(q) < 3:
-        raise ArchInputError("voussoir outline: degenerate polygon (fewer than 3 distinct corners)")
-    if signed_area(q) < 0:
-        q = q[::-1].copy()
+    q, tol = _checked_outline(outline, tol)
     try:
         pieces = [_clean(x, tol) for x in _split_at_reflex(q, tol)]
     except ArchInputError:
-        return convex_pieces(p, tol)
+        return convex_pieces(outline, tol)
     area = abs(signed_area(q))
     if (any(len(x) < 3 or not _convex(list(range(len(x))), x, tol) for x in pieces)
             or abs(sum(signed_area(x) for x in pieces) - area) > 1e-9 * area):
-        return convex_pieces(p, tol)
+        return convex_pieces(outline, tol)
     return pieces
 
 
