@@ -43,9 +43,13 @@ def test_tilt_spread_serialises_and_reads_four_rows(pointed):
         ArchSampler(oppenheim_arch(), sp, 0)
 
 
-def test_surveyed_polygon_cannot_be_perturbed():
-    with pytest.raises(ArchInputError, match="cannot be perturbed"):
+def test_surveyed_polygon_keeps_its_joints():
+    """A polygon arch without a family is perturbed as a survey (geometry.survey): a span or
+    tilt spread, which would move a measured joint, is refused by name."""
+    with pytest.raises(ArchInputError, match="spread span and tilt: 0.1 and 0; allowed 0 and 0"):
         ArchSampler(as_polygon(oppenheim_arch(), 5), Spreads(), 0)
+    sampler = ArchSampler(as_polygon(oppenheim_arch(), 5), Spreads(0.0, 0.1, 0.05), 0)
+    assert sampler.arch(0).n == 7
 
 
 def test_zero_draw_is_the_nominal_family_arch(pointed):
@@ -119,10 +123,10 @@ def test_ensemble_of_pointed_arches_matches_single_arch_analysis(pointed):
         assert row.k_l == r.k_l and row.k_r == r.k_r
 
 
-def test_ensemble_refuses_a_surveyed_polygon():
+def test_ensemble_refuses_a_span_spread_on_a_surveyed_polygon():
     from archrock.studies.ensemble import EnsembleConfig
 
-    with pytest.raises(ArchInputError, match="cannot be perturbed"):
+    with pytest.raises(ArchInputError, match="--spread-span 0"):
         EnsembleConfig.from_arch(as_polygon(oppenheim_arch(), 5), samples=2)
 
 

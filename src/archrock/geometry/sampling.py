@@ -21,7 +21,9 @@ sectors, :func:`~archrock.geometry.perturb_voussoirs`) or a family arch
 (:class:`~archrock.geometry.FamilyArch`, perturbed through its recipe,
 :func:`~archrock.geometry.families.perturb_family`; with numba, for a family arch without loads
 or fill, its arithmetic compiled in :mod:`archrock.geometry.batchdraw`: the same polylines).  A
-polygon arch without a recipe (a surveyed arch) has no family to perturb within and is refused.
+polygon arch without a recipe (a surveyed arch, e.g. from a DXF drawing) keeps its joints and
+varies each voussoir's thickness and centreline offset (:mod:`archrock.geometry.survey`; span
+and tilt spreads must be 0).
 """
 
 from __future__ import annotations
@@ -129,9 +131,13 @@ class ArchSampler:
                     "the nominal as family_arch('circular', span, rise, t, n, exact=False) "
                     "(--shape circular with --joints or --thickness-crown on the command line)")
         elif isinstance(a, PolygonArch) and getattr(a, "recipe", None) is None:
-            raise ArchInputError(
-                f"nominal: {a.name!r} is a polygon arch without a family (e.g. surveyed): it "
-                f"cannot be perturbed; allowed a circular Arch or an arch of family_arch")
+            # a surveyed arch: thickness and offset vary, its joints stay (geometry.survey)
+            if self.spreads.span or self.spreads.tilt:
+                raise ArchInputError(
+                    f"spread span and tilt: {self.spreads.span:g} and {self.spreads.tilt:g}; "
+                    f"allowed 0 and 0 for {a.name!r}, a polygon arch without a family (e.g. "
+                    f"surveyed), whose joints stay where they were measured (--spread-span 0; "
+                    f"the thickness and radius spreads apply)")
         elif not isinstance(a, FamilyArch):
             raise ArchInputError(f"nominal: expected an Arch or a FamilyArch, got "
                                  f"{type(a).__name__}")
@@ -192,6 +198,14 @@ class ArchSampler:
 
     def _family(self, u, index: int):
         s = self.spreads
+        if getattr(self.nominal, "recipe", None) is None:  # a surveyed arch
+            from .survey import perturb_survey
+
+            try:
+                return perturb_survey(self.nominal, u, s.thickness, s.radius,
+                                      name=f"sample {index}")
+            except ArchInputError as exc:
+                raise InvalidSampleError(f"not a valid arch: {exc}") from None
         from .batchdraw import compiled_drawing, draw_lines, family_plan
 
         if compiled_drawing(self):  # the same polylines as perturb_family, compiled
