@@ -8,6 +8,9 @@ second, the split (prepare / response) and the ratio of each family's time to th
 arch's.  ``--legacy`` also times the arch-object path (``prepare_batch(sampler.arches(...))``
 with ``perturb_family``, as before the compiled drawing) on ``--legacy-samples`` arches.
 
+A surveyed polygon arch (Oppenheim's as a polygon without a family, thickness and offset
+spreads only, docs/geometry.md) runs last, on the per-arch path.
+
 Usage: python benchmarks/bench_families.py [--samples 10000] [--legacy] [--json FILE]
 """
 
@@ -23,22 +26,23 @@ FAMILIES = (("pointed", 7.0), ("elliptical", 4.0), ("three-centred", 3.0), ("par
             ("catenary", 5.0), ("circular", 3.0))
 
 
-def _config(nominal, samples):
+def _config(nominal, samples, spreads=None):
     from archrock.dynamics.impact import ImpactSpec
     from archrock.groundmotion import PulseSpec
     from archrock.studies.ensemble import EnsembleConfig
 
     return EnsembleConfig.from_arch(nominal, samples=samples, seed=0, batch_size=500,
                                     motion=PulseSpec("oppenheim", -1.0, 0.2),
-                                    impact=ImpactSpec.fixed(0.8754))
+                                    impact=ImpactSpec.fixed(0.8754),
+                                    **({"spreads": spreads} if spreads is not None else {}))
 
 
-def _run(nominal, samples):
+def _run(nominal, samples, spreads=None):
     from archrock.studies.ensemble import run_ensemble
 
-    run_ensemble(_config(nominal, min(samples, 50)), progress=False)  # warm-up
+    run_ensemble(_config(nominal, min(samples, 50), spreads), progress=False)  # warm-up
     t0 = time.perf_counter()
-    res = run_ensemble(_config(nominal, samples), progress=False)
+    res = run_ensemble(_config(nominal, samples, spreads), progress=False)
     wall = time.perf_counter() - t0
     f = res.frame
     return {"samples": samples, "wall_s": wall, "arches_per_s": samples / wall,
@@ -77,8 +81,9 @@ def _legacy(nominal, samples):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--samples", type=int, default=10000)
-    ap.add_argument("--families", default=",".join(f for f, _ in FAMILIES),
-                    help="comma-separated families (default: all)")
+    ap.add_argument("--families", default=",".join([f for f, _ in FAMILIES] + ["surveyed"]),
+                    help="comma-separated families, 'surveyed' for a surveyed polygon arch "
+                         "(default: all)")
     ap.add_argument("--legacy", action="store_true", help="also time the arch-object path")
     ap.add_argument("--legacy-samples", type=int, default=500)
     ap.add_argument("--json", help="also write the figures to this JSON file")
@@ -116,6 +121,18 @@ def main(argv=None):
                   f"{lg['arches_per_s']:9.0f} {'':8s} {'':8s} {lg['ratio_to_circular']:10.2f}"
                   f"   (on {lg['samples']} arches; drawing {lg['draw_s']:.2f} s)", flush=True)
         out["families"][shape] = r
+    if "surveyed" in wanted:
+        # a surveyed arch: Oppenheim's as a polygon without a family, joints kept (span spread 0)
+        from archrock.geometry import as_polygon
+        from archrock.geometry.sampling import Spreads
+
+        r = _run(as_polygon(oppenheim_arch()), args.samples, Spreads(0.0, 0.1, 0.05))
+        r["ratio_to_circular"] = r["wall_s"] / base["wall_s"]
+        name = "surveyed polygon (Oppenheim, n=7)"
+        print(f"{name:34s} {r['wall_s']:7.2f} {r['arches_per_s']:9.0f} {r['prepare_s']:8.2f} "
+              f"{r['response_s']:8.2f} {r['ratio_to_circular']:10.2f}   ({r['left_out']} left "
+              f"out, {r['collapsed']} collapsed; per-arch path)", flush=True)
+        out["families"]["surveyed"] = r
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=2)
