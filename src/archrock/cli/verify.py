@@ -79,7 +79,8 @@ def _run_ensemble(args) -> int:
     nominal = arch_from_args(args)
     sampler = ArchSampler(nominal, spreads(args), args.seed)
     import_pymunk()
-    progress = None if args.json else (lambda m: print(m, file=sys.stderr, flush=True))
+    # progress goes to stderr even with --json (stdout holds only the JSON), as in ensemble
+    progress = lambda m: print(m, file=sys.stderr, flush=True)  # noqa: E731
     opts = {} if args.ramp_tol is None else {"tol": args.ramp_tol}
     res = verify_ensemble(sampler, args.samples, settings=engine_settings_from_args(args),
                           k_tol=DEFAULT_K_TOL if args.k_tol is None else args.k_tol,
@@ -109,7 +110,8 @@ def run_verify(args) -> int:
         raise CLIError("--durations: allowed durations > 0 s")
     arch = arch_from_args(args)
     import_pymunk()
-    progress = None if args.json else (lambda m: print(m, file=sys.stderr, flush=True))
+    # progress goes to stderr even with --json (stdout holds only the JSON), as in ensemble
+    progress = lambda m: print(m, file=sys.stderr, flush=True)  # noqa: E731
     res = verify(arch, args.amplitudes, args.durations, pulse=args.pulse,
                  settings=engine_settings_from_args(args), progress=progress)
     if plot:
