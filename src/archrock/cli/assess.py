@@ -34,8 +34,8 @@ def add_assess_parser(subparsers):
                                  "the nominal arch only)")
     p.set_defaults(samples=12)
     p.add_argument("--records", nargs="+", metavar="FILE_OR_DIR", default=None,
-                   help="accelerograms (PEER .AT2 or two-column files, or folders of them) for "
-                        "the fragility section")
+                   help="accelerograms (PEER .AT2 or two-column files, or folders of .AT2 "
+                        "files) for the fragility section")
     p.add_argument("--record-units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of two-column records (default g)")
     p.add_argument("--scales", default="0.2:3:15", metavar="LO:HI:N|A,B,...",
@@ -49,25 +49,8 @@ def add_assess_parser(subparsers):
     return p
 
 
-def _record_files(items) -> tuple:
-    from pathlib import Path
-
-    out = []
-    for item in items or ():
-        path = Path(item)
-        if path.is_dir():
-            files = sorted(f for f in path.iterdir() if f.is_file() and not f.name.startswith("."))
-            if not files:
-                raise CLIError(f"--records: the folder {item!r} holds no files")
-            out += [str(f) for f in files]
-        elif path.is_file():
-            out.append(str(path))
-        else:
-            raise CLIError(f"--records: {item!r} is neither a file nor a folder")
-    return tuple(out)
-
-
 def run_assess(args) -> int:
+    from ..groundmotion.suite import record_paths
     from ..studies.assessment import AssessConfig, assess
     from ..studies.curves import parse_range
     from ..reports.html import write_pdf, write_report
@@ -83,7 +66,7 @@ def run_assess(args) -> int:
     cfg = AssessConfig(
         impact=impact_spec_from_args(args), durations=tuple(parse_range(args.durations, "durations")),
         n_scan=args.n_scan, samples=args.samples, seed=args.seed, spreads=spreads(args),
-        records=_record_files(args.records), record_units=args.record_units,
+        records=record_paths(args.records), record_units=args.record_units,
         scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
         codecheck=codecheck_config_from_args(args))
     arch = arch_from_args(args)

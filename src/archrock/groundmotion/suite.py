@@ -15,7 +15,8 @@ from ..errors import ArchInputError
 from .motion import GroundMotion
 from .records import file_sha256, load_record
 
-__all__ = ["RecordSuite", "read_suite", "read_records", "file_sha256"]
+__all__ = ["RecordSuite", "read_suite", "read_records", "record_paths", "suite_files",
+           "file_sha256"]
 
 #: suffixes of the record files a suite folder holds (any case)
 SUITE_SUFFIXES = (".at2",)
@@ -41,8 +42,9 @@ class RecordSuite:
                 for r, f, h in zip(self.records, self.files, self.sha256)]
 
 
-def read_suite(folder, units: str | None = None) -> RecordSuite:
-    """Every PEER ``.AT2`` file of ``folder`` (not its subfolders), in file-name order."""
+def suite_files(folder) -> list[Path]:
+    """The record files of a suite folder: its PEER ``.AT2`` files (not its subfolders'), in
+    file-name order; ArchInputError when it is no folder or holds none."""
     p = Path(folder)
     if not p.is_dir():
         raise ArchInputError(f"records: {str(folder)!r} is not a folder; allowed a folder of "
@@ -51,25 +53,37 @@ def read_suite(folder, units: str | None = None) -> RecordSuite:
     if not files:
         raise ArchInputError(f"records: no .AT2 file in the folder {str(folder)!r}; allowed a "
                              f"folder holding PEER .AT2 files")
-    return read_records(files, units)
+    return files
+
+
+def record_paths(items) -> tuple:
+    """Record files and folders, in the order given, as the files they name (a folder stands
+    for :func:`suite_files`): the one reading of a ``--records`` list in every command."""
+    out = []
+    for item in items or ():
+        p = Path(item)
+        if p.is_dir():
+            out += [str(f) for f in suite_files(p)]
+        elif p.is_file():
+            out.append(str(p))
+        else:
+            raise ArchInputError(f"records: {str(item)!r} is neither a file nor a folder; "
+                                 f"allowed record files (PEER .AT2 or two-column text) and "
+                                 f"folders of .AT2 files")
+    return tuple(out)
+
+
+def read_suite(folder, units: str | None = None) -> RecordSuite:
+    """Every PEER ``.AT2`` file of ``folder`` (not its subfolders), in file-name order."""
+    return read_records(suite_files(folder), units)
 
 
 def read_records(paths, units: str | None = None) -> RecordSuite:
     """Record files and folders (a folder stands for its :func:`read_suite`), in the order given,
     each read once; two paths naming the same file are refused."""
-    records, files, shas = [], [], []
-    for path in paths:
-        p = Path(path)
-        if p.is_dir():
-            s = read_suite(p, units)
-            records += s.records
-            files += s.files
-            shas += s.sha256
-            continue
-        gm = load_record(p, units=units)
-        records.append(gm)
-        files.append(str(p))
-        shas.append(file_sha256(p))
+    files = record_paths(paths)
+    records = [load_record(p, units=units) for p in files]
+    shas = [file_sha256(p) for p in files]
     seen = {}
     for f, h in zip(files, shas):
         key = str(Path(f).resolve())
