@@ -709,3 +709,16 @@ def test_no_help_text_shows_a_doubled_percent(capsys):
         assert "%%" not in text, name
     text = sub.choices["codecheck"].format_help()
     assert "elastic spectrum at 5% damping" in " ".join(text.split())
+
+
+def test_number_lists_have_one_grammar(capsys):
+    """verify's --amplitudes/--durations read lists as curves and fragility do (parse_range):
+    'lo:hi:n' works there too, a zero amplitude or duration is refused by name."""
+    from archrock.cli import build_parser
+
+    args = build_parser().parse_args(["verify", "--amplitudes", "-1:-0.5:3", "--durations", "0.2"])
+    assert args.amplitudes == pytest.approx([-1.0, -0.75, -0.5], abs=1e-15)
+    assert args.durations == pytest.approx([0.2], abs=1e-15)
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(["verify", "--durations", "0.2,-0.1"])
+    assert "durations: '0.2,-0.1'; allowed numbers > 0" in capsys.readouterr().err

@@ -13,16 +13,19 @@ DEFAULT_AMPLITUDES = [-0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0]
 DEFAULT_DURATIONS = [0.1, 0.2, 0.4]
 
 
-def _floats(text):
+def _numbers(name: str, signed: bool):
+    """argparse type of a number list, in every command's grammar (studies.curves.parse_range)."""
     import argparse
 
-    try:
-        vals = [float(x) for x in text.split(",") if x.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from None
-    if not vals:
-        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}")
-    return vals
+    def parse(text):
+        from ..errors import ArchInputError
+        from ..studies.curves import parse_range
+
+        try:
+            return [float(v) for v in parse_range(text, name, signed=signed)]
+        except ArchInputError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+    return parse
 
 
 def add_verify_parser(subparsers):
@@ -38,10 +41,11 @@ def add_verify_parser(subparsers):
     add_engine_options(p)
     p.add_argument("--pulse", default="oppenheim", metavar="KIND",
                    help="pulse kind (default oppenheim: a for t_p, -a/2 for 2 t_p)")
-    p.add_argument("--amplitudes", type=_floats, metavar="A1,A2,...",
+    p.add_argument("--amplitudes", type=_numbers("amplitudes", signed=True), metavar="A1,A2,...",
                    default=list(DEFAULT_AMPLITUDES),
                    help="pulse amplitudes [g], signed (default -0.5,...,-3)")
-    p.add_argument("--durations", type=_floats, metavar="T1,T2,...", default=list(DEFAULT_DURATIONS),
+    p.add_argument("--durations", type=_numbers("durations", signed=False), metavar="T1,T2,...",
+                   default=list(DEFAULT_DURATIONS),
                    help="pulse durations [s] (default 0.1,0.2,0.4)")
     g = p.add_argument_group("over an ensemble", "--samples N: random arches around the given "
                                                  "one instead of the pulse grid")

@@ -103,11 +103,13 @@ def _check_sign(sign) -> int:
     return int(sign)
 
 
-def parse_range(text: str, name: str = "durations") -> np.ndarray:
+def parse_range(text: str, name: str = "durations", signed: bool = False) -> np.ndarray:
     """``"lo:hi:n"`` (n >= 2 evenly spaced values, both ends included) or ``"a,b,c"`` -> array of
-    floats > 0."""
+    floats > 0 (``signed``: nonzero, e.g. pulse amplitudes whose sign is the direction): the one
+    grammar of the command line's number lists."""
+    what = "nonzero numbers" if signed else "numbers > 0"
     if not isinstance(text, str) or not text.strip():
-        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' or a comma list of numbers > 0")
+        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' or a comma list of {what}")
     try:
         if ":" in text:
             parts = text.split(":")
@@ -122,9 +124,10 @@ def parse_range(text: str, name: str = "durations") -> np.ndarray:
     except ValueError:
         raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' (lo < hi, n >= 2: both ends "
                              f"included; one value: write it alone) or a comma list "
-                             f"of numbers > 0") from None
-    if vals.size == 0 or not np.all(np.isfinite(vals)) or np.any(vals <= 0):
-        raise ArchInputError(f"{name}: {text!r}; allowed numbers > 0")
+                             f"of {what}") from None
+    if vals.size == 0 or not np.all(np.isfinite(vals)) or np.any(vals == 0 if signed
+                                                                   else vals <= 0):
+        raise ArchInputError(f"{name}: {text!r}; allowed {what}")
     return vals
 
 
