@@ -156,3 +156,18 @@ def test_ramp_on_the_pointed_arch_simplified_against_the_fine_cut():
         # within the engine's compliance of the limit analysis (k = 0.24868)
         assert getattr(simple, f"k_{d}") == pytest.approx(getattr(lim, f"k_{d}"), rel=0.02)
     assert (t1 - t0) > 3.0 * (t2 - t1)
+
+
+def test_engine_friction_has_the_limit_analysis_range():
+    """One friction field, one range (finite, > 0) in the limit analysis and the engine."""
+    from archrock.contact.settings import EngineSettings
+    from archrock.errors import ArchInputError
+    from archrock.statics.friction import check_friction
+
+    assert EngineSettings(friction=0.4).friction == check_friction(0.4)
+    assert EngineSettings(friction=1e6).friction == pytest.approx(1e6, rel=1e-15)
+    for bad in (0, -0.3, float("nan"), float("inf"), True):
+        with pytest.raises(ArchInputError, match="friction"):
+            EngineSettings(friction=bad)
+    with pytest.raises(ArchInputError, match="allowed a finite friction coefficient > 0"):
+        EngineSettings(friction=0)

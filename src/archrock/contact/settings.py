@@ -6,6 +6,7 @@ import math
 from dataclasses import asdict, dataclass, fields
 
 from ..errors import ArchInputError
+from ..statics.friction import check_friction
 from ..units import G
 
 __all__ = ["EngineSettings", "EngineScales", "engine_scales", "DEFAULT_FRICTION",
@@ -41,7 +42,8 @@ class EngineSettings:
     to (1 - bias)^(1/dt));
     rounding: corner radius of the contact shapes, as a fraction of the size (their cores are
     inset by it, so that flush joints are not degenerate for the contact search);
-    friction: Coulomb coefficient of every contact (voussoir-voussoir and voussoir-abutment);
+    friction: Coulomb coefficient of every contact (voussoir-voussoir and voussoir-abutment),
+    finite and > 0 as in the limit analysis (:func:`archrock.statics.friction.check_friction`);
     restitution: coefficient of restitution of every contact (0: no bounce);
     outline_tol: the contact shapes' outline may deviate from the voussoir's by this fraction of
     the size (:func:`~archrock.contact.convex.simplify_outline`; the joints' ends stay exact):
@@ -69,8 +71,10 @@ class EngineSettings:
         object.__setattr__(self, "rounding", _num("rounding", self.rounding, 0.0, 0.01,
                                                   "0 <= rounding <= 0.01"))
         object.__setattr__(self, "bias", _num("bias", self.bias, 0.0, 1.0, "0 <= bias <= 1"))
-        object.__setattr__(self, "friction", _num("friction", self.friction, 0.0, 100.0,
-                                                  "0 <= friction (MU) <= 100"))
+        if isinstance(self.friction, bool):
+            raise ArchInputError(f"friction: expected a number, got {self.friction!r}")
+        # one friction field, one range, in the limit analysis and the engine alike
+        object.__setattr__(self, "friction", check_friction(self.friction))
         object.__setattr__(self, "restitution", _num("restitution", self.restitution, 0.0, 1.0,
                                                      "0 <= restitution <= 1"))
         object.__setattr__(self, "outline_tol", _num("outline_tol", self.outline_tol, 0.0, 0.01,
