@@ -17,9 +17,9 @@ def add_engine_options(p):
 
     g = p.add_argument_group("contact engine", "settings of the rigid-body engine (defaults: "
                                                 "the convergence study of docs/verification.md)")
-    g.add_argument("--friction", type=finite_float, default=DEFAULT_FRICTION, metavar="MU",
-                   help=f"Coulomb friction coefficient of every joint and springing, 0 <= MU "
-                        f"(default {DEFAULT_FRICTION:g})")
+    g.add_argument("--friction", type=positive_float, default=DEFAULT_FRICTION, metavar="MU",
+                   help=f"Coulomb friction coefficient of every joint and springing (finite, "
+                        f"> 0, as limit --friction; default {DEFAULT_FRICTION:g})")
     g.add_argument("--restitution", type=finite_float, default=0.0, metavar="E",
                    help="coefficient of restitution of every contact, 0..1 (default 0)")
     g.add_argument("--steps-per-T", type=positive_float, default=None, metavar="N",
