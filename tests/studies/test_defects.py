@@ -22,6 +22,8 @@ K_OPP = 0.3700097380218764
     (" 2 : thickness = 0.9 , at=extrados", Defect("thickness", 2, 0.9, "extrados")),
     ("4:tilt=-5", Defect("tilt", 4, -5.0)),
     ("7:mortar=0.2,from=extrados", Defect("mortar", 7, 0.2, "extrados")),
+    ("7:mortar=0.2,side=extrados", Defect("mortar", 7, 0.2, "extrados")),
+    ("1:thickness=0.5,side=intrados", Defect("thickness", 1, 0.5, "intrados")),
     ("1:mortar=0.2", Defect("mortar", 1, 0.2, "intrados")),
 ])
 def test_parse_and_round_trips(text, expect):
@@ -40,8 +42,10 @@ def test_parse_and_round_trips(text, expect):
     ("8:tilt=5", ["joint", "0..7"]),
     ("x:tilt=5", ["joint", "integer"]),
     ("3:crack=0.5", ["kind", "thickness, tilt, mortar"]),
-    ("3:thickness=0.7,at=middle", ["at", "centreline, intrados, extrados"]),
-    ("3:mortar=0.2,at=extrados", ["from="]),
+    ("3:thickness=0.7,at=middle", ["side", "centreline, intrados, extrados"]),
+    ("3:thickness=0.7,side=middle", ["side", "centreline, intrados, extrados"]),
+    ("3:mortar=0.2,at=extrados", ["side="]),
+    ("4:tilt=5,side=intrados", ["none for a tilt"]),
     ("3:thickness=abc", ["thickness", "0 < value < 1"]),
     ("thickness", ["defect", "VOUSSOIR:thickness"]),
 ])
@@ -364,3 +368,17 @@ def test_progress_lines_go_to_the_callback_not_stderr(capsys):
     assert capsys.readouterr() == ("", "")
     with pytest.raises(ArchInputError, match=r"^progress: True; allowed None or a callable"):
         defect_map(oppenheim_arch(), progress=True)
+
+
+def test_side_is_one_spelling_with_the_old_ones_read(capsys):
+    """side= / --side for both kinds that have a side; at= (thickness) and from= (mortar), the
+    0.5 spellings, still read; spec() writes side=."""
+    from archrock.cli import main
+
+    d = Defect.parse("2:thickness=0.6,at=extrados")
+    assert d == Defect.parse("2:thickness=0.6,side=extrados")
+    assert d.spec() == "2:thickness=0.6,side=extrados" and Defect.parse(d.spec()) == d
+    assert main(["defects", "--kind", "thickness", "--side", "extrados", "--at", "intrados"]) == 2
+    assert "--side: given more than once" in capsys.readouterr().err
+    assert main(["defects", "--kind", "tilt", "--side", "intrados"]) == 2
+    assert "a tilted joint has no side" in capsys.readouterr().err

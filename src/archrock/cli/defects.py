@@ -27,10 +27,14 @@ def add_defects_parser(subparsers):
                    help="thickness: remaining fraction, 0 < X < 1 (default 0.7); tilt: degrees, "
                         "-45 < X < 45 (default 5); mortar: missing fraction, 0 < X < 1 "
                         "(default 0.3)")
+    g.add_argument("--side", choices=("centreline", "intrados", "extrados"), default=None,
+                   help="thickness: where the masonry is lost (default centreline); mortar: the "
+                        "face the missing depth is measured from (default intrados)")
+    # the 0.5 spellings of --side, one per kind
     g.add_argument("--at", choices=("centreline", "intrados", "extrados"), default=None,
-                   help="thickness: where the masonry is lost (default centreline)")
+                   help="thickness: the old name of --side")
     g.add_argument("--from", dest="from_", choices=("intrados", "extrados"), default=None,
-                   help="mortar: the face the missing depth is measured from (default intrados)")
+                   help="mortar: the old name of --side")
     m = p.add_argument_group("pulse", "with --pulse-duration: the first collapse amplitude of "
                                       "each damaged arch (archrock curves' scan and bisection)")
     m.add_argument("--pulse-duration", type=positive_float, default=None, metavar="S",
@@ -75,7 +79,13 @@ def run_defects(args) -> int:
         raise CLIError(f"--n-scan: {args.n_scan}; allowed an integer >= 2")
     arch = arch_from_args(args)
     impact = impact_spec_from_args(args)
-    side = args.at or args.from_ or ""
+    given = [v for v in (args.side, args.at, args.from_) if v is not None]
+    if len(given) > 1:
+        raise CLIError("--side: given more than once (--at and --from are its old names)")
+    if args.kind == "tilt" and given:
+        raise CLIError("--side: a tilted joint has no side; allowed with --kind thickness or "
+                       "mortar")
+    side = given[0] if given else ""
     dmap = defect_map(arch, args.kind, args.value, side, pulse_duration=args.pulse_duration,
                       pulse_kind=args.pulse, sign=args.sign, impact=impact, a_max=args.a_max,
                       n_scan=args.n_scan, tol=args.tol,

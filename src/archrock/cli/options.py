@@ -85,8 +85,8 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                         "springing); excludes the flags above")
     g.add_argument("--defect", action="append", metavar="SPEC",
                    help="a defect applied to the arch, repeatable: VOUSSOIR:thickness=F"
-                        "[,at=intrados|extrados] (keeps F of its thickness, 0 < F < 1), "
-                        "JOINT:tilt=DEG (-45 < DEG < 45) or JOINT:mortar=F[,from=extrados] "
+                        "[,side=intrados|extrados] (keeps F of its thickness, 0 < F < 1), "
+                        "JOINT:tilt=DEG (-45 < DEG < 45) or JOINT:mortar=F[,side=extrados] "
                         "(no mortar over F of the contact); docs/defects.md")
     g.add_argument("--pier-height", type=finite_float, metavar="H",
                    help="the arch on two piers: height [m] of each pier from its foundation to "

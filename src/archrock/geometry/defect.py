@@ -25,9 +25,9 @@ voussoirs where they were.
 
 String form (:meth:`Defect.parse`, the command line's ``--defect``)::
 
-    3:thickness=0.7[,at=intrados|extrados|centreline]
+    3:thickness=0.7[,side=intrados|extrados|centreline]
     4:tilt=5
-    2:mortar=0.2[,from=intrados|extrados]
+    2:mortar=0.2[,side=intrados|extrados]
 
 the number before the colon being the voussoir (0..n-1, from the left springing) or the joint
 (0..n).
@@ -101,8 +101,7 @@ class Defect:
         if side == "centre":
             side = "centreline"
         if side not in sides:
-            key = _SIDE_KEY.get(self.kind, "side")
-            raise ArchInputError(f"defect {key}: {self.side!r}; allowed "
+            raise ArchInputError(f"defect side: {self.side!r}; allowed "
                                  f"{', '.join(s for s in sides if s) or 'none for a tilt'}")
         object.__setattr__(self, "side", side)
 
@@ -144,7 +143,7 @@ class Defect:
         """The string form (:meth:`parse` reads it back)."""
         s = f"{self.index}:{self.kind}={self.value:g}"
         if self.kind in _SIDE_KEY and self.side != DEFECT_KINDS[self.kind][2]:
-            s += f",{_SIDE_KEY[self.kind]}={self.side}"
+            s += f",side={self.side}"
         return s
 
     def describe(self) -> str:
@@ -171,7 +170,8 @@ class Defect:
 
     @classmethod
     def parse(cls, text: str, n: int | None = None) -> "Defect":
-        """Read ``INDEX:KIND=VALUE[,at=SIDE|from=SIDE]`` (module docstring); with ``n`` (the
+        """Read ``INDEX:KIND=VALUE[,side=SIDE]`` (module docstring; ``at=`` and ``from=``, the 0.5
+        spellings, are read too); with ``n`` (the
         arch's voussoirs) the index is checked too."""
         return parse_defect(text, n)
 
@@ -184,8 +184,8 @@ def parse_defect(text: str, n: int | None = None) -> Defect:
     if not isinstance(text, str):
         raise ArchInputError(f"defect: {text!r}; allowed a string like '3:thickness=0.7'")
     m = _SPEC.match(text)
-    forms = ("VOUSSOIR:thickness=F[,at=intrados|extrados|centreline], JOINT:tilt=DEG or "
-             "JOINT:mortar=F[,from=intrados|extrados]")
+    forms = ("VOUSSOIR:thickness=F[,side=intrados|extrados|centreline], JOINT:tilt=DEG or "
+             "JOINT:mortar=F[,side=intrados|extrados]")
     if not m:
         raise ArchInputError(f"defect: {text!r}; allowed {forms}")
     idx_text, kind, value_text, rest = m.groups()
@@ -206,10 +206,10 @@ def parse_defect(text: str, n: int | None = None) -> Defect:
     side = ""
     for part in filter(None, (p.strip() for p in rest.split(","))):
         key, eq, val = part.partition("=")
-        want = _SIDE_KEY.get(kind)
-        if not eq or key.strip() != want:
+        old = _SIDE_KEY.get(kind)  # the 0.5 spelling, still read: at= (thickness), from= (mortar)
+        if not eq or key.strip() not in ("side", old) or old is None:
             raise ArchInputError(f"defect option: {part!r} in {text!r}; allowed "
-                                 + (f"{want}=..." if want else "none for a tilt"))
+                                 + ("side=..." if old else "none for a tilt"))
         side = val.strip()
     d = Defect(kind, index, value, side)
     if n is not None:
