@@ -48,16 +48,21 @@ PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 
 
 # ---------------------------------------------------------------------------- field checks
-def _seed_and_spreads(params: dict):
-    """The random arches' seed (integer >= 0) and spreads of a request, as the CLI reads them."""
+def _random_arches(params: dict, default: int, lo: int, hi: int, where: str):
+    """(samples, seed, spreads) of a request's random arches, checked as the CLI checks them:
+    ``samples`` an integer lo..hi (``where`` ends the message), the seed an integer >= 0, the
+    spreads the CLI's --spread-*."""
     from ..geometry.sampling import Spreads
 
+    samples = _number(params, "samples", default, integer=True)
+    if not lo <= samples <= hi:
+        raise ArchInputError(f"samples: {samples}; allowed {lo} to {hi} {where}")
     seed = _number(params, "seed", 0, integer=True)
     if seed < 0:
         raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
     sp = _dict(params, "spreads")
-    return seed, Spreads(*(_number(sp, k, d) for k, d in (("span", 0.1), ("thickness", 0.1),
-                                                          ("radius", 0.05), ("tilt", 0.0))))
+    return samples, seed, Spreads(*(_number(sp, k, d) for k, d in (
+        ("span", 0.1), ("thickness", 0.1), ("radius", 0.05), ("tilt", 0.0))))
 
 
 def _number(params: dict, name: str, default=None, *, integer: bool = False):
@@ -371,11 +376,8 @@ def ensemble_config(params: dict):
 
     params = _request(params)
     nominal = arch_from_params(_dict(params, "arch"))
-    samples = _number(params, "samples", 1000, integer=True)
-    if not 1 <= samples <= MAX_SAMPLES:
-        raise ArchInputError(f"samples: {samples}; allowed 1 to {MAX_SAMPLES} in the app "
-                             f"(archrock ensemble for more)")
-    seed, spreads = _seed_and_spreads(params)
+    samples, seed, spreads = _random_arches(params, 1000, 1, MAX_SAMPLES,
+                                            "in the app (archrock ensemble for more)")
     motion = pulse_spec(params["pulse"]) if params.get("pulse") is not None else None
     each = (SAMPLE_RESPONSE_S if motion is not None else SAMPLE_LIMIT_S) * (1 if HAVE_NUMBA else 50)
     est = samples * each
@@ -443,11 +445,8 @@ def curve_request(params: dict) -> dict:
 
     params = _request(params)
     nominal = arch_from_params(_dict(params, "arch"))
-    samples = _number(params, "samples", 30, integer=True)
-    if not 1 <= samples <= MAX_CURVE_SAMPLES:
-        raise ArchInputError(f"samples: {samples}; allowed 1 to {MAX_CURVE_SAMPLES} for a curve "
-                             f"in the app (archrock curves for more)")
-    seed, spreads = _seed_and_spreads(params)
+    samples, seed, spreads = _random_arches(params, 30, 1, MAX_CURVE_SAMPLES, "for a curve in "
+                                            "the app (archrock curves for more)")
     d = params.get("durations", "0.1,0.2,0.3,0.5,0.8,1.2")
     if isinstance(d, list):
         d = ",".join(str(x) for x in d)
@@ -766,11 +765,9 @@ def report_request(params: dict) -> dict:
 
     params = _request(params)
     arch = arch_from_params(_dict(params, "arch"))
-    samples = _number(params, "samples", 12, integer=True)
-    if not 0 <= samples <= MAX_REPORT_SAMPLES:
-        raise ArchInputError(f"samples: {samples}; allowed 0 to {MAX_REPORT_SAMPLES} random "
-                             f"arches for the report in the app (archrock assess for more)")
-    seed, spreads = _seed_and_spreads(params)
+    samples, seed, spreads = _random_arches(params, 12, 0, MAX_REPORT_SAMPLES,
+                                            "random arches for the report in the app "
+                                            "(archrock assess for more)")
     contact = bool(params.get("contact", True))
     cfg = AssessConfig(samples=samples, seed=seed, spreads=spreads)
     responses = (samples + 1) * len(cfg.durations) * cfg.n_scan

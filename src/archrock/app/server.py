@@ -131,37 +131,25 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
     async def favicon(request):
         return FileResponse(STATIC / "favicon.svg", media_type="image/svg+xml")
 
-    async def ensemble(request: Request):
-        try:
-            body = await _body(request)
-            config = await run_in_threadpool(api.ensemble_config, body)
-            job = jobs.start(config.samples,
-                             lambda progress, cancelled: api.run_ensemble_job(config, progress,
-                                                                              cancelled))
-            return _json(job.to_dict())
-        except Exception as exc:  # noqa: BLE001
-            return _error(exc)
+    def job_route(check, total, run, extra=lambda req: {}):
+        """A route that checks its request (``check``, in a thread: it may read files or
+        estimate work) and starts ``run(req, progress, cancelled)`` as a job of ``total(req)``
+        steps."""
+        async def route(request: Request):
+            try:
+                req = await run_in_threadpool(check, await _body(request))
+                job = jobs.start(total(req), lambda progress, cancelled: run(req, progress,
+                                                                             cancelled))
+                return _json({**job.to_dict(), **extra(req)})
+            except Exception as exc:  # noqa: BLE001
+                return _error(exc)
+        return route
 
-    async def curve(request: Request):
-        try:
-            body = await _body(request)
-            req = await run_in_threadpool(api.curve_request, body)
-            job = jobs.start(req["samples"] * len(req["durations"]),
-                             lambda progress, cancelled: api.run_curve_job(req, progress,
-                                                                           cancelled))
-            return _json(job.to_dict())
-        except Exception as exc:  # noqa: BLE001
-            return _error(exc)
-
-    async def report(request: Request):
-        try:
-            body = await _body(request)
-            req = await run_in_threadpool(api.report_request, body)
-            job = jobs.start(1, lambda progress, cancelled: api.run_report_job(req, progress,
-                                                                               cancelled))
-            return _json({**job.to_dict(), "estimate_s": req["estimate_s"]})
-        except Exception as exc:  # noqa: BLE001
-            return _error(exc)
+    ensemble = job_route(api.ensemble_config, lambda cfg: cfg.samples, api.run_ensemble_job)
+    curve = job_route(api.curve_request, lambda req: req["samples"] * len(req["durations"]),
+                      api.run_curve_job)
+    report = job_route(api.report_request, lambda req: 1, api.run_report_job,
+                       lambda req: {"estimate_s": req["estimate_s"]})
 
     async def job_download(request: Request):
         try:

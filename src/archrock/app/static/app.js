@@ -574,6 +574,14 @@ async function runCurve() {
   runJob("/api/curve", body, "arch-durations", $("curve-result"), (s) => drawCurve(s.result));
 }
 
+// a job's status from the server (an Error with the server's message when it answers one)
+async function jobStatus(id) {
+  const resp = await fetch(`/api/jobs/${id}`);
+  const s = await resp.json();
+  if (!resp.ok) throw new Error(s.error);
+  return s;
+}
+
 // a background job: start it, poll its progress, then onDone(status) or say why it stopped
 async function runJob(url, body, unit, said, onDone) {
   let job;
@@ -584,11 +592,7 @@ async function runJob(url, body, unit, said, onDone) {
   $("cancel-ensemble").disabled = false;
   const poll = async () => {
     let s;
-    try {
-      const resp = await fetch(`/api/jobs/${job.id}`);
-      s = await resp.json();
-      if (!resp.ok) throw new Error(s.error);
-    } catch (e) { showError(`job: ${e.message}`); finish(); return; }
+    try { s = await jobStatus(job.id); } catch (e) { showError(`job: ${e.message}`); finish(); return; }
     app.job = s;
     $("progress").value = s.total ? s.done / s.total : 0;
     $("progress-text").textContent = `${s.done} / ${s.total} ${unit}, ${s.elapsed_s.toFixed(1)} s`;
@@ -627,11 +631,7 @@ async function runReport() {
   const finish = () => { $("run-report").disabled = false; $("cancel-report").disabled = true; };
   const poll = async () => {
     let s;
-    try {
-      const resp = await fetch(`/api/jobs/${job.id}`);
-      s = await resp.json();
-      if (!resp.ok) throw new Error(s.error);
-    } catch (e) { showError(`report: ${e.message}`); finish(); return; }
+    try { s = await jobStatus(job.id); } catch (e) { showError(`report: ${e.message}`); finish(); return; }
     app.report = s;
     if (s.state === "running") {
       said.textContent = `computing the report: ${s.done} of ${s.total} steps, ${s.elapsed_s.toFixed(1)} s`;
