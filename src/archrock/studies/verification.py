@@ -305,19 +305,30 @@ def _pool_check(index, source, settings_dict, k_tol, ramp_options):
     return _check_arch(index, arch, EngineSettings.from_dict(settings_dict), k_tol, ramp_options)
 
 
+#: the ramp's options :func:`verify_ensemble` accepts (those of ``ramp_direction``)
+RAMP_OPTIONS = ("rate", "hold", "tol", "threshold", "slide_threshold")
+
+
+def _ramp_defaults() -> dict:
+    """``ramp_direction``'s own defaults of :data:`RAMP_OPTIONS` (read from its signature, so
+    that they are written once)."""
+    import inspect
+
+    from ..contact import ramp_direction
+
+    params = inspect.signature(ramp_direction).parameters
+    return {k: params[k].default for k in RAMP_OPTIONS}
+
+
 def ramp_cost_s(settings: EngineSettings, ramp_options: dict | None = None) -> float:
     """Estimated seconds of one arch's ramp in both directions: :data:`ENGINE_RAMP_S` scaled by
     the steps (steps_per_T / 400), the solver's iterations (about half the cost at 40) and the
-    ramp's duration (its rate and holds against 0.05 per T and 4 T)."""
-    o = ramp_options or {}
+    ramp's duration (its rate and holds against 0.05 per T and 4 T, the defaults)."""
+    o = {**_ramp_defaults(), **(ramp_options or {})}
     steps = settings.steps_per_T / 400.0
     iters = 0.5 + 0.5 * settings.iterations / 40.0
-    length = 0.5 * 0.05 / float(o.get("rate", 0.05)) + 0.5 * float(o.get("hold", 4.0)) / 4.0
+    length = 0.5 * 0.05 / float(o["rate"]) + 0.5 * float(o["hold"]) / 4.0
     return ENGINE_RAMP_S * steps * iters * length
-
-
-#: the ramp's options :func:`verify_ensemble` accepts (those of ``ramp_direction``)
-RAMP_OPTIONS = ("rate", "hold", "tol", "threshold", "slide_threshold")
 
 
 def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | None = None,
@@ -397,6 +408,5 @@ def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | 
             arch = sampler.arch(i) if sampler is not None else arch_list[i]
             done(_check_arch(i, arch, settings, float(k_tol), opts))
     return EnsembleVerifyResult(tuple(results[i] for i in items), settings, float(k_tol),
-                                {"rate": 0.05, "hold": 4.0, "tol": 0.005, "threshold": 1e-3,
-                                 "slide_threshold": 1e-3, **opts},
+                                {**_ramp_defaults(), **opts},
                                 None if sampler is None else sampler.to_dict())
