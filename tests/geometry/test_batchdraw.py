@@ -208,3 +208,47 @@ def test_uncertified_draws_are_decided_by_polygon_arch():
     assert new.error.tolist() == old.error.tolist()
     assert "intersects itself" in new.error[2]
     np.testing.assert_array_equal(new.k_l, old.k_l)
+
+
+def test_family_polylines_match_the_newton_inversion_of_0_6():
+    """Since 0.7 u(s) is a cubic Hermite table (families._Piece) instead of Newton on the exact
+    arc length: the polylines of 0.6 (tests/data/family_draws_0.6.0.npz, written by 0.6.0 for
+    these nominals and one draw each) are kept to 1e-12 of the span."""
+    from pathlib import Path
+
+    old = np.load(Path(__file__).parents[1] / "data" / "family_draws_0.6.0.npz")
+    cases = [("elliptical", 4.0, "normal"), ("parabolic", 4.0, "normal"),
+             ("catenary", 5.0, "normal"), ("parabolic", 3.0, "vertical"),
+             ("elliptical", 2.5, "normal")]
+    worst = 0.0
+    for c, (shape, rise, joints) in enumerate(cases):
+        nom = family_arch(shape, 10.0, rise, 1.0 if rise > 2.6 else 0.5, 8, joints=joints,
+                          exact=False)
+        u = ArchSampler(nom, seed=7, spreads=Spreads(0.1, 0.1, 0.05, 2.0)).uniforms(0, 1)[0]
+        for tag, a in (("nominal", nom), ("draw", perturb_family(nom, u, 0.1, 0.1, 0.05, 2.0))):
+            for i in range(a.n):
+                for e, line in (("i", a.intrados[i]), ("e", a.extrados[i])):
+                    ref = old[f"{c}_{tag}_{i}_{e}"]
+                    assert line.shape == ref.shape, (shape, tag, i, e)
+                    worst = max(worst, float(np.max(np.abs(line - ref))))
+    assert worst < 1e-12 * 10.0, worst
+
+
+@pytest.mark.parametrize("shape,span,rise", [("elliptical", 10.0, 0.3), ("elliptical", 10.0, 40.0),
+                                             ("catenary", 10.0, 20.0), ("parabolic", 1e-3, 2e-3)])
+def test_hermite_table_is_exact_to_its_tolerance(shape, span, rise):
+    """The arc-length table refines until u_Hermite(s) lies within HERMITE_TOL of the length of
+    the exact inversion (Newton to round-off), checked here at 2001 points off the knots."""
+    from archrock.geometry.families import HERMITE_TOL, centreline
+
+    piece = centreline(shape, span, rise).pieces[0]
+    s = np.linspace(0.0, piece.length, 2001)
+    u = piece.u_of_s(s)
+    ue = u.copy()
+    k = np.clip(np.searchsorted(piece._s, s, side="right") - 1, 0, len(piece._u) - 2)
+    for _ in range(3):
+        d = piece.dp(ue)
+        ue = ue - (piece._s[k] + piece._gl(piece._u[k], ue) - s) / np.hypot(d[0], d[1])
+    a, b = np.array(piece.p(u)), np.array(piece.p(ue))
+    assert np.max(np.hypot(*(a - b))) <= 2 * HERMITE_TOL * piece.length
+    assert not piece.newton

@@ -119,13 +119,17 @@ class FamilyPlan:
         for j, (_, par) in enumerate(pieces):
             self.ppar[j, :len(par)] = par
         self.plen = np.array([p.length for p in line.pieces])
-        self.pconst = np.array([p.constant_speed for p in line.pieces], dtype=np.bool_)
+        # 1: an arc (u = s / length), 0: the Hermite table, 2: the table and a Newton step
+        self.pmode = np.array([1 if p.constant_speed else (2 if p.newton else 0)
+                               for p in line.pieces], dtype=np.int64)
         self.tab_u = np.zeros((P, grid))
         self.tab_s = np.zeros((P, grid))
         self.tab_n = np.array([len(p._u) for p in line.pieces], dtype=np.int64)
+        self.tab_v = np.ones((P, grid))
         for j, p in enumerate(line.pieces):
             self.tab_u[j, :len(p._u)] = p._u
             self.tab_s[j, :len(p._s)] = p._s
+            self.tab_v[j, :len(p._v)] = p._v
         self.bounds = np.asarray(line.bounds, float).copy()
         big_l = line.length
         base = big_l * np.arange(r["voussoirs"] + 1) / r["voussoirs"]
@@ -144,8 +148,8 @@ class FamilyPlan:
 
     def args(self):
         """The plan's arrays in the order the kernels take them."""
-        return (self.ptype, self.ppar, self.plen, self.pconst, self.tab_u, self.tab_s,
-                self.tab_n, self.bounds, self.base_len, self.scal)
+        return (self.ptype, self.ppar, self.plen, self.pmode, self.tab_u, self.tab_s,
+                self.tab_v, self.tab_n, self.bounds, self.base_len, self.scal)
 
 
 # the plans of the nominals seen lately (a study has one nominal)
@@ -302,16 +306,16 @@ def _search(a, n, x, right):
 
 
 @maybe_njit
-def _eval(s, side, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds):
-    """Points and unit tangents (m, 2) at arc lengths s [m] (``Centreline.eval``): each
-    piece's points inverted together, Newton stopping when all are at round-off."""
+def _eval(s, side, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds):
+    """Points and unit tangents (m, 2) at arc lengths s [m] (``Centreline.eval``, the same
+    arithmetic): arcs by u = s / length, other pieces by their Hermite tables."""
     m = s.size
     P = ptype.size
     p = np.empty((m, 2))
     t = np.empty((m, 2))
     const = True
     for j in range(P):
-        const = const and pconst[j]
+        const = const and pmode[j] == 1
     if const:  # arcs: u = s / length point by point, nothing shared between the points
         for i in range(m):
             j = min(max(_search(bounds, P + 1, s[i], side > 0) - 1, 0), P - 1)
@@ -346,31 +350,26 @@ def _eval(s, side, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds):
         for q in range(c):
             v = s[idx[q]] - bounds[j]
             ss[q] = min(max(v, 0.0), length)
-        if pconst[j]:
+        if pmode[j] == 1:
             for q in range(c):
                 uu[q] = ss[q] / length
         else:
             G = tab_n[j]
             for q in range(c):
+                # families._Piece.u_of_s: the cubic Hermite interpolant (families._hermite_u),
+                # and one Newton step on the exact length where the table is not fine enough
                 kk = min(max(_search(tab_s[j], G, ss[q], True) - 1, 0), G - 2)
                 u0[q] = tab_u[j, kk]
                 s0[q] = tab_s[j, kk]
-                uu[q] = u0[q] + (ss[q] - s0[q]) / max(tab_s[j, kk + 1] - s0[q], 1e-300) * \
-                    (tab_u[j, kk + 1] - u0[q])
-            for _ in range(4):
-                mx = 0.0
-                bad = False
-                for q in range(c):
+                h = tab_s[j, kk + 1] - s0[q]
+                w = (ss[q] - s0[q]) / max(h, 1e-300)
+                du = tab_u[j, kk + 1] - u0[q]
+                uu[q] = u0[q] + w * du + (w * (1.0 - w)) * (
+                    (1.0 - w) * (h / tab_v[j, kk] - du) - w * (h / tab_v[j, kk + 1] - du))
+                if pmode[j] == 2:
                     d0, d1 = _dp(typ, par, uu[q])
-                    du = (s0[q] + _gl(typ, par, u0[q], uu[q]) - ss[q]) / np.hypot(d0, d1)
-                    uu[q] = uu[q] - du
-                    if du != du:
-                        bad = True
-                    elif abs(du) > mx:
-                        mx = abs(du)
-                if not bad and mx < 1e-13:
-                    break
-            for q in range(c):
+                    uu[q] = uu[q] - (s0[q] + _gl(typ, par, u0[q], uu[q]) - ss[q]) / \
+                        np.hypot(d0, d1)
                 uu[q] = min(max(uu[q], 0.0), 1.0)
         for q in range(c):
             i = idx[q]
@@ -425,11 +424,11 @@ def _arc_between(px, py, qx, qy, cx, cy, ppr):
 
 
 @maybe_njit
-def _segments(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, ppr):
+def _segments(s0, s1, sign, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds, ppr):
     """Segments of an offset polyline over [s0, s1] as ``_sample_offset`` counts them: the
     turning of 65 unwrapped tangents (np.unwrap, then the sum of |diff|) times ppr."""
     ss = _linspace(s0, s1, 65)
-    _, tt = _eval(ss, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds)
+    _, tt = _eval(ss, sign, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds)
     ang = np.empty(65)
     for i in range(65):
         ang[i] = math.atan2(tt[i, 1], tt[i, 0])
@@ -457,13 +456,13 @@ def _segments(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, boun
 
 
 @maybe_njit
-def _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
+def _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds,
                         ppr):
     """:func:`_segments` from the tangents at the two ends (the centreline is convex), or -1
     where turning x ppr lies within 1e-6 of an integer (then only the 65 tangents decide)."""
     ends = np.empty(2)
     ends[0], ends[1] = s0, s1
-    _, tt = _eval(ends, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds)
+    _, tt = _eval(ends, sign, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds)
     x = abs(math.atan2(tt[1, 1], tt[1, 0]) - math.atan2(tt[0, 1], tt[0, 0])) * ppr
     if not (x < 1e6) or abs(x - round(x)) <= 1e-6:
         return -1
@@ -471,7 +470,7 @@ def _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, t
 
 
 @maybe_njit
-def _centre(s0, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal):
+def _centre(s0, s1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds, scal):
     """The centreline samples of ``families._sample_offset`` over [s0, s1] (not straddling a
     pointed crown): arc lengths s (m + 1,) [m], points and unit tangents (m + 1, 2).  They do
     not depend on the side or the thickness: the intrados and the extrados share them."""
@@ -484,12 +483,13 @@ def _centre(s0, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal
     # centreline turns one way (convex), so the turning summed over 65 tangents is the turn
     # between the ends to ~1e-13 rad; the 65 tangents are evaluated only where that product
     # lies within 1e-6 of an integer (where the last bits could change m).
-    m = _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
+    m = _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n,
                             bounds, ppr)
     if m < 0:
-        m = _segments(s0, s1, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, ppr)
+        m = _segments(s0, s1, sign, ptype, ppar, plen, pmode, tab_u, tab_s,
+                      tab_v, tab_n, bounds, ppr)
     s = _linspace(s0, s1, m + 1)
-    p, t = _eval(s, sign, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds)
+    p, t = _eval(s, sign, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds)
     return s, p, t
 
 
@@ -550,16 +550,16 @@ def _sample_plain(s0, s1, side, k, s, p, t, scal):
 
 
 @maybe_njit
-def _centres(s0, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal):
+def _centres(s0, s1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds, scal):
     """:func:`_centre` of [s0, s1], or of its two halves when it straddles a pointed crown."""
     mid = scal[0] / 2
     if scal[1] != 0.0 and s0 < mid < s1:
-        sa, pa, ta = _centre(s0, mid, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
+        sa, pa, ta = _centre(s0, mid, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds,
                              scal)
-        sb, pb, tb = _centre(mid, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
+        sb, pb, tb = _centre(mid, s1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds,
                              scal)
         return True, sa, pa, ta, sb, pb, tb
-    sa, pa, ta = _centre(s0, s1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds, scal)
+    sa, pa, ta = _centre(s0, s1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds, scal)
     return False, sa, pa, ta, sa, pa, ta
 
 
@@ -607,7 +607,7 @@ def _cut(poly, cx, cy, dx, dy, nx, ny):
 
 
 @maybe_njit
-def _draw(u, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds,
+def _draw(u, sa, st, sr, tilt_rad, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds,
           base_len, scal):
     """One draw (``perturb_family``): (code, voussoir, side, lines) with lines the 2 n
     polylines, intrados of voussoir i at 2 i, extrados at 2 i + 1 (code 0: drawn)."""
@@ -634,7 +634,7 @@ def _draw(u, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_
         acc += lengths[i]
         s_div[i + 1] = acc
     s_div[n] = big_l
-    c, tang = _eval(s_div, 1, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n, bounds)
+    c, tang = _eval(s_div, 1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds)
     d = np.empty((n + 1, 2))
     for j in range(n + 1):
         d0, d1 = -tang[j, 1], tang[j, 0]
@@ -672,8 +672,9 @@ def _draw(u, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_
                 else:
                     hi = min(big_l, s_div[i + 1] + 0.5 * min(lengths[i], lengths[i + 1]))
                 if not (lo == c_lo and hi == c_hi):  # the other side's samples, if the same
-                    two, sa_, pa_, ta_, sb_, pb_, tb_ = _centres(lo, hi, ptype, ppar, plen, pconst,
-                                                                 tab_u, tab_s, tab_n, bounds, scal)
+                    two, sa_, pa_, ta_, sb_, pb_, tb_ = _centres(lo, hi, ptype, ppar, plen, pmode,
+                                                                 tab_u, tab_s, tab_v, tab_n,
+                                                                 bounds, scal)
                     c_lo, c_hi = lo, hi
                 crossed, pts = _sample(lo, hi, side, k, two, sa_, pa_, ta_, sb_, pb_, tb_, scal)
                 if crossed:
@@ -876,12 +877,12 @@ def _arch_arrays(lines, n, big_l, areas, cen, polar, jp):
 
 
 @maybe_njit
-def _batch_one(b, U, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
+def _batch_one(b, U, sa, st, sr, tilt_rad, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n,
                bounds, base_len, scal, state, code, where, side, areas, cen, polar, jp, size,
                asum):
     n = base_len.size
-    c, i, sd, lines = _draw(U[b], sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s,
-                            tab_n, bounds, base_len, scal)
+    c, i, sd, lines = _draw(U[b], sa, st, sr, tilt_rad, ptype, ppar, plen, pmode, tab_u, tab_s,
+                            tab_v, tab_n, bounds, base_len, scal)
     if c != 0:
         state[b], code[b], where[b], side[b] = REFUSED, c, i, sd
         return
@@ -892,22 +893,22 @@ def _batch_one(b, U, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab
         state[b] = UNCERTIFIED
 
 
-def _batch_loop_py(U, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
+def _batch_loop_py(U, sa, st, sr, tilt_rad, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n,
                    bounds, base_len, scal, state, code, where, side, areas, cen, polar, jp, size,
                    asum):
     for b in range(U.shape[0]):
-        _batch_one(b, U, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
+        _batch_one(b, U, sa, st, sr, tilt_rad, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n,
                    bounds, base_len, scal, state, code, where, side, areas, cen, polar, jp, size,
                    asum)
 
 
 if HAVE_NUMBA:
     @maybe_njit(parallel=True)
-    def _batch_loop_nb(U, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s, tab_n,
-                       bounds, base_len, scal, state, code, where, side, areas, cen, polar, jp,
-                       size, asum):
+    def _batch_loop_nb(U, sa, st, sr, tilt_rad, ptype, ppar, plen, pmode, tab_u, tab_s,
+                       tab_v, tab_n, bounds, base_len, scal, state, code, where, side, areas,
+                       cen, polar, jp, size, asum):
         for b in numba.prange(U.shape[0]):
-            _batch_one(b, U, sa, st, sr, tilt_rad, ptype, ppar, plen, pconst, tab_u, tab_s,
+            _batch_one(b, U, sa, st, sr, tilt_rad, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v,
                        tab_n, bounds, base_len, scal, state, code, where, side, areas, cen,
                        polar, jp, size, asum)
 

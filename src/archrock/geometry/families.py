@@ -57,17 +57,44 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 
 
 # ---------------------------------------------------------------------------- centrelines
+#: Arc-length tables of a non-circular piece: knots from 256, times 4 until the cubic Hermite
+#: interpolant of u(s) is within this fraction of the piece's length of the exact inversion at
+#: every interval's midpoint (where its error peaks), at most MAX_TABLE_KNOTS knots.  Beyond
+#: that (no family in the tested ranges) the Hermite guess is refined by one Newton step.
+HERMITE_TOL = 1e-14
+MAX_TABLE_KNOTS = 65536
+
+
 class _Piece:
-    """A smooth piece of a centreline: p(u), p'(u) for u in [0, 1] (vectorised)."""
+    """A smooth piece of a centreline: p(u), p'(u) for u in [0, 1] (vectorised).
+
+    Arc length s(u) is integrated exactly (8-point Gauss-Legendre per table interval); u(s) is
+    the cubic Hermite interpolant of the table with the exact slopes du/ds = 1/|p'(u)| at the
+    knots, on a table fine enough to be exact to HERMITE_TOL of the length (docs/geometry.md).
+    """
 
     def __init__(self, p, dp, grid: int = 256, constant_speed: bool = False):
         self.p, self.dp = p, dp
         self.constant_speed = constant_speed
-        u = np.linspace(0.0, 1.0, grid + 1)
-        self._u = u
-        seg = np.array([self._gl(a, b) for a, b in zip(u[:-1], u[1:])])
-        self._s = np.concatenate([[0.0], np.cumsum(seg)])
-        self.length = float(self._s[-1])
+        self.newton = False
+        while True:
+            u = np.linspace(0.0, 1.0, grid + 1)
+            self._u = u
+            if constant_speed:  # the arcs' lengths as 0.6 summed them, to the bit
+                seg = np.array([self._gl(a, b) for a, b in zip(u[:-1], u[1:])])
+            else:
+                seg = self._gl(u[:-1], u[1:])
+            self._s = np.concatenate([[0.0], np.cumsum(seg)])
+            self.length = float(self._s[-1])
+            d = self.dp(u)
+            self._v = np.hypot(d[0], d[1])  # speed |p'(u)| [m] at the knots: the slopes
+            if constant_speed:
+                break
+            err = self._table_error()
+            if err <= HERMITE_TOL * self.length or 4 * grid > MAX_TABLE_KNOTS:
+                self.newton = err > HERMITE_TOL * self.length
+                break
+            grid *= 4
 
     def _gl(self, a, b):
         """Arc length from u = a to u = b (8-point Gauss-Legendre; a, b arrays or floats)."""
@@ -77,22 +104,43 @@ class _Piece:
         d = self.dp(uu)
         return half * (np.hypot(d[0], d[1]) * _GL_W).sum(axis=-1)
 
+    def _table_error(self) -> float:
+        """Largest distance [m] between the point at u_Hermite(s) and at the exact u(s) (two
+        Newton steps from it), over the table intervals' midpoints."""
+        s = 0.5 * (self._s[:-1] + self._s[1:])
+        k = np.arange(len(s))
+        u0 = self._u[k]
+        uh = _hermite_u(s, self._s[k], self._s[k + 1], u0, self._u[k + 1], self._v[k],
+                        self._v[k + 1])
+        u = uh
+        for _ in range(2):
+            d = self.dp(u)
+            u = u - (self._s[k] + self._gl(u0, u) - s) / np.hypot(d[0], d[1])
+        ph, pe = self.p(uh), self.p(u)
+        return float(np.max(np.hypot(ph[0] - pe[0], ph[1] - pe[1])))
+
     def u_of_s(self, s):
-        """Parameter u at arc length s from the piece's start (Newton on the exact length)."""
+        """Parameter u at arc length s from the piece's start (the class docstring)."""
         s = np.clip(np.asarray(s, float), 0.0, self.length)
         if self.constant_speed:  # a circular arc: the arc length is proportional to u
             return s / self.length
         k = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(self._u) - 2)
         u0, s0 = self._u[k], self._s[k]
-        u = u0 + (s - s0) / np.maximum(self._s[k + 1] - s0, 1e-300) * (self._u[k + 1] - u0)
-        for _ in range(4):
+        u = _hermite_u(s, s0, self._s[k + 1], u0, self._u[k + 1], self._v[k], self._v[k + 1])
+        if self.newton:  # a table that could not be made fine enough: one Newton step
             d = self.dp(u)
-            du = (s0 + self._gl(u0, u) - s) / np.hypot(d[0], d[1])
-            u = u - du
-            # Newton from the table's guess converges quadratically: stop once at round-off
-            if u.size == 0 or float(np.max(np.abs(du))) < 1e-13:
-                break
+            u = u - (s0 + self._gl(u0, u) - s) / np.hypot(d[0], d[1])
         return np.clip(u, 0.0, 1.0)
+
+
+def _hermite_u(s, s0, s1, u0, u1, v0, v1):
+    """u at arc length s between two knots (s0, u0), (s1, u1) of a piece's table: the cubic
+    Hermite interpolant with the exact slopes du/ds = 1/v at the knots (v the speed |p'(u)|).
+    :func:`archrock.geometry.batchdraw._eval` repeats this arithmetic operation for operation."""
+    h = s1 - s0
+    w = (s - s0) / np.maximum(h, 1e-300)
+    du = u1 - u0
+    return u0 + w * du + (w * (1.0 - w)) * ((1.0 - w) * (h / v0 - du) - w * (h / v1 - du))
 
 
 class Centreline:
