@@ -9,7 +9,7 @@ arch's.  ``--legacy`` also times the arch-object path (``prepare_batch(sampler.a
 with ``perturb_family``, as before the compiled drawing) on ``--legacy-samples`` arches.
 
 A surveyed polygon arch (Oppenheim's as a polygon without a family, thickness and offset
-spreads only, docs/geometry.md) runs last, on the per-arch path.
+spreads only, docs/geometry.md) runs last, drawn as arrays (geometry.surveybatch) since 0.7.
 
 Usage: python benchmarks/bench_families.py [--samples 10000] [--legacy] [--json FILE]
 """
@@ -131,7 +131,7 @@ def main(argv=None):
         name = "surveyed polygon (Oppenheim, n=7)"
         print(f"{name:34s} {r['wall_s']:7.2f} {r['arches_per_s']:9.0f} {r['prepare_s']:8.2f} "
               f"{r['response_s']:8.2f} {r['ratio_to_circular']:10.2f}   ({r['left_out']} left "
-              f"out, {r['collapsed']} collapsed; per-arch path)", flush=True)
+              f"out, {r['collapsed']} collapsed)", flush=True)
         out["families"]["surveyed"] = r
     if args.json:
         with open(args.json, "w") as fh:

@@ -1,4 +1,5 @@
-"""Irregular family arches prepared as arrays: the ensemble's batch path for any family.
+"""Irregular family and surveyed arches prepared as arrays: the ensemble's batch path for any
+family and for a surveyed polygon arch (:mod:`archrock.geometry.surveybatch`).
 
 :func:`prepare_family_batch` does what ``prepare_batch(sampler.arches(start, count))`` does
 (:mod:`archrock.dynamics.batch`) without an arch object per sample: the draws' polylines, validity
@@ -11,7 +12,7 @@ path to the last bit; a draw the compiled checks do not certify (a check of
 built as its object, as are the rows whose lift-off or least-loss treatment needs one.
 
 It falls back to the arch-object path without numba (the compiled drawing would run as slow
-Python), for nominals with loads or fill, and above
+Python), for nominals with loads or fill (a surveyed arch: loads), and above
 :data:`archrock.statics.limit.ENUMERATION_MAX_VOUSSOIRS` voussoirs (the guided search works on arch
 objects).
 """
@@ -26,8 +27,11 @@ from ...dynamics.batch import (PreparedBatch, _finish, _lift_off_errors, _limit_
                                _multipliers, _spec, prepare_batch)
 from ...errors import InvalidSampleError
 from ...geometry import power_of_two_near
+from ..._jit import HAVE_NUMBA
 from ...geometry.batchdraw import OK, REFUSED, batch_properties, compiled_drawing, family_plan, \
     refusal_message
+from ...geometry.surveybatch import survey_plan, survey_properties, survey_refusal, \
+    survey_supported
 from ...statics.kinematic import ENUMERATION_MAX_VOUSSOIRS, _check_method, _full_enumeration
 from ...statics.sums import arch_sums
 
@@ -46,14 +50,19 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
     for a sampler around a family arch, computed as arrays (module docstring): the same
     PreparedBatch, row for row."""
     n = sampler.nominal.n
-    if not compiled_drawing(sampler) or n > ENUMERATION_MAX_VOUSSOIRS:
+    survey = HAVE_NUMBA and survey_supported(sampler.nominal)
+    if not (compiled_drawing(sampler) or survey) or n > ENUMERATION_MAX_VOUSSOIRS:
         return prepare_batch(sampler.arches(start, count), impact=impact, cv=cv,
                              nominal=nominal, parallel=parallel)
     t0 = time.perf_counter()
     spec = _spec(impact, cv, nominal)
-    plan = family_plan(sampler.nominal)
     B = int(count)
-    bp = batch_properties(plan, sampler.uniforms(start, B), sampler.spreads, parallel)
+    if survey:
+        plan = survey_plan(sampler.nominal)
+        bp = survey_properties(plan, sampler.uniforms(start, B), sampler.spreads, parallel)
+    else:
+        plan = family_plan(sampler.nominal)
+        bp = batch_properties(plan, sampler.uniforms(start, B), sampler.spreads, parallel)
     state = bp["state"]
     density = plan.density
     areas, cen, polar, jp = bp["areas"], bp["centroids"], bp["polar"], bp["joint_points"]
@@ -65,8 +74,9 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
     objects = {}
     for b in np.flatnonzero(state != OK):
         if state[b] == REFUSED:
-            error[b] = _row_error(InvalidSampleError(
-                f"not a valid arch: {refusal_message(bp['code'][b], bp['index'][b], bp['side'][b])}"))
+            why = survey_refusal(bp["index"][b]) if survey else \
+                refusal_message(bp["code"][b], bp["index"][b], bp["side"][b])
+            error[b] = _row_error(InvalidSampleError(f"not a valid arch: {why}"))
             continue
         try:
             objects[b] = sampler.arch(int(start + b))
