@@ -31,12 +31,15 @@ voussoirs 2 and 3, turning about its extrados end; 'i' intrados; 's' both ends a
 
 Collapse.  While pushing, the arch is suspected to run away when its kinetic energy exceeds
 ``ke_factor`` x 1/2 M v^2 (the whole arch moving ``sqrt(ke_factor)`` times faster than the
-support) or a voussoir has turned by more than ``max_rotation``.  The support is then held where
-it is for ``hold`` T (a copy of the engine's state): the arch has collapsed if it keeps moving (a
-joint turns on by more than its open threshold, or a voussoir past ``max_rotation``); a
-suspicion that comes to rest is a snap between mechanisms and the push goes on.  The capacity is
-bracketed between the last held state that rests and the first that moves, and bisected (held
-states pushed on from the resting one) to a relative width ``tol``; it is the bracket's middle.
+support) or a voussoir has turned by more than ``max_rotation``.  A copy of the engine's state
+is then held: its support slows down linearly to a stop over ``stop`` T (moving on by
+v stop / 2; an abrupt stop shakes an arch near its capacity by several open thresholds) and
+stays there for ``hold`` T.  The arch has collapsed if it keeps moving: it runs away as above,
+or a joint still turns by its open threshold over the hold's second half.  A suspicion that comes
+to rest is a snap between mechanisms and the push goes on.  The capacity is bracketed, in held
+displacements, between the last checkpoint (every CHECKPOINT_EVERY samples) whose hold rests and
+the first that moves, and bisected (copies pushed on from the resting state, then held) to a
+relative width ``tol``; it is the bracket's middle.
 Every run is bounded: the push stops at ``max_displacement`` (then the arch stands: no capacity
 within it) and may not need more than ``max_time`` T.
 """
@@ -46,7 +49,6 @@ from __future__ import annotations
 import copy
 import math
 import time as _time
-from collections import deque
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -69,8 +71,7 @@ SIDES = ("right", "left", "both")
 KE_RATIO_MAX = 0.01
 KE_CHECK_FROM = 0.01
 
-#: Held checkpoints kept for the bracket (one every CHECKPOINT_EVERY samples).
-CHECKPOINTS_KEPT = 8
+#: A copy of the engine's state is kept every CHECKPOINT_EVERY samples, for the holds.
 CHECKPOINT_EVERY = 5
 #: The thrust at the start: a straight line through H(d) over this span of d after the first
 #: opening [fraction of the size], extrapolated to d = 0.
@@ -362,7 +363,7 @@ class _Push:
 def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "right",
                  settings: EngineSettings | None = None, *, rate: float = 0.005,
                  max_displacement: float | None = None, sample: float = 1e-3,
-                 open_gap: float = 1e-4, hold: float = 4.0, stop: float = 1.0,
+                 open_gap: float = 1e-4, hold: float = 4.0, stop: float = 4.0,
                  tol: float = 0.01,
                  ke_factor: float = 10.0, max_rotation: float = 0.5,
                  max_time: float = 2e4, progress=None) -> PushResult:
@@ -372,7 +373,8 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
     support's speed in sizes per T (dd/dt = rate sqrt(g size)); max_displacement [m]: the push
     stops there (default half the size); sample: displacement between samples, a fraction of the
     size; open_gap: a joint is open when its open end has moved by this fraction of the size;
-    hold [T]: how long a held support waits for the arch to move; tol: relative width of the
+    hold [T]: how long a held support waits for the arch to move, after slowing down to a stop
+    over ``stop`` [T]; tol: relative width of the
     capacity's bracket; ke_factor: the arch is suspected to run away when its kinetic energy
     exceeds ke_factor x 1/2 M v^2; max_rotation [rad]: a voussoir turned further has collapsed;
     max_time [T]: the longest push allowed (max_displacement / speed must fit in it)."""
@@ -454,7 +456,7 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
     record(0.0)
     start = live.copy()
     live.set_moving(True)
-    checkpoints = deque([(0.0, start)], maxlen=CHECKPOINTS_KEPT)
+    checkpoints = [(0.0, start)]
     holds: list[tuple[float, bool]] = []
     changes: list[tuple[float, tuple[str, ...]]] = []
     last_labels: tuple[str, ...] = ()
@@ -503,20 +505,27 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
         prev = rec["d"][-2] if len(rec["d"]) > 1 else 0.0
         bracket = (float(prev), float(trigger))
     elif status == "collapsed":
-        # the bracket in held displacements: lo rests when held, hi moves on
-        hi, lo, lo_state = float(trigger), None, None
-        for dc, st in reversed(checkpoints):
-            if dc >= hi:
-                continue
-            d_held, moved, labels = held(st)
-            if not moved:
-                lo, lo_state = d_held, st
-                break
-            hi, collapse_hinges = d_held, labels
-        if lo is None:
-            raise CannotStandError("arch: it does not stand in the contact engine with its "
-                                   "supports held at rest (a held copy of the settled arch "
-                                   "moves on)")
+        # the bracket in held displacements: lo rests when held, hi moves on; the checkpoints
+        # before the trigger are searched by bisection (the push itself runs on past the
+        # capacity, as the unstable motion grows from nothing while the support keeps moving)
+        hi = float(trigger)
+        cks = [(dc, st) for dc, st in checkpoints if dc < hi]
+        i_lo, i_hi, lo = 0, len(cks), None
+        while i_hi - i_lo > 1:
+            i_mid = (i_lo + i_hi) // 2
+            d_held, moved, labels = held(cks[i_mid][1])
+            if moved:
+                i_hi, hi, collapse_hinges = i_mid, min(hi, d_held), labels
+            else:
+                i_lo, lo = i_mid, d_held
+        lo_state = cks[i_lo][1]
+        if lo is None:  # the settled arch itself: does it stand when held?
+            d_held, moved, labels = held(lo_state)
+            if moved:
+                raise CannotStandError("arch: it does not stand in the contact engine with its "
+                                       "supports held at rest (a held copy of the settled arch "
+                                       "moves on)")
+            lo = d_held
         for _ in range(64):
             if hi - lo <= tol * hi:
                 break
