@@ -180,3 +180,24 @@ def test_spreading_capacity_mirror_symmetry_and_thicker_rings():
     assert left.capacity == pytest.approx(r.capacity, rel=0.02)
     thick = push_support(semicircle(0.20), "spread", "right")
     assert thick.capacity > 1.2 * r.capacity
+
+
+def test_cli_dem_push(capsys):
+    from archrock.cli import main
+    import json
+
+    assert main(["dem", "--push", "spread", "--push-max", "0.2", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["movement"] == "spread" and d["side"] == "right" and d["status"] == "standing"
+    # Oppenheim's arch: the least thrust of its LP; its line touches the crown voussoir's
+    # extrados at both joints (3e, 4e), and the engine opens one of them: three hinges
+    tr = thrust_range(nominal_arch())
+    assert d["thrust_start"] == pytest.approx(tr.thrust_min, rel=0.02)
+    assert labels(tr.hinges_min) == ("1i", "3e", "4e", "6i")
+    assert d["hinges"] == ["1i", "4e", "6i"]
+    assert main(["dem", "--push", "settlement", "--push-side", "left", "--push-max", "0.1"]) == 0
+    out = capsys.readouterr().out
+    assert "the left support settles" in out and "stands up to d = 0.1 m" in out
+    assert main(["dem", "--push", "spread", "--ramp"]) == 2
+    assert "--push: cannot be combined" in capsys.readouterr().err
+    assert main(["dem", "--push", "lift"]) == 2
