@@ -101,12 +101,22 @@ def main(argv=None) -> int:
               f"{r['wall_seconds']:.1f} |", flush=True)
     if not args.skip_convergence:
         print()
+        print("| voussoirs | stop [T] | capacity [m] | wall [s] |")
+        print("|---|---|---|---|")
+        a36 = semicircle(0.15, 36)
+        for stop in (1.0, 2.0, 4.0, 8.0, 16.0):
+            r = row(a36, "spread", "right", None, stop=stop)
+            r["case"] = f"36 voussoirs, stop {stop:g} T"
+            out["convergence"].append(r)
+            print(f"| 36 | {stop:g} | {fmt_capacity(r)} | {r['wall_seconds']:.1f} |", flush=True)
+        print()
         print("| change | capacity [m] | H_start / H_min | KE/dPE | wall [s] |")
         print("|---|---|---|---|---|")
         a = semicircle(0.15, 16)
         cases = [("defaults", None, {}), ("rate 0.0025", None, {"rate": 0.0025}),
-                 ("rate 0.01", None, {"rate": 0.01}), ("stop 1 T", None, {"stop": 1.0}),
-                 ("stop 8 T", None, {"stop": 8.0}), ("hold 8 T", None, {"hold": 8.0}),
+                 ("rate 0.01", None, {"rate": 0.01}), ("stop 2 T", None, {"stop": 2.0}),
+                 ("stop 4 T", None, {"stop": 4.0}), ("stop 16 T", None, {"stop": 16.0}),
+                 ("hold 8 T", None, {"hold": 8.0}),
                  ("steps_per_T 800", EngineSettings(steps_per_T=800), {}),
                  ("iterations 80", EngineSettings(iterations=80), {}),
                  ("fine cut", EngineSettings(outline_tol=0.0), {})]

@@ -119,8 +119,8 @@ class PushResult:
     ``status``: 'collapsed' or 'standing' (no collapse up to max_displacement); ``capacity`` [m]
     the middle of ``capacity_bracket`` (lower: held, rests; upper: held, moves), None when
     standing; ``collapse_by``: 'hold' (the arch moves on with the support held) or 'rotation' (a
-    voussoir turned past max_rotation); ``collapse_hinges``: labels of the joints that open in
-    the collapsing hold; ``holds``: (d, moved) of every hold.  ``ke_ratio``: the largest
+    voussoir turned past max_rotation); ``collapse_hinges``: labels of the joints that had
+    turned by their open threshold when the arch started moving in the collapsing hold; ``holds``: (d, moved) of every hold.  ``ke_ratio``: the largest
     KE / |dPE| past KE_CHECK_FROM x size before collapse; ``quasi_static``: ke_ratio <= 1%.
     ``simulated_seconds`` (all runs, holds included) and ``wall_seconds``; ``settings`` and
     ``run`` (the options and the scales used)."""
@@ -330,7 +330,8 @@ class _Push:
              ke_lim: float):
         """Stop the support(s), slowing down linearly over ``stop_steps`` (an abrupt stop
         would shake the arch by several open thresholds near its capacity), and run on for
-        ``hold_steps``: (moved, labels of the joints that turned in the hold).  Moved: the arch
+        ``hold_steps``: (moved, labels of the joints open when the arch started moving after
+        the stop: the collapse mechanism as it starts).  Moved: the arch
         runs away (kinetic energy past ``ke_lim``, a voussoir past ``max_rotation``) or its
         joints still turn by their open threshold over the hold's second half."""
         ca = self.ca
@@ -343,27 +344,31 @@ class _Push:
                 b.velocity = (float(u[0] * f), float(u[1] * f))
             self.step(1)
         self.set_moving(False)
-        half = None
+        half = onset = None
         done = 0
-        jrot = self.measure()[0]
+        start = jrot = self.measure()[0]
         while done < hold_steps:
             k = min(check, hold_steps - done)
             self.step(k)
             done += k
             jrot, rel, ke, _, _ = self.measure()
+            if onset is None and np.any(np.abs(jrot - start) >= 4.0 * self.rot_thr):
+                # the mechanism as it starts: the joints past their threshold once the
+                # fastest has turned by four (as the first opening of the push)
+                onset = self.labels(jrot, start)
             if np.abs(rel).max() > max_rotation or ke > ke_lim:
-                return True, self.labels(jrot, base)
+                return True, onset or self.labels(jrot, base)
             if half is None and done >= hold_steps // 2:
                 half = jrot
         if half is not None and np.any(np.abs(jrot - half) >= self.rot_thr):
-            return True, self.labels(jrot, base)
+            return True, onset or self.labels(jrot, base)
         return False, ()
 
 
 def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "right",
                  settings: EngineSettings | None = None, *, rate: float = 0.005,
                  max_displacement: float | None = None, sample: float = 1e-3,
-                 open_gap: float = 1e-4, hold: float = 4.0, stop: float = 4.0,
+                 open_gap: float = 1e-4, hold: float = 4.0, stop: float = 8.0,
                  tol: float = 0.01,
                  ke_factor: float = 10.0, max_rotation: float = 0.5,
                  max_time: float = 2e4, progress=None) -> PushResult:
@@ -396,7 +401,7 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
     open_gap = _num("open_gap", open_gap, 1e-7, 1e-2,
                     "1e-7 <= open_gap <= 1e-2 (fraction of the size)")
     hold = _num("hold", hold, 0.1, 100.0, "0.1 <= hold <= 100 (T)")
-    stop = _num("stop", stop, 0.0, 10.0, "0 <= stop <= 10 (T)")
+    stop = _num("stop", stop, 0.0, 100.0, "0 <= stop <= 100 (T)")
     tol = _num("tol", tol, 1e-4, 0.5)
     ke_factor = _num("ke_factor", ke_factor, 1.5, 1e6)
     max_rotation = _num("max_rotation", max_rotation, 1e-3, math.pi,
