@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 from pathlib import Path
 
 FIG = Path(__file__).resolve().parents[1] / "figures"

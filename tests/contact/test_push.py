@@ -2,8 +2,6 @@
 thrust range's LP and against the statics of the three-hinge arch, the hinges, mirror symmetry,
 the displacement capacity and input validation."""
 
-import math
-
 import numpy as np
 import pytest
 

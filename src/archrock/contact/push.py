@@ -120,7 +120,8 @@ class PushResult:
     the middle of ``capacity_bracket`` (lower: held, rests; upper: held, moves), None when
     standing; ``collapse_by``: 'hold' (the arch moves on with the support held) or 'rotation' (a
     voussoir turned past max_rotation); ``collapse_hinges``: labels of the joints that had
-    turned by their open threshold when the arch started moving in the collapsing hold; ``holds``: (d, moved) of every hold.  ``ke_ratio``: the largest
+    turned by their open threshold when the arch started moving in the collapsing hold;
+    ``holds``: (d, moved) of every hold.  ``ke_ratio``: the largest
     KE / |dPE| past KE_CHECK_FROM x size before collapse; ``quasi_static``: ke_ratio <= 1%.
     ``simulated_seconds`` (all runs, holds included) and ``wall_seconds``; ``settings`` and
     ``run`` (the options and the scales used)."""
@@ -369,8 +370,7 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
                  settings: EngineSettings | None = None, *, rate: float = 0.005,
                  max_displacement: float | None = None, sample: float = 1e-3,
                  open_gap: float = 1e-4, hold: float = 4.0, stop: float = 8.0,
-                 tol: float = 0.01,
-                 ke_factor: float = 10.0, max_rotation: float = 0.5,
+                 tol: float = 0.01, ke_factor: float = 10.0, max_rotation: float = 0.5,
                  max_time: float = 2e4, progress=None) -> PushResult:
     """Push ``side``'s support(s) of ``arch`` slowly in the contact engine (module docstring).
 
@@ -379,8 +379,9 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
     stops there (default half the size); sample: displacement between samples, a fraction of the
     size; open_gap: a joint is open when its open end has moved by this fraction of the size;
     hold [T]: how long a held support waits for the arch to move, after slowing down to a stop
-    over ``stop`` [T]; tol: relative width of the
-    capacity's bracket; ke_factor: the arch is suspected to run away when its kinetic energy
+    over ``stop`` [T] (docs/supports-engine.md: the capacity rises towards its limit as the
+    stop's deceleration (rate / stop) g falls); tol: relative width of the capacity's bracket;
+    ke_factor: the arch is suspected to run away when its kinetic energy
     exceeds ke_factor x 1/2 M v^2; max_rotation [rad]: a voussoir turned further has collapsed;
     max_time [T]: the longest push allowed (max_displacement / speed must fit in it)."""
     t_wall = _time.perf_counter()
