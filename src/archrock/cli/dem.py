@@ -51,7 +51,8 @@ def add_dem_parser(subparsers):
                     "four-link model",
         description="--ramp: activation multiplier and hinges in each direction beside the "
                     "limit analysis; or a pulse/record: collapse, voussoir rotations, sliding "
-                    "and the equivalent four-link rotation beside `respond`. Needs pymunk "
+                    "and the equivalent four-link rotation beside `respond`; --push: a "
+                    "support moved slowly (spread, settlement, close). Needs pymunk "
                     "(pip install 'archrock[dem]').")
     add_geometry_options(p)
     add_motion_options(p)
@@ -70,6 +71,16 @@ def add_dem_parser(subparsers):
     p.add_argument("--ramp-hold", type=positive_float, default=4.0, metavar="T",
                    help="--ramp: duration of each constant-acceleration hold, in units of "
                         "T = sqrt(size/g) (default 4)")
+    p.add_argument("--push", choices=("spread", "settlement", "close"), default=None,
+                   help="move a support slowly (a kinematic abutment): the thrust on it, the "
+                        "hinges and the displacement capacity (docs/supports-engine.md)")
+    p.add_argument("--push-side", choices=("right", "left", "both"), default="right",
+                   help="--push: the support that moves (both: each by half a spread, or both "
+                        "settle; default right)")
+    p.add_argument("--push-rate", type=positive_float, default=0.005, metavar="R",
+                   help="--push: support speed in sizes per T = sqrt(size/g) (default 0.005)")
+    p.add_argument("--push-max", type=positive_float, default=None, metavar="M",
+                   help="--push: the largest displacement tried [m] (default half the size)")
     p.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
                    help="end of the output window [s] (default 3); the run goes on to rest or "
                         "collapse")
@@ -89,12 +100,63 @@ def _progress(msg):
     print(msg, file=sys.stderr, flush=True)
 
 
+def format_push(res, arch) -> str:
+    """The push's result for people: thrust, hinges, capacity, cost."""
+    from ..statics.thrust import thrust_range
+
+    tr = thrust_range(arch)
+    kind = {"spread": "spreads", "close": "closes", "settlement": "settles"}[res.movement]
+    side = "both supports" if res.side == "both" else f"the {res.side} support"
+    lines = [f"contact engine: {side} {kind} at {res.run['speed']:.4g} m/s "
+             f"(rate {res.run['rate']:g} size per T)",
+             f"  thrust at rest {res.thrust_rest:.6g} N/m; thrust range (LP) "
+             f"{tr.thrust_min:.6g} .. {tr.thrust_max:.6g} N/m"]
+    if res.thrust_start is not None:
+        lines.append(f"  thrust once the hinges open (at d = 0) {res.thrust_start:.6g} N/m")
+    if res.hinges:
+        lines.append(f"  hinges at the first opening (d = {res.opening_displacement:.4g} m): "
+                     f"{'-'.join(res.hinges)}")
+    if res.collapsed:
+        lo, hi = res.capacity_bracket
+        lines.append(f"  displacement capacity {res.capacity:.4g} m (held: rests at "
+                     f"{lo:.4g}, moves on at {hi:.4g}; by {res.collapse_by}); collapse hinges "
+                     f"{'-'.join(res.collapse_hinges) or '-'}")
+    else:
+        lines.append(f"  stands up to d = {res.run['max_displacement']:.4g} m (--push-max)")
+    lines.append(f"  crown drop at the end {res.crown_drop[-1]:.4g} m; KE/dPE at most "
+                 f"{res.ke_ratio if res.ke_ratio is not None else float('nan'):.3g} "
+                 f"({'quasi-static' if res.quasi_static else 'check the rate'})")
+    lines.append(f"  simulated {res.simulated_seconds:.1f} s, wall {res.wall_seconds:.1f} s")
+    return "\n".join(lines)
+
+
+def _run_push(args) -> int:
+    from ..contact import import_pymunk, push_support
+
+    settings = engine_settings_from_args(args)
+    arch = arch_from_args(args)
+    import_pymunk()
+    res = push_support(arch, args.push, args.push_side, settings, rate=args.push_rate,
+                       max_displacement=args.push_max,
+                       progress=None if args.json else _progress)
+    if args.json:
+        emit_json(res.to_dict())
+    else:
+        print(format_push(res, arch))
+    return 0
+
+
 def run_dem(args) -> int:
     from ..contact import import_pymunk
     from ..errors import ImpactModelError
 
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     spec = motion_spec_from_args(args)
+    if args.push is not None:
+        if args.ramp or spec is not None or plot or animation:
+            raise CLIError("--push: cannot be combined with --ramp, a ground motion, --plot or "
+                           "--animate; give one")
+        return _run_push(args)
     if args.ramp and spec is not None:
         raise CLIError("--ramp: cannot be combined with a ground motion; give one")
     if not args.ramp and spec is None:

@@ -7,6 +7,8 @@ check of the four-link model's idealisations (one mechanism, no sliding).
 * :mod:`.ramp` -- :func:`ramp`, the activation multiplier and hinges in each direction;
 * :mod:`.motion` -- :func:`engine_respond`, the response to a pulse or record, with the
   equivalent four-link rotation;
+* :mod:`.push` -- :func:`push_support`, a support spread, closed or settled slowly (a kinematic
+  abutment): the thrust, the hinges and the displacement capacity;
 * :mod:`.settings` -- :class:`EngineSettings` and :func:`engine_scales` (the settings in metres
   and seconds for an arch); :mod:`.convex` -- outline simplification within a tolerance and
   exact convex decomposition.
@@ -16,6 +18,7 @@ pymunk is optional (``pip install "archrock[dem]"``): it is imported when an eng
 
 from .convex import convex_pieces, outline_deviation, simplify_outline
 from .motion import ContactResponse, engine_respond, equivalent_rotation
+from .push import PushResult, push_support
 from .ramp import RampDirection, RampResult, ramp, ramp_direction, ramp_range
 from .settings import (DEFAULT_FRICTION, DEFAULT_OUTLINE_TOL, FINE_CUT, EngineScales,
                        EngineSettings, engine_scales)
@@ -24,4 +27,5 @@ from .engine import ContactArch, import_pymunk
 __all__ = ["ContactArch", "EngineSettings", "DEFAULT_FRICTION", "RampDirection", "RampResult",
            "ramp", "ramp_direction", "ramp_range", "ContactResponse", "engine_respond", "equivalent_rotation",
            "convex_pieces", "simplify_outline", "outline_deviation", "import_pymunk",
-           "DEFAULT_OUTLINE_TOL", "FINE_CUT", "EngineScales", "engine_scales"]
+           "DEFAULT_OUTLINE_TOL", "FINE_CUT", "EngineScales", "engine_scales", "PushResult",
+           "push_support"]

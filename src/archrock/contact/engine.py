@@ -53,8 +53,15 @@ class ContactArch:
     ``time_scale`` T = sqrt(size/g) [s]; ``dt`` = T / steps_per_T [s]; :meth:`step` advances the
     engine with a given horizontal ground acceleration [m/s^2, positive toward +x]."""
 
-    def __init__(self, arch: VoussoirArch, settings: EngineSettings | None = None):
+    def __init__(self, arch: VoussoirArch, settings: EngineSettings | None = None, *,
+                 moving: tuple[str, ...] = ()):
+        """``moving``: the abutments ('left', 'right') built on a kinematic body of their own
+        (at rest until its velocity is set: :mod:`.push`) instead of the static ground; the
+        default () builds both on the ground, as always."""
         pymunk = import_pymunk()
+        moving = tuple(moving)
+        if not set(moving) <= {"left", "right"}:
+            raise ArchInputError(f"moving: {moving!r}; allowed a tuple of 'left' and/or 'right'")
         self.arch = arch
         self.settings = settings = settings or EngineSettings()
         self.scales = sc = engine_scales(arch, settings)
@@ -116,8 +123,10 @@ class ContactArch:
         pts = np.asarray(arch.joint_points, float)
         self.joint_points = pts
         self.abutment_outlines = []
+        self.abutment_bodies = []
+        self.abutment_shapes = []
         ground = space.static_body
-        for j, side in ((0, 0), (arch.n, arch.n - 1)):
+        for j, side, name in ((0, 0, "left"), (arch.n, arch.n - 1, "right")):
             pi, pe = pts[j, 0], pts[j, 1]
             t = pe - pi
             length = float(np.hypot(*t))
@@ -126,9 +135,15 @@ class ContactArch:
                 nrm = -nrm  # away from the springing voussoir
             quad = np.array([pi, pe, pe + length * nrm, pi + length * nrm])
             self.abutment_outlines.append(quad)
-            s = pymunk.Poly(ground, [tuple(map(float, q)) for q in quad])
+            body = ground
+            if name in moving:  # its own kinematic body at the origin: vertices stay world ones
+                body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+                space.add(body)
+            s = pymunk.Poly(body, [tuple(map(float, q)) for q in quad])
             s.friction, s.elasticity = mu, e
             space.add(s)
+            self.abutment_bodies.append(body)
+            self.abutment_shapes.append(s)
         # joint midpoints, lengths and tangents at rest (for sliding)
         mid = 0.5 * (pts[:, 0] + pts[:, 1])
         tan = pts[:, 1] - pts[:, 0]
