@@ -11,16 +11,29 @@ import math
 
 import numpy as np
 
-from ..geometry import Arch
+from ..geometry import Arch, ArchOnPiers
+from ..geometry.piers import hinge_place
 
 __all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
            "thrust_range_line"]
 
 
+def _on_piers(arch) -> bool:
+    return isinstance(arch, ArchOnPiers) and bool(arch.pier_blocks)
+
+
 def _voussoir_properties(arch) -> list[dict]:
-    """Area [m^2] of each voussoir's masonry, mass [kg/m] and mass centre [m] with its loads."""
-    return [{"area": float(a), "mass": float(m), "centroid": [float(c[0]), float(c[1])]}
-            for a, m, c in zip(arch.areas, arch.masses, arch.centroids)]
+    """Area [m^2] of each voussoir's masonry, mass [kg/m] and mass centre [m] with its loads;
+    on piers, each block's kind ("pier", "buttress" or "voussoir") too."""
+    kinds = arch.block_kinds if _on_piers(arch) else None
+    return [{**({"kind": kinds[i]} if kinds else {}),
+             "area": float(a), "mass": float(m), "centroid": [float(c[0]), float(c[1])]}
+            for i, (a, m, c) in enumerate(zip(arch.areas, arch.masses, arch.centroids))]
+
+
+def _place(arch, h) -> dict:
+    """{"place": ...} naming a hinge on the drawing, for an arch on piers (else nothing)."""
+    return {"place": hinge_place(arch, h.joint, h.edge)} if _on_piers(arch) else {}
 
 
 def limit_summary(result, min_thickness=None, needed=None, friction=None,
@@ -48,13 +61,15 @@ def limit_summary(result, min_thickness=None, needed=None, friction=None,
         **d,
         "hinge_labels": {
             # A..D from the mechanism's leading side (A leftmost for M_l, rightmost for M_r)
-            dirn: [{"label": lab, **h.to_dict()} for lab, h in result.mechanism(dirn).labelled()]
+            dirn: [{"label": lab, **h.to_dict(), **_place(arch, h)}
+                   for lab, h in result.mechanism(dirn).labelled()]
             for dirn in ("l", "r")
         },
         # the four-link model (respond, studies) holds only where four-hinge mechanisms govern
         "four_link_holds": result.four_hinge,
         "geometry": arch.to_dict(),
         **({} if isinstance(arch, Arch) else {"voussoirs": _voussoir_properties(arch)}),
+        **({"block_kinds": list(arch.block_kinds)} if _on_piers(arch) else {}),
         "units": units,
     }
     if min_thickness is not None:
@@ -154,7 +169,25 @@ def _circular_lines(arch) -> list[str]:
     return lines
 
 
+def _piers_lines(arch) -> list[str]:
+    """The blocks of an arch on piers, each with its kind (chain order: left pier from its
+    foot up, the voussoirs, right pier from its top down; docs/piers.md)."""
+    kinds = arch.block_kinds
+    counts = {k: kinds.count(k) for k in ("pier", "buttress", "voussoir") if k in kinds}
+    lines = [f"Arch: {arch.name}, {arch.n} blocks ("
+             + ", ".join(f"{c} {k}" + ("s" if c != 1 else "") for k, c in counts.items())
+             + f"; {type(arch).__name__}), size {arch.size:.6g} m, density {arch.density:g} kg/m^3",
+             "  block  kind        area [m^2]  mass [kg/m]  mass centre x [m]  y [m]"
+             + ("  (mass and centre with loads)" if arch.loads else "")]
+    cents = np.where(np.abs(arch.centroids) < 1e-12 * arch.size, 0.0, arch.centroids)
+    for i, (k, a, m, c) in enumerate(zip(kinds, arch.areas, arch.masses, cents)):
+        lines.append(f"  {i:5d}  {k:<8s}  {a:11.5g}  {m:11.5g}  {c[0]:17.6g}  {c[1]:.6g}")
+    return lines
+
+
 def _general_lines(arch) -> list[str]:
+    if _on_piers(arch):
+        return _piers_lines(arch)
     lines = [f"Arch: {arch.name}, {arch.n} voussoirs ({type(arch).__name__}), "
              f"size {arch.size:.6g} m, density {arch.density:g} kg/m^3",
              "  voussoir   area [m^2]  mass [kg/m]  mass centre x [m]  y [m]"
@@ -201,6 +234,13 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
             hinges = (f"hinges {', '.join(f'{h.joint} {h.edge}' for h in mech.hinges)}; "
                       f"lifts off at joint {', '.join(map(str, mech.lift_off))}")
         lines.append(f"  M_{dirn}        {k:13.4f}  {kss}  {hinges}")
+    if _on_piers(arch):
+        # where each hinge is on the drawing (joints numbered along the chain: docs/piers.md)
+        for dirn in ("l", "r"):
+            mech = result.mechanism(dirn)
+            lines.append(f"  M_{dirn} hinges: " + "; ".join(
+                f"{lab} = {h.joint}{h.edge[0]} ({hinge_place(arch, h.joint, h.edge)})"
+                for lab, h in mech.labelled()))
     lines.append(f"  k = min(k_l, k_r) = {result.k:.4f} (Heyman's collapse multiplier)")
     if result.discrepancy is not None:
         # the kinematic value is that of the mechanism attaining the LP's optimum: they agree by

@@ -56,7 +56,19 @@ STYLE = {
     "ground": "#777777",
     "fill": "#d9cfa6",
     "load": "#7d3c98",
+    # the blocks of an arch on piers that are not voussoirs (docs/piers.md): a greyer stone
+    "pier_face": "#c9c3b6",
+    "buttress_face": "#b3aa96",
 }
+
+
+def block_faces(arch, facecolor: str | None = None) -> list:
+    """The fill colour of each block: ``facecolor`` for all when given, else the voussoir
+    colour, and on an arch on piers the pier (or buttress) colour for those blocks."""
+    if facecolor is not None:
+        return [facecolor] * arch.n
+    kinds = getattr(arch, "block_kinds", None) or ("voussoir",) * arch.n
+    return [STYLE.get(f"{k}_face", STYLE["voussoir_face"]) for k in kinds]
 
 
 def _require_matplotlib():
@@ -99,7 +111,7 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
     _require_matplotlib()
     from matplotlib.patches import Polygon
 
-    face = STYLE["voussoir_face"] if facecolor is None else facecolor
+    faces = block_faces(arch, facecolor)
     edge = STYLE["voussoir_edge"] if edgecolor is None else edgecolor
     if loads:
         for region in getattr(arch, "fill_regions", ()) or ():
@@ -109,9 +121,14 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
     patches = []
     # many voussoirs: thinner lines (500 joints at the usual width paint the arch black)
     thin = min(1.0, _DENSE_JOINTS / max(arch.n, 1))
+    named = set()
     for i in range(arch.n):
-        poly = Polygon(voussoir_outline(arch, i), closed=True, facecolor=face, edgecolor=edge,
-                       linewidth=0.8 * thin, alpha=alpha, zorder=zorder)
+        kind = arch.block_kinds[i] if facecolor is None and hasattr(arch, "block_kinds") else None
+        # a legend entry for the piers (once per kind), none for the voussoirs
+        label = kind if kind not in (None, "voussoir") and kind not in named else None
+        named.add(kind)
+        poly = Polygon(voussoir_outline(arch, i), closed=True, facecolor=faces[i], edgecolor=edge,
+                       linewidth=0.8 * thin, alpha=alpha, zorder=zorder, label=label)
         ax.add_patch(poly)
         patches.append(poly)
     if joints:
@@ -345,8 +362,15 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
                     for lab, h in mech.labelled())
     if getattr(mech, "lift_off", ()):
         seq += f"; lifts off at joint {', '.join(map(str, mech.lift_off))}"
-    ax.set_title(f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
-                 f"hinges (joint, i = intrados / e = extrados): {seq}", fontsize=10)
+    title = (f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
+             f"hinges (joint, i = intrados / e = extrados): {seq}")
+    if getattr(arch, "pier_blocks", ()):
+        from ..geometry.piers import hinge_place
+
+        # where the hinges are, in words: a pier's faces are not an intrados and an extrados
+        title += "\n" + "; ".join(f"{lab}: {hinge_place(arch, h.joint, h.edge)}"
+                                  for lab, h in mech.labelled())
+    ax.set_title(title, fontsize=10 if not getattr(arch, "pier_blocks", ()) else 8)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.legend(loc="lower center", fontsize=8, frameon=False)
@@ -631,10 +655,10 @@ def draw_displaced(ax, model, mode, phi: float, **kwargs):
     (update them with ``patch.set_xy`` to animate without redrawing the axes)."""
     from matplotlib.patches import Polygon
 
-    face = kwargs.get("facecolor", STYLE["voussoir_face"])
+    faces = block_faces(model.arch, kwargs.get("facecolor"))
     edge = kwargs.get("edgecolor", STYLE["voussoir_edge"])
     patches = []
-    for pts in displaced_outlines(model, mode, phi):
+    for face, pts in zip(faces, displaced_outlines(model, mode, phi)):
         patch = Polygon(pts, closed=True, facecolor=face, edgecolor=edge, lw=0.8)
         ax.add_patch(patch)
         patches.append(patch)
