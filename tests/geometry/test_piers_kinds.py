@@ -156,3 +156,101 @@ def test_figure_draws_piers_and_the_thrust_through_them():
     # the thrust line ends at the pier's outer foot corner and runs down through the piers
     assert np.min(np.hypot(*(xy - foot).T)) < 1e-9
     assert xy[:, 1].min() == pytest.approx(-4.0, abs=1e-9)
+
+
+# ------------------------------------------------------------------------- per side, batter
+def test_zero_batter_is_the_rectangular_pier_bit_for_bit():
+    for kw in ({}, {"courses": 3, "courses_right": 2, "height_right": 5.0, "width_right": 2.5}):
+        rect = with_piers(ARCH, 4.0, 2.0, **kw)
+        zero = with_piers(ARCH, 4.0, 2.0, batter=0.0, batter_right=0.0, **kw)
+        _same(zero, rect)
+        assert zero.block_kinds == rect.block_kinds
+        assert limit_analysis(zero).k_l == limit_analysis(rect).k_l
+    # also on a segmental arch, whose top course carries the springing wedge
+    seg = nominal_arch(radius=10.0, embrace_deg=120, thickness=1.0, voussoirs=7)
+    _same(with_piers(seg, 5.0, 3.0, courses=2, batter=0), with_piers(seg, 5.0, 3.0, courses=2))
+
+
+@pytest.mark.parametrize("b,courses", [(0.1, 1), (0.25, 1), (0.25, 4), (2.0, 1)])
+def test_battered_pier_mass_and_centroid_are_the_trapezoids(b, courses):
+    """A battered monolithic pier (or its courses together) is a trapezoid: top width W, base
+    W + b H, height H; area H (2W + b H)/2; centroid at H (a + 2c)/(3 (a + c)) above the base
+    (a, c: base and top widths) and, outward of the inner face, ((W + b H)^3 - W^3)/(6 b A)."""
+    H, W, rho = 4.0, 2.0, 2000.0
+    ap = with_piers(ARCH, H, W, courses=courses, batter=b, batter_right=0.0)
+    left = list(ap.piers[0])
+    assert ap.block_kinds[:courses] == ("buttress",) * courses
+    assert ap.block_kinds[-1] == "pier"
+    a, c = W + b * H, W
+    area = H * (a + c) / 2
+    m = ap.masses[left]
+    assert m.sum() == pytest.approx(rho * area, rel=1e-12)
+    cen = (m[:, None] * ap.centroids[left]).sum(axis=0) / m.sum()
+    xi, top = -4.6, 0.0
+    assert cen[1] - (top - H) == pytest.approx(H * (a + 2 * c) / (3 * (a + c)), rel=1e-12)
+    u = ((W + b * H) ** 3 - W ** 3) / (6 * b * area)
+    assert xi - cen[0] == pytest.approx(u, rel=1e-12)
+    # the foundation joint is the base width, the top joint (springing) the arch's own face
+    assert ap.joint_points[0][:, 0] == pytest.approx([xi, xi - a], abs=1e-12)
+    # the right pier is the rectangle still
+    assert ap.masses[list(ap.piers[1])].sum() == pytest.approx(rho * H * W, rel=1e-12)
+
+
+def test_a_batter_stiffens_the_piers():
+    """Wider at the foot, the pier's outer foot corner moves out: k rises with the batter, hinge
+    D at the far pier's outer foot, until the hinge moves to the springing (batter 0.01 here):
+    then k is the arch's own on rigid ground (0.174779; the arch as polygons, arc step 0.002
+    rad, to 4e-7)."""
+    ks = [limit_analysis(with_piers(ARCH, 4.0, 2.0, batter=b)) for b in (0.0, 0.005, 0.01, 0.05)]
+    assert ks[0].k_l == pytest.approx(0.168899, abs=1e-6)
+    assert ks[1].k_l == pytest.approx(0.173597, abs=1e-6)
+    assert ks[0].k_l < ks[1].k_l < ks[2].k_l
+    for r in ks[:2]:
+        assert r.mechanism_l.label == "2i-5e-8i-11e"        # D: the right buttress's outer foot
+    rigid = limit_analysis(ARCH).k_l
+    for r in ks[2:]:
+        assert r.mechanism_l.label == "2i-5e-8i-10e"        # D: the right springing, extrados
+        assert r.k_l == pytest.approx(rigid, rel=1e-6)
+
+
+def test_cli_right_pier_and_batter_flags(capsys):
+    code, out, err = run(capsys, "limit", *BASE, "--pier-height", "4", "--pier-width", "2",
+                         "--pier-courses", "2", "--right-pier-height", "6", "--right-pier-width",
+                         "2.5", "--right-pier-courses", "3", "--pier-batter", "0.1",
+                         "--right-pier-batter", "0", "--json")
+    assert code == 0, err
+    lib = limit_analysis(with_piers(ARCH, 4.0, 2.0, courses=2, height_right=6.0, width_right=2.5,
+                                    courses_right=3, batter=0.1, batter_right=0.0))
+    d = json.loads(out)
+    assert d["k_l"] == lib.k_l and d["k_r"] == lib.k_r
+    assert d["block_kinds"] == ["buttress"] * 2 + ["voussoir"] * 9 + ["pier"] * 3
+    assert d["geometry"]["voussoirs"][-1]["intrados"][-1] == [4.6, -6.0]
+
+
+@pytest.mark.parametrize("extra,start", [
+    (("--right-pier-width", "2"), "archrock: error: --pier-height and --pier-width: needed with "
+                                  "--right-pier-width"),
+    (("--pier-batter", "0.1"), "archrock: error: --pier-height and --pier-width: needed with "
+                               "--pier-batter"),
+    (("--pier-height", "4", "--pier-width", "2", "--pier-batter", "-0.1"),
+     "archrock: error: --pier-batter: -0.1 is out of range; allowed 0 <= batter <= 10"),
+    (("--pier-height", "4", "--pier-width", "2", "--right-pier-batter", "11"),
+     "archrock: error: --right-pier-batter:"),
+    (("--pier-height", "4", "--pier-width", "2", "--right-pier-width", "0.5"),
+     "archrock: error: --right-pier-width:"),
+    (("--pier-height", "4", "--pier-width", "2", "--right-pier-height", "0"),
+     "archrock: error: --right-pier-height:"),
+    (("--pier-height", "4", "--pier-width", "2", "--right-pier-courses", "0"),
+     "archrock: error: --right-pier-courses:"),
+])
+def test_cli_right_pier_flags_refused_by_name(capsys, extra, start):
+    code, out, err = run(capsys, "limit", *BASE, *extra)
+    assert code == 2 and err.startswith(start), err
+
+
+def test_bad_batter_by_name():
+    for kw, field in (({"batter": -0.1}, "batter:"), ({"batter": "0.1"}, "batter:"),
+                      ({"batter": float("nan")}, "batter:"), ({"batter_right": 10.5}, "batter_right:"),
+                      ({"batter": True}, "batter:")):
+        with pytest.raises(ArchInputError, match="^" + field):
+            with_piers(ARCH, 4.0, 2.0, **kw)
