@@ -203,7 +203,8 @@ def _polygon_of(arch: VoussoirArch) -> PolygonArch:
 def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int = 1,
                height_right: float | None = None, width_right: float | None = None,
                courses_right: int | None = None, batter: float = 0.0,
-               batter_right: float | None = None, name: str | None = None) -> ArchOnPiers:
+               batter_right: float | None = None, name: str | None = None,
+               _trusted: bool = False) -> ArchOnPiers:
     """``arch`` on two rectangular piers (module docstring): ``height`` H [m] from the
     foundation to the springing, ``width`` W [m] outward of the intrados springing point (at
     the pier top), ``courses`` blocks each (equal heights, horizontal bed joints); the right
@@ -249,8 +250,31 @@ def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int 
     kinds = (("buttress" if bl > 0 else "pier"),) * cl + ("voussoir",) * poly.n + \
         (("buttress" if br > 0 else "pier"),) * cr
     loads = tuple(Load(ld.voussoir + cl, ld.mass, ld.at) for ld in poly.loads)
-    return ArchOnPiers(intr, extr, poly.density, name or f"{arch.name} on piers", loads,
-                       block_kinds=kinds)
+    name = name or f"{arch.name} on piers"
+    if _trusted and isinstance(arch, PolygonArch):
+        return _unchecked(intr, extr, poly.density, name, loads, kinds)
+    return ArchOnPiers(intr, extr, poly.density, name, loads, block_kinds=kinds)
+
+
+def _unchecked(intr, extr, density, name, loads, kinds) -> ArchOnPiers:
+    """An ArchOnPiers without the polygon checks of PolygonArch (each block a simple polygon of
+    positive area, ...), for searches that rebuild the piers many times under voussoirs already
+    checked (a validated PolygonArch): the pier blocks are rectangles or trapezoids by
+    construction.  The joints are still checked when first used (``joint_points``)."""
+    a = object.__new__(ArchOnPiers)
+    ro = []
+    for p in intr + extr:
+        p = np.asarray(p, float)
+        if p.flags.writeable:
+            p = p.copy()
+            p.setflags(write=False)
+        ro.append(p)
+    n = len(intr)
+    for key, value in (("intrados", tuple(ro[:n])), ("extrados", tuple(ro[n:])),
+                       ("density", float(density)), ("name", name), ("loads", tuple(loads)),
+                       ("block_kinds", tuple(kinds))):
+        object.__setattr__(a, key, value)
+    return a
 
 
 def joint_place(arch, j: int) -> str:
