@@ -83,7 +83,8 @@ def test_minimum_width_against_the_unique_thrust_of_a_minimum_thickness_arch():
 
 
 def test_minimum_width_grows_with_height():
-    ws = [minimum_pier_width(ARCH, h).width for h in (2.0, 4.0, 8.0)]
+    ws = [minimum_pier_width(ARCH, h, tol=1e-7 if h == 4.0 else 1e-5).width
+          for h in (2.0, 4.0, 8.0)]
     assert ws[0] < ws[1] < ws[2]
     assert ws[1] == pytest.approx(1.197882, abs=1e-6)
 

@@ -15,7 +15,7 @@ from ..geometry import Arch, ArchOnPiers
 from ..geometry.piers import hinge_place
 
 __all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
-           "thrust_range_line"]
+           "thrust_range_line", "min_pier_width_line"]
 
 
 def _on_piers(arch) -> bool:
@@ -37,13 +37,15 @@ def _place(arch, h) -> dict:
 
 
 def limit_summary(result, min_thickness=None, needed=None, friction=None,
-                  min_thickness_friction=None, thrust=None) -> dict:
+                  min_thickness_friction=None, thrust=None, min_pier_width=None) -> dict:
     """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object); ``needed``
     ({"l", "r"}, :func:`archrock.statics.friction.friction_needed`) and ``friction`` (a
     :class:`~archrock.statics.friction.FrictionResult`) add the keys of :func:`friction_summary`;
     ``min_thickness_friction``: the friction coefficient ``min_thickness`` was found with;
     ``thrust`` (a :class:`~archrock.statics.thrust.ThrustRange`) adds ``thrust_min`` and ``thrust_max``
-    (each ``H`` [N/m], ``hinges`` [{joint, edge}], ``points`` [[x, y]] [m])."""
+    (each ``H`` [N/m], ``hinges`` [{joint, edge}], ``points`` [[x, y]] [m]);
+    ``min_pier_width`` (a :class:`~archrock.statics.buttress.MinimumPierWidth`) adds
+    ``min_pier_width``."""
     arch = result.arch
     d = result.to_dict()
     d.pop("arch", None)
@@ -86,7 +88,22 @@ def limit_summary(result, min_thickness=None, needed=None, friction=None,
         td = thrust.to_dict()
         out["thrust_min"], out["thrust_max"] = td["thrust_min"], td["thrust_max"]
         out["units"]["H"] = "N/m (horizontal thrust per metre of depth)"
+    if min_pier_width is not None:
+        out["min_pier_width"] = min_pier_width.to_dict()
     return out
+
+
+def min_pier_width_line(mpw) -> str:
+    """One line of a :class:`~archrock.statics.buttress.MinimumPierWidth`."""
+    if mpw.governed_by == "springing":
+        why = ("the narrowest pier the springing joint allows already stands: the width does "
+               "not limit the arch")
+    else:
+        H, V = mpw.springing_force
+        why = (f"the thrust (H = {H / 1e3:.4g} kN/m, V = {V / 1e3:.4g} kN/m at the pier top) "
+               f"through the pier's outer foot corner")
+    return (f"minimum pier width under self-weight, piers {mpw.height:g} m high: "
+            f"{mpw.width:.4f} m ({why})")
 
 
 def friction_summary(needed=None, friction=None) -> dict:
@@ -214,7 +231,7 @@ def thrust_range_line(thrust) -> str:
 
 
 def format_limit_table(result, min_thickness=None, needed=None, friction=None,
-                       min_thickness_friction=None, thrust=None) -> str:
+                       min_thickness_friction=None, thrust=None, min_pier_width=None) -> str:
     """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check; friction
     (:func:`friction_lines`) where given."""
     arch = result.arch
@@ -261,6 +278,8 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
                      f"{min_thickness.factor:.4f} of the given thicknesses{ratio}")
     if thrust is not None:
         lines.append(f"  {thrust_range_line(thrust)}")
+    if min_pier_width is not None:
+        lines.append(f"  {min_pier_width_line(min_pier_width)}")
     lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
                  "M_r: by xg''/g >= k_r, forces toward -x)")
     lines += friction_lines(needed, friction)

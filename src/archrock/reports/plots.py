@@ -43,6 +43,8 @@ __all__ = [
     "displaced_outlines",
     "displaced_hinges",
     "plot_defect_map",
+    "plot_k_against_pier_height",
+    "block_faces",
 ]
 
 
@@ -470,6 +472,41 @@ def save_limit_figure(result, path: str | os.PathLike, directions=("l", "r"), dp
     for ax, d in zip(axes[0], directions):
         plot_limit(result, d, ax=ax)
     return save_figure(fig, path, dpi=dpi)
+
+
+def plot_k_against_pier_height(table, path: str | os.PathLike | None = None, *, ax=None,
+                               dpi: int = 150):
+    """k_l and k_r of an arch on piers against the piers' height over the clear span (a
+    :class:`~archrock.statics.buttress.PierHeightTable`; height 0: the arch on rigid ground),
+    each point marked where hinge D leaves the pier's foot.  Writes ``path`` when given and
+    returns it, else the axes."""
+    _require_matplotlib()
+    if ax is None:
+        fig, axes = new_figure(figsize=(6.4, 4.4))
+        ax = axes[0][0]
+    else:
+        fig = None
+    x = np.asarray(table.heights, float) / table.span
+    ax.plot(x, table.k_l, "o-", color=STYLE["thrust"], ms=4, lw=1.4, label="$k_l$")
+    ax.plot(x, table.k_r, "s--", color=STYLE["hinge"], ms=3, lw=1.0, mfc="none", label="$k_r$")
+    foot = np.array(["foot" in p for p in table.places_l])
+    if foot.any() and not foot.all():
+        ax.plot(x[~foot], np.asarray(table.k_l)[~foot], "o", ms=8, mfc="none", mec="#444444",
+                label="hinge D not at a pier's foot")
+    if x.size and x[0] == 0:
+        ax.axhline(table.k_l[0], color="#777777", lw=0.8, ls=":", label="rigid ground")
+    ax.set_xlabel("pier height / clear span")
+    ax.set_ylabel("collapse multiplier k [g]")
+    extra = f", batter {table.batter:g}" if table.batter else ""
+    ax.set_title(f"{table.arch_name} on piers {table.width:g} m wide ({table.courses} "
+                 f"course{'s' if table.courses != 1 else ''}{extra}); span {table.span:.4g} m",
+                 fontsize=10)
+    ax.set_ylim(bottom=0)
+    ax.grid(True, lw=0.3, alpha=0.4)
+    ax.legend(fontsize=8, frameon=False)
+    if path is not None and fig is not None:
+        return save_figure(fig, path, dpi=dpi)
+    return ax
 
 
 # ---------------------------------------------------------------------------- dynamics
