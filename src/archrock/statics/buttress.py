@@ -41,9 +41,10 @@ MAX_HEIGHTS = 200
 _MAX_STEPS = 200
 
 
-def _extent(arch: VoussoirArch) -> float:
-    """The arch's extent [m]: the larger side of the box around its voussoirs."""
-    pts = np.vstack([arch.outline(i) for i in range(arch.n)])
+def _extent(poly) -> float:
+    """The extent [m] of a polygon arch, as :func:`~archrock.geometry.with_piers` measures it
+    (the larger side of the box around its voussoirs)."""
+    pts = np.vstack(list(poly.intrados) + list(poly.extrados))
     return float(np.max(np.ptp(pts, axis=0)))
 
 
@@ -140,7 +141,10 @@ def minimum_pier_width(arch: VoussoirArch, height: float, *, courses: int = 1,
     if not 1e-15 <= tol < 0.5:
         raise ArchInputError(f"tol: {tol!r}; allowed 1e-15 <= tol < 0.5 (relative width of the "
                              f"width bracket)")
-    extent = _extent(arch)
+    from ..geometry.defect import _as_polygon
+
+    poly = _as_polygon(arch)  # checked once; the search rebuilds only the piers under it
+    extent = _extent(poly)
     if max_width is None:
         max_width = MAX_WIDTH_FACTOR * extent
     if isinstance(max_width, (bool, str)):
@@ -152,14 +156,10 @@ def minimum_pier_width(arch: VoussoirArch, height: float, *, courses: int = 1,
                              f"reach ({reach:.4g} m) to 100 x the arch's extent "
                              f"({100 * extent:.4g} m)")
     # checks height, courses, batter by name (with_piers' messages)
-    with_piers(arch, height, max(reach, 1e-300), courses=courses, batter=batter)
+    with_piers(poly, height, reach, courses=courses, batter=batter, _trusted=True)
     if not _stands(arch):
         raise CannotStandError("arch: it does not stand under its own weight even on rigid "
                                "supports; no pier carries it")
-
-    from ..geometry.defect import _as_polygon
-
-    poly = _as_polygon(arch)  # checked once; the search rebuilds only the piers under it
 
     def build(w, trusted=False):
         return with_piers(poly, height, w, courses=courses, batter=batter, name=arch.name + \
