@@ -55,8 +55,8 @@ def run_limit(args) -> int:
     from ..reports.limit import format_limit_table, limit_summary
 
     arch = arch_from_args(args)
-    result = limit_analysis(arch, verify=True)
     mpw = _min_pier_width(args, arch)
+    result = limit_analysis(arch, verify=True)
     mu = args.friction
     mt = None
     if args.min_thickness:
