@@ -116,3 +116,27 @@ def test_bad_structures_by_name(rocking_frame):
         code_check(frame, above_ground=AboveGround(1.0))
     with pytest.raises(ArchInputError, match="^above_ground:"):
         code_check(frame, above_ground=10.0)
+
+
+def test_cli_structure_flags(capsys):
+    from archrock.cli import main
+
+    base = ("codecheck", "--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs",
+            "9", "--pier-height", "4", "--pier-width", "2", "--ag", "0.25", "--f0", "2.4",
+            "--tc-star", "0.3", "--soil", "B")
+    code = main([*base, "--structure-height", "12", "--json"])
+    d = __import__("json").loads(capsys.readouterr().out)
+    assert code == 0 and d["above_ground"]["t1"] == pytest.approx(0.05 * 12 ** 0.75)
+    lin = d["directions"]["l"]["checks"]["linear_above_ground"]
+    assert lin["demand_g"] == pytest.approx(0.1506, abs=1e-4)
+    assert d["mechanism_heights"]["l"]["z"] == pytest.approx(5.1933, abs=1e-4)
+    for extra, start in ((("--storeys", "2"), "archrock: error: --structure-height: needed"),
+                         (("--structure-height", "1"), "archrock: error: --structure-height: 1 m "
+                                                       "is below the mechanism's centroid"),
+                         (("--structure-height", "12", "--storeys", "0"),
+                          "archrock: error: --storeys:"),
+                         (("--structure-height", "12", "--structure-period", "-1"),
+                          "archrock: error: --structure-period:")):
+        code = main([*base, *extra])
+        err = capsys.readouterr().err
+        assert code == 2 and err.startswith(start), err
