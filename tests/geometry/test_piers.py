@@ -105,7 +105,7 @@ def test_semicircle_on_piers_blocks_and_joints():
     assert ap.masses[12:].sum() == pytest.approx(pier, rel=1e-12)
     ring = 2000.0 * math.pi / 2 * (5.4 ** 2 - 4.6 ** 2)
     assert ap.masses[3:12].sum() == pytest.approx(ring, rel=1e-6)
-    # to_dict names the kinds and reads back (as a PolygonArch) with the same blocks
+    # to_dict names the kinds and reads back (an ArchOnPiers) with the same blocks
     data = ap.to_dict()
     assert [v["kind"] for v in data["voussoirs"]] == list(ap.block_kinds)
     back = arch_from_dict(json.loads(json.dumps(data)))

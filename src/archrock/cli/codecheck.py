@@ -82,9 +82,43 @@ def add_codecheck_parser(subparsers):
                     "Formulas and clauses: docs/codecheck.md.")
     add_geometry_options(p)
     add_codecheck_options(p)
+    g = p.add_argument_group(
+        "mechanism above ground", "the structure the arch stands in (an arch on piers in a "
+                                  "church): with a spectrum, adds the checks of a mechanism "
+                                  "above ground (docs/piers.md)")
+    g.add_argument("--structure-height", type=finite_float, metavar="H",
+                   help="height [m] of the structure above its foundation, >= the mechanism's "
+                        "centroid")
+    g.add_argument("--storeys", type=_int, metavar="N",
+                   help="storeys of the structure, 1 to 100 (default 1; gamma = 3N/(2N+1))")
+    g.add_argument("--structure-period", type=finite_float, metavar="T1",
+                   help="the structure's first period [s] (default 0.05 H^(3/4))")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run_codecheck)
     return p
+
+
+def _above_ground_from_args(args):
+    """The AboveGround of --structure-height/--storeys/--structure-period, or None."""
+    from ..errors import ArchInputError
+    from ..studies.codecheck import AboveGround
+
+    h = getattr(args, "structure_height", None)
+    n = getattr(args, "storeys", None)
+    t1 = getattr(args, "structure_period", None)
+    if h is None:
+        if n is not None or t1 is not None:
+            raise CLIError("--structure-height: needed with --storeys/--structure-period")
+        return None
+    try:
+        return AboveGround(h, 1 if n is None else n, t1)
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("height:", "--structure-height:"), ("storeys:", "--storeys:"),
+                            ("period:", "--structure-period:")):
+            if msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
 
 
 def run_codecheck(args) -> int:
@@ -92,8 +126,16 @@ def run_codecheck(args) -> int:
     from ..reports.codecheck import format_codecheck
 
     cfg = codecheck_config_from_args(args)
+    above = _above_ground_from_args(args)
     arch = arch_from_args(args)
-    res = code_check(arch, config=cfg)
+    from ..errors import ArchInputError
+
+    try:
+        res = code_check(arch, config=cfg, above_ground=above)
+    except ArchInputError as exc:
+        if above is not None and str(exc).startswith("height:"):  # the structure's height
+            raise ArchInputError("--structure-height:" + str(exc)[len("height:"):]) from None
+        raise
     if args.json:
         emit_json(res.to_dict())
     else:

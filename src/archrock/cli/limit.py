@@ -27,8 +27,25 @@ def add_limit_parser(subparsers):
     p.add_argument("--thrust-range", action="store_true",
                    help="also compute the least and greatest horizontal thrust under self-weight "
                         "(supports spreading or closing) and their hinges (docs/thrust.md)")
+    p.add_argument("--min-pier-width", type=positive_float, metavar="H", default=None,
+                   help="also compute the least width [m] of two equal monolithic piers H m "
+                        "high with which the arch stands under self-weight (bisection; "
+                        "docs/piers.md); the arch is given without --pier-* options")
     p.set_defaults(func=run_limit)
     return p
+
+
+def _min_pier_width(args, arch):
+    """The minimum pier width of --min-pier-width H (None without it); refused with --pier-*."""
+    if getattr(args, "min_pier_width", None) is None:
+        return None
+    from ..geometry import ArchOnPiers
+    from ..statics.buttress import minimum_pier_width
+
+    if isinstance(arch, ArchOnPiers) and arch.pier_blocks:
+        raise CLIError("--min-pier-width: cannot be combined with an arch on piers (--pier-* "
+                       "options or a geometry file with pier blocks); give the arch alone")
+    return minimum_pier_width(arch, args.min_pier_width)
 
 
 def run_limit(args) -> int:
@@ -38,6 +55,7 @@ def run_limit(args) -> int:
     from ..reports.limit import format_limit_table, limit_summary
 
     arch = arch_from_args(args)
+    mpw = _min_pier_width(args, arch)
     result = limit_analysis(arch, verify=True)
     mu = args.friction
     mt = None
@@ -53,6 +71,8 @@ def run_limit(args) -> int:
                                f"{_thickness_words(arch, mt)}") from None
     needed = None if fr is not None else friction_needed(arch)
     extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
+    if mpw is not None:
+        extra["min_pier_width"] = mpw
     if args.thrust_range:
         from ..statics.thrust import thrust_range
 

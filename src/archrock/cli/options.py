@@ -97,6 +97,14 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
     g.add_argument("--pier-courses", type=_int, metavar="N",
                    help="courses (blocks between horizontal bed joints) of each pier, 1 to 200 "
                         "(default 1: monolithic; with --pier-height)")
+    g.add_argument("--pier-batter", type=finite_float, metavar="B",
+                   help="batter of each pier's outer face: horizontal run per unit of height, "
+                        "0 to 10 (default 0: rectangular; > 0: a buttress W + B H wide at its "
+                        "foundation; with --pier-height)")
+    for what, flag in (("height", "H"), ("width", "W"), ("courses", "N"), ("batter", "B")):
+        g.add_argument(f"--right-pier-{what}", type=_int if what == "courses" else finite_float,
+                       metavar=flag, help=f"the right pier's {what} where it differs from the "
+                                          f"left one's (default: --pier-{what})")
     return parser
 
 
@@ -120,11 +128,16 @@ def _piers_from_args(args: argparse.Namespace, arch):
     h = getattr(args, "pier_height", None)
     w = getattr(args, "pier_width", None)
     c = getattr(args, "pier_courses", None)
-    if h is None and w is None and c is None:
+    b = getattr(args, "pier_batter", None)
+    right = {k: getattr(args, f"right_pier_{k}", None)
+             for k in ("height", "width", "courses", "batter")}
+    others = [("--pier-courses", c), ("--pier-batter", b)] + \
+        [(f"--right-pier-{k}", v) for k, v in right.items()]
+    if h is None and w is None and all(v is None for _, v in others):
         return arch
     if h is None or w is None:
-        given = "--pier-height" if h is not None else ("--pier-width" if w is not None
-                                                          else "--pier-courses")
+        given = "--pier-height" if h is not None else ("--pier-width" if w is not None else
+                                                          next(f for f, v in others if v is not None))
         missing = " and ".join(f for f, v in (("--pier-height", h), ("--pier-width", w))
                                if v is None)
         raise CLIError(f"{missing}: needed with {given} (the piers' height and width, in metres)")
@@ -133,11 +146,18 @@ def _piers_from_args(args: argparse.Namespace, arch):
     from ..errors import ArchInputError
 
     try:
-        return with_piers(arch, h, w, courses=1 if c is None else c)
+        return with_piers(arch, h, w, courses=1 if c is None else c,
+                          batter=0.0 if b is None else b, height_right=right["height"],
+                          width_right=right["width"], courses_right=right["courses"],
+                          batter_right=right["batter"])
     except ArchInputError as exc:
         msg = str(exc)
         for field, flag in (("height:", "--pier-height:"), ("width:", "--pier-width:"),
-                            ("courses:", "--pier-courses:")):
+                            ("courses:", "--pier-courses:"), ("batter:", "--pier-batter:"),
+                            ("height_right:", "--right-pier-height:"),
+                            ("width_right:", "--right-pier-width:"),
+                            ("courses_right:", "--right-pier-courses:"),
+                            ("batter_right:", "--right-pier-batter:")):
             if msg.startswith(field):
                 raise ArchInputError(flag + msg[len(field):]) from None
         raise

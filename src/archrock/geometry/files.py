@@ -11,7 +11,9 @@ a circular :class:`~archrock.geometry.Arch` (spans in degrees), or::
     {"voussoirs": [{"intrados": [[x, y], ...], "extrados": [[x, y], ...]}, ...],
      "density": 2000, "loads": [{"voussoir": 5, "mass": 8000.0, "at": [6.0, 9.0]}]}
 
-a :class:`~archrock.geometry.PolygonArch` (each line from left to right).
+a :class:`~archrock.geometry.PolygonArch` (each line from left to right).  A polygon block may
+carry ``"kind": "pier" | "buttress" | "voussoir"`` (an arch on piers, docs/piers.md): the file is
+then read as an :class:`~archrock.geometry.ArchOnPiers`, and a kind not in that list is refused.
 
 Every error is an :class:`~archrock.errors.ArchInputError` whose one-line message names the
 file and the offending field.

@@ -26,12 +26,16 @@ from ..errors import ArchInputError
 from .base import Load, VoussoirArch, _check_scalar
 from .polygon import PolygonArch
 
-__all__ = ["ArchOnPiers", "with_piers", "MAX_COURSES", "BLOCK_KINDS"]
+__all__ = ["ArchOnPiers", "with_piers", "MAX_COURSES", "BLOCK_KINDS", "MAX_BATTER",
+           "joint_place", "hinge_place"]
 
 #: Most courses a pier may be cut into.
 MAX_COURSES = 200
-#: The kinds of block in an :class:`ArchOnPiers`.
-BLOCK_KINDS = ("pier", "voussoir")
+#: The kinds of block in an :class:`ArchOnPiers`: a "buttress" is a pier with a battered outer
+#: face (wider at its foundation than at its top).
+BLOCK_KINDS = ("pier", "voussoir", "buttress")
+#: Largest batter (horizontal run of the outer face per unit of height) a pier may have.
+MAX_BATTER = 10.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,17 +58,58 @@ class ArchOnPiers(PolygonArch):
 
     @property
     def pier_blocks(self) -> tuple:
-        """Indices of the pier blocks."""
-        return tuple(i for i, k in enumerate(self.block_kinds) if k == "pier")
+        """Indices of the blocks that are not voussoirs (piers and buttresses)."""
+        return tuple(i for i, k in enumerate(self.block_kinds) if k != "voussoir")
 
     def to_dict(self) -> dict:
-        """The polygon geometry format with ``"kind"`` per block (readers of the polygon format
-        ignore it: :func:`archrock.geometry.arch_from_dict` gives a :class:`PolygonArch` with the
-        same blocks)."""
+        """The polygon geometry format with ``"kind"`` per block; :func:`archrock.geometry.
+        arch_from_dict` reads it back as an :class:`ArchOnPiers`, the same to the bit."""
         data = super().to_dict()
         for v, k in zip(data["voussoirs"], self.block_kinds):
             v["kind"] = k
         return data
+
+    @classmethod
+    def from_dict(cls, data, name: str = "arch") -> "ArchOnPiers":
+        """The polygon format with an optional ``"kind"`` per block (:data:`BLOCK_KINDS`; a
+        block without one is a voussoir).  A kind not in the list is refused by name."""
+        intr, extr, density, loads = cls._parse_dict(data)
+        kinds = []
+        for i, v in enumerate(data["voussoirs"]):
+            k = v.get("kind", "voussoir")
+            if not isinstance(k, str) or k not in BLOCK_KINDS:
+                raise ArchInputError(f"voussoirs[{i}].kind: {k!r}; allowed "
+                                     f"{', '.join(BLOCK_KINDS)}")
+            kinds.append(k)
+        return cls(intr, extr, density, name, loads, block_kinds=tuple(kinds))
+
+    def mirrored(self) -> "ArchOnPiers":
+        """The mirror image about x = 0, block kinds in the new order."""
+        m = super().mirrored()
+        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads,
+                           block_kinds=self.block_kinds[::-1])
+
+    def scaled(self, factor: float) -> "ArchOnPiers":
+        m = super().scaled(factor)
+        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads,
+                           block_kinds=self.block_kinds)
+
+    @property
+    def piers(self) -> tuple:
+        """(left, right): the block indices of the leading and trailing runs of pier or
+        buttress blocks, in chain order (empty where that side has none)."""
+        kinds = self.block_kinds
+        left = []
+        for i, k in enumerate(kinds):
+            if k == "voussoir":
+                break
+            left.append(i)
+        right = []
+        for i in range(self.n - 1, len(left) - 1, -1):
+            if kinds[i] == "voussoir":
+                break
+            right.append(i)
+        return tuple(left), tuple(sorted(right))
 
     def __repr__(self) -> str:
         return (f"ArchOnPiers(name={self.name!r}, n={self.n}, piers={len(self.pier_blocks)} "
@@ -100,9 +145,21 @@ def _dedupe(points, tol: float) -> np.ndarray:
     return out
 
 
-def _left_pier(p_in, p_out, height: float, width: float, courses: int, side: str, tol: float):
+def _batter(name: str, value) -> float:
+    if isinstance(value, (str, bool)):
+        raise ArchInputError(f"{name}: expected a number (horizontal run per unit height), got "
+                             f"{value!r}")
+    return _check_scalar(name, value, 0.0, MAX_BATTER, lo_open=False, hi_open=False,
+                         allowed=f"0 <= batter <= {MAX_BATTER:g} (horizontal run of the outer "
+                                 f"face per unit of height; 0: a rectangular pier)")
+
+
+def _left_pier(p_in, p_out, height: float, width: float, courses: int, side: str, tol: float,
+               batter: float = 0.0):
     """The courses of a pier under a left springing joint p_in (intrados) - p_out (extrados),
-    from the foundation up: a list of (intrados, extrados) polylines."""
+    from the foundation up: a list of (intrados, extrados) polylines.  ``batter``: the outer
+    face runs outward by ``batter`` per unit of depth below the pier top (width at the
+    foundation W + batter H)."""
     xi, yi = float(p_in[0]), float(p_in[1])
     xe, ye = float(p_out[0]), float(p_out[1])
     reach = xi - xe
@@ -120,15 +177,19 @@ def _left_pier(p_in, p_out, height: float, width: float, courses: int, side: str
     levels = foot + height * np.arange(courses + 1) / courses
     levels[-1] = top
     xo = xi - width
+
+    def outer(y):
+        # the rectangular pier's outer face exactly as before a batter existed (bit for bit)
+        return xo if batter == 0.0 else xo - batter * (top - y)
     blocks = []
     for c in range(courses):
         lo, hi = levels[c], levels[c + 1]
         if c < courses - 1 or abs(ye - yi) <= tol:
             intr = [(xi, lo), (xi, hi)]
-            extr = [(xo, lo), (xo, hi)]
+            extr = [(outer(lo), lo), (outer(hi), hi)]
         else:  # the springing wedge on the top course
             intr = _dedupe([(xi, lo), (xi, top), (xi, yi)], tol)
-            extr = _dedupe([(xo, lo), (xo, top), (xe, top), (xe, ye)], tol)
+            extr = _dedupe([(outer(lo), lo), (xo, top), (xe, top), (xe, ye)], tol)
         blocks.append((np.asarray(intr, float), np.asarray(extr, float)))
     return blocks
 
@@ -141,12 +202,17 @@ def _polygon_of(arch: VoussoirArch) -> PolygonArch:
 
 def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int = 1,
                height_right: float | None = None, width_right: float | None = None,
-               courses_right: int | None = None, name: str | None = None) -> ArchOnPiers:
+               courses_right: int | None = None, batter: float = 0.0,
+               batter_right: float | None = None, name: str | None = None,
+               _trusted: bool = False) -> ArchOnPiers:
     """``arch`` on two rectangular piers (module docstring): ``height`` H [m] from the
-    foundation to the springing, ``width`` W [m] outward of the intrados springing point,
-    ``courses`` blocks each (equal heights, horizontal bed joints); the right pier takes
-    ``height_right``, ``width_right``, ``courses_right`` when given (default: the left one's).
-    Loads keep their voussoir (renumbered past the left pier's courses)."""
+    foundation to the springing, ``width`` W [m] outward of the intrados springing point (at
+    the pier top), ``courses`` blocks each (equal heights, horizontal bed joints); the right
+    pier takes ``height_right``, ``width_right``, ``courses_right``, ``batter_right`` when
+    given (default: the left one's).  ``batter`` b >= 0: the outer face is battered, running
+    outward b per unit of depth (the foundation W + b H wide: a buttress, its blocks of kind
+    "buttress"); b = 0 is the rectangular pier, bit for bit.  Loads keep their voussoir
+    (renumbered past the left pier's courses)."""
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected an archrock arch (Arch or PolygonArch), got "
                              f"{type(arch).__name__}")
@@ -162,13 +228,15 @@ def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int 
     hr = hl if height_right is None else _length("height_right", height_right, hi)
     wr = wl if width_right is None else _length("width_right", width_right, hi)
     cr = cl if courses_right is None else _courses("courses_right", courses_right)
+    bl = _batter("batter", batter)
+    br = bl if batter_right is None else _batter("batter_right", batter_right)
     tol = 1e-9 * max(extent, hl, hr, wl, wr)
 
     jp = poly.joint_points
-    left = _left_pier(jp[0][0], jp[0][1], hl, wl, cl, "left", tol)
+    left = _left_pier(jp[0][0], jp[0][1], hl, wl, cl, "left", tol, bl)
     flip = np.array([-1.0, 1.0])
     try:
-        right_m = _left_pier(jp[-1][0] * flip, jp[-1][1] * flip, hr, wr, cr, "right", tol)
+        right_m = _left_pier(jp[-1][0] * flip, jp[-1][1] * flip, hr, wr, cr, "right", tol, br)
     except ArchInputError as exc:
         msg = str(exc)
         if msg.startswith("width:"):
@@ -179,7 +247,70 @@ def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int 
 
     intr = tuple(b[0] for b in left) + tuple(poly.intrados) + tuple(b[0] for b in right)
     extr = tuple(b[1] for b in left) + tuple(poly.extrados) + tuple(b[1] for b in right)
-    kinds = ("pier",) * cl + ("voussoir",) * poly.n + ("pier",) * cr
+    kinds = (("buttress" if bl > 0 else "pier"),) * cl + ("voussoir",) * poly.n + \
+        (("buttress" if br > 0 else "pier"),) * cr
     loads = tuple(Load(ld.voussoir + cl, ld.mass, ld.at) for ld in poly.loads)
-    return ArchOnPiers(intr, extr, poly.density, name or f"{arch.name} on piers", loads,
-                       block_kinds=kinds)
+    name = name or f"{arch.name} on piers"
+    if _trusted and isinstance(arch, PolygonArch):
+        return _unchecked(intr, extr, poly.density, name, loads, kinds)
+    return ArchOnPiers(intr, extr, poly.density, name, loads, block_kinds=kinds)
+
+
+def _unchecked(intr, extr, density, name, loads, kinds) -> ArchOnPiers:
+    """An ArchOnPiers without the polygon checks of PolygonArch (each block a simple polygon of
+    positive area, ...), for searches that rebuild the piers many times under voussoirs already
+    checked (a validated PolygonArch): the pier blocks are rectangles or trapezoids by
+    construction.  The joints are still checked when first used (``joint_points``)."""
+    a = object.__new__(ArchOnPiers)
+    ro = []
+    for p in intr + extr:
+        p = np.asarray(p, float)
+        if p.flags.writeable:
+            p = p.copy()
+            p.setflags(write=False)
+        ro.append(p)
+    n = len(intr)
+    for key, value in (("intrados", tuple(ro[:n])), ("extrados", tuple(ro[n:])),
+                       ("density", float(density)), ("name", name), ("loads", tuple(loads)),
+                       ("block_kinds", tuple(kinds))):
+        object.__setattr__(a, key, value)
+    return a
+
+
+def joint_place(arch, j: int) -> str:
+    """Where joint ``j`` of ``arch`` is, in words a user finds on the drawing: "left pier
+    foot", "left pier bed joint 2" (counted from the foot up), "left springing (pier top)",
+    "arch joint 3" (the arch's own numbering, from its left springing), ...; "joint j" for an
+    arch without piers."""
+    j = int(j)
+    if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
+        return f"joint {j}"
+    left, right = arch.piers
+    n, cl, cr = arch.n, len(left), len(right)
+    kl = arch.block_kinds[0] if cl else ""
+    kr = arch.block_kinds[-1] if cr else ""
+    if cl and j == 0:
+        return f"left {kl} foot"
+    if cl and j < cl:
+        return f"left {kl} bed joint {j}"
+    if cl and j == cl:
+        return f"left springing ({kl} top)"
+    if cr and j == n:
+        return f"right {kr} foot"
+    if cr and j > n - cr:
+        return f"right {kr} bed joint {n - j}"
+    if cr and j == n - cr:
+        return f"right springing ({kr} top)"
+    return f"arch joint {j - cl}"
+
+
+def hinge_place(arch, joint: int, edge: str) -> str:
+    """:func:`joint_place` and the end of the joint: a pier's "inner face" (towards the
+    opening) or "outer face", an arch joint's "intrados" or "extrados"; e.g. "left pier foot,
+    outer face"."""
+    where = joint_place(arch, joint)
+    if isinstance(arch, ArchOnPiers) and arch.pier_blocks:
+        left, right = arch.piers
+        if joint < len(left) or joint > arch.n - len(right):
+            return f"{where}, {'inner' if edge == 'intrados' else 'outer'} face"
+    return f"{where}, {edge}"

@@ -252,6 +252,19 @@ class PolygonArch(VoussoirArch):
 
     @classmethod
     def from_dict(cls, data, name: str = "arch") -> "PolygonArch":
+        """The polygon geometry format; blocks with a ``"kind"`` (written by an arch on piers)
+        give an :class:`~archrock.geometry.ArchOnPiers`."""
+        if cls is PolygonArch and isinstance(data, dict) and isinstance(data.get("voussoirs"), list) \
+                and any(isinstance(v, dict) and "kind" in v for v in data["voussoirs"]):
+            from .piers import ArchOnPiers
+
+            return ArchOnPiers.from_dict(data, name=name)
+        intr, extr, density, loads = cls._parse_dict(data)
+        return cls(intr, extr, density, name, loads)
+
+    @staticmethod
+    def _parse_dict(data):
+        """(intrados, extrados, density, loads) of the polygon geometry format."""
         if not isinstance(data, dict) or not isinstance(data.get("voussoirs"), list):
             raise ArchInputError("geometry: expected a JSON object with a 'voussoirs' list")
         intr, extr = [], []
@@ -264,8 +277,8 @@ class PolygonArch(VoussoirArch):
         loads = data.get("loads", ())
         if not isinstance(loads, (list, tuple)):
             raise ArchInputError("loads: expected a list of {voussoir, mass, at} objects")
-        return cls(tuple(intr), tuple(extr), data.get("density", DEFAULT_DENSITY), name,
-                   tuple(Load.from_dict(ld, i) for i, ld in enumerate(loads)))
+        return (tuple(intr), tuple(extr), data.get("density", DEFAULT_DENSITY),
+                tuple(Load.from_dict(ld, i) for i, ld in enumerate(loads)))
 
     def __repr__(self) -> str:
         return (f"PolygonArch(name={self.name!r}, n={self.n}, size={self.size:.4g} m"

@@ -48,6 +48,20 @@ def format_codecheck(result) -> str:
     lines.append(f"{'':{w}}" + "".join(f"{'M_' + c.direction:>18}" for c in dirs))
     for name, f in rows:
         lines.append(f"{name:{w}}" + "".join(f"{f(c):>18}" for c in dirs))
+    heights = getattr(result, "heights", None)
+    if heights:
+        lines.append("")
+        lines.append("where the mechanism is (an arch on piers: its masses above the foundation)")
+        for c in dirs:
+            h = heights[c.direction]
+            lines.append(f"M_{c.direction}: moving mass {h['moving_mass']:.1f} kg/m (M* = "
+                         f"{c.m_star:.1f} kg/m), its centroid Z = {h['z']:.4f} m above the "
+                         f"foundation")
+        ag = getattr(result, "above_ground", None)
+        if ag is not None:
+            lines.append(f"structure: H = {ag.height:g} m, N = {ag.storeys} storey(s) (gamma = "
+                         f"{ag.gamma:.4f}), T_1 = {ag.t1:.4f} s "
+                         f"({'given' if ag.period is not None else f'C_1 H^(3/4), C_1 = {ag.c1:g}'})")
     if cfg.spectrum is not None:
         lines.append("")
         for c in dirs:
@@ -58,6 +72,16 @@ def format_codecheck(result) -> str:
             lines.append(f"M_{c.direction} nonlinear: d_u* = {non['capacity_m']:.4f} m  vs  "
                          f"S_De(T_s = {non['ts']:.3f} s) = {non['demand_m']:.4f} m  ratio "
                          f"{non['ratio']:.3f}  {'PASS' if non['passed'] else 'FAIL'}")
+            if "linear_above_ground" in c.checks:
+                la, na = c.checks["linear_above_ground"], c.checks["nonlinear_above_ground"]
+                lines.append(f"M_{c.direction} linear, above ground:    a_0* = "
+                             f"{la['capacity_g']:.4f} g  vs  Se(T_1) psi(Z) gamma / q = "
+                             f"{la['demand_g']:.4f} g (Se(T_1) = {la['Se_T1_g']:.4f} g, psi = "
+                             f"{la['psi']:.4f})  ratio {la['ratio']:.3f}  "
+                             f"{'PASS' if la['passed'] else 'FAIL'}")
+                lines.append(f"M_{c.direction} nonlinear, above ground: d_u* = "
+                             f"{na['capacity_m']:.4f} m  vs  {na['demand_m']:.4f} m  ratio "
+                             f"{na['ratio']:.3f}  {'PASS' if na['passed'] else 'FAIL'}")
         lines.append(f"overall: {'PASS' if result.passed else 'FAIL'} (governing M_{result.governing.direction})")
     lines.append("clauses and formulas: docs/codecheck.md")
     return "\n".join(lines)

@@ -11,26 +11,41 @@ import math
 
 import numpy as np
 
-from ..geometry import Arch
+from ..geometry import Arch, ArchOnPiers
+from ..geometry.piers import hinge_place
 
 __all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
-           "thrust_range_line"]
+           "thrust_range_line", "min_pier_width_line"]
+
+
+def _on_piers(arch) -> bool:
+    return isinstance(arch, ArchOnPiers) and bool(arch.pier_blocks)
 
 
 def _voussoir_properties(arch) -> list[dict]:
-    """Area [m^2] of each voussoir's masonry, mass [kg/m] and mass centre [m] with its loads."""
-    return [{"area": float(a), "mass": float(m), "centroid": [float(c[0]), float(c[1])]}
-            for a, m, c in zip(arch.areas, arch.masses, arch.centroids)]
+    """Area [m^2] of each voussoir's masonry, mass [kg/m] and mass centre [m] with its loads;
+    on piers, each block's kind ("pier", "buttress" or "voussoir") too."""
+    kinds = arch.block_kinds if _on_piers(arch) else None
+    return [{**({"kind": kinds[i]} if kinds else {}),
+             "area": float(a), "mass": float(m), "centroid": [float(c[0]), float(c[1])]}
+            for i, (a, m, c) in enumerate(zip(arch.areas, arch.masses, arch.centroids))]
+
+
+def _place(arch, h) -> dict:
+    """{"place": ...} naming a hinge on the drawing, for an arch on piers (else nothing)."""
+    return {"place": hinge_place(arch, h.joint, h.edge)} if _on_piers(arch) else {}
 
 
 def limit_summary(result, min_thickness=None, needed=None, friction=None,
-                  min_thickness_friction=None, thrust=None) -> dict:
+                  min_thickness_friction=None, thrust=None, min_pier_width=None) -> dict:
     """JSON-ready summary of a LimitResult (the ``archrock limit --json`` object); ``needed``
     ({"l", "r"}, :func:`archrock.statics.friction.friction_needed`) and ``friction`` (a
     :class:`~archrock.statics.friction.FrictionResult`) add the keys of :func:`friction_summary`;
     ``min_thickness_friction``: the friction coefficient ``min_thickness`` was found with;
     ``thrust`` (a :class:`~archrock.statics.thrust.ThrustRange`) adds ``thrust_min`` and ``thrust_max``
-    (each ``H`` [N/m], ``hinges`` [{joint, edge}], ``points`` [[x, y]] [m])."""
+    (each ``H`` [N/m], ``hinges`` [{joint, edge}], ``points`` [[x, y]] [m]);
+    ``min_pier_width`` (a :class:`~archrock.statics.buttress.MinimumPierWidth`) adds
+    ``min_pier_width``."""
     arch = result.arch
     d = result.to_dict()
     d.pop("arch", None)
@@ -48,13 +63,15 @@ def limit_summary(result, min_thickness=None, needed=None, friction=None,
         **d,
         "hinge_labels": {
             # A..D from the mechanism's leading side (A leftmost for M_l, rightmost for M_r)
-            dirn: [{"label": lab, **h.to_dict()} for lab, h in result.mechanism(dirn).labelled()]
+            dirn: [{"label": lab, **h.to_dict(), **_place(arch, h)}
+                   for lab, h in result.mechanism(dirn).labelled()]
             for dirn in ("l", "r")
         },
         # the four-link model (respond, studies) holds only where four-hinge mechanisms govern
         "four_link_holds": result.four_hinge,
         "geometry": arch.to_dict(),
         **({} if isinstance(arch, Arch) else {"voussoirs": _voussoir_properties(arch)}),
+        **({"block_kinds": list(arch.block_kinds)} if _on_piers(arch) else {}),
         "units": units,
     }
     if min_thickness is not None:
@@ -71,7 +88,22 @@ def limit_summary(result, min_thickness=None, needed=None, friction=None,
         td = thrust.to_dict()
         out["thrust_min"], out["thrust_max"] = td["thrust_min"], td["thrust_max"]
         out["units"]["H"] = "N/m (horizontal thrust per metre of depth)"
+    if min_pier_width is not None:
+        out["min_pier_width"] = min_pier_width.to_dict()
     return out
+
+
+def min_pier_width_line(mpw) -> str:
+    """One line of a :class:`~archrock.statics.buttress.MinimumPierWidth`."""
+    if mpw.governed_by == "springing":
+        why = ("the narrowest pier the springing joint allows already stands: the width does "
+               "not limit the arch")
+    else:
+        H, V = mpw.springing_force
+        why = (f"the thrust (H = {H / 1e3:.4g} kN/m, V = {V / 1e3:.4g} kN/m at the pier top) "
+               f"through the pier's outer foot corner")
+    return (f"minimum pier width under self-weight, piers {mpw.height:g} m high: "
+            f"{mpw.width:.4f} m ({why})")
 
 
 def friction_summary(needed=None, friction=None) -> dict:
@@ -154,7 +186,25 @@ def _circular_lines(arch) -> list[str]:
     return lines
 
 
+def _piers_lines(arch) -> list[str]:
+    """The blocks of an arch on piers, each with its kind (chain order: left pier from its
+    foot up, the voussoirs, right pier from its top down; docs/piers.md)."""
+    kinds = arch.block_kinds
+    counts = {k: kinds.count(k) for k in ("pier", "buttress", "voussoir") if k in kinds}
+    lines = [f"Arch: {arch.name}, {arch.n} blocks ("
+             + ", ".join(f"{c} {k}" + ("s" if c != 1 else "") for k, c in counts.items())
+             + f"; {type(arch).__name__}), size {arch.size:.6g} m, density {arch.density:g} kg/m^3",
+             "  block  kind        area [m^2]  mass [kg/m]  mass centre x [m]  y [m]"
+             + ("  (mass and centre with loads)" if arch.loads else "")]
+    cents = np.where(np.abs(arch.centroids) < 1e-12 * arch.size, 0.0, arch.centroids)
+    for i, (k, a, m, c) in enumerate(zip(kinds, arch.areas, arch.masses, cents)):
+        lines.append(f"  {i:5d}  {k:<8s}  {a:11.5g}  {m:11.5g}  {c[0]:17.6g}  {c[1]:.6g}")
+    return lines
+
+
 def _general_lines(arch) -> list[str]:
+    if _on_piers(arch):
+        return _piers_lines(arch)
     lines = [f"Arch: {arch.name}, {arch.n} voussoirs ({type(arch).__name__}), "
              f"size {arch.size:.6g} m, density {arch.density:g} kg/m^3",
              "  voussoir   area [m^2]  mass [kg/m]  mass centre x [m]  y [m]"
@@ -181,7 +231,7 @@ def thrust_range_line(thrust) -> str:
 
 
 def format_limit_table(result, min_thickness=None, needed=None, friction=None,
-                       min_thickness_friction=None, thrust=None) -> str:
+                       min_thickness_friction=None, thrust=None, min_pier_width=None) -> str:
     """Readable report of a LimitResult: geometry, k_l / k_r, hinges, LP check; friction
     (:func:`friction_lines`) where given."""
     arch = result.arch
@@ -201,6 +251,13 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
             hinges = (f"hinges {', '.join(f'{h.joint} {h.edge}' for h in mech.hinges)}; "
                       f"lifts off at joint {', '.join(map(str, mech.lift_off))}")
         lines.append(f"  M_{dirn}        {k:13.4f}  {kss}  {hinges}")
+    if _on_piers(arch):
+        # where each hinge is on the drawing (joints numbered along the chain: docs/piers.md)
+        for dirn in ("l", "r"):
+            mech = result.mechanism(dirn)
+            lines.append(f"  M_{dirn} hinges: " + "; ".join(
+                f"{lab} = {h.joint}{h.edge[0]} ({hinge_place(arch, h.joint, h.edge)})"
+                for lab, h in mech.labelled()))
     lines.append(f"  k = min(k_l, k_r) = {result.k:.4f} (Heyman's collapse multiplier)")
     if result.discrepancy is not None:
         # the kinematic value is that of the mechanism attaining the LP's optimum: they agree by
@@ -221,6 +278,8 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
                      f"{min_thickness.factor:.4f} of the given thicknesses{ratio}")
     if thrust is not None:
         lines.append(f"  {thrust_range_line(thrust)}")
+    if min_pier_width is not None:
+        lines.append(f"  {min_pier_width_line(min_pier_width)}")
     lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
                  "M_r: by xg''/g >= k_r, forces toward -x)")
     lines += friction_lines(needed, friction)

@@ -43,6 +43,8 @@ __all__ = [
     "displaced_outlines",
     "displaced_hinges",
     "plot_defect_map",
+    "plot_k_against_pier_height",
+    "block_faces",
 ]
 
 
@@ -56,7 +58,19 @@ STYLE = {
     "ground": "#777777",
     "fill": "#d9cfa6",
     "load": "#7d3c98",
+    # the blocks of an arch on piers that are not voussoirs (docs/piers.md): a greyer stone
+    "pier_face": "#c9c3b6",
+    "buttress_face": "#b3aa96",
 }
+
+
+def block_faces(arch, facecolor: str | None = None) -> list:
+    """The fill colour of each block: ``facecolor`` for all when given, else the voussoir
+    colour, and on an arch on piers the pier (or buttress) colour for those blocks."""
+    if facecolor is not None:
+        return [facecolor] * arch.n
+    kinds = getattr(arch, "block_kinds", None) or ("voussoir",) * arch.n
+    return [STYLE.get(f"{k}_face", STYLE["voussoir_face"]) for k in kinds]
 
 
 def _require_matplotlib():
@@ -99,7 +113,7 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
     _require_matplotlib()
     from matplotlib.patches import Polygon
 
-    face = STYLE["voussoir_face"] if facecolor is None else facecolor
+    faces = block_faces(arch, facecolor)
     edge = STYLE["voussoir_edge"] if edgecolor is None else edgecolor
     if loads:
         for region in getattr(arch, "fill_regions", ()) or ():
@@ -109,9 +123,14 @@ def draw_arch(ax, arch, *, facecolor: str | None = None, edgecolor: str | None =
     patches = []
     # many voussoirs: thinner lines (500 joints at the usual width paint the arch black)
     thin = min(1.0, _DENSE_JOINTS / max(arch.n, 1))
+    named = set()
     for i in range(arch.n):
-        poly = Polygon(voussoir_outline(arch, i), closed=True, facecolor=face, edgecolor=edge,
-                       linewidth=0.8 * thin, alpha=alpha, zorder=zorder)
+        kind = arch.block_kinds[i] if facecolor is None and hasattr(arch, "block_kinds") else None
+        # a legend entry for the piers (once per kind), none for the voussoirs
+        label = kind if kind not in (None, "voussoir") and kind not in named else None
+        named.add(kind)
+        poly = Polygon(voussoir_outline(arch, i), closed=True, facecolor=faces[i], edgecolor=edge,
+                       linewidth=0.8 * thin, alpha=alpha, zorder=zorder, label=label)
         ax.add_patch(poly)
         patches.append(poly)
     if joints:
@@ -345,8 +364,15 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
                     for lab, h in mech.labelled())
     if getattr(mech, "lift_off", ()):
         seq += f"; lifts off at joint {', '.join(map(str, mech.lift_off))}"
-    ax.set_title(f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
-                 f"hinges (joint, i = intrados / e = extrados): {seq}", fontsize=10)
+    title = (f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
+             f"hinges (joint, i = intrados / e = extrados): {seq}")
+    if getattr(arch, "pier_blocks", ()):
+        from ..geometry.piers import hinge_place
+
+        # where the hinges are, in words: a pier's faces are not an intrados and an extrados
+        title += "\n" + "; ".join(f"{lab}: {hinge_place(arch, h.joint, h.edge)}"
+                                  for lab, h in mech.labelled())
+    ax.set_title(title, fontsize=10 if not getattr(arch, "pier_blocks", ()) else 8)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.legend(loc="lower center", fontsize=8, frameon=False)
@@ -446,6 +472,41 @@ def save_limit_figure(result, path: str | os.PathLike, directions=("l", "r"), dp
     for ax, d in zip(axes[0], directions):
         plot_limit(result, d, ax=ax)
     return save_figure(fig, path, dpi=dpi)
+
+
+def plot_k_against_pier_height(table, path: str | os.PathLike | None = None, *, ax=None,
+                               dpi: int = 150):
+    """k_l and k_r of an arch on piers against the piers' height over the clear span (a
+    :class:`~archrock.statics.buttress.PierHeightTable`; height 0: the arch on rigid ground),
+    each point marked where hinge D leaves the pier's foot.  Writes ``path`` when given and
+    returns it, else the axes."""
+    _require_matplotlib()
+    if ax is None:
+        fig, axes = new_figure(figsize=(6.4, 4.4))
+        ax = axes[0][0]
+    else:
+        fig = None
+    x = np.asarray(table.heights, float) / table.span
+    ax.plot(x, table.k_l, "o-", color=STYLE["thrust"], ms=4, lw=1.4, label="$k_l$")
+    ax.plot(x, table.k_r, "s--", color=STYLE["hinge"], ms=3, lw=1.0, mfc="none", label="$k_r$")
+    foot = np.array(["foot" in p for p in table.places_l])
+    if foot.any() and not foot.all():
+        ax.plot(x[~foot], np.asarray(table.k_l)[~foot], "o", ms=8, mfc="none", mec="#444444",
+                label="hinge D not at a pier's foot")
+    if x.size and x[0] == 0:
+        ax.axhline(table.k_l[0], color="#777777", lw=0.8, ls=":", label="rigid ground")
+    ax.set_xlabel("pier height / clear span")
+    ax.set_ylabel("collapse multiplier k [g]")
+    extra = f", batter {table.batter:g}" if table.batter else ""
+    ax.set_title(f"{table.arch_name} on piers {table.width:g} m wide ({table.courses} "
+                 f"course{'s' if table.courses != 1 else ''}{extra}); span {table.span:.4g} m",
+                 fontsize=10)
+    ax.set_ylim(bottom=0)
+    ax.grid(True, lw=0.3, alpha=0.4)
+    ax.legend(fontsize=8, frameon=False)
+    if path is not None and fig is not None:
+        return save_figure(fig, path, dpi=dpi)
+    return ax
 
 
 # ---------------------------------------------------------------------------- dynamics
@@ -631,10 +692,10 @@ def draw_displaced(ax, model, mode, phi: float, **kwargs):
     (update them with ``patch.set_xy`` to animate without redrawing the axes)."""
     from matplotlib.patches import Polygon
 
-    face = kwargs.get("facecolor", STYLE["voussoir_face"])
+    faces = block_faces(model.arch, kwargs.get("facecolor"))
     edge = kwargs.get("edgecolor", STYLE["voussoir_edge"])
     patches = []
-    for pts in displaced_outlines(model, mode, phi):
+    for face, pts in zip(faces, displaced_outlines(model, mode, phi)):
         patch = Polygon(pts, closed=True, facecolor=face, edgecolor=edge, lw=0.8)
         ax.add_patch(patch)
         patches.append(patch)

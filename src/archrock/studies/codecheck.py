@@ -37,7 +37,8 @@ from ..units import G
 
 __all__ = ["SiteSpectrum", "CodeCheckConfig", "Kinematics", "DirectionCheck", "CodeCheckResult",
            "code_check", "mechanism_kinematics", "block_kinematics", "kinematic_check",
-           "ntc_spectrum_parameters", "ec8_spectrum_parameters", "SOILS", "TOPOGRAPHY"]
+           "ntc_spectrum_parameters", "ec8_spectrum_parameters", "SOILS", "TOPOGRAPHY",
+           "AboveGround", "mechanism_height", "above_ground_checks"]
 
 SOILS = ("A", "B", "C", "D", "E")
 #: NTC 2018 Tab. 3.2.V: topographic amplification S_T (the value at the top of the relief).
@@ -322,6 +323,105 @@ class CodeCheckConfig:
         return cls(**d)
 
 
+@dataclass(frozen=True)
+class AboveGround:
+    """The structure a mechanism above ground sits in (an arch on piers in a church, a portal in
+    a building), for the code's checks of a mechanism above ground level (docs/codecheck.md,
+    Mechanisms above ground):
+
+    height: H [m], the structure's height above its foundation (the mechanism's centroid must
+    lie within it); storeys: N, the number of storeys (gamma = 3N / (2N + 1), the first mode's
+    participation factor, 1 for a one-storey hall or a free-standing arch on piers); period:
+    T_1 [s], the structure's first period, or None for the estimate T_1 = C_1 H^(3/4) with
+    C_1 = ``c1`` (0.05 for masonry)."""
+
+    height: float
+    storeys: int = 1
+    period: float | None = None
+    c1: float = 0.05
+
+    def __post_init__(self):
+        _real("height", self.height, 0.0, 1e4, True, "a structure height > 0 m")
+        if isinstance(self.storeys, bool) or not isinstance(self.storeys, (int, np.integer)) \
+                or not 1 <= self.storeys <= 100:
+            raise ArchInputError(f"storeys: {self.storeys!r}; allowed an integer 1 to 100")
+        if self.period is not None:
+            _real("period", self.period, 0.0, 10.0, True, "a first period 0 < T_1 <= 10 s")
+        _real("c1", self.c1, 0.0, 1.0, True, "0 < C_1 <= 1 (masonry 0.05)")
+
+    @property
+    def gamma(self) -> float:
+        """The first mode's participation factor 3N / (2N + 1)."""
+        return 3.0 * self.storeys / (2.0 * self.storeys + 1.0)
+
+    @property
+    def t1(self) -> float:
+        """T_1 [s]: the given period or C_1 H^(3/4)."""
+        return float(self.period) if self.period is not None else self.c1 * self.height ** 0.75
+
+    def to_dict(self) -> dict:
+        return {"height": self.height, "storeys": int(self.storeys), "period": self.period,
+                "c1": self.c1, "gamma": self.gamma, "t1": self.t1,
+                "t1_from": "given" if self.period is not None else "C_1 H^(3/4)"}
+
+
+def mechanism_height(arch, kin: "Kinematics") -> dict:
+    """Where the mechanism's masses are: the masses that move (dx != 0, with their loads)
+    [kg/m], and Z [m], the height above the foundation (the lowest point of the two end joints:
+    a pier's foot, or the springing of an arch on the ground) of their centroid, the code's Z
+    (the centroid of the weights whose masses load the mechanism)."""
+    m = np.asarray(kin.masses, float)
+    moving = np.asarray(kin.dx, float) != 0
+    jp = np.asarray(arch.joint_points, float)
+    base = float(min(jp[0, :, 1].min(), jp[-1, :, 1].min()))
+    w = m * moving
+    yc = float(np.sum(w * np.asarray(arch.centroids, float)[:, 1]) / w.sum())
+    return {"moving_mass": float(w.sum()), "z": yc - base, "foundation_y": base,
+            "moving_blocks": [int(i) for i in np.flatnonzero(moving)]}
+
+
+def above_ground_checks(check: "DirectionCheck", z: float, structure: AboveGround,
+                        spectrum: "SiteSpectrum") -> dict:
+    """The checks of a mechanism whose centroid is z [m] above the foundation of ``structure``
+    (Circolare 2019 C8.7.1.2 ff., as in the 2009 Circolare's C8A.4; docs/codecheck.md):
+    linear a_0* >= Se(T_1) psi(Z) gamma / q, psi(Z) = Z / H; nonlinear d_u* >= S_De(T_1) psi(Z)
+    gamma (T_s/T_1)^2 / sqrt((1 - T_s/T_1)^2 + 0.02 T_s/T_1) where T_s < 1.5 T_1, else
+    d_u* >= S_De(T_s).  Both beside the ground-level checks (the code asks for both)."""
+    H = structure.height
+    if not 0 <= z <= H:
+        raise ArchInputError(f"height: {H:g} m is below the mechanism's centroid (Z = {z:.4g} "
+                             f"m above the foundation); allowed a structure height >= Z")
+    psi = z / H
+    t1, gamma = structure.t1, structure.gamma
+    if t1 > spectrum.t_max:
+        raise ArchInputError(f"spectrum: the structure's period T_1 = {t1:.3g} s lies beyond "
+                             f"the spectrum's last period {spectrum.t_max:g} s; extend the table")
+    se1 = float(spectrum.se(t1))
+    q = check.checks["linear"]["q"]
+    demand = se1 * psi * gamma / q
+    cap = check.a0_star / G
+    lin = {"clause": "Circolare 2019 C8.7.1.2 ff. (linear, mechanism above ground): a_0* >= "
+                     "Se(T_1) psi(Z) gamma / q, psi(Z) = Z / H",
+           "capacity_g": cap, "demand_g": demand, "Se_T1_g": se1, "psi": psi, "gamma": gamma,
+           "z": z, "H": H, "t1": t1, "q": q,
+           "ratio": cap / demand if demand > 0 else math.inf, "passed": bool(cap >= demand)}
+    ts = check.ts
+    r = ts / t1
+    if r < 1.5:
+        d_dem = spectrum.sde(t1) * psi * gamma * r * r / math.sqrt((1 - r) ** 2 + 0.02 * r)
+        how = "S_De(T_1) psi(Z) gamma (T_s/T_1)^2 / sqrt((1 - T_s/T_1)^2 + 0.02 T_s/T_1)"
+    else:
+        d_dem = spectrum.sde(ts)
+        how = "S_De(T_s) (T_s >= 1.5 T_1)"
+    non = {"clause": "Circolare 2019 C8.7.1.2 ff. (nonlinear, mechanism above ground): d_u* >= "
+                     + how,
+           "capacity_m": check.du_star, "demand_m": float(d_dem), "ts": ts, "t1": t1,
+           "psi": psi, "gamma": gamma,
+           "ratio": check.du_star / d_dem if d_dem > 0 else math.inf,
+           "passed": bool(check.du_star >= d_dem)}
+    return {"linear_above_ground": lin, "nonlinear_above_ground": non}
+
+
 # ---------------------------------------------------------------------------- kinematics
 @dataclass(frozen=True)
 class Kinematics:
@@ -455,6 +555,10 @@ class CodeCheckResult:
     arch_name: str = ""
     method: str = ("kinematic analysis of local mechanisms, NTC 2018 par. 8.7.1 and Circolare "
                    "2019 C8.7.1.2; mechanisms from limit analysis, exact four-link kinematics")
+    #: per direction, where the mechanism's masses are (:func:`mechanism_height`), for an arch
+    #: on piers or a check above ground; None otherwise (the record as before)
+    heights: dict | None = None
+    above_ground: AboveGround | None = None
 
     def direction(self, d: str) -> DirectionCheck:
         return {c.direction: c for c in self.directions}[d]
@@ -474,12 +578,18 @@ class CodeCheckResult:
         return all(v["passed"] for c in self.directions for v in c.checks.values())
 
     def to_dict(self) -> dict:
-        return {"arch": self.arch_name, "method": self.method, "config": self.config.to_dict(),
-                "directions": {c.direction: c.to_dict() for c in self.directions},
-                "governing": self.governing.direction, "passed": self.passed,
-                "units": {"mass": "kg/m", "m_star": "kg/m", "a0_star": "m/s^2",
-                          "as_star": "m/s^2", "d0": "m", "d0_star": "m", "du_star": "m",
-                          "ds_star": "m", "ts": "s", "a0_star_g": "g", "Se": "g"}}
+        out = {"arch": self.arch_name, "method": self.method, "config": self.config.to_dict(),
+               "directions": {c.direction: c.to_dict() for c in self.directions},
+               "governing": self.governing.direction, "passed": self.passed,
+               "units": {"mass": "kg/m", "m_star": "kg/m", "a0_star": "m/s^2",
+                         "as_star": "m/s^2", "d0": "m", "d0_star": "m", "du_star": "m",
+                         "ds_star": "m", "ts": "s", "a0_star_g": "g", "Se": "g"}}
+        if self.heights is not None:
+            out["mechanism_heights"] = self.heights
+            out["units"].update({"z": "m (above the foundation)", "moving_mass": "kg/m"})
+        if self.above_ground is not None:
+            out["above_ground"] = self.above_ground.to_dict()
+        return out
 
 
 def kinematic_check(kin: Kinematics, config: CodeCheckConfig | None = None,
@@ -544,13 +654,37 @@ def kinematic_check(kin: Kinematics, config: CodeCheckConfig | None = None,
                           np.asarray(kin.rotation, float).copy(), d_star, a_star, checks)
 
 
-def code_check(arch, limit=None, config: CodeCheckConfig | None = None) -> CodeCheckResult:
+def code_check(arch, limit=None, config: CodeCheckConfig | None = None,
+               above_ground: AboveGround | None = None) -> CodeCheckResult:
     """The code check of ``arch`` in both directions, from the mechanisms of ``limit`` (a
-    :class:`~archrock.statics.limit.LimitResult`; computed when None)."""
+    :class:`~archrock.statics.limit.LimitResult`; computed when None).  On an arch on piers
+    the result also says where each mechanism's masses are (:func:`mechanism_height`: the
+    moving mass and the height Z of its centroid above the foundation); with ``above_ground``
+    (the structure it stands in) and a spectrum, the checks of a mechanism above ground
+    (:func:`above_ground_checks`) join the ground-level ones."""
     from ..statics.limit import limit_analysis
 
+    if above_ground is not None and not isinstance(above_ground, AboveGround):
+        raise ArchInputError("above_ground: expected an AboveGround or None")
     cfg = CodeCheckConfig() if config is None else config
     lim = limit_analysis(arch, verify=True) if limit is None else limit
-    out = tuple(kinematic_check(mechanism_kinematics(arch, lim.mechanism(d), cfg.points), cfg, d)
-                for d in ("l", "r"))
-    return CodeCheckResult(cfg, out, getattr(arch, "name", ""))
+    kins = {d: mechanism_kinematics(arch, lim.mechanism(d), cfg.points) for d in ("l", "r")}
+    out = tuple(kinematic_check(kins[d], cfg, d) for d in ("l", "r"))
+    if not (getattr(arch, "pier_blocks", ()) or above_ground is not None):
+        return CodeCheckResult(cfg, out, getattr(arch, "name", ""))
+    heights = {d: mechanism_height(arch, kins[d]) for d in ("l", "r")}
+    if above_ground is not None and cfg.spectrum is not None:
+        out = tuple(DirectionCheck(**{**{f: getattr(c, f) for f in c.__dataclass_fields__},
+                                      "checks": {**c.checks, **above_ground_checks(
+                                          c, heights[c.direction]["z"], above_ground,
+                                          cfg.spectrum)}})
+                    for c in out)
+    elif above_ground is not None:
+        for d in ("l", "r"):
+            z = heights[d]["z"]
+            if not 0 <= z <= above_ground.height:
+                raise ArchInputError(f"height: {above_ground.height:g} m is below the "
+                                     f"mechanism's centroid (Z = {z:.4g} m above the "
+                                     f"foundation); allowed a structure height >= Z")
+    return CodeCheckResult(cfg, out, getattr(arch, "name", ""), heights=heights,
+                           above_ground=above_ground)

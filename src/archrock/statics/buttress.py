@@ -1,0 +1,281 @@
+"""Limit-analysis questions of an arch on piers (docs/piers.md): the least pier width with which
+the arch stands on its piers under its own weight, and the collapse multiplier against the
+piers' height.
+
+The minimum width is the classic buttress question: the arch's thrust leans on the pier, and
+the pier stands while a line of thrust fits inside it down to its foundation (Heyman, *The
+Stone Skeleton*, 1995, ch. 4 and 5; Ochsendorf, *Collapse of masonry structures*, PhD thesis,
+Cambridge 2002, ch. 3, arches on buttresses).  It is found by a bounded bisection on the width
+of both piers (equal), each step the static program's feasibility under self-weight (lambda = 0,
+:func:`archrock.statics.lp._stands`, the test the minimum thickness uses), so it is a lower-bound
+(safe) answer under Heyman's hypotheses: no tension, no crushing, no sliding.  At the minimum
+the admissible thrust passes through the pier's outer foot corner: for a monolithic
+rectangular pier of height h and weight w = rho g h W, under the arch's thrust H and vertical
+reaction V crossing the pier top at s outward of its inner face, the moment about that corner
+gives  w W / 2 + V (W - s) = H h,  i.e.  W = (-V + sqrt(V^2 + 2 rho g h (H h + V s))) / (rho g h).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import linprog
+
+from .._records import readonly_arrays
+from ..errors import ArchInputError, CannotStandError, LimitExceededError
+from ..geometry import ArchOnPiers, VoussoirArch, with_piers
+from ..units import G
+from .limit import limit_analysis
+from .lp import ThrustLine, _stands, _statics, _thrust_from_x
+
+__all__ = ["MinimumPierWidth", "minimum_pier_width", "PierHeightTable",
+           "k_against_pier_height", "MAX_WIDTH_FACTOR", "MAX_HEIGHTS"]
+
+#: Default bound of the width search, in units of the arch's extent (its span): a pier wider
+#: than 20 spans is no pier.  The caller may raise it to 100 spans (with_piers' own bound).
+MAX_WIDTH_FACTOR = 20.0
+#: Most heights in one k-against-height table.
+MAX_HEIGHTS = 200
+_MAX_STEPS = 200
+
+
+def _extent(poly) -> float:
+    """The extent [m] of a polygon arch, as :func:`~archrock.geometry.with_piers` measures it
+    (the larger side of the box around its voussoirs)."""
+    pts = np.vstack(list(poly.intrados) + list(poly.extrados))
+    return float(np.max(np.ptp(pts, axis=0)))
+
+
+def _reach(arch: VoussoirArch) -> float:
+    """The narrowest pier allowed: the wider horizontal reach of the two springing joints [m]."""
+    jp = np.asarray(arch.joint_points, float)
+    return float(max(jp[0, 0, 0] - jp[0, 1, 0], jp[-1, 1, 0] - jp[-1, 0, 0]))
+
+
+def _margin_state(arch: VoussoirArch):
+    """(margin, thrust line) of the self-weight state with the largest smallest margin (as
+    :func:`archrock.statics.lp._stands`, whose verdict is margin >= 0)."""
+    st = _statics(arch, "l")
+    A_ub = np.column_stack([st.A_ub[:, :3], np.ones(st.A_ub.shape[0])])
+    res = linprog(c=[0, 0, 0, -1.0], A_ub=A_ub, b_ub=st.b_ub,
+                  bounds=[(None, None)] * 3 + [(None, 1.0)], method="highs")
+    if res.status != 0:
+        return -math.inf, None
+    x = np.array([res.x[0], res.x[1], res.x[2], 0.0])
+    return float(res.x[3]), _thrust_from_x(st, x)
+
+
+@dataclass(frozen=True)
+class MinimumPierWidth:
+    """The least width [m] of two equal piers ``height`` [m] high with which the arch stands
+    under self-weight (:func:`minimum_pier_width`).
+
+    governed_by: "pier" (the thrust at that width passes through a pier's outer foot corner) or
+    "springing" (the narrowest pier the springing joint allows, ``reach``, already stands: the
+    width is not what limits the arch); bracket: the last (lo, hi) of the bisection, width = hi
+    (stands); thrust: the self-weight line of thrust at ``width`` (the state of largest margin,
+    forces per unit total weight of arch and piers); structure: the arch on those piers.
+    springing_force: (H, V) [N/m] the arch transmits to the left pier's top (H > 0 outward) and
+    springing_point [m] where its line crosses the springing joint.
+    """
+
+    width: float
+    height: float
+    courses: int
+    batter: float
+    governed_by: str
+    reach: float
+    max_width: float
+    bracket: tuple
+    tol: float
+    iterations: int
+    springing_force: tuple
+    springing_point: np.ndarray
+    thrust: ThrustLine = field(repr=False)
+    structure: ArchOnPiers = field(repr=False)
+    method: str = ("bisection on the width of both piers; each step the static program's "
+                   "feasibility under self-weight (no tension, lambda = 0)")
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    def to_dict(self) -> dict:
+        return {"width": self.width, "height": self.height, "courses": self.courses,
+                "batter": self.batter, "governed_by": self.governed_by, "reach": self.reach,
+                "max_width": self.max_width, "bracket": list(self.bracket), "tol": self.tol,
+                "iterations": self.iterations,
+                "springing_force": {"H": self.springing_force[0], "V": self.springing_force[1]},
+                "springing_point": self.springing_point.tolist(),
+                "foot_point": self.thrust.points[0].tolist(), "method": self.method,
+                "units": {"width": "m", "height": "m", "H": "N/m", "V": "N/m"}}
+
+
+def _check_arch(arch) -> None:
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected an archrock arch (Arch or PolygonArch), got "
+                             f"{type(arch).__name__}")
+    if isinstance(arch, ArchOnPiers) and arch.pier_blocks:
+        raise ArchInputError("arch: already on piers; allowed the arch without its piers (the "
+                             "width is what is sought)")
+
+
+def minimum_pier_width(arch: VoussoirArch, height: float, *, courses: int = 1,
+                       batter: float = 0.0, max_width: float | None = None,
+                       tol: float = 1e-7) -> MinimumPierWidth:
+    """The least width W [m] (at the pier top) of two equal piers ``height`` [m] high under
+    ``arch`` (:func:`archrock.geometry.with_piers`, ``courses`` and ``batter`` as there) with
+    which the arch stands under its own weight (module docstring).
+
+    Starts at the narrowest pier allowed (the springing joint's reach: if that stands, it is
+    the answer, ``governed_by="springing"``), doubles the width up to ``max_width`` (default
+    :data:`MAX_WIDTH_FACTOR` x the arch's extent, at most 100 x), then bisects to a relative
+    width ``tol`` (1e-15 <= tol < 0.5).  CannotStandError when the arch does not stand on rigid
+    ground (no pier helps) or when no width up to ``max_width`` suffices."""
+    _check_arch(arch)
+    try:
+        tol = float(tol)
+    except (TypeError, ValueError):
+        tol = math.nan
+    if not 1e-15 <= tol < 0.5:
+        raise ArchInputError(f"tol: {tol!r}; allowed 1e-15 <= tol < 0.5 (relative width of the "
+                             f"width bracket)")
+    from ..geometry.defect import _as_polygon
+
+    poly = _as_polygon(arch)  # checked once; the search rebuilds only the piers under it
+    extent = _extent(poly)
+    if max_width is None:
+        max_width = MAX_WIDTH_FACTOR * extent
+    if isinstance(max_width, (bool, str)):
+        raise ArchInputError(f"max_width: expected a number in metres, got {max_width!r}")
+    max_width = float(max_width)
+    reach = _reach(arch)
+    if not (math.isfinite(max_width) and reach <= max_width <= 100.0 * extent):
+        raise ArchInputError(f"max_width: {max_width!r} m; allowed from the springing joint's "
+                             f"reach ({reach:.4g} m) to 100 x the arch's extent "
+                             f"({100 * extent:.4g} m)")
+    # checks height, courses, batter by name (with_piers' messages)
+    with_piers(poly, height, reach, courses=courses, batter=batter, _trusted=True)
+    if not _stands(arch):
+        raise CannotStandError("arch: it does not stand under its own weight even on rigid "
+                               "supports; no pier carries it")
+
+    def build(w, trusted=False):
+        return with_piers(poly, height, w, courses=courses, batter=batter, name=arch.name + \
+                          " on piers", _trusted=trusted)
+
+    def stands(w):
+        return _stands(build(w, trusted=True))
+
+    it = 0
+    if stands(reach):
+        lo = hi = reach
+        governed = "springing"
+    else:
+        lo, hi = reach, min(2.0 * reach, max_width)
+        while not stands(hi):
+            it += 1
+            if hi >= max_width:
+                raise CannotStandError(
+                    f"minimum pier width: no width up to max_width = {max_width:.6g} m carries "
+                    f"the arch on piers {height:g} m high (raise max_width, at most "
+                    f"{100 * extent:.6g} m, or lower the piers)")
+            lo, hi = hi, min(2.0 * hi, max_width)
+        while hi - lo > tol * hi:
+            if it >= _MAX_STEPS:  # 1e-15 from a doubling bracket takes ~ 50 halvings
+                raise LimitExceededError(f"minimum pier width: the bisection did not reach tol "
+                                         f"= {tol:g} in {_MAX_STEPS} steps ([{lo:.17g}, {hi:.17g}])")
+            mid = 0.5 * (lo + hi)
+            if stands(mid):
+                hi = mid
+            else:
+                lo = mid
+            it += 1
+        governed = "pier"
+    structure = build(hi)
+    _, thrust = _margin_state(structure)
+    c = len(structure.piers[0])
+    weight = float(np.sum(structure.masses)) * G
+    f = thrust.forces[c] * weight
+    return MinimumPierWidth(float(hi), float(height), int(courses), float(batter), governed,
+                            reach, max_width, (float(lo), float(hi)), tol, it,
+                            (float(f[0]), float(f[1])), np.array(thrust.points[c], float),
+                            thrust, structure)
+
+
+@dataclass(frozen=True)
+class PierHeightTable:
+    """Collapse multipliers of an arch on two equal piers of width ``width`` [m] against their
+    height: ``heights`` [m] (0: the arch on rigid ground), ``k_l``, ``k_r``, the mechanisms'
+    hinge labels (joints numbered along each chain) and where hinge D is (``places_l``,
+    ``places_r``: "right pier foot, outer face", ...); ``span`` [m]: the clear span between the
+    intrados springing points (heights / span is the figure's axis)."""
+
+    heights: np.ndarray
+    k_l: np.ndarray
+    k_r: np.ndarray
+    labels_l: tuple
+    labels_r: tuple
+    places_l: tuple
+    places_r: tuple
+    width: float
+    courses: int
+    batter: float
+    span: float
+    arch_name: str
+    method: str = "limit analysis (kinematic four-hinge search checked by the static LP)"
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    @property
+    def k(self) -> np.ndarray:
+        return np.minimum(self.k_l, self.k_r)
+
+    def rows(self) -> list[dict]:
+        return [{"height": float(h), "height_over_span": float(h / self.span),
+                 "k_l": float(a), "k_r": float(b), "mechanism_l": la, "mechanism_r": lb,
+                 "hinge_d_l": pa, "hinge_d_r": pb}
+                for h, a, b, la, lb, pa, pb in zip(self.heights, self.k_l, self.k_r,
+                                                   self.labels_l, self.labels_r,
+                                                   self.places_l, self.places_r)]
+
+    def to_dict(self) -> dict:
+        return {"arch": self.arch_name, "width": self.width, "courses": self.courses,
+                "batter": self.batter, "span": self.span, "rows": self.rows(),
+                "method": self.method, "units": {"height": "m", "width": "m", "span": "m",
+                                                 "k": "g (horizontal load / weight)"}}
+
+
+def k_against_pier_height(arch: VoussoirArch, width: float, heights, *, courses: int = 1,
+                          batter: float = 0.0) -> PierHeightTable:
+    """k_l and k_r of ``arch`` on two equal piers ``width`` [m] wide for each height in
+    ``heights`` [m] (0: the arch on rigid ground; at most :data:`MAX_HEIGHTS` values, each
+    >= 0), by :func:`archrock.statics.limit.limit_analysis`."""
+    from ..geometry.piers import hinge_place
+
+    _check_arch(arch)
+    try:
+        hs = np.asarray(heights, float).ravel()
+    except (TypeError, ValueError):
+        raise ArchInputError(f"heights: {heights!r}; allowed a list of heights >= 0 m") from None
+    if not 1 <= hs.size <= MAX_HEIGHTS or not np.all(np.isfinite(hs)) or np.any(hs < 0):
+        raise ArchInputError(f"heights: {hs.size} value(s) {hs[:4].tolist()}...; allowed 1 to "
+                             f"{MAX_HEIGHTS} finite heights >= 0 m")
+    out = {k: [] for k in ("k_l", "k_r", "ll", "lr", "pl", "pr")}
+    for h in hs:
+        a = arch if h == 0 else with_piers(arch, float(h), width, courses=courses, batter=batter)
+        res = limit_analysis(a)
+        out["k_l"].append(res.k_l)
+        out["k_r"].append(res.k_r)
+        for d in ("l", "r"):
+            mech = res.mechanism(d)
+            out["l" + d].append(mech.label)
+            last = mech.labelled()[-1][1] if mech.hinges else None
+            out["p" + d].append("" if last is None else hinge_place(a, last.joint, last.edge))
+    jp = np.asarray(arch.joint_points, float)
+    span = float(jp[-1, 0, 0] - jp[0, 0, 0])
+    return PierHeightTable(hs, np.array(out["k_l"]), np.array(out["k_r"]), tuple(out["ll"]),
+                           tuple(out["lr"]), tuple(out["pl"]), tuple(out["pr"]), float(width),
+                           int(courses), float(batter), span, arch.name)
