@@ -217,7 +217,8 @@ class DisplacementCapacity:
 
     capacity: the movement's magnitude [m] (spread, closure, settlement or heave);
     fraction: capacity / span (the distance between the springings' mid-points); hinges: the
-    three hinges followed; mechanism: the hinges at capacity (the three and the fourth joint
+    three hinges at the onset; migrations: ((movement [m], hinges), ...) every hinge set
+    followed, from the onset's at 0; mechanism: the hinges at capacity (the three and the fourth joint
     end where the line of thrust reaches the masonry's edge) or, where the three hinges come
     into line, the three; reason: "fourth hinge" or "linkage straight" or "bound" (no
     collapse up to MAX_MOVEMENT sizes); curve: (k, 5) rows of movement [m], H [N/m],
@@ -233,6 +234,7 @@ class DisplacementCapacity:
     reason: str
     curve: np.ndarray
     how: str
+    migrations: tuple = ()
 
     def __post_init__(self):
         a = np.array(self.curve, float).reshape(-1, 5)
@@ -248,6 +250,8 @@ class DisplacementCapacity:
                           "V_left": self.curve[:, 2].tolist(),
                           "V_right": self.curve[:, 3].tolist(),
                           "crown_drop": self.curve[:, 4].tolist()},
+                "migrations": [{"movement": float(t), "hinges": [h.to_dict() for h in hs]}
+                               for t, hs in self.migrations],
                 "how": self.how}
 
 
@@ -362,45 +366,29 @@ def _labels(hinges) -> str:
     return ", ".join(f"{h.joint}{h.edge[0]}" for h in hinges)
 
 
-def displace(arch: VoussoirArch, movement: SupportMovement) -> DisplacedState:
-    """``arch`` under the prescribed support ``movement``: the hinges that open, the exact
-    displaced arch, its line of thrust, thrust and reactions.  The movement is followed from
-    zero in steps so that an arch that collapses on the way is caught: CannotStandError names
-    the movement at which it can no longer stand.  At zero movement the state holds the base
-    arch itself (its results bit for bit)."""
-    _check(arch, movement)
-    if movement.is_zero:
-        return DisplacedState(movement, (), np.zeros((0, 2)), arch, None, math.nan, math.nan,
-                              math.nan, 0.0, math.nan)
-    d = movement.relative
-    if not np.any(d):
-        # both supports settle alike: a rigid translation, no hinge opens
-        ul, _ = movement.supports
-        n = arch.n
-        disp = DisplacedArch(arch, (0.0,) * n, ((0.0, 0.0),) * n, (tuple(ul),) * n, (),
-                             movement, ())
-        return DisplacedState(movement, (), np.zeros((0, 2)), disp, None, math.nan, math.nan,
-                              math.nan, float(-ul[1]), math.nan)
-    hinges, points, _ = _onset(arch, movement)
-    total = float(np.hypot(*d))
-    steps = max(1, int(math.ceil(STEPS * total / arch.size)))
-    for k in range(1, steps):
-        mv = movement.scaled(k / steps)
-        disp = _build(arch, mv, hinges, points)
-        ok = disp is not None and _determinate(disp)[1] >= 0
-        if not ok:
-            cap = _bisect(arch, movement, hinges, points, (k - 1) / steps, k / steps,
-                          BISECT_TOL * arch.size / total)
-            raise CannotStandError(
-                f"arch: it cannot stand under {movement.describe()}: it collapses at "
-                f"{cap * 100:.6g}% of that movement ({cap * total:.6g} m relative movement)")
-    c_dir = [float(d[0]) / total, float(d[1]) / total, 0.0, 0.0]
-    return _state(arch, movement, hinges, points, c_dir)
+def _opening(disp: DisplacedArch) -> bool:
+    """Whether every hinge of a displaced arch has turned so that its joint opens (finite
+    relative rotations theta1, theta2 - theta1, -theta2 of the signs its edges require)."""
+    j1, j2, _ = (h.joint for h in disp.hinges)
+    t1, t2 = float(disp.angles[j1]), float(disp.angles[j2])
+    rel = (t1, t2 - t1, -t2)
+    return all(_EDGE_SIGN[h.edge] * r > 0 for h, r in zip(disp.hinges, rel))
+
+
+def _margin_at(arch, movement, hinges, points):
+    """(margin, where, displaced arch): -inf where the linkage cannot close or a hinge would
+    have to close."""
+    disp = _build(arch, movement, hinges, points)
+    if disp is None:
+        return -math.inf, None, None
+    if not _opening(disp):
+        return -math.inf, "closing", disp
+    _, margin, where = _determinate(disp)
+    return margin, where, disp
 
 
 def _stands_at(arch, movement, hinges, points) -> bool:
-    disp = _build(arch, movement, hinges, points)
-    return disp is not None and _determinate(disp)[1] >= 0
+    return _margin_at(arch, movement, hinges, points)[0] >= 0
 
 
 def _bisect(arch, unit, hinges, points, lo, hi, tol) -> float:
@@ -417,6 +405,125 @@ def _bisect(arch, unit, hinges, points, lo, hi, tol) -> float:
     return lo
 
 
+def _migrate(arch, unit, hinges, points, t, eps):
+    """Where the line of thrust of ``hinges`` reaches a fourth joint end just past movement t:
+    (new hinges, their base points, the fourth hinge) for the admissible three-hinge set that
+    replaces one hinge by the fourth and stands at t + eps (the largest margin), or (None,
+    None, fourth) where none does (collapse), fourth None where no joint end is reached (the
+    linkage or a hinge's compression ends it)."""
+    margin, where, disp = _margin_at(arch, unit.scaled(t + eps), hinges, points)
+    if where is None or where == "closing" or where[1] == "point":
+        return None, None, None
+    fourth = Hinge(int(where[0]), where[1])
+    if fourth.joint in {h.joint for h in hinges}:
+        return None, None, fourth
+    jp = np.asarray(arch.joint_points, float)
+    best = None
+    for k in range(3):
+        trio = tuple(sorted([h for i, h in enumerate(hinges) if i != k] + [fourth],
+                            key=lambda g: g.joint))
+        pts = [jp[h.joint, EDGES.index(h.edge)] for h in trio]
+        m, _, _ = _margin_at(arch, unit.scaled(t + eps), trio, pts)
+        if m >= 0 and (best is None or m > best[0]):
+            best = (m, trio, pts)
+    if best is None:
+        return None, None, fourth
+    return best[1], best[2], fourth
+
+
+@dataclass(frozen=True)
+class _Path:
+    """The followed movement: the curve rows, the hinge sets with the movement where each
+    began, and how it ended (capacity, reason, mechanism; reason None where the target was
+    reached)."""
+
+    rows: list
+    sets: list
+    end: float
+    reason: str | None
+    mechanism: tuple
+
+
+#: Most hinge migrations followed on one path (each is a hinge moving to another joint).
+MAX_MIGRATIONS_PER_JOINT = 4
+
+
+def _follow(arch, unit: SupportMovement, t_end: float, c_dir, line0, hinges, points) -> _Path:
+    """Follow ``unit`` x t for t from 0 to ``t_end`` [m] (or to the capacity) in steps of
+    size / STEPS, moving a hinge to the joint where a fourth hinge forms while a three-hinge set
+    with it stands (hinge migration), else stopping there (collapse)."""
+    size = arch.size
+    W = G * float(np.sum(arch.masses))
+    f0 = line0.forces[0]
+    rows = [[0.0, W * float(f0[0]), W * float(f0[1]), W * (1.0 - float(f0[1])), 0.0]]
+    sets = [(0.0, tuple(hinges))]
+    h, t, eps = size / STEPS, 0.0, 1e3 * BISECT_TOL * size
+    budget = MAX_MIGRATIONS_PER_JOINT * (arch.n + 1)
+    while t < t_end:
+        nxt = min(t + h, t_end)
+        if _stands_at(arch, unit.scaled(nxt), hinges, points):
+            st = _state(arch, unit.scaled(nxt), hinges, points, c_dir)
+            rows.append([nxt, st.thrust, st.v_left, st.v_right, st.crown_drop])
+            t = nxt
+            continue
+        cap = _bisect(arch, unit, hinges, points, t, nxt, BISECT_TOL * size)
+        new, pts, fourth = _migrate(arch, unit, hinges, points, cap, eps)
+        if cap > 0:
+            st = _state(arch, unit.scaled(cap), hinges, points, c_dir)
+            rows.append([cap, st.thrust, st.v_left, st.v_right, st.crown_drop])
+        if new is None or budget <= 0:
+            margin, where, disp = _margin_at(arch, unit.scaled(cap + eps), hinges, points)
+            if disp is None:
+                reason, mech = "linkage straight", tuple(hinges)
+            elif where == "closing":
+                reason, mech = "hinge closes", tuple(hinges)
+            elif fourth is None:
+                reason, mech = "hinge in tension", tuple(hinges)
+            else:
+                reason = "fourth hinge"
+                mech = tuple(sorted(tuple(hinges) + (fourth,), key=lambda g: g.joint))
+            return _Path(rows, sets, cap, reason, mech)
+        budget -= 1
+        hinges, points, t = new, pts, cap
+        sets.append((cap, tuple(new)))
+    return _Path(rows, sets, t_end, None, tuple(hinges))
+
+
+def displace(arch: VoussoirArch, movement: SupportMovement) -> DisplacedState:
+    """``arch`` under the prescribed support ``movement``: the hinges that open, the exact
+    displaced arch, its line of thrust, thrust and reactions.  The movement is followed from
+    zero in steps, with hinge migration (module docstring, 4), so that an arch that collapses
+    on the way is caught: CannotStandError names the movement at which it can no longer stand.
+    At zero movement the state holds the base arch itself (its results bit for bit)."""
+    _check(arch, movement)
+    if movement.is_zero:
+        return DisplacedState(movement, (), np.zeros((0, 2)), arch, None, math.nan, math.nan,
+                              math.nan, 0.0, math.nan)
+    d = movement.relative
+    if not np.any(d):
+        # both supports settle alike: a rigid translation, no hinge opens
+        ul, _ = movement.supports
+        n = arch.n
+        disp = DisplacedArch(arch, (0.0,) * n, ((0.0, 0.0),) * n, (tuple(ul),) * n, (),
+                             movement, ())
+        return DisplacedState(movement, (), np.zeros((0, 2)), disp, None, math.nan, math.nan,
+                              math.nan, float(-ul[1]), math.nan)
+    mag = float(np.hypot(movement.spread, movement.settlement))
+    unit = movement.scaled(1.0 / mag)
+    hinges, points, line0 = _onset(arch, unit)
+    rel = unit.relative / float(np.hypot(*unit.relative))
+    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    path = _follow(arch, unit, mag, c_dir, line0, hinges, points)
+    if path.reason is not None:
+        raise CannotStandError(
+            f"arch: it cannot stand under {movement.describe()}: it collapses at "
+            f"{path.end:.6g} m of that movement ({path.reason}: hinges "
+            f"{_labels(path.mechanism)})")
+    _, hinges = path.sets[-1]
+    pts = [arch.joint_points[h.joint, EDGES.index(h.edge)] for h in hinges]
+    return _state(arch, movement, hinges, pts, c_dir)
+
+
 def _span(arch) -> float:
     jp = np.asarray(arch.joint_points, float)
     a, b = jp[0].mean(axis=0), jp[-1].mean(axis=0)
@@ -427,7 +534,9 @@ def displacement_capacity(arch: VoussoirArch, kind: str = "spread",
                           side: str = "right") -> DisplacementCapacity:
     """The movement of ``kind`` ("spread", "closure", "settlement", "heave") on ``side``
     ("right", "left", "both") at which ``arch`` can no longer stand (module docstring, 4),
-    with its mechanism and the curve of thrust, reactions and crown drop against the movement."""
+    with its mechanism and the curve of thrust, reactions and crown drop against the movement.
+    Bounded: an arch still standing at MAX_MOVEMENT sizes reports that bound (reason
+    "bound")."""
     if kind not in CAPACITY_KINDS:
         raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(CAPACITY_KINDS)}")
     if side not in SIDES:
@@ -438,39 +547,13 @@ def displacement_capacity(arch: VoussoirArch, kind: str = "spread",
     if not np.any(unit.relative):
         raise ArchInputError(f"kind: {kind!r} on both supports is a rigid translation of the "
                              f"arch; allowed 'spread' or 'closure' with side 'both'")
-    size = arch.size
     hinges, points, line0 = _onset(arch, unit)
-    rel = float(np.hypot(*unit.relative))  # relative movement per unit of the kind's movement
-    d = unit.relative / rel
-    c_dir = [float(d[0]), float(d[1]), 0.0, 0.0]
-    W = G * float(np.sum(arch.masses))
-    x0 = line0.forces[0]
-    rows = [[0.0, W * float(x0[0]), W * float(x0[1]), W * (1.0 - float(x0[1])), 0.0]]
-    h = size / STEPS
-    t, reason, cap = 0.0, "bound", MAX_MOVEMENT * size
-    while t < MAX_MOVEMENT * size:
-        nxt = t + h
-        mv = unit.scaled(nxt)
-        if not _stands_at(arch, mv, hinges, points):
-            cap = _bisect(arch, unit, hinges, points, t, nxt, BISECT_TOL * size)
-            hi = min(nxt, cap + BISECT_TOL * size)
-            reason = "fourth hinge" if _build(arch, unit.scaled(hi), hinges, points) \
-                is not None else "linkage straight"
-            break
-        st = _state(arch, mv, hinges, points, c_dir)
-        rows.append([nxt, st.thrust, st.v_left, st.v_right, st.crown_drop])
-        t = nxt
-    mechanism = tuple(hinges)
-    if reason != "bound" and cap > 0:
-        st = _state(arch, unit.scaled(cap), hinges, points, c_dir)
-        rows.append([cap, st.thrust, st.v_left, st.v_right, st.crown_drop])
-        if reason == "fourth hinge":
-            _, _, where = _determinate(st.arch)
-            j, e = where
-            if e != "point":
-                mechanism = tuple(sorted(hinges + (Hinge(j, e),), key=lambda g: g.joint))
+    rel = unit.relative / float(np.hypot(*unit.relative))
+    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    path = _follow(arch, unit, MAX_MOVEMENT * arch.size, c_dir, line0, hinges, points)
     how = (f"hinges from the LP (HiGHS) that minimises the work on the moving support; exact "
-           f"two-bar linkage; followed in steps of size/{STEPS}, bisected to {BISECT_TOL:g} of "
-           f"the size")
-    return DisplacementCapacity(kind, side, float(cap), float(cap) / _span(arch), tuple(hinges),
-                                mechanism, reason, np.array(rows), how)
+           f"two-bar linkage; followed in steps of size/{STEPS} with hinge migration, the "
+           f"capacity bisected to {BISECT_TOL:g} of the size")
+    return DisplacementCapacity(kind, side, float(path.end), float(path.end) / _span(arch),
+                                tuple(hinges), path.mechanism, path.reason or "bound",
+                                np.array(path.rows), how, tuple(path.sets))
