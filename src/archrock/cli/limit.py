@@ -27,8 +27,36 @@ def add_limit_parser(subparsers):
     p.add_argument("--thrust-range", action="store_true",
                    help="also compute the least and greatest horizontal thrust under self-weight "
                         "(supports spreading or closing) and their hinges (docs/thrust.md)")
+    p.add_argument("--capacity", choices=("spread", "closure", "settlement"), default=None,
+                   help="also compute the support movement at which the arch can no longer "
+                        "stand: spreading, closing or settlement of --support-side (default the "
+                        "right support; docs/supports.md)")
+    p.add_argument("--supports-plot", metavar="FILE.png", default=None,
+                   help="with --spread/--settlement and/or --capacity: figure of the displaced "
+                        "arch with its line of thrust and/or of the capacity curve")
     p.set_defaults(func=run_limit)
     return p
+
+
+def _supports_extra(args, arch):
+    """(lines, json, capacity) for a displaced arch and --capacity (docs/supports.md)."""
+    from ..geometry.displaced import DisplacedArch
+    from ..reports.supports import displaced_summary, format_capacity, format_displaced
+
+    lines, out, cap = [], {}, None
+    if isinstance(arch, DisplacedArch):
+        lines.append(format_displaced(arch))
+        out["support_movement"] = displaced_summary(arch)
+    if args.capacity is not None:
+        from ..statics.supports import displacement_capacity
+
+        if isinstance(arch, DisplacedArch):
+            raise CLIError("--capacity: computed on the arch as built; leave out --spread and "
+                           "--settlement (the capacity's curve gives every movement up to it)")
+        cap = displacement_capacity(arch, args.capacity, args.support_side or "right")
+        lines.append(format_capacity(cap))
+        out["capacity"] = cap.to_dict()
+    return lines, out, cap
 
 
 def run_limit(args) -> int:
@@ -37,8 +65,10 @@ def run_limit(args) -> int:
     from ..statics.limit import limit_analysis, minimum_thickness
     from ..reports.limit import format_limit_table, limit_summary
 
+    plot = figure_arg(args.supports_plot)
     arch = arch_from_args(args)
     result = limit_analysis(arch, verify=True)
+    sup_lines, sup_json, cap = _supports_extra(args, arch)
     mu = args.friction
     mt = None
     if args.min_thickness:
@@ -57,10 +87,25 @@ def run_limit(args) -> int:
         from ..statics.thrust import thrust_range
 
         extra["thrust"] = thrust_range(arch)
+    if plot is not None:
+        from ..geometry.displaced import DisplacedArch
+        from ..reports.supports import save_supports_figure
+
+        state = None
+        if isinstance(arch, DisplacedArch):
+            from ..statics.supports import displace
+
+            state = displace(arch.base, arch.movement)
+        if state is None and cap is None:
+            raise CLIError("--supports-plot: needs --spread/--settlement or --capacity")
+        path = save_supports_figure(plot, state=state, capacity=cap)
+        print(f"wrote {path}", file=sys.stderr)
     if args.json:
-        emit_json(limit_summary(result, mt, **extra))
+        emit_json({**limit_summary(result, mt, **extra), **sup_json})
     else:
         print(format_limit_table(result, mt, **extra))
+        for line in sup_lines:
+            print(line)
     return 0
 
 
