@@ -157,3 +157,18 @@ def test_bad_input():
     # both supports settling alike: a rigid translation, no hinge
     st = displace(arch, SupportMovement(0.0, 0.1, "both"))
     assert st.hinges == () and abs(st.crown_drop - 0.05) < 1e-15
+
+
+def test_reclosed_geometry_and_closing_hinges():
+    from archrock.statics.supports import closing_hinges, reclosed
+
+    arch = nominal_arch()
+    k0 = limit_analysis(arch).k_l
+    st = displace(arch, SupportMovement(1e-6))
+    r = limit_analysis(st.arch)
+    # the point contacts: a mechanism that turns the keystone's open joint back governs M_l
+    assert 4 in closing_hinges(st.arch, r.mechanism_l)
+    # re-closed, the geometry has hardly changed: k is continuous at zero movement
+    rc = limit_analysis(reclosed(st.arch))
+    assert abs(rc.k_l - k0) < 1e-4 and abs(rc.k_r - k0) < 1e-4
+    assert reclosed(st.arch).open_joints == ()

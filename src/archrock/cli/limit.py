@@ -38,15 +38,32 @@ def add_limit_parser(subparsers):
     return p
 
 
-def _supports_extra(args, arch):
+def _supports_extra(args, arch, result):
     """(lines, json, capacity) for a displaced arch and --capacity (docs/supports.md)."""
     from ..geometry.displaced import DisplacedArch
     from ..reports.supports import displaced_summary, format_capacity, format_displaced
+    from ..statics.supports import closing_hinges
 
     lines, out, cap = [], {}, None
     if isinstance(arch, DisplacedArch):
         lines.append(format_displaced(arch))
         out["support_movement"] = displaced_summary(arch)
+        closing = {}
+        for d, m in (("l", result.mechanism_l), ("r", result.mechanism_r)):
+            shut = closing_hinges(arch, m)
+            closing[d] = list(shut)
+            if shut:
+                lines.append(f"M_{d} turns the open joint(s) {', '.join(map(str, shut))} back "
+                             f"toward closing: it moves only until their gaps close "
+                             f"(docs/supports.md)")
+        out["support_movement"]["closing"] = closing
+        from ..statics.limit import limit_analysis
+        from ..statics.supports import reclosed
+
+        rc = limit_analysis(reclosed(arch), verify=False)
+        lines.append(f"with the open joints re-closed (the displaced geometry alone): k_l = "
+                     f"{rc.k_l:.4f}, k_r = {rc.k_r:.4f}")
+        out["support_movement"]["reclosed"] = {"k_l": rc.k_l, "k_r": rc.k_r}
     if args.capacity is not None:
         from ..statics.supports import displacement_capacity
 
@@ -68,7 +85,7 @@ def run_limit(args) -> int:
     plot = figure_arg(args.supports_plot)
     arch = arch_from_args(args)
     result = limit_analysis(arch, verify=True)
-    sup_lines, sup_json, cap = _supports_extra(args, arch)
+    sup_lines, sup_json, cap = _supports_extra(args, arch, result)
     mu = args.friction
     mt = None
     if args.min_thickness:

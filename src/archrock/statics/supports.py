@@ -50,7 +50,8 @@ from .lp import ThrustLine, _statics, _thrust_from_x
 from .thrust import _touching
 
 __all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
-           "displacement_capacity", "CAPACITY_KINDS", "STEPS", "BISECT_TOL"]
+           "displacement_capacity", "closing_hinges", "reclosed", "CAPACITY_KINDS", "STEPS",
+           "BISECT_TOL"]
 
 #: What ``displacement_capacity`` can push: the kind and the unit movement it follows.
 CAPACITY_KINDS = {"spread": (1.0, 0.0), "closure": (-1.0, 0.0), "settlement": (0.0, 1.0),
@@ -557,3 +558,29 @@ def displacement_capacity(arch: VoussoirArch, kind: str = "spread",
     return DisplacementCapacity(kind, side, float(path.end), float(path.end) / _span(arch),
                                 tuple(hinges), path.mechanism, path.reason or "bound",
                                 np.array(path.rows), how, tuple(path.sets))
+
+
+def closing_hinges(arch: DisplacedArch, mechanism) -> tuple[int, ...]:
+    """The open joints of a displaced arch that ``mechanism`` (e.g. of
+    :func:`archrock.statics.limit.limit_analysis` on it) turns back toward closing: it hinges
+    there about the other edge's label (the same point, the opposite relative rotation).  Such
+    a mechanism moves only until that joint's gap closes (a rotation of the order of the hinge's
+    rotation so far), then the joint bears on its whole face again: limit analysis on the
+    displaced configuration counts it, though it is not a collapse of the arch as a whole."""
+    if not isinstance(arch, DisplacedArch):
+        return ()
+    opened = {h.joint: h.edge for h in arch.hinges}
+    return tuple(h.joint for h in mechanism.hinges
+                 if h.joint in opened and h.edge != opened[h.joint])
+
+
+def reclosed(arch: DisplacedArch) -> DisplacedArch:
+    """The displaced geometry with every open joint bearing on a whole face again: its contact
+    segment is the face of the voussoir on its right as that voussoir now lies (at the right
+    springing, the last voussoir's).  Limit analysis on it gives the effect of the changed
+    geometry alone, without the point contacts (docs/supports.md): the open joints' gaps are
+    small at small movements, and a mechanism that turns them back closes them at once."""
+    if not isinstance(arch, DisplacedArch):
+        raise ArchInputError(f"arch: expected a DisplacedArch, got {type(arch).__name__}")
+    return DisplacedArch(arch.base, tuple(arch.angles), tuple(arch.origins), tuple(arch.images),
+                         (), arch.movement, arch.hinges, f"{arch.name} (joints re-closed)")
