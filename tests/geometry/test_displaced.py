@@ -82,3 +82,23 @@ def test_scaled_and_dict():
     assert len(out["point_joints"]) == 3
     with pytest.raises(ArchInputError, match="angles"):
         DisplacedArch(arch, (0.0,), ((0, 0),), ((0, 0),))
+
+
+def test_contact_engine_takes_a_displaced_arch_with_point_springings():
+    """Closing the span opens both springings (0e, 7e): the contact engine builds the supports
+    from their own faces, and the displaced arch stands still in it."""
+    pytest.importorskip("pymunk")
+    from archrock.contact import ContactArch, EngineSettings
+
+    arch = nominal_arch()
+    d = displace(arch, SupportMovement(-0.05)).arch
+    assert {0, 7} <= set(d.open_joints)
+    faces = d.abutment_faces
+    assert np.allclose(faces[1] - arch.joint_points[-1], [-0.05, 0.0], rtol=0, atol=1e-15)
+    ca = ContactArch(d, EngineSettings(steps_per_T=150, iterations=20))
+    assert np.all(np.isfinite(ca.joint_tangents))
+    ca.settle()
+    ca.step(0.0, int(ca.settings.steps_per_T))
+    pos, ang, vel, rate = ca.state()
+    assert np.abs(ang - ca.ref_ang).max() < 1e-4
+    assert np.abs(pos - ca.ref_pos).max() < 1e-4 * arch.size

@@ -248,6 +248,15 @@ class DisplacedArch(VoussoirArch):
         return self._joints[1]
 
     @property
+    def abutment_faces(self) -> np.ndarray:
+        """(2, 2, 2): the left and right supports' faces [m] (intrados end, extrados end) as the
+        supports now lie: the base springing faces moved by the supports' translations.  At an
+        open springing joint the voussoir touches its support's face at the hinge point only."""
+        base = np.asarray(self.base.joint_points, float)
+        ul, ur = (np.zeros(2), np.zeros(2)) if self.movement is None else self.movement.supports
+        return np.array([base[0] + ul, base[-1] + ur])
+
+    @property
     def open_joints(self) -> tuple[int, ...]:
         return tuple(j for j, _, _ in self.point_joints)
 
