@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from archrock.errors import ArchInputError, CannotStandError
-from archrock.geometry import nominal_arch, random_arch
+from archrock.geometry import family_arch, nominal_arch, random_arch, with_piers
 from archrock.geometry.displaced import SupportMovement
 from archrock.statics.hinges import Hinge
 from archrock.statics.limit import limit_analysis
@@ -74,6 +74,9 @@ def _hand_three_hinge(d):
     (random_arch(seed=7), SupportMovement(0.2, 0.3, "left")),
     (nominal_arch(radius=1.0, embrace_deg=180, thickness=0.2, voussoirs=36),
      SupportMovement(0.1, 0.0, "both")),
+    (with_piers(nominal_arch(), 4.0, 2.0, courses=3), SupportMovement(0.1)),
+    (family_arch("pointed", span=10, rise=7, thickness=1, voussoirs=12),
+     SupportMovement(0.05, 0.1, "left")),
 ])
 def test_thrust_matches_a_hand_written_three_hinge_statics(arch, mv):
     st = displace(arch, mv)
