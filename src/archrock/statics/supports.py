@@ -321,8 +321,7 @@ def _onset(arch, movement):
         moving_right = movement.side != "left"
 
         def key(c):
-            disp = _build(arch, unit, c[0], c[1])
-            margin = -math.inf if disp is None else _determinate(disp)[1]
+            margin = _margin_at(arch, unit, c[0], c[1])[0]
             joints = [h.joint for h in c[0]]
             near = [-j for j in joints[::-1]] if moving_right else joints
             return (-(margin > 0), near)
@@ -334,7 +333,7 @@ def _crown(arch) -> int:
     return int(np.argmax(np.asarray(arch.centroids, float)[:, 1]))
 
 
-def _state(arch, movement, hinges, points, c_dir, line0=None) -> DisplacedState:
+def _state(arch, movement, hinges, points, c_dir) -> DisplacedState:
     """The state at ``movement`` with the given hinges (base points); raises where it cannot
     stand."""
     W = G * float(np.sum(arch.masses))
@@ -348,12 +347,14 @@ def _state(arch, movement, hinges, points, c_dir, line0=None) -> DisplacedState:
     st = _statics(disp, "l")
     res = linprog(c=c_dir, A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 3 + [(0.0, 0.0)],
                   method="highs")
-    if res.status != 0 or margin < 0:
+    if margin < 0:
         raise CannotStandError(
             f"arch: under {movement.describe()} no line of thrust fits the displaced arch "
             f"(least margin {margin:.3g} at joint {where[0]} {where[1]}; linear program status "
             f"{res.status}): a fourth hinge has formed and the arch has collapsed")
-    x = np.array(res.x, float)
+    # at a margin within the solver's feasibility tolerance (~1e-7) of zero, HiGHS may call
+    # the program infeasible: the determinate line through the three hinges is then the answer
+    x = np.array(res.x, float) if res.status == 0 else np.array(x_det, float)
     x[3] = 0.0
     line = _thrust_from_x(st, x)
     k = _crown(arch)
