@@ -175,3 +175,20 @@ def test_reclosed_geometry_and_closing_hinges():
     rc = limit_analysis(reclosed(st.arch))
     assert abs(rc.k_l - k0) < 1e-4 and abs(rc.k_r - k0) < 1e-4
     assert reclosed(st.arch).open_joints == ()
+
+
+def test_symmetric_spread_moves_the_crown_hinge_as_the_closed_form():
+    """Both supports of a semicircle with a crown joint spread by s/2 each: by symmetry the
+    crown hinge stays on the axis, at the height where each half-link (from the haunch hinge
+    moved by s/2 to the crown) keeps its length."""
+    R, t, s = 1.0, 0.2, 0.15
+    arch = nominal_arch(radius=R, embrace_deg=180, thickness=t, voussoirs=36)
+    st = displace(arch, SupportMovement(s, 0.0, "both"))
+    assert [h.joint for h in st.hinges] == [6, 18, 30]
+    h1 = arch.joint_point(6, "intrados")
+    crown = arch.joint_point(18, "extrados")
+    link = math.hypot(*(crown - h1))
+    x1 = h1[0] - s / 2
+    y = h1[1] + math.sqrt(link ** 2 - x1 ** 2)
+    assert abs(st.points[1][0]) <= 1e-12 and abs(st.points[1][1] - y) <= 1e-12
+    assert np.allclose(st.points[0], h1 + [-s / 2, 0.0], rtol=0, atol=1e-15)
