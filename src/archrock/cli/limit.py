@@ -31,6 +31,13 @@ def add_limit_parser(subparsers):
                    help="also compute the least width [m] of two equal monolithic piers H m "
                         "high with which the arch stands under self-weight (bisection; "
                         "docs/piers.md); the arch is given without --pier-* options")
+    p.add_argument("--capacity", choices=("spread", "closure", "settlement"), default=None,
+                   help="also compute the support movement at which the arch can no longer "
+                        "stand: spreading, closing or settlement of --support-side (default the "
+                        "right support; docs/supports.md)")
+    p.add_argument("--supports-plot", metavar="FILE.png", default=None,
+                   help="with --spread/--settlement and/or --capacity: figure of the displaced "
+                        "arch with its line of thrust and/or of the capacity curve")
     p.set_defaults(func=run_limit)
     return p
 
@@ -48,15 +55,55 @@ def _min_pier_width(args, arch):
     return minimum_pier_width(arch, args.min_pier_width)
 
 
+def _supports_extra(args, arch, result):
+    """(lines, json, capacity) for a displaced arch and --capacity (docs/supports.md)."""
+    from ..geometry.displaced import DisplacedArch
+    from ..reports.supports import displaced_summary, format_capacity, format_displaced
+    from ..statics.supports import closing_hinges
+
+    lines, out, cap = [], {}, None
+    if isinstance(arch, DisplacedArch):
+        lines.append(format_displaced(arch))
+        out["support_movement"] = displaced_summary(arch)
+        closing = {}
+        for d, m in (("l", result.mechanism_l), ("r", result.mechanism_r)):
+            shut = closing_hinges(arch, m)
+            closing[d] = list(shut)
+            if shut:
+                lines.append(f"M_{d} turns the open joint(s) {', '.join(map(str, shut))} back "
+                             f"toward closing: it moves only until their gaps close "
+                             f"(docs/supports.md)")
+        out["support_movement"]["closing"] = closing
+        from ..statics.limit import limit_analysis
+        from ..statics.supports import reclosed
+
+        rc = limit_analysis(reclosed(arch), verify=False)
+        lines.append(f"with the open joints re-closed (the displaced geometry alone): k_l = "
+                     f"{rc.k_l:.4f}, k_r = {rc.k_r:.4f}")
+        out["support_movement"]["reclosed"] = {"k_l": rc.k_l, "k_r": rc.k_r}
+    if args.capacity is not None:
+        from ..statics.supports import displacement_capacity
+
+        if isinstance(arch, DisplacedArch):
+            raise CLIError("--capacity: computed on the arch as built; leave out --spread and "
+                           "--settlement (the capacity's curve gives every movement up to it)")
+        cap = displacement_capacity(arch, args.capacity, args.support_side or "right")
+        lines.append(format_capacity(cap))
+        out["capacity"] = cap.to_dict()
+    return lines, out, cap
+
+
 def run_limit(args) -> int:
     from ..errors import CannotStandError
     from ..statics.friction import friction_analysis, friction_minimum_thickness, friction_needed
     from ..statics.limit import limit_analysis, minimum_thickness
     from ..reports.limit import format_limit_table, limit_summary
 
+    plot = figure_arg(args.supports_plot)
     arch = arch_from_args(args)
     mpw = _min_pier_width(args, arch)
     result = limit_analysis(arch, verify=True)
+    sup_lines, sup_json, cap = _supports_extra(args, arch, result)
     mu = args.friction
     mt = None
     if args.min_thickness:
@@ -77,10 +124,25 @@ def run_limit(args) -> int:
         from ..statics.thrust import thrust_range
 
         extra["thrust"] = thrust_range(arch)
+    if plot is not None:
+        from ..geometry.displaced import DisplacedArch
+        from ..reports.supports import save_supports_figure
+
+        state = None
+        if isinstance(arch, DisplacedArch):
+            from ..statics.supports import displace
+
+            state = displace(arch.base, arch.movement)
+        if state is None and cap is None:
+            raise CLIError("--supports-plot: needs --spread/--settlement or --capacity")
+        path = save_supports_figure(plot, state=state, capacity=cap)
+        print(f"wrote {path}", file=sys.stderr)
     if args.json:
-        emit_json(limit_summary(result, mt, **extra))
+        emit_json({**limit_summary(result, mt, **extra), **sup_json})
     else:
         print(format_limit_table(result, mt, **extra))
+        for line in sup_lines:
+            print(line)
     return 0
 
 

@@ -105,6 +105,7 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
         g.add_argument(f"--right-pier-{what}", type=_int if what == "courses" else finite_float,
                        metavar=flag, help=f"the right pier's {what} where it differs from the "
                                           f"left one's (default: --pier-{what})")
+    add_support_options(parser)
     return parser
 
 
@@ -119,7 +120,7 @@ def arch_from_args(args: argparse.Namespace):
         from ..geometry import apply_defects
 
         arch = apply_defects(arch, args.defect)
-    return _piers_from_args(args, arch)
+    return _supports_from_args(args, _piers_from_args(args, arch))
 
 
 def _piers_from_args(args: argparse.Namespace, arch):
@@ -355,3 +356,48 @@ def model_from_args(args: argparse.Namespace, arch=None):
 
     arch = arch_from_args(args) if arch is None else arch
     return prepare(arch, impact_spec_from_args(args))
+
+
+# ---------------------------------------------------------------------------- support movements
+def add_support_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add the support-movement options (docs/supports.md): the arch after a prescribed
+    movement of its springings, hinged and displaced exactly."""
+    g = parser.add_argument_group(
+        "support movement", "the arch after its supports have moved (docs/supports.md): three "
+                            "hinges open and the arch is displaced exactly")
+    g.add_argument("--spread", type=finite_float, metavar="D",
+                   help="horizontal movement of the support [m]: > 0 opens the span, < 0 "
+                        "closes it (default 0)")
+    g.add_argument("--settlement", type=finite_float, metavar="S",
+                   help="vertical movement of the support [m]: > 0 down, < 0 up (default 0)")
+    g.add_argument("--support-side", choices=("right", "left", "both"), default=None,
+                   help="which support moves: right (default), left, or both by half "
+                        "(symmetric)")
+    return parser
+
+
+def _supports_from_args(args: argparse.Namespace, arch):
+    """``arch`` after the movement of --spread/--settlement/--support-side (the displaced arch
+    of archrock.statics.supports.displace; the arch itself at zero movement)."""
+    s = getattr(args, "spread", None)
+    v = getattr(args, "settlement", None)
+    side = getattr(args, "support_side", None)
+    if s is None and v is None:
+        if side is not None:
+            raise CLIError("--support-side: needs --spread or --settlement (the movement, in "
+                           "metres)")
+        return arch
+    from ..errors import ArchInputError
+    from ..geometry.displaced import SupportMovement
+    from ..statics.supports import displace
+
+    try:
+        mv = SupportMovement(0.0 if s is None else s, 0.0 if v is None else v,
+                             side or "right")
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("spread:", "--spread:"), ("settlement:", "--settlement:")):
+            if msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
+    return displace(arch, mv).arch

@@ -126,8 +126,11 @@ class ContactArch:
         self.abutment_bodies = []
         self.abutment_shapes = []
         ground = space.static_body
-        for j, side, name in ((0, 0, "left"), (arch.n, arch.n - 1, "right")):
-            pi, pe = pts[j, 0], pts[j, 1]
+        # a displaced arch's supports (archrock.geometry.DisplacedArch): their own faces, which
+        # an open springing joint touches at one point
+        faces = getattr(arch, "abutment_faces", None)
+        for k, (j, side, name) in enumerate(((0, 0, "left"), (arch.n, arch.n - 1, "right"))):
+            pi, pe = (pts[j, 0], pts[j, 1]) if faces is None else (faces[k, 0], faces[k, 1])
             t = pe - pi
             length = float(np.hypot(*t))
             nrm = np.array([-t[1], t[0]]) / length
@@ -147,8 +150,11 @@ class ContactArch:
         # joint midpoints, lengths and tangents at rest (for sliding)
         mid = 0.5 * (pts[:, 0] + pts[:, 1])
         tan = pts[:, 1] - pts[:, 0]
+        if np.any(np.hypot(tan[:, 0], tan[:, 1]) == 0.0):  # point contacts: their direction
+            point = np.hypot(tan[:, 0], tan[:, 1]) == 0.0
+            tan = np.where(point[:, None], np.asarray(arch.joint_directions, float), tan)
         self.joint_tangents = tan / np.hypot(tan[:, 0], tan[:, 1])[:, None]
-        self.joint_lengths = np.hypot(tan[:, 0], tan[:, 1])
+        self.joint_lengths = np.hypot(*(pts[:, 1] - pts[:, 0]).T)
         self.joint_mid = mid
         self.time = 0.0
         self.steps = 0

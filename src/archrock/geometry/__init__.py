@@ -8,7 +8,9 @@
 * :mod:`~archrock.geometry.families` -- :func:`family_arch`: circular, pointed, elliptical,
   three-centred, parabolic and catenary arches from span, rise and thickness;
 * :mod:`~archrock.geometry.piers` -- :func:`with_piers`: an arch on two piers of courses
-  (:class:`ArchOnPiers`, blocks named "pier" or "voussoir").
+  (:class:`ArchOnPiers`, blocks named "pier" or "voussoir");
+* :mod:`~archrock.geometry.displaced` -- :class:`SupportMovement` and :class:`DisplacedArch`,
+  an arch after its supports moved (open hinges as point contacts; docs/supports.md).
 
 :func:`arch_from_dict` reads either geometry format (a family arch's dict, with its recipe
 under ``"family"``, is rebuilt as the :class:`FamilyArch`).
@@ -18,6 +20,7 @@ from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties, power
 from .circular import (OPPENHEIM, Arch, nominal_arch, oppenheim_arch, perturb_voussoirs,
                        random_arch, random_spans_thicknesses_radii, sector_properties)
 from .defect import Defect, apply_defect, apply_defects
+from .displaced import DisplacedArch, SupportMovement
 from .families import JOINTS, SHAPES, FamilyArch, family_arch
 from .piers import ArchOnPiers, with_piers
 from .polygon import FACE_TOLERANCE, PolygonArch, as_polygon
@@ -27,7 +30,7 @@ __all__ = ["VoussoirArch", "Arch", "PolygonArch", "Load", "nominal_arch", "oppen
            "sector_properties", "polygon_properties", "power_of_two_near", "as_polygon",
            "family_arch", "FamilyArch", "SHAPES", "JOINTS", "arch_from_dict", "OPPENHEIM",
            "DEFAULT_DENSITY", "FACE_TOLERANCE", "Defect", "apply_defect", "apply_defects",
-           "ArchOnPiers", "with_piers"]
+           "ArchOnPiers", "with_piers", "DisplacedArch", "SupportMovement"]
 
 
 def arch_from_dict(data, name: str = "arch") -> VoussoirArch:

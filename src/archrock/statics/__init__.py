@@ -6,5 +6,6 @@
   mechanism), :mod:`.lp` (the static LP and the line of thrust), :mod:`.liftoff` (mechanisms
   with lift-off from the LP's dual) and :mod:`.thickness` (minimum thickness);
 * :mod:`.friction`: the same with Coulomb friction at the joints;
-* :mod:`.thrust`: the range of horizontal thrust under self-weight (spreading and closing supports).
+* :mod:`.thrust`: the range of horizontal thrust under self-weight (spreading and closing supports);
+* :mod:`.supports`: prescribed support movements, the displaced arch and the displacement capacity.
 """

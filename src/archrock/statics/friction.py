@@ -114,7 +114,11 @@ def _frames(arch: VoussoirArch):
     compressive normal, u turned clockwise), shape (n+1, 2) each."""
     jp = np.asarray(arch.joint_points, float)
     e = jp[:, 1] - jp[:, 0]
-    u = e / np.hypot(e[:, 0], e[:, 1])[:, None]
+    L = np.hypot(e[:, 0], e[:, 1])
+    if np.any(L == 0.0):  # point contacts (a displaced arch's open hinges): their direction
+        e = np.where((L == 0.0)[:, None], np.asarray(arch.joint_directions, float), e)
+        L = np.where(L == 0.0, 1.0, L)
+    u = e / L[:, None]
     return u, np.column_stack([u[:, 1], -u[:, 0]])
 
 

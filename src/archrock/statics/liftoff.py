@@ -240,6 +240,8 @@ def _lp_mechanism(arch: VoussoirArch, direction: str):
         thrust = _thrust_from_x(st, res.x)
     mu = -np.asarray(res.ineqlin.marginals, float)
     support = np.flatnonzero(mu > _DUAL_TOL * np.max(mu))
+    # only joint-end rows name hinges (a point contact's compression row comes after them)
+    support = support[support < 2 * (arch.n + 1)]
     w, g, P = _kinematic_frame(arch)
     T, _, X, Y = _row_terms(w, g, P)
     d = st.d
@@ -278,7 +280,13 @@ def _hinge_rows(cw, cwx, cwy, px, py, d):
     equality puts it through that end."""
     ex, ey = px[..., 1] - px[..., 0], py[..., 1] - py[..., 0]
     L = np.hypot(ex, ey)
-    nux, nuy = ey / L, -ex / L
+    if np.any(L == 0.0):
+        # point contacts (a displaced arch's open hinges): no normal from the segment; their
+        # rows say only that the thrust passes through the point (the LP adds compression)
+        Ld = np.where(L == 0.0, 1.0, L)
+        nux, nuy = ey / Ld, -ex / Ld
+    else:
+        nux, nuy = ey / L, -ex / L
     x0, y0 = px[..., 0], py[..., 0]
     zero, one = np.zeros_like(cw), np.ones_like(cw)
     A_N = np.stack([nux, nuy, zero, d * cw * nux], axis=-1)
@@ -314,6 +322,8 @@ def certify_four_hinge(cw, cwx, cwy, px, py, joints, edges, direction: str) -> n
         Fx = x[:, :1] + d * x[:, 3:] * cw
         Fy = x[:, 1:2] - cw
         F = np.hypot(Fx, Fy)
+        if np.any(L == 0.0):  # a point contact: its tolerance scales with the force alone
+            L = np.where(L == 0.0, 1.0, L)
         width = np.concatenate([L * F, L * F], axis=1)
         worst = np.max(resid / np.maximum(width, 1e-300 + 1e-12 * np.max(width, axis=1,
                                                                            keepdims=True)),

@@ -170,7 +170,16 @@ class _JointLineStatics(_Statics):
         px, py = P[:, 0, 0], P[:, 0, 1]
         e = P[:, 1] - P[:, 0]
         L = np.hypot(e[:, 0], e[:, 1])
-        nux, nuy = e[:, 1] / L, -e[:, 0] / L
+        point = L == 0.0
+        if point.any():
+            # point contacts (a displaced arch's open hinges): the segment gives no direction;
+            # the arch's joint_directions give the normal force's sign
+            u = np.asarray(arch.joint_directions, float)
+            e = np.where(point[:, None], u, e)
+            Ld = np.where(point, 1.0, L)
+            nux, nuy = e[:, 1] / Ld, -e[:, 0] / Ld
+        else:
+            nux, nuy = e[:, 1] / L, -e[:, 0] / L
         nj = L.size
         A_N = np.column_stack([nux, nuy, np.zeros(nj), d * cw * nux])
         b_N = -nuy * cw
@@ -181,13 +190,21 @@ class _JointLineStatics(_Statics):
         # -m <= 0 (intrados end) and m - L N <= 0 (extrados end)
         self.A_ub = np.vstack([-A_m, A_m - L[:, None] * A_N])
         self.b_ub = np.concatenate([b_m, L * b_N - b_m])
+        if point.any():
+            # at a point contact the rows above say m = 0; compression, -N <= 0, is appended
+            # after the 2(n+1) joint-end rows (absent, and nothing changes, on other arches)
+            self.A_ub = np.vstack([self.A_ub, -A_N[point]])
+            self.b_ub = np.concatenate([self.b_ub, b_N[point]])
         self.L = L
+        self.point = point
 
     def crossings(self, x):
         arch = self.arch
         N = self.A_N @ x + self.b_N
         m = self.A_m @ x + self.b_m
         frac = m / (self.L * N)
+        if self.point.any():  # a point contact: the crossing is the point itself
+            frac = np.where(self.point, 0.0, frac)
         jp = np.asarray(arch.joint_points, float)
         pts = jp[:, 0] + frac[:, None] * (jp[:, 1] - jp[:, 0])
         radii = None

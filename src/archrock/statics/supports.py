@@ -1,0 +1,587 @@
+"""Support movements: the hinges they open, the exact displaced arch, and the displacement
+capacity (docs/supports.md).
+
+Setting: Ochsendorf, "The masonry arch on spreading supports", The Structural Engineer 84
+(2006); Coccia, Di Carlo & Rinaldi, "On the safety assessment of masonry arches on moving
+supports" (Meccanica, 2015).  The numbers are archrock's.
+
+1. **Which hinges open.**  Of the statically admissible states under self-weight (the static
+   program of :mod:`archrock.statics.lp`, lambda = 0), the movement selects the one that
+   minimises the work of the arch's forces on the supports, which for u_left, u_right is
+   F_0 . (u_right - u_left) plus a constant (F_0: the force the left support exerts on the
+   arch, per total weight W).  Pure spread gives the minimum thrust, closing the maximum,
+   settling the right support the least vertical reaction there.  The joints where that line
+   of thrust touches an edge are the candidate hinges; the three-hinge set is the kinematically
+   admissible one (each hinge turns so that its joint opens on the side opposite its edge) under
+   which the displaced arch stands after a first small step; ties (a symmetric arch with a
+   keystone touches four points) go to the set whose hinges lie nearer the moving support.
+2. **Finite displacement.**  Hinges h1 < h2 < h3 (joints, left to right): the voussoirs between
+   the left support and h1 move with the left support, those between h3 and the right support
+   with the right one, and the two middle bodies form a two-bar linkage: h2's new place is the
+   intersection of the circles about h1 and h3 (moved), on the branch continuous with the
+   start.  Exact: no small-angle approximation.  Open joints become point contacts
+   (:class:`~archrock.geometry.displaced.DisplacedArch`).
+3. **Statics of the displaced arch.**  With its three hinges as points, the line of thrust
+   passes through them: three equations for the three redundants, so the displaced arch is
+   statically determinate; it stands while that line lies inside every other joint in
+   compression.  :func:`displace` re-solves the LP on the displaced geometry (HiGHS) and reports
+   the thrust and reactions; the margin that decides standing is the smallest fraction of a
+   contact segment between that line and the segment's ends.
+4. **Capacity.**  The movement is followed in steps (1/200 of the arch's size) until the arch
+   can no longer stand (a fourth hinge forms, or the linkage cannot close: h1, h2, h3 in line);
+   the capacity is then found by bisection to 1e-10 of the size.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from itertools import combinations
+
+import numpy as np
+from scipy.optimize import linprog
+
+from ..errors import ArchInputError, CannotStandError, LimitExceededError
+from ..geometry import VoussoirArch
+from ..geometry.displaced import SIDES, DisplacedArch, SupportMovement
+from ..units import G
+from .hinges import EDGES, Hinge
+from .lp import ThrustLine, _statics, _thrust_from_x
+from .thrust import _touching
+
+__all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
+           "displacement_capacity", "closing_hinges", "reclosed", "CAPACITY_KINDS", "STEPS",
+           "BISECT_TOL"]
+
+#: What ``displacement_capacity`` can push: the kind and the unit movement it follows.
+CAPACITY_KINDS = {"spread": (1.0, 0.0), "closure": (-1.0, 0.0), "settlement": (0.0, 1.0),
+                  "heave": (0.0, -1.0)}
+#: Steps per arch size [-] while following a movement: the step is size / STEPS.
+STEPS = 200
+#: Bisection tolerance on the capacity, relative to the arch's size.
+BISECT_TOL = 1e-10
+#: Largest movement followed, in units of the arch's size.
+MAX_MOVEMENT = 2.0
+#: Trial step (relative to the size) that picks among tied three-hinge sets.
+_TRIAL = 1e-6
+_EDGE_SIGN = {"intrados": -1.0, "extrados": 1.0}
+
+
+def _cross(a, b) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
+def _perp(r) -> np.ndarray:
+    return np.array([-r[1], r[0]])
+
+
+def _small_rotations(P1, P2, P3, d):
+    """(omega1, omega2) of the two middle bodies under the small relative movement d of the
+    right support; None where the hinges are in line."""
+    A = np.column_stack([_perp(P2 - P1), _perp(P3 - P2)])
+    if abs(np.linalg.det(A)) <= 1e-12 * np.hypot(*(P2 - P1)) * np.hypot(*(P3 - P2)):
+        return None
+    return np.linalg.solve(A, d)
+
+
+def _admissible(hinges, points, d) -> bool:
+    """Whether every hinge of the three turns so that its joint opens (relative rotations
+    omega1, omega2 - omega1, -omega2 of the signs its edges require)."""
+    w = _small_rotations(*points, d)
+    if w is None:
+        return False
+    rel = (w[0], w[1] - w[0], -w[1])
+    scale = max(abs(w[0]), abs(w[1]))
+    return all(_EDGE_SIGN[h.edge] * r > 1e-9 * scale for h, r in zip(hinges, rel))
+
+
+def _linkage(P1, P2, P3, d):
+    """(P2', theta1, theta2): h2's place and the rotations of the middle bodies when h3 moves by
+    d with h1 fixed; None where the linkage cannot close."""
+    a, b = float(np.hypot(*(P2 - P1))), float(np.hypot(*(P3 - P2)))
+    Q3 = P3 + d
+    D = float(np.hypot(*(Q3 - P1)))
+    if not (abs(a - b) < D < a + b):
+        return None
+    e = (Q3 - P1) / D
+    x = (a * a - b * b + D * D) / (2.0 * D)
+    h = math.sqrt(max(a * a - x * x, 0.0))
+    sigma = 1.0 if _cross(P3 - P1, P2 - P1) >= 0 else -1.0
+    Q2 = P1 + x * e + sigma * h * _perp(e)
+    u, v = P2 - P1, Q2 - P1
+    t1 = math.atan2(_cross(u, v), float(u @ v))
+    u, v = P3 - P2, Q3 - Q2
+    t2 = math.atan2(_cross(u, v), float(u @ v))
+    return Q2, t1, t2
+
+
+def _build(arch: VoussoirArch, movement: SupportMovement, hinges, points):
+    """The DisplacedArch of ``arch`` under ``movement`` with three hinges (base points);
+    None where the linkage cannot close."""
+    ul, ur = movement.supports
+    d = ur - ul
+    P1, P2, P3 = (np.asarray(p, float) for p in points)
+    link = _linkage(P1, P2, P3, d)
+    if link is None:
+        return None
+    Q2, t1, t2 = link
+    j1, j2, j3 = (h.joint for h in hinges)
+    n = arch.n
+    angles, origins, images = np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2))
+    for i in range(n):
+        if i < j1:
+            images[i] = ul
+        elif i < j2:
+            angles[i], origins[i], images[i] = t1, P1, P1 + ul
+        elif i < j3:
+            angles[i], origins[i], images[i] = t2, P2, Q2 + ul
+        else:
+            images[i] = ur
+    pts = ((j1, *(P1 + ul)), (j2, *(Q2 + ul)), (j3, *(P3 + ur)))
+    return DisplacedArch(arch, tuple(angles), tuple(origins), tuple(images), pts, movement,
+                         tuple(hinges))
+
+
+def _determinate(disp: DisplacedArch):
+    """(x, margin, where): the redundants of the line of thrust through the three point
+    hinges (lambda = 0), the smallest margin of that line (fraction of a closed joint's contact
+    segment from its nearer end; at a point hinge its normal force per total weight, which
+    must stay positive) and the (joint, edge) where that margin is least."""
+    st = _statics(disp, "l", "joint-line")
+    rows, rhs = [], []
+    for j in disp.open_joints:
+        r, b = st.hinge(j, "intrados")
+        rows.append(r)
+        rhs.append(b)
+    rows.append([0.0, 0.0, 0.0, 1.0])
+    rhs.append(0.0)
+    x = np.linalg.solve(np.array(rows), np.array(rhs))
+    N = st.A_N @ x + st.b_N
+    m = st.A_m @ x + st.b_m
+    best, where = math.inf, None
+    for j in range(disp.n + 1):
+        if st.point[j]:
+            v, e = N[j], "point"
+        else:
+            if N[j] <= 0:
+                v, e = -1.0, "intrados"
+            else:
+                f = m[j] / (st.L[j] * N[j])
+                v, e = (f, "intrados") if f <= 1.0 - f else (1.0 - f, "extrados")
+        if v < best:
+            best, where = float(v), (j, e)
+    return x, best, where
+
+
+@dataclass(frozen=True)
+class DisplacedState:
+    """An arch under a prescribed support movement (lambda = 0, self-weight and loads).
+
+    movement: the :class:`SupportMovement`; hinges: the three open joints (Hinge, left to
+    right; empty at zero movement); points: their displaced points [m] (3, 2); arch: the
+    :class:`DisplacedArch` (the base arch itself at zero movement, so every result on it is the
+    undisplaced arch's, bit for bit); line: its line of thrust (None at zero movement); thrust:
+    H [N/m], the horizontal force across every joint (> 0 compression); v_left, v_right: the
+    vertical reactions [N/m] (upward on the arch); crown_drop: the downward displacement [m] of
+    the crown voussoir's (highest centroid) mass centre; margin: the smallest fraction of a
+    closed joint's contact segment between the line and its nearer end.
+    """
+
+    movement: SupportMovement
+    hinges: tuple[Hinge, ...]
+    points: np.ndarray
+    arch: VoussoirArch
+    line: ThrustLine | None
+    thrust: float
+    v_left: float
+    v_right: float
+    crown_drop: float
+    margin: float
+
+    def __post_init__(self):
+        a = np.array(self.points, float).reshape(-1, 2)
+        a.setflags(write=False)
+        object.__setattr__(self, "points", a)
+
+    def to_dict(self) -> dict:
+        return {"movement": self.movement.to_dict(),
+                "hinges": [h.to_dict() for h in self.hinges],
+                "points": self.points.tolist(),
+                "H": float(self.thrust), "V_left": float(self.v_left),
+                "V_right": float(self.v_right), "crown_drop": float(self.crown_drop),
+                "margin": float(self.margin)}
+
+
+@dataclass(frozen=True)
+class DisplacementCapacity:
+    """The movement at which the arch can no longer stand, pushing ``kind`` on ``side``.
+
+    capacity: the movement's magnitude [m] (spread, closure, settlement or heave);
+    fraction: capacity / span (the distance between the springings' mid-points); hinges: the
+    three hinges at the onset; migrations: ((movement [m], hinges), ...) every hinge set
+    followed, from the onset's at 0; mechanism: the hinges at capacity (the three and the fourth joint
+    end where the line of thrust reaches the masonry's edge) or, where the three hinges come
+    into line, the three; reason: "fourth hinge" or "linkage straight" or "bound" (no
+    collapse up to MAX_MOVEMENT sizes); curve: (k, 5) rows of movement [m], H [N/m],
+    V_left, V_right [N/m] and crown drop [m], from zero to the capacity; how: the method.
+    """
+
+    kind: str
+    side: str
+    capacity: float
+    fraction: float
+    hinges: tuple[Hinge, ...]
+    mechanism: tuple[Hinge, ...]
+    reason: str
+    curve: np.ndarray
+    how: str
+    migrations: tuple = ()
+
+    def __post_init__(self):
+        a = np.array(self.curve, float).reshape(-1, 5)
+        a.setflags(write=False)
+        object.__setattr__(self, "curve", a)
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "side": self.side, "capacity": float(self.capacity),
+                "fraction_of_span": float(self.fraction),
+                "hinges": [h.to_dict() for h in self.hinges],
+                "mechanism": [h.to_dict() for h in self.mechanism], "reason": self.reason,
+                "curve": {"movement": self.curve[:, 0].tolist(), "H": self.curve[:, 1].tolist(),
+                          "V_left": self.curve[:, 2].tolist(),
+                          "V_right": self.curve[:, 3].tolist(),
+                          "crown_drop": self.curve[:, 4].tolist()},
+                "migrations": [{"movement": float(t), "hinges": [h.to_dict() for h in hs]}
+                               for t, hs in self.migrations],
+                "how": self.how}
+
+
+def _check(arch, movement):
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    if isinstance(arch, DisplacedArch):
+        raise ArchInputError("arch: already displaced; give the base arch and the whole "
+                             "movement")
+    if not isinstance(movement, SupportMovement):
+        raise ArchInputError(f"movement: expected a SupportMovement, got "
+                             f"{type(movement).__name__}")
+
+
+def _onset_lp(arch: VoussoirArch, d: np.ndarray):
+    """(x, line, touches, points) of the state the relative movement d selects."""
+    st = _statics(arch, "l")
+    scale = float(np.hypot(*d))
+    c = [float(d[0]) / scale, float(d[1]) / scale, 0.0, 0.0]
+    res = linprog(c=c, A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 3 + [(0.0, 0.0)],
+                  method="highs")
+    if res.status == 2:
+        raise CannotStandError(f"arch: no line of thrust fits inside the arch under its own "
+                               f"weight (linear program status {res.status}); it cannot stand")
+    if res.status == 3:
+        raise CannotStandError("arch: the movement meets no resistance (the linear program is "
+                               "unbounded: a flat arch wedged between its springings closes "
+                               "with any thrust); no hinges open")
+    if res.status != 0:
+        raise LimitExceededError(f"support movement: the linear program did not finish "
+                                 f"(status {res.status}: {res.message})")
+    x = np.array(res.x, float)
+    x[3] = 0.0
+    line = _thrust_from_x(st, x)
+    touches, points = _touching(line)
+    return x, line, touches, points
+
+
+def onset_hinges(arch: VoussoirArch, movement: SupportMovement) -> tuple[Hinge, ...]:
+    """The three hinges that open when ``movement`` starts (module docstring, 1)."""
+    _check(arch, movement)
+    return _onset(arch, movement)[0]
+
+
+def _onset(arch, movement):
+    d = movement.relative
+    if not np.any(d):
+        return (), None, None
+    x, line, touches, _ = _onset_lp(arch, d)
+    jp = np.asarray(arch.joint_points, float)
+    cands = []
+    for trio in combinations(touches, 3):
+        if len({h.joint for h in trio}) < 3:
+            continue
+        pts = [jp[h.joint, EDGES.index(h.edge)] for h in trio]
+        if _admissible(trio, pts, d):
+            cands.append((trio, pts))
+    if not cands:
+        raise CannotStandError(
+            f"arch: the line of thrust that the movement selects touches "
+            f"{', '.join(f'{h.joint}{h.edge[0]}' for h in touches) or 'no joint end'}; no three "
+            f"of them open as a three-hinge arch under this movement")
+    if len(cands) > 1:
+        # the set under which the arch stands after a small step; then nearer the moving support
+        unit = movement.scaled(_TRIAL * arch.size / float(np.hypot(*d)))
+        moving_right = movement.side != "left"
+
+        def key(c):
+            margin = _margin_at(arch, unit, c[0], c[1])[0]
+            joints = [h.joint for h in c[0]]
+            near = [-j for j in joints[::-1]] if moving_right else joints
+            return (-(margin > 0), near)
+        cands.sort(key=key)
+    return cands[0][0], cands[0][1], line
+
+
+def _crown(arch) -> int:
+    return int(np.argmax(np.asarray(arch.centroids, float)[:, 1]))
+
+
+def _state(arch, movement, hinges, points, c_dir) -> DisplacedState:
+    """The state at ``movement`` with the given hinges (base points); raises where it cannot
+    stand."""
+    W = G * float(np.sum(arch.masses))
+    disp = _build(arch, movement, hinges, points)
+    if disp is None:
+        raise CannotStandError(f"arch: under {movement.describe()} its hinges "
+                               f"{_labels(hinges)} cannot close (the two middle bodies would "
+                               f"have to stretch): the arch has collapsed")
+    x_det, margin, where = _determinate(disp)
+    # the LP on the displaced geometry: the point hinges fix the line of thrust
+    st = _statics(disp, "l")
+    res = linprog(c=c_dir, A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 3 + [(0.0, 0.0)],
+                  method="highs")
+    if margin < 0:
+        raise CannotStandError(
+            f"arch: under {movement.describe()} no line of thrust fits the displaced arch "
+            f"(least margin {margin:.3g} at joint {where[0]} {where[1]}; linear program status "
+            f"{res.status}): a fourth hinge has formed and the arch has collapsed")
+    # at a margin within the solver's feasibility tolerance (~1e-7) of zero, HiGHS may call
+    # the program infeasible: the determinate line through the three hinges is then the answer
+    x = np.array(res.x, float) if res.status == 0 else np.array(x_det, float)
+    x[3] = 0.0
+    line = _thrust_from_x(st, x)
+    k = _crown(arch)
+    drop = float(arch.centroids[k][1] - disp.centroids[k][1])
+    pts = np.array([[x_, y_] for _, x_, y_ in disp.point_joints])
+    return DisplacedState(movement, tuple(hinges), pts, disp, line, W * float(x[0]),
+                          W * float(x[1]), W * (1.0 - float(x[1])), drop, float(margin))
+
+
+def _labels(hinges) -> str:
+    return ", ".join(f"{h.joint}{h.edge[0]}" for h in hinges)
+
+
+def _opening(disp: DisplacedArch) -> bool:
+    """Whether every hinge of a displaced arch has turned so that its joint opens (finite
+    relative rotations theta1, theta2 - theta1, -theta2 of the signs its edges require)."""
+    j1, j2, _ = (h.joint for h in disp.hinges)
+    t1, t2 = float(disp.angles[j1]), float(disp.angles[j2])
+    rel = (t1, t2 - t1, -t2)
+    return all(_EDGE_SIGN[h.edge] * r > 0 for h, r in zip(disp.hinges, rel))
+
+
+def _margin_at(arch, movement, hinges, points):
+    """(margin, where, displaced arch): -inf where the linkage cannot close or a hinge would
+    have to close."""
+    disp = _build(arch, movement, hinges, points)
+    if disp is None:
+        return -math.inf, None, None
+    if not _opening(disp):
+        return -math.inf, "closing", disp
+    _, margin, where = _determinate(disp)
+    return margin, where, disp
+
+
+def _stands_at(arch, movement, hinges, points) -> bool:
+    return _margin_at(arch, movement, hinges, points)[0] >= 0
+
+
+def _bisect(arch, unit, hinges, points, lo, hi, tol) -> float:
+    """The largest t in [lo, hi) (to ``tol``) at which the arch still stands under
+    ``unit`` x t, given that it stands at lo and not at hi."""
+    for _ in range(200):  # bounded: 200 halvings reach any tolerance a double can hold
+        if hi - lo <= tol:
+            break
+        mid = 0.5 * (lo + hi)
+        if _stands_at(arch, unit.scaled(mid), hinges, points):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def _migrate(arch, unit, hinges, points, t, eps):
+    """Where the line of thrust of ``hinges`` reaches a fourth joint end just past movement t:
+    (new hinges, their base points, the fourth hinge) for the admissible three-hinge set that
+    replaces one hinge by the fourth and stands at t + eps (the largest margin), or (None,
+    None, fourth) where none does (collapse), fourth None where no joint end is reached (the
+    linkage or a hinge's compression ends it)."""
+    margin, where, disp = _margin_at(arch, unit.scaled(t + eps), hinges, points)
+    if where is None or where == "closing" or where[1] == "point":
+        return None, None, None
+    fourth = Hinge(int(where[0]), where[1])
+    if fourth.joint in {h.joint for h in hinges}:
+        return None, None, fourth
+    jp = np.asarray(arch.joint_points, float)
+    best = None
+    for k in range(3):
+        trio = tuple(sorted([h for i, h in enumerate(hinges) if i != k] + [fourth],
+                            key=lambda g: g.joint))
+        pts = [jp[h.joint, EDGES.index(h.edge)] for h in trio]
+        m, _, _ = _margin_at(arch, unit.scaled(t + eps), trio, pts)
+        if m >= 0 and (best is None or m > best[0]):
+            best = (m, trio, pts)
+    if best is None:
+        return None, None, fourth
+    return best[1], best[2], fourth
+
+
+@dataclass(frozen=True)
+class _Path:
+    """The followed movement: the curve rows, the hinge sets with the movement where each
+    began, and how it ended (capacity, reason, mechanism; reason None where the target was
+    reached)."""
+
+    rows: list
+    sets: list
+    end: float
+    reason: str | None
+    mechanism: tuple
+
+
+#: Most hinge migrations followed on one path (each is a hinge moving to another joint).
+MAX_MIGRATIONS_PER_JOINT = 4
+
+
+def _follow(arch, unit: SupportMovement, t_end: float, c_dir, line0, hinges, points) -> _Path:
+    """Follow ``unit`` x t for t from 0 to ``t_end`` [m] (or to the capacity) in steps of
+    size / STEPS, moving a hinge to the joint where a fourth hinge forms while a three-hinge set
+    with it stands (hinge migration), else stopping there (collapse)."""
+    size = arch.size
+    W = G * float(np.sum(arch.masses))
+    f0 = line0.forces[0]
+    rows = [[0.0, W * float(f0[0]), W * float(f0[1]), W * (1.0 - float(f0[1])), 0.0]]
+    sets = [(0.0, tuple(hinges))]
+    h, t, eps = size / STEPS, 0.0, 1e3 * BISECT_TOL * size
+    budget = MAX_MIGRATIONS_PER_JOINT * (arch.n + 1)
+    while t < t_end:
+        nxt = min(t + h, t_end)
+        if _stands_at(arch, unit.scaled(nxt), hinges, points):
+            st = _state(arch, unit.scaled(nxt), hinges, points, c_dir)
+            rows.append([nxt, st.thrust, st.v_left, st.v_right, st.crown_drop])
+            t = nxt
+            continue
+        cap = _bisect(arch, unit, hinges, points, t, nxt, BISECT_TOL * size)
+        new, pts, fourth = _migrate(arch, unit, hinges, points, cap, eps)
+        if cap > 0:
+            st = _state(arch, unit.scaled(cap), hinges, points, c_dir)
+            rows.append([cap, st.thrust, st.v_left, st.v_right, st.crown_drop])
+        if new is None or budget <= 0:
+            margin, where, disp = _margin_at(arch, unit.scaled(cap + eps), hinges, points)
+            if disp is None:
+                reason, mech = "linkage straight", tuple(hinges)
+            elif where == "closing":
+                reason, mech = "hinge closes", tuple(hinges)
+            elif fourth is None:
+                reason, mech = "hinge in tension", tuple(hinges)
+            else:
+                reason = "fourth hinge"
+                mech = tuple(sorted(tuple(hinges) + (fourth,), key=lambda g: g.joint))
+            return _Path(rows, sets, cap, reason, mech)
+        budget -= 1
+        hinges, points, t = new, pts, cap
+        sets.append((cap, tuple(new)))
+    return _Path(rows, sets, t_end, None, tuple(hinges))
+
+
+def displace(arch: VoussoirArch, movement: SupportMovement) -> DisplacedState:
+    """``arch`` under the prescribed support ``movement``: the hinges that open, the exact
+    displaced arch, its line of thrust, thrust and reactions.  The movement is followed from
+    zero in steps, with hinge migration (module docstring, 4), so that an arch that collapses
+    on the way is caught: CannotStandError names the movement at which it can no longer stand.
+    At zero movement the state holds the base arch itself (its results bit for bit)."""
+    _check(arch, movement)
+    if movement.is_zero:
+        return DisplacedState(movement, (), np.zeros((0, 2)), arch, None, math.nan, math.nan,
+                              math.nan, 0.0, math.nan)
+    d = movement.relative
+    if not np.any(d):
+        # both supports settle alike: a rigid translation, no hinge opens
+        ul, _ = movement.supports
+        n = arch.n
+        disp = DisplacedArch(arch, (0.0,) * n, ((0.0, 0.0),) * n, (tuple(ul),) * n, (),
+                             movement, ())
+        return DisplacedState(movement, (), np.zeros((0, 2)), disp, None, math.nan, math.nan,
+                              math.nan, float(-ul[1]), math.nan)
+    mag = float(np.hypot(movement.spread, movement.settlement))
+    unit = movement.scaled(1.0 / mag)
+    hinges, points, line0 = _onset(arch, unit)
+    rel = unit.relative / float(np.hypot(*unit.relative))
+    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    path = _follow(arch, unit, mag, c_dir, line0, hinges, points)
+    if path.reason is not None:
+        raise CannotStandError(
+            f"arch: it cannot stand under {movement.describe()}: it collapses at "
+            f"{path.end:.6g} m of that movement ({path.reason}: hinges "
+            f"{_labels(path.mechanism)})")
+    _, hinges = path.sets[-1]
+    pts = [arch.joint_points[h.joint, EDGES.index(h.edge)] for h in hinges]
+    return _state(arch, movement, hinges, pts, c_dir)
+
+
+def _span(arch) -> float:
+    jp = np.asarray(arch.joint_points, float)
+    a, b = jp[0].mean(axis=0), jp[-1].mean(axis=0)
+    return float(np.hypot(*(b - a)))
+
+
+def displacement_capacity(arch: VoussoirArch, kind: str = "spread",
+                          side: str = "right") -> DisplacementCapacity:
+    """The movement of ``kind`` ("spread", "closure", "settlement", "heave") on ``side``
+    ("right", "left", "both") at which ``arch`` can no longer stand (module docstring, 4),
+    with its mechanism and the curve of thrust, reactions and crown drop against the movement.
+    Bounded: an arch still standing at MAX_MOVEMENT sizes reports that bound (reason
+    "bound")."""
+    if kind not in CAPACITY_KINDS:
+        raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(CAPACITY_KINDS)}")
+    if side not in SIDES:
+        raise ArchInputError(f"side: {side!r}; allowed 'right', 'left' or 'both'")
+    s, v = CAPACITY_KINDS[kind]
+    unit = SupportMovement(s, v, side)
+    _check(arch, unit)
+    if not np.any(unit.relative):
+        raise ArchInputError(f"kind: {kind!r} on both supports is a rigid translation of the "
+                             f"arch; allowed 'spread' or 'closure' with side 'both'")
+    hinges, points, line0 = _onset(arch, unit)
+    rel = unit.relative / float(np.hypot(*unit.relative))
+    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    path = _follow(arch, unit, MAX_MOVEMENT * arch.size, c_dir, line0, hinges, points)
+    how = (f"hinges from the LP (HiGHS) that minimises the work on the moving support; exact "
+           f"two-bar linkage; followed in steps of size/{STEPS} with hinge migration, the "
+           f"capacity bisected to {BISECT_TOL:g} of the size")
+    return DisplacementCapacity(kind, side, float(path.end), float(path.end) / _span(arch),
+                                tuple(hinges), path.mechanism, path.reason or "bound",
+                                np.array(path.rows), how, tuple(path.sets))
+
+
+def closing_hinges(arch: DisplacedArch, mechanism) -> tuple[int, ...]:
+    """The open joints of a displaced arch that ``mechanism`` (e.g. of
+    :func:`archrock.statics.limit.limit_analysis` on it) turns back toward closing: it hinges
+    there about the other edge's label (the same point, the opposite relative rotation).  Such
+    a mechanism moves only until that joint's gap closes (a rotation of the order of the hinge's
+    rotation so far), then the joint bears on its whole face again: limit analysis on the
+    displaced configuration counts it, though it is not a collapse of the arch as a whole."""
+    if not isinstance(arch, DisplacedArch):
+        return ()
+    opened = {h.joint: h.edge for h in arch.hinges}
+    return tuple(h.joint for h in mechanism.hinges
+                 if h.joint in opened and h.edge != opened[h.joint])
+
+
+def reclosed(arch: DisplacedArch) -> DisplacedArch:
+    """The displaced geometry with every open joint bearing on a whole face again: its contact
+    segment is the face of the voussoir on its right as that voussoir now lies (at the right
+    springing, the last voussoir's).  Limit analysis on it gives the effect of the changed
+    geometry alone, without the point contacts (docs/supports.md): the open joints' gaps are
+    small at small movements, and a mechanism that turns them back closes them at once."""
+    if not isinstance(arch, DisplacedArch):
+        raise ArchInputError(f"arch: expected a DisplacedArch, got {type(arch).__name__}")
+    return DisplacedArch(arch.base, tuple(arch.angles), tuple(arch.origins), tuple(arch.images),
+                         (), arch.movement, arch.hinges, f"{arch.name} (joints re-closed)")
