@@ -22,10 +22,19 @@ def test_limit_on_a_displaced_arch(capsys):
     code, out, err = run(capsys, "limit", "--spread", "0.05", "--json")
     assert code == 0, err
     data = json.loads(out)
-    lib = limit_analysis(displace(nominal_arch(), SupportMovement(0.05)).arch)
+    from archrock.statics.supports import reclosed
+
+    # one answer: the collapse multipliers of the re-closed displaced arch; the point
+    # contacts' lower multipliers only as the bounded gap-closing motion
+    moved = displace(nominal_arch(), SupportMovement(0.05)).arch
+    lib, pc = limit_analysis(reclosed(moved)), limit_analysis(moved)
     assert data["k_l"] == pytest.approx(lib.k_l, rel=1e-12)
     assert data["k_r"] == pytest.approx(lib.k_r, rel=1e-12)
     sm = data["support_movement"]
+    assert sm["reclosed"] is True
+    assert sm["gap_closing"]["k_l"] == pytest.approx(pc.k_l, rel=1e-12)
+    assert sm["gap_closing"]["k_l"] < 0.02 < 0.3 < data["k_l"]
+    assert 4 in sm["gap_closing"]["closing_l"]
     assert sm["movement"] == {"spread": 0.05, "settlement": 0.0, "side": "right"}
     assert [(h["joint"], h["edge"]) for h in sm["hinges"]] == [
         (1, "intrados"), (4, "extrados"), (6, "intrados")]

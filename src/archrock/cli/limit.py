@@ -59,28 +59,20 @@ def _supports_extra(args, arch, result):
     """(lines, json, capacity) for a displaced arch and --capacity (docs/supports.md)."""
     from ..geometry.displaced import DisplacedArch
     from ..reports.supports import displaced_summary, format_capacity, format_displaced
-    from ..statics.supports import closing_hinges
-
     lines, out, cap = [], {}, None
     if isinstance(arch, DisplacedArch):
         lines.append(format_displaced(arch))
         out["support_movement"] = displaced_summary(arch)
-        closing = {}
-        for d, m in (("l", result.mechanism_l), ("r", result.mechanism_r)):
-            shut = closing_hinges(arch, m)
-            closing[d] = list(shut)
-            if shut:
-                lines.append(f"M_{d} turns the open joint(s) {', '.join(map(str, shut))} back "
-                             f"toward closing: it moves only until their gaps close "
-                             f"(docs/supports.md)")
-        out["support_movement"]["closing"] = closing
-        from ..statics.limit import limit_analysis
-        from ..statics.supports import reclosed
+        from ..statics.supports import gap_closing
 
-        rc = limit_analysis(reclosed(arch), verify=False)
-        lines.append(f"with the open joints re-closed (the displaced geometry alone): k_l = "
-                     f"{rc.k_l:.4f}, k_r = {rc.k_r:.4f}")
-        out["support_movement"]["reclosed"] = {"k_l": rc.k_l, "k_r": rc.k_r}
+        gc = gap_closing(arch)
+        if gc is not None:
+            shut = sorted(set(gc.closing_l) | set(gc.closing_r))
+            lines.append(f"before that, the open joints' point contacts let the arch rock from "
+                         f"k_l = {gc.k_l:.4f}, k_r = {gc.k_r:.4f}, turning joint(s) "
+                         f"{', '.join(map(str, shut))} back until their gaps close: a bounded "
+                         f"motion, not a collapse (docs/supports.md)")
+        out["support_movement"]["gap_closing"] = None if gc is None else gc.to_dict()
     if args.capacity is not None:
         from ..statics.supports import displacement_capacity
 

@@ -378,7 +378,7 @@ def add_support_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPar
 
 def _supports_from_args(args: argparse.Namespace, arch):
     """``arch`` after the movement of --spread/--settlement/--support-side (the displaced arch
-    of archrock.statics.supports.displace; the arch itself at zero movement)."""
+    of archrock.statics.supports.displace, re-closed; the arch itself at zero movement)."""
     s = getattr(args, "spread", None)
     v = getattr(args, "settlement", None)
     side = getattr(args, "support_side", None)
@@ -400,4 +400,11 @@ def _supports_from_args(args: argparse.Namespace, arch):
             if msg.startswith(field):
                 raise ArchInputError(flag + msg[len(field):]) from None
         raise
-    return displace(arch, mv).arch
+    # the analyses take the displaced geometry with its open joints bearing on whole faces: a
+    # mechanism that turns an open joint back only closes its gap (docs/supports.md, "One
+    # answer: the re-closed arch"); limit reports that bounded motion beside it
+    from ..geometry.displaced import DisplacedArch
+    from ..statics.supports import reclosed
+
+    moved = displace(arch, mv).arch  # the arch itself at zero movement
+    return reclosed(moved) if isinstance(moved, DisplacedArch) else moved

@@ -131,6 +131,9 @@ class DisplacedArch(VoussoirArch):
     movement: SupportMovement | None = None
     hinges: tuple = ()
     name: str = field(default="", compare=False)
+    #: a re-closed arch's open joints (joint, x, y): where they touched at one point before
+    #: re-closing (archrock.statics.supports.reclosed; reports and the gap-closing check)
+    contacts: tuple = field(default=(), compare=False)
 
     def __post_init__(self):
         if not isinstance(self.base, VoussoirArch):

@@ -23,16 +23,19 @@ def format_displaced(arch) -> str:
     """One line naming a displaced arch's imposed movement and open hinges."""
     mv = arch.movement
     what = "support movement" if mv is None else mv.describe()
-    return (f"displaced arch: {what}; open hinges {hinge_labels(arch.hinges)} (point "
-            f"contacts at " + ", ".join(f"({x:.4f}, {y:.4f})" for _, x, y in arch.point_joints)
-            + " m)")
+    pts = arch.point_joints or arch.contacts
+    closed = "" if arch.point_joints else "; analysed with these joints re-closed"
+    return (f"displaced arch: {what}; open hinges {hinge_labels(arch.hinges)} (contacts at "
+            + ", ".join(f"({x:.4f}, {y:.4f})" for _, x, y in pts) + f" m{closed})")
 
 
 def displaced_summary(arch) -> dict:
-    """JSON of a displaced arch: the movement, the open hinges and their points [m]."""
+    """JSON of a displaced arch: the movement, the open hinges and their points [m], and
+    whether the analyses took them re-closed."""
     return {"movement": None if arch.movement is None else arch.movement.to_dict(),
             "hinges": [h.to_dict() for h in arch.hinges],
-            "points": [[x, y] for _, x, y in arch.point_joints]}
+            "points": [[x, y] for _, x, y in (arch.point_joints or arch.contacts)],
+            "reclosed": bool(arch.contacts) and not arch.point_joints}
 
 
 def format_capacity(cap) -> str:

@@ -50,7 +50,8 @@ from .lp import ThrustLine, _statics, _thrust_from_x
 from .thrust import _touching
 
 __all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
-           "displacement_capacity", "closing_hinges", "reclosed", "CAPACITY_KINDS", "STEPS",
+           "displacement_capacity", "closing_hinges", "reclosed", "point_contacts", "gap_closing",
+           "GapClosing", "CAPACITY_KINDS", "STEPS",
            "BISECT_TOL"]
 
 #: What ``displacement_capacity`` can push: the kind and the unit movement it follows.
@@ -583,5 +584,53 @@ def reclosed(arch: DisplacedArch) -> DisplacedArch:
     small at small movements, and a mechanism that turns them back closes them at once."""
     if not isinstance(arch, DisplacedArch):
         raise ArchInputError(f"arch: expected a DisplacedArch, got {type(arch).__name__}")
+    if not arch.point_joints:
+        return arch
     return DisplacedArch(arch.base, tuple(arch.angles), tuple(arch.origins), tuple(arch.images),
-                         (), arch.movement, arch.hinges, f"{arch.name} (joints re-closed)")
+                         (), arch.movement, arch.hinges, f"{arch.name} (joints re-closed)",
+                         contacts=arch.point_joints)
+
+
+def point_contacts(arch: DisplacedArch) -> DisplacedArch:
+    """The inverse of :func:`reclosed`: the displaced arch with its open joints as the point
+    contacts they were (``arch`` itself if it has none to restore)."""
+    if not isinstance(arch, DisplacedArch):
+        raise ArchInputError(f"arch: expected a DisplacedArch, got {type(arch).__name__}")
+    if arch.point_joints or not arch.contacts:
+        return arch
+    return DisplacedArch(arch.base, tuple(arch.angles), tuple(arch.origins), tuple(arch.images),
+                         arch.contacts, arch.movement, arch.hinges, arch.base.name + " (displaced)")
+
+
+@dataclass(frozen=True)
+class GapClosing:
+    """What the point contacts of a displaced arch's open joints allow before its collapse
+    multipliers are reached: limit analysis of the point-contact geometry (``k_l``, ``k_r``,
+    mechanisms) where it is lower than the re-closed arch's.  Such a mechanism turns open joints
+    (``closing_l``, ``closing_r``) back toward closing, so it moves only until their gaps close,
+    a rotation of the order of the hinges' rotation so far: a bounded motion, not a collapse
+    (docs/supports.md, "One answer: the re-closed arch")."""
+
+    k_l: float
+    k_r: float
+    closing_l: tuple
+    closing_r: tuple
+
+    def to_dict(self) -> dict:
+        return {"k_l": self.k_l, "k_r": self.k_r, "closing_l": list(self.closing_l),
+                "closing_r": list(self.closing_r)}
+
+
+def gap_closing(arch: DisplacedArch) -> GapClosing | None:
+    """:class:`GapClosing` of a (re-closed) displaced arch, or None when the point contacts
+    allow nothing below the re-closed arch's multipliers or the arch has no open joint."""
+    from .limit import limit_analysis
+
+    pc = point_contacts(arch)
+    if not pc.point_joints:
+        return None
+    r = limit_analysis(pc, verify=False)
+    shut_l, shut_r = closing_hinges(pc, r.mechanism_l), closing_hinges(pc, r.mechanism_r)
+    if not (shut_l or shut_r):
+        return None
+    return GapClosing(r.k_l, r.k_r, shut_l, shut_r)
