@@ -199,3 +199,17 @@ def test_cli_dem_push(capsys):
     assert main(["dem", "--push", "spread", "--ramp"]) == 2
     assert "--push: cannot be combined" in capsys.readouterr().err
     assert main(["dem", "--push", "lift"]) == 2
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("movement,kind", [("spread", "spread"), ("close", "closure")])
+def test_engine_capacity_agrees_with_the_exact_displaced_arch(movement, kind):
+    """Two independent methods of issue 20: the engine pushing the right support of a
+    16-voussoir semicircle (t/R = 0.2) and the exact finite-displacement analysis
+    (statics.supports) give the same capacity within 5% (measured 0.3% for spreading)."""
+    from archrock.statics.supports import displacement_capacity
+
+    arch = nominal_arch(radius=10.0, embrace_deg=180.0, thickness=2.0, voussoirs=16)
+    exact = displacement_capacity(arch, kind, "right").capacity
+    engine = push_support(arch, movement, "right").capacity
+    assert engine == pytest.approx(exact, rel=0.05)
