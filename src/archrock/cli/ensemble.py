@@ -62,6 +62,7 @@ def _kept(out, n_batches: int) -> str:
 
 
 def run_ensemble_cmd(args) -> int:
+    from ..geometry.displaced import DisplacedArch
     from ..studies.ensemble import PAPER_RANDOM_ARCHES, EnsembleConfig, run_ensemble
     from ..reports.ensemble import format_ensemble
 
@@ -69,6 +70,9 @@ def run_ensemble_cmd(args) -> int:
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     out, plot = folder_arg(args.out), figure_arg(args.plot)
     nominal = arch_from_args(args)
+    support = None
+    if isinstance(nominal, DisplacedArch):  # --spread/--settlement: every sample's supports move
+        support, nominal = nominal.movement, nominal.base
     motion = motion_spec_from_args(args)
     given = [f for f, v in (("--cv", args.cv), ("--impact", args.impact),
                             ("--impact-on", args.impact_on),
@@ -87,7 +91,7 @@ def run_ensemble_cmd(args) -> int:
                                       batch_size=args.batch_size,
                                       motion=motion, spreads=spreads(args),
                                       impact=impact_spec_from_args(args),
-                                      early_stop=bool(args.early_stop))
+                                      early_stop=bool(args.early_stop), support=support)
     try:
         result = run_ensemble(config, out=out, workers=args.workers,
                               scheduler=args.scheduler, progress=not args.no_progress,

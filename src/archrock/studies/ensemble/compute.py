@@ -35,11 +35,36 @@ COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_
            "events_truncated", "early_stopped", "error"]
 
 
+
+def _on_moved_supports(arch, movement):
+    """A sample on moved supports (re-closed, docs/supports.md), or why it is left out: an
+    arch that cannot stand there is "cannot stand" (its collapse under its own weight)."""
+    from ...errors import ArchrockError, InvalidSampleError
+    from ...geometry.displaced import DisplacedArch
+    from ...statics.supports import displace, reclosed
+
+    if isinstance(arch, Exception):
+        return arch
+    try:
+        moved = displace(arch, movement).arch
+    except ArchrockError as exc:
+        return InvalidSampleError(f"cannot stand on its moved supports ({movement.describe()}): "
+                                  f"{' '.join(str(exc).split())}")
+    return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
+
 def sample_arch(config: EnsembleConfig, index: int):
-    """The random arch of sample ``index`` (0-based) of the ensemble, rebuilt from the seed."""
+    """The random arch of sample ``index`` (0-based) of the ensemble, rebuilt from the seed (on
+    its moved supports when the configuration has a support movement; InvalidSampleError when it
+    cannot stand there)."""
     if isinstance(index, bool) or int(index) != index or not 0 <= index < config.samples:
         raise ArchInputError(f"index: {index!r}; allowed 0..{config.samples - 1}")
-    return config.sampler.arch(int(index))
+    arch = config.sampler.arch(int(index))
+    if config.support is None:
+        return arch
+    moved = _on_moved_supports(arch, config.support)
+    if isinstance(moved, Exception):
+        raise moved
+    return moved
 
 
 def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
@@ -72,7 +97,11 @@ def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
     start = cfg.batch_range(bs[0])[0]
     last, n_last = cfg.batch_range(bs[-1])
     nb = last + n_last - start
-    if sampler.circular:
+    if cfg.support is not None:  # each arch on its moved supports, as an object
+        pb = prepare_batch([_on_moved_supports(a, cfg.support)
+                            for a in sampler.arches(start, nb)],
+                           impact=cfg.impact.resolved(cfg.analysed_nominal), parallel=parallel)
+    elif sampler.circular:
         spans, thick, radii = sampler.draw(start, nb)
         pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
                            impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)

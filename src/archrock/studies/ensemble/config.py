@@ -20,6 +20,7 @@ from ...geometry import VoussoirArch, arch_from_dict
 from ...groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
 from ...dynamics.impact import PAPER_PRACTICE, ImpactSpec
 from ...dynamics.response import default_steps
+from ...geometry.displaced import DisplacedArch, SupportMovement
 from ...geometry.sampling import DEFAULT_SPREADS, ArchSampler, Spreads
 
 __all__ = ["EnsembleConfig"]
@@ -52,7 +53,11 @@ class EnsembleConfig:
     about 3x faster) instead of the exact loop closure; early_stop: stop following an arch once,
     after the ground motion, it can no longer collapse (:func:`archrock.dynamics.batch.simulate_batch`:
     outcome and peak exact, impacts and time to rest not followed; written to the JSON only when
-    true, so other configurations and their hashes are unchanged).
+    true, so other configurations and their hashes are unchanged); support: a
+    :class:`~archrock.geometry.displaced.SupportMovement` (or its dict) applied to every sample
+    (:mod:`archrock.statics.supports`, each arch analysed re-closed on its moved supports; an arch
+    that cannot stand there is left out as "cannot stand"); None or zero: fixed supports, not
+    written to the JSON.
     """
 
     nominal: dict
@@ -66,8 +71,13 @@ class EnsembleConfig:
     t_free: float | None = None
     tabulate: bool = True
     early_stop: bool = False
+    support: SupportMovement | dict | None = None
 
     def __post_init__(self):
+        if isinstance(self.nominal, DisplacedArch):
+            raise ArchInputError(f"nominal: {self.nominal.name!r} stands on moved supports; "
+                                 f"allowed the arch on fixed supports, with the movement as "
+                                 f"support=SupportMovement(...)")
         if isinstance(self.nominal, VoussoirArch):
             object.__setattr__(self, "nominal", self.nominal.to_dict())
         arch = arch_from_dict(self.nominal, name="nominal")  # validates
@@ -100,6 +110,16 @@ class EnsembleConfig:
             raise ArchInputError(f"motion: {motion!r}; allowed None, a PulseSpec or RecordSpec, "
                                  "or the dict of one")
         object.__setattr__(self, "motion", motion)
+        support = self.support
+        if support is not None:
+            if not isinstance(support, SupportMovement):
+                if not isinstance(support, dict):
+                    raise ArchInputError(f"support: {support!r}; allowed None, a SupportMovement "
+                                         f"or its dict")
+                support = SupportMovement.from_dict(support)
+            if support.is_zero:
+                support = None  # fixed supports: the configuration (and hash) without movement
+        object.__setattr__(self, "support", support)
 
     @classmethod
     def from_arch(cls, nominal: VoussoirArch, **kwargs) -> "EnsembleConfig":
@@ -109,6 +129,17 @@ class EnsembleConfig:
     def sampler(self) -> ArchSampler:
         """The sampler of this ensemble's random arches (built and checked at construction)."""
         return ArchSampler(arch_from_dict(self.nominal, name="nominal"), self.spreads, self.seed)
+
+    @cached_property
+    def analysed_nominal(self) -> VoussoirArch:
+        """The nominal arch as every sample is analysed: on its moved supports (re-closed,
+        :func:`archrock.statics.supports.reclosed`) when ``support`` is set."""
+        if self.support is None:
+            return self.sampler.nominal
+        from ...statics.supports import displace, reclosed
+
+        moved = displace(self.sampler.nominal, self.support).arch
+        return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
 
     @property
     def n_batches(self) -> int:
@@ -128,6 +159,10 @@ class EnsembleConfig:
         d["impact"] = self.impact.to_dict()
         if not self.early_stop:
             del d["early_stop"]
+        if self.support is None:
+            del d["support"]
+        else:
+            d["support"] = self.support.to_dict()
         return d
 
     def to_json(self) -> str:

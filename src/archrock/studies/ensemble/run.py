@@ -7,7 +7,7 @@ import time
 from pathlib import Path
 
 from ...errors import ArchInputError
-from ...geometry import Arch, arch_from_dict
+from ...geometry import Arch
 from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
 from .config import EnsembleConfig, int_field
 from .executors import execute
@@ -26,7 +26,7 @@ def _nominal_info(config: EnsembleConfig) -> dict:
     from ...statics.liftoff import certify_candidates
     from ...statics.sums import arch_sums
 
-    arch = arch_from_dict(config.nominal)
+    arch = config.analysed_nominal  # on its moved supports, if any
     if not isinstance(arch, Arch):
         m_l, m_r = kinematic_mechanisms(arch)
         return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
@@ -46,7 +46,7 @@ def _nominal_info(config: EnsembleConfig) -> dict:
 
 def _impact_info(config: EnsembleConfig) -> dict:
     """The impact spec as given, as applied to the samples, and in words (manifest, summary)."""
-    applied = config.impact.resolved(config.sampler.nominal)
+    applied = config.impact.resolved(config.analysed_nominal)
     return {**config.impact.to_dict(), "applied": applied.to_dict(),
             "description": config.impact.describe()
             + (f": c_v = {applied.cv:.6g}" if applied is not config.impact else "")}
