@@ -33,7 +33,8 @@ needs_case = pytest.mark.skipif(not HEAVY.exists(), reason="shared/cases/heavy_p
 #:   engine_respond(read_arch(heavy_piers.json), pulse("oppenheim", -a, 0.2), t_free=30) on a
 #:   grid 0.5..3 g, then bisection (the script is in docs/piers-dynamics.md, Commands);
 #: and by hand: archrock dem --geometry heavy_piers.json --pulse oppenheim --amplitude -0.65
-#:   --pulse-duration 0.2  (at rest) and --amplitude -0.7 (collapsed)
+#:   --pulse-duration 0.2  (no collapse: still rocking at the end of its 10 T of free motion;
+#:   at rest with t_free = 30 T) and --amplitude -0.7 (collapsed at 5.85 s)
 ENGINE_FIRST_COLLAPSE_G = 0.70
 
 
