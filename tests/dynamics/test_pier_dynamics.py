@@ -16,7 +16,8 @@ import pytest
 
 from archrock import groundmotion as gm
 from archrock.cli import main
-from archrock.dynamics.piers import pier_blocks, single_dof_check
+from archrock.dynamics.piers import pier_blocks, single_dof_check, step_mechanism
+from archrock.errors import ArchInputError
 from archrock.dynamics.response import prepare, respond
 from archrock.geometry import nominal_arch, oppenheim_arch
 from archrock.geometry.files import read_arch
@@ -142,3 +143,19 @@ def test_engine_first_collapse_on_heavy_piers():
                         dt_out=0.05, t_free=30.0)
     assert not lo.collapsed and hi.collapsed
     assert abs(ENGINE_FIRST_COLLAPSE_G - 0.70) < 0.05 * 0.70
+
+
+@needs_case
+def test_a_step_of_several_k_opens_both_piers(heavy):
+    """Gauss's principle (step_mechanism): a step just above k opens the limit mechanism; a step
+    of 0.7 g opens 0i-4e-12i-14e, both piers rocking, the engine's first mechanism at 0.7 g
+    (docs/piers-dynamics.md, What the engine shows)."""
+    low = step_mechanism(heavy, -0.2)
+    assert low.is_limit_mechanism and low.mechanism.label == "1i-6e-12i-14e"
+    high = step_mechanism(heavy, -0.7)
+    assert not high.is_limit_mechanism and high.mechanism.label == "0i-4e-12i-14e"
+    assert high.mechanism.multiplier == pytest.approx(0.1555, abs=1e-4)
+    assert high.candidates == low.candidates == 1227
+    # below the threshold nothing opens but the limit mechanism is still the reference
+    with pytest.raises(ArchInputError, match="accel_g"):
+        step_mechanism(heavy, 0.0)

@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SingleDofCheck", "pier_blocks", "single_dof_check", "PIER_MASS_RATIO"]
+__all__ = ["SingleDofCheck", "pier_blocks", "single_dof_check", "PIER_MASS_RATIO", "StepMechanism",
+           "step_mechanism"]
 
 #: An end block on a horizontal foundation joint counts as a pier, in an arch that does not name
 #: its blocks (a geometry file read back), when its mass is at least this multiple of the median
@@ -100,3 +101,72 @@ def single_dof_check(model) -> SingleDofCheck:
               f"(heavy piers: first collapse 3.05 g against the contact engine's 0.70 g); use "
               f"the contact engine (archrock dem)")
     return SingleDofCheck(False, reason, piers, how, share)
+
+
+@dataclass(frozen=True)
+class StepMechanism:
+    """The four-hinge mechanism that a step of ground acceleration opens from rest, by Gauss's
+    principle of least constraint: among the admissible mechanisms of ``direction`` with a
+    positive generalised force Q = P(0) xg'' - F(0) g, the one with the largest Q^2 / M(0)
+    (the acceleration energy it releases).  mechanism: its hinges (its own multiplier);
+    score: Q^2/M [kg m^2 / s^4 per m]; limit_score: the same for the limit mechanism (None when
+    the step does not exceed its threshold); candidates: how many were compared."""
+
+    direction: str
+    accel_g: float
+    mechanism: object
+    score: float
+    limit_score: float | None
+    candidates: int
+
+    @property
+    def is_limit_mechanism(self) -> bool:
+        return self.limit_score is not None and self.score <= self.limit_score * (1 + 1e-12)
+
+
+def step_mechanism(model, accel_g: float) -> StepMechanism:
+    """Which four-hinge mechanism a step xg'' = ``accel_g`` g [signed, +x] opens from rest on
+    the arch of the prepared ``model`` (:class:`StepMechanism`).  A diagnostic of
+    docs/piers-dynamics.md: the dynamics open the limit mechanism, as the paper does; under a
+    step of several k the contact engine opens this one (heavy piers at 0.7 g: both piers
+    rocking, ``0i-4e-12i-14e``).  Enumerates every joint 0..n and edge (as the least-loss law
+    does): seconds on a 14-block chain."""
+    from itertools import combinations, product
+
+    from ..errors import ArchInputError
+    from ..statics.hinges import EDGES, Hinge, Mechanism
+    from ..units import G
+    from .fourlink import four_link
+
+    if isinstance(accel_g, bool) or not isinstance(accel_g, (int, float)) or not (
+            np.isfinite(accel_g) and accel_g != 0):
+        raise ArchInputError(f"accel_g: {accel_g!r}; allowed a finite number != 0 (in g, +x)")
+    direction = "l" if accel_g < 0 else "r"
+    arch = model.arch
+
+    def score(fl):
+        M, _, F, P = fl.coefficients(0.0)
+        q = P * accel_g * G - F * G
+        return q * q / M if q > 0 else None
+
+    lim = model.mechanism(direction)
+    best_s, best = score(lim), lim.mechanism
+    limit_s = best_s
+    best_s = -1.0 if best_s is None else best_s
+    count = 0
+    for joints in combinations(range(arch.n + 1), 4):
+        for edges in product(EDGES, repeat=4):
+            if len(set(edges)) == 1:
+                continue  # all intrados or all extrados never opens
+            mech = Mechanism(direction, tuple(Hinge(j, e) for j, e in zip(joints, edges)),
+                             float("nan"))
+            try:
+                fl = four_link(arch, mech)
+            except (ArchInputError, ZeroDivisionError):
+                continue
+            count += 1
+            s = score(fl)
+            if s is not None and s > best_s * (1 + 1e-12):
+                best_s = s
+                best = Mechanism(direction, mech.hinges, abs(fl.static_multiplier()))
+    return StepMechanism(direction, float(accel_g), best, float(best_s), limit_s, count)
