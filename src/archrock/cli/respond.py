@@ -70,6 +70,9 @@ def run_respond(args) -> int:
         emit_json(res.to_dict())
         return 0
     print(format_response(res, model, motion))
+    if not res.single_dof_valid:
+        # issue 19: the number above is the four-link model's, which cannot follow this arch
+        print(f"WARNING single degree of freedom not valid: {res.single_dof.reason}")
     for f in (plot, animation):
         if f:
             print(f"wrote {f}")

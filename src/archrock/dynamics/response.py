@@ -39,6 +39,7 @@ from ..groundmotion import G, GroundMotion
 from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
 from ..statics.limit import LimitResult, limit_analysis, require_four_hinge
 from .fourlink import FourLink, exact_acceleration, four_link, rest_rate
+from .piers import SingleDofCheck, single_dof_check
 
 __all__ = ["DynamicModel", "Event", "Response", "prepare", "respond", "default_steps",
            "time_scale"]
@@ -123,6 +124,13 @@ class DynamicModel:
                  "label": _label(fl), "phi_limit": float(lim), "phi_unstable": fl.phi_unstable,
                  "opens": int(n), "rate_ratio": float(c)}
                 for j, (fl, lim, (n, c)) in enumerate(zip(mechs, lims, trans))]
+
+    @cached_property
+    def single_dof(self) -> SingleDofCheck:
+        """Whether one degree of freedom can follow this arch (:func:`~archrock.dynamics.piers.
+        single_dof_check`): not where a limit mechanism moves a pier (issue 19; the numbers are
+        computed as ever, this only says whether to trust them)."""
+        return single_dof_check(self)
 
     @cached_property
     def tables(self) -> tuple[np.ndarray, ...]:
@@ -305,6 +313,17 @@ class Response:
     def activated(self) -> bool:
         return any(e.kind == "activation" for e in self.events)
 
+    @property
+    def single_dof(self) -> SingleDofCheck:
+        """Whether the four-link model can follow this arch (:attr:`DynamicModel.single_dof`)."""
+        return self.model.single_dof
+
+    @property
+    def single_dof_valid(self) -> bool:
+        """False where the piers rock with the arch: one degree of freedom cannot follow the
+        contact engine there (``single_dof.reason`` says why; docs/piers-dynamics.md)."""
+        return self.model.single_dof.valid
+
     def impacts_before_collapse(self) -> int:
         return len(self.impacts) if self.collapsed else 0
 
@@ -353,6 +372,9 @@ class Response:
             "phi_limit": {"l": self.model.phi_limit_l, "r": self.model.phi_limit_r},
             "phi_unstable": {"l": self.model.phi_unstable_l, "r": self.model.phi_unstable_r},
             "chain": self.model.chain_dicts(),
+            # False, with the reason, where a limit mechanism moves a pier (issue 19)
+            "single_dof_valid": self.single_dof_valid,
+            "single_dof": self.single_dof.to_dict(),
             "events": [e.to_dict() for e in self.events],
             "integrator": self.integrator,
             "settings": self.settings,
