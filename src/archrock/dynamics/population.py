@@ -39,6 +39,8 @@ LEFT_OUT = {
 # pattern that matches wins (a least-loss chain failure is an impact-model failure).
 _PATTERNS = (
     ("impact_not_applicable", r"^(least-loss chain:|impact\b)"),
+    # a valid draw that cannot stand on the study's moved supports (studies.ensemble, support=)
+    ("cannot_stand", r"cannot stand on its moved supports"),
     ("invalid_draw", r"^geometry:|not a valid arch"),
     ("cannot_stand", r"cannot stand|does not stand"),
     ("lift_off", r"lift-off|lifts off|is governed by a"),

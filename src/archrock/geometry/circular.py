@@ -367,6 +367,9 @@ def random_arch(nominal: VoussoirArch | None = None, seed=None, spread_span: flo
     from .families import FamilyArch, perturb_family
 
     if not isinstance(nominal, FamilyArch) or nominal.recipe is None:
+        from .displaced import refuse_moved_supports
+
+        refuse_moved_supports(nominal)
         raise ArchInputError(f"nominal: a {type(nominal).__name__} without a family recipe (e.g. "
                              f"a surveyed arch) cannot be perturbed; allowed a circular Arch or "
                              f"an arch of family_arch")

@@ -303,3 +303,14 @@ class DisplacedArch(VoussoirArch):
     def __repr__(self) -> str:
         return (f"DisplacedArch(name={self.name!r}, n={self.n}, open joints="
                 f"{list(self.open_joints)})")
+
+
+def refuse_moved_supports(nominal) -> None:
+    """Raise ArchInputError when a study is given an arch on moved supports as the nominal arch
+    of its random arches (only the ensemble moves supports: EnsembleConfig(support=...))."""
+    if isinstance(nominal, DisplacedArch):
+        raise ArchInputError(
+            f"nominal: {nominal.name!r} stands on moved supports (--spread/--settlement); "
+            f"allowed an arch on fixed supports, with the movement given to the ensemble "
+            f"(EnsembleConfig(support=...); archrock ensemble --spread/--settlement): the other "
+            f"studies do not move supports yet")

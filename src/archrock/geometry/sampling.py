@@ -139,14 +139,9 @@ class ArchSampler:
                     f"surveyed), whose joints stay where they were measured (--spread-span 0; "
                     f"the thickness and radius spreads apply)")
         elif not isinstance(a, FamilyArch):
-            from .displaced import DisplacedArch
+            from .displaced import refuse_moved_supports
 
-            if isinstance(a, DisplacedArch):
-                raise ArchInputError(
-                    f"nominal: {a.name!r} stands on moved supports (--spread/--settlement); "
-                    f"allowed an arch on fixed supports, with the movement given to the ensemble "
-                    f"(EnsembleConfig(support=...); archrock ensemble --spread/--settlement): the "
-                    f"other studies do not move supports yet")
+            refuse_moved_supports(a)
             raise ArchInputError(f"nominal: expected an Arch or a FamilyArch, got "
                                  f"{type(a).__name__}")
 
