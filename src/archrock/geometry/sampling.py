@@ -133,11 +133,13 @@ class ArchSampler:
         elif isinstance(a, PolygonArch) and getattr(a, "recipe", None) is None:
             # a surveyed arch: thickness and offset vary, its joints stay (geometry.survey)
             if self.spreads.span or self.spreads.tilt:
+                what = ("an arch on piers, whose blocks (piers included) are perturbed as a "
+                        "surveyed arch's" if getattr(a, "pier_blocks", ()) else
+                        "a polygon arch without a family (e.g. surveyed)")
                 raise ArchInputError(
                     f"spread span and tilt: {self.spreads.span:g} and {self.spreads.tilt:g}; "
-                    f"allowed 0 and 0 for {a.name!r}, a polygon arch without a family (e.g. "
-                    f"surveyed), whose joints stay where they were measured (--spread-span 0; "
-                    f"the thickness and radius spreads apply)")
+                    f"allowed 0 and 0 for {a.name!r}, {what}, whose joints stay where they were "
+                    f"measured (--spread-span 0; the thickness and radius spreads apply)")
         elif not isinstance(a, FamilyArch):
             from .displaced import refuse_moved_supports
 

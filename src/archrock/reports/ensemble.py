@@ -47,6 +47,10 @@ def format_ensemble(summary: dict, arch_name: str) -> str:
              + (f", joint tilt {sp['tilt_deg']:g} deg" if sp.get("tilt_deg") else "") + ")",
              f"nominal: k_l = {summary['nominal']['k_l']:.4f}, "
              f"k_r = {summary['nominal']['k_r']:.4f}"]
+    sd = summary["nominal"].get("single_dof")
+    if sd is not None and not sd["valid"] and summary.get("p_collapse") is not None:
+        lines.append(f"WARNING single degree of freedom not valid on the nominal arch: "
+                     f"{sd['reason']}; P(collapse) below is the four-link model's")
     imp = summary.get("impact")
     if imp and summary.get("p_collapse") is not None:
         lines.append(f"impact: {imp['description']}")

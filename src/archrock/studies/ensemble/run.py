@@ -21,6 +21,21 @@ __all__ = ["run_ensemble"]
 
 
 def _nominal_info(config: EnsembleConfig) -> dict:
+    """k_l, k_r and mechanisms of the nominal arch as analysed; on an arch with piers also
+    whether the four-link model can follow it (``single_dof``, docs/piers-dynamics.md)."""
+    info = _nominal_multipliers(config)
+    from ...dynamics.piers import pier_blocks
+
+    arch = config.analysed_nominal
+    if pier_blocks(arch)[0]:
+        from ...dynamics.piers import single_dof_check
+        from ...dynamics.response import prepare
+
+        info["single_dof"] = single_dof_check(prepare(arch, 0.8)).to_dict()
+    return info
+
+
+def _nominal_multipliers(config: EnsembleConfig) -> dict:
     from ...dynamics.batch import mechanism_label
     from ...statics.kinematic import kinematic_mechanisms, kinematic_multipliers_batch
     from ...statics.liftoff import certify_candidates
