@@ -9,7 +9,8 @@ arch's.  ``--legacy`` also times the arch-object path (``prepare_batch(sampler.a
 with ``perturb_family``, as before the compiled drawing) on ``--legacy-samples`` arches.
 
 A surveyed polygon arch (Oppenheim's as a polygon without a family, thickness and offset
-spreads only, docs/geometry.md) runs last, drawn as arrays (geometry.surveybatch) since 0.7.
+spreads only, docs/geometry.md) and Oppenheim's arch on two piers 4 m x 2 m (perturbed by the
+same rule, piers included) run last, drawn as arrays (geometry.surveybatch) since 0.7.
 
 Usage: python benchmarks/bench_families.py [--samples 10000] [--legacy] [--json FILE]
 """
@@ -81,9 +82,10 @@ def _legacy(nominal, samples):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--samples", type=int, default=10000)
-    ap.add_argument("--families", default=",".join([f for f, _ in FAMILIES] + ["surveyed"]),
-                    help="comma-separated families, 'surveyed' for a surveyed polygon arch "
-                         "(default: all)")
+    ap.add_argument("--families",
+                    default=",".join([f for f, _ in FAMILIES] + ["surveyed", "piers"]),
+                    help="comma-separated families, 'surveyed' for a surveyed polygon arch, "
+                         "'piers' for an arch on piers (default: all)")
     ap.add_argument("--legacy", action="store_true", help="also time the arch-object path")
     ap.add_argument("--legacy-samples", type=int, default=500)
     ap.add_argument("--json", help="also write the figures to this JSON file")
@@ -133,6 +135,18 @@ def main(argv=None):
               f"{r['response_s']:8.2f} {r['ratio_to_circular']:10.2f}   ({r['left_out']} left "
               f"out, {r['collapsed']} collapsed)", flush=True)
         out["families"]["surveyed"] = r
+    if "piers" in wanted:
+        # Oppenheim's arch on two piers 4 m x 2 m, perturbed as a surveyed arch (piers included)
+        from archrock.geometry import with_piers
+        from archrock.geometry.sampling import Spreads
+
+        r = _run(with_piers(oppenheim_arch(), 4.0, 2.0), args.samples, Spreads(0.0, 0.1, 0.05))
+        r["ratio_to_circular"] = r["wall_s"] / base["wall_s"]
+        name = "on piers 4 x 2 m (Oppenheim, n=9)"
+        print(f"{name:34s} {r['wall_s']:7.2f} {r['arches_per_s']:9.0f} {r['prepare_s']:8.2f} "
+              f"{r['response_s']:8.2f} {r['ratio_to_circular']:10.2f}   ({r['left_out']} left "
+              f"out, {r['collapsed']} collapsed)", flush=True)
+        out["families"]["piers"] = r
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=2)
