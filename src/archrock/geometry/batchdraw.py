@@ -156,15 +156,21 @@ class FamilyPlan:
 _PLANS: list = []
 
 
-def family_plan(nominal) -> "FamilyPlan":
-    """The :class:`FamilyPlan` of ``nominal``, kept for reuse (the last four nominals)."""
-    for plan in _PLANS:
+def cached_plan(cache: list, nominal, build):
+    """The plan in ``cache`` built for this very ``nominal`` object, or ``build(nominal)`` kept
+    there (the last four nominals: a study has one)."""
+    for plan in cache:
         if plan.nominal is nominal:
             return plan
-    plan = FamilyPlan(nominal)
-    _PLANS.insert(0, plan)
-    del _PLANS[4:]
+    plan = build(nominal)
+    cache.insert(0, plan)
+    del cache[4:]
     return plan
+
+
+def family_plan(nominal) -> "FamilyPlan":
+    """The :class:`FamilyPlan` of ``nominal``, kept for reuse (:func:`cached_plan`)."""
+    return cached_plan(_PLANS, nominal, FamilyPlan)
 
 
 def compiled_drawing(sampler) -> bool:

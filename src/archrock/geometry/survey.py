@@ -41,6 +41,23 @@ def _joints(nominal: PolygonArch):
     return ends_i, ends_e
 
 
+def joint_frames(nominal: PolygonArch):
+    """(t, d, a0, turn) of the surveyed joints: lengths t_j [m], unit vectors d_j from intrados
+    to extrados, their angles [rad], and the turn from each joint to the next [rad] (module
+    docstring); ArchInputError for a joint of zero length."""
+    ends_i, ends_e = _joints(nominal)
+    vec = ends_e - ends_i
+    t = np.hypot(*vec.T)
+    if np.any(t <= 0):
+        raise ArchInputError("nominal: a joint of the surveyed arch has zero length")
+    d = vec / t[:, None]
+    # d(s) turns at a constant rate from d_i to d_i+1 (the radial direction of a circular arc,
+    # whose arc length is proportional to its angle)
+    a0 = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.angle(np.exp(1j * (a0[1:] - a0[:-1])))
+    return t, d, a0, turn
+
+
 def _fractions(line: np.ndarray) -> np.ndarray:
     seg = np.hypot(*np.diff(line, axis=0).T)
     s = np.concatenate([[0.0], np.cumsum(seg)])
@@ -60,16 +77,7 @@ def perturb_survey(nominal: PolygonArch, u, spread_thickness: float, spread_offs
     u = np.asarray(u, float)
     if u.ndim != 2 or u.shape[0] not in (3, 4) or u.shape[1] != n:
         raise ArchInputError(f"u: shape {u.shape}; allowed (3, {n}) or (4, {n})")
-    ends_i, ends_e = _joints(nominal)
-    vec = ends_e - ends_i
-    t = np.hypot(*vec.T)
-    if np.any(t <= 0):
-        raise ArchInputError("nominal: a joint of the surveyed arch has zero length")
-    d = vec / t[:, None]
-    # d(s) turns at a constant rate from d_i to d_i+1 (the radial direction of a circular arc,
-    # whose arc length is proportional to its angle)
-    a0 = np.arctan2(d[:, 1], d[:, 0])
-    turn = np.angle(np.exp(1j * (a0[1:] - a0[:-1])))
+    t, d, a0, turn = joint_frames(nominal)
     intr, extr = [], []
     for i in range(n):
         half = 0.5 * spread_thickness * u[1, i]

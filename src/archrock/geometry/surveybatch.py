@@ -18,8 +18,8 @@ import numpy as np
 
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError
-from .batchdraw import OK, REFUSED, UNCERTIFIED, _arch_arrays
-from .survey import _fractions, _joints, is_survey
+from .batchdraw import OK, REFUSED, UNCERTIFIED, _arch_arrays, cached_plan
+from .survey import _fractions, is_survey, joint_frames
 
 __all__ = ["SurveyPlan", "survey_supported", "survey_plan", "survey_properties",
            "survey_refusal"]
@@ -46,14 +46,7 @@ class SurveyPlan:
                                  "arch without a family recipe and without loads")
         self.nominal = nominal
         n = self.n = nominal.n
-        ends_i, ends_e = _joints(nominal)
-        vec = ends_e - ends_i
-        t = np.hypot(*vec.T)
-        if np.any(t <= 0):
-            raise ArchInputError("nominal: a joint of the surveyed arch has zero length")
-        d = vec / t[:, None]
-        a0 = np.arctan2(d[:, 1], d[:, 0])
-        turn = np.angle(np.exp(1j * (a0[1:] - a0[:-1])))
+        t, d, a0, turn = joint_frames(nominal)
         base, thick, direc, start = [], [], [], [0]
         for i in range(n):
             for line in (nominal.intrados[i], nominal.extrados[i]):
@@ -82,14 +75,8 @@ _PLANS: list = []
 
 
 def survey_plan(nominal) -> SurveyPlan:
-    """The :class:`SurveyPlan` of ``nominal``, kept for reuse (the last four nominals)."""
-    for plan in _PLANS:
-        if plan.nominal is nominal:
-            return plan
-    plan = SurveyPlan(nominal)
-    _PLANS.insert(0, plan)
-    del _PLANS[4:]
-    return plan
+    """The :class:`SurveyPlan` of ``nominal``, kept for reuse (batchdraw.cached_plan)."""
+    return cached_plan(_PLANS, nominal, SurveyPlan)
 
 
 @maybe_njit
