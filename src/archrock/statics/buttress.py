@@ -24,7 +24,8 @@ import numpy as np
 from scipy.optimize import linprog
 
 from .._records import readonly_arrays
-from ..errors import ArchInputError, CannotStandError, LimitExceededError
+from ..errors import ArchInputError, CannotStandError
+from .search import least_standing
 from ..geometry import ArchOnPiers, VoussoirArch, with_piers
 from ..units import G
 from .limit import limit_analysis
@@ -182,16 +183,8 @@ def minimum_pier_width(arch: VoussoirArch, height: float, *, courses: int = 1,
                     f"the arch on piers {height:g} m high (raise max_width, at most "
                     f"{100 * extent:.6g} m, or lower the piers)")
             lo, hi = hi, min(2.0 * hi, max_width)
-        while hi - lo > tol * hi:
-            if it >= _MAX_STEPS:  # 1e-15 from a doubling bracket takes ~ 50 halvings
-                raise LimitExceededError(f"minimum pier width: the bisection did not reach tol "
-                                         f"= {tol:g} in {_MAX_STEPS} steps ([{lo:.17g}, {hi:.17g}])")
-            mid = 0.5 * (lo + hi)
-            if stands(mid):
-                hi = mid
-            else:
-                lo = mid
-            it += 1
+        # 1e-15 from a doubling bracket takes ~ 50 halvings of the _MAX_STEPS
+        hi, it = least_standing(stands, lo, hi, tol, _MAX_STEPS, "minimum pier width", it)
         governed = "pier"
     structure = build(hi)
     _, thrust = _margin_state(structure)

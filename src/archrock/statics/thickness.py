@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._records import readonly_arrays
-from ..errors import ArchInputError, CannotStandError, LimitExceededError
+from ..errors import ArchInputError, CannotStandError
+from .search import least_standing
 from ..geometry import Arch, VoussoirArch
 from .lp import _stands
 
@@ -93,17 +94,8 @@ def thickness_bisection(arch: VoussoirArch, stands, tol: float = 1e-7,
         if ok is None or hi >= max_factor:
             raise CannotStandError(cannot)
         hi = min(2 * hi, max_factor)
-    it = 0
-    while hi - lo > tol * hi:
-        if it >= _MAX_BISECTIONS:  # a halving narrows by 2; 1e-15 from 1e-6 takes < 70
-            raise LimitExceededError(f"minimum thickness: the bisection did not reach tol = "
-                                     f"{tol:g} in {_MAX_BISECTIONS} steps ([{lo:.17g}, {hi:.17g}])")
-        mid = 0.5 * (lo + hi)
-        if at(mid):
-            hi = mid
-        else:
-            lo = mid
-        it += 1
+    # a halving narrows by 2: 1e-15 from 1e-6 takes < 70 of the _MAX_BISECTIONS
+    hi, it = least_standing(at, lo, hi, tol, _MAX_BISECTIONS, "minimum thickness")
     if isinstance(arch, Arch):
         t = arch.thicknesses * hi
         return MinimumThickness(hi, float(np.mean(t / arch.radii)), t, it)
