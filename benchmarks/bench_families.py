@@ -123,30 +123,24 @@ def main(argv=None):
                   f"{lg['arches_per_s']:9.0f} {'':8s} {'':8s} {lg['ratio_to_circular']:10.2f}"
                   f"   (on {lg['samples']} arches; drawing {lg['draw_s']:.2f} s)", flush=True)
         out["families"][shape] = r
-    if "surveyed" in wanted:
-        # a surveyed arch: Oppenheim's as a polygon without a family, joints kept (span spread 0)
-        from archrock.geometry import as_polygon
-        from archrock.geometry.sampling import Spreads
+    # a surveyed arch (Oppenheim's as a polygon without a family, joints kept: span spread 0)
+    # and Oppenheim's arch on two piers 4 m x 2 m, perturbed by the same rule (piers included)
+    from archrock.geometry import as_polygon, with_piers
+    from archrock.geometry.sampling import Spreads
 
-        r = _run(as_polygon(oppenheim_arch()), args.samples, Spreads(0.0, 0.1, 0.05))
+    for key, name, build in (
+            ("surveyed", "surveyed polygon (Oppenheim, n=7)",
+             lambda: as_polygon(oppenheim_arch())),
+            ("piers", "on piers 4 x 2 m (Oppenheim, n=9)",
+             lambda: with_piers(oppenheim_arch(), 4.0, 2.0))):
+        if key not in wanted:
+            continue
+        r = _run(build(), args.samples, Spreads(0.0, 0.1, 0.05))
         r["ratio_to_circular"] = r["wall_s"] / base["wall_s"]
-        name = "surveyed polygon (Oppenheim, n=7)"
         print(f"{name:34s} {r['wall_s']:7.2f} {r['arches_per_s']:9.0f} {r['prepare_s']:8.2f} "
               f"{r['response_s']:8.2f} {r['ratio_to_circular']:10.2f}   ({r['left_out']} left "
               f"out, {r['collapsed']} collapsed)", flush=True)
-        out["families"]["surveyed"] = r
-    if "piers" in wanted:
-        # Oppenheim's arch on two piers 4 m x 2 m, perturbed as a surveyed arch (piers included)
-        from archrock.geometry import with_piers
-        from archrock.geometry.sampling import Spreads
-
-        r = _run(with_piers(oppenheim_arch(), 4.0, 2.0), args.samples, Spreads(0.0, 0.1, 0.05))
-        r["ratio_to_circular"] = r["wall_s"] / base["wall_s"]
-        name = "on piers 4 x 2 m (Oppenheim, n=9)"
-        print(f"{name:34s} {r['wall_s']:7.2f} {r['arches_per_s']:9.0f} {r['prepare_s']:8.2f} "
-              f"{r['response_s']:8.2f} {r['ratio_to_circular']:10.2f}   ({r['left_out']} left "
-              f"out, {r['collapsed']} collapsed)", flush=True)
-        out["families"]["piers"] = r
+        out["families"][key] = r
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=2)
