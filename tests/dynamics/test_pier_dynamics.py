@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from archrock import groundmotion as gm
@@ -159,3 +160,17 @@ def test_a_step_of_several_k_opens_both_piers(heavy):
     # below the threshold nothing opens but the limit mechanism is still the reference
     with pytest.raises(ArchInputError, match="accel_g"):
         step_mechanism(heavy, 0.0)
+
+
+def test_a_heavy_springer_on_a_level_joint_is_not_a_pier():
+    """A semicircle on vertical joints has springers of 2/7 of its centreline on level
+    springing joints, 3.3x the median block: heavy and level, but a ring, not a pier (its faces
+    curve away from the springing). The four-link model holds there: no warning."""
+    from archrock.dynamics.piers import pier_blocks
+    from archrock.dynamics.response import prepare
+    from archrock.geometry import family_arch
+
+    arch = family_arch("circular", 10.0, 5.0, 1.0, 7, joints="vertical", exact=False)
+    assert max(arch.masses) >= 2.0 * float(np.median(arch.masses))
+    assert pier_blocks(arch) == ((), "none")
+    assert prepare(arch, 0.8).single_dof.valid

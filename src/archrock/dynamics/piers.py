@@ -53,23 +53,37 @@ class SingleDofCheck:
 
 def pier_blocks(arch) -> tuple[tuple, str]:
     """(indices of the pier blocks, how they were found): from ``block_kinds`` where the arch
-    has them (:class:`~archrock.geometry.ArchOnPiers`); otherwise the end blocks (0, n-1) that
-    stand on a horizontal foundation joint (joint 0 / n, its ends level to 1e-9 of the size) and
-    weigh at least :data:`PIER_MASS_RATIO` times the median block (monolithic piers of a
-    geometry file such as ``shared/cases/heavy_piers.json``)."""
+    has them (:class:`~archrock.geometry.ArchOnPiers`); otherwise the end blocks (0, n-1) of a
+    polygon arch that stand on a horizontal foundation joint (joint 0 / n, its ends level to
+    1e-9 of the size), weigh at least :data:`PIER_MASS_RATIO` times the median block and rise
+    from it as a column, both faces straight and vertical over at least the foundation's width
+    (monolithic piers of a geometry file such as ``shared/cases/heavy_piers.json``)."""
     kinds = getattr(arch, "block_kinds", None)
     if kinds:
         idx = tuple(i for i, k in enumerate(kinds) if k == "pier")
         return (idx, "block_kinds") if idx else ((), "none")
     n = arch.n
-    if n < 3:
+    if n < 3 or getattr(arch, "intrados", None) is None:
         return (), "none"
     pts = np.asarray(arch.joint_points, float)
     masses = np.asarray(arch.masses, float)
     tol = 1e-9 * float(arch.size)
     heavy = PIER_MASS_RATIO * float(np.median(masses))
+
+    def column(i, j):
+        # both faces rise from the foundation as straight vertical segments at least as long
+        # as the foundation is wide: a pier, not the springer of a ring on vertical joints
+        # (heavy too, on a level springing, but its faces curve away at once)
+        width = abs(pts[j, 1, 0] - pts[j, 0, 0])
+        for line in (arch.intrados[i], arch.extrados[i]):
+            a, b = (line[0], line[1]) if i == 0 else (line[-1], line[-2])
+            if abs(b[0] - a[0]) > tol or abs(b[1] - a[1]) < width:
+                return False
+        return True
+
     found = tuple(i for i, j in ((0, 0), (n - 1, n))
-                  if abs(pts[j, 0, 1] - pts[j, 1, 1]) <= tol and masses[i] >= heavy)
+                  if abs(pts[j, 0, 1] - pts[j, 1, 1]) <= tol and masses[i] >= heavy
+                  and column(i, j))
     return (found, "geometry") if found else ((), "none")
 
 

@@ -35,7 +35,6 @@ COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_
            "events_truncated", "early_stopped", "error"]
 
 
-
 def _on_moved_supports(arch, movement):
     """A sample on moved supports (re-closed, docs/supports.md), or why it is left out: an
     arch that cannot stand there is "cannot stand" (its collapse under its own weight)."""
@@ -51,6 +50,7 @@ def _on_moved_supports(arch, movement):
         return InvalidSampleError(f"cannot stand on its moved supports ({movement.describe()}): "
                                   f"{' '.join(str(exc).split())}")
     return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
+
 
 def sample_arch(config: EnsembleConfig, index: int):
     """The random arch of sample ``index`` (0-based) of the ensemble, rebuilt from the seed (on

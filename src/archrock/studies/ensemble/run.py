@@ -30,8 +30,12 @@ def _nominal_info(config: EnsembleConfig) -> dict:
     if pier_blocks(arch)[0]:
         from ...dynamics.piers import single_dof_check
         from ...dynamics.response import prepare
+        from ...errors import ArchrockError
 
-        info["single_dof"] = single_dof_check(prepare(arch, 0.8)).to_dict()
+        try:  # the verdict needs the four-link models (c_v does not enter it)
+            info["single_dof"] = single_dof_check(prepare(arch, 0.8)).to_dict()
+        except ArchrockError:  # no four-link model on the nominal: nothing to warn about
+            pass
     return info
 
 
