@@ -3,6 +3,7 @@ re-closed on its moved supports, fixed-support configurations unchanged."""
 
 import json
 
+import numpy as np
 import pytest
 
 from archrock.cli import main
@@ -66,3 +67,31 @@ def test_cli_ensemble_moves_supports_and_other_studies_refuse(capsys):
     code = main(["random-arch", "--spread", "0.5"])
     _, err = capsys.readouterr()
     assert code != 0 and "moved supports" in err
+
+
+def test_a_movement_drawn_per_arch():
+    """support_draw='uniform': sample i takes U_i x the movement, U_i on [0, 1] from its own
+    stream (the arches' draws unchanged, independent of the batch size); each row is its arch
+    on its own moved supports."""
+    from archrock.geometry.sampling import ArchSampler
+
+    mv = SupportMovement(0.0, 0.8)
+    s = ArchSampler(nominal_arch(), seed=5)
+    u = s.movement_fractions(0, 1200)
+    assert 0.0 <= u.min() and u.max() < 1.0 and abs(u.mean() - 0.5) < 0.03
+    np.testing.assert_array_equal(s.movement_fractions(498, 5), u[498:503])  # across blocks
+    np.testing.assert_array_equal(s.uniforms(0, 3), ArchSampler(nominal_arch(), seed=5)
+                                  .uniforms(0, 3))
+    cfg = EnsembleConfig.from_arch(nominal_arch(), samples=5, seed=5, batch_size=2, support=mv,
+                                   support_draw="uniform")
+    assert cfg.to_dict()["support_draw"] == "uniform"
+    assert EnsembleConfig.from_dict(json.loads(cfg.to_json())) == cfg
+    res = run_ensemble(cfg, progress=False)
+    for row in res.frame.itertuples():
+        arch = sample_arch(cfg, row.index)
+        assert arch.movement == mv.scaled(float(u[row.index]))
+        assert row.k_l == pytest.approx(limit_analysis(arch).k_l, rel=1e-12)
+    with pytest.raises(ArchInputError, match="support_draw"):
+        EnsembleConfig.from_arch(nominal_arch(), samples=5, support_draw="uniform")
+    with pytest.raises(ArchInputError, match="support_draw"):
+        EnsembleConfig.from_arch(nominal_arch(), samples=5, support=mv, support_draw="normal")

@@ -37,6 +37,10 @@ def add_ensemble_parser(subparsers):
                    help="folder for batches/*.parquet and manifest.json; resumes if it exists")
     add_motion_options(p)
     add_impact_options(p)
+    p.add_argument("--support-draw", choices=("fixed", "uniform"), default="fixed",
+                   help="with --spread/--settlement: every arch takes the whole movement "
+                        "(fixed, default) or a fraction U uniform on [0, 1] of it drawn per arch "
+                        "(uniform; docs/supports.md)")
     p.add_argument("--early-stop", action="store_true",
                    help="stop following an arch once, after the ground motion, its energy is "
                         "below every mechanism's barrier under an impact law that adds no energy: "
@@ -73,6 +77,9 @@ def run_ensemble_cmd(args) -> int:
     support = None
     if isinstance(nominal, DisplacedArch):  # --spread/--settlement: every sample's supports move
         support, nominal = nominal.movement, nominal.base
+    if args.support_draw != "fixed" and support is None:
+        raise CLIError("--support-draw: needs --spread or --settlement (the movement drawn per "
+                       "arch, in metres)")
     motion = motion_spec_from_args(args)
     given = [f for f, v in (("--cv", args.cv), ("--impact", args.impact),
                             ("--impact-on", args.impact_on),
@@ -91,7 +98,8 @@ def run_ensemble_cmd(args) -> int:
                                       batch_size=args.batch_size,
                                       motion=motion, spreads=spreads(args),
                                       impact=impact_spec_from_args(args),
-                                      early_stop=bool(args.early_stop), support=support)
+                                      early_stop=bool(args.early_stop), support=support,
+                                      support_draw=args.support_draw)
     try:
         result = run_ensemble(config, out=out, workers=args.workers,
                               scheduler=args.scheduler, progress=not args.no_progress,

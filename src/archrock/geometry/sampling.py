@@ -159,23 +159,37 @@ class ArchSampler:
 
     def uniforms(self, start: int, count: int) -> np.ndarray:
         """The uniform draws U of samples start .. start + count - 1, shape (count, rows, n)."""
+        return self._stream(start, count, (self.rows, self.nominal.n), -1.0, ())
+
+    def _stream(self, start, count, shape: tuple, low: float, child: tuple) -> np.ndarray:
+        """Draws uniform on [low, 1) of shape ``shape`` per sample, samples start .. start +
+        count - 1: block k reads ``SeedSequence(seed, spawn_key=(k, *child))`` from its start
+        (module docstring)."""
         if isinstance(start, bool) or int(start) != start or start < 0:
             raise ArchInputError(f"start: {start!r}; allowed an integer >= 0")
         if isinstance(count, bool) or int(count) != count or count < 0:
             raise ArchInputError(f"count: {count!r}; allowed an integer >= 0")
-        start, count, n, rows = int(start), int(count), self.nominal.n, self.rows
-        out = np.empty((count, rows, n))
+        start, count = int(start), int(count)
+        out = np.empty((count, *shape))
         end = start + count
         k = start // BLOCK
         while k * BLOCK < end:
             lo, hi = max(start, k * BLOCK), min(end, (k + 1) * BLOCK)
-            rng = np.random.default_rng(np.random.SeedSequence(self.seed, spawn_key=(k,)))
-            # a block's stream is read from its start: sample j of the block is its j-th rows x n
-            # draws
-            u = rng.uniform(-1.0, 1.0, size=(hi - k * BLOCK, rows, n))
+            rng = np.random.default_rng(np.random.SeedSequence(self.seed,
+                                                               spawn_key=(k, *child)))
+            # a block's stream is read from its start: sample j of the block is its j-th draws
+            u = rng.uniform(low, 1.0, size=(hi - k * BLOCK, *shape))
             out[lo - start:hi - start] = u[lo - k * BLOCK:]
             k += 1
         return out
+
+    def movement_fractions(self, start: int, count: int) -> np.ndarray:
+        """U on [0, 1] of samples start .. start + count - 1, shape (count,): the fraction of a
+        study's support movement that each arch takes when the movement is drawn per arch
+        (EnsembleConfig(support_draw='uniform')).  Block k's stream is the child
+        ``SeedSequence(seed, spawn_key=(k, 1))`` of the arches' stream: the arches' draws do
+        not change, and sample i's fraction depends on (seed, i) alone."""
+        return self._stream(start, count, (), 0.0, (1,))
 
     def draw(self, start: int, count: int):
         """(spans [rad], thicknesses [m], radii [m]) of samples start .. start + count - 1,

@@ -61,7 +61,7 @@ def sample_arch(config: EnsembleConfig, index: int):
     arch = config.sampler.arch(int(index))
     if config.support is None:
         return arch
-    moved = _on_moved_supports(arch, config.support)
+    moved = _on_moved_supports(arch, config.movements(int(index), 1)[0])
     if isinstance(moved, Exception):
         raise moved
     return moved
@@ -98,8 +98,8 @@ def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
     last, n_last = cfg.batch_range(bs[-1])
     nb = last + n_last - start
     if cfg.support is not None:  # each arch on its moved supports, as an object
-        pb = prepare_batch([_on_moved_supports(a, cfg.support)
-                            for a in sampler.arches(start, nb)],
+        pb = prepare_batch([_on_moved_supports(a, mv) for a, mv in
+                            zip(sampler.arches(start, nb), cfg.movements(start, nb))],
                            impact=cfg.impact.resolved(cfg.analysed_nominal), parallel=parallel)
     elif sampler.circular:
         spans, thick, radii = sampler.draw(start, nb)

@@ -23,7 +23,11 @@ from ...dynamics.response import default_steps
 from ...geometry.displaced import DisplacedArch, SupportMovement
 from ...geometry.sampling import DEFAULT_SPREADS, ArchSampler, Spreads
 
-__all__ = ["EnsembleConfig"]
+__all__ = ["EnsembleConfig", "SUPPORT_DRAWS"]
+
+#: How a support movement is applied to the samples: the same to every arch, or a fraction U
+#: uniform on [0, 1] of it drawn per arch.
+SUPPORT_DRAWS = ("fixed", "uniform")
 
 
 def int_field(name, value, lo):
@@ -57,7 +61,9 @@ class EnsembleConfig:
     :class:`~archrock.geometry.displaced.SupportMovement` (or its dict) applied to every sample
     (:mod:`archrock.statics.supports`, each arch analysed re-closed on its moved supports; an arch
     that cannot stand there is left out as "cannot stand"); None or zero: fixed supports, not
-    written to the JSON.
+    written to the JSON; support_draw: 'fixed' (every sample takes ``support``) or 'uniform'
+    (sample i takes U_i x ``support``, :meth:`movements`; the nominal arch is analysed at the
+    whole movement), written only when 'uniform'.
     """
 
     nominal: dict
@@ -72,6 +78,7 @@ class EnsembleConfig:
     tabulate: bool = True
     early_stop: bool = False
     support: SupportMovement | dict | None = None
+    support_draw: str = "fixed"
 
     def __post_init__(self):
         if isinstance(self.nominal, DisplacedArch):
@@ -120,6 +127,12 @@ class EnsembleConfig:
             if support.is_zero:
                 support = None  # fixed supports: the configuration (and hash) without movement
         object.__setattr__(self, "support", support)
+        if self.support_draw not in SUPPORT_DRAWS:
+            raise ArchInputError(f"support_draw: {self.support_draw!r}; allowed "
+                                 f"{', '.join(SUPPORT_DRAWS)}")
+        if self.support_draw != "fixed" and support is None:
+            raise ArchInputError(f"support_draw: {self.support_draw!r} needs a support movement "
+                                 f"(support=...; --spread/--settlement)")
 
     @classmethod
     def from_arch(cls, nominal: VoussoirArch, **kwargs) -> "EnsembleConfig":
@@ -140,6 +153,17 @@ class EnsembleConfig:
 
         moved = displace(self.sampler.nominal, self.support).arch
         return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
+
+    def movements(self, start: int, count: int) -> list:
+        """The support movement of samples start .. start + count - 1 (None: fixed supports):
+        ``support`` itself, or with support_draw 'uniform' ``support`` times the sample's
+        :meth:`~archrock.geometry.sampling.ArchSampler.movement_fractions`."""
+        if self.support is None:
+            return [None] * int(count)
+        if self.support_draw == "fixed":
+            return [self.support] * int(count)
+        return [self.support.scaled(float(u))
+                for u in self.sampler.movement_fractions(start, count)]
 
     @property
     def n_batches(self) -> int:
@@ -163,6 +187,8 @@ class EnsembleConfig:
             del d["support"]
         else:
             d["support"] = self.support.to_dict()
+        if self.support_draw == "fixed":
+            del d["support_draw"]
         return d
 
     def to_json(self) -> str:
