@@ -25,7 +25,7 @@ from scipy.optimize import linprog
 
 from .._records import readonly_arrays
 from ..errors import ArchInputError, CannotStandError
-from .search import least_standing
+from .search import check_tol, least_standing
 from ..geometry import ArchOnPiers, VoussoirArch, with_piers
 from ..units import G
 from .limit import limit_analysis
@@ -135,13 +135,7 @@ def minimum_pier_width(arch: VoussoirArch, height: float, *, courses: int = 1,
     width ``tol`` (1e-15 <= tol < 0.5).  CannotStandError when the arch does not stand on rigid
     ground (no pier helps) or when no width up to ``max_width`` suffices."""
     _check_arch(arch)
-    try:
-        tol = float(tol)
-    except (TypeError, ValueError):
-        tol = math.nan
-    if not 1e-15 <= tol < 0.5:
-        raise ArchInputError(f"tol: {tol!r}; allowed 1e-15 <= tol < 0.5 (relative width of the "
-                             f"width bracket)")
+    tol = check_tol(tol, "width")
     from ..geometry.defect import _as_polygon
 
     poly = _as_polygon(arch)  # checked once; the search rebuilds only the piers under it

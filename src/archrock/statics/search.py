@@ -3,9 +3,24 @@ width): the least x in [lo, hi] at which a structure stands, to a tolerance rela
 
 from __future__ import annotations
 
-from ..errors import LimitExceededError
+import math
 
-__all__ = ["least_standing"]
+from ..errors import ArchInputError, LimitExceededError
+
+__all__ = ["least_standing", "check_tol"]
+
+
+def check_tol(tol, what: str) -> float:
+    """``tol`` as a float in [1e-15, 0.5), or ArchInputError naming it as the relative width of
+    ``what``'s bracket."""
+    try:
+        tol = float(tol)
+    except (TypeError, ValueError):
+        tol = math.nan
+    if not 1e-15 <= tol < 0.5:
+        raise ArchInputError(f"tol: {tol!r}; allowed 1e-15 <= tol < 0.5 (relative width of the "
+                             f"{what} bracket)")
+    return tol
 
 
 def least_standing(stands, lo: float, hi: float, tol: float, max_steps: int, what: str,

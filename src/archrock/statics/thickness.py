@@ -6,14 +6,13 @@ mean t/R (circular arches) or mean thickness / size (families).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._records import readonly_arrays
 from ..errors import ArchInputError, CannotStandError
-from .search import least_standing
+from .search import check_tol, least_standing
 from ..geometry import Arch, VoussoirArch
 from .lp import _stands
 
@@ -79,13 +78,7 @@ def thickness_bisection(arch: VoussoirArch, stands, tol: float = 1e-7,
             return None
         return stands(a)
 
-    try:
-        tol = float(tol)
-    except (TypeError, ValueError):
-        tol = math.nan
-    if not 1e-15 <= tol < 0.5:
-        raise ArchInputError(f"tol: {tol!r}; allowed 1e-15 <= tol < 0.5 (relative width of the "
-                             f"thickness bracket)")
+    tol = check_tol(tol, "thickness")
     lo, hi = 1e-6, min(1.0, max_factor)
     while True:  # at most log2(max_factor) + 1 doublings (max_factor <= 64 or 2R/t)
         ok = at(hi)
