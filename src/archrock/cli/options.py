@@ -389,7 +389,7 @@ def _supports_from_args(args: argparse.Namespace, arch):
         return arch
     from ..errors import ArchInputError
     from ..geometry.displaced import SupportMovement
-    from ..statics.supports import displace
+    from ..statics.supports import on_moved_supports
 
     try:
         mv = SupportMovement(0.0 if s is None else s, 0.0 if v is None else v,
@@ -403,8 +403,4 @@ def _supports_from_args(args: argparse.Namespace, arch):
     # the analyses take the displaced geometry with its open joints bearing on whole faces: a
     # mechanism that turns an open joint back only closes its gap (docs/supports.md, "One
     # answer: the re-closed arch"); limit reports that bounded motion beside it
-    from ..geometry.displaced import DisplacedArch
-    from ..statics.supports import reclosed
-
-    moved = displace(arch, mv).arch  # the arch itself at zero movement
-    return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
+    return on_moved_supports(arch, mv)  # the arch itself at zero movement

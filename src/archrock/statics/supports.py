@@ -50,7 +50,8 @@ from .lp import ThrustLine, _statics, _thrust_from_x
 from .thrust import _touching
 
 __all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
-           "displacement_capacity", "closing_hinges", "reclosed", "point_contacts", "gap_closing",
+           "displacement_capacity", "closing_hinges", "reclosed", "on_moved_supports",
+           "point_contacts", "gap_closing",
            "GapClosing", "CAPACITY_KINDS", "STEPS",
            "BISECT_TOL"]
 
@@ -589,6 +590,14 @@ def reclosed(arch: DisplacedArch) -> DisplacedArch:
     return DisplacedArch(arch.base, tuple(arch.angles), tuple(arch.origins), tuple(arch.images),
                          (), arch.movement, arch.hinges, f"{arch.name} (joints re-closed)",
                          contacts=arch.point_joints)
+
+
+def on_moved_supports(arch: VoussoirArch, movement: SupportMovement) -> VoussoirArch:
+    """``arch`` as every analysis takes it after ``movement`` (docs/supports.md, "One answer:
+    the re-closed arch"): the displaced arch of :func:`displace`, :func:`reclosed`; ``arch``
+    itself at zero movement.  CannotStandError where it cannot stand there."""
+    moved = displace(arch, movement).arch
+    return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
 
 
 def point_contacts(arch: DisplacedArch) -> DisplacedArch:

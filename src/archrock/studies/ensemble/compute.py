@@ -39,17 +39,15 @@ def _on_moved_supports(arch, movement):
     """A sample on moved supports (re-closed, docs/supports.md), or why it is left out: an
     arch that cannot stand there is "cannot stand" (its collapse under its own weight)."""
     from ...errors import ArchrockError, InvalidSampleError
-    from ...geometry.displaced import DisplacedArch
-    from ...statics.supports import displace, reclosed
+    from ...statics.supports import on_moved_supports
 
     if isinstance(arch, Exception):
         return arch
     try:
-        moved = displace(arch, movement).arch
+        return on_moved_supports(arch, movement)
     except ArchrockError as exc:
         return InvalidSampleError(f"cannot stand on its moved supports ({movement.describe()}): "
                                   f"{' '.join(str(exc).split())}")
-    return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
 
 
 def sample_arch(config: EnsembleConfig, index: int):

@@ -20,7 +20,7 @@ from ...geometry import VoussoirArch, arch_from_dict
 from ...groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
 from ...dynamics.impact import PAPER_PRACTICE, ImpactSpec
 from ...dynamics.response import default_steps
-from ...geometry.displaced import DisplacedArch, SupportMovement
+from ...geometry.displaced import SupportMovement, refuse_moved_supports
 from ...geometry.sampling import DEFAULT_SPREADS, ArchSampler, Spreads
 
 __all__ = ["EnsembleConfig", "SUPPORT_DRAWS"]
@@ -81,10 +81,7 @@ class EnsembleConfig:
     support_draw: str = "fixed"
 
     def __post_init__(self):
-        if isinstance(self.nominal, DisplacedArch):
-            raise ArchInputError(f"nominal: {self.nominal.name!r} stands on moved supports; "
-                                 f"allowed the arch on fixed supports, with the movement as "
-                                 f"support=SupportMovement(...)")
+        refuse_moved_supports(self.nominal)  # before its dict, which cannot be read back
         if isinstance(self.nominal, VoussoirArch):
             object.__setattr__(self, "nominal", self.nominal.to_dict())
         arch = arch_from_dict(self.nominal, name="nominal")  # validates
@@ -136,7 +133,7 @@ class EnsembleConfig:
 
     @classmethod
     def from_arch(cls, nominal: VoussoirArch, **kwargs) -> "EnsembleConfig":
-        return cls(nominal.to_dict(), **kwargs)
+        return cls(nominal, **kwargs)  # __post_init__ checks it, then keeps its dict
 
     @cached_property
     def sampler(self) -> ArchSampler:
@@ -146,13 +143,12 @@ class EnsembleConfig:
     @cached_property
     def analysed_nominal(self) -> VoussoirArch:
         """The nominal arch as every sample is analysed: on its moved supports (re-closed,
-        :func:`archrock.statics.supports.reclosed`) when ``support`` is set."""
+        :func:`archrock.statics.supports.on_moved_supports`) when ``support`` is set."""
         if self.support is None:
             return self.sampler.nominal
-        from ...statics.supports import displace, reclosed
+        from ...statics.supports import on_moved_supports
 
-        moved = displace(self.sampler.nominal, self.support).arch
-        return reclosed(moved) if isinstance(moved, DisplacedArch) else moved
+        return on_moved_supports(self.sampler.nominal, self.support)
 
     def movements(self, start: int, count: int) -> list:
         """The support movement of samples start .. start + count - 1 (None: fixed supports):
