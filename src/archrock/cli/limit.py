@@ -52,7 +52,15 @@ def _min_pier_width(args, arch):
     if isinstance(arch, ArchOnPiers) and arch.pier_blocks:
         raise CLIError("--min-pier-width: cannot be combined with an arch on piers (--pier-* "
                        "options or a geometry file with pier blocks); give the arch alone")
-    return minimum_pier_width(arch, args.min_pier_width)
+    from ..errors import ArchInputError
+
+    try:
+        return minimum_pier_width(arch, args.min_pier_width)
+    except ArchInputError as exc:  # the library names its argument; the user typed the flag
+        msg = str(exc)
+        if msg.startswith("height:"):
+            raise ArchInputError("--min-pier-width:" + msg[len("height:"):]) from None
+        raise
 
 
 def _supports_extra(args, arch, result):
@@ -69,7 +77,7 @@ def _supports_extra(args, arch, result):
         if gc is not None:
             shut = sorted(set(gc.closing_l) | set(gc.closing_r))
             lines.append(f"before that, the open joints' point contacts let the arch rock from "
-                         f"k_l = {gc.k_l:.4f}, k_r = {gc.k_r:.4f}, turning joint(s) "
+                         f"k_l = {gc.k_l:.4g}, k_r = {gc.k_r:.4g}, turning joint(s) "
                          f"{', '.join(map(str, shut))} back until their gaps close: a bounded "
                          f"motion, not a collapse (docs/supports.md)")
         out["support_movement"]["gap_closing"] = None if gc is None else gc.to_dict()

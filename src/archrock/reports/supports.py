@@ -50,7 +50,7 @@ def format_capacity(cap) -> str:
         lines.append("hinge sets followed: " + "; ".join(
             f"from {t:.4g} m: {hinge_labels(h)}" for t, h in cap.migrations))
     c = cap.curve
-    lines.append(f"thrust H: {c[0, 1] / 1e3:.4f} kN/m at onset, {c[-1, 1] / 1e3:.4f} kN/m at "
+    lines.append(f"thrust H: {c[0, 1] / 1e3:.6g} kN/m at onset, {c[-1, 1] / 1e3:.6g} kN/m at "
                  f"capacity; crown drop at capacity {c[-1, 4]:.4g} m")
     return "\n".join(lines)
 
