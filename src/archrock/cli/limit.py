@@ -66,27 +66,19 @@ def _min_pier_width(args, arch):
 def _supports_extra(args, arch, result):
     """(lines, json, capacity) for a displaced arch and --capacity (docs/supports.md)."""
     from ..geometry.displaced import DisplacedArch
-    from ..reports.supports import displaced_summary, format_capacity, format_displaced
+    from ..reports.supports import (displaced_summary, format_capacity, format_displaced,
+                                    format_gap_closing)
+    from ..statics.supports import displacement_capacity, gap_closing
+
     lines, out, cap = [], {}, None
     if isinstance(arch, DisplacedArch):
         lines.append(format_displaced(arch))
         out["support_movement"] = displaced_summary(arch)
-        from ..statics.supports import gap_closing
-
         gc = gap_closing(arch)
         if gc is not None:
-            shut = sorted(set(gc.closing_l) | set(gc.closing_r))
-            lines.append(f"before that, the open joints' point contacts let the arch rock from "
-                         f"k_l = {gc.k_l:.4g}, k_r = {gc.k_r:.4g}, turning joint(s) "
-                         f"{', '.join(map(str, shut))} back until their gaps close: a bounded "
-                         f"motion, not a collapse (docs/supports.md)")
+            lines.append(format_gap_closing(gc))
         out["support_movement"]["gap_closing"] = None if gc is None else gc.to_dict()
     if args.capacity is not None:
-        from ..statics.supports import displacement_capacity
-
-        if isinstance(arch, DisplacedArch):
-            raise CLIError("--capacity: computed on the arch as built; leave out --spread and "
-                           "--settlement (the capacity's curve gives every movement up to it)")
         cap = displacement_capacity(arch, args.capacity, args.support_side or "right")
         lines.append(format_capacity(cap))
         out["capacity"] = cap.to_dict()
@@ -100,6 +92,9 @@ def run_limit(args) -> int:
     from ..reports.limit import format_limit_table, limit_summary
 
     plot = figure_arg(args.supports_plot)
+    if args.capacity is not None and (args.spread or args.settlement):  # 0: the arch itself
+        raise CLIError("--capacity: computed on the arch as built; leave out --spread and "
+                       "--settlement (the capacity's curve gives every movement up to it)")
     arch = arch_from_args(args)
     mpw = _min_pier_width(args, arch)
     result = limit_analysis(arch, verify=True)

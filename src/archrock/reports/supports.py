@@ -10,8 +10,8 @@ from pathlib import Path
 from ..errors import ArchInputError
 from .plots import STYLE, clip_thrust_polyline, draw_arch, new_figure, save_figure
 
-__all__ = ["hinge_labels", "format_displaced", "displaced_summary", "format_capacity",
-           "plot_displaced", "plot_capacity", "save_supports_figure"]
+__all__ = ["hinge_labels", "format_displaced", "displaced_summary", "format_gap_closing",
+           "format_capacity", "plot_displaced", "plot_capacity", "save_supports_figure"]
 
 
 def hinge_labels(hinges) -> str:
@@ -36,6 +36,15 @@ def displaced_summary(arch) -> dict:
             "hinges": [h.to_dict() for h in arch.hinges],
             "points": [[x, y] for _, x, y in (arch.point_joints or arch.contacts)],
             "reclosed": bool(arch.contacts) and not arch.point_joints}
+
+
+def format_gap_closing(gc) -> str:
+    """One line: the rocking the point contacts allow before the re-closed arch's multipliers
+    (:class:`archrock.statics.supports.GapClosing`), bounded by the gaps."""
+    shut = sorted(set(gc.closing_l) | set(gc.closing_r))
+    return (f"before that, the open joints' point contacts let the arch rock from k_l = "
+            f"{gc.k_l:.4g}, k_r = {gc.k_r:.4g}, turning joint(s) {', '.join(map(str, shut))} "
+            f"back until their gaps close: a bounded motion, not a collapse (docs/supports.md)")
 
 
 def format_capacity(cap) -> str:
