@@ -1,0 +1,352 @@
+"""The static linear program on a graph of rigid blocks (an :class:`~archrock.geometry.arcade.
+Arcade`), and its mechanism read from the dual (docs/arcades.md).
+
+Heyman's hypotheses (no tension, no crushing, no sliding unless Coulomb rows are asked for) on
+any set of blocks and contacts.  Unknowns, nondimensional (forces per total weight W, lengths
+per the arcade's extent L): at each contact c the normal force at each of its two ends, N0 and
+N1 >= 0 (compression; their resultant is the thrust, inside the joint, crossing it at
+t = N1 / (N0 + N1) of the way from end 0), the shear V along the joint (free, or with friction
+|V| <= mu (N0 + N1)), and the horizontal load factor k.  Block b carries its weight w_b at its
+mass centre and d k w_b horizontally there (d = +1 for direction 'l', loads toward +x; -1 for
+'r'); the contact forces act on block b along the normal n from a into b and on block a
+opposite.  Three equilibrium rows per block (forces, and moments about its own mass centre).
+Maximise k (scipy.optimize.linprog, HiGHS).
+
+The dual: one (u_x, u_y, omega) per block, the multipliers of its three rows; up to sign they
+are a virtual velocity of the block (its mass centre's velocity and its angular velocity), and
+dual feasibility says that no contact end closes (relative normal velocity >= 0), that no joint
+slides without friction (relative tangential velocity 0), and with friction that the sliding is
+the associated (dilatant) flow.  Where the dual opens a contact at one end only, the contact is
+a hinge about the other end.  The mechanism is then rebuilt from those hinges alone (the
+velocities that keep every hinge point, closed contact and sliding condition: a null space) and
+its multiplier recomputed by its own virtual work, k = sum w_b v_y,b / sum d w_b v_x,b (the
+weights rise while the horizontal loads work; no energy is dissipated in rocking or in the
+associated sliding), which must equal the LP's optimum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import linprog
+
+from .._records import readonly_arrays
+from ..errors import ArchInputError, CannotStandError, NoMechanismError
+from ..units import G
+from ..geometry.arcade import GROUND, Arcade
+from .friction import check_friction
+from .hinges import DIRECTIONS
+
+__all__ = ["GraphHinge", "GraphMechanism", "GraphLimit", "graph_multiplier", "graph_limit"]
+
+#: A relative velocity smaller than this fraction of the largest block velocity counts as zero.
+VELOCITY_TOL = 1e-6
+
+
+@dataclass(frozen=True)
+class GraphHinge:
+    """A hinge: contact ``contact`` rotates about its end ``end`` (0 or 1); ``place`` in words
+    ("pier 2 foot, outer face")."""
+
+    contact: int
+    end: int
+    place: str
+
+    def to_dict(self) -> dict:
+        return {"contact": self.contact, "end": self.end, "place": self.place}
+
+
+@dataclass(frozen=True, eq=False)
+class GraphMechanism:
+    """The mechanism of one direction: ``hinges`` (:class:`GraphHinge`), ``lift_off`` (contacts
+    that open at both ends), ``sliding`` (contacts that slide), ``moving`` (blocks that move);
+    ``velocities`` (n_blocks, 3): each block's (v_x, v_y) of its mass centre [m/s per unit
+    rate] and omega [rad/s], scaled so that the horizontal loads' work is sum d m_b v_x,b / M =
+    1 m/s; ``dof`` the dimension of the null space of the hinge conditions (1: one degree of
+    freedom); ``multiplier`` its virtual-work k; ``lp_residual`` |A^T y - c| of the dual."""
+
+    direction: str
+    hinges: tuple
+    lift_off: tuple
+    sliding: tuple
+    moving: tuple
+    velocities: np.ndarray = field(repr=False)
+    dof: int
+    multiplier: float
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    @property
+    def label(self) -> str:
+        return "-".join(f"{h.contact}{'ab'[h.end]}" for h in self.hinges)
+
+    def to_dict(self) -> dict:
+        return {"direction": self.direction, "hinges": [h.to_dict() for h in self.hinges],
+                "lift_off": list(self.lift_off), "sliding": list(self.sliding),
+                "moving": list(self.moving), "velocities": self.velocities.tolist(),
+                "dof": self.dof, "multiplier": self.multiplier}
+
+
+@dataclass(frozen=True, eq=False)
+class GraphLimit:
+    """The limit analysis of an arcade in one direction: ``k`` the LP's optimum (the horizontal
+    load, per unit weight, that the structure carries at most; the collapse multiplier under
+    Heyman's hypotheses), ``k_virtual_work`` the mechanism's own multiplier (equal to ``k`` to
+    about 1e-9 when the dual was read right), ``mechanism``, ``forces`` (m, 3): N0, N1, V at each
+    contact [N/m] at the optimum, ``friction`` (None: no sliding), ``method``."""
+
+    direction: str
+    k: float
+    k_virtual_work: float
+    mechanism: GraphMechanism
+    forces: np.ndarray = field(repr=False)
+    friction: float | None
+    method: str
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    @property
+    def hinges(self) -> tuple:
+        return self.mechanism.hinges
+
+    def to_dict(self) -> dict:
+        return {"direction": self.direction, "k": self.k,
+                "k_virtual_work": self.k_virtual_work,
+                "mechanism": self.mechanism.to_dict(), "forces": self.forces.tolist(),
+                "friction": self.friction, "method": self.method,
+                "units": {"k": "g", "forces": "N per m of depth",
+                          "velocities": "m/s and rad/s per unit work of the horizontal loads"}}
+
+
+class _Program:
+    """The arrays of the LP: x = [N0_0, N1_0, V_0, N0_1, ..., k]."""
+
+    def __init__(self, arc: Arcade, direction: str, friction: float | None):
+        if not isinstance(arc, Arcade):
+            raise ArchInputError(f"arcade: expected an Arcade, got {type(arc).__name__}")
+        if direction not in DIRECTIONS:
+            raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+        self.arc = arc
+        self.d = 1.0 if direction == "l" else -1.0
+        self.L = arc.extent
+        m = np.asarray(arc.masses, float)
+        self.w = m / m.sum()
+        self.G = np.asarray(arc.centroids, float)
+        nb, nc = arc.n_blocks, len(arc.contacts)
+        self.nb, self.nc = nb, nc
+        nv = 3 * nc + 1
+        A = np.zeros((3 * nb, nv))
+        self.normals = np.asarray(arc.contact_normals, float)
+        self.tangents = np.column_stack([self.normals[:, 1], -self.normals[:, 0]])
+        for c, ct in enumerate(arc.contacts):
+            n, t = self.normals[c], self.tangents[c]
+            for blk, sgn in ((ct.b, 1.0), (ct.a, -1.0)):
+                if blk == GROUND:
+                    continue
+                r = 3 * blk
+                g = self.G[blk]
+                for e in (0, 1):  # normal force at end e
+                    arm = (ct.points[e] - g) / self.L
+                    A[r, 3 * c + e] += sgn * n[0]
+                    A[r + 1, 3 * c + e] += sgn * n[1]
+                    A[r + 2, 3 * c + e] += sgn * (arm[0] * n[1] - arm[1] * n[0])
+                arm = (ct.points[0] - g) / self.L  # the shear's line of action is the joint
+                A[r, 3 * c + 2] += sgn * t[0]
+                A[r + 1, 3 * c + 2] += sgn * t[1]
+                A[r + 2, 3 * c + 2] += sgn * (arm[0] * t[1] - arm[1] * t[0])
+        # horizontal loads d k w_b; weights -w_b moved to the right-hand side
+        A[0::3, -1] = self.d * self.w
+        b = np.zeros(3 * nb)
+        b[1::3] = self.w
+        self.A_eq, self.b_eq = A, b
+        bounds = []
+        for _ in range(nc):
+            bounds += [(0, None), (0, None), (None, None)]
+        bounds.append((None, None))
+        self.bounds = bounds
+        self.friction = friction
+        if friction is not None:
+            rows = []
+            for c in range(nc):
+                for s in (1.0, -1.0):  # s V - mu (N0 + N1) <= 0
+                    row = np.zeros(nv)
+                    row[3 * c + 2] = s
+                    row[3 * c] = row[3 * c + 1] = -friction
+                    rows.append(row)
+            self.A_ub, self.b_ub = np.array(rows), np.zeros(len(rows))
+        else:
+            self.A_ub = self.b_ub = None
+        self.c = np.zeros(nv)
+        self.c[-1] = -1.0
+
+    def point_velocity(self, v: np.ndarray, blk: int, p: np.ndarray) -> np.ndarray:
+        """Velocity of point p [m] of block blk (ground: 0) for block velocities v (nb, 3) with
+        omega per L (the dual's units)."""
+        if blk == GROUND:
+            return np.zeros(2)
+        r = (p - self.G[blk]) / self.L
+        return np.array([v[blk, 0] - v[blk, 2] * r[1], v[blk, 1] + v[blk, 2] * r[0]])
+
+    def relative(self, v: np.ndarray, c: int):
+        """(normal (2,), tangential (2,)) relative velocity of block b to block a at the two
+        ends of contact c."""
+        ct = self.arc.contacts[c]
+        dn, dt = np.empty(2), np.empty(2)
+        for e in (0, 1):
+            p = ct.points[e]
+            dv = self.point_velocity(v, ct.b, p) - self.point_velocity(v, ct.a, p)
+            dn[e] = dv @ self.normals[c]
+            dt[e] = dv @ self.tangents[c]
+        return dn, dt
+
+    def compat_rows(self, c: int, what: str, end: int = 0, slip_sign: float = 0.0):
+        """Rows R (k, 3 nb) with R v = 0 for contact c: 'closed' (no relative motion at both
+        ends), 'hinge' (none at end ``end``), 'slide' (no relative normal velocity at both ends,
+        or the associated dilatancy dn = mu |dt| with friction)."""
+        ct = self.arc.contacts[c]
+        n, t = self.normals[c], self.tangents[c]
+        rows = []
+
+        def vel_row(p, direction):
+            row = np.zeros(3 * self.nb)
+            for blk, sgn in ((ct.b, 1.0), (ct.a, -1.0)):
+                if blk == GROUND:
+                    continue
+                r = (p - self.G[blk]) / self.L
+                row[3 * blk] += sgn * direction[0]
+                row[3 * blk + 1] += sgn * direction[1]
+                row[3 * blk + 2] += sgn * (-r[1] * direction[0] + r[0] * direction[1])
+            return row
+        if what == "closed":
+            for e in (0, 1):
+                rows += [vel_row(ct.points[e], n), vel_row(ct.points[e], t)]
+        elif what == "hinge":
+            rows += [vel_row(ct.points[end], n), vel_row(ct.points[end], t)]
+        elif what == "slide":
+            mu = self.friction or 0.0
+            for e in (0, 1):
+                rows.append(vel_row(ct.points[e], n) - mu * slip_sign * vel_row(ct.points[e], t))
+        return rows
+
+
+def _solve(prog: _Program):
+    res = linprog(prog.c, A_ub=prog.A_ub, b_ub=prog.b_ub, A_eq=prog.A_eq, b_eq=prog.b_eq,
+                  bounds=prog.bounds, method="highs")
+    return res
+
+
+def graph_multiplier(arc: Arcade, direction: str, friction: float | None = None) -> float:
+    """The LP's optimum k alone (module docstring)."""
+    prog = _Program(arc, direction, None if friction is None else check_friction(friction))
+    res = _solve(prog)
+    _check_status(res, direction)
+    return float(res.x[-1])
+
+
+def _check_status(res, direction):
+    if res.status == 3:
+        raise NoMechanismError(f"arcade: no mechanism opens under horizontal loads in direction "
+                               f"{direction!r} (the static program is unbounded)")
+    if res.status != 0:
+        raise CannotStandError(f"arcade: no set of contact forces holds the blocks in direction "
+                               f"{direction!r} (linear program status {res.status}: "
+                               f"{res.message}); it cannot stand")
+
+
+def _classify(prog: _Program, v: np.ndarray, tol: float):
+    """Hinges, lift-off, sliding and closed contacts of block velocities v."""
+    hinges, lift, slide, closed, slip_sign = [], [], [], [], {}
+    for c in range(prog.nc):
+        dn, dt = prog.relative(v, c)
+        opened = dn > tol
+        slid = np.abs(dt) > tol
+        if slid.any() and (prog.friction is not None or not opened.all()):
+            if prog.friction is not None or not opened.any():
+                slide.append(c)
+                slip_sign[c] = float(np.sign(dt[np.argmax(np.abs(dt))]))
+                continue
+        if opened.all():
+            lift.append(c)
+        elif opened.any():
+            hinges.append((c, int(np.flatnonzero(~opened)[0])))
+        else:
+            closed.append(c)
+    return hinges, lift, slide, closed, slip_sign
+
+
+def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> GraphLimit:
+    """k, the mechanism and its virtual-work check for one direction (module docstring).
+    ``friction``: Coulomb coefficient mu of every contact (None: no sliding)."""
+    mu = None if friction is None else check_friction(friction)
+    prog = _Program(arc, direction, mu)
+    res = _solve(prog)
+    _check_status(res, direction)
+    k = float(res.x[-1])
+    y = np.asarray(res.eqlin.marginals, float).reshape(prog.nb, 3)
+    # the dual's sign: the velocities under which no contact end closes
+    cands = []
+    for v in (-y, y):
+        worst = min(float(np.min(prog.relative(v, c)[0])) for c in range(prog.nc))
+        cands.append((worst, v))
+    v = max(cands, key=lambda t: t[0])[1]
+    scale = _velocity_scale(prog, v)
+    if scale == 0.0:
+        raise NoMechanismError(f"arcade: the static program's dual gives no motion in direction "
+                               f"{direction!r}")
+    tol = VELOCITY_TOL * scale
+    hinges, lift, slide, closed, slip_sign = _classify(prog, v, tol)
+    # the mechanism from its hinges alone: the null space of the compatibility conditions
+    rows = []
+    for c in closed:
+        rows += prog.compat_rows(c, "closed")
+    for c, e in hinges:
+        rows += prog.compat_rows(c, "hinge", e)
+    for c in slide:
+        rows += prog.compat_rows(c, "slide", slip_sign=slip_sign[c])
+    C = np.array(rows) if rows else np.zeros((0, 3 * prog.nb))
+    _, s, vt = np.linalg.svd(C, full_matrices=True)
+    rank = int(np.sum(s > 1e-9 * (s[0] if s.size else 1.0)))
+    null = vt[rank:]
+    dof = null.shape[0]
+    vflat = v.reshape(-1)
+    if dof == 0:
+        raise NoMechanismError(f"arcade: the hinges read from the dual in direction "
+                               f"{direction!r} leave no motion")
+    # the mechanism in the null space nearest to the dual's velocities
+    coef, *_ = np.linalg.lstsq(null.T, vflat, rcond=None)
+    vm = (null.T @ coef).reshape(prog.nb, 3)
+    work_h = float(np.sum(prog.d * prog.w * vm[:, 0]))
+    if abs(work_h) <= 1e-12 * max(1.0, float(np.abs(vm).max())):
+        raise NoMechanismError(f"arcade: the mechanism in direction {direction!r} does no work "
+                               f"against the horizontal loads")
+    vm = vm / work_h
+    k_vw = float(np.sum(prog.w * vm[:, 1]))
+    # the velocities in SI: v of the mass centres [m/s], omega [rad/s] (per unit work rate)
+    vel = np.column_stack([vm[:, 0], vm[:, 1], vm[:, 2] / prog.L])
+    moving = tuple(int(i) for i in np.flatnonzero(
+        np.abs(vm).max(axis=1) > VELOCITY_TOL * float(np.abs(vm).max())))
+    contacts = arc.contacts
+    gh = tuple(GraphHinge(c, e, contacts[c].place(e)) for c, e in hinges)
+    mech = GraphMechanism(direction, gh, tuple(lift), tuple(slide), moving, vel, dof, k_vw)
+    W = float(np.sum(arc.masses)) * G
+    forces = res.x[:-1].reshape(prog.nc, 3) * W
+    how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
+           "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
+           f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
+    if mu is not None:
+        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+    return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
+
+
+def _velocity_scale(prog: _Program, v: np.ndarray) -> float:
+    """The largest velocity of any block's vertex (dual units)."""
+    best = 0.0
+    for i, b in enumerate(prog.arc.blocks):
+        r = (np.asarray(b.outline, float) - prog.G[i]) / prog.L
+        vx = v[i, 0] - v[i, 2] * r[:, 1]
+        vy = v[i, 1] + v[i, 2] * r[:, 0]
+        best = max(best, float(np.max(np.hypot(vx, vy))))
+    return best
