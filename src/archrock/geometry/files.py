@@ -15,6 +15,11 @@ a :class:`~archrock.geometry.PolygonArch` (each line from left to right).  A pol
 carry ``"kind": "pier" | "buttress" | "voussoir"`` (an arch on piers, docs/piers.md): the file is
 then read as an :class:`~archrock.geometry.ArchOnPiers`, and a kind not in that list is refused.
 
+A third kind of document, ``{"kind": "arcade", "blocks": [...], "contacts": [...]}``, holds an
+arcade (several arches on shared piers: blocks with their contacts, docs/arcades.md):
+:func:`read_arcade` / :func:`write_arcade` (:meth:`archrock.geometry.arcade.Arcade.to_dict`).
+:func:`read_arch` refuses it by name.
+
 Every error is an :class:`~archrock.errors.ArchInputError` whose one-line message names the
 file and the offending field.
 """
@@ -28,13 +33,50 @@ from pathlib import Path
 from ..errors import ArchInputError
 from . import VoussoirArch, arch_from_dict
 
-__all__ = ["read_arch", "write_arch"]
+__all__ = ["read_arch", "write_arch", "read_arcade", "write_arcade"]
 
 
 def read_arch(path: str | os.PathLike) -> VoussoirArch:
     """Read an arch from a JSON geometry file of either format (module docstring); name = file
     stem."""
     p = Path(path)
+    data = _read_json(p)
+    if isinstance(data, dict) and data.get("kind") == "arcade":
+        raise ArchInputError(f"{p}: an arcade document (several spans); allowed an arch here "
+                             f"(read it with `archrock arcade --geometry`)")
+    try:
+        return arch_from_dict(data, name=p.stem)
+    except ArchInputError as exc:
+        raise ArchInputError(f"{p}: {exc}") from None
+
+
+def read_arcade(path: str | os.PathLike):
+    """Read an arcade document (module docstring) as an :class:`~archrock.geometry.arcade.
+    Arcade`; name = file stem."""
+    from .arcade import Arcade
+
+    p = Path(path)
+    data = _read_json(p)
+    try:
+        return Arcade.from_dict(data, name=p.stem)
+    except ArchInputError as exc:
+        raise ArchInputError(f"{p}: {exc}") from None
+
+
+def write_arcade(arcade, path: str | os.PathLike, metadata: dict | None = None) -> Path:
+    """Write an :class:`~archrock.geometry.arcade.Arcade` as its JSON document (repr-precision
+    floats: :func:`read_arcade` gives it back to the bit). Returns the path."""
+    from .arcade import Arcade
+
+    if not isinstance(arcade, Arcade):
+        raise ArchInputError(f"arcade: expected an Arcade, got {type(arcade).__name__}")
+    data = arcade.to_dict()
+    if metadata:
+        data["metadata"] = metadata
+    return _write_json(data, Path(path))
+
+
+def _read_json(p: Path):
     try:
         text = p.read_text(encoding="utf-8")
     except FileNotFoundError:
@@ -54,10 +96,7 @@ def read_arch(path: str | os.PathLike) -> VoussoirArch:
             f"{p}: invalid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}") from None
     except RecursionError:
         raise ArchInputError(f"{p}: invalid JSON: nested too deeply") from None
-    try:
-        return arch_from_dict(data, name=p.stem)
-    except ArchInputError as exc:
-        raise ArchInputError(f"{p}: {exc}") from None
+    return data
 
 
 def write_arch(arch: VoussoirArch, path: str | os.PathLike, metadata: dict | None = None) -> Path:
@@ -70,6 +109,10 @@ def write_arch(arch: VoussoirArch, path: str | os.PathLike, metadata: dict | Non
     data = arch.to_dict()
     if metadata:
         data["metadata"] = metadata
+    return _write_json(data, p)
+
+
+def _write_json(data: dict, p: Path) -> Path:
     # repr-precision floats: read_arch(write_arch(a)) reproduces the arch to the last bit of
     # radius/thickness and of polygon points (spans go through degrees, exact to ~1e-16 rad).
     text = json.dumps(data, indent=2, allow_nan=False) + "\n"

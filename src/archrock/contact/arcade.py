@@ -1,0 +1,472 @@
+"""An arcade (a graph of blocks, :class:`~archrock.geometry.arcade.Arcade`) in the contact
+engine: its activation by the engine's ramp and its response to a ground motion.
+
+:class:`ContactArcade` builds the bodies as :class:`~archrock.contact.engine.ContactArch` does
+(exact mass properties, the outline simplified within ``outline_tol`` with every contact's ends
+kept, cut into convex pieces with rounded corners, the friction and restitution of
+:class:`~archrock.contact.settings.EngineSettings`, ground motion as the ground frame's body
+force), with a static ground block under each contact with the ground instead of two
+abutments.  A contact's motion: the relative rotation theta_b - theta_a of its two blocks (the
+ground does not turn), and the slip of its end that stays closer to closed, along the contact.
+
+:func:`arcade_ramp` is :func:`~archrock.contact.ramp.ramp_direction`'s two stages on the graph
+(a slow ramp of the horizontal ground acceleration until a contact turns or slides past its
+threshold, then holds from rest bisecting the activation multiplier), and reads the hinges as
+(contact, end): the contacts turning by at least 5% of the largest relative rotation, each at
+its end that stays closed.  :func:`arcade_respond` runs a pulse or record to rest or collapse
+(a block's mass centre dropped by ``collapse_drop`` x size).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._records import readonly_arrays
+from ..errors import ArchInputError, LimitExceededError
+from ..geometry.arcade import GROUND, Arcade
+from ..groundmotion import GroundMotion
+from ..units import G
+from .convex import convex_pieces, inset, simplify_outline, strip_pieces
+from .engine import import_pymunk
+from .ramp import ramp_range
+from .settings import EngineSettings, engine_scales
+
+__all__ = ["ContactArcade", "ArcadeRampDirection", "ArcadeRamp", "arcade_ramp",
+           "arcade_ramp_direction", "ArcadeResponse", "arcade_respond"]
+
+
+class ContactArcade:
+    """One arcade in a pymunk space, at rest in its initial configuration (module docstring).
+    ``time_scale`` T = sqrt(size/g) [s] with size = ``arcade.size``; ``dt`` = T / steps_per_T."""
+
+    def __init__(self, arc: Arcade, settings: EngineSettings | None = None):
+        pymunk = import_pymunk()
+        if not isinstance(arc, Arcade):
+            raise ArchInputError(f"arcade: expected an Arcade, got {type(arc).__name__}")
+        self.arcade = arc
+        self.settings = settings = settings or EngineSettings()
+        self.scales = sc = engine_scales(arc, settings)
+        self.size, self.time_scale, self.dt = sc.size, sc.time_scale, sc.dt
+        space = pymunk.Space()
+        space.iterations = settings.iterations
+        space.collision_slop = sc.slop
+        space.collision_bias = (1.0 - settings.bias) ** (1.0 / self.dt) if settings.bias < 1 \
+            else 0.0
+        space.gravity = (0.0, -G)
+        space.damping = 1.0
+        space.sleep_time_threshold = float("inf")
+        self.space = space
+        mu, e, r = math.sqrt(settings.friction), math.sqrt(settings.restitution), sc.rounding
+        self.masses = np.asarray(arc.masses, float)
+        self.centroids0 = np.asarray(arc.centroids, float)
+        self.inertias = np.asarray(arc.inertias, float)
+        self.bodies, self.pieces = [], []
+        ends = {i: [] for i in range(arc.n_blocks)}
+        for ct in arc.contacts:
+            for blk in (ct.a, ct.b):
+                if blk != GROUND:
+                    ends[blk] += [ct.points[0], ct.points[1]]
+        for i, blk in enumerate(arc.blocks):
+            body = pymunk.Body(float(self.masses[i]), float(self.inertias[i]),
+                               pymunk.Body.DYNAMIC)
+            c = self.centroids0[i]
+            body.position = (float(c[0]), float(c[1]))
+            body.center_of_gravity = (0.0, 0.0)
+            outline = np.asarray(blk.outline, float)
+            pieces = None
+            if sc.outline_tol > 0:
+                simple = simplify_outline(outline, sc.outline_tol, np.array(ends[i]))
+                try:
+                    pieces = strip_pieces(simple)
+                except ArchInputError:
+                    pieces = None
+            if pieces is None:
+                pieces = convex_pieces(outline)
+            self.pieces.append(pieces)
+            shapes = []
+            for pc in pieces:
+                core = inset(pc, r)
+                core, rad = (pc, 0.0) if core is None else (core, r)
+                s = pymunk.Poly(body, [(float(x - c[0]), float(y - c[1])) for x, y in core],
+                                radius=rad)
+                s.friction, s.elasticity = mu, e
+                shapes.append(s)
+            space.add(body, *shapes)
+            body.mass = float(self.masses[i])
+            body.moment = float(self.inertias[i])
+            self.bodies.append(body)
+        normals = np.asarray(arc.contact_normals, float)
+        self.ground_outlines = []
+        for c, ct in enumerate(arc.contacts):
+            if ct.a != GROUND:
+                continue
+            p0, p1 = ct.points
+            length = float(np.hypot(*(p1 - p0)))
+            n = normals[c]  # into the block: the ground lies on the other side
+            quad = np.array([p0, p1, p1 - length * n, p0 - length * n])
+            s = pymunk.Poly(space.static_body, [tuple(map(float, q)) for q in quad])
+            s.friction, s.elasticity = mu, e
+            space.add(s)
+            self.ground_outlines.append(quad)
+        pts = np.array([ct.points for ct in arc.contacts], float)
+        self.contact_points = pts
+        tan = pts[:, 1] - pts[:, 0]
+        self.contact_lengths = np.hypot(tan[:, 0], tan[:, 1])
+        self.contact_tangents = tan / self.contact_lengths[:, None]
+        self.a = np.array([ct.a for ct in arc.contacts])
+        self.b = np.array([ct.b for ct in arc.contacts])
+        self.time, self.steps = 0.0, 0
+
+    def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
+        """``steps`` time steps under the horizontal ground acceleration [m/s^2] (toward +x)."""
+        self.space.gravity = (-float(ground_accel), -G)
+        for _ in range(steps):
+            self.space.step(self.dt)
+        self.steps += steps
+        self.time = self.steps * self.dt
+
+    def settle(self, duration: float = 0.5) -> None:
+        """Settle under gravity for ``duration`` T, stop every body, restart the clock: the
+        reference of every rotation and slip reported."""
+        self.step(0.0, max(1, int(round(duration * self.settings.steps_per_T))))
+        for bd in self.bodies:
+            bd.velocity = (0.0, 0.0)
+            bd.angular_velocity = 0.0
+        pos, ang, _, _ = self.state()
+        self.ref_pos, self.ref_ang = pos, ang
+        self.ref_slide = self.contact_sliding(pos, ang)
+        self.steps, self.time = 0, 0.0
+
+    def state(self):
+        """(centres (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,))."""
+        b = self.bodies
+        return (np.array([tuple(x.position) for x in b]), np.array([x.angle for x in b]),
+                np.array([tuple(x.velocity) for x in b]),
+                np.array([x.angular_velocity for x in b]))
+
+    def contact_rotations(self, angles: np.ndarray) -> np.ndarray:
+        """theta_b - theta_a at each contact [rad] (the ground: 0)."""
+        th = np.concatenate([angles, [0.0]])  # index -1: the ground
+        return th[self.b] - th[self.a]
+
+    def _copies(self, pos, angles, blk, p):
+        if blk == GROUND:
+            return p
+        r = p - self.centroids0[blk]
+        ca, sa = math.cos(angles[blk]), math.sin(angles[blk])
+        return pos[blk] + np.array([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1]])
+
+    def _end_offsets(self, pos, angles) -> np.ndarray:
+        """(m, 2, 2): block b's copy minus block a's copy of each contact's two ends [m]."""
+        out = np.empty((len(self.a), 2, 2))
+        for c in range(len(self.a)):
+            for e in (0, 1):
+                p = self.contact_points[c, e]
+                out[c, e] = (self._copies(pos, angles, self.b[c], p)
+                             - self._copies(pos, angles, self.a[c], p))
+        return out
+
+    def end_gaps(self, pos, angles) -> np.ndarray:
+        """(m, 2) distance between the two blocks' copies of each contact end [m]."""
+        d = self._end_offsets(pos, angles)
+        return np.hypot(d[:, :, 0], d[:, :, 1])
+
+    def contact_sliding(self, pos, angles) -> np.ndarray:
+        """Slip [m] at each contact: the relative displacement of its end closer to closed,
+        along the contact turned by the mean rotation of its two blocks."""
+        d = self._end_offsets(pos, angles)
+        th = np.concatenate([angles, [0.0]])
+        mean = 0.5 * (th[self.a] + th[self.b])
+        t0 = self.contact_tangents
+        tx = np.cos(mean) * t0[:, 0] - np.sin(mean) * t0[:, 1]
+        ty = np.sin(mean) * t0[:, 0] + np.cos(mean) * t0[:, 1]
+        end = np.argmin(np.hypot(d[:, :, 0], d[:, :, 1]), axis=1)
+        dd = d[np.arange(len(end)), end]
+        return dd[:, 0] * tx + dd[:, 1] * ty
+
+    def kinetic_energy(self, vel, rate) -> float:
+        return float(0.5 * (self.masses * (vel ** 2).sum(axis=1)).sum()
+                     + 0.5 * (self.inertias * rate ** 2).sum())
+
+
+@dataclass(frozen=True)
+class ArcadeRampDirection:
+    """The engine's activation of an arcade in one direction: ``multiplier`` |xg''|/g (middle
+    of [lower, upper]); ``mode`` 'rocking' or 'sliding'; ``hinges`` ((contact, end), ...) and
+    ``places`` in words, read from the lowest hold that moved (the mechanism at activation;
+    the ramp itself overshoots and may open more); ``sliding_contacts``; ``ramp_multiplier``
+    where the ramp saw motion, ``ramp_hinges`` what it opened; ``holds`` ((lambda, moved),
+    ...)."""
+
+    direction: str
+    multiplier: float
+    lower: float
+    upper: float
+    mode: str
+    hinges: tuple
+    places: tuple
+    sliding_contacts: tuple
+    ramp_multiplier: float
+    ramp_hinges: tuple = ()
+    holds: tuple = field(repr=False, default=())
+
+    def to_dict(self) -> dict:
+        return {"direction": self.direction, "multiplier": self.multiplier,
+                "ramp_hinges": [list(h) for h in self.ramp_hinges],
+                "lower": self.lower, "upper": self.upper, "mode": self.mode,
+                "hinges": [list(h) for h in self.hinges], "places": list(self.places),
+                "sliding_contacts": list(self.sliding_contacts),
+                "ramp_multiplier": self.ramp_multiplier,
+                "holds": [[lam, moved] for lam, moved in self.holds]}
+
+
+@dataclass(frozen=True)
+class ArcadeRamp:
+    """Both directions of :func:`arcade_ramp`, with the settings and ramp options used."""
+
+    l: ArcadeRampDirection
+    r: ArcadeRampDirection
+    settings: EngineSettings
+    ramp: dict
+
+    def to_dict(self) -> dict:
+        return {"k_l": self.l.multiplier, "k_r": self.r.multiplier, "l": self.l.to_dict(),
+                "r": self.r.to_dict(), "engine": self.settings.to_dict(),
+                "ramp": dict(self.ramp),
+                "method": "contact engine (pymunk): ramp of the ground acceleration, then "
+                          "holds from rest bisecting the activation"}
+
+
+def _motion(ca: ContactArcade, thr_rot, thr_slide):
+    pos, ang, _, _ = ca.state()
+    rot = ca.contact_rotations(ang) - ca.contact_rotations(ca.ref_ang)
+    sl = ca.contact_sliding(pos, ang) - ca.ref_slide
+    return rot, sl, max(np.abs(rot).max() / thr_rot, np.abs(sl).max() / thr_slide), pos, ang
+
+
+def _moves(arc, settings, sign, lam, hold, thr_rot, thr_slide, check):
+    """None where the arcade rests through a hold of ``lam`` from rest, else (contact
+    rotations, slips, end gaps) once it has moved past four times the thresholds (as the
+    ramp's reading: the mechanism grown clear of the settling's small motions)."""
+    ca = ContactArcade(arc, settings)
+    ca.settle()
+    steps = int(math.ceil(hold * settings.steps_per_T))
+    done, moved = 0, False
+    while done < steps or moved:
+        k = check if moved else min(check, steps - done)
+        ca.step(-sign * lam * G, k)
+        done += k
+        rot, sl, measure, pos, ang = _motion(ca, thr_rot, thr_slide)
+        moved = moved or measure > 1.0
+        if measure > 4.0 or (moved and done > 4 * steps):
+            return rot, sl, ca.end_gaps(pos, ang)
+    return None
+
+
+def _read_hinges(rot, sl, gaps, threshold, thr_slide):
+    """(hinges ((contact, end), ...), sliding contacts, rocking?) of a contact motion: the
+    contacts turning by at least 5% of the largest relative rotation, at their closed end."""
+    big = np.abs(rot).max()
+    slid = tuple(int(c) for c in np.flatnonzero(np.abs(sl) > thr_slide))
+    rocking = big / threshold >= np.abs(sl).max() / thr_slide
+    turning = np.flatnonzero(np.abs(rot) >= 0.05 * big) if rocking else np.array([], int)
+    return tuple((int(c), int(np.argmin(gaps[c]))) for c in turning), slid, bool(rocking)
+
+
+def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings | None = None,
+                          *, rate: float = 0.05, hold: float = 4.0, tol: float = 0.005,
+                          threshold: float = 1e-3, slide_threshold: float = 1e-3,
+                          lambda_max: float = 2.0, lambda_start: float = 0.0,
+                          progress=None) -> ArcadeRampDirection:
+    """The engine's activation multiplier and hinges of ``arc`` in ``direction`` ('l': the
+    ground accelerates toward -x, the loads push toward +x); the options are those of
+    :func:`~archrock.contact.ramp.ramp_direction`."""
+    if direction not in ("l", "r"):
+        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
+                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
+                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
+                            ("lambda_max", lambda_max, 1e-3, 100.0)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+    if not 0.0 <= lambda_start < lambda_max:
+        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
+                             f"lambda_max = {lambda_max:g}")
+    settings = settings or EngineSettings()
+    sign = 1.0 if direction == "l" else -1.0
+    ca = ContactArcade(arc, settings)
+    ca.settle()
+    thr_slide = slide_threshold * float(np.mean(ca.contact_lengths))
+    check = max(1, int(settings.steps_per_T // 100))
+    dlam = rate / settings.steps_per_T
+    lam, lam_seen = float(lambda_start), None
+    while True:
+        for _ in range(check):
+            lam += dlam
+            ca.step(-sign * lam * G, 1)
+        rot, sl, measure, pos, ang = _motion(ca, threshold, thr_slide)
+        if lam_seen is None and measure > 1.0:
+            lam_seen = lam
+        if measure > 4.0:
+            break
+        if lam > lambda_max:
+            raise LimitExceededError(
+                f"the arcade did not move in the contact engine up to |xg''|/g = "
+                f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
+    if progress:
+        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
+    ramp_reading = _read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
+    holds = []
+    hi, lo = lam_seen, 0.5 * lam_seen
+    first = None  # the motion of the lowest hold that moved: the mechanism at activation
+    while True:
+        got = _moves(arc, settings, sign, lo, hold, threshold, thr_slide, check)
+        holds.append((lo, got is not None))
+        if got is None:
+            break
+        first = got
+        if lo == 0.0:
+            hi = 0.0
+            break
+        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
+    while hi - lo > tol * hi:
+        mid = 0.5 * (lo + hi)
+        got = _moves(arc, settings, sign, mid, hold, threshold, thr_slide, check)
+        holds.append((mid, got is not None))
+        if progress:
+            progress(f"hold {direction}: lambda = {mid:.4f} "
+                     f"{'moves' if got is not None else 'rests'}")
+        if got is not None:
+            hi, first = mid, got
+        else:
+            lo = mid
+    hinges, slid, rocking = (_read_hinges(*first, threshold, thr_slide) if first is not None
+                             else ramp_reading)
+    places = tuple(arc.contacts[c].place(e) for c, e in hinges)
+    return ArcadeRampDirection(direction, 0.5 * (lo + hi), lo, hi,
+                               "rocking" if rocking else "sliding", hinges, places, slid,
+                               float(lam_seen), ramp_reading[0], tuple(holds))
+
+
+def arcade_ramp(arc: Arcade, settings: EngineSettings | None = None, progress=None, *,
+                k_l: float | None = None, k_r: float | None = None, **kwargs) -> ArcadeRamp:
+    """:func:`arcade_ramp_direction` in both directions; the ramp's range follows ``k_l`` and
+    ``k_r`` (the graph LP's multipliers, :func:`~archrock.contact.ramp.ramp_range`; computed
+    when not given)."""
+    settings = settings or EngineSettings()
+    ks = {"l": k_l, "r": k_r}
+    out, ranges = [], {}
+    for d in ("l", "r"):
+        if ks[d] is None:
+            from ..statics.graph import graph_multiplier
+
+            ks[d] = graph_multiplier(arc, d)
+        ranges[d] = ramp_range(ks[d])
+        out.append(arcade_ramp_direction(arc, d, settings, progress=progress,
+                                         lambda_start=ranges[d][0], lambda_max=ranges[d][1],
+                                         **kwargs))
+    opts = {"rate": 0.05, "hold": 4.0, "tol": 0.005, "threshold": 1e-3,
+            "slide_threshold": 1e-3}
+    opts.update(kwargs)
+    opts["lambda_start"] = {d: ranges[d][0] for d in ranges}
+    opts["lambda_max"] = {d: ranges[d][1] for d in ranges}
+    return ArcadeRamp(out[0], out[1], settings, opts)
+
+
+@dataclass(frozen=True, eq=False)
+class ArcadeResponse:
+    """:func:`arcade_respond`'s result: ``time`` (k,) [s], ``rotations`` (k, n) [rad] of every
+    block since settling (counter-clockwise +), ``drops`` (k,) [m] the largest drop of a mass
+    centre; ``status`` 'rest', 'collapsed' or 'moving'; ``t_collapse`` [s] (None without);
+    ``peak_rotation`` [rad] the largest |rotation| of any block; ``moved`` the blocks that
+    turned by more than 1e-3 rad; ``t_final`` [s]."""
+
+    time: np.ndarray = field(repr=False)
+    rotations: np.ndarray = field(repr=False)
+    drops: np.ndarray = field(repr=False)
+    status: str
+    t_collapse: float | None
+    peak_rotation: float
+    moved: tuple
+    t_final: float
+    settings: EngineSettings
+    run: dict
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    @property
+    def collapsed(self) -> bool:
+        return self.status == "collapsed"
+
+    def to_dict(self, samples: bool = False) -> dict:
+        d = {"collapsed": self.collapsed, "status": self.status,
+             "t_collapse": self.t_collapse, "peak_rotation": self.peak_rotation,
+             "moved": list(self.moved), "t_final": self.t_final,
+             "engine": self.settings.to_dict(), "run": dict(self.run)}
+        if samples:
+            d["time"] = self.time.tolist()
+            d["rotations"] = self.rotations.tolist()
+        return d
+
+
+def arcade_respond(arc: Arcade, motion: GroundMotion, settings: EngineSettings | None = None,
+                   *, t_end: float = 3.0, dt_out: float = 0.01, t_free: float = 20.0,
+                   collapse_drop: float = 0.2) -> ArcadeResponse:
+    """The engine's response of ``arc`` to ``motion`` (as
+    :func:`~archrock.contact.motion.engine_respond`, without a four-link model beside it): the
+    run goes on after the motion until rest, collapse (a mass centre dropped by
+    ``collapse_drop`` x size) or ``t_free`` T of free motion."""
+    if not isinstance(motion, GroundMotion):
+        raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
+    for name, v, lo, hi in (("t_end", t_end, 1e-6, 1e5), ("dt_out", dt_out, 1e-7, 1e5),
+                            ("t_free", t_free, 0.0, 1e4),
+                            ("collapse_drop", collapse_drop, 1e-4, 10)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+    settings = settings or EngineSettings()
+    ca = ContactArcade(arc, settings)
+    ca.settle()
+    dt = ca.dt
+    every = max(1, int(round(dt_out / dt)))
+    n_out = int(math.floor(t_end / (every * dt) + 1e-9)) + 1
+    t_stop = float(motion.times[-1]) + t_free * ca.time_scale
+    drop_limit = collapse_drop * ca.size
+    ke_rest = 1e-9 * float(ca.masses.sum()) * G * ca.size
+    nb = arc.n_blocks
+    rots = np.full((n_out, nb), np.nan)
+    drops = np.full(n_out, np.nan)
+    peak = np.zeros(nb)
+    status, t_col, quiet, k = "moving", None, 0, 0
+    quiet_needed = int(0.5 * settings.steps_per_T)
+    while True:
+        t = ca.time
+        pos, ang, vel, rate = ca.state()
+        rel = ang - ca.ref_ang
+        np.maximum(peak, np.abs(rel), out=peak)
+        drop = float(np.max(ca.ref_pos[:, 1] - pos[:, 1]))
+        if k < n_out and ca.steps == k * every:
+            rots[k], drops[k] = rel, drop
+            k += 1
+        if drop > drop_limit:
+            status, t_col = "collapsed", t
+            break
+        if t > motion.times[-1]:
+            quiet = quiet + 1 if ca.kinetic_energy(vel, rate) < ke_rest else 0
+            if quiet >= quiet_needed:
+                status = "rest"
+                if k >= n_out:
+                    break
+        if t >= t_stop and k >= n_out:
+            break
+        ca.step(float(motion(t + 0.5 * dt)), 1)
+    if status == "rest" and quiet < quiet_needed:
+        status = "moving"
+    run = {"t_end": t_end, "dt_out": every * dt, "t_free": t_free,
+           "collapse_drop": collapse_drop, "dt": dt, "motion": motion.name}
+    moved = tuple(int(i) for i in np.flatnonzero(peak > 1e-3))
+    return ArcadeResponse(np.arange(n_out) * every * dt, rots, drops, status, t_col,
+                          float(peak.max()), moved, float(ca.time), settings, run)
