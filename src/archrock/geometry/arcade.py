@@ -65,6 +65,9 @@ class Block:
     label: str = ""
     loads: tuple = ()
     mass_properties: tuple | None = None
+    #: set by the builders for a validated arch's voussoirs and their own pier polygons: the
+    #: self-intersection check (the slow one on finely sampled arcs) is not repeated
+    _checked: bool = field(default=False, repr=False, compare=False)
 
     def to_dict(self) -> dict:
         d = {"kind": self.kind, "outline": np.asarray(self.outline, float).tolist()}
@@ -168,7 +171,7 @@ class Arcade:
             if not np.all(np.isfinite(out)):
                 raise ArchInputError(f"blocks[{i}].outline: every coordinate must be a finite "
                                      f"number")
-            if not _simple(out):
+            if not b._checked and not _simple(out):
                 raise ArchInputError(f"blocks[{i}].outline: its boundary intersects itself; "
                                      f"allowed a simple polygon")
             out.setflags(write=False)
@@ -197,7 +200,7 @@ class Arcade:
                                          f"{ii!r}; allowed a finite mass > 0 and inertia >= 0")
                 g.setflags(write=False)
                 mp = (m, g, ii)
-            blocks.append(Block(out, b.kind, str(b.label), tuple(loads), mp))
+            blocks.append(Block(out, b.kind, str(b.label), tuple(loads), mp, b._checked))
         object.__setattr__(self, "blocks", tuple(blocks))
         ext = np.vstack([b.outline for b in blocks])
         extent = float(np.max(np.ptp(ext, axis=0)))
@@ -453,7 +456,7 @@ class Arcade:
                              tuple((m, p * flip) for m, p in b.loads),
                              None if b.mass_properties is None else
                              (b.mass_properties[0], b.mass_properties[1] * flip,
-                              b.mass_properties[2])) for b in self.blocks)
+                              b.mass_properties[2]), b._checked) for b in self.blocks)
         contacts = tuple(Contact(c.a, c.b, c.points * flip, c.label, c.ends)
                          for c in self.contacts)
         return Arcade(blocks, contacts, self.density, f"{self.name} mirrored", self.spans,
@@ -515,7 +518,7 @@ def _inner_pier(A, B, height: float, courses: int, p: int, tol: float):
                              f"intrados end; allowed springings whose extrados lies outward")
     if be[0] < ae[0] - tol:
         raise ArchInputError(
-            f"widths: pier {p} is {xr - xl:.4g} m wide, narrower than the two springing joints "
+            f"widths[{p - 1}]: pier {p} is {xr - xl:.4g} m wide, narrower than the two springing joints "
             f"it carries ({(ae[0] - ai[0]) + (bi[0] - be[0]):.4g} m); allowed an inner pier at "
             f"least as wide as both")
     foot = top - height
@@ -536,6 +539,24 @@ def _inner_pier(A, B, height: float, courses: int, p: int, tol: float):
     return out, levels
 
 
+class _Placed:
+    """A polygon arch moved by ``shift`` (joints, outlines and loads), without rebuilding it;
+    unmoved (shift 0) it gives the arch's own arrays, bit for bit."""
+
+    def __init__(self, poly, shift):
+        self.poly, self.shift, self.n = poly, shift, poly.n
+        moved = bool(np.any(shift != 0.0))
+        jp = np.asarray(poly.joint_points, float)
+        self.joint_points = jp + shift if moved else jp
+        self.loads = tuple((ld.voussoir, ld.mass, np.asarray(ld.at, float) + shift)
+                           for ld in poly.loads)
+        self._moved = moved
+
+    def outline(self, i):
+        out = poly_outline = self.poly.outline(i)
+        return poly_outline + self.shift if self._moved else out
+
+
 def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcade:
     """``arches`` (a list of n archrock arches, left to right) on n + 1 piers (module
     docstring): ``heights`` and ``widths`` [m] one value for all piers or n + 1 values;
@@ -551,14 +572,16 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
         raise ArchInputError(f"arches: {len(arches)} spans; allowed 1 to {MAX_SPANS}")
     from .piers import ArchOnPiers
 
-    polys = []
+    polys, seen = [], {}
     for s, a in enumerate(arches):
         if not isinstance(a, VoussoirArch):
             raise ArchInputError(f"arches[{s}]: expected an archrock arch, got "
                                  f"{type(a).__name__}")
         if isinstance(a, ArchOnPiers) and a.pier_blocks:
             raise ArchInputError(f"arches[{s}]: already on piers; allowed an arch without piers")
-        polys.append(_polygon_of(a))
+        if id(a) not in seen:  # a repeated arch is written as polygons once
+            seen[id(a)] = _polygon_of(a)
+        polys.append(seen[id(a)])
     n = len(polys)
     density = polys[0].density
     for s, p in enumerate(polys):
@@ -581,28 +604,20 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
                                   f"({hi:.4g} m)")
     hs, ws = [float(v) for v in hs], [float(v) for v in ws]
     tol = 1e-9 * max([extent] + hs + ws)
-    # place the arches
-    placed = [polys[0]]
+    # place the arches: each a translated copy (joints, outlines, loads) of its polygon form
+    placed = [_Placed(polys[0], np.zeros(2))]
     for s in range(1, n):
-        prev, cur = placed[-1], polys[s]
-        a_in, a_ex = prev.joint_points[-1]
-        b_in, b_ex = cur.joint_points[0]
+        a_in, a_ex = placed[-1].joint_points[-1]
+        b_in, b_ex = polys[s].joint_points[0]
         dx = (a_in[0] + ws[s]) - b_in[0]
         dy = min(a_in[1], a_ex[1]) - min(b_in[1], b_ex[1])
-        shift = np.array([dx, dy])
-        from .base import Load
-        from .polygon import PolygonArch
-
-        placed.append(PolygonArch(tuple(p + shift for p in cur.intrados),
-                                  tuple(p + shift for p in cur.extrados), cur.density, cur.name,
-                                  tuple(Load(ld.voussoir, ld.mass, tuple(np.asarray(ld.at) +
-                                                                         shift))
-                                        for ld in cur.loads)))
+        placed.append(_Placed(polys[s], np.array([dx, dy])))
     blocks, contacts, spans, piers = [], [], [], []
     flip = np.array([-1.0, 1.0])
 
     def add_block(outline, kind, label, loads=()):
-        blocks.append(Block(np.asarray(outline, float), kind, label, tuple(loads)))
+        blocks.append(Block(np.asarray(outline, float), kind, label, tuple(loads),
+                            _checked=True))
         return len(blocks) - 1
 
     def side_name(p, inner_end):  # end 0 / end 1 names of a pier's contacts
@@ -634,8 +649,8 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
         poly = placed[s]
         jp = np.asarray(poly.joint_points, float)
         loads = {i: [] for i in range(poly.n)}
-        for ld in poly.loads:
-            loads[ld.voussoir].append((ld.mass, ld.at))
+        for v, mass, at in poly.loads:
+            loads[v].append((mass, at))
         vidx = []
         for i in range(poly.n):
             vidx.append(add_block(poly.outline(i), "voussoir", f"span {s + 1} voussoir {i + 1}",
