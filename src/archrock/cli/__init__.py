@@ -14,7 +14,7 @@ NaN/inf), sets ``parser.set_defaults(func=run_<name>)`` and returns the parser; 
 
 from __future__ import annotations
 
-from . import (app, assess, codecheck, curves, defects, dem, ensemble, fragility, importdxf,
+from . import (app, arcade, assess, codecheck, curves, defects, dem, ensemble, fragility, importdxf,
                limit, paper, respond, sensitivity, verify)
 from ._parser import (SUBCOMMANDS, CLIError, emit_json, finite_float, new_parser,
                       non_negative_int, positive_float, run_command, subcommand)
@@ -46,6 +46,7 @@ SUBCOMMANDS.update({
     "defects": defects.add_defects_parser,
     "sensitivity": sensitivity.add_sensitivity_parser,
     "dem": dem.add_dem_parser,
+    "arcade": arcade.add_arcade_parser,
     "verify": verify.add_verify_parser,
     "app": app.add_app_parser,
 })

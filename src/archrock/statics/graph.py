@@ -306,8 +306,11 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
         rows += prog.compat_rows(c, "hinge", e)
     for c in slide:
         rows += prog.compat_rows(c, "slide", slip_sign=slip_sign[c])
-    C = np.array(rows) if rows else np.zeros((0, 3 * prog.nb))
-    _, s, vt = np.linalg.svd(C, full_matrices=True)
+    nv = 3 * prog.nb
+    C = np.array(rows) if rows else np.zeros((0, nv))
+    if C.shape[0] < nv:  # square it with zero rows: the thin SVD then gives every direction
+        C = np.vstack([C, np.zeros((nv - C.shape[0], nv))])
+    _, s, vt = np.linalg.svd(C, full_matrices=False)
     rank = int(np.sum(s > 1e-9 * (s[0] if s.size else 1.0)))
     null = vt[rank:]
     dof = null.shape[0]

@@ -1,0 +1,344 @@
+"""``archrock arcade``: several arches on shared piers (a graph of blocks): the static LP's k and
+mechanism in each direction, optionally the contact engine's ramp beside it (--ramp) or its
+response to a pulse or record, and a figure of the mechanism (docs/arcades.md)."""
+
+from __future__ import annotations
+
+import sys
+
+from ._parser import CLIError, _int, emit_json, finite_float, positive_float
+from .options import add_motion_options, figure_arg, motion_spec_from_args
+
+#: the library's field -> the flag that gives it (ArchInputError messages start with the field)
+_FLAGS = (("heights", "--pier-height"), ("widths", "--pier-width"),
+          ("courses", "--pier-courses"))
+
+
+def add_arcade_parser(subparsers):
+    from ..geometry import SHAPES
+
+    p = subparsers.add_parser(
+        "arcade", help="several arches on shared piers: k, the mechanism (graph LP), the "
+                       "contact engine",
+        description="An arcade: n arches on n + 1 piers (semicircles of --spans by default, "
+                    "arches of a family with --shape/--rises, or geometry files), analysed by "
+                    "the static LP on the graph of blocks (equilibrium of every block, no "
+                    "tension, --friction for Coulomb rows); the mechanism is read from its dual "
+                    "and confirmed by its own virtual work. --ramp adds the contact engine's "
+                    "activation; --pulse/--record its response (docs/arcades.md).")
+    g = p.add_argument_group("arches", "one value for every span, or one per span")
+    g.add_argument("--spans", type=finite_float, nargs="+", metavar="S",
+                   help="span of each arch's centreline [m], > 0 (1 to 50 spans; default "
+                        "semicircles of radius S/2)")
+    g.add_argument("--shape", choices=SHAPES, metavar="SHAPE",
+                   help=f"arch family of every span: {', '.join(SHAPES)} (with --rises)")
+    g.add_argument("--rises", type=finite_float, nargs="+", metavar="F",
+                   help="with --shape: rise of each arch's centreline [m]")
+    g.add_argument("--thickness", type=finite_float, nargs="+", metavar="T",
+                   help="thickness of each arch [m] (default 1/10 of the span)")
+    g.add_argument("--voussoirs", type=_int, nargs="+", metavar="N",
+                   help="voussoirs of each arch, 3 to 2000 (default 9)")
+    g.add_argument("--density", type=finite_float, metavar="RHO",
+                   help="density [kg/m^3] of the arches and piers, > 0 (default 2000)")
+    g.add_argument("--geometry", nargs="+", metavar="FILE",
+                   help="an arch geometry file per span (or one, with --repeat); excludes "
+                        "the flags above")
+    g.add_argument("--repeat", type=_int, metavar="N",
+                   help="with one --geometry FILE: that arch on N spans, 1 to 50")
+    g.add_argument("--arcade", metavar="FILE",
+                   help="an arcade document (blocks and their contacts, docs/arcades.md); "
+                        "excludes every arch and pier flag")
+    q = p.add_argument_group("piers", "one value for every pier, or one per pier (n + 1, "
+                                      "from the left)")
+    q.add_argument("--pier-height", type=finite_float, nargs="+", metavar="H",
+                   help="height of each pier from its foundation to the springing [m], > 0")
+    q.add_argument("--pier-width", type=finite_float, nargs="+", metavar="W",
+                   help="width of each pier [m]: an end pier's outward of its intrados "
+                        "springing, an inner pier's between the two intrados springings")
+    q.add_argument("--pier-courses", type=_int, nargs="+", metavar="N",
+                   help="courses of each pier, 1 to 200 (default 1: monolithic)")
+    p.add_argument("--friction", type=positive_float, default=None, metavar="MU",
+                   help="Coulomb friction at every contact in the LP (default: no sliding) "
+                        "and in the engine (default 0.8)")
+    p.add_argument("--write", metavar="FILE.json",
+                   help="write the arcade as an arcade document (blocks and contacts)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="figure: the blocks, the hinges and the blocks' velocities of the "
+                        "mechanism in each direction")
+    e = p.add_argument_group("contact engine")
+    e.add_argument("--ramp", action="store_true",
+                   help="the contact engine's ramp in each direction beside the LP")
+    e.add_argument("--ramp-tol", type=positive_float, default=0.005, metavar="TOL",
+                   help="--ramp: relative width of the final bracket (default 0.005)")
+    e.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
+                   help="with a ground motion: output window [s] (default 3); the run goes on "
+                        "to rest or collapse")
+    add_motion_options(p)
+    p.set_defaults(func=run_arcade)
+    return p
+
+
+def _renamed(exc, extra: str = ""):
+    from ..errors import ArchInputError
+
+    msg = str(exc)
+    for field, flag in _FLAGS:
+        if msg.startswith(field):
+            rest = msg[len(field):]
+            if rest.startswith("["):
+                idx, _, rest = rest[1:].partition("]")
+                return ArchInputError(f"{flag}: value {int(idx) + 1} (pier {int(idx) + 1})"
+                                      f"{rest}")
+            return ArchInputError(f"{flag}{rest}")
+    return ArchInputError(f"{extra}{msg}")
+
+
+def _per_span(args, name, flag, n, default):
+    vals = getattr(args, name)
+    if vals is None:
+        return [default(s) for s in range(n)]
+    if len(vals) == 1:
+        return vals * n
+    if len(vals) != n:
+        raise CLIError(f"{flag}: {len(vals)} values for {n} spans; allowed one for all, or one "
+                       f"per span")
+    return list(vals)
+
+
+def arcade_from_args(args):
+    """The Arcade of the options (the arches on their piers, or an arcade document)."""
+    from ..errors import ArchInputError
+    from ..geometry.arcade import MAX_SPANS, arcade
+
+    arch_flags = [("--spans", args.spans), ("--shape", args.shape), ("--rises", args.rises),
+                  ("--thickness", args.thickness), ("--voussoirs", args.voussoirs),
+                  ("--density", args.density)]
+    pier_flags = [("--pier-height", args.pier_height), ("--pier-width", args.pier_width),
+                  ("--pier-courses", args.pier_courses)]
+    if args.arcade:
+        given = [f for f, v in arch_flags + pier_flags + [("--geometry", args.geometry),
+                                                          ("--repeat", args.repeat)]
+                 if v is not None]
+        if given:
+            raise CLIError(f"--arcade: cannot be combined with {', '.join(given)}; the file "
+                           f"holds the whole arcade")
+        from ..geometry.files import read_arcade
+
+        return read_arcade(args.arcade)
+    if args.geometry:
+        given = [f for f, v in arch_flags if v is not None]
+        if given:
+            raise CLIError(f"--geometry: cannot be combined with {', '.join(given)}; each file "
+                           f"holds its arch")
+        from ..geometry.files import read_arch
+
+        files = list(args.geometry)
+        if args.repeat is not None:
+            if len(files) != 1:
+                raise CLIError("--repeat: applies to one --geometry FILE; give one file")
+            if not 1 <= args.repeat <= MAX_SPANS:
+                raise CLIError(f"--repeat: {args.repeat} is out of range; allowed 1 to "
+                               f"{MAX_SPANS}")
+            files = files * args.repeat
+        cache = {}
+        arches = []
+        for f in files:
+            if f not in cache:
+                cache[f] = read_arch(f)
+            arches.append(cache[f])
+    else:
+        if args.repeat is not None:
+            raise CLIError("--repeat: applies to --geometry FILE only")
+        if args.spans is None:
+            raise CLIError("--spans: needed (the span of each arch's centreline, in metres), or "
+                           "--geometry FILE... or --arcade FILE")
+        n = len(args.spans)
+        if not 1 <= n <= MAX_SPANS:
+            raise CLIError(f"--spans: {n} spans; allowed 1 to {MAX_SPANS}")
+        for i, s in enumerate(args.spans):
+            if not 1e-8 <= s <= 1e8:
+                raise CLIError(f"--spans: {s:g} (span {i + 1}) is out of range; allowed 1e-8 "
+                               f"to 1e8 m")
+        if args.rises is not None and args.shape is None:
+            raise CLIError("--rises: needs --shape (the family of the arches)")
+        if args.shape is not None and args.rises is None:
+            raise CLIError("--rises: needed with --shape (the rise of each arch's centreline, "
+                           "in metres)")
+        t = _per_span(args, "thickness", "--thickness", n, lambda s: args.spans[s] / 10)
+        nv = _per_span(args, "voussoirs", "--voussoirs", n, lambda s: 9)
+        rises = _per_span(args, "rises", "--rises", n, lambda s: None)
+        density = 2000.0 if args.density is None else args.density
+        arches, cache = [], {}
+        from ..geometry import family_arch, nominal_arch
+
+        for s in range(n):
+            key = (args.spans[s], t[s], nv[s], rises[s])
+            if key in cache:  # equal spans share one arch (written as polygons once)
+                arches.append(cache[key])
+                continue
+            try:
+                if args.shape is None:
+                    a = nominal_arch(radius=args.spans[s] / 2, embrace_deg=180.0,
+                                     thickness=t[s], voussoirs=nv[s], density=density,
+                                     name=f"span {s + 1}")
+                else:
+                    a = family_arch(args.shape, args.spans[s], rises[s], t[s], nv[s],
+                                    density=density, name=f"span {s + 1}")
+            except ArchInputError as exc:
+                msg = str(exc)
+                for field in ("thickness", "voussoirs", "rise", "span", "density"):
+                    if msg.startswith(field):
+                        flag = {"rise": "--rises", "span": "--spans"}.get(field, f"--{field}")
+                        raise ArchInputError(f"{flag} (span {s + 1}){msg[len(field):]}") \
+                            from None
+                raise ArchInputError(f"span {s + 1}: {msg}") from None
+            cache[key] = a
+            arches.append(a)
+    for flag, v in pier_flags[:2]:
+        if v is None:
+            raise CLIError(f"{flag}: needed (one value for every pier, or {len(arches) + 1}, "
+                           f"in metres)")
+    try:
+        return arcade(arches, list(args.pier_height), list(args.pier_width),
+                      courses=list(args.pier_courses or [1]))
+    except ArchInputError as exc:
+        raise _renamed(exc) from None
+
+
+def _progress(msg):
+    print(msg, file=sys.stderr, flush=True)
+
+
+def format_result(arc, results, ramp=None, response=None) -> str:
+    kinds = arc.kinds
+    counts = ", ".join(f"{kinds.count(k)} {k}{'s' if kinds.count(k) != 1 else ''}"
+                       for k in ("pier", "buttress", "beam", "voussoir") if kinds.count(k))
+    lines = [f"{arc.name}: {len(arc.spans) or '?'} span(s), {arc.n_blocks} blocks ({counts}), "
+             f"{len(arc.contacts)} contacts, {arc.masses.sum():.6g} kg/m"]
+    for d, g in results.items():
+        m = g.mechanism
+        lines.append(f"k_{d} = {g.k:.6f} (static LP, HiGHS; the mechanism's virtual work "
+                     f"{g.k_virtual_work:.6f}, |diff| {abs(g.k_virtual_work - g.k):.1e}; "
+                     f"{m.dof} degree{'s' if m.dof != 1 else ''} of freedom, "
+                     f"{len(m.moving)} blocks move)")
+        lines.append(f"  hinges: {'; '.join(h.place for h in m.hinges) or '-'}")
+        if m.lift_off:
+            lines.append(f"  lift off: {'; '.join(arc.contacts[c].label for c in m.lift_off)}")
+        if m.sliding:
+            lines.append(f"  sliding: {'; '.join(arc.contacts[c].label for c in m.sliding)}")
+    if ramp is not None:
+        lines.append("contact engine ramp (pymunk):")
+        lines.append("  dir  LP k      engine k  [bracket]             engine/LP - 1  hinges")
+        for d, g in results.items():
+            r = getattr(ramp, d)
+            same = sorted(r.hinges) == sorted((h.contact, h.end) for h in g.hinges)
+            lines.append(f"  {d}    {g.k:.6f}  {r.multiplier:.6f}  [{r.lower:.6f}, "
+                         f"{r.upper:.6f}]  {r.multiplier / g.k - 1:+.4f}        "
+                         f"{'the LP hinges' if same else '; '.join(r.places)}"
+                         f"{'' if r.mode == 'rocking' else ' (sliding)'}")
+    if response is not None:
+        rs = response
+        what = (f"collapsed at t = {rs.t_collapse:.3f} s" if rs.collapsed else
+                f"{'at rest' if rs.status == 'rest' else 'still moving'} at t = "
+                f"{rs.t_final:.2f} s")
+        lines.append(f"contact engine under {rs.run['motion']}: {what}; peak block rotation "
+                     f"{rs.peak_rotation:.4g} rad; {len(rs.moved)} blocks turned by more "
+                     f"than 1e-3 rad")
+    return "\n".join(lines)
+
+
+def plot_arcade(arc, results, path) -> str:
+    """The blocks (piers grey, voussoirs stone), each direction's hinges (dots) and the blocks'
+    velocities (arrows at the mass centres), one panel per direction."""
+    from ..reports.plots import STYLE, new_figure, save_figure
+    from matplotlib.patches import Polygon
+    import numpy as np
+
+    fig, axes = new_figure(len(results), 1, figsize=(9.0, 3.4 * len(results)))
+    axes = np.asarray(axes).ravel()
+    ext = arc.extent
+    for ax, (d, g) in zip(axes, results.items()):
+        v = g.mechanism.velocities
+        speed = np.hypot(v[:, 0], v[:, 1])
+        scale = 0.12 * ext / max(float(speed.max()), 1e-300)
+        for i, b in enumerate(arc.blocks):
+            face = STYLE.get(f"{b.kind}_face", STYLE["voussoir_face"])
+            ax.add_patch(Polygon(b.outline, closed=True, facecolor=face,
+                                 edgecolor=STYLE["voussoir_edge"], linewidth=0.5))
+        c = arc.centroids
+        moving = list(g.mechanism.moving)
+        ax.quiver(c[moving, 0], c[moving, 1], v[moving, 0] * scale, v[moving, 1] * scale,
+                  angles="xy", scale_units="xy", scale=1.0, color=STYLE["thrust"], width=0.003,
+                  label="block velocity (mass centre)")
+        hp = np.array([arc.contacts[h.contact].points[h.end] for h in g.hinges])
+        if len(hp):
+            ax.plot(hp[:, 0], hp[:, 1], "o", color=STYLE["hinge"], markersize=6,
+                    label="hinge")
+        feet = [ct.points for ct in arc.contacts if ct.a == -1]
+        for f in feet:
+            ax.plot(f[:, 0], f[:, 1], "-", color=STYLE["ground"], linewidth=3)
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(lo, hi + 0.3 * (hi - lo))  # room for the legend above the arches
+        arrow = "+x" if d == "l" else "-x"
+        ax.set_title(f"loads toward {arrow}: k_{d} = {g.k:.4f}, {len(g.hinges)} hinges, "
+                     f"{g.mechanism.dof} dof", fontsize=9)
+        ax.legend(loc="upper right", fontsize=7, ncol=2)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+    return str(save_figure(fig, path))
+
+
+def run_arcade(args) -> int:
+    plot = figure_arg(args.plot)
+    spec = motion_spec_from_args(args)
+    if args.ramp and spec is not None:
+        raise CLIError("--ramp: cannot be combined with a ground motion; give one")
+    arc = arcade_from_args(args)
+    from ..statics.graph import graph_limit
+
+    results = {d: graph_limit(arc, d, friction=args.friction) for d in ("l", "r")}
+    ramp = response = None
+    progress = None if args.json else _progress
+    if args.ramp or spec is not None:
+        from ..contact import EngineSettings, import_pymunk
+        from ..contact.settings import DEFAULT_FRICTION
+
+        import_pymunk()
+        settings = EngineSettings(friction=args.friction or DEFAULT_FRICTION)
+        if args.ramp:
+            from ..contact.arcade import arcade_ramp
+
+            ramp = arcade_ramp(arc, settings, progress, k_l=results["l"].k,
+                               k_r=results["r"].k, tol=args.ramp_tol)
+        else:
+            from ..contact.arcade import arcade_respond
+
+            response = arcade_respond(arc, spec.build(), settings, t_end=args.t_end)
+    written = None
+    if args.write:
+        from ..geometry.files import write_arcade
+
+        written = write_arcade(arc, args.write)
+    if plot:
+        plot = plot_arcade(arc, results, plot)
+    if args.json:
+        out = {"arcade": {"name": arc.name, "blocks": arc.n_blocks,
+                          "contacts": len(arc.contacts), "spans": [list(s) for s in arc.spans],
+                          "piers": [list(p) for p in arc.piers], "kinds": list(arc.kinds),
+                          "labels": [c.label for c in arc.contacts]},
+               "k_l": results["l"].k, "k_r": results["r"].k,
+               "l": results["l"].to_dict(), "r": results["r"].to_dict()}
+        if ramp is not None:
+            out["ramp"] = ramp.to_dict()
+        if response is not None:
+            out["engine_response"] = response.to_dict()
+        emit_json(out)
+        return 0
+    print(format_result(arc, results, ramp, response))
+    for f in (written, plot):
+        if f:
+            print(f"wrote {f}")
+    return 0
