@@ -1,0 +1,182 @@
+"""The static LP on a graph of blocks (archrock.statics.graph), against the chain's LP, closed
+forms of rocking frames, mirror symmetry, and its own virtual work."""
+
+import numpy as np
+import pytest
+
+from archrock.errors import ArchInputError, CannotStandError
+from archrock.geometry import family_arch, nominal_arch, with_piers
+from archrock.geometry.arcade import GROUND, Arcade, Block, Contact, arcade, arcade_from_chain
+from archrock.statics.graph import graph_limit, graph_multiplier
+from archrock.statics.limit import limit_analysis
+from archrock.statics.lp import static_multiplier
+
+EDGE = {"intrados": 0, "extrados": 1}
+
+
+@pytest.fixture(scope="module")
+def semicircle():
+    return nominal_arch(radius=5, embrace_deg=180, thickness=0.8, voussoirs=9)
+
+
+@pytest.fixture(scope="module")
+def pointed():
+    return family_arch("pointed", 10, 7, 0.9, 10)
+
+
+@pytest.mark.parametrize("which, courses", [("semicircle", 2), ("pointed", 1),
+                                            ("semicircle", 1)])
+def test_one_span_equals_the_chain_lp(which, courses, semicircle, pointed):
+    """k and the hinges of a one-span arcade are the chain's (ArchOnPiers) to 1e-9: the static
+    optimum, the kinematic governing mechanism, and the hinges read from the dual."""
+    arch = semicircle if which == "semicircle" else pointed
+    chain = with_piers(arch, 4.0, 2.0, courses=courses)
+    lim = limit_analysis(chain)
+    arc = arcade([arch], 4.0, 2.0, courses=courses)
+    for d in "lr":
+        g = graph_limit(arc, d)
+        k_static, _ = static_multiplier(chain, d)
+        assert g.k == pytest.approx(k_static, abs=1e-9)
+        assert g.k == pytest.approx(lim.mechanism(d).multiplier, abs=1e-9)
+        assert g.k_virtual_work == pytest.approx(g.k, abs=1e-9)
+        assert g.mechanism.dof == 1
+        assert sorted((h.contact, h.end) for h in g.hinges) == \
+            sorted((h.joint, EDGE[h.edge]) for h in lim.mechanism(d).hinges)
+    # the reference semicircle on 4 x 2 m piers (docs/piers.md): 0.168899, D at the far foot
+    if which == "semicircle":
+        g = graph_limit(arc, "l")
+        assert g.k == pytest.approx(0.168899, abs=5e-7)
+        assert g.hinges[-1].place == "pier 2 foot, outer face"
+
+
+def test_rigid_ground_oppenheim(oppenheim):
+    """Oppenheim's arch springing from the ground, as a graph: k = 0.370010 (the paper's)."""
+    arc = arcade_from_chain(oppenheim.arch)
+    for d in "lr":
+        g = graph_limit(arc, d)
+        assert g.k == pytest.approx(0.370010, abs=5e-7)
+        assert g.k == pytest.approx(oppenheim.limit.mechanism(d).multiplier, abs=1e-9)
+        assert g.k_virtual_work == pytest.approx(g.k, abs=1e-9)
+        assert sorted((h.contact, h.end) for h in g.hinges) == \
+            sorted((h.joint, EDGE[h.edge]) for h in oppenheim.limit.mechanism(d).hinges)
+
+
+def _frame(b, h, depth, columns=2, span=6.0, density=2000.0, load=0.0):
+    """Makris & Vassiliou's frame: ``columns`` columns 2b x 2h equally spaced over ``span``
+    under one free beam of depth ``depth`` (a load [kg/m] at the beam's middle)."""
+    xs = np.linspace(0.0, span, columns)
+    blocks, contacts = [], []
+    for i, x in enumerate(xs):
+        blocks.append(Block([(x - b, 0), (x + b, 0), (x + b, 2 * h), (x - b, 2 * h)], "pier",
+                            f"column {i + 1}"))
+        contacts.append(Contact(GROUND, i, [(x - b, 0), (x + b, 0)], f"column {i + 1} foot",
+                                ("left", "right")))
+    top = 2 * h
+    loads = ((load, (0.5 * span, top + depth)),) if load else ()
+    blocks.append(Block([(xs[0] - b, top), (xs[-1] + b, top), (xs[-1] + b, top + depth),
+                         (xs[0] - b, top + depth)], "beam", "beam", loads))
+    for i, x in enumerate(xs):
+        contacts.append(Contact(i, columns, [(x - b, top), (x + b, top)],
+                                f"column {i + 1} top", ("left", "right")))
+    return Arcade(tuple(blocks), tuple(contacts), density, "frame")
+
+
+@pytest.mark.parametrize("b, h, depth, load", [(0.3, 1.2, 0.3, 0.0), (0.2, 2.5, 0.6, 0.0),
+                                               (0.1, 1.2, 0.05, 0.0), (0.3, 1.2, 0.3, 5e4),
+                                               (0.33, 1.0, 0.2, 0.0)])
+def test_rocking_frame_closed_form(b, h, depth, load):
+    """Two columns 2b x 2h under a free beam: k = tan(alpha) = b/h whatever the beam's mass
+    (Makris & Vassiliou 2013), both directions, four hinges: each column on one foot corner and
+    under the beam's opposite corner."""
+    arc = _frame(b, h, depth, load=load)
+    for d, foot, head in (("l", "right", "left"), ("r", "left", "right")):
+        g = graph_limit(arc, d)
+        assert g.k == pytest.approx(b / h, abs=1e-9)
+        assert g.k_virtual_work == pytest.approx(b / h, abs=1e-9)
+        assert sorted(h_.place for h_ in g.hinges) == sorted(
+            [f"column 1 foot, {foot}", f"column 2 foot, {foot}", f"column 1 top, {head}",
+             f"column 2 top, {head}"])
+        assert g.mechanism.dof == 1 and not g.mechanism.lift_off and not g.mechanism.sliding
+        # the beam translates: no rotation, and every column turns alike
+        v = g.mechanism.velocities
+        assert abs(v[2, 2]) < 1e-9 * np.abs(v).max()
+        assert v[0, 2] == pytest.approx(v[1, 2], rel=1e-9)
+
+
+@pytest.mark.parametrize("columns", [3, 5, 8])
+def test_column_array_under_one_beam(columns):
+    """N columns under one beam behave as the two-column frame: k = b/h, 2N hinges, 1 dof."""
+    g = graph_limit(_frame(0.25, 1.5, 0.3, columns=columns, span=12.0), "l")
+    assert g.k == pytest.approx(0.25 / 1.5, abs=1e-9)
+    assert g.k_virtual_work == pytest.approx(g.k, abs=1e-9)
+    assert len(g.hinges) == 2 * columns and g.mechanism.dof == 1
+
+
+def test_frame_friction_slides_at_mu():
+    """With Coulomb rows the frame slides on its feet at k = mu below b/h (docs/piers.md's
+    hand check), and rocks again above it."""
+    arc = _frame(0.3, 1.2, 0.3)
+    for mu in (0.05, 0.15):
+        g = graph_limit(arc, "l", friction=mu)
+        assert g.k == pytest.approx(mu, abs=1e-9)
+        assert g.k_virtual_work == pytest.approx(mu, abs=1e-9)
+        assert set(g.mechanism.sliding) == {0, 1}
+    assert graph_multiplier(arc, "l", friction=0.4) == pytest.approx(0.25, abs=1e-9)
+
+
+def test_mirror_symmetry_of_a_symmetric_arcade(semicircle):
+    arc = arcade([semicircle] * 3, 8.0, [2.5, 1.8, 1.8, 2.5])
+    gl, gr = graph_limit(arc, "l"), graph_limit(arc, "r")
+    assert gl.k == pytest.approx(gr.k, abs=1e-9)
+    gm = graph_limit(arc.mirrored(), "r")
+    assert gm.k == pytest.approx(gl.k, abs=1e-9)
+    # the mirror's hinges are the original's: the same contacts, the same ends' names
+    assert sorted(h.place for h in gm.hinges) == sorted(h.place for h in gl.hinges)
+
+
+def test_two_and_three_span_arcades(semicircle):
+    """On low piers the end span governs alone, as the one-span arch on piers does; on tall
+    piers with slender inner piers the whole arcade sways: every pier's foot a hinge, 1 dof."""
+    low = arcade([semicircle] * 2, 4.0, 2.0)
+    g = graph_limit(low, "l")
+    assert g.k == pytest.approx(graph_limit(arcade([semicircle], 4.0, 2.0), "l").k, abs=1e-9)
+    assert {h.place.split(",")[0].split(" joint")[0] for h in g.hinges} == {"span 2",
+                                                                            "pier 3 foot"}
+    for spans, k in ((2, 0.140874), (3, 0.139911)):
+        arc = arcade([semicircle] * spans, 8.0, [2.5] + [1.8] * (spans - 1) + [2.5])
+        g = graph_limit(arc, "l")
+        assert g.k == pytest.approx(k, abs=5e-7)
+        assert g.k_virtual_work == pytest.approx(g.k, abs=1e-9)
+        assert g.mechanism.dof == 1
+        feet = sorted(h.place for h in g.hinges if "foot" in h.place)
+        assert feet == [f"pier {p} foot, right face" for p in range(2, spans + 1)] + \
+            [f"pier {spans + 1} foot, outer face"]
+        assert len(g.hinges) == 3 * spans + 1
+        # the static optimum's forces hold every block: no tension, |V| free
+        assert np.all(g.forces[:, :2] >= -1e-6 * np.abs(g.forces).max())
+
+
+def test_refusals_and_outcomes():
+    arc = _frame(0.3, 1.2, 0.3)
+    with pytest.raises(ArchInputError, match="direction: 'x'; allowed 'l' or 'r'"):
+        graph_limit(arc, "x")
+    with pytest.raises(ArchInputError, match="friction"):
+        graph_limit(arc, "l", friction=-1)
+    with pytest.raises(ArchInputError, match="arcade: expected an Arcade"):
+        graph_limit(nominal_arch(), "l")
+    # a block on a point-wide... a beam over a column that stands outside its base: no
+    # equilibrium under its own weight
+    blocks = (Block([(0, 0), (1, 0), (1, 1), (0, 1)], "pier"),
+              Block([(0.9, 1), (5, 1), (5, 1.2), (0.9, 1.2)], "beam"))
+    contacts = (Contact(GROUND, 0, [(0, 0), (1, 0)]), Contact(0, 1, [(0.9, 1), (1, 1)]))
+    with pytest.raises(CannotStandError):
+        graph_limit(Arcade(blocks, contacts), "l")
+
+
+def test_record_says_what_and_how(semicircle):
+    g = graph_limit(arcade([semicircle], 4.0, 2.0), "r")
+    d = g.to_dict()
+    assert d["direction"] == "r" and d["k"] == g.k and "HiGHS" in d["method"]
+    assert d["mechanism"]["hinges"][0] == {"contact": 0, "end": 1,
+                                           "place": "pier 1 foot, outer face"}
+    assert np.asarray(d["forces"]).shape == (len(arcade([semicircle], 4.0, 2.0).contacts), 3)
