@@ -1,0 +1,126 @@
+"""archrock arcade: several arches on shared piers from flags, geometry files or an arcade
+document; the graph LP's k and mechanism, the figure, the refusals."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from archrock.cli import main
+from archrock.geometry import nominal_arch
+
+THREE = ("arcade", "--spans", "10", "10", "10", "--thickness", "0.8", "--pier-height", "8",
+         "--pier-width", "2.5", "1.8", "1.8", "2.5")
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_three_spans_table_and_json(capsys):
+    code, out, err = run(capsys, *THREE)
+    assert code == 0, err
+    assert out.startswith("arcade: 3 span(s), 31 blocks (4 piers, 27 voussoirs), 34 contacts")
+    assert "k_l = 0.139911" in out and "k_r = 0.139911" in out
+    assert "pier 4 foot, outer face" in out and "pier 1 foot, outer face" in out
+    assert "1 degree of freedom" in out
+    code, out, err = run(capsys, *THREE, "--json")
+    d = json.loads(out)
+    assert d["k_l"] == pytest.approx(0.139911, abs=5e-7)
+    assert abs(d["l"]["k_virtual_work"] - d["k_l"]) < 1e-9
+    assert d["arcade"]["blocks"] == 31 and len(d["arcade"]["piers"]) == 4
+    assert {h["place"] for h in d["l"]["mechanism"]["hinges"]} >= {"pier 2 foot, right face",
+                                                                  "pier 3 foot, right face"}
+
+
+@pytest.mark.slow
+def test_figure(capsys, tmp_path):
+    fig = tmp_path / "arcade.png"
+    code, out, err = run(capsys, *THREE, "--plot", str(fig))
+    assert code == 0, err
+    assert f"wrote {fig}" in out
+    assert fig.exists() and fig.stat().st_size > 10_000
+
+
+def test_flags_file_and_document_agree(capsys, tmp_path):
+    """The same arcade from flags, from a repeated geometry file and from its own document:
+    the same k and hinges."""
+    from archrock.geometry.files import write_arch
+
+    doc = tmp_path / "arc.json"
+    code, out_flags, err = run(capsys, "arcade", "--spans", "10", "10", "--thickness", "0.8",
+                               "--pier-height", "8", "--pier-width", "2.5", "1.8", "2.5",
+                               "--json", "--write", str(doc))
+    assert code == 0, err
+    arch = tmp_path / "semicircle.json"
+    write_arch(nominal_arch(radius=5, embrace_deg=180, thickness=0.8, voussoirs=9), arch)
+    code, out_file, err = run(capsys, "arcade", "--geometry", str(arch), "--repeat", "2",
+                              "--pier-height", "8", "--pier-width", "2.5", "1.8", "2.5",
+                              "--json")
+    assert code == 0, err
+    code, out_doc, err = run(capsys, "arcade", "--arcade", str(doc), "--json")
+    assert code == 0, err
+    a, b, c = (json.loads(o) for o in (out_flags, out_file, out_doc))
+    for d in ("l", "r"):
+        assert b[f"k_{d}"] == pytest.approx(a[f"k_{d}"], abs=1e-9)
+        assert c[f"k_{d}"] == a[f"k_{d}"]
+        assert b[d]["mechanism"]["hinges"] == a[d]["mechanism"]["hinges"]
+        assert c[d]["mechanism"]["hinges"] == a[d]["mechanism"]["hinges"]
+    assert a["k_l"] == pytest.approx(0.140874, abs=5e-7)
+
+
+def test_friction_and_families(capsys):
+    code, out, err = run(capsys, "arcade", "--spans", "10", "--shape", "pointed", "--rises",
+                         "7", "--thickness", "0.9", "--voussoirs", "10", "--pier-height", "4",
+                         "--pier-width", "2", "--json")
+    assert code == 0, err
+    assert json.loads(out)["k_l"] == pytest.approx(0.196306, abs=5e-7)
+    code, out, err = run(capsys, "arcade", "--spans", "10", "--thickness", "0.8",
+                         "--pier-height", "4", "--pier-width", "2", "--friction", "0.4",
+                         "--json")
+    d = json.loads(out)
+    assert d["l"]["friction"] == 0.4 and d["k_l"] < 0.168899  # sliding on the far pier's top
+
+
+@pytest.mark.parametrize("extra, start", [
+    (("--spans", "10", "--pier-height", "4"), "--pier-width: needed"),
+    (("--spans", "10", "10", "--pier-height", "4", "4", "--pier-width", "2"),
+     "--pier-height: 2 values; allowed one for all, or 3"),
+    (("--spans", "10", "10", "--pier-height", "4", "--pier-width", "2", "1", "2"),
+     "--pier-width: value 2 (pier 2): pier 2 is 1 m wide, narrower than the two springing"),
+    (("--spans", "10", "--pier-height", "0", "--pier-width", "2"),
+     "--pier-height: value 1 (pier 1): 0 is out of range; allowed > 0 m"),
+    (("--spans", "0", "--pier-height", "4", "--pier-width", "2"),
+     "--spans: 0 (span 1) is out of range; allowed 1e-8 to 1e8 m"),
+    (("--spans", "10", "10", "--thickness", "1", "2", "3", "--pier-height", "4",
+      "--pier-width", "2"), "--thickness: 3 values for 2 spans"),
+    (("--spans", "10", "--thickness", "12", "--pier-height", "4", "--pier-width", "2"),
+     "--thickness (span 1)"),
+    (("--spans", "10", "--rises", "5", "--pier-height", "4", "--pier-width", "2"),
+     "--rises: needs --shape"),
+    (("--pier-height", "4", "--pier-width", "2"), "--spans: needed"),
+    (("--spans", "10", "--pier-height", "4", "--pier-width", "2", "--pier-courses", "0"),
+     "--pier-courses: value 1 (pier 1): 0 is out of range"),
+    (("--spans", "10", "--pier-height", "4", "--pier-width", "2", "--ramp", "--pulse",
+      "oppenheim", "--amplitude", "-0.3", "--pulse-duration", "0.2"),
+     "--ramp: cannot be combined with a ground motion"),
+    (("--arcade", "x.json", "--spans", "10"), "--arcade: cannot be combined with --spans"),
+])
+def test_bad_input_is_one_line_naming_the_flag(capsys, extra, start):
+    code, out, err = run(capsys, "arcade", *extra)
+    assert code == 2
+    assert err.startswith(f"archrock: error: {start}"), err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_ramp_and_pulse_run_the_engine(capsys):
+    pytest.importorskip("pymunk")
+    code, out, err = run(capsys, "arcade", "--spans", "10", "--thickness", "0.8",
+                         "--voussoirs", "5", "--pier-height", "2", "--pier-width", "1.5",
+                         "--pulse", "oppenheim", "--amplitude", "-0.05", "--pulse-duration",
+                         "0.2", "--t-end", "0.5")
+    assert code == 0, err
+    assert "contact engine under Oppenheim pulse: at rest" in out
