@@ -180,3 +180,30 @@ def test_record_says_what_and_how(semicircle):
     assert d["mechanism"]["hinges"][0] == {"contact": 0, "end": 1,
                                            "place": "pier 1 foot, outer face"}
     assert np.asarray(d["forces"]).shape == (len(arcade([semicircle], 4.0, 2.0).contacts), 3)
+
+
+@pytest.mark.parametrize("b, h, depth", [(0.3, 1.2, 0.3), (0.2, 2.5, 0.6)])
+def test_mechanism_kinematics_of_the_frame(b, h, depth):
+    """The LP's hinges rebuilt as a linkage (mechanism_velocities): one degree of freedom, the
+    LP's velocities up to scale, and its generalised mass per unit column rotation rate is
+    Makris & Vassiliou's M(0) = 8/3 m R^2 (1 + 3 gamma), gamma = beam / columns' mass."""
+    from archrock.statics.graph import generalized_mass, mechanism_velocities
+
+    arc = _frame(b, h, depth)
+    g = graph_limit(arc, "l")
+    basis = mechanism_velocities(arc, [(x.contact, x.end) for x in g.hinges])
+    assert basis.shape == (1, 3, 3)
+    v = basis[0] / basis[0][0, 2]  # per unit rotation rate of column 1
+    lp = g.mechanism.velocities / g.mechanism.velocities[0, 2]
+    assert np.allclose(v, lp, atol=1e-9 * np.abs(lp).max())
+    m, m_b = arc.masses[0], arc.masses[2]
+    gamma = m_b / (2 * m)
+    R2 = b * b + h * h
+    assert generalized_mass(arc, v) == pytest.approx(8 / 3 * m * R2 * (1 + 3 * gamma),
+                                                     rel=1e-9)
+    # the beam lifted off its columns: each column rocks on its own foot corner (1 + 1) and the
+    # beam is free (3): five degrees of freedom, the case a four-link model cannot follow
+    more = mechanism_velocities(arc, [(0, 1), (1, 1)], lift_off=[2, 3])
+    assert more.shape[0] == 5
+    with pytest.raises(ArchInputError, match=r"hinges: \(9, 0\)"):
+        mechanism_velocities(arc, [(9, 0)])

@@ -38,7 +38,8 @@ from ..geometry.arcade import GROUND, Arcade
 from .friction import check_friction
 from .hinges import DIRECTIONS
 
-__all__ = ["GraphHinge", "GraphMechanism", "GraphLimit", "graph_multiplier", "graph_limit"]
+__all__ = ["GraphHinge", "GraphMechanism", "GraphLimit", "graph_multiplier", "graph_limit",
+           "mechanism_velocities", "generalized_mass"]
 
 #: A relative velocity smaller than this fraction of the largest block velocity counts as zero.
 VELOCITY_TOL = 1e-6
@@ -353,3 +354,53 @@ def _velocity_scale(prog: _Program, v: np.ndarray) -> float:
         vy = v[i, 1] + v[i, 2] * r[:, 0]
         best = max(best, float(np.max(np.hypot(vx, vy))))
     return best
+
+
+def mechanism_velocities(arc: Arcade, hinges, lift_off=()) -> np.ndarray:
+    """The motions of ``arc`` (in its present configuration) in which every contact is closed
+    except the ``hinges`` ((contact, end), ...: no relative motion at that end only) and the
+    ``lift_off`` contacts (free): a basis of that null space, (dof, n_blocks, 3), each row the
+    blocks' (v_x, v_y) of their mass centres [m/s] and omega [rad/s], scaled to a largest
+    |omega| of 1 rad/s (or |v| of 1 m/s where nothing turns).  dof = 1 for the mechanism of a
+    four-link-like model; more where the hinges leave the blocks several independent motions.
+
+    This is the kinematics a one-degree-of-freedom model of an arcade needs at each step (the
+    hinges' points move with the blocks: rebuild the arcade in the displaced configuration and
+    call it again), and the candidate set a multi-span impact law would choose from
+    (docs/arcades.md)."""
+    prog = _Program(arc, "l", None)
+    hinge_set = {(int(c), int(e)) for c, e in hinges}
+    free = {int(c) for c in lift_off} | {c for c, _ in hinge_set}
+    for c, e in hinge_set:
+        if not 0 <= c < prog.nc or e not in (0, 1):
+            raise ArchInputError(f"hinges: ({c}, {e}); allowed (contact 0 to {prog.nc - 1}, "
+                                 f"end 0 or 1)")
+    rows = []
+    for c in range(prog.nc):
+        if c not in free:
+            rows += prog.compat_rows(c, "closed")
+    for c, e in sorted(hinge_set):
+        rows += prog.compat_rows(c, "hinge", e)
+    nv = 3 * prog.nb
+    C = np.array(rows) if rows else np.zeros((0, nv))
+    if C.shape[0] < nv:
+        C = np.vstack([C, np.zeros((nv - C.shape[0], nv))])
+    _, sv, vt = np.linalg.svd(C, full_matrices=False)
+    rank = int(np.sum(sv > 1e-9 * (sv[0] if sv.size and sv[0] > 0 else 1.0)))
+    out = []
+    for row in vt[rank:]:
+        v = row.reshape(prog.nb, 3).copy()
+        v[:, 2] /= prog.L  # omega in rad/s
+        big = np.abs(v[:, 2]).max()
+        v /= big if big > 1e-12 * np.abs(v[:, :2]).max() else np.abs(v[:, :2]).max()
+        out.append(v)
+    return np.array(out).reshape(len(out), prog.nb, 3)
+
+
+def generalized_mass(arc: Arcade, velocities: np.ndarray) -> float:
+    """sum_b m_b |v_b|^2 + I_b omega_b^2 [kg m^2 per m of depth, for velocities per unit rate]:
+    the M(phi) of a one-degree-of-freedom equation of motion (twice the kinetic energy per unit
+    rate squared), as the four-link model's M for its three links."""
+    v = np.asarray(velocities, float).reshape(arc.n_blocks, 3)
+    return float(np.sum(arc.masses * (v[:, 0] ** 2 + v[:, 1] ** 2))
+                 + np.sum(arc.inertias * v[:, 2] ** 2))
