@@ -54,3 +54,23 @@ for n, a in CASES.items():
         rs = arcade_respond(a, PulseSpec("oppenheim", amp, 0.2).build(), t_end=1.0)
         tc = f"{rs.t_collapse:.3f}" if rs.collapsed else "-"
         print(f"| {n} | {amp:g} | {rs.status} | {tc} | {rs.peak_rotation:.4g} |", flush=True)
+
+# the first collapse amplitude, bisected between the last rest and the first collapse above
+print("\n| spans | first collapse [g] (bracket) | piers turning > 1e-3 rad at collapse | "
+      "blocks turning |")
+print("|---|---|---|---|")
+for n, a in CASES.items():
+    lo, hi = 0.25, 0.30
+    last = None
+    while hi - lo > 0.0025:
+        mid = 0.5 * (lo + hi)
+        rs = arcade_respond(a, PulseSpec("oppenheim", -mid, 0.2).build(), t_end=1.0)
+        if rs.collapsed:
+            hi, last = mid, rs
+        else:
+            lo = mid
+    if last is None:
+        last = arcade_respond(a, PulseSpec("oppenheim", -hi, 0.2).build(), t_end=1.0)
+    piers = [p + 1 for p, blocks in enumerate(a.piers) if set(blocks) & set(last.moved)]
+    print(f"| {n} | {0.5 * (lo + hi):.4f} ({lo:.4f}, {hi:.4f}) | {piers} | "
+          f"{len(last.moved)} of {a.n_blocks} |", flush=True)
