@@ -207,3 +207,22 @@ def test_mechanism_kinematics_of_the_frame(b, h, depth):
     assert more.shape[0] == 5
     with pytest.raises(ArchInputError, match=r"hinges: \(9, 0\)"):
         mechanism_velocities(arc, [(9, 0)])
+
+
+@pytest.mark.parametrize("mu", [0.4, 0.5, 0.6])
+def test_one_span_friction_equals_the_chain_friction_lp(mu, semicircle):
+    """With Coulomb rows the one-span arcade is the chain's friction LP (statics.friction):
+    below mu = 0.5045 the arch slides outward on the far pier's top (docs/piers.md: k = 0.069873
+    at 0.4, 0.164499 at 0.5), above it the frictionless mechanism."""
+    from archrock.statics.friction import friction_analysis
+
+    chain = with_piers(semicircle, 4.0, 2.0, courses=2)
+    fr = friction_analysis(chain, mu)
+    arc = arcade([semicircle], 4.0, 2.0, courses=2)
+    for d in "lr":
+        g = graph_limit(arc, d, friction=mu)
+        assert g.k == pytest.approx(fr.direction(d).multiplier, abs=1e-9)
+        assert g.k_virtual_work == pytest.approx(g.k, abs=1e-9)
+        sliding = {c for c in g.mechanism.sliding}
+        assert sliding == ({11} if d == "l" and mu < 0.5045 else
+                           {2} if mu < 0.5045 else set())

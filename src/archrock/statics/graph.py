@@ -264,11 +264,14 @@ def _classify(prog: _Program, v: np.ndarray, tol: float):
         dn, dt = prog.relative(v, c)
         opened = dn > tol
         slid = np.abs(dt) > tol
-        if slid.any() and (prog.friction is not None or not opened.all()):
-            if prog.friction is not None or not opened.any():
-                slide.append(c)
-                slip_sign[c] = float(np.sign(dt[np.argmax(np.abs(dt))]))
-                continue
+        mu = prog.friction
+        # sliding: with friction the associated flow (dn = mu |dt| at both ends), without it
+        # a tangential motion of a closed joint (which the dual excludes: kept for safety)
+        if slid.any() and ((mu is not None and np.all(np.abs(dn - mu * np.abs(dt)) <= tol))
+                           or (mu is None and not opened.any())):
+            slide.append(c)
+            slip_sign[c] = float(np.sign(dt[np.argmax(np.abs(dt))]))
+            continue
         if opened.all():
             lift.append(c)
         elif opened.any():
