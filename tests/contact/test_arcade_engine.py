@@ -7,8 +7,8 @@ import pytest
 pytest.importorskip("pymunk")
 
 from archrock.contact import ContactArch, EngineSettings  # noqa: E402
-from archrock.contact.arcade import (ContactArcade, arcade_ramp, arcade_ramp_direction,  # noqa: E402
-                                     arcade_respond)
+from archrock.contact.arcade import (ContactArcade, arcade_ramp,  # noqa: E402
+                                     arcade_ramp_direction, arcade_respond)
 from archrock.errors import ArchInputError  # noqa: E402
 from archrock.geometry import nominal_arch, with_piers  # noqa: E402
 from archrock.geometry.arcade import GROUND, Arcade, Block, Contact, arcade  # noqa: E402

@@ -518,8 +518,8 @@ def _inner_pier(A, B, height: float, courses: int, p: int, tol: float):
                              f"intrados end; allowed springings whose extrados lies outward")
     if be[0] < ae[0] - tol:
         raise ArchInputError(
-            f"widths[{p - 1}]: pier {p} is {xr - xl:.4g} m wide, narrower than the two springing joints "
-            f"it carries ({(ae[0] - ai[0]) + (bi[0] - be[0]):.4g} m); allowed an inner pier at "
+            f"widths[{p - 1}]: pier {p} is {xr - xl:.4g} m wide, narrower than the two "
+            f"springing joints it carries ({(ae[0] - ai[0]) + (bi[0] - be[0]):.4g} m); allowed an inner pier at "
             f"least as wide as both")
     foot = top - height
     levels = foot + height * np.arange(courses + 1) / courses
@@ -553,8 +553,8 @@ class _Placed:
         self._moved = moved
 
     def outline(self, i):
-        out = poly_outline = self.poly.outline(i)
-        return poly_outline + self.shift if self._moved else out
+        out = self.poly.outline(i)
+        return out + self.shift if self._moved else out
 
 
 def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcade:
@@ -620,12 +620,8 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
                             _checked=True))
         return len(blocks) - 1
 
-    def side_name(p, inner_end):  # end 0 / end 1 names of a pier's contacts
-        if p == 1:
-            return ("inner face", "outer face")
-        if p == n + 1:
-            return ("inner face", "outer face")
-        return ("left face", "right face")
+    def side_name(p):  # end 0 / end 1 of a pier's contacts: an end pier's faces, an inner one's
+        return ("inner face", "outer face") if p in (1, n + 1) else ("left face", "right face")
 
     # pier 1: the left end pier, foundation up (with_piers' own construction)
     jp0 = placed[0].joint_points[0]
@@ -639,10 +635,10 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
         idx.append(add_block(np.vstack([i_, e_[::-1]]), "pier", f"pier 1 course {c + 1}"))
         if c == 0:
             contacts.append(Contact(GROUND, idx[-1], np.array([i_[0], e_[0]]), "pier 1 foot",
-                                    side_name(1, True)))
+                                    side_name(1)))
         else:
             contacts.append(Contact(idx[-2], idx[-1], np.array([i_[0], e_[0]]),
-                                    f"pier 1 bed joint {c}", side_name(1, True)))
+                                    f"pier 1 bed joint {c}", side_name(1)))
     piers.append(tuple(idx))
     below = idx[-1]  # the block the next span's left springing rests on
     for s in range(n):
@@ -682,10 +678,10 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
                                             ("intrados", "extrados")))
                 else:
                     contacts.append(Contact(pidx[-2], pidx[-1], np.array([i_[0], e_[0]]),
-                                            f"pier {p} bed joint {cr - c}", side_name(p, True)))
+                                            f"pier {p} bed joint {cr - c}", side_name(p)))
             foot = right[-1]
             contacts.append(Contact(GROUND, pidx[-1], np.array([foot[0][-1], foot[1][-1]]),
-                                    f"pier {p} foot", side_name(p, True)))
+                                    f"pier {p} foot", side_name(p)))
             piers.append(tuple(pidx))
         else:
             nxt = placed[s + 1]
@@ -704,10 +700,10 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
                 else:
                     y = levels[course]
                     contacts.append(Contact(pidx[-2], pidx[-1], np.array([[xl, y], [xr, y]]),
-                                            f"pier {p} bed joint {course}", side_name(p, True)))
+                                            f"pier {p} bed joint {course}", side_name(p)))
             contacts.append(Contact(GROUND, pidx[-1], np.array([[xl, levels[0]],
                                                                 [xr, levels[0]]]),
-                                    f"pier {p} foot", side_name(p, True)))
+                                    f"pier {p} foot", side_name(p)))
             piers.append(tuple(pidx))
             below = pidx[0]
     return Arcade(tuple(blocks), tuple(contacts), density, name, tuple(spans), tuple(piers))

@@ -65,7 +65,7 @@ class GraphMechanism:
     ``velocities`` (n_blocks, 3): each block's (v_x, v_y) of its mass centre [m/s per unit
     rate] and omega [rad/s], scaled so that the horizontal loads' work is sum d m_b v_x,b / M =
     1 m/s; ``dof`` the dimension of the null space of the hinge conditions (1: one degree of
-    freedom); ``multiplier`` its virtual-work k; ``lp_residual`` |A^T y - c| of the dual."""
+    freedom); ``multiplier`` its virtual-work k."""
 
     direction: str
     hinges: tuple
