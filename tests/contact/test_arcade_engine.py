@@ -16,15 +16,15 @@ from archrock.groundmotion import PulseSpec  # noqa: E402
 from archrock.statics.graph import graph_limit  # noqa: E402
 
 
-def _frame(b=0.3, h=1.2, depth=0.3, span=6.0):
-    xs = (0.0, span)
+def _frame(b=0.3, h=1.2, depth=0.3, span=6.0, columns=2):
+    xs = tuple(np.linspace(0.0, span, columns))
     blocks = [Block([(x - b, 0), (x + b, 0), (x + b, 2 * h), (x - b, 2 * h)], "pier",
                     f"column {i + 1}") for i, x in enumerate(xs)]
     blocks.append(Block([(-b, 2 * h), (span + b, 2 * h), (span + b, 2 * h + depth),
                          (-b, 2 * h + depth)], "beam", "beam"))
     contacts = [Contact(GROUND, i, [(x - b, 0), (x + b, 0)], f"column {i + 1} foot",
                         ("left", "right")) for i, x in enumerate(xs)]
-    contacts += [Contact(i, 2, [(x - b, 2 * h), (x + b, 2 * h)], f"column {i + 1} top",
+    contacts += [Contact(i, columns, [(x - b, 2 * h), (x + b, 2 * h)], f"column {i + 1} top",
                          ("left", "right")) for i, x in enumerate(xs)]
     return Arcade(tuple(blocks), tuple(contacts), 2000.0, "frame")
 
@@ -62,6 +62,17 @@ def test_rocking_frame_ramp_and_hinges():
         arcade_ramp_direction(arc, "x")
     with pytest.raises(ArchInputError, match="lambda_max"):
         arcade_ramp_direction(arc, "l", lambda_max=0.0)
+
+
+def test_column_array_ramp():
+    """Four columns under one beam activate together at b/h in the engine (within 2%), on the
+    LP's eight hinges."""
+    arc = _frame(b=0.25, h=1.0, span=9.0, columns=4)
+    g = graph_limit(arc, "r")
+    assert g.k == pytest.approx(0.25, abs=1e-9)
+    r = arcade_ramp_direction(arc, "r", lambda_max=0.5, tol=0.01, hold=2.0)
+    assert r.multiplier == pytest.approx(0.25, rel=0.02)
+    assert sorted(r.hinges) == sorted((h.contact, h.end) for h in g.hinges)
 
 
 def test_frame_response_below_and_above_activation():
