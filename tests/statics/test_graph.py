@@ -244,3 +244,40 @@ def test_loads_ride_on_their_voussoir(semicircle):
         assert graph_multiplier(arc, d) == pytest.approx(static_multiplier(chain, d)[0],
                                                          abs=1e-9)
         assert graph_multiplier(arc, d) == pytest.approx(k, abs=5e-7)
+
+
+@pytest.mark.slow
+def test_random_arcades():
+    """25 random arcades (1 to 3 spans of five arch shapes, pier heights 1-10 m, widths 1.5-3.5
+    m, 1 or 2 courses, every third with friction 0.6), both directions: the mechanism's virtual
+    work equals the LP's k (measured: 6e-14 at worst), and a one-span case without friction is
+    the chain's LP."""
+    rng = np.random.default_rng(1)
+    shapes = [nominal_arch(radius=5, embrace_deg=180, thickness=0.8, voussoirs=9),
+              nominal_arch(radius=6, embrace_deg=120, thickness=0.7, voussoirs=7),
+              family_arch("pointed", 8, 6, 0.7, 8),
+              family_arch("elliptical", 12, 4, 0.9, 11),
+              family_arch("three-centred", 10, 3.5, 0.8, 9)]
+    checked = 0
+    for trial in range(25):
+        n = int(rng.integers(1, 4))
+        arches = [shapes[i] for i in rng.integers(0, len(shapes), n)]
+        heights = list(rng.uniform(1, 10, n + 1))
+        widths = list(rng.uniform(1.5, 3.5, n + 1))
+        courses = [int(c) for c in rng.integers(1, 3, n + 1)]
+        mu = None if trial % 3 else 0.6
+        try:
+            arc = arcade(arches, heights, widths, courses=courses)
+        except ArchInputError as exc:  # an inner pier narrower than its two springings
+            assert "narrower than the two springing joints" in str(exc)
+            continue
+        for d in "lr":
+            g = graph_limit(arc, d, friction=mu)
+            assert abs(g.k_virtual_work - g.k) < 1e-9 * max(1.0, abs(g.k))
+            checked += 1
+            if n == 1 and mu is None:
+                chain = with_piers(arches[0], heights[0], widths[0], courses=courses[0],
+                                   height_right=heights[1], width_right=widths[1],
+                                   courses_right=courses[1])
+                assert g.k == pytest.approx(static_multiplier(chain, d)[0], abs=1e-9)
+    assert checked >= 40
