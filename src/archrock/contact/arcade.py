@@ -196,8 +196,8 @@ class ContactArcade:
 class ArcadeRampDirection:
     """The engine's activation of an arcade in one direction: ``multiplier`` |xg''|/g (middle
     of [lower, upper]); ``mode`` 'rocking' or 'sliding'; ``hinges`` ((contact, end), ...) and
-    ``places`` in words, read from the lowest hold that moved (the mechanism at activation;
-    the ramp itself overshoots and may open more); ``sliding_contacts``; ``ramp_multiplier``
+    ``places`` in words, read from the lowest hold whose motion grew past four times the
+    threshold (the mechanism at activation; the ramp itself overshoots and may open more); ``sliding_contacts``; ``ramp_multiplier``
     where the ramp saw motion, ``ramp_hinges`` what it opened; ``holds`` ((lambda, moved),
     ...)."""
 
@@ -248,22 +248,26 @@ def _motion(ca: ContactArcade, thr_rot, thr_slide):
 
 
 def _moves(arc, settings, sign, lam, hold, thr_rot, thr_slide, check):
-    """None where the arcade rests through a hold of ``lam`` from rest, else (contact
-    rotations, slips, end gaps) once it has moved past four times the thresholds (as the
-    ramp's reading: the mechanism grown clear of the settling's small motions)."""
+    """(moved, reading) of a hold of ``lam`` from rest: moved as the chain's ramp decides it
+    (a contact past its threshold within ``hold`` T); reading (contact rotations, slips, end
+    gaps) once the motion has grown past four times the thresholds, else None: a start that
+    stops again (the load applied at once rocks the blocks a little and they settle back) shows
+    no mechanism to read."""
     ca = ContactArcade(arc, settings)
     ca.settle()
     steps = int(math.ceil(hold * settings.steps_per_T))
     done, moved = 0, False
-    while done < steps or moved:
-        k = check if moved else min(check, steps - done)
+    while done < steps or (moved and done < 4 * steps):
+        k = check if done >= steps else min(check, steps - done)
         ca.step(-sign * lam * G, k)
         done += k
         rot, sl, measure, pos, ang = _motion(ca, thr_rot, thr_slide)
+        if measure > 4.0:
+            return True, (rot, sl, ca.end_gaps(pos, ang))
+        if moved and measure < 0.5:  # it started, and settled back
+            return True, None
         moved = moved or measure > 1.0
-        if measure > 4.0 or (moved and done > 4 * steps):
-            return rot, sl, ca.end_gaps(pos, ang)
-    return None
+    return moved, None
 
 
 def _read_hinges(rot, sl, gaps, threshold, thr_slide):
@@ -321,26 +325,25 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
     ramp_reading = _read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
     holds = []
     hi, lo = lam_seen, 0.5 * lam_seen
-    first = None  # the motion of the lowest hold that moved: the mechanism at activation
+    first = None  # the lowest hold whose motion grew: the mechanism at activation
     while True:
-        got = _moves(arc, settings, sign, lo, hold, threshold, thr_slide, check)
-        holds.append((lo, got is not None))
-        if got is None:
+        moved, got = _moves(arc, settings, sign, lo, hold, threshold, thr_slide, check)
+        holds.append((lo, moved))
+        if not moved:
             break
-        first = got
+        first = got or first
         if lo == 0.0:
             hi = 0.0
             break
         hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
     while hi - lo > tol * hi:
         mid = 0.5 * (lo + hi)
-        got = _moves(arc, settings, sign, mid, hold, threshold, thr_slide, check)
-        holds.append((mid, got is not None))
+        moved, got = _moves(arc, settings, sign, mid, hold, threshold, thr_slide, check)
+        holds.append((mid, moved))
         if progress:
-            progress(f"hold {direction}: lambda = {mid:.4f} "
-                     f"{'moves' if got is not None else 'rests'}")
-        if got is not None:
-            hi, first = mid, got
+            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
+        if moved:
+            hi, first = mid, got or first
         else:
             lo = mid
     hinges, slid, rocking = (_read_hinges(*first, threshold, thr_slide) if first is not None
