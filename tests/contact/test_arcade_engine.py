@@ -117,3 +117,20 @@ def test_arcade_under_the_paper_s_pulse(semicircle):
     assert low.status == "rest"
     high = arcade_respond(arc, PulseSpec("oppenheim", -0.3, 0.2).build(), t_end=1.0)
     assert high.collapsed
+
+
+@pytest.mark.slow
+def test_mixed_arcade_reads_the_mechanism_not_a_settling_start(semicircle):
+    """A semicircle beside a pointed arch on unequal piers, loads toward -x: the semicircle
+    alone between its piers governs (k = 0.174779).  A hold just at the engine's activation
+    starts and settles back; the hinges come from the lowest hold whose motion grew: the LP's
+    (measured: activation 1.6% below k)."""
+    from archrock.geometry import family_arch
+
+    arc = arcade([semicircle, family_arch("pointed", 8, 6, 0.7, 8)], [6.0, 7.0, 5.0],
+                 [2.5, 2.0, 2.0])
+    g = graph_limit(arc, "r")
+    assert g.k == pytest.approx(0.174779, abs=5e-7)
+    r = arcade_ramp_direction(arc, "r", lambda_max=2.0)
+    assert r.multiplier == pytest.approx(g.k, rel=0.02)
+    assert sorted(r.hinges) == sorted((h.contact, h.end) for h in g.hinges)
