@@ -124,3 +124,21 @@ def test_ramp_and_pulse_run_the_engine(capsys):
                          "0.2", "--t-end", "0.5")
     assert code == 0, err
     assert "contact engine under Oppenheim pulse: at rest" in out
+
+
+def test_an_arcade_that_cannot_stand_says_so(capsys, tmp_path):
+    """A heavy load on one haunch (8 t/m on voussoir 6): k_r < 0, and the table says the
+    arcade cannot stand under its own weight."""
+    from archrock.geometry import Arch, Load
+    from archrock.geometry.files import write_arch
+
+    a = nominal_arch(radius=5, embrace_deg=180, thickness=0.8, voussoirs=9)
+    loaded = Arch(a.spans, a.radii, a.thicknesses, a.density, "loaded",
+                  (Load(6, 8000.0, (2.0, 5.5)),))
+    f = write_arch(loaded, tmp_path / "loaded.json")
+    code, out, err = run(capsys, "arcade", "--geometry", str(f), "--pier-height", "4",
+                         "--pier-width", "2")
+    assert code == 0, err
+    assert "k_r = -0.083677" in out
+    assert "cannot stand under its own weight: k_r < 0 (it needs a horizontal load toward +x" \
+        in out

@@ -227,6 +227,10 @@ def format_result(arc, results, ramp=None, response=None) -> str:
             lines.append(f"  lift off: {'; '.join(arc.contacts[c].label for c in m.lift_off)}")
         if m.sliding:
             lines.append(f"  sliding: {'; '.join(arc.contacts[c].label for c in m.sliding)}")
+    neg = [d for d, g in results.items() if g.k < 0]
+    if neg:  # the signed loads that hold it form [-k_r, k_l]: 0 outside it
+        lines.append(f"the arcade cannot stand under its own weight: k_{neg[0]} < 0 (it needs a "
+                     f"horizontal load toward {'-x' if neg[0] == 'l' else '+x'} to stand)")
     if ramp is not None:
         lines.append("contact engine ramp (pymunk):")
         lines.append("  dir  LP k      engine k  [bracket]             engine/LP - 1  hinges")

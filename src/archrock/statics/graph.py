@@ -94,7 +94,8 @@ class GraphMechanism:
 class GraphLimit:
     """The limit analysis of an arcade in one direction: ``k`` the LP's optimum (the horizontal
     load, per unit weight, that the structure carries at most; the collapse multiplier under
-    Heyman's hypotheses), ``k_virtual_work`` the mechanism's own multiplier (equal to ``k`` to
+    Heyman's hypotheses; the signed horizontal loads the blocks carry form [-k_r, k_l], so a
+    negative k says the arcade cannot stand under its own weight), ``k_virtual_work`` the mechanism's own multiplier (equal to ``k`` to
     about 1e-9 when the dual was read right), ``mechanism``, ``forces`` (m, 3): N0, N1, V at each
     contact [N/m] at the optimum, ``friction`` (None: no sliding), ``method``."""
 
