@@ -23,7 +23,7 @@ def run(capsys, *argv):
 def test_three_spans_table_and_json(capsys):
     code, out, err = run(capsys, *THREE)
     assert code == 0, err
-    assert out.startswith("arcade: 3 span(s), 31 blocks (4 piers, 27 voussoirs), 34 contacts")
+    assert out.startswith("arcade: 3 spans, 31 blocks (4 piers, 27 voussoirs), 34 contacts")
     assert "k_l = 0.139911" in out and "k_r = 0.139911" in out
     assert "pier 4 foot, outer face" in out and "pier 1 foot, outer face" in out
     assert "1 degree of freedom" in out
@@ -142,3 +142,34 @@ def test_an_arcade_that_cannot_stand_says_so(capsys, tmp_path):
     assert "k_r = -0.083677" in out
     assert "cannot stand under its own weight: k_r < 0 (it needs a horizontal load toward +x" \
         in out
+
+
+def test_frame_document_under_a_record(capsys, tmp_path):
+    """Any graph of blocks from its document (Makris & Vassiliou's frame: two columns 0.6 x 2.4
+    m and a beam): k = b/h = 0.25, and the engine under a two-column record (0.1 g for 0.5 s,
+    below the activation) leaves it at rest."""
+    pytest.importorskip("pymunk")
+    from archrock.geometry.arcade import GROUND, Arcade, Block, Contact
+    from archrock.geometry.files import write_arcade
+
+    b, h, span = 0.3, 1.2, 6.0
+    blocks = (Block([(-b, 0), (b, 0), (b, 2 * h), (-b, 2 * h)], "pier", "column 1"),
+              Block([(span - b, 0), (span + b, 0), (span + b, 2 * h), (span - b, 2 * h)],
+                    "pier", "column 2"),
+              Block([(-b, 2 * h), (span + b, 2 * h), (span + b, 2 * h + 0.3),
+                     (-b, 2 * h + 0.3)], "beam", "beam"))
+    contacts = (Contact(GROUND, 0, [(-b, 0), (b, 0)], "column 1 foot", ("left", "right")),
+                Contact(GROUND, 1, [(span - b, 0), (span + b, 0)], "column 2 foot",
+                        ("left", "right")),
+                Contact(0, 2, [(-b, 2 * h), (b, 2 * h)], "column 1 top", ("left", "right")),
+                Contact(1, 2, [(span - b, 2 * h), (span + b, 2 * h)], "column 2 top",
+                        ("left", "right")))
+    doc = write_arcade(Arcade(blocks, contacts, 2000.0), tmp_path / "frame.json")
+    rec = tmp_path / "rec.txt"
+    rec.write_text("".join(f"{0.01 * i:.2f} {0.1 if i <= 50 else 0.0}\n" for i in range(101)))
+    code, out, err = run(capsys, "arcade", "--arcade", str(doc), "--record", str(rec),
+                         "--units", "g", "--t-end", "1")
+    assert code == 0, err
+    assert out.startswith("frame: 3 blocks (2 piers, 1 beam), 4 contacts")
+    assert "k_l = 0.250000" in out and "column 1 foot, right; column 2 foot, right" in out
+    assert "contact engine under rec: at rest" in out

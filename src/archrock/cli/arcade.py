@@ -214,7 +214,8 @@ def format_result(arc, results, ramp=None, response=None) -> str:
     kinds = arc.kinds
     counts = ", ".join(f"{kinds.count(k)} {k}{'s' if kinds.count(k) != 1 else ''}"
                        for k in ("pier", "buttress", "beam", "voussoir") if kinds.count(k))
-    lines = [f"{arc.name}: {len(arc.spans) or '?'} span(s), {arc.n_blocks} blocks ({counts}), "
+    spans = f"{len(arc.spans)} span{'s' if len(arc.spans) != 1 else ''}, " if arc.spans else ""
+    lines = [f"{arc.name}: {spans}{arc.n_blocks} blocks ({counts}), "
              f"{len(arc.contacts)} contacts, {arc.masses.sum():.6g} kg/m"]
     for d, g in results.items():
         m = g.mechanism
