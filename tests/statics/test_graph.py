@@ -185,22 +185,34 @@ def test_record_says_what_and_how(semicircle):
 @pytest.mark.parametrize("b, h, depth", [(0.3, 1.2, 0.3), (0.2, 2.5, 0.6)])
 def test_mechanism_kinematics_of_the_frame(b, h, depth):
     """The LP's hinges rebuilt as a linkage (mechanism_velocities): one degree of freedom, the
-    LP's velocities up to scale, and its generalised mass per unit column rotation rate is
-    Makris & Vassiliou's M(0) = 8/3 m R^2 (1 + 3 gamma), gamma = beam / columns' mass."""
+    LP's velocities up to scale; its generalised mass per unit column rotation rate is
+    Makris & Vassiliou's M(0) = 8/3 m R^2 (1 + 3 gamma), gamma = beam / columns' mass, and its
+    frequency parameter their p^2 (both to 1e-9)."""
     from archrock.statics.graph import generalized_mass, mechanism_velocities
 
     arc = _frame(b, h, depth)
     g = graph_limit(arc, "l")
     basis = mechanism_velocities(arc, [(x.contact, x.end) for x in g.hinges])
     assert basis.shape == (1, 3, 3)
-    v = basis[0] / basis[0][0, 2]  # per unit rotation rate of column 1
-    lp = g.mechanism.velocities / g.mechanism.velocities[0, 2]
+    w_lp = g.mechanism.velocities[0, 2]
+    lp = g.mechanism.velocities / abs(w_lp)  # per unit rotation rate of column 1, LP's sense
+    v = basis[0] / basis[0][0, 2] * np.sign(w_lp)
     assert np.allclose(v, lp, atol=1e-9 * np.abs(lp).max())
     m, m_b = arc.masses[0], arc.masses[2]
     gamma = m_b / (2 * m)
     R2 = b * b + h * h
     assert generalized_mass(arc, v) == pytest.approx(8 / 3 * m * R2 * (1 + 3 * gamma),
                                                      rel=1e-9)
+    # the frequency parameter: Q / (M sin alpha) = p^2 = (3 g / 4 R)(1 + 2 gamma)/(1 + 3 gamma),
+    # and the mechanism starts at lambda = Q / H = the LP's k
+    from archrock.statics.graph import generalized_loads
+    from archrock.units import G
+
+    q, hh = generalized_loads(arc, v)
+    R = np.sqrt(R2)
+    p2 = 3 * G / (4 * R) * (1 + 2 * gamma) / (1 + 3 * gamma)
+    assert q / (generalized_mass(arc, v) * b / R) == pytest.approx(p2, rel=1e-9)
+    assert q / hh == pytest.approx(g.k, abs=1e-9)
     # the beam lifted off its columns: each column rocks on its own foot corner (1 + 1) and the
     # beam is free (3): five degrees of freedom, the case a four-link model cannot follow
     more = mechanism_velocities(arc, [(0, 1), (1, 1)], lift_off=[2, 3])

@@ -39,7 +39,7 @@ from .friction import check_friction
 from .hinges import DIRECTIONS
 
 __all__ = ["GraphHinge", "GraphMechanism", "GraphLimit", "graph_multiplier", "graph_limit",
-           "mechanism_velocities", "generalized_mass"]
+           "mechanism_velocities", "generalized_mass", "generalized_loads"]
 
 #: A relative velocity smaller than this fraction of the largest block velocity counts as zero.
 VELOCITY_TOL = 1e-6
@@ -408,3 +408,15 @@ def generalized_mass(arc: Arcade, velocities: np.ndarray) -> float:
     v = np.asarray(velocities, float).reshape(arc.n_blocks, 3)
     return float(np.sum(arc.masses * (v[:, 0] ** 2 + v[:, 1] ** 2))
                  + np.sum(arc.inertias * v[:, 2] ** 2))
+
+
+def generalized_loads(arc: Arcade, velocities: np.ndarray) -> tuple[float, float]:
+    """(Q, H) [N m per m of depth, for velocities per unit rate]: Q = g sum_b m_b v_y,b, the
+    rate at which the mechanism lifts the weights, and H = g sum_b m_b v_x,b, the rate at which
+    a horizontal ground acceleration of 1 g (toward -x: the loads toward +x) works on it.  The
+    mechanism's one-degree-of-freedom equation at this configuration is M theta'' = lambda H - Q
+    for a load factor lambda (:func:`generalized_mass` gives M), so it starts at lambda = Q / H,
+    the virtual-work k."""
+    v = np.asarray(velocities, float).reshape(arc.n_blocks, 3)
+    m = np.asarray(arc.masses, float)
+    return float(G * np.sum(m * v[:, 1])), float(G * np.sum(m * v[:, 0]))
