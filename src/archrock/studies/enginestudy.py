@@ -33,7 +33,7 @@ from .work import check_work
 __all__ = ["DYNAMICS", "check_dynamics", "DynamicsChoice", "choose_dynamics", "EngineRun",
            "engine_run_cost_s", "EngineEnsembleResult", "engine_ensemble",
            "EngineFirstCollapse", "engine_first_collapse", "engine_collapse_curve",
-           "ENGINE_STEP_S"]
+           "ENGINE_STEP_S", "engine_curves_section", "ENGINE_COLUMNS"]
 
 #: The dynamics a study may use: "auto" (the four-link model where one degree of freedom is
 #: valid, the contact engine otherwise), "fourlink", "engine".
@@ -457,3 +457,31 @@ def engine_collapse_curve(arch, durations, kind: str = "oppenheim", sign: int = 
     amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in pts])
     return CollapseCurve(d, amps, tuple(None for _ in pts), tuple(() for _ in pts), pts,
                          float(model.k_l), float(model.k_r), None)
+
+
+def engine_curves_section(ctx, choice: DynamicsChoice):
+    """The report's collapse-curve section (:func:`archrock.studies.assessment.section_curves`)
+    for an arch that one degree of freedom cannot follow: the first-collapse amplitude of
+    Oppenheim's pulse at each of the configuration's durations by the contact engine
+    (:func:`engine_collapse_curve`, 2% relative), with the reason; no band over irregular
+    arches (an engine run takes seconds)."""
+    from .assessment import Figure, Paragraph, Section, Table
+
+    cfg = ctx.config
+    curve = engine_collapse_curve(ctx.arch, cfg.durations, "oppenheim", -1,
+                                  progress=ctx.progress)
+    rows = tuple((f"{d:g}", "no collapse up to 3 g" if not math.isfinite(a) else f"{a:.3f}",
+                  "contact engine") for d, a in zip(curve.durations, curve.amplitudes))
+    text = ("For each pulse duration, the smallest amplitude of Oppenheim's pulse (first push "
+            "toward -x) that collapses the arch, computed by the contact engine (rigid blocks "
+            "with contact and friction, archrock.contact; bisection to 2% of the amplitude), "
+            "not by the four-link model: " + choice.reason + ". No band over irregular arches "
+            "(each engine run takes seconds; archrock ensemble --dynamics auto runs them).")
+    title = "Collapse-acceleration curve (contact engine)"
+    return Section("curves", title,
+                   (Paragraph(text), Figure("curves", "Collapse-acceleration curve by the "
+                                            "contact engine.", (curve, None)),
+                    Table(("t_p [s]", "first collapse |a| [g]", "computed by"), rows)),
+                   {"nominal": curve.to_dict(), "how": "contact engine",
+                    "dynamics": choice.to_dict()},
+                   (("first collapse (engine)", ", ".join(r[1] for r in rows[:1])),))
