@@ -270,3 +270,35 @@ def test_the_cli_runs_the_engine_on_heavy_piers(capsys):
                  "--no-progress", "--dynamics", "fourlink"]) == 0
     out = capsys.readouterr().out
     assert "dynamics: four-link model: asked for" in out and "WARNING" in out
+
+
+@needs_case
+def test_the_curves_command_routes_heavy_piers_to_the_engine(monkeypatch, capsys):
+    """`archrock curves` on the heavy piers: the engine's bisection (here a stand-in engine
+    that collapses from 0.7 g), with the reason; --samples refused; --dynamics fourlink keeps
+    the four-link curve."""
+    step = _Step(0.7)
+    monkeypatch.setattr(es.EngineRun, "respond", lambda self, a, m, model=None: step(a, m))
+    assert main(["curves", "--geometry", str(HEAVY), "--durations", "0.2", "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "by the contact engine" in out and "why the engine: single degree of freedom not valid" in out
+    row = [ln for ln in out.splitlines() if ln.strip().startswith("0.2")][0]
+    amp = float(row.split()[1])
+    assert 0.7 <= amp <= 0.7 / (1 - 0.01)
+    assert main(["curves", "--geometry", str(HEAVY), "--durations", "0.2", "--no-progress",
+                 "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["how"] == "contact engine" and d["dynamics"]["used"] == "engine"
+    assert main(["curves", "--geometry", str(HEAVY), "--durations", "0.2", "--samples", "2",
+                 "--no-progress"]) == 2
+    assert "--samples: the engine curve is of the nominal arch only" in capsys.readouterr().err
+
+
+@needs_case
+def test_the_single_dof_reason_points_to_the_engine(heavy_arch):
+    from archrock.dynamics.piers import single_dof_check
+    from archrock.dynamics.response import prepare
+
+    reason = single_dof_check(prepare(heavy_arch, 0.8)).reason
+    assert "3.02 g against the contact engine's 0.70 g" in reason
+    assert "studies and the report do so by default" in reason
