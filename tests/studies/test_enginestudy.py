@@ -302,3 +302,24 @@ def test_the_single_dof_reason_points_to_the_engine(heavy_arch):
     reason = single_dof_check(prepare(heavy_arch, 0.8)).reason
     assert "3.02 g against the contact engine's 0.70 g" in reason
     assert "studies and the report do so by default" in reason
+
+
+@needs_case
+def test_the_report_takes_the_collapse_curve_from_the_engine_with_the_reason(monkeypatch,
+                                                                              heavy_arch):
+    from archrock.studies.assessment import AssessConfig, Context, Paragraph, section_curves
+
+    step = _Step(0.7)
+    monkeypatch.setattr(es.EngineRun, "respond", lambda self, a, m, model=None: step(a, m))
+    sec = section_curves(Context(heavy_arch, AssessConfig(durations=(0.2, 0.5), samples=0)))
+    assert sec.key == "curves" and sec.data["how"] == "contact engine"
+    assert sec.data["dynamics"]["used"] == "engine"
+    text = " ".join(b.text for b in sec.blocks if isinstance(b, Paragraph))
+    assert "computed by the contact engine" in text and "single degree of freedom not valid" in text
+    amps = sec.data["nominal"]["amplitudes_g"]
+    assert len(amps) == 2 and all(0.7 <= a <= 0.7 / (1 - 0.02) for a in amps)
+    # the figure draws the engine's curve as any collapse curve
+    from archrock.reports.html import FIGURES
+
+    fig = FIGURES["curves"](next(b for b in sec.blocks if hasattr(b, "payload")).payload)
+    assert fig.axes[0].get_ylabel().startswith("first collapse")
