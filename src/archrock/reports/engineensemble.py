@@ -37,5 +37,5 @@ def format_engine_ensemble(summary: dict, arch_name: str) -> str:
                  f"{e['t_free']:g} T, collapse at a drop of {e['collapse_drop']:g} x size")
     t = summary["timing"]
     lines.append(f"time: {t['wall_s']:.1f} s ({t['seconds_per_arch']:.2f} s an arch; "
-                 f"estimated at most {t['estimate_s']:.0f} s)")
+                 f"estimated beforehand {t['estimate_s']:.0f} s)")
     return "\n".join(lines)

@@ -40,8 +40,10 @@ __all__ = ["DYNAMICS", "check_dynamics", "DynamicsChoice", "choose_dynamics", "E
 DYNAMICS = ("auto", "fourlink", "engine")
 
 #: Seconds of one engine step per contact piece, measured on the development machine (heavy
-#: piers, 14 blocks, 400 steps/T: about 1.5e-5 s per step and piece); the work estimate is
-#: rough (a factor of 2), collapse or rest usually ends a run before its bound.
+#: piers, 14 blocks, 400 steps/T: about 1.5e-5 s per step and piece).  The work estimate is
+#: rough: runs to the end of t_free at this rate; collapse or rest usually ends a run sooner
+#: (heavy piers at 0.7 g: 4.4 s an arch against 8 s estimated), a loaded machine runs slower
+#: (0.5 g: 10 s an arch at a load of 6-8 on 2 cores).
 ENGINE_STEP_S = 1.5e-5
 
 
