@@ -164,8 +164,10 @@ def test_engine_ensemble_refuses_what_it_cannot_run():
     with pytest.raises(ArchInputError, match="^motion: None"):
         es.engine_ensemble(cfg)
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=2, motion=PulseSpec("oppenheim", -1.0, 0.2))
-    with pytest.raises(ArchInputError, match="^run: "):
-        es.engine_ensemble(cfg, run={"t_free": 3})
+    with pytest.raises(ArchInputError, match="^engine: "):
+        es.engine_ensemble(cfg, engine={"t_free": 3})
+    with pytest.raises(ArchInputError, match="^engine: "):
+        run_ensemble(cfg, progress=None, dynamics="engine", engine="fast")
     with pytest.raises(ArchInputError, match="^progress: "):
         es.engine_ensemble(cfg, progress="yes")
 

@@ -21,8 +21,6 @@ def run_engine_curves(args, nominal, durations, choice, plot) -> int:
         raise CLIError("--samples: the engine curve is of the nominal arch only (an engine run "
                        "takes seconds); for random arches run archrock ensemble (it routes to "
                        "the engine too), or give --dynamics fourlink")
-    if not args.no_progress:
-        print(f"dynamics: contact engine: {choice.reason}", file=sys.stderr)
     progress = None if args.no_progress else (lambda line: print(line, file=sys.stderr,
                                                                   flush=True))
     curve = engine_collapse_curve(nominal, durations, args.pulse, args.sign, a_max=args.a_max,

@@ -264,12 +264,12 @@ class EngineEnsembleResult:
         return {"summary": self.summary(), "rows": [dict(r) for r in self.rows]}
 
 
-def engine_ensemble(config, run: EngineRun | None = None, *, dynamics: DynamicsChoice | None =
-                    None, progress=None) -> EngineEnsembleResult:
+def engine_ensemble(config, engine: EngineRun | None = None, *,
+                    dynamics: DynamicsChoice | None = None, progress=None) -> EngineEnsembleResult:
     """The ensemble of ``config`` (an :class:`~archrock.studies.ensemble.EnsembleConfig` with
     a motion) run in the contact engine: sample i is ``sample_arch(config, i)``, the arch of the
-    four-link ensemble (on its moved supports where the configuration has them).  run: how each
-    response is run (:class:`EngineRun`); dynamics: the choice that sent it here (kept in the
+    four-link ensemble (on its moved supports where the configuration has them).  engine: how
+    each response is run (:class:`EngineRun`, default settings); dynamics: the choice that sent it here (kept in the
     result); progress: a callable given one line per arch (never printed here).  The work is
     estimated from the nominal arch first (:func:`engine_run_cost_s`) and refused beyond the
     bound of :mod:`archrock.studies.work`."""
@@ -282,9 +282,9 @@ def engine_ensemble(config, run: EngineRun | None = None, *, dynamics: DynamicsC
     if config.motion is None:
         raise ArchInputError("motion: None; the engine ensemble needs a ground motion (a "
                              "PulseSpec or RecordSpec)")
-    run = EngineRun() if run is None else run
+    run = EngineRun() if engine is None else engine
     if not isinstance(run, EngineRun):
-        raise ArchInputError(f"run: {run!r}; allowed an EngineRun")
+        raise ArchInputError(f"engine: {run!r}; allowed None or an EngineRun")
     if progress is not None and not callable(progress):
         raise ArchInputError(f"progress: {progress!r}; allowed None or a callable")
     motion = config.motion.build()
