@@ -325,3 +325,25 @@ def test_the_report_takes_the_collapse_curve_from_the_engine_with_the_reason(mon
 
     fig = FIGURES["curves"](next(b for b in sec.blocks if hasattr(b, "payload")).payload)
     assert fig.axes[0].get_ylabel().startswith("first collapse")
+
+
+@pytest.mark.slow
+def test_a_four_link_ensemble_on_piers_carries_the_choice():
+    """Low wide piers stay still: auto keeps the four-link ensemble, and its summary says why
+    (nominal.dynamics); the engine asked for by name runs the engine on the same arches."""
+    from archrock.contact import EngineSettings
+    from archrock.geometry.piers import with_piers
+
+    arch = with_piers(nominal_arch(radius=5, embrace_deg=180, thickness=0.8, voussoirs=9), 1.0, 3.0)
+    cfg = EnsembleConfig.from_arch(arch, samples=2, motion=PulseSpec("oppenheim", -0.3, 0.2),
+                                   spreads={"spread_span": 0.0})
+    res = run_ensemble(cfg, progress=None)
+    assert isinstance(res, EnsembleResult)
+    d = res.summary()["nominal"]["dynamics"]
+    assert d["requested"] == "auto" and d["used"] == "fourlink" and d["single_dof"]["valid"]
+    eng = run_ensemble(cfg, progress=None, dynamics="engine",
+                       engine=es.EngineRun(EngineSettings(steps_per_T=50, iterations=5),
+                                           t_free=1.0))
+    s = eng.summary()
+    assert s["how"] == "contact engine" and s["dynamics"]["reason"].startswith("asked for")
+    assert [r["k_l"] for r in eng.rows] == pytest.approx(res.frame["k_l"].tolist(), rel=1e-9)
