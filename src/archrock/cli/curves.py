@@ -45,6 +45,10 @@ def add_curves_parser(subparsers):
                    help="batch engine: keep every finished response in DIR (Parquet + "
                         "manifest.json); the same command after an interruption resumes")
     add_impact_options(p)
+    p.add_argument("--dynamics", choices=("auto", "fourlink", "engine"), default="auto",
+                   help="auto (default): the four-link model where one degree of freedom "
+                        "follows the arch, the contact engine where its piers rock with it "
+                        "(docs/piers-dynamics.md); fourlink or engine as asked")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress on stderr (shown for runs estimated above a few seconds)")
@@ -66,6 +70,13 @@ def run_curves(args) -> int:
     if args.workers < 1:
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     impact = impact_spec_from_args(args)
+    from ..studies.enginestudy import choose_dynamics
+
+    choice = choose_dynamics(nominal, args.dynamics)
+    if choice.engine:  # issue 19: one degree of freedom cannot follow this arch
+        from .enginecurves import run_engine_curves
+
+        return run_engine_curves(args, nominal, durations, choice, plot)
     out = folder_arg(args.out)
     if args.engine == "respond":
         if args.scheduler:

@@ -50,6 +50,10 @@ def add_ensemble_parser(subparsers):
                    help="keep no per-sample table in memory (needs --out; not with --plot): each "
                         "batch is written and dropped and the summary is read back from the "
                         "stored batches, exactly (for 10^7 arches and more)")
+    p.add_argument("--dynamics", choices=("auto", "fourlink", "engine"), default="auto",
+                   help="under a motion: auto (default) the four-link model where one degree of "
+                        "freedom follows the arch, the contact engine where its piers rock with "
+                        "it (docs/piers-dynamics.md); fourlink or engine as asked")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="histograms of k_l and k_r")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
@@ -103,11 +107,22 @@ def run_ensemble_cmd(args) -> int:
     try:
         result = run_ensemble(config, out=out, workers=args.workers,
                               scheduler=args.scheduler, progress=not args.no_progress,
-                              keep_frame=not args.low_memory)
+                              keep_frame=not args.low_memory, dynamics=args.dynamics)
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; " + _kept(out, config.n_batches), file=sys.stderr)
         return EXIT_INTERRUPTED
     summary = result.summary()
+    if summary.get("how") == "contact engine":  # the engine's result (studies/enginestudy.py)
+        if args.json:
+            emit_json(summary)
+            return 0
+        from ..reports.engineensemble import format_engine_ensemble
+
+        print(format_engine_ensemble(summary, nominal.name))
+        for flag, given in (("--out", out), ("--plot", plot)):
+            if given:
+                print(f"{flag}: not used by the engine ensemble (nothing stored or drawn)")
+        return 0
     if plot:
         from ..reports.plots import plot_multiplier_histograms
 
@@ -117,6 +132,8 @@ def run_ensemble_cmd(args) -> int:
     if args.json:
         emit_json(summary)
         return 0
+    if motion is not None and "dynamics" in summary["nominal"]:
+        print(f"dynamics: four-link model: {summary['nominal']['dynamics']['reason']}")
     print(format_ensemble(summary, nominal.name))
     if out:
         print(f"results in {out}")

@@ -558,7 +558,11 @@ def section_response(ctx: Context) -> Section:
 @titled('curves', 'Collapse-acceleration curve and its band over irregular arches')
 def section_curves(ctx: Context) -> Section:
     from .curves import collapse_curve, ensemble_curve
+    from .enginestudy import choose_dynamics, engine_curves_section
 
+    choice = choose_dynamics(ctx.arch)  # issue 19: where one degree of freedom cannot follow
+    if choice.engine:
+        return engine_curves_section(ctx, choice)
     cfg = ctx.config
     kw = dict(kind="oppenheim", sign=-1, n_scan=cfg.n_scan)
     band = None

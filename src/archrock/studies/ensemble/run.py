@@ -86,7 +86,8 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
 
 
 def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=None,
-                 progress=True, keep_frame: bool = True, *, out_dir=None) -> EnsembleResult:
+                 progress=True, keep_frame: bool = True, *, out_dir=None, dynamics: str = "auto",
+                 engine=None) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
     out: folder for the batches and manifest (None: nothing written; ``out_dir``, its 0.5 name,
@@ -98,6 +99,13 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
     (needs ``out``): each batch is written and dropped, the result's ``frame`` is None and
     its summary is computed from the stored batches (:mod:`archrock.studies.ensemble.streaming`), so
     memory stays that of one batch however many samples (10^7 and more).
+    dynamics: "auto" (default), "fourlink" or "engine" (:func:`archrock.studies.enginestudy.
+    choose_dynamics`): under a motion, where one degree of freedom cannot follow the nominal
+    arch (its piers rock with it) or where asked, the arches are run in the contact engine
+    and an :class:`~archrock.studies.enginestudy.EngineEnsembleResult` is returned (nothing
+    stored; ``engine``: its :class:`~archrock.studies.enginestudy.EngineRun`); on rigid ground
+    "auto" is the four-link ensemble, unchanged.  The choice is in the summary's nominal
+    ("dynamics") where the arch has piers or another dynamics was asked for.
     """
     import pandas as pd
 
@@ -117,10 +125,24 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
     if not keep_frame and out is None:
         raise ArchInputError("keep_frame: False needs out (the summary is then read from "
                              "the stored batches)")
+    from ..enginestudy import choose_dynamics
+
+    choice = choose_dynamics(config.analysed_nominal, dynamics)  # checks the value first
+    if choice.engine and config.motion is not None:  # docs/piers-dynamics.md
+        from ..enginestudy import engine_ensemble
+
+        bar = Progress(config.samples, progress, desc="engine ensemble")
+        try:
+            return engine_ensemble(config, engine, dynamics=choice,
+                                   progress=lambda line: bar.update(1))
+        finally:
+            bar.close()
     _check_ensemble_work(config, workers if scheduler is None else 1)
     t_start = time.perf_counter()
     impact = _impact_info(config)
     nominal = _nominal_info(config)
+    if choice.single_dof is not None or choice.requested != "auto":
+        nominal["dynamics"] = choice.to_dict()  # rigid ground under "auto": as before
     out = Path(out) if out is not None else None
     manifest = Manifest(out, config, impact, nominal) if out is not None else None
     frames: dict[int, object] = {}

@@ -1,0 +1,489 @@
+"""Studies by the contact engine where one degree of freedom cannot follow the arch (issue 19).
+
+On an arch whose limit mechanism moves a pier (:func:`archrock.dynamics.piers.single_dof_check`
+not valid), the four-link model's first collapse is 2-4x the contact engine's
+(docs/piers-dynamics.md: heavy piers 3.02 g against 0.70 g).  This module runs the studies on
+such arches with the engine instead:
+
+* :func:`choose_dynamics` -- the routing: ``dynamics`` "auto" (the four-link model where the
+  check says it is valid, the engine otherwise), "fourlink" or "engine", with the reason;
+* :func:`engine_ensemble` -- the ensemble's random arches (sample i is sample i of the
+  :class:`~archrock.studies.ensemble.EnsembleConfig`'s sampler, as in the four-link ensemble),
+  each run in the engine under the configuration's motion; P(collapse) with its Wilson
+  interval;
+* :func:`engine_first_collapse` / :func:`engine_collapse_curve` -- the first-collapse amplitude
+  of a pulse by the engine: a short geometric scan from the activation threshold, then a
+  bounded bisection to a relative tolerance.
+
+Every run estimates its work first (refused beyond :data:`archrock.studies.work.MAX_WORK_S`),
+reports progress through a callback and never prints.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ArchInputError, ArchrockError
+from .work import check_work
+
+__all__ = ["DYNAMICS", "check_dynamics", "DynamicsChoice", "choose_dynamics", "EngineRun",
+           "engine_run_cost_s", "EngineEnsembleResult", "engine_ensemble",
+           "EngineFirstCollapse", "engine_first_collapse", "engine_collapse_curve",
+           "ENGINE_STEP_S", "engine_curves_section", "ENGINE_COLUMNS"]
+
+#: The dynamics a study may use: "auto" (the four-link model where one degree of freedom is
+#: valid, the contact engine otherwise), "fourlink", "engine".
+DYNAMICS = ("auto", "fourlink", "engine")
+
+#: Seconds of one engine step per contact piece, measured on the development machine (heavy
+#: piers, 14 blocks, 400 steps/T: about 1.5e-5 s per step and piece).  The work estimate is
+#: rough: runs to the end of t_free at this rate; collapse or rest usually ends a run sooner
+#: (heavy piers at 0.7 g: 4.4 s an arch against 8 s estimated), a loaded machine runs slower
+#: (0.5 g: 10 s an arch at a load of 6-8 on 2 cores).
+ENGINE_STEP_S = 1.5e-5
+
+
+def check_dynamics(value) -> str:
+    """``value`` if it is one of :data:`DYNAMICS`, else ArchInputError naming the field."""
+    if not isinstance(value, str) or value not in DYNAMICS:
+        raise ArchInputError(f"dynamics: {value!r}; allowed one of {', '.join(DYNAMICS)}")
+    return value
+
+
+@dataclass(frozen=True)
+class DynamicsChoice:
+    """Which dynamics a study uses on an arch, and why.
+
+    requested: the ``dynamics`` asked for; used: "fourlink" or "engine"; reason: in words;
+    single_dof: :meth:`archrock.dynamics.piers.SingleDofCheck.to_dict` of the nominal arch, or
+    None where it was not needed (no piers) or could not be made."""
+
+    requested: str
+    used: str
+    reason: str
+    single_dof: dict | None = None
+
+    @property
+    def engine(self) -> bool:
+        return self.used == "engine"
+
+    def to_dict(self) -> dict:
+        return {"requested": self.requested, "used": self.used, "reason": self.reason,
+                "single_dof": self.single_dof}
+
+
+def choose_dynamics(arch, dynamics: str = "auto") -> DynamicsChoice:
+    """The dynamics for ``arch`` (:class:`DynamicsChoice`).  "auto": the four-link model on
+    arches without piers (no check needed: rigid ground is left exactly as it was) and where
+    :func:`~archrock.dynamics.piers.single_dof_check` is valid; the contact engine where it
+    is not.  "fourlink" / "engine": as asked, the check's verdict still stated."""
+    from ..dynamics.piers import pier_blocks
+
+    dynamics = check_dynamics(dynamics)
+    check = None
+    if pier_blocks(arch)[0]:
+        from ..dynamics.piers import single_dof_check
+        from ..dynamics.response import prepare
+
+        try:  # the verdict reads the limit mechanisms only (c_v does not enter it)
+            check = single_dof_check(prepare(arch, 0.8)).to_dict()
+        except ArchrockError as exc:
+            check = {"valid": None, "reason": f"no four-link model: {' '.join(str(exc).split())}"}
+    if dynamics == "auto":
+        if check is None:
+            return DynamicsChoice("auto", "fourlink", "no piers: one degree of freedom (the "
+                                  "four-link model) follows the arch")
+        if check["valid"] is False:
+            return DynamicsChoice("auto", "engine", "single degree of freedom not valid: "
+                                  + check["reason"], check)
+        if check["valid"] is None:
+            return DynamicsChoice("auto", "engine", "the one-degree-of-freedom check could not "
+                                  "be made on an arch with piers (" + check["reason"] + ")",
+                                  check)
+        return DynamicsChoice("auto", "fourlink", "the piers stay still in both limit "
+                              "mechanisms: one degree of freedom (the four-link model) follows "
+                              "the arch", check)
+    said = f"asked for (dynamics={dynamics!r})"
+    if dynamics == "fourlink" and check is not None and check["valid"] is False:
+        said += "; WARNING single degree of freedom not valid: " + check["reason"]
+    return DynamicsChoice(dynamics, dynamics, said, check)
+
+
+@dataclass(frozen=True)
+class EngineRun:
+    """How each engine response of a study is run.
+
+    settings: :class:`~archrock.contact.EngineSettings` (or its dict); t_free [T]: free motion
+    after the ground motion at most, in units of T = sqrt(size/g) (30: the heavy-pier arch
+    rocks for tens of seconds before it falls or rests); collapse_drop: the drop of a mass
+    centre, as a fraction of the size, that counts as collapse
+    (:func:`archrock.contact.engine_respond`)."""
+
+    settings: object = None
+    t_free: float = 30.0
+    collapse_drop: float = 0.2
+
+    def __post_init__(self):
+        from ..contact.settings import EngineSettings
+
+        s = self.settings
+        if s is None:
+            s = EngineSettings()
+        elif isinstance(s, dict):
+            s = EngineSettings.from_dict(s)
+        elif not isinstance(s, EngineSettings):
+            raise ArchInputError(f"settings: {s!r}; allowed None, an EngineSettings or its dict")
+        object.__setattr__(self, "settings", s)
+        for name, lo, hi in (("t_free", 0.0, 1e4), ("collapse_drop", 1e-4, 10.0)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+                raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+            object.__setattr__(self, name, float(v))
+
+    def to_dict(self) -> dict:
+        return {"settings": self.settings.to_dict(), "t_free": self.t_free,
+                "collapse_drop": self.collapse_drop}
+
+    @classmethod
+    def from_dict(cls, data) -> "EngineRun":
+        if not isinstance(data, dict) or set(data) - {"settings", "t_free", "collapse_drop"}:
+            raise ArchInputError(f"engine run: {data!r}; allowed fields settings, t_free, "
+                                 f"collapse_drop")
+        return cls(**data)
+
+    def respond(self, arch, motion, model=None):
+        """The engine's response of ``arch`` to ``motion``: its outcome, and its peak |phi|
+        [rad] sampled every 0.01 s during the motion and at the end of the run."""
+        from ..contact.motion import engine_respond
+
+        t_end = float(motion.times[-1])
+        return engine_respond(arch, motion, self.settings, model=model, t_end=t_end,
+                              dt_out=min(0.01, t_end), t_free=self.t_free,
+                              collapse_drop=self.collapse_drop)
+
+
+def engine_run_cost_s(arch, duration: float, run: EngineRun) -> float:
+    """Upper estimate [s] of one engine response of ``arch`` to a motion of ``duration`` [s]:
+    the steps to the end of the free motion times :data:`ENGINE_STEP_S` per contact piece
+    (about 3 per voussoir at the default outline tolerance)."""
+    from ..contact.settings import engine_scales
+
+    sc = engine_scales(arch, run.settings)
+    steps = (float(duration) + run.t_free * sc.time_scale) / sc.dt
+    pieces = 3 * int(arch.n) + 2
+    return steps * pieces * ENGINE_STEP_S * run.settings.iterations / 40.0
+
+
+def _wilson(k: int, n: int, confidence: float) -> tuple:
+    """(p, low, high) with the Wilson score interval (scipy's binomtest)."""
+    from scipy.stats import binomtest
+
+    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=confidence, method="wilson")
+    return k / n, float(ci.low), float(ci.high)
+
+
+def _stats(x) -> dict:
+    x = np.asarray(x, float)
+    x = x[np.isfinite(x)]
+    if not x.size:
+        return {"count": 0, "mean": None, "min": None, "median": None, "max": None}
+    return {"count": int(x.size), "mean": float(x.mean()), "min": float(x.min()),
+            "median": float(np.median(x)), "max": float(x.max())}
+
+
+#: Columns of an engine ensemble's rows.
+ENGINE_COLUMNS = ("index", "k_l", "k_r", "collapsed", "status", "peak", "t_collapse",
+                  "t_final", "seconds", "error")
+
+
+@dataclass(frozen=True)
+class EngineEnsembleResult:
+    """Result of :func:`engine_ensemble`: one row per sample (:data:`ENGINE_COLUMNS`: status
+    'rest', 'collapsed' or 'moving' (still moving when t_free ran out: counted as not
+    collapsed) or 'failed' with ``error``), the ensemble's configuration, the engine run, the
+    dynamics choice that sent it here and the timing (wall_s, estimate_s)."""
+
+    config: object
+    rows: tuple = field(repr=False)
+    run: EngineRun = field(default_factory=EngineRun)
+    dynamics: DynamicsChoice | None = None
+    nominal: dict = field(default_factory=dict)
+    timing: dict = field(default_factory=dict)
+
+    @property
+    def frame(self):
+        import pandas as pd
+
+        return pd.DataFrame(list(self.rows), columns=list(ENGINE_COLUMNS))
+
+    def summary(self, confidence: float = 0.95) -> dict:
+        """JSON-ready: counts (every sample one outcome), P(collapse | integrated) with its
+        Wilson interval (None and a note with no integrated sample), peaks of the survivors,
+        how it was computed."""
+        rows = self.rows
+        n = len(rows)
+        ran = [r for r in rows if r["status"] != "failed"]
+        k = sum(1 for r in ran if r["collapsed"])
+        reasons: dict[str, int] = {}
+        for r in rows:
+            if r["status"] == "failed":
+                key = r["error"].split(":")[0]
+                reasons[key] = reasons.get(key, 0) + 1
+        status = {s: sum(1 for r in ran if r["status"] == s) for s in ("rest", "collapsed",
+                                                                        "moving")}
+        pc = {"p": None, "low": None, "high": None, "confidence": confidence,
+              "method": "wilson", "collapses": k, "trials": len(ran),
+              "rule": "conditional: collapsed / integrated samples (engine runs that "
+                      "ended); failed samples left out", "note": None}
+        if ran:
+            pc["p"], pc["low"], pc["high"] = _wilson(k, len(ran), confidence)
+        else:
+            pc["note"] = "no trials: the probability cannot be estimated"
+        m = self.config.motion
+        return {
+            "samples": n, "seed": self.config.seed,
+            "spreads": self.config.spreads.to_dict(),
+            "how": "contact engine",
+            "dynamics": None if self.dynamics is None else self.dynamics.to_dict(),
+            "engine": self.run.to_dict(),
+            "motion": None if m is None else m.to_dict(),
+            "nominal": self.nominal,
+            "outcomes": {"samples": n, "integrated": len(ran), "failed": n - len(ran),
+                         "status": status, "failed_reasons": reasons},
+            "p_collapse": pc,
+            "peak_rad": _stats([r["peak"] for r in ran if not r["collapsed"]]),
+            "t_collapse_s": _stats([r["t_collapse"] for r in ran if r["collapsed"]]),
+            "timing": dict(self.timing),
+        }
+
+    def to_dict(self) -> dict:
+        return {"summary": self.summary(), "rows": [dict(r) for r in self.rows]}
+
+
+def engine_ensemble(config, engine: EngineRun | None = None, *,
+                    dynamics: DynamicsChoice | None = None, progress=None) -> EngineEnsembleResult:
+    """The ensemble of ``config`` (an :class:`~archrock.studies.ensemble.EnsembleConfig` with
+    a motion) run in the contact engine: sample i is ``sample_arch(config, i)``, the arch of the
+    four-link ensemble (on its moved supports where the configuration has them).  engine: how
+    each response is run (:class:`EngineRun`, default settings); dynamics: the choice that sent it here (kept in the
+    result); progress: a callable given one line per arch (never printed here).  The work is
+    estimated from the nominal arch first (:func:`engine_run_cost_s`) and refused beyond the
+    bound of :mod:`archrock.studies.work`."""
+    from ..dynamics.response import prepare
+    from .ensemble.compute import sample_arch
+    from .ensemble.config import EnsembleConfig
+
+    if not isinstance(config, EnsembleConfig):
+        raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
+    if config.motion is None:
+        raise ArchInputError("motion: None; the engine ensemble needs a ground motion (a "
+                             "PulseSpec or RecordSpec)")
+    run = EngineRun() if engine is None else engine
+    if not isinstance(run, EngineRun):
+        raise ArchInputError(f"engine: {run!r}; allowed None or an EngineRun")
+    if progress is not None and not callable(progress):
+        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable")
+    motion = config.motion.build()
+    duration = float(motion.times[-1])
+    nominal = config.analysed_nominal
+    each = engine_run_cost_s(nominal, duration, run)
+    est = check_work("engine ensemble", config.samples, "arches", each,
+                     "reduce --samples (the engine takes seconds an arch), or use the four-link "
+                     "model (--dynamics fourlink) where it is valid", 1, kernel=False)
+    t0 = time.perf_counter()
+    rows = []
+    for i in range(config.samples):
+        t1 = time.perf_counter()
+        row = dict.fromkeys(ENGINE_COLUMNS)
+        row.update(index=i, k_l=math.nan, k_r=math.nan, collapsed=False, status="failed",
+                   peak=math.nan, t_collapse=math.nan, t_final=math.nan, error="")
+        try:
+            arch = sample_arch(config, i)
+            model = prepare(arch, "momentum")  # the limit mechanisms, for k and phi
+            row["k_l"], row["k_r"] = float(model.k_l), float(model.k_r)
+            res = run.respond(arch, motion, model)
+        except ArchrockError as exc:
+            row["error"] = " ".join(str(exc).split())
+        else:
+            row.update(collapsed=res.collapsed, status=res.status, peak=float(res.peak),
+                       t_collapse=math.nan if res.t_collapse is None else float(res.t_collapse),
+                       t_final=float(res.t_final))
+        row["seconds"] = time.perf_counter() - t1
+        rows.append(row)
+        if progress is not None:
+            progress(f"engine ensemble: arch {i + 1}/{config.samples} {row['status']} "
+                     f"({row['seconds']:.1f} s)")
+    wall = time.perf_counter() - t0
+    nom = {"k_l": None, "k_r": None}
+    try:
+        nm = prepare(nominal, "momentum")
+        nom = {"k_l": float(nm.k_l), "k_r": float(nm.k_r),
+               "mech_l": nm.mechanism("l").mechanism.label,
+               "mech_r": nm.mechanism("r").mechanism.label}
+    except (ArchrockError, AttributeError):
+        pass
+    return EngineEnsembleResult(config, tuple(rows), run, dynamics, nom,
+                                {"wall_s": wall, "estimate_s": est,
+                                 "seconds_per_arch": wall / config.samples})
+
+
+# ---------------------------------------------------------------------------- first collapse
+@dataclass(frozen=True)
+class EngineFirstCollapse:
+    """First-collapse amplitude of a pulse by the contact engine.
+
+    duration [s], kind, sign (of the amplitude: -1 pushes toward -x first); amplitude [g]
+    (|a|, the smallest collapsing amplitude found: the bracket's top; None where nothing
+    collapsed up to a_max); bracket (last survival, first collapse) [g], hi - lo <= rtol * hi;
+    threshold: the activation multiplier (limit analysis) the scan starts from [g];
+    scan_amplitudes / scan_collapsed: the scan; n_responses: engine runs made; seconds;
+    run: the :class:`EngineRun`; how: "contact engine".  Collapse is not monotonic in the
+    amplitude: this is the first boundary above the threshold on the scan's grid."""
+
+    duration: float
+    kind: str
+    sign: int
+    amplitude: float | None
+    bracket: tuple | None
+    threshold: float
+    a_max: float
+    rtol: float
+    scan_amplitudes: tuple
+    scan_collapsed: tuple
+    n_responses: int
+    seconds: float
+    run: EngineRun = field(default_factory=EngineRun)
+    how: str = "contact engine"
+
+    # read by the collapse-curve figure and table, as a four-link point
+    mode = None
+    windows = ()
+    t_collapse = None
+
+    def to_dict(self) -> dict:
+        return {"duration_s": self.duration, "kind": self.kind, "sign": self.sign,
+                "amplitude_g": self.amplitude,
+                "bracket_g": None if self.bracket is None else list(self.bracket),
+                "threshold_g": self.threshold, "a_max_g": self.a_max, "rtol": self.rtol,
+                "scan_amplitudes_g": list(self.scan_amplitudes),
+                "scan_collapsed": list(self.scan_collapsed), "n_responses": self.n_responses,
+                "seconds": self.seconds, "engine": self.run.to_dict(), "how": self.how}
+
+
+def engine_first_collapse(arch, duration: float, kind: str = "oppenheim", sign: int = -1, *,
+                          a_max: float = 3.0, n_scan: int = 8, rtol: float = 0.01,
+                          run: EngineRun | None = None, model=None,
+                          progress=None) -> EngineFirstCollapse:
+    """The smallest amplitude |a| [g] of a ``kind`` pulse of ``duration`` [s] (amplitude sign
+    ``sign``) that collapses ``arch`` in the contact engine: a geometric scan of ``n_scan``
+    amplitudes from the activation multiplier (limit analysis; nothing moves below it) to
+    ``a_max``, then a bisection of the first collapsing interval until hi - lo <= rtol * hi
+    (:func:`archrock.studies.curves.bisect_boundary`).  Bounded: n_scan + log2(1 / rtol) + 1
+    runs at most, each estimated first (:func:`engine_run_cost_s`)."""
+    from ..dynamics.response import prepare
+    from ..groundmotion import pulse, pulse_kind
+    from .curves import _check_int, _check_real, _check_sign, bisect_boundary
+
+    kind = pulse_kind(kind)
+    sign = _check_sign(sign)
+    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
+    n_scan = _check_int("n_scan", n_scan, 2)
+    if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 1e-4 <= rtol <= 0.5:
+        raise ArchInputError(f"rtol: {rtol!r}; allowed 1e-4 <= rtol <= 0.5 (relative to the "
+                             f"amplitude)")
+    run = EngineRun() if run is None else run
+    if model is None:
+        model = prepare(arch, "momentum")
+    thr = float(model.k_l if sign < 0 else model.k_r)
+    a_max = _check_real("a_max", a_max, None, "a finite number")
+    if not thr * (1 + 1e-6) < a_max <= 100.0:
+        raise ArchInputError(f"a_max: {a_max!r}; allowed above the activation threshold "
+                             f"{thr:.4f} g and <= 100 g")
+    probe = pulse(kind, sign * a_max, tp)
+    steps = n_scan + math.ceil(math.log2(1.0 / rtol)) + 1
+    check_work("engine first collapse", steps, "engine runs",
+               engine_run_cost_s(arch, float(probe.times[-1]), run),
+               "raise rtol or lower n_scan", 1, kernel=False)
+    t0 = time.perf_counter()
+    cache: dict[float, bool] = {}
+
+    def test(a):
+        if a not in cache:
+            cache[a] = run.respond(arch, pulse(kind, sign * a, tp), model).collapsed
+            if progress is not None:
+                progress(f"engine first collapse: |a| = {a:.4f} g "
+                         f"{'collapsed' if cache[a] else 'survived'}")
+        return cache[a]
+
+    grid = np.geomspace(thr * (1 + 1e-6), a_max, n_scan)
+    flags = []
+    for a in grid:  # stop at the first collapse: the runs above it are not needed
+        flags.append(test(float(a)))
+        if flags[-1]:
+            break
+    amp = bracket = None
+    if flags[-1]:
+        i0 = len(flags) - 1
+        if i0 == 0:
+            bracket = (thr, float(grid[0]))
+        else:
+            bracket = bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, rtol,
+                                      relative=True)
+        amp = float(bracket[1])
+    return EngineFirstCollapse(tp, kind, sign, amp, None if bracket is None else
+                               (float(bracket[0]), float(bracket[1])), thr, float(a_max),
+                               float(rtol), tuple(float(a) for a in grid[:len(flags)]),
+                               tuple(bool(f) for f in flags), len(cache),
+                               time.perf_counter() - t0, run)
+
+
+def engine_collapse_curve(arch, durations, kind: str = "oppenheim", sign: int = -1, *,
+                          a_max: float = 3.0, n_scan: int = 8, rtol: float = 0.02,
+                          run: EngineRun | None = None, progress=None):
+    """:func:`engine_first_collapse` for each of ``durations`` [s], as a
+    :class:`~archrock.studies.curves.CollapseCurve` (its points are
+    :class:`EngineFirstCollapse`, ``how`` "contact engine"; no modes, no survival windows;
+    cv None: the engine has no impact law), so the collapse-curve figure and table draw it."""
+    from ..dynamics.response import prepare
+    from .curves import CollapseCurve, _durations
+
+    d = _durations(durations)
+    model = prepare(arch, "momentum")
+    pts = tuple(engine_first_collapse(arch, float(tp), kind, sign, a_max=a_max, n_scan=n_scan,
+                                      rtol=rtol, run=run, model=model, progress=progress)
+                for tp in d)
+    amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in pts])
+    return CollapseCurve(d, amps, tuple(None for _ in pts), tuple(() for _ in pts), pts,
+                         float(model.k_l), float(model.k_r), None)
+
+
+def engine_curves_section(ctx, choice: DynamicsChoice):
+    """The report's collapse-curve section (:func:`archrock.studies.assessment.section_curves`)
+    for an arch that one degree of freedom cannot follow: the first-collapse amplitude of
+    Oppenheim's pulse at each of the configuration's durations by the contact engine
+    (:func:`engine_collapse_curve`, 2% relative), with the reason; no band over irregular
+    arches (an engine run takes seconds)."""
+    from .assessment import Figure, Paragraph, Section, Table
+
+    cfg = ctx.config
+    curve = engine_collapse_curve(ctx.arch, cfg.durations, "oppenheim", -1,
+                                  progress=ctx.progress)
+    rows = tuple((f"{d:g}", "no collapse up to 3 g" if not math.isfinite(a) else f"{a:.3f}",
+                  "contact engine") for d, a in zip(curve.durations, curve.amplitudes))
+    text = ("For each pulse duration, the smallest amplitude of Oppenheim's pulse (first push "
+            "toward -x) that collapses the arch, computed by the contact engine (rigid blocks "
+            "with contact and friction, archrock.contact; bisection to 2% of the amplitude), "
+            "not by the four-link model: " + choice.reason + ". No band over irregular arches "
+            "(each engine run takes seconds; archrock ensemble --dynamics auto runs them).")
+    title = "Collapse-acceleration curve (contact engine)"
+    return Section("curves", title,
+                   (Paragraph(text), Figure("curves", "Collapse-acceleration curve by the "
+                                            "contact engine.", (curve, None)),
+                    Table(("t_p [s]", "first collapse |a| [g]", "computed by"), rows)),
+                   {"nominal": curve.to_dict(), "how": "contact engine",
+                    "dynamics": choice.to_dict()},
+                   (("first collapse (engine)", ", ".join(r[1] for r in rows[:1])),))
