@@ -1,0 +1,144 @@
+"""Arch options -> an arch: the nominal geometry (circular, a family's, or a geometry file),
+its defects, its piers and a support movement.  ``args`` is anything with the options as
+attributes (argparse's Namespace of the command line, or the one the app builds from a request's
+fields); an option absent or None is not given."""
+
+from __future__ import annotations
+
+from .errors import OptionError
+
+#: Defaults of the nominal-geometry flags: Oppenheim's arch (R [m], embrace [deg], t [m], n, kg/m^3).
+#: Spelled out rather than taken from archrock.geometry so that --help needs no numpy.
+GEOMETRY_DEFAULTS = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7,
+                     "density": 2000.0}
+#: The arch families and joint kinds (archrock.geometry.SHAPES / JOINTS, spelled out for --help
+#: without numpy; tests/test_cli.py checks they agree).
+SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
+JOINTS = ("normal", "vertical")
+
+
+def arch_from_args(args):
+    """The arch described by the options of :func:`add_geometry_options`: a circular
+    :class:`~archrock.geometry.Arch`, or a family's (the exact Arch for a circular one with
+    normal joints and constant thickness, else a FamilyArch), with the --defect defects applied
+    (archrock.geometry.apply_defect), on the piers of --pier-height/--pier-width (an
+    ArchOnPiers, archrock.geometry.with_piers); raises ArchInputError / OptionError on bad input."""
+    arch = undamaged_arch_from_args(args)
+    if getattr(args, "defect", None):
+        from ..geometry import apply_defects
+
+        arch = apply_defects(arch, args.defect)
+    return supports_from_args(args, piers_from_args(args, arch))
+
+
+def piers_from_args(args, arch):
+    """``arch`` on the piers of --pier-height/--pier-width/--pier-courses (the defects, which
+    number the arch's own voussoirs and joints, are applied first), or ``arch`` without them."""
+    h = getattr(args, "pier_height", None)
+    w = getattr(args, "pier_width", None)
+    c = getattr(args, "pier_courses", None)
+    b = getattr(args, "pier_batter", None)
+    right = {k: getattr(args, f"right_pier_{k}", None)
+             for k in ("height", "width", "courses", "batter")}
+    others = [("--pier-courses", c), ("--pier-batter", b)] + \
+        [(f"--right-pier-{k}", v) for k, v in right.items()]
+    if h is None and w is None and all(v is None for _, v in others):
+        return arch
+    if h is None or w is None:
+        given = "--pier-height" if h is not None else ("--pier-width" if w is not None else
+                                                          next(f for f, v in others if v is not None))
+        missing = " and ".join(f for f, v in (("--pier-height", h), ("--pier-width", w))
+                               if v is None)
+        raise OptionError(f"{missing}: needed with {given} (the piers' height and width, in metres)")
+    from ..geometry import with_piers
+
+    from ..errors import ArchInputError
+
+    try:
+        return with_piers(arch, h, w, courses=1 if c is None else c,
+                          batter=0.0 if b is None else b, height_right=right["height"],
+                          width_right=right["width"], courses_right=right["courses"],
+                          batter_right=right["batter"])
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("height:", "--pier-height:"), ("width:", "--pier-width:"),
+                            ("courses:", "--pier-courses:"), ("batter:", "--pier-batter:"),
+                            ("height_right:", "--right-pier-height:"),
+                            ("width_right:", "--right-pier-width:"),
+                            ("courses_right:", "--right-pier-courses:"),
+                            ("batter_right:", "--right-pier-batter:")):
+            if msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
+
+
+def undamaged_arch_from_args(args):
+    from ..geometry import nominal_arch
+
+    circ = ("radius", "embrace")
+    fam = ("shape", "span", "rise", "thickness_crown", "joints")
+    common = ("thickness", "voussoirs", "density")
+    flags = circ + fam + common
+    given = [f for f in flags if getattr(args, f, None) is not None]
+    flag = {f: "--" + f.replace("_", "-") for f in flags}
+    if getattr(args, "geometry", None):
+        if given:
+            raise OptionError(f"--geometry: cannot be combined with "
+                           f"{', '.join(flag[f] for f in given)}; the file holds the whole geometry")
+        from ..geometry.files import read_arch
+
+        return read_arch(args.geometry)
+    family = [f for f in fam if f in given]
+    if family:
+        both = [f for f in circ if f in given]
+        if both:
+            raise OptionError(f"{flag[both[0]]}: cannot be combined with {flag[family[0]]}; give "
+                           f"--radius/--embrace (circular) or --shape/--span/--rise")
+        shape = getattr(args, "shape", None) or "circular"
+        missing = [flag[f] for f in ("span", "rise") if getattr(args, f, None) is None]
+        if missing:
+            raise OptionError(f"{' and '.join(missing)}: needed with {flag[family[0]]} (the span "
+                           f"and rise of the {shape} arch's centreline, in metres)")
+        from ..geometry import family_arch
+
+        val = {f: getattr(args, f) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f]
+               for f in common}
+        return family_arch(shape, args.span, args.rise, val["thickness"], val["voussoirs"],
+                           thickness_crown=args.thickness_crown, joints=args.joints or "normal",
+                           density=val["density"], name=shape)
+    vals = {f: (getattr(args, f, None) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f])
+            for f in circ + common}
+    is_oppenheim = not given or all(vals[f] == GEOMETRY_DEFAULTS[f] for f in circ + common)
+    return nominal_arch(radius=vals["radius"], embrace_deg=vals["embrace"], thickness=vals["thickness"],
+                        voussoirs=vals["voussoirs"], density=vals["density"],
+                        name="Oppenheim" if is_oppenheim else "nominal")
+
+
+def supports_from_args(args, arch):
+    """``arch`` after the movement of --spread/--settlement/--support-side (the displaced arch
+    of archrock.statics.supports.displace, re-closed; the arch itself at zero movement)."""
+    s = getattr(args, "spread", None)
+    v = getattr(args, "settlement", None)
+    side = getattr(args, "support_side", None)
+    if s is None and v is None:
+        if side is not None:
+            raise OptionError("--support-side: needs --spread or --settlement (the movement, in "
+                           "metres)")
+        return arch
+    from ..errors import ArchInputError
+    from ..geometry.displaced import SupportMovement
+    from ..statics.supports import on_moved_supports
+
+    try:
+        mv = SupportMovement(0.0 if s is None else s, 0.0 if v is None else v,
+                             side or "right")
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("spread:", "--spread:"), ("settlement:", "--settlement:")):
+            if msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
+    # the analyses take the displaced geometry with its open joints bearing on whole faces: a
+    # mechanism that turns an open joint back only closes its gap (docs/supports.md, "One
+    # answer: the re-closed arch"); limit reports that bounded motion beside it
+    return on_moved_supports(arch, mv)  # the arch itself at zero movement
