@@ -6,6 +6,7 @@ fields); an option absent or None is not given."""
 from __future__ import annotations
 
 from .errors import OptionError
+from .fields import FLAGS, flag_message, values
 
 #: Defaults of the nominal-geometry flags: Oppenheim's arch (R [m], embrace [deg], t [m], n, kg/m^3).
 #: Spelled out rather than taken from archrock.geometry so that --help needs no numpy.
@@ -33,42 +34,25 @@ def arch_from_args(args):
 
 def piers_from_args(args, arch):
     """``arch`` on the piers of --pier-height/--pier-width/--pier-courses (the defects, which
-    number the arch's own voussoirs and joints, are applied first), or ``arch`` without them."""
-    h = getattr(args, "pier_height", None)
-    w = getattr(args, "pier_width", None)
-    c = getattr(args, "pier_courses", None)
-    b = getattr(args, "pier_batter", None)
-    right = {k: getattr(args, f"right_pier_{k}", None)
-             for k in ("height", "width", "courses", "batter")}
-    others = [("--pier-courses", c), ("--pier-batter", b)] + \
-        [(f"--right-pier-{k}", v) for k, v in right.items()]
-    if h is None and w is None and all(v is None for _, v in others):
+    number the arch's own voussoirs and joints, are applied first), or ``arch`` without them.
+    The flags are read through the one table of :mod:`archrock.options.fields`."""
+    given = values(args, "with_piers")  # {field: value} of the flags given, in the table's order
+    if not given:
         return arch
-    if h is None or w is None:
-        given = "--pier-height" if h is not None else ("--pier-width" if w is not None else
-                                                          next(f for f, v in others if v is not None))
-        missing = " and ".join(f for f, v in (("--pier-height", h), ("--pier-width", w))
-                               if v is None)
-        raise OptionError(f"{missing}: needed with {given} (the piers' height and width, in metres)")
+    flag = FLAGS["with_piers"]
+    if "height" not in given or "width" not in given:
+        missing = " and ".join(flag[f] for f in ("height", "width") if f not in given)
+        raise OptionError(f"{missing}: needed with {flag[next(iter(given))]} (the piers' height "
+                          f"and width, in metres)")
+    from ..errors import ArchInputError
     from ..geometry import with_piers
 
-    from ..errors import ArchInputError
-
     try:
-        return with_piers(arch, h, w, courses=1 if c is None else c,
-                          batter=0.0 if b is None else b, height_right=right["height"],
-                          width_right=right["width"], courses_right=right["courses"],
-                          batter_right=right["batter"])
+        return with_piers(arch, given.pop("height"), given.pop("width"), **given)
     except ArchInputError as exc:
-        msg = str(exc)
-        for field, flag in (("height:", "--pier-height:"), ("width:", "--pier-width:"),
-                            ("courses:", "--pier-courses:"), ("batter:", "--pier-batter:"),
-                            ("height_right:", "--right-pier-height:"),
-                            ("width_right:", "--right-pier-width:"),
-                            ("courses_right:", "--right-pier-courses:"),
-                            ("batter_right:", "--right-pier-batter:")):
-            if msg.startswith(field):
-                raise ArchInputError(flag + msg[len(field):]) from None
+        worded = flag_message(str(exc), "with_piers")
+        if worded is not None:
+            raise ArchInputError(worded) from None
         raise
 
 
@@ -84,7 +68,7 @@ def undamaged_arch_from_args(args):
     if getattr(args, "geometry", None):
         if given:
             raise OptionError(f"--geometry: cannot be combined with "
-                           f"{', '.join(flag[f] for f in given)}; the file holds the whole geometry")
+                              f"{', '.join(flag[f] for f in given)}; the file holds the whole geometry")
         from ..geometry.files import read_arch
 
         return read_arch(args.geometry)
@@ -93,12 +77,12 @@ def undamaged_arch_from_args(args):
         both = [f for f in circ if f in given]
         if both:
             raise OptionError(f"{flag[both[0]]}: cannot be combined with {flag[family[0]]}; give "
-                           f"--radius/--embrace (circular) or --shape/--span/--rise")
+                              f"--radius/--embrace (circular) or --shape/--span/--rise")
         shape = getattr(args, "shape", None) or "circular"
         missing = [flag[f] for f in ("span", "rise") if getattr(args, f, None) is None]
         if missing:
             raise OptionError(f"{' and '.join(missing)}: needed with {flag[family[0]]} (the span "
-                           f"and rise of the {shape} arch's centreline, in metres)")
+                              f"and rise of the {shape} arch's centreline, in metres)")
         from ..geometry import family_arch
 
         val = {f: getattr(args, f) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f]
@@ -117,26 +101,22 @@ def undamaged_arch_from_args(args):
 def supports_from_args(args, arch):
     """``arch`` after the movement of --spread/--settlement/--support-side (the displaced arch
     of archrock.statics.supports.displace, re-closed; the arch itself at zero movement)."""
-    s = getattr(args, "spread", None)
-    v = getattr(args, "settlement", None)
-    side = getattr(args, "support_side", None)
-    if s is None and v is None:
-        if side is not None:
+    given = values(args, "SupportMovement")
+    if "spread" not in given and "settlement" not in given:
+        if "side" in given:
             raise OptionError("--support-side: needs --spread or --settlement (the movement, in "
-                           "metres)")
+                              "metres)")
         return arch
     from ..errors import ArchInputError
     from ..geometry.displaced import SupportMovement
     from ..statics.supports import on_moved_supports
 
     try:
-        mv = SupportMovement(0.0 if s is None else s, 0.0 if v is None else v,
-                             side or "right")
+        mv = SupportMovement(**{"spread": 0.0, "settlement": 0.0, "side": "right", **given})
     except ArchInputError as exc:
-        msg = str(exc)
-        for field, flag in (("spread:", "--spread:"), ("settlement:", "--settlement:")):
-            if msg.startswith(field):
-                raise ArchInputError(flag + msg[len(field):]) from None
+        worded = flag_message(str(exc), "SupportMovement")
+        if worded is not None:
+            raise ArchInputError(worded) from None
         raise
     # the analyses take the displaced geometry with its open joints bearing on whole faces: a
     # mechanism that turns an open joint back only closes its gap (docs/supports.md, "One

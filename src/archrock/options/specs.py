@@ -6,14 +6,14 @@ from __future__ import annotations
 
 from .arch import arch_from_args
 from .errors import OptionError
+from .fields import values
 
 
 def spreads(args):
     """The :class:`~archrock.geometry.sampling.Spreads` of :func:`add_spread_options`."""
     from ..geometry.sampling import Spreads
 
-    return Spreads(args.spread_span, args.spread_thickness, args.spread_radius,
-                   getattr(args, "spread_tilt", 0.0))
+    return Spreads(**values(args, "Spreads"))  # a command without --spread-tilt: no tilt
 
 
 def motion_spec_from_args(args):
@@ -25,19 +25,20 @@ def motion_spec_from_args(args):
     if getattr(args, "record", None):
         if has_pulse:
             raise OptionError("--record: cannot be combined with --pulse/--amplitude/--pulse-duration")
-        return RecordSpec.from_file(args.record, args.units, args.scale)
+        return RecordSpec.from_file(**values(args, "RecordSpec"))
     for flag, given in (("--units", args.units is not None), ("--scale", args.scale != 1.0)):
         if given and has_pulse:
             raise OptionError(f"{flag}: applies to --record only; a pulse's amplitude is in g")
     if not has_pulse:
         if getattr(args, "_motion_required", False):
             raise OptionError("ground motion: give --pulse KIND --amplitude A_G --pulse-duration S "
-                           "or --record FILE")
+                              "or --record FILE")
         return None
     if args.amplitude is None or args.pulse_duration is None:
         raise OptionError("--amplitude and --pulse-duration: both are needed with a pulse "
-                       "(e.g. --pulse oppenheim --amplitude -1 --pulse-duration 0.2)")
-    return PulseSpec(args.pulse or "oppenheim", args.amplitude, args.pulse_duration)
+                          "(e.g. --pulse oppenheim --amplitude -1 --pulse-duration 0.2)")
+    kw = values(args, "PulseSpec")
+    return PulseSpec(**{**kw, "kind": kw.get("kind") or "oppenheim"})
 
 
 def motion_from_args(args):
@@ -57,7 +58,7 @@ def impact_spec_from_args(args):
     if args.cv is not None:
         if on is not None:
             raise OptionError("--impact-on: applies to --impact MODEL; a given --cv is the same on "
-                           "every arch")
+                              "every arch")
         return ImpactSpec.fixed(args.cv, literal=args.literal_cv)
     if args.impact is None:
         if on is not None:
@@ -71,7 +72,7 @@ def impact_spec_from_args(args):
     if args.literal_cv:
         if spec.on != "nominal":
             raise OptionError("--literal-cv: applies to a fixed c_v (--cv, or a model evaluated on "
-                           "the nominal arch); cannot be combined with --impact on each arch")
+                              "the nominal arch); cannot be combined with --impact on each arch")
         spec = ImpactSpec(spec.model, literal=True, on="nominal")
     return spec
 
