@@ -10,17 +10,19 @@ ROOT = Path(archrock.__file__).parent
 #: top-level module or folder -> layer (docs/architecture.md): one folder, one layer
 LAYER = {
     "errors": 0, "units": 0, "published": 0, "_jit": 0, "_records": 0, "_progress": 0,
-    "_pairwise": 0, "_moved": 0,
+    "_pairwise": 0, "_moved": 0, "leftout": 0,
     "geometry": 1,
     "statics": 2,
     "groundmotion": 3,
     "dynamics": 4,
     "contact": 5,
     "studies": 6,
-    "reports": 7, "cli": 7, "app": 7, "__main__": 7,
+    "reports": 7, "options": 7,
+    "app": 8,
+    "cli": 9, "__main__": 9,
 }
 #: same layer, kept apart: neither may import the other
-APART: set = set()
+APART: set = {("reports", "options"), ("options", "reports")}
 
 
 def _top(module_path: Path) -> str:
@@ -74,6 +76,47 @@ def test_no_import_runs_back_up():
     assert not bad, "\n".join(bad)
 
 
+def import_graph() -> dict[str, set[str]]:
+    """Place -> the places it imports (a folder is one place, each top-level module one)."""
+    graph: dict[str, set[str]] = {}
+    for path in ROOT.rglob("*.py"):
+        if path == ROOT / "__init__.py":
+            continue
+        own = _top(path)
+        graph.setdefault(own, set()).update(_imported_tops(path) - {own})
+    return graph
+
+
+def levels(graph: dict[str, set[str]]) -> int:
+    """Places on the longest chain of imports (the graph has no cycle: see below)."""
+    memo: dict[str, int] = {}
+
+    def depth(p: str) -> int:
+        if p not in memo:
+            memo[p] = 1 + max((depth(q) for q in graph.get(p, ())), default=0)
+        return memo[p]
+    return max(depth(p) for p in graph)
+
+
+def test_no_two_places_import_each_other():
+    graph = import_graph()
+    pairs = sorted((a, b) for a, out in graph.items() for b in out if a in graph.get(b, ()))
+    assert not pairs, pairs
+    assert levels({"a": {"b"}, "b": {"c"}, "c": set()}) == 3  # the counter itself
+
+
+def test_app_and_cli_share_the_options_not_each_other():
+    """The option builders live below both front ends: the app imports ``archrock.options``, never
+    the command line, and the command line only launches the app (one edge, cli -> app)."""
+    app = set().union(*(_imported_tops(p) for p in (ROOT / "app").rglob("*.py")))
+    cli = set().union(*(_imported_tops(p) for p in (ROOT / "cli").rglob("*.py")))
+    assert "options" in app and "options" in cli
+    assert "cli" not in app
+    assert "app" in cli  # `archrock app`
+    launchers = [p.name for p in (ROOT / "cli").rglob("*.py") if "app" in _imported_tops(p)]
+    assert launchers == ["app.py"]
+
+
 def test_the_check_sees_relative_and_nested_imports(tmp_path):
     """The checker itself: a function-level relative import from a subpackage is seen."""
     p = ROOT / "studies" / "ensemble" / "run.py"
@@ -102,3 +145,8 @@ def test_code_and_docs_cite_only_what_users_have():
             if not any(cited.startswith(sec) for sec in sections):
                 bad.append(f"{path.name}: docs/method.md has no section {cited!r}")
     assert not bad, "\n".join(bad)
+
+
+if __name__ == "__main__":  # the figures of docs/architecture.md
+    g = import_graph()
+    print(f"{len(g)} places, {sum(map(len, g.values()))} edges, {levels(g)} levels")

@@ -219,7 +219,7 @@ def test_ensemble_early_stop_column_and_summary():
     assert sb["response"]["n_impacts"]["count"] == int((~b["early_stopped"]).sum())
     assert sb["outcomes"]["counts"]["integrated"] == sa["outcomes"]["counts"]["integrated"]
     # the flag is in the configuration only when set: other hashes are unchanged
-    assert "early_stop" not in full.config.to_dict() and cfg.to_dict()["early_stop"] is True
+    assert "early_stop" not in full.config.legacy_dict() and cfg.to_dict()["early_stop"] is True
     assert EnsembleConfig.from_dict(cfg.to_dict()) == cfg
 
 

@@ -29,13 +29,15 @@ def test_circular_stream_unchanged_without_tilt():
     for j, a in enumerate(arches):
         np.testing.assert_array_equal(a.spans, spans[j])
         np.testing.assert_array_equal(a.radii, s.arch(3 + j).radii)
-    assert Spreads().to_dict() == {"spread_span": 0.1, "spread_thickness": 0.1,
-                                   "spread_radius": 0.05}
+    assert Spreads().to_dict() == {"span": 0.1, "thickness": 0.1, "radius": 0.05, "tilt": 0.0}
+    assert Spreads().legacy_dict() == {"spread_span": 0.1, "spread_thickness": 0.1,
+                                       "spread_radius": 0.05}
 
 
 def test_tilt_spread_serialises_and_reads_four_rows(pointed):
     sp = Spreads(0.1, 0.1, 0.05, 2.0)
-    assert sp.to_dict()["spread_tilt_deg"] == 2.0 and Spreads.from_dict(sp.to_dict()) == sp
+    assert sp.to_dict()["tilt"] == 2.0 and Spreads.from_dict(sp.to_dict()) == sp
+    assert sp.legacy_dict()["spread_tilt_deg"] == 2.0 and Spreads.from_dict(sp.legacy_dict()) == sp
     assert ArchSampler(pointed, sp, 0).uniforms(0, 2).shape == (2, 4, 12)
     with pytest.raises(ArchInputError, match="spread tilt"):
         Spreads(tilt=60)

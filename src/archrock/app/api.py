@@ -1,10 +1,11 @@
 """What the app's endpoints compute, without the web framework: JSON in, JSON-ready dicts out.
 
 Every function here validates its request as the command line does (the same option names,
-the same library checks: :func:`archrock.cli.options.arch_from_args` builds the arch) and calls
+the same library checks: :func:`archrock.options.arch_from_args` builds the arch) and calls
 the same library functions as the CLI (``limit``, ``respond``, ``ensemble``); nothing here is
-physics.  A bad value raises :class:`~archrock.errors.ArchInputError` (or the CLI's
-``CLIError``), whose one-line message names the field; the server turns it into HTTP 400.
+physics.  A bad value raises :class:`~archrock.errors.ArchInputError` (or
+:class:`~archrock.options.OptionError`, the CLI's ``CLIError``), whose one-line message names
+the field; the server turns it into HTTP 400.
 
 Lengths in m, angles in degrees, accelerations in g, times in s, rotations in rad.
 """
@@ -21,6 +22,7 @@ import time
 import numpy as np
 
 from ..errors import ArchInputError
+from ..options import JOINTS, SHAPES  # the command line's own lists
 
 #: Work bounds of one request (the CLI allows more; an interactive page should answer in
 #: about a second): voussoirs of an arch, ...
@@ -42,8 +44,6 @@ MAX_UPLOAD_CHARS = 2_000_000
 #: run in two threads at once, and a local app has one user.
 COMPUTE_LOCK = threading.RLock()
 
-SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
-JOINTS = ("normal", "vertical")
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 
 
@@ -120,8 +120,8 @@ def arch_from_params(params: dict):
     "density"}`` an arch of a family, or ``{"radius", "embrace", ...}`` a circular arch; with
     ``"defects": ["3:thickness=0.5", ...]`` and ``"pier_height"``/``"pier_width"``/
     ``"pier_courses"`` as the CLI's --defect and --pier-* options.  Built by the CLI's own
-    :func:`~archrock.cli.options.arch_from_args`."""
-    from ..cli.options import arch_from_args
+    :func:`~archrock.options.arch_from_args`."""
+    from ..options import arch_from_args
 
     params = _request(params)
     n = _number(params, "voussoirs", integer=True)
@@ -157,7 +157,7 @@ def _uploaded_arch(data, ns, name):
     """The arch of an uploaded geometry file's parsed JSON (``archrock random-arch`` writes
     one), with the request's defects and piers; the geometry flags are refused beside it, as
     the CLI refuses them beside --geometry."""
-    from ..cli.options import _piers_from_args
+    from ..options import piers_from_args
     from ..geometry import apply_defects, arch_from_dict
 
     given = [f for f in ("radius", "embrace", "shape", "span", "rise", "thickness",
@@ -180,7 +180,7 @@ def _uploaded_arch(data, ns, name):
         raise ArchInputError(f"geometry: not a geometry file ({exc})") from None
     if ns.defect:
         arch = apply_defects(arch, ns.defect)
-    return _piers_from_args(ns, arch)
+    return piers_from_args(ns, arch)
 
 
 def _xy(a) -> list:
@@ -508,7 +508,7 @@ def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, 
     "response-csv" (t [s], phi [rad] of the pulse response)."""
     import json
 
-    from ..cli._parser import json_safe
+    from ..options import json_safe
 
     params = _request(params)
     what = _choice(params, "what", ("geometry", "limit", "thrust-csv", "response-csv"))
@@ -697,7 +697,7 @@ def load_dxf_upload(data: bytes, params: dict) -> dict:
     defaults: every layer, drawing units m, density 2000 kg/m^3), the number of voussoirs
     checked before the chain is built.  Returns the geometry file's JSON (what the page then
     sends as an opened geometry file), the name and the DXF handles from the left springing."""
-    from ..cli.options import GEOMETRY_DEFAULTS
+    from ..options import GEOMETRY_DEFAULTS
     from ..geometry.dxf import arch_from_outlines, read_dxf_outlines
 
     if len(data) > MAX_FILE_BYTES:
@@ -734,7 +734,7 @@ def load_dxf_upload(data: bytes, params: dict) -> dict:
         raise ArchInputError(f"dxf: {exc}") from None
     except ArchInputError as exc:
         raise ArchInputError(f"dxf: {exc}") from None
-    from ..cli._parser import json_safe
+    from ..options import json_safe
 
     geometry = {**arch.to_dict(), "metadata": {"generator": "archrock app (import-dxf)",
                                                "drawing": name, "layer": layer,

@@ -40,7 +40,7 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
-from ..cli._parser import CLIError, json_safe
+from ..options import OptionError as CLIError, json_safe
 from ..errors import ArchInputError, ArchrockError, GeometryOutcome
 from . import api
 from .jobs import Busy, Jobs

@@ -12,6 +12,7 @@ import warnings
 from typing import Callable
 
 from ..errors import ArchInputError, ArchrockError, GeometryOutcome
+from ..options import OptionError, json_safe  # noqa: F401 (json_safe: re-exported)
 
 PROG = "archrock"
 EXIT_USAGE = 2  # bad input: same status as argparse's own errors
@@ -24,8 +25,9 @@ _OPTIONAL_MODULES = {"matplotlib", "PIL", "pandas", "pyarrow", "tqdm", "numba", 
 SUBCOMMANDS: dict[str, Callable] = {}
 
 
-class CLIError(Exception):
-    """A command-line problem that is not an arch-input problem (e.g. conflicting options)."""
+#: A command-line problem that is not an arch-input problem (e.g. conflicting options): the
+#: option vocabulary's own error, under the command line's name (the same class).
+CLIError = OptionError
 
 
 # A value that starts with '-' and then reads as a number or a list/range of numbers
@@ -123,21 +125,6 @@ def _int(text: str) -> int:
     if math.isfinite(v) and v == int(v) and abs(v) < 2.0 ** 53:
         return int(v)
     raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-
-
-def json_safe(obj):
-    """``obj`` with every non-finite float (NaN, inf; numpy's too) replaced by None, so that
-    it is strict JSON: an undefined statistic (the std of one sample, a fit with no collapse)
-    reads null rather than breaking the output."""
-    if isinstance(obj, dict):
-        return {k: json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [json_safe(v) for v in obj]
-    if hasattr(obj, "tolist") and hasattr(obj, "dtype"):  # numpy scalar or array
-        return json_safe(obj.tolist())
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
 
 
 def emit_json(obj, out=None) -> None:

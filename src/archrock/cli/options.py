@@ -1,19 +1,23 @@
-"""Option groups shared by several subcommands, and their conversion to library objects."""
+"""Option groups shared by several subcommands (argparse), and the output-file options.
+
+Their conversion to library objects lives one layer down, in :mod:`archrock.options`, which the
+web app shares; it is re-exported here under its old names (``archrock.cli.options.arch_from_args``
+and the rest keep working)."""
 
 from __future__ import annotations
 
 import argparse
 
+from ..options import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args,  # noqa: F401
+                       impact_spec_from_args, model_from_args, motion_from_args,
+                       motion_spec_from_args, piers_from_args, spreads, supports_from_args,
+                       undamaged_arch_from_args)
 from ._parser import CLIError, _int, finite_float, non_negative_int
 
-#: Defaults of the nominal-geometry flags: Oppenheim's arch (R [m], embrace [deg], t [m], n, kg/m^3).
-#: Spelled out rather than taken from archrock.geometry so that --help needs no numpy.
-GEOMETRY_DEFAULTS = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7,
-                     "density": 2000.0}
-#: The arch families and joint kinds (archrock.geometry.SHAPES / JOINTS, spelled out for --help
-#: without numpy; tests/test_cli.py checks they agree).
-SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
-JOINTS = ("normal", "vertical")
+# the old private names of the builders (archrock <= 0.6.0 imported them from here)
+_piers_from_args = piers_from_args
+_supports_from_args = supports_from_args
+_undamaged_arch_from_args = undamaged_arch_from_args
 
 
 # ---------------------------------------------------------------------------- output files
@@ -109,103 +113,6 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
     return parser
 
 
-def arch_from_args(args: argparse.Namespace):
-    """The arch described by the options of :func:`add_geometry_options`: a circular
-    :class:`~archrock.geometry.Arch`, or a family's (the exact Arch for a circular one with
-    normal joints and constant thickness, else a FamilyArch), with the --defect defects applied
-    (archrock.geometry.apply_defect), on the piers of --pier-height/--pier-width (an
-    ArchOnPiers, archrock.geometry.with_piers); raises ArchInputError / CLIError on bad input."""
-    arch = _undamaged_arch_from_args(args)
-    if getattr(args, "defect", None):
-        from ..geometry import apply_defects
-
-        arch = apply_defects(arch, args.defect)
-    return _supports_from_args(args, _piers_from_args(args, arch))
-
-
-def _piers_from_args(args: argparse.Namespace, arch):
-    """``arch`` on the piers of --pier-height/--pier-width/--pier-courses (the defects, which
-    number the arch's own voussoirs and joints, are applied first), or ``arch`` without them."""
-    h = getattr(args, "pier_height", None)
-    w = getattr(args, "pier_width", None)
-    c = getattr(args, "pier_courses", None)
-    b = getattr(args, "pier_batter", None)
-    right = {k: getattr(args, f"right_pier_{k}", None)
-             for k in ("height", "width", "courses", "batter")}
-    others = [("--pier-courses", c), ("--pier-batter", b)] + \
-        [(f"--right-pier-{k}", v) for k, v in right.items()]
-    if h is None and w is None and all(v is None for _, v in others):
-        return arch
-    if h is None or w is None:
-        given = "--pier-height" if h is not None else ("--pier-width" if w is not None else
-                                                          next(f for f, v in others if v is not None))
-        missing = " and ".join(f for f, v in (("--pier-height", h), ("--pier-width", w))
-                               if v is None)
-        raise CLIError(f"{missing}: needed with {given} (the piers' height and width, in metres)")
-    from ..geometry import with_piers
-
-    from ..errors import ArchInputError
-
-    try:
-        return with_piers(arch, h, w, courses=1 if c is None else c,
-                          batter=0.0 if b is None else b, height_right=right["height"],
-                          width_right=right["width"], courses_right=right["courses"],
-                          batter_right=right["batter"])
-    except ArchInputError as exc:
-        msg = str(exc)
-        for field, flag in (("height:", "--pier-height:"), ("width:", "--pier-width:"),
-                            ("courses:", "--pier-courses:"), ("batter:", "--pier-batter:"),
-                            ("height_right:", "--right-pier-height:"),
-                            ("width_right:", "--right-pier-width:"),
-                            ("courses_right:", "--right-pier-courses:"),
-                            ("batter_right:", "--right-pier-batter:")):
-            if msg.startswith(field):
-                raise ArchInputError(flag + msg[len(field):]) from None
-        raise
-
-
-def _undamaged_arch_from_args(args: argparse.Namespace):
-    from ..geometry import nominal_arch
-
-    circ = ("radius", "embrace")
-    fam = ("shape", "span", "rise", "thickness_crown", "joints")
-    common = ("thickness", "voussoirs", "density")
-    flags = circ + fam + common
-    given = [f for f in flags if getattr(args, f, None) is not None]
-    flag = {f: "--" + f.replace("_", "-") for f in flags}
-    if getattr(args, "geometry", None):
-        if given:
-            raise CLIError(f"--geometry: cannot be combined with "
-                           f"{', '.join(flag[f] for f in given)}; the file holds the whole geometry")
-        from ..geometry.files import read_arch
-
-        return read_arch(args.geometry)
-    family = [f for f in fam if f in given]
-    if family:
-        both = [f for f in circ if f in given]
-        if both:
-            raise CLIError(f"{flag[both[0]]}: cannot be combined with {flag[family[0]]}; give "
-                           f"--radius/--embrace (circular) or --shape/--span/--rise")
-        shape = getattr(args, "shape", None) or "circular"
-        missing = [flag[f] for f in ("span", "rise") if getattr(args, f, None) is None]
-        if missing:
-            raise CLIError(f"{' and '.join(missing)}: needed with {flag[family[0]]} (the span "
-                           f"and rise of the {shape} arch's centreline, in metres)")
-        from ..geometry import family_arch
-
-        val = {f: getattr(args, f) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f]
-               for f in common}
-        return family_arch(shape, args.span, args.rise, val["thickness"], val["voussoirs"],
-                           thickness_crown=args.thickness_crown, joints=args.joints or "normal",
-                           density=val["density"], name=shape)
-    vals = {f: (getattr(args, f, None) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f])
-            for f in circ + common}
-    is_oppenheim = not given or all(vals[f] == GEOMETRY_DEFAULTS[f] for f in circ + common)
-    return nominal_arch(radius=vals["radius"], embrace_deg=vals["embrace"], thickness=vals["thickness"],
-                        voussoirs=vals["voussoirs"], density=vals["density"],
-                        name="Oppenheim" if is_oppenheim else "nominal")
-
-
 # ---------------------------------------------------------------------------- random arches
 def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False) -> argparse.ArgumentParser:
     """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths),
@@ -233,14 +140,6 @@ def add_random_arches_options(p: argparse.ArgumentParser,
     return add_spread_options(p, tilt=True)
 
 
-def spreads(args: argparse.Namespace):
-    """The :class:`~archrock.geometry.sampling.Spreads` of :func:`add_spread_options`."""
-    from ..geometry.sampling import Spreads
-
-    return Spreads(args.spread_span, args.spread_thickness, args.spread_radius,
-                   getattr(args, "spread_tilt", 0.0))
-
-
 # ---------------------------------------------------------------------------- ground motion
 def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) -> argparse.ArgumentParser:
     """Add the ground-motion options: --pulse KIND --amplitude A_G --pulse-duration S, or
@@ -262,36 +161,6 @@ def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) 
                    help="scale factor applied to the record (default 1)")
     parser.set_defaults(_motion_required=required)
     return parser
-
-
-def motion_spec_from_args(args: argparse.Namespace):
-    """The PulseSpec / RecordSpec described by :func:`add_motion_options`, or None if none was
-    given (a record's file is read and checksummed)."""
-    from ..groundmotion import PulseSpec, RecordSpec
-
-    has_pulse = any(getattr(args, f, None) is not None for f in ("pulse", "amplitude", "pulse_duration"))
-    if getattr(args, "record", None):
-        if has_pulse:
-            raise CLIError("--record: cannot be combined with --pulse/--amplitude/--pulse-duration")
-        return RecordSpec.from_file(args.record, args.units, args.scale)
-    for flag, given in (("--units", args.units is not None), ("--scale", args.scale != 1.0)):
-        if given and has_pulse:
-            raise CLIError(f"{flag}: applies to --record only; a pulse's amplitude is in g")
-    if not has_pulse:
-        if getattr(args, "_motion_required", False):
-            raise CLIError("ground motion: give --pulse KIND --amplitude A_G --pulse-duration S "
-                           "or --record FILE")
-        return None
-    if args.amplitude is None or args.pulse_duration is None:
-        raise CLIError("--amplitude and --pulse-duration: both are needed with a pulse "
-                       "(e.g. --pulse oppenheim --amplitude -1 --pulse-duration 0.2)")
-    return PulseSpec(args.pulse or "oppenheim", args.amplitude, args.pulse_duration)
-
-
-def motion_from_args(args: argparse.Namespace):
-    """The GroundMotion described by :func:`add_motion_options`, or None if none was given."""
-    spec = motion_spec_from_args(args)
-    return None if spec is None else spec.build()
 
 
 # ---------------------------------------------------------------------------- impact
@@ -320,44 +189,6 @@ def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPars
     return parser
 
 
-def impact_spec_from_args(args: argparse.Namespace):
-    """The :class:`~archrock.dynamics.impact.ImpactSpec` of the impact options (the same in every
-    command)."""
-    from ..dynamics.impact import PAPER_PRACTICE, ImpactSpec
-
-    if args.cv is not None and args.impact is not None:
-        raise CLIError("--cv: cannot be combined with --impact; choose one")
-    on = getattr(args, "impact_on", None)
-    if args.cv is not None:
-        if on is not None:
-            raise CLIError("--impact-on: applies to --impact MODEL; a given --cv is the same on "
-                           "every arch")
-        return ImpactSpec.fixed(args.cv, literal=args.literal_cv)
-    if args.impact is None:
-        if on is not None:
-            raise CLIError("--impact-on: needs --impact MODEL")
-        return ImpactSpec.parse(PAPER_PRACTICE, literal=args.literal_cv)
-    spec = ImpactSpec.parse(args.impact)
-    if on is not None:
-        if args.impact == "nominal-paper" and on != "nominal":
-            raise CLIError("--impact-on: nominal-paper is evaluated on the nominal arch")
-        spec = ImpactSpec(spec.model, on=on)
-    if args.literal_cv:
-        if spec.on != "nominal":
-            raise CLIError("--literal-cv: applies to a fixed c_v (--cv, or a model evaluated on "
-                           "the nominal arch); cannot be combined with --impact on each arch")
-        spec = ImpactSpec(spec.model, literal=True, on="nominal")
-    return spec
-
-
-def model_from_args(args: argparse.Namespace, arch=None):
-    """The prepared DynamicModel (limit analysis, mechanisms, impact law) of one arch."""
-    from ..dynamics.response import prepare
-
-    arch = arch_from_args(args) if arch is None else arch
-    return prepare(arch, impact_spec_from_args(args))
-
-
 # ---------------------------------------------------------------------------- support movements
 def add_support_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     """Add the support-movement options (docs/supports.md): the arch after a prescribed
@@ -374,33 +205,3 @@ def add_support_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPar
                    help="which support moves: right (default), left, or both by half "
                         "(symmetric)")
     return parser
-
-
-def _supports_from_args(args: argparse.Namespace, arch):
-    """``arch`` after the movement of --spread/--settlement/--support-side (the displaced arch
-    of archrock.statics.supports.displace, re-closed; the arch itself at zero movement)."""
-    s = getattr(args, "spread", None)
-    v = getattr(args, "settlement", None)
-    side = getattr(args, "support_side", None)
-    if s is None and v is None:
-        if side is not None:
-            raise CLIError("--support-side: needs --spread or --settlement (the movement, in "
-                           "metres)")
-        return arch
-    from ..errors import ArchInputError
-    from ..geometry.displaced import SupportMovement
-    from ..statics.supports import on_moved_supports
-
-    try:
-        mv = SupportMovement(0.0 if s is None else s, 0.0 if v is None else v,
-                             side or "right")
-    except ArchInputError as exc:
-        msg = str(exc)
-        for field, flag in (("spread:", "--spread:"), ("settlement:", "--settlement:")):
-            if msg.startswith(field):
-                raise ArchInputError(flag + msg[len(field):]) from None
-        raise
-    # the analyses take the displaced geometry with its open joints bearing on whole faces: a
-    # mechanism that turns an open joint back only closes its gap (docs/supports.md, "One
-    # answer: the re-closed arch"); limit reports that bounded motion beside it
-    return on_moved_supports(arch, mv)  # the arch itself at zero movement

@@ -33,6 +33,7 @@ import numpy as np
 from . import kernel as K
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError, ArchrockError
+from ..leftout import LeftOut
 from .impact import ImpactSpec, fallback_note
 from ..geometry import Arch, power_of_two_near, sector_properties
 from ..groundmotion import G, GroundMotion
@@ -70,11 +71,12 @@ def check_geometries(spans, radii, thick) -> np.ndarray:
     no_overlap = np.any(np.maximum(ri[:, :-1], ri[:, 1:]) >= np.minimum(ro[:, :-1], ro[:, 1:]), axis=1)
     for b in np.flatnonzero(bad_span | bad_t | no_overlap):
         if bad_span[b]:
-            err[b] = "geometry: a voussoir span is <= 0"
+            err[b] = LeftOut("invalid_draw", "geometry: a voussoir span is <= 0")
         elif bad_t[b]:
-            err[b] = "geometry: a thickness is outside 0 < t < 2 R"
+            err[b] = LeftOut("invalid_draw", "geometry: a thickness is outside 0 < t < 2 R")
         else:
-            err[b] = "geometry: two neighbouring voussoirs do not overlap radially"
+            err[b] = LeftOut("invalid_draw", "geometry: two neighbouring voussoirs do not overlap "
+                                             "radially")
     return err
 
 
@@ -340,7 +342,7 @@ def _limit_errors(k_l, k_r, ok, error, arch_of):
     lift-off (:data:`~archrock.statics.limit.LIFT_OFF_REASON`, its k the LP's); unbounded, nothing
     loads that direction."""
     for b in np.flatnonzero(ok & ((k_l == np.inf) | (k_r == np.inf))):
-        error[b] = "limit analysis: no admissible four-hinge mechanism"
+        error[b] = LeftOut("no_mechanism", "limit analysis: no admissible four-hinge mechanism")
         arch = arch_of(b)
         lift = False
         for d, k in (("l", k_l), ("r", k_r)):
@@ -351,9 +353,10 @@ def _limit_errors(k_l, k_r, ok, error, arch_of):
                     continue
                 k[b], lift = lam, True
         if lift:
-            error[b] = LIFT_OFF_REASON
+            error[b] = LeftOut("lift_off", LIFT_OFF_REASON)
     for b in np.flatnonzero(ok & (k_l < np.inf) & (k_r < np.inf) & ((k_l <= 0) | (k_r <= 0))):
-        error[b] = f"limit analysis: the arch cannot stand (k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})"
+        error[b] = LeftOut("cannot_stand", f"limit analysis: the arch cannot stand "
+                                           f"(k_l = {k_l[b]:.4g}, k_r = {k_r[b]:.4g})")
 
 
 def _lift_off_errors(n: int, sums_of, arch_of, k_l, k_r, cand_l, cand_r, error) -> None:
@@ -370,7 +373,7 @@ def _lift_off_errors(n: int, sums_of, arch_of, k_l, k_r, cand_l, cand_r, error) 
     for b, gl, gr in zip(rows, gov_l, gov_r):
         if gl and gr:
             continue
-        error[b] = LIFT_OFF_REASON
+        error[b] = LeftOut("lift_off", LIFT_OFF_REASON)
         arch = arch_of(b)
         for d, governs, k in (("l", gl, k_l), ("r", gr, k_r)):
             if not governs:
@@ -398,7 +401,9 @@ def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedB
     for b, a in enumerate(items):
         if not isinstance(a, VoussoirArch):
             why = " ".join(str(a).split())
-            error[b] = why if why.startswith("geometry:") else "geometry: " + why
+            # an arch refused before the batch (a draw, or one that cannot stand on moved
+            # supports): its own reason, worded as a geometry
+            error[b] = LeftOut.read(why if why.startswith("geometry:") else "geometry: " + why)
     ok = error == ""
     k_l, k_r, cand_l, cand_r = _multipliers(
         B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good], parallel=parallel,
@@ -495,13 +500,14 @@ def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, s
             try:
                 _prepare_loop(*loop_args, only, *outs)
             except (ZeroDivisionError, FloatingPointError):
-                error[b] = "four-link model: degenerate four-bar (division by zero)"
+                error[b] = LeftOut("four_link_not_applicable",
+                                   "four-link model: degenerate four-bar (division by zero)")
         ok = error == ""
     mech_l = np.where(ok, lab_l, "").astype(object)
     mech_r = np.where(ok, lab_r, "").astype(object)
     for b in np.flatnonzero(ok & ((err_l != 0) | (err_r != 0))):
         code, m = (err_l[b], "M_l " + mech_l[b]) if err_l[b] != 0 else (err_r[b], "M_r " + mech_r[b])
-        error[b] = GEO_ERRORS[int(code)].format(m=m)
+        error[b] = LeftOut("four_link_not_applicable", GEO_ERRORS[int(code)].format(m=m))
     ok = error == ""
     t2 = time.perf_counter()
     c_lr = np.full(B, np.nan)
@@ -556,8 +562,8 @@ def _impact_batch(model, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, g
     if model == "paper":
         singular = ok & ((code_lr == SINGULAR) | (code_rl == SINGULAR))
         for b in np.flatnonzero(singular):
-            error[b] = ("impact: the 'paper' model's momentum equations are singular for this "
-                        "geometry; " + USE_MOMENTUM)
+            error[b] = LeftOut("impact_not_applicable", "impact: the 'paper' model's momentum "
+                               "equations are singular for this geometry; " + USE_MOMENTUM)
         with np.errstate(invalid="ignore"):
             e_lr = lr**2 * m0_r / m0_l
             e_rl = rl**2 * m0_l / m0_r
@@ -565,13 +571,15 @@ def _impact_batch(model, px, py, mass, cen, inert, ref, jl, el, jr, er, geo_l, g
         for b in np.flatnonzero(bad):
             for name, e, c in (("l_to_r", e_lr[b], lr[b]), ("r_to_l", e_rl[b], rl[b])):
                 if e > 1.0 + 1e-9:
-                    error[b] = (f"impact {name}: the 'paper' model creates energy on this geometry "
-                                f"(kinetic energy ratio {e:.4f} > 1, rate ratio {c:.4f}); "
-                                + USE_MOMENTUM + OR_FIXED_CV)
+                    error[b] = LeftOut("impact_not_applicable", (
+                        f"impact {name}: the 'paper' model creates energy on this geometry "
+                        f"(kinetic energy ratio {e:.4f} > 1, rate ratio {c:.4f}); "
+                        + USE_MOMENTUM + OR_FIXED_CV))
                     break
                 if c < 0:
-                    error[b] = (f"impact {name}: the 'paper' model gives a negative rate ratio "
-                                f"{c:.4f} on this geometry; " + USE_MOMENTUM)
+                    error[b] = LeftOut("impact_not_applicable", (
+                        f"impact {name}: the 'paper' model gives a negative rate ratio "
+                        f"{c:.4f} on this geometry; " + USE_MOMENTUM))
                     break
     use = error == ""
     c_lr[use] = lr[use]
@@ -592,7 +600,8 @@ def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
                 warnings.simplefilter("ignore")
                 model = prepare(arch_of(b), "least-loss")
         except (ArchrockError, ZeroDivisionError, FloatingPointError) as exc:
-            error[b] = "least-loss chain: " + " ".join(str(exc).split())
+            error[b] = LeftOut("impact_not_applicable",
+                               "least-loss chain: " + " ".join(str(exc).split()))
             continue
         chains[b] = model.chain
         c_lr[b], c_rl[b] = model.impact.l_to_r, model.impact.r_to_l

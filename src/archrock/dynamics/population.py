@@ -11,58 +11,33 @@ other error is a real error and stops the study.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 from ..errors import UNUSABLE_ARCH, ArchInputError
 from ..geometry import Arch
+from ..leftout import REASONS, LeftOut, count_reasons
 from .impact import ImpactSpec
 from .response import DynamicModel, prepare
 from ..geometry.sampling import ArchSampler
 
 __all__ = ["PreparedArches", "prepare_many", "prepare_sample", "LEFT_OUT", "left_out_outcome",
-           "count_left_out", "left_out_summary"]
+           "count_left_out", "left_out_summary", "LeftOut"]
 
-#: Why an arch of a study has no response, in report order (keys of every summary's counts).
-LEFT_OUT = {
-    "invalid_draw": "invalid draw (not a valid arch, e.g. neighbouring voussoirs do not overlap)",
-    "cannot_stand": "cannot stand under its own weight (k <= 0)",
-    "no_mechanism": "no four-hinge mechanism (sliding or crushing governs)",
-    "lift_off": "a joint lifts off before any four-hinge mechanism opens (four-link model does "
-                "not hold)",
-    "four_link_not_applicable": "four-link model not applicable (degenerate mechanism)",
-    "impact_not_applicable": "impact model not applicable (it would create energy, or singular)",
-    "other": "other",
-}
-
-# Reasons are the messages of batch.prepare_batch and of the errors of UNUSABLE_ARCH; the first
-# pattern that matches wins (a least-loss chain failure is an impact-model failure).
-_PATTERNS = (
-    ("impact_not_applicable", r"^(least-loss chain:|impact\b)"),
-    # a valid draw that cannot stand on the study's moved supports (studies.ensemble, support=)
-    ("cannot_stand", r"cannot stand on its moved supports"),
-    ("invalid_draw", r"^geometry:|not a valid arch"),
-    ("cannot_stand", r"cannot stand|does not stand"),
-    ("lift_off", r"lift-off|lifts off|is governed by a"),
-    ("no_mechanism", r"four-hinge mechanism"),
-    ("four_link_not_applicable", r"^four-link model:|^mechanism "),
-)
+#: Why an arch of a study has no response, in report order (keys of every summary's counts):
+#: :data:`archrock.leftout.REASONS`.
+LEFT_OUT = REASONS
 
 
-def left_out_outcome(reason: str) -> str:
-    """The key of :data:`LEFT_OUT` for the reason an arch was left out."""
-    for key, pattern in _PATTERNS:
-        if re.search(pattern, reason):
-            return key
-    return "other"
+def left_out_outcome(reason) -> str:
+    """The key of :data:`LEFT_OUT` of a reason: a :class:`~archrock.leftout.LeftOut`'s own, or
+    that of a message (:meth:`LeftOut.read`)."""
+    return LeftOut.read(reason).reason
 
 
 def count_left_out(reasons) -> dict:
-    """{key of :data:`LEFT_OUT`: count} over reasons (strings) or (index, reason) pairs."""
-    counts = dict.fromkeys(LEFT_OUT, 0)
-    for r in reasons:
-        counts[left_out_outcome(r if isinstance(r, str) else r[1])] += 1
-    return counts
+    """{key of :data:`LEFT_OUT`: count} over reasons (LeftOut or messages) or (index, reason)
+    pairs."""
+    return count_reasons(r if isinstance(r, str) else r[1] for r in reasons)
 
 
 def left_out_summary(failed, usable: int, what: str) -> dict:
@@ -78,7 +53,7 @@ def left_out_summary(failed, usable: int, what: str) -> dict:
 @dataclass(frozen=True, eq=False)
 class PreparedArches:
     """Prepared arches of a study: ``models[i]`` is sample ``indices[i]``; ``failed`` lists
-    (sample index, reason) of the arches left out; ``requested`` how many were asked for;
+    (sample index, :class:`~archrock.leftout.LeftOut`) of the arches left out; ``requested`` how many were asked for;
     ``impact`` the spec as given.  Iterates and indexes like the tuple of models."""
 
     models: tuple
@@ -98,12 +73,13 @@ class PreparedArches:
 
 
 def prepare_sample(sampler: ArchSampler, index: int, impact: ImpactSpec):
-    """(model, None) for sample ``index``, or (None, reason) when it is unusable."""
+    """(model, None) for sample ``index``, or (None, :class:`~archrock.leftout.LeftOut`) when it
+    is unusable."""
     try:
         arch = sampler.arch(index)
         return prepare(arch, impact, nominal=sampler.nominal), None
     except UNUSABLE_ARCH as exc:
-        return None, str(exc)
+        return None, LeftOut.of(exc)
 
 
 def prepare_many(source, samples: int | None = None, impact=None, *,
@@ -144,7 +120,7 @@ def prepare_many(source, samples: int | None = None, impact=None, *,
                 models.append(prepare(item, spec, nominal=nominal))
                 kept.append(i)
             except UNUSABLE_ARCH as exc:
-                failed.append((i, str(exc)))
+                failed.append((i, LeftOut.of(exc)))
         requested = len(items)
     if not models:
         i, why = failed[0]

@@ -38,7 +38,7 @@ from ..errors import ArchInputError, InvalidSampleError
 from . import Arch, FamilyArch, PolygonArch, VoussoirArch, perturb_voussoirs
 from .families import perturb_family
 
-__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS"]
+__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS", "LEGACY_KEYS"]
 
 #: Samples per random stream.
 BLOCK = 500
@@ -51,9 +51,10 @@ class Spreads:
     thickness (for a family arch: the voussoir's length along the centreline, its thickness,
     the normal offset of its centreline); ``tilt`` [deg], 0 <= tilt < 45: each interior joint
     of a family arch rotated about its centreline point by U x tilt (0: joints as the family's).
-    Frozen; ``to_dict``/``from_dict`` use the keys spread_span, spread_thickness,
-    spread_radius and spread_tilt_deg (the command-line names); spread_tilt_deg is written only
-    when the tilt is not 0, so configurations without tilt (and their hashes) are 0.1.0's."""
+    Frozen; ``to_dict`` writes the field names (span, thickness, radius, tilt) and ``from_dict``
+    reads them or archrock <= 0.6's keys (:data:`LEGACY_KEYS`: spread_span, spread_thickness,
+    spread_radius, spread_tilt_deg, the command-line names); :meth:`legacy_dict` writes those old
+    keys, for the ensemble configuration's hash, which keeps its 0.4 form."""
 
     span: float = 0.1
     thickness: float = 0.1
@@ -77,6 +78,14 @@ class Spreads:
             object.__setattr__(self, name, v)
 
     def to_dict(self) -> dict:
+        """The fields by name: ``{"span", "thickness", "radius", "tilt"}``."""
+        return {"span": self.span, "thickness": self.thickness, "radius": self.radius,
+                "tilt": self.tilt}
+
+    def legacy_dict(self) -> dict:
+        """archrock 0.1-0.6's dict (:data:`LEGACY_KEYS`; spread_tilt_deg only when the tilt is
+        not 0): the form hashed into an ensemble's configuration, so that folders written by
+        0.4-0.6 resume (:meth:`archrock.studies.ensemble.EnsembleConfig.legacy_dict`)."""
         d = {"spread_span": self.span, "spread_thickness": self.thickness,
              "spread_radius": self.radius}
         if self.tilt:
@@ -85,20 +94,35 @@ class Spreads:
 
     @classmethod
     def from_dict(cls, data) -> "Spreads":
+        """A Spreads of its dict: the field names, or the old keys of :data:`LEGACY_KEYS` (one
+        spelling per field); None gives the defaults."""
         if data is None:
             return cls()
         if isinstance(data, Spreads):
             return data
         if not isinstance(data, dict):
-            raise ArchInputError(f"spreads: {data!r}; allowed an object with spread_span, "
-                                 f"spread_thickness, spread_radius")
-        keys = {"spread_span": "span", "spread_thickness": "thickness", "spread_radius": "radius",
-                "spread_tilt_deg": "tilt"}
-        unknown = set(data) - set(keys)
+            raise ArchInputError(f"spreads: {data!r}; allowed an object with span, thickness, "
+                                 f"radius, tilt")
+        fields = ("span", "thickness", "radius", "tilt")
+        unknown = set(data) - set(fields) - set(LEGACY_KEYS)
         if unknown:
             raise ArchInputError(f"spreads: unknown key(s) {sorted(unknown)}; allowed "
-                                 f"{', '.join(keys)}")
-        return cls(**{keys[k]: v for k, v in data.items()})
+                                 f"{', '.join(fields)} (or archrock 0.6's "
+                                 f"{', '.join(LEGACY_KEYS)})")
+        kw = {}
+        for k, v in data.items():
+            name = LEGACY_KEYS.get(k, k)
+            if name in kw:
+                old = next(o for o, n in LEGACY_KEYS.items() if n == name)
+                raise ArchInputError(f"spreads: {name} given twice (as {name} and as {old}); "
+                                     f"give one")
+            kw[name] = v
+        return cls(**kw)
+
+
+#: archrock 0.1-0.6's keys of a Spreads dict -> the field they name (read as aliases).
+LEGACY_KEYS = {"spread_span": "span", "spread_thickness": "thickness", "spread_radius": "radius",
+               "spread_tilt_deg": "tilt"}
 
 
 #: The spreads that give multipliers spread like the paper's RA-1 and RA-2 (docs/method.md, Geometry).
@@ -265,5 +289,6 @@ class ArchSampler:
         return out
 
     def to_dict(self) -> dict:
-        return {"nominal": self.nominal.to_dict(), **self.spreads.to_dict(), "seed": self.seed,
-                "block": BLOCK}
+        """What draws its arches, by attribute name (nominal, spreads, seed) and the block size."""
+        return {"nominal": self.nominal.to_dict(), "spreads": self.spreads.to_dict(),
+                "seed": self.seed, "block": BLOCK}

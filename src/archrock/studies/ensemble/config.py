@@ -1,13 +1,17 @@
 """The configuration of an ensemble: everything that determines its results, JSON-serialisable.
 
-Its JSON (``to_json``, sorted keys) is hashed into each batch file's provenance and stored in the
-manifest, so a field's serialised form must not change without a format change.
+``to_dict``/``to_json`` write every field under its own name (the manifest's form);
+``from_dict`` reads that and archrock 0.4-0.6's form.  The configuration hash in each batch
+file's provenance (:meth:`EnsembleConfig.config_hash`) is computed from 0.4-0.6's form
+(:meth:`EnsembleConfig.legacy_dict`), written out explicitly here, so that folders written by
+those releases resume without recomputing; that form must not change without a format change.
 """
 
 from __future__ import annotations
 
 import copy
 import dataclasses
+import hashlib
 import json
 import math
 from dataclasses import dataclass
@@ -21,7 +25,7 @@ from ...groundmotion import PulseSpec, RecordSpec, motion_spec_from_dict
 from ...dynamics.impact import PAPER_PRACTICE, ImpactSpec
 from ...dynamics.response import default_steps
 from ...geometry.displaced import SupportMovement, refuse_moved_supports
-from ...geometry.sampling import DEFAULT_SPREADS, ArchSampler, Spreads
+from ...geometry.sampling import DEFAULT_SPREADS, LEGACY_KEYS, ArchSampler, Spreads
 
 __all__ = ["EnsembleConfig", "SUPPORT_DRAWS"]
 
@@ -171,27 +175,62 @@ class EnsembleConfig:
         return start, min(self.batch_size, self.samples - start)
 
     def to_dict(self) -> dict:
-        """JSON-ready dict; the motion as its specification's dict (the manifests' format)."""
+        """JSON-ready dict, every field under its own name; the motion, spreads, impact and
+        support as their specifications' dicts (the manifests' format)."""
         d = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         d["nominal"] = copy.deepcopy(self.nominal)
         d["motion"] = None if self.motion is None else self.motion.to_dict()
         d["spreads"] = self.spreads.to_dict()
         d["impact"] = self.impact.to_dict()
-        if not self.early_stop:
-            del d["early_stop"]
-        if self.support is None:
-            del d["support"]
-        else:
-            d["support"] = self.support.to_dict()
-        if self.support_draw == "fixed":
-            del d["support_draw"]
+        d["support"] = None if self.support is None else self.support.to_dict()
         return d
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict(), sort_keys=True)
 
+    def legacy_dict(self) -> dict:
+        """The dict archrock 0.4-0.6 wrote, which the configuration hash is computed from: the
+        spreads under their old keys (``Spreads.legacy_dict``), and early_stop, support and
+        support_draw left out at their defaults (false, none, 'fixed'), as they were before
+        those fields existed.  Kept as it is so that output folders of those releases resume."""
+        d = self.to_dict()
+        d["spreads"] = self.spreads.legacy_dict()
+        if not self.early_stop:
+            del d["early_stop"]
+        if self.support is None:
+            del d["support"]
+        if self.support_draw == "fixed":
+            del d["support_draw"]
+        return d
+
+    def config_hash(self) -> str:
+        """sha256 (hex) of :meth:`legacy_dict` as JSON with sorted keys: the ``config_sha256``
+        of every stored batch (archrock 0.4's form, so its folders resume)."""
+        text = json.dumps(self.legacy_dict(), sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    @staticmethod
+    def upgrade_dict(data: dict) -> dict:
+        """A stored configuration dict (a manifest's, of any release since 0.4) in
+        :meth:`to_dict`'s form, without building anything: the spreads' old keys renamed, the
+        fields left out at their defaults filled in.  A dict that is not a configuration's is
+        returned as it is (the comparison that follows names what differs)."""
+        if not isinstance(data, dict):
+            return data
+        d = dict(data)
+        sp = d.get("spreads")
+        if isinstance(sp, dict):
+            sp = {LEGACY_KEYS.get(k, k): v for k, v in sp.items()}
+            sp.setdefault("tilt", 0.0)
+            d["spreads"] = sp
+        for name, default in (("early_stop", False), ("support", None), ("support_draw", "fixed")):
+            d.setdefault(name, default)
+        return d
+
     @classmethod
     def from_dict(cls, data: dict) -> "EnsembleConfig":
+        """The configuration of :meth:`to_dict`'s dict or of archrock 0.4-0.6's (the spreads'
+        old keys are read as aliases, :data:`archrock.geometry.sampling.LEGACY_KEYS`)."""
         names = {f.name for f in dataclasses.fields(cls)}
         unknown = set(data) - names
         if unknown:

@@ -39,9 +39,12 @@ __all__ = ["prepare_family_batch"]
 
 
 def _row_error(exc) -> str:
-    """A refused draw's reason as ``prepare_batch`` words an InvalidSampleError entry."""
+    """A refused draw's reason (an invalid draw, :class:`~archrock.leftout.LeftOut`) as
+    ``prepare_batch`` words an InvalidSampleError entry."""
+    from ...leftout import LeftOut
+
     why = " ".join(str(exc).split())
-    return why if why.startswith("geometry:") else "geometry: " + why
+    return LeftOut("invalid_draw", why if why.startswith("geometry:") else "geometry: " + why)
 
 
 def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, *,

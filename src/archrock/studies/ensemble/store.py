@@ -15,7 +15,6 @@ run starts.
 from __future__ import annotations
 
 import datetime as _dt
-import hashlib
 import json
 import os
 import platform
@@ -83,7 +82,7 @@ def _code_digest() -> str:
 
 
 def _config_hash(config: EnsembleConfig) -> str:
-    return hashlib.sha256(config.to_json().encode()).hexdigest()
+    return config.config_hash()  # from archrock 0.4's form of the configuration
 
 
 def _provenance(config: EnsembleConfig, b: int) -> dict:
@@ -229,7 +228,7 @@ class Manifest:
                 data = json.loads(self.path.read_text(encoding="utf-8"))
             except (OSError, ValueError) as exc:
                 raise ArchInputError(f"out: {str(self.path)!r} is not a readable manifest ({exc})") from None
-            old = data.get("config", {})
+            old = EnsembleConfig.upgrade_dict(data.get("config", {}))  # 0.4-0.6's keys too
             diff = _config_differences(old, cfg)
             if diff:
                 a, b = _flatten(old), _flatten(cfg)

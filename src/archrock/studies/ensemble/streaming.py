@@ -29,8 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...dynamics.population import LEFT_OUT, left_out_outcome
-from .summary import (INTEGRATED, P_COLLAPSE_RULE, P_FAILURE_RULE, PAPER_RANDOM_ARCHES, _reason,
+from ...leftout import REASONS, LeftOut
+from .summary import (INTEGRATED, P_COLLAPSE_RULE, P_FAILURE_RULE, PAPER_RANDOM_ARCHES,
                       _wilson)
 
 __all__ = ["summarize_batches", "summarize_store", "SUMMARY_COLUMNS", "QUANTILE_BINS"]
@@ -165,7 +165,7 @@ def summarize_batches(batches, config, nominal: dict, impact: dict, timing: dict
     names = _SERIES if motion else _SERIES[:3]
     stats = {k: _Stat() for k in names}
     n_all = 0
-    counts = dict.fromkeys(LEFT_OUT, 0)
+    counts = dict.fromkeys(REASONS, 0)
     reasons: Counter = Counter()
     hinges = {"M_l": Counter(), "M_r": Counter()}
     far = {name: Counter() for name in PAPER_RANDOM_ARCHES}
@@ -180,8 +180,9 @@ def summarize_batches(batches, config, nominal: dict, impact: dict, timing: dict
         status = df["status"].to_numpy()
         failed = err != ""
         for e, c in Counter(err[failed].tolist()).items():
-            counts[left_out_outcome(e)] += c
-            reasons[_reason(e)] += c
+            why = LeftOut.read(e)  # the column holds its text (module docstring of leftout)
+            counts[why.reason] += c
+            reasons[why.group] += c
         counts["other"] += int((~failed & ~np.isin(status, done_status)).sum())
         for col, name in (("mech_l", "M_l"), ("mech_r", "M_r")):
             v = df[col].to_numpy()

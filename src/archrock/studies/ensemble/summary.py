@@ -4,7 +4,8 @@ Definitions used by :meth:`EnsembleResult.summary`:
 
 * outcomes: every sample has exactly one, counted and shared over ALL samples: "invalid_draw",
   "cannot_stand", "no_mechanism", "four_link_not_applicable", "impact_not_applicable", "other"
-  (the reasons of :data:`archrock.dynamics.population.LEFT_OUT`), then "integrated" (status rest,
+  (the reasons of :data:`archrock.leftout.REASONS`, read from the ``error`` column by
+  :meth:`archrock.leftout.LeftOut.read`), then "integrated" (status rest,
   collapsed or moving) or, without a ground motion, "limit_only".
 * k statistics and the "as far as RA-x" shares over the samples whose limit analysis found a
   standing arch (finite k_l, k_r > 0): samples that failed there (invalid geometry, no
@@ -31,13 +32,12 @@ Definitions used by :meth:`EnsembleResult.summary`:
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ... import published
-from ...dynamics.population import LEFT_OUT, left_out_outcome
+from ...leftout import REASONS, LeftOut
 from .config import EnsembleConfig
 
 __all__ = ["EnsembleResult", "PAPER_RANDOM_ARCHES", "P_COLLAPSE_RULE", "P_FAILURE_RULE"]
@@ -86,10 +86,10 @@ def _wilson(k: int, trials: int, confidence: float, rule: str, **counts) -> dict
 def _outcomes(df, motion: bool) -> dict:
     """Counts and shares of each sample's one outcome over all samples."""
     n = int(len(df))
-    counts = dict.fromkeys(LEFT_OUT, 0)
+    counts = dict.fromkeys(REASONS, 0)
     status = df["status"].to_numpy()
     for e in df.loc[df["error"] != "", "error"]:
-        counts[left_out_outcome(e)] += 1
+        counts[LeftOut.read(e).reason] += 1
     # no error but not integrated either (not expected): counted, not lost
     counts["other"] += int(((df["error"] == "") & ~df["status"].isin(
         INTEGRATED if motion else ("limit-only",))).sum())
@@ -104,10 +104,6 @@ def _outcomes(df, motion: bool) -> dict:
         out["integrated"] = {k: int((status == k).sum()) for k in INTEGRATED
                              if k != "stopped" or (status == k).any()}
     return out
-
-
-def _reason(text: str) -> str:
-    return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "#", text.split(" (")[0])
 
 
 @dataclass(frozen=True)
@@ -143,7 +139,8 @@ class EnsembleResult:
         failed = df[df["error"] != ""]
         reasons: dict[str, int] = {}
         for e in failed["error"]:
-            reasons[_reason(e)] = reasons.get(_reason(e), 0) + 1
+            group = LeftOut.read(e).group
+            reasons[group] = reasons.get(group, 0) + 1
         hinges = {}
         for col, name in (("mech_l", "M_l"), ("mech_r", "M_r")):
             vc = df.loc[df[col] != "", col].value_counts()
