@@ -22,6 +22,7 @@ from archrock.groundmotion import PulseSpec, RecordSpec
 from archrock.studies.assessment import AssessConfig
 from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
 from archrock.studies.ensemble import EnsembleConfig
+from archrock.studies.enginestudy import EngineRun
 
 DATA = Path(__file__).parent / "data"
 
@@ -30,7 +31,7 @@ EXTRA_KEYS = {PulseSpec: {"type"}, RecordSpec: {"type"}, SiteSpectrum: {"paramet
 #: Fields left out of the dict where they hold the value the others imply (read back so).
 IMPLIED = {ImpactSpec: {"fallback", "note"}}
 #: Geometry files have their own documented format (docs/geometry.md), not a config's.
-FILE_FORMATS = {"Arch", "PolygonArch", "FamilyArch", "ArchOnPiers"}
+FILE_FORMATS = {"Arch", "PolygonArch", "FamilyArch", "ArchOnPiers", "Arcade"}
 
 
 @pytest.fixture(scope="module")
@@ -49,7 +50,7 @@ def configs(record):
         PAPER_PRACTICE, ImpactSpec.fixed(0.8, literal=True), ImpactSpec.parse("least-loss"),
         Defect.parse("3:thickness=0.5,side=extrados"), Defect.parse("2:tilt=-5"),
         SupportMovement(0.01, 0.002, "both"), Load(2, 150.0, (0.5, 9.0)),
-        EngineSettings(), CodeCheckConfig(fc=1.2, control=3, spectrum=table),
+        EngineSettings(), EngineRun(t_free=20.0, collapse_drop=0.3), CodeCheckConfig(fc=1.2, control=3, spectrum=table),
         SiteSpectrum("ntc", ag=0.2, f0=2.4, tc_star=0.3), table,
         AssessConfig(samples=3, spreads=Spreads(0.05, 0.05, 0.02), records=("a.AT2",)),
         EnsembleConfig.from_arch(nominal_arch(), samples=30, seed=4, batch_size=7,
