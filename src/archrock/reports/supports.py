@@ -50,7 +50,7 @@ def format_gap_closing(gc) -> str:
 def format_capacity(cap) -> str:
     """The capacity in words: movement, fraction of span, mechanism, hinge sets followed."""
     word = {"spread": "spreading", "closure": "closing", "settlement": "settlement",
-            "heave": "heave"}[cap.kind]
+            "heave": "heave"}.get(cap.kind, cap.kind)
     side = "both supports" if cap.side == "both" else f"the {cap.side} support"
     lines = [f"{word} capacity of {side}: {cap.capacity:.6g} m = {100 * cap.fraction:.4g}% of "
              f"the span ({cap.reason}; hinges at onset {hinge_labels(cap.hinges)}, at capacity "

@@ -44,16 +44,17 @@ from scipy.optimize import linprog
 from ..errors import ArchInputError, CannotStandError, LimitExceededError
 from ..geometry import VoussoirArch
 from ..geometry.displaced import SIDES, DisplacedArch, SupportMovement
+from ..geometry.sampling import ArchSampler, Spreads
 from ..units import G
 from .hinges import EDGES, Hinge
 from .lp import ThrustLine, _statics, _thrust_from_x
 from .thrust import _touching
 
 __all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
-           "displacement_capacity", "closing_hinges", "reclosed", "on_moved_supports",
+           "displacement_capacity", "movement_capacity", "closing_hinges", "reclosed", "on_moved_supports",
            "point_contacts", "gap_closing",
            "GapClosing", "CAPACITY_KINDS", "STEPS",
-           "BISECT_TOL"]
+           "BISECT_TOL", "moved_parts", "MovedSampler", "study_sampler", "SUPPORT_DRAWS"]
 
 #: What ``displacement_capacity`` can push: the kind and the unit movement it follows.
 CAPACITY_KINDS = {"spread": (1.0, 0.0), "closure": (-1.0, 0.0), "settlement": (0.0, 1.0),
@@ -551,6 +552,29 @@ def displacement_capacity(arch: VoussoirArch, kind: str = "spread",
     if not np.any(unit.relative):
         raise ArchInputError(f"kind: {kind!r} on both supports is a rigid translation of the "
                              f"arch; allowed 'spread' or 'closure' with side 'both'")
+    return _capacity(arch, unit, kind)
+
+
+def movement_capacity(arch: VoussoirArch, movement: SupportMovement) -> DisplacementCapacity:
+    """The displacement capacity along ``movement``'s direction (spread and settlement in its
+    proportions, on its side): ``capacity`` is the magnitude hypot(spread, settlement) [m] at
+    which ``arch`` can no longer stand, so capacity / that of ``movement`` is how many times the
+    movement the arch takes (the assessment's "capacity remaining").  ``kind`` is the
+    :data:`CAPACITY_KINDS` name of a pure movement, else "combined"."""
+    _check(arch, movement)
+    if not np.any(movement.relative):
+        raise ArchInputError(f"movement: {movement.describe()} is a rigid translation of the "
+                             f"arch (no hinge opens, no capacity); allowed a movement that "
+                             f"deforms it")
+    mag = float(np.hypot(movement.spread, movement.settlement))
+    unit = movement.scaled(1.0 / mag)
+    kind = next((k for k, (a, b) in CAPACITY_KINDS.items()
+                 if a == unit.spread and b == unit.settlement), "combined")
+    return _capacity(arch, unit, kind)
+
+
+def _capacity(arch, unit: SupportMovement, kind: str) -> DisplacementCapacity:
+    side = unit.side
     hinges, points, line0 = _onset(arch, unit)
     rel = unit.relative / float(np.hypot(*unit.relative))
     c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
@@ -643,3 +667,106 @@ def gap_closing(arch: DisplacedArch) -> GapClosing | None:
     if not (shut_l or shut_r):
         return None
     return GapClosing(r.k_l, r.k_r, shut_l, shut_r)
+
+
+# ---------------------------------------------------------------------------- studies
+def moved_parts(arch: VoussoirArch) -> tuple[VoussoirArch, SupportMovement | None]:
+    """(base arch, movement) of an arch on moved supports as the studies take it (the
+    re-closed arch of :func:`on_moved_supports`, e.g. from ``--spread``/``--settlement``), or
+    (arch, None) for an arch on fixed supports.  A displaced arch with open point contacts
+    (``displace(...).arch``) is refused: the analyses take it re-closed (docs/supports.md)."""
+    if not isinstance(arch, DisplacedArch):
+        return arch, None
+    if arch.point_joints:
+        raise ArchInputError(f"nominal: {arch.name!r} has open joints as point contacts; allowed "
+                             f"the arch re-closed on its moved supports "
+                             f"(statics.supports.on_moved_supports(base, movement) or "
+                             f"reclosed(displace(...).arch)), as every analysis takes it")
+    if arch.movement is None:
+        raise ArchInputError(f"nominal: {arch.name!r} is displaced without a recorded support "
+                             f"movement; allowed an arch of on_moved_supports(base, movement)")
+    return arch.base, arch.movement
+
+
+#: How a study's random arches take the support movement: all of it, or U_i x it.
+SUPPORT_DRAWS = ("fixed", "uniform")
+
+
+@dataclass(frozen=True, eq=False)
+class MovedSampler(ArchSampler):
+    """The random arches of a study around a nominal arch on moved supports: sample i is
+    ``ArchSampler(nominal, spreads, seed).arch(i)`` (``nominal`` is the base arch, on fixed
+    supports) moved by ``movement`` (``support_draw='fixed'``) or by U_i x ``movement``
+    (``'uniform'``, U_i of :meth:`ArchSampler.movement_fractions`), and re-closed
+    (:func:`on_moved_supports`): the same arch as sample i of an ensemble with
+    ``EnsembleConfig(support=movement, support_draw=...)``.  A draw that cannot stand on its
+    moved supports is an InvalidSampleError ("cannot stand on its moved supports"), which the
+    studies leave out as "cannot stand"."""
+
+    movement: SupportMovement | None = None
+    support_draw: str = "fixed"
+
+    def __post_init__(self):
+        super().__post_init__()
+        if not isinstance(self.movement, SupportMovement):
+            raise ArchInputError(f"movement: expected a SupportMovement, got "
+                                 f"{type(self.movement).__name__}")
+        if self.support_draw not in SUPPORT_DRAWS:
+            raise ArchInputError(f"support_draw: {self.support_draw!r}; allowed "
+                                 f"{', '.join(SUPPORT_DRAWS)}")
+
+    @property
+    def moved_nominal(self) -> VoussoirArch:
+        """The nominal arch on the whole movement, as the study analyses it."""
+        return on_moved_supports(self.nominal, self.movement)
+
+    def movements(self, start: int, count: int) -> list:
+        """The support movement of samples start .. start + count - 1."""
+        if self.support_draw == "fixed":
+            return [self.movement] * int(count)
+        return [self.movement.scaled(float(u)) for u in self.movement_fractions(start, count)]
+
+    def arch(self, index: int) -> VoussoirArch:
+        return _moved_sample(super().arch(index), self.movements(index, 1)[0])
+
+    def arches(self, start: int, count: int) -> list:
+        return [a if isinstance(a, Exception) else _moved_sample(a, mv, raise_=False)
+                for a, mv in zip(super().arches(start, count), self.movements(start, count))]
+
+    def to_dict(self) -> dict:
+        d = super().to_dict()
+        d["support"] = self.movement.to_dict()
+        if self.support_draw != "fixed":
+            d["support_draw"] = self.support_draw
+        return d
+
+
+def _moved_sample(arch, movement, raise_=True):
+    """``arch`` on ``movement`` re-closed, or the InvalidSampleError saying it cannot stand
+    there (raised, or returned with ``raise_=False``, as ArchSampler.arches does)."""
+    from ..errors import ArchrockError, InvalidSampleError
+
+    try:
+        return on_moved_supports(arch, movement)
+    except ArchrockError as exc:
+        err = InvalidSampleError(f"cannot stand on its moved supports ({movement.describe()}): "
+                                 f"{' '.join(str(exc).split())}")
+    if raise_:
+        raise err
+    return err
+
+
+def study_sampler(nominal: VoussoirArch, spreads=None, seed: int = 0,
+                  support_draw: str = "fixed") -> ArchSampler:
+    """The sampler of a study's random arches around ``nominal``: an
+    :class:`~archrock.geometry.sampling.ArchSampler` on fixed supports (the same object as
+    before, so every fixed-support study is unchanged bit for bit), or a :class:`MovedSampler`
+    around the base of a nominal on moved supports (:func:`moved_parts`)."""
+    base, mv = moved_parts(nominal)
+    spreads = Spreads.from_dict(spreads)
+    if mv is None:
+        if support_draw != "fixed":
+            raise ArchInputError(f"support_draw: {support_draw!r} needs an arch on moved "
+                                 f"supports (--spread/--settlement)")
+        return ArchSampler(nominal, spreads, seed)
+    return MovedSampler(base, spreads, seed, movement=mv, support_draw=support_draw)
