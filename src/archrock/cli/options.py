@@ -370,6 +370,13 @@ def add_support_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPar
                         "closes it (default 0)")
     g.add_argument("--settlement", type=finite_float, metavar="S",
                    help="vertical movement of the support [m]: > 0 down, < 0 up (default 0)")
+    g.add_argument("--rotation", type=finite_float, metavar="RAD",
+                   help="rotation of the support (abutment or pier) about its foot [rad]: > 0 "
+                        "outward, |RAD| <= 0.5 (default 0)")
+    g.add_argument("--pivot-depth", type=finite_float, metavar="M",
+                   help="with --rotation or limit --capacity rotation: the foot is the outer end "
+                        "of the springing joint (an arch on piers: the pier's outer foot) lowered "
+                        "by M [m] (default 0)")
     g.add_argument("--support-side", choices=("right", "left", "both"), default=None,
                    help="which support moves: right (default), left, or both by half "
                         "(symmetric)")
@@ -382,10 +389,14 @@ def _supports_from_args(args: argparse.Namespace, arch):
     s = getattr(args, "spread", None)
     v = getattr(args, "settlement", None)
     side = getattr(args, "support_side", None)
-    if s is None and v is None:
-        if side is not None:
-            raise CLIError("--support-side: needs --spread or --settlement (the movement, in "
-                           "metres)")
+    r = getattr(args, "rotation", None)
+    depth = getattr(args, "pivot_depth", None)
+    if s is None and v is None and r is None:
+        if side is not None and getattr(args, "capacity", None) is None:
+            raise CLIError("--support-side: needs --spread, --settlement or --rotation (the "
+                           "movement)")
+        if depth is not None and getattr(args, "capacity", None) != "rotation":
+            raise CLIError("--pivot-depth: needs --rotation or --capacity rotation")
         return arch
     from ..errors import ArchInputError
     from ..geometry.displaced import SupportMovement
@@ -393,10 +404,12 @@ def _supports_from_args(args: argparse.Namespace, arch):
 
     try:
         mv = SupportMovement(0.0 if s is None else s, 0.0 if v is None else v,
-                             side or "right")
+                             side or "right", 0.0 if r is None else r,
+                             0.0 if depth is None else depth)
     except ArchInputError as exc:
         msg = str(exc)
-        for field, flag in (("spread:", "--spread:"), ("settlement:", "--settlement:")):
+        for field, flag in (("spread:", "--spread:"), ("settlement:", "--settlement:"),
+                            ("rotation:", "--rotation:"), ("pivot_depth:", "--pivot-depth:")):
             if msg.startswith(field):
                 raise ArchInputError(flag + msg[len(field):]) from None
         raise

@@ -43,7 +43,7 @@ from scipy.optimize import linprog
 
 from ..errors import ArchInputError, CannotStandError, LimitExceededError
 from ..geometry import VoussoirArch
-from ..geometry.displaced import SIDES, DisplacedArch, SupportMovement
+from ..geometry.displaced import MAX_ROTATION, SIDES, DisplacedArch, SupportMovement
 from ..geometry.sampling import ArchSampler, Spreads
 from ..units import G
 from .hinges import EDGES, Hinge
@@ -51,7 +51,7 @@ from .lp import ThrustLine, _statics, _thrust_from_x
 from .thrust import _touching
 
 __all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
-           "displacement_capacity", "movement_capacity", "closing_hinges", "reclosed", "on_moved_supports",
+           "displacement_capacity", "movement_capacity", "movement_size", "closing_hinges", "reclosed", "on_moved_supports",
            "point_contacts", "gap_closing",
            "GapClosing", "CAPACITY_KINDS", "STEPS",
            "BISECT_TOL", "moved_parts", "MovedSampler", "study_sampler", "SUPPORT_DRAWS"]
@@ -87,13 +87,24 @@ def _small_rotations(P1, P2, P3, d):
     return np.linalg.solve(A, d)
 
 
-def _admissible(hinges, points, d) -> bool:
+def _admissible(hinges, points, d, motions=None) -> bool:
     """Whether every hinge of the three turns so that its joint opens (relative rotations
-    omega1, omega2 - omega1, -omega2 of the signs its edges require)."""
-    w = _small_rotations(*points, d)
-    if w is None:
-        return False
-    rel = (w[0], w[1] - w[0], -w[1])
+    omega1 - theta_l, omega2 - omega1, theta_r - omega2 of the signs its edges require; the
+    supports' rotations theta zero unless ``motions``, SupportMovement.rigid_motions of a
+    unit movement with a rotation)."""
+    if motions is None:
+        w = _small_rotations(*points, d)
+        if w is None:
+            return False
+        rel = (w[0], w[1] - w[0], -w[1])
+    else:
+        (tl, cl, ul), (tr, cr, ur) = motions
+        P1, _, P3 = points
+        # the small motions of h1 and h3 with their supports' bodies
+        w = _small_rotations(*points, (ur + tr * _perp(P3 - cr)) - (ul + tl * _perp(P1 - cl)))
+        if w is None:
+            return False
+        rel = (w[0] - tl, w[1] - w[0], tr - w[1])
     scale = max(abs(w[0]), abs(w[1]))
     return all(_EDGE_SIGN[h.edge] * r > 1e-9 * scale for h, r in zip(hinges, rel))
 
@@ -118,9 +129,55 @@ def _linkage(P1, P2, P3, d):
     return Q2, t1, t2
 
 
+def _build_rotated(arch: VoussoirArch, movement: SupportMovement, hinges, points):
+    """:func:`_build` where a support also turns: the bodies between a support and its nearer
+    hinge move with the support's rigid motion (SupportMovement.rigid_motions), h1 and h3 with
+    them, and the two middle bodies close the linkage between the moved h1 and h3 (h2 on the
+    branch continuous with the start)."""
+    (tl, cl, ul), (tr, cr, ur) = movement.rigid_motions(arch.joint_points)
+    P1, P2, P3 = (np.asarray(p, float) for p in points)
+    Q1 = _rot(tl) @ (P1 - cl) + cl + ul
+    Q3 = _rot(tr) @ (P3 - cr) + cr + ur
+    a, b = float(np.hypot(*(P2 - P1))), float(np.hypot(*(P3 - P2)))
+    D = float(np.hypot(*(Q3 - Q1)))
+    if not (abs(a - b) < D < a + b):
+        return None
+    e = (Q3 - Q1) / D
+    x = (a * a - b * b + D * D) / (2.0 * D)
+    h = math.sqrt(max(a * a - x * x, 0.0))
+    sigma = 1.0 if _cross(P3 - P1, P2 - P1) >= 0 else -1.0
+    Q2 = Q1 + x * e + sigma * h * _perp(e)
+    u, v = P2 - P1, Q2 - Q1
+    t1 = math.atan2(_cross(u, v), float(u @ v))
+    u, v = P3 - P2, Q3 - Q2
+    t2 = math.atan2(_cross(u, v), float(u @ v))
+    j1, j2, j3 = (h_.joint for h_ in hinges)
+    n = arch.n
+    angles, origins, images = np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2))
+    for i in range(n):
+        if i < j1:
+            angles[i], origins[i], images[i] = tl, cl, cl + ul
+        elif i < j2:
+            angles[i], origins[i], images[i] = t1, P1, Q1
+        elif i < j3:
+            angles[i], origins[i], images[i] = t2, P2, Q2
+        else:
+            angles[i], origins[i], images[i] = tr, cr, cr + ur
+    pts = ((j1, *Q1), (j2, *Q2), (j3, *Q3))
+    return DisplacedArch(arch, tuple(angles), tuple(origins), tuple(images), pts, movement,
+                         tuple(hinges))
+
+
+def _rot(a: float) -> np.ndarray:
+    c, s_ = math.cos(a), math.sin(a)
+    return np.array([[c, -s_], [s_, c]])
+
+
 def _build(arch: VoussoirArch, movement: SupportMovement, hinges, points):
     """The DisplacedArch of ``arch`` under ``movement`` with three hinges (base points);
     None where the linkage cannot close."""
+    if movement.rotation != 0.0:
+        return _build_rotated(arch, movement, hinges, points)
     ul, ur = movement.supports
     d = ur - ul
     P1, P2, P3 = (np.asarray(p, float) for p in points)
@@ -247,7 +304,7 @@ class DisplacementCapacity:
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "side": self.side, "capacity": float(self.capacity),
-                "fraction_of_span": float(self.fraction),
+                "fraction_of_span": None if self.fraction is None else float(self.fraction),
                 "hinges": [h.to_dict() for h in self.hinges],
                 "mechanism": [h.to_dict() for h in self.mechanism], "reason": self.reason,
                 "curve": {"movement": self.curve[:, 0].tolist(), "H": self.curve[:, 1].tolist(),
@@ -268,13 +325,47 @@ def _check(arch, movement):
     if not isinstance(movement, SupportMovement):
         raise ArchInputError(f"movement: expected a SupportMovement, got "
                              f"{type(movement).__name__}")
+    if (movement.rotation < 0.0 and movement.pivot_depth == 0.0 and movement.spread == 0.0
+            and movement.settlement == 0.0):
+        raise ArchInputError(
+            f"rotation: {movement.rotation:g} rad (inward) about the springing's outer end: the "
+            f"support turns away under the arch, which stays where it is on that corner (no "
+            f"hinge opens in it); allowed an outward rotation (> 0), or an inward one about a "
+            f"foot below the springing (pivot_depth > 0)")
 
 
-def _onset_lp(arch: VoussoirArch, d: np.ndarray):
-    """(x, line, touches, points) of the state the relative movement d selects."""
-    st = _statics(arch, "l")
-    scale = float(np.hypot(*d))
-    c = [float(d[0]) / scale, float(d[1]) / scale, 0.0, 0.0]
+def _work(arch: VoussoirArch, movement: SupportMovement) -> list:
+    """The objective of the onset's program: the work of the arch's forces on the supports
+    under ``movement``, linear in the redundants x (per total weight; module docstring, 1),
+    normalised.  Without rotation it is F_0 . d (d = u_right - u_left).  A support turning by
+    theta about its foot c adds theta times the moment about c of the force on it: the arch
+    pushes the right support with F_n and the left one with -F_0, and with lambda = 0 the
+    counter-clockwise moment about c of F_j is x[2] ref + (c_y - o_y) F_x - (c_x - o_x) F_y
+    plus a constant (o the program's origin, ref its length: statics.lp's joint-line form)."""
+    from .lp import _origin
+
+    d = movement.relative
+    if movement.rotation == 0.0:
+        scale = float(np.hypot(*d))
+        return [float(d[0]) / scale, float(d[1]) / scale, 0.0, 0.0]
+    (tl, cl, _), (tr, cr, _) = movement.rigid_motions(arch.joint_points)
+    o = np.asarray(_origin(arch), float)
+    ref = float(arch.reference_length)
+    c = np.array([d[0] + tr * (cr[1] - o[1]) - tl * (cl[1] - o[1]),
+                  d[1] - tr * (cr[0] - o[0]) + tl * (cl[0] - o[0]),
+                  ref * (tr - tl), 0.0])
+    return [float(v) for v in c / float(np.hypot(np.hypot(c[0], c[1]), c[2]))]
+
+
+def _onset_lp(arch: VoussoirArch, d: np.ndarray, c=None):
+    """(x, line, touches, points) of the state the relative movement d (or the objective c,
+    :func:`_work`) selects."""
+    if c is None:
+        st = _statics(arch, "l")
+        scale = float(np.hypot(*d))
+        c = [float(d[0]) / scale, float(d[1]) / scale, 0.0, 0.0]
+    else:  # the moments about the feet are the joint-line form's (statics.lp)
+        st = _statics(arch, "l", "joint-line")
     res = linprog(c=c, A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 3 + [(0.0, 0.0)],
                   method="highs")
     if res.status == 2:
@@ -300,18 +391,34 @@ def onset_hinges(arch: VoussoirArch, movement: SupportMovement) -> tuple[Hinge, 
     return _onset(arch, movement)[0]
 
 
+def _magnitude(arch, movement) -> float:
+    """The size of a movement [m]: |u_right - u_left|, and with a rotation hypot of that and
+    rotation x the arch's size (the metres a point one size from the foot moves)."""
+    d = float(np.hypot(*movement.relative))
+    if movement.rotation == 0.0:
+        return d
+    return float(np.hypot(d, movement.rotation * arch.size))
+
+
 def _onset(arch, movement):
     d = movement.relative
-    if not np.any(d):
+    rotating = movement.rotation != 0.0
+    if not np.any(d) and not rotating:
         return (), None, None
-    x, line, touches, _ = _onset_lp(arch, d)
+    motions = None
+    if rotating:
+        unit = movement.scaled(1.0 / _magnitude(arch, movement))
+        motions = unit.rigid_motions(arch.joint_points)
+        x, line, touches, _ = _onset_lp(arch, unit.relative, _work(arch, unit))
+    else:
+        x, line, touches, _ = _onset_lp(arch, d)
     jp = np.asarray(arch.joint_points, float)
     cands = []
     for trio in combinations(touches, 3):
         if len({h.joint for h in trio}) < 3:
             continue
         pts = [jp[h.joint, EDGES.index(h.edge)] for h in trio]
-        if _admissible(trio, pts, d):
+        if _admissible(trio, pts, None if rotating else d, motions):
             cands.append((trio, pts))
     if not cands:
         raise CannotStandError(
@@ -320,7 +427,8 @@ def _onset(arch, movement):
             f"of them open as a three-hinge arch under this movement")
     if len(cands) > 1:
         # the set under which the arch stands after a small step; then nearer the moving support
-        unit = movement.scaled(_TRIAL * arch.size / float(np.hypot(*d)))
+        unit = movement.scaled(_TRIAL * arch.size / (_magnitude(arch, movement) if rotating
+                                                     else float(np.hypot(*d))))
         moving_right = movement.side != "left"
 
         def key(c):
@@ -377,6 +485,10 @@ def _opening(disp: DisplacedArch) -> bool:
     j1, j2, _ = (h.joint for h in disp.hinges)
     t1, t2 = float(disp.angles[j1]), float(disp.angles[j2])
     rel = (t1, t2 - t1, -t2)
+    mv = disp.movement
+    if mv is not None and mv.rotation != 0.0:  # relative to the turned supports
+        (tl, _, _), (tr, _, _) = mv.rigid_motions(disp.base.joint_points)
+        rel = (t1 - tl, t2 - t1, tr - t2)
     return all(_EDGE_SIGN[h.edge] * r > 0 for h, r in zip(disp.hinges, rel))
 
 
@@ -505,7 +617,7 @@ def displace(arch: VoussoirArch, movement: SupportMovement) -> DisplacedState:
         return DisplacedState(movement, (), np.zeros((0, 2)), arch, None, math.nan, math.nan,
                               math.nan, 0.0, math.nan)
     d = movement.relative
-    if not np.any(d):
+    if not np.any(d) and movement.rotation == 0.0:
         # both supports settle alike: a rigid translation, no hinge opens
         ul, _ = movement.supports
         n = arch.n
@@ -513,11 +625,13 @@ def displace(arch: VoussoirArch, movement: SupportMovement) -> DisplacedState:
                              movement, ())
         return DisplacedState(movement, (), np.zeros((0, 2)), disp, None, math.nan, math.nan,
                               math.nan, float(-ul[1]), math.nan)
-    mag = float(np.hypot(movement.spread, movement.settlement))
+    if movement.rotation == 0.0:
+        mag = float(np.hypot(movement.spread, movement.settlement))
+    else:
+        mag = _magnitude(arch, movement)
     unit = movement.scaled(1.0 / mag)
     hinges, points, line0 = _onset(arch, unit)
-    rel = unit.relative / float(np.hypot(*unit.relative))
-    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    c_dir = _work(arch, unit)
     path = _follow(arch, unit, mag, c_dir, line0, hinges, points)
     if path.reason is not None:
         raise CannotStandError(
@@ -536,16 +650,25 @@ def _span(arch) -> float:
 
 
 def displacement_capacity(arch: VoussoirArch, kind: str = "spread",
-                          side: str = "right") -> DisplacementCapacity:
-    """The movement of ``kind`` ("spread", "closure", "settlement", "heave") on ``side``
+                          side: str = "right", pivot_depth: float = 0.0) -> DisplacementCapacity:
+    """The movement of ``kind`` ("spread", "closure", "settlement", "heave", or "rotation":
+    outward, about the foot ``pivot_depth`` [m] below the springing's outer end) on ``side``
     ("right", "left", "both") at which ``arch`` can no longer stand (module docstring, 4),
-    with its mechanism and the curve of thrust, reactions and crown drop against the movement.
-    Bounded: an arch still standing at MAX_MOVEMENT sizes reports that bound (reason
+    with its mechanism and the curve of thrust, reactions and crown drop against the movement
+    (in m; for "rotation" in rad, and its ``fraction`` is None).  Bounded: an arch still
+    standing at MAX_MOVEMENT sizes (for rotation: MAX_ROTATION) reports that bound (reason
     "bound")."""
-    if kind not in CAPACITY_KINDS:
-        raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(CAPACITY_KINDS)}")
+    if kind not in CAPACITY_KINDS and kind != "rotation":
+        raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(CAPACITY_KINDS)}, rotation")
     if side not in SIDES:
         raise ArchInputError(f"side: {side!r}; allowed 'right', 'left' or 'both'")
+    if kind == "rotation":
+        # t in metres: the unit turns 1 / size rad per metre (a point one size from the foot
+        # moves 1 m), so the steps and the tolerance are the translations'; reported in rad
+        unit = SupportMovement(0.0, 0.0, side, 1.0 / arch.size, pivot_depth)
+        _check(arch, unit)
+        return _capacity(arch, unit, kind, arch.size,
+                         min(MAX_MOVEMENT * arch.size, MAX_ROTATION * arch.size))
     s, v = CAPACITY_KINDS[kind]
     unit = SupportMovement(s, v, side)
     _check(arch, unit)
@@ -562,29 +685,64 @@ def movement_capacity(arch: VoussoirArch, movement: SupportMovement) -> Displace
     movement the arch takes (the assessment's "capacity remaining").  ``kind`` is the
     :data:`CAPACITY_KINDS` name of a pure movement, else "combined"."""
     _check(arch, movement)
-    if not np.any(movement.relative):
+    if not np.any(movement.relative) and movement.rotation == 0.0:
         raise ArchInputError(f"movement: {movement.describe()} is a rigid translation of the "
                              f"arch (no hinge opens, no capacity); allowed a movement that "
                              f"deforms it")
-    mag = float(np.hypot(movement.spread, movement.settlement))
+    if movement.spread == 0.0 and movement.settlement == 0.0:
+        cap = displacement_capacity(arch, "rotation", movement.side, movement.pivot_depth)
+        if movement.rotation > 0:
+            return cap
+        return _capacity(arch, SupportMovement(0.0, 0.0, movement.side, -1.0 / arch.size,
+                                               movement.pivot_depth), "rotation inward",
+                         arch.size, MAX_ROTATION * arch.size)
+    mag = movement_size(arch, movement)
     unit = movement.scaled(1.0 / mag)
     kind = next((k for k, (a, b) in CAPACITY_KINDS.items()
-                 if a == unit.spread and b == unit.settlement), "combined")
+                 if a == unit.spread and b == unit.settlement and unit.rotation == 0.0),
+                "combined")
     return _capacity(arch, unit, kind)
 
 
-def _capacity(arch, unit: SupportMovement, kind: str) -> DisplacementCapacity:
+def movement_size(arch: VoussoirArch, movement: SupportMovement) -> float:
+    """The size of ``movement`` in the units of :func:`movement_capacity`'s capacity: |rotation|
+    [rad] for a rotation alone, hypot(spread, settlement) [m] for a translation, and with both
+    hypot(spread, settlement, rotation x the arch's size) [m]."""
+    if movement.spread == 0.0 and movement.settlement == 0.0 and movement.rotation != 0.0:
+        return abs(movement.rotation)
+    if movement.rotation == 0.0:
+        return float(np.hypot(movement.spread, movement.settlement))
+    return float(np.hypot(np.hypot(movement.spread, movement.settlement),
+                          movement.rotation * arch.size))
+
+
+def _capacity(arch, unit: SupportMovement, kind: str, per: float = 1.0,
+              bound: float | None = None) -> DisplacementCapacity:
+    """The capacity along ``unit``, reported in units of 1 / ``per`` of its parameter (per =
+    the size for a rotation: rad), followed up to ``bound`` (default MAX_MOVEMENT sizes)."""
     side = unit.side
     hinges, points, line0 = _onset(arch, unit)
-    rel = unit.relative / float(np.hypot(*unit.relative))
-    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
-    path = _follow(arch, unit, MAX_MOVEMENT * arch.size, c_dir, line0, hinges, points)
+    if unit.rotation == 0.0:
+        rel = unit.relative / float(np.hypot(*unit.relative))
+        c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    else:
+        c_dir = _work(arch, unit)
+    path = _follow(arch, unit, MAX_MOVEMENT * arch.size if bound is None else bound, c_dir,
+                   line0, hinges, points)
     how = (f"hinges from the LP (HiGHS) that minimises the work on the moving support; exact "
            f"two-bar linkage; followed in steps of size/{STEPS} with hinge migration, the "
            f"capacity bisected to {BISECT_TOL:g} of the size")
-    return DisplacementCapacity(kind, side, float(path.end), float(path.end) / _span(arch),
-                                tuple(hinges), path.mechanism, path.reason or "bound",
-                                np.array(path.rows), how, tuple(path.sets))
+    if per == 1.0:
+        return DisplacementCapacity(kind, side, float(path.end), float(path.end) / _span(arch),
+                                    tuple(hinges), path.mechanism, path.reason or "bound",
+                                    np.array(path.rows), how, tuple(path.sets))
+    rows = np.array(path.rows)
+    rows[:, 0] /= per
+    how += (f"; the support turned about its foot {unit.pivot_depth:g} m below the springing's "
+            f"outer end, 1 / size rad per step unit")
+    return DisplacementCapacity(kind, side, float(path.end) / per, None, tuple(hinges),
+                                path.mechanism, path.reason or "bound", rows, how,
+                                tuple((t / per, hs) for t, hs in path.sets))
 
 
 def closing_hinges(arch: DisplacedArch, mechanism) -> tuple[int, ...]:
