@@ -178,3 +178,19 @@ def test_cli_curves_on_moved_supports_and_zero_movement(capsys):
     assert moved["curve"]["amplitudes_g"][0] == pytest.approx(1.2638, abs=0.011)
     assert moved["ensemble"]["n_samples"] == 2 and "support" not in ref["ensemble"]
     assert moved["ensemble"]["support"] == {"spread": 0.05, "settlement": 0.0, "side": "right"}
+
+
+@pytest.mark.slow
+def test_assessment_section_on_a_turned_pier():
+    """A pier turned by 0.01 rad: the capacity remaining is in rad, the capacity in rotation
+    less the turn so far (0.033263 rad, tests/statics/test_supports_rotation.py)."""
+    from archrock.geometry import with_piers
+    from archrock.studies.assessment import assess, section_supports
+
+    arch = with_piers(nominal_arch(), 4.0, 2.0)
+    r = assess(on_moved_supports(arch, SupportMovement(rotation=0.01)),
+               sections=[section_supports])
+    d = r.section("supports").data
+    cap = displacement_capacity(arch, "rotation").capacity
+    assert d["units"]["capacity"] == "rad"
+    assert d["capacity_remaining"] == pytest.approx(cap - 0.01, rel=1e-12)

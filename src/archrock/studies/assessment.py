@@ -406,7 +406,8 @@ def section_supports(ctx: Context) -> Section | None:
     multipliers on the displaced arch beside those on fixed supports, and the capacity that
     remains along the movement's direction.  None (left out) on fixed supports."""
     from ..statics.limit import limit_analysis
-    from ..statics.supports import displace, gap_closing, moved_parts, movement_capacity
+    from ..statics.supports import (displace, gap_closing, moved_parts, movement_capacity,
+                                    movement_size)
 
     base, mv = moved_parts(ctx.arch)
     if mv is None:
@@ -429,18 +430,24 @@ def section_supports(ctx: Context) -> Section | None:
         data.update(H=st.thrust, crown_drop=st.crown_drop)
     head = [("support movement", mv.describe())]
     blocks = [Paragraph(text)]
-    mag = math.hypot(mv.spread, mv.settlement)
-    if np.any(mv.relative):
+    if np.any(mv.relative) or mv.rotation:
         cap = movement_capacity(base, mv)
+        mag = movement_size(base, mv)  # in the capacity's units: rad for a turn alone, else m
+        unit = "rad" if cap.fraction is None else "m"
         left = cap.capacity - mag
         mech = ", ".join(f"{h.joint}{h.edge[0]}" for h in cap.mechanism)
+        span = "" if cap.fraction is None else f"{100 * cap.fraction:.3g}% of the span; "
         blocks.append(Paragraph(
-            f"Pushed further the same way, the arch stands up to {cap.capacity:.4g} m of this "
-            f"movement ({100 * cap.fraction:.3g}% of the span; {cap.reason}, hinges {mech}): "
-            f"{left:.4g} m remain, {cap.capacity / mag:.3g} times the movement so far."))
+            f"Pushed further the same way, the arch stands up to {cap.capacity:.4g} {unit} of "
+            f"this movement ({span}{cap.reason}, hinges {mech}): {left:.4g} {unit} remain, "
+            f"{cap.capacity / mag:.3g} times the movement so far"
+            + (f" (a turn with a translation is measured as hypot(spread, settlement, rotation x "
+               f"{base.size:.4g} m), docs/supports.md)" if mv.rotation and unit == "m" else "")
+            + "."))
         data["capacity"] = {k: v for k, v in cap.to_dict().items() if k != "curve"}
         data["capacity_remaining"] = left
-        head.append(("support capacity remaining [m]",
+        data["units"]["capacity"] = unit
+        head.append((f"support capacity remaining [{unit}]",
                      f"{left:.4g} ({cap.capacity / mag:.3g} x the movement)"))
         gc = gap_closing(ctx.arch)
         if gc is not None:
