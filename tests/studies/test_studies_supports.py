@@ -194,3 +194,22 @@ def test_assessment_section_on_a_turned_pier():
     cap = displacement_capacity(arch, "rotation").capacity
     assert d["units"]["capacity"] == "rad"
     assert d["capacity_remaining"] == pytest.approx(cap - 0.01, rel=1e-12)
+
+
+@pytest.mark.slow
+def test_cli_fragility_and_sensitivity_on_moved_supports(capsys, tmp_path):
+    """fragility and sensitivity take --spread: the random arches of fragility are the
+    ensemble's on the moved supports (random_models), and sensitivity adds the input
+    'support'."""
+    pytest.importorskip("SALib")
+    t = np.arange(0.0, 3.0, 0.01)
+    rec = tmp_path / "rec.txt"
+    np.savetxt(rec, np.column_stack([t, 0.3 * np.sin(2 * np.pi * 2.0 * t) * np.exp(-t)]))
+    out = json.loads(run(capsys, "fragility", "--records", str(rec), "--scales", "1:8:4",
+                         "--samples", "2", "--bootstrap", "0", "--spread", "0.5", "--json",
+                         "--no-progress"))
+    assert out["arch"] == "Oppenheim (displaced) (joints re-closed)" and out["n_arches"] == 2
+    out = json.loads(run(capsys, "sensitivity", "--spread", "0.2", "--samples", "16", "--json",
+                         "--no-progress"))
+    assert out["support"]["spread"] == 0.2
+    assert "support" in out["outputs"]["k_l"]["groups"]
