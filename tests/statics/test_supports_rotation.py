@@ -152,3 +152,16 @@ def test_rotation_capacity_and_its_fourth_hinge_by_hand(arch, expected, fourth):
     with pytest.raises(CannotStandError):
         displace(arch, SupportMovement(rotation=cap.capacity * (1 + 1e-4)))
     assert movement_capacity(arch, SupportMovement(rotation=0.01)).capacity == cap.capacity
+
+
+def test_mirror_symmetry_of_a_turning_support():
+    from archrock.geometry import random_arch
+
+    arch = random_arch(seed=7)
+    a = displace(arch, SupportMovement(0.02, rotation=0.01, side="left", pivot_depth=1.0))
+    b = displace(arch.mirrored(), SupportMovement(0.02, rotation=0.01, pivot_depth=1.0))
+    n = arch.n
+    assert [(n - h.joint, h.edge) for h in a.hinges[::-1]] == [(h.joint, h.edge)
+                                                                for h in b.hinges]
+    assert abs(a.thrust - b.thrust) <= 1e-10 * a.thrust
+    assert abs(a.v_left - b.v_right) <= 1e-10 * a.v_left

@@ -364,7 +364,8 @@ def refuse_moved_supports(nominal) -> None:
     of its random arches (only the ensemble moves supports: EnsembleConfig(support=...))."""
     if isinstance(nominal, DisplacedArch):
         raise ArchInputError(
-            f"nominal: {nominal.name!r} stands on moved supports (--spread/--settlement); "
-            f"allowed an arch on fixed supports, with the movement given to the ensemble "
-            f"(EnsembleConfig(support=...); archrock ensemble --spread/--settlement): the other "
-            f"studies do not move supports yet")
+            f"nominal: {nominal.name!r} stands on moved supports (--spread/--settlement/"
+            f"--rotation); allowed here an arch on fixed supports: the studies move their random "
+            f"arches' supports themselves (EnsembleConfig(support=...), "
+            f"statics.supports.study_sampler for curves, fragility and sensitivity), "
+            f"random-arch does not")
