@@ -14,8 +14,8 @@ exerts on it.  Movements (``movement``, ``side``; d >= 0 the imposed displacemen
   lowered by ``pivot_depth``; an arch on piers: the pier's outer foot), as
   :class:`~archrock.geometry.displaced.SupportMovement`'s ``rotation`` does, by d / size rad:
   d is the rotation times the arch's size [m], the metres a point one size from the foot
-  moves ('both': each turns by d / size; the kinematic body follows the circle about the foot
-  exactly, its velocity set every step).
+  moves ('both': each turns by half of it; the kinematic body follows the circle about the
+  foot exactly, its velocity set every step).
 
 Quasi-static rate.  The support moves at v = rate * sqrt(g size) (``rate`` in sizes per T,
 T = sqrt(size/g)).  Once the arch has become a mechanism (three hinges: with one support moving
@@ -220,11 +220,9 @@ class _Push:
         if movement == "rotate":
             from ..geometry.displaced import SupportMovement
 
+            # 'both': each turns by half, as SupportMovement(side='both') does
             (tl, cl, _), (tr, cr, _) = SupportMovement(
-                0.0, 0.0, "right" if side == "both" else side, 1.0 / ca.size,
-                pivot_depth).rigid_motions(arch.joint_points)
-            if side == "both":  # each turns by the whole d / size
-                tl = -tr
+                0.0, 0.0, side, 1.0 / ca.size, pivot_depth).rigid_motions(arch.joint_points)
             self.turn = ((tl, cl), (tr, cr))
             self.unit = (np.array([1.0, 0.0]) * (side != "right"),
                          np.array([1.0, 0.0]) * (side != "left"))  # which bodies move
@@ -291,7 +289,8 @@ class _Push:
         the mean over them of position . u / |u|^2; turning supports: their outward turn x
         the size."""
         if self.turn is not None:
-            out = [abs(b.angle) * self.ca.size for b in self.ca.abutment_bodies
+            out = [abs(b.angle / rate) for b, (rate, _) in zip(self.ca.abutment_bodies,
+                                                                self.turn)
                    if b.body_type != b.STATIC]
             return float(np.mean(out))
         out = [float(np.array(tuple(b.position)) @ u / (u @ u))
