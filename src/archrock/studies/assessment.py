@@ -840,7 +840,9 @@ def section_assumptions(ctx: Context) -> Section:
 #: The report's sections in order.  Optional ones (friction, defects, contact) say so when their
 #: module is absent; fragility appears only with records.
 SECTIONS: list[Callable[[Context], Section | None]] = [
-    section_geometry, section_limit, section_supports, section_friction, section_impact, section_response,
+    section_geometry, section_limit,
+    section_supports,  # left out on fixed supports (docs/supports.md)
+    section_friction, section_impact, section_response,
     section_curves, section_defects, section_fragility, section_contact, section_codecheck,
     section_assumptions,
 ]
