@@ -51,7 +51,8 @@ from .lp import ThrustLine, _statics, _thrust_from_x
 from .thrust import _touching
 
 __all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
-           "displacement_capacity", "movement_capacity", "movement_size", "closing_hinges", "reclosed", "on_moved_supports",
+           "displacement_capacity", "movement_capacity", "movement_size", "closing_hinges",
+           "reclosed", "on_moved_supports",
            "point_contacts", "gap_closing",
            "GapClosing", "CAPACITY_KINDS", "STEPS",
            "BISECT_TOL", "moved_parts", "MovedSampler", "study_sampler", "SUPPORT_DRAWS"]

@@ -420,7 +420,8 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
            f"bootstrap resamples, {conf_level:.0%} intervals")
     if movement is not None:
         how += (f"; the supports moved by U x ({movement.describe()}), U = (x + 1) / 2 the input "
-                f"'support', each arch displaced and re-closed (statics.supports.on_moved_supports)")
+                f"'support', each arch displaced and re-closed "
+                f"(statics.supports.on_moved_supports)")
     return SobolResult(
         nominal.name, spreads, by, tuple(ys), tuple(names), s1, s1c, st, stc, mean, var, r2,
         int(samples), runs, int((~ok).sum()), int(seed), float(conf_level),
