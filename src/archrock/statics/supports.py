@@ -30,6 +30,14 @@ supports" (Meccanica, 2015).  The numbers are archrock's.
 4. **Capacity.**  The movement is followed in steps (1/200 of the arch's size) until the arch
    can no longer stand (a fourth hinge forms, or the linkage cannot close: h1, h2, h3 in line);
    the capacity is then found by bisection to 1e-10 of the size.
+5. **A support that turns** (``SupportMovement(rotation=..., pivot_depth=...)``) moves rigidly
+   about its foot: the objective of 1. adds the rotation times the moment about the foot of
+   the force on that support (:func:`_work`), the bodies on its side of the nearer hinge turn
+   with it and the linkage closes between the moved h1 and h3 (:func:`_build_rotated`);
+   ``displacement_capacity(arch, "rotation")`` reports radians.
+6. **Studies.**  :func:`study_sampler` gives a study's random arches on the nominal's moved
+   supports (:class:`MovedSampler`, sample i = the ensemble's), or the plain ArchSampler on
+   fixed supports; :func:`movement_capacity` is the capacity along any movement's direction.
 """
 
 from __future__ import annotations
