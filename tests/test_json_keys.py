@@ -29,7 +29,10 @@ DATA = Path(__file__).parent / "data"
 #: Keys beside the fields: a tag naming the class, or derived figures not read back.
 EXTRA_KEYS = {PulseSpec: {"type"}, RecordSpec: {"type"}, SiteSpectrum: {"parameters", "pga_g"}}
 #: Fields left out of the dict where they hold the value the others imply (read back so).
-IMPLIED = {ImpactSpec: {"fallback", "note"}}
+IMPLIED = {ImpactSpec: {"fallback", "note"},
+           # zero turn written by omission, so that the hash of a 0.6 ensemble on moved
+           # supports keeps its form
+           SupportMovement: {"rotation", "pivot_depth"}}
 #: Geometry files have their own documented format (docs/geometry.md), not a config's.
 FILE_FORMATS = {"Arch", "PolygonArch", "FamilyArch", "ArchOnPiers", "Arcade"}
 
@@ -49,7 +52,7 @@ def configs(record):
         PulseSpec("ricker", 0.5, 0.4), record,
         PAPER_PRACTICE, ImpactSpec.fixed(0.8, literal=True), ImpactSpec.parse("least-loss"),
         Defect.parse("3:thickness=0.5,side=extrados"), Defect.parse("2:tilt=-5"),
-        SupportMovement(0.01, 0.002, "both"), Load(2, 150.0, (0.5, 9.0)),
+        SupportMovement(0.01, 0.002, "both"), SupportMovement(0.0, 0.0, "left", 0.02, 1.5), Load(2, 150.0, (0.5, 9.0)),
         EngineSettings(), EngineRun(t_free=20.0, collapse_drop=0.3), CodeCheckConfig(fc=1.2, control=3, spectrum=table),
         SiteSpectrum("ntc", ag=0.2, f0=2.4, tc_star=0.3), table,
         AssessConfig(samples=3, spreads=Spreads(0.05, 0.05, 0.02), records=("a.AT2",)),

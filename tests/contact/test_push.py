@@ -213,3 +213,30 @@ def test_engine_capacity_agrees_with_the_exact_displaced_arch(movement, kind):
     exact = displacement_capacity(arch, kind, "right").capacity
     engine = push_support(arch, movement, "right").capacity
     assert engine == pytest.approx(exact, rel=0.05)
+
+
+def test_a_turning_support_follows_its_circle_and_starts_at_the_least_thrust():
+    """A short outward turn of the right support about its foot (Oppenheim's arch): d is the
+    turn x size, and the thrust at the start is the LP's (the least thrust: the same hinges as
+    spreading, 1i-4e-6i, docs/supports.md) within 0.5%."""
+    arch = nominal_arch()
+    r = push_support(arch, "rotate", "right", max_displacement=0.02 * arch.size)
+    assert r.status == "standing" and r.run["displacement"] == "rotation x size [m]"
+    assert r.displacement[-1] == pytest.approx(0.02 * arch.size, rel=0.02)
+    assert abs(r.thrust_start / thrust_range(arch).thrust_min - 1) < 5e-3
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("piers, exact_rad", [(False, 0.22499), (True, 0.033263)])
+def test_engine_rotation_capacity_agrees_with_the_exact_displaced_arch(piers, exact_rad):
+    """Turning the right support (Oppenheim's arch about its springing's outer end; on 4 m x
+    2 m piers about the pier's outer foot): the engine's capacity [rad] within 1% of
+    displacement_capacity(arch, 'rotation') (measured -0.28% and +0.05%)."""
+    from archrock.geometry import with_piers
+    from archrock.statics.supports import displacement_capacity
+
+    arch = with_piers(nominal_arch(), 4.0, 2.0) if piers else nominal_arch()
+    exact = displacement_capacity(arch, "rotation").capacity
+    assert exact == pytest.approx(exact_rad, rel=1e-4)
+    r = push_support(arch, "rotate", "right", max_displacement=1.5 * exact * arch.size)
+    assert r.collapsed and abs(r.capacity / arch.size / exact - 1) < 0.01

@@ -71,7 +71,7 @@ def add_dem_parser(subparsers):
     p.add_argument("--ramp-hold", type=positive_float, default=4.0, metavar="T",
                    help="--ramp: duration of each constant-acceleration hold, in units of "
                         "T = sqrt(size/g) (default 4)")
-    p.add_argument("--push", choices=("spread", "settlement", "close"), default=None,
+    p.add_argument("--push", choices=("spread", "settlement", "close", "rotate"), default=None,
                    help="move a support slowly (a kinematic abutment): the thrust on it, the "
                         "hinges and the displacement capacity (docs/supports-engine.md)")
     p.add_argument("--push-side", choices=("right", "left", "both"), default="right",
@@ -105,7 +105,8 @@ def format_push(res, arch) -> str:
     from ..statics.thrust import thrust_range
 
     tr = thrust_range(arch)
-    kind = {"spread": "spreads", "close": "closes", "settlement": "settles"}[res.movement]
+    kind = {"spread": "spreads", "close": "closes", "settlement": "settles",
+            "rotate": "turns outward about its foot (d = rotation x size)"}[res.movement]
     side = "both supports" if res.side == "both" else f"the {res.side} support"
     lines = [f"contact engine: {side} {kind} at {res.run['speed']:.4g} m/s "
              f"(rate {res.run['rate']:g} size per T)",
@@ -118,6 +119,8 @@ def format_push(res, arch) -> str:
                      f"{'-'.join(res.hinges)}")
     if res.collapsed:
         lo, hi = res.capacity_bracket
+        if res.movement == "rotate":
+            lines.append(f"  rotation capacity {res.capacity / res.run['size']:.4g} rad")
         lines.append(f"  displacement capacity {res.capacity:.4g} m (held: rests at "
                      f"{lo:.4g}, moves on at {hi:.4g}; by {res.collapse_by}); collapse hinges "
                      f"{'-'.join(res.collapse_hinges) or '-'}")
@@ -138,7 +141,8 @@ def _run_push(args) -> int:
     import_pymunk()
     res = push_support(arch, args.push, args.push_side, settings, rate=args.push_rate,
                        max_displacement=args.push_max,
-                       progress=None if args.json else _progress)
+                       progress=None if args.json else _progress,
+                       pivot_depth=getattr(args, "pivot_depth", None) or 0.0)
     if args.json:
         emit_json(res.to_dict())
     else:

@@ -31,7 +31,8 @@ def add_limit_parser(subparsers):
                    help="also compute the least width [m] of two equal monolithic piers H m "
                         "high with which the arch stands under self-weight (bisection; "
                         "docs/piers.md); the arch is given without --pier-* options")
-    p.add_argument("--capacity", choices=("spread", "closure", "settlement"), default=None,
+    p.add_argument("--capacity", choices=("spread", "closure", "settlement", "rotation"),
+                   default=None,
                    help="also compute the support movement at which the arch can no longer "
                         "stand: spreading, closing or settlement of --support-side (default the "
                         "right support; docs/supports.md)")
@@ -79,7 +80,8 @@ def _supports_extra(args, arch, result):
             lines.append(format_gap_closing(gc))
         out["support_movement"]["gap_closing"] = None if gc is None else gc.to_dict()
     if args.capacity is not None:
-        cap = displacement_capacity(arch, args.capacity, args.support_side or "right")
+        cap = displacement_capacity(arch, args.capacity, args.support_side or "right",
+                                    getattr(args, "pivot_depth", None) or 0.0)
         lines.append(format_capacity(cap))
         out["capacity"] = cap.to_dict()
     return lines, out, cap
@@ -92,7 +94,8 @@ def run_limit(args) -> int:
     from ..reports.limit import format_limit_table, limit_summary
 
     plot = figure_arg(args.supports_plot)
-    if args.capacity is not None and (args.spread or args.settlement):  # 0: the arch itself
+    if args.capacity is not None and (args.spread or args.settlement
+                                      or getattr(args, "rotation", None)):  # 0: the arch
         raise CLIError("--capacity: computed on the arch as built; leave out --spread and "
                        "--settlement (the capacity's curve gives every movement up to it)")
     arch = arch_from_args(args)

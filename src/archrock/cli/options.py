@@ -201,6 +201,13 @@ def add_support_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPar
                         "closes it (default 0)")
     g.add_argument("--settlement", type=finite_float, metavar="S",
                    help="vertical movement of the support [m]: > 0 down, < 0 up (default 0)")
+    g.add_argument("--rotation", type=finite_float, metavar="RAD",
+                   help="rotation of the support (abutment or pier) about its foot [rad]: > 0 "
+                        "outward, |RAD| <= 0.5 (default 0)")
+    g.add_argument("--pivot-depth", type=finite_float, metavar="M",
+                   help="with --rotation or limit --capacity rotation: the foot is the outer end "
+                        "of the springing joint (an arch on piers: the pier's outer foot) lowered "
+                        "by M [m] (default 0)")
     g.add_argument("--support-side", choices=("right", "left", "both"), default=None,
                    help="which support moves: right (default), left, or both by half "
                         "(symmetric)")

@@ -9,7 +9,13 @@ exerts on it.  Movements (``movement``, ``side``; d >= 0 the imposed displacemen
 * ``spread``: the span opens by d (side 'right': the right support moves +x by d; 'left': the
   left one -x by d; 'both': each by d/2);
 * ``close``: the span closes by d (the same, reversed);
-* ``settlement``: the support drops by d (-y; 'both': both drop by d, a rigid translation).
+* ``settlement``: the support drops by d (-y; 'both': both drop by d, a rigid translation);
+* ``rotate``: the support turns outward about its foot (the outer end of the springing joint
+  lowered by ``pivot_depth``; an arch on piers: the pier's outer foot), as
+  :class:`~archrock.geometry.displaced.SupportMovement`'s ``rotation`` does, by d / size rad:
+  d is the rotation times the arch's size [m], the metres a point one size from the foot
+  moves ('both': each turns by half of it; the kinematic body follows the circle about the
+  foot exactly, its velocity set every step).
 
 Quasi-static rate.  The support moves at v = rate * sqrt(g size) (``rate`` in sizes per T,
 T = sqrt(size/g)).  Once the arch has become a mechanism (three hinges: with one support moving
@@ -63,7 +69,7 @@ from .settings import EngineSettings
 __all__ = ["PushResult", "push_support", "MOVEMENTS", "SIDES", "check_support_movement"]
 
 #: Support movements and sides, as the statics layer's SupportMovement spells them.
-MOVEMENTS = ("spread", "settlement", "close")
+MOVEMENTS = ("spread", "settlement", "close", "rotate")
 SIDES = ("right", "left", "both")
 
 #: The quasi-static criterion: kinetic energy at most this fraction of the potential energy
@@ -185,7 +191,7 @@ class PushResult:
 class _Push:
     """The engine with its moving support(s), the measures of one state and its copies."""
 
-    def __init__(self, arch, settings, movement, side, rate, open_gap):
+    def __init__(self, arch, settings, movement, side, rate, open_gap, pivot_depth=0.0):
         moving = ("left", "right") if side == "both" else (side,)
         self.ca = ca = ContactArch(arch, settings, moving=moving)
         ca.settle()
@@ -207,6 +213,19 @@ class _Push:
                 ur = np.array([s * f, 0.0])
         self.unit = (ul, ur)
         self.speed = rate * ca.size / ca.time_scale  # dd/dt [m/s]
+        # a turning support: (counter-clockwise rad per m of d, foot) of each, and the fraction
+        # of the speed it turns at now (1 pushing, 0 held, between while slowing down)
+        self.turn = None
+        self.fac = 0.0
+        if movement == "rotate":
+            from ..geometry.displaced import SupportMovement
+
+            # 'both': each turns by half, as SupportMovement(side='both') does
+            (tl, cl, _), (tr, cr, _) = SupportMovement(
+                0.0, 0.0, side, 1.0 / ca.size, pivot_depth).rigid_motions(arch.joint_points)
+            self.turn = ((tl, cl), (tr, cr))
+            self.unit = (np.array([1.0, 0.0]) * (side != "right"),
+                         np.array([1.0, 0.0]) * (side != "left"))  # which bodies move
         self.shapes = list(ca.abutment_shapes)
         # a joint is open when its open end has moved by open_gap x size
         self.rot_thr = open_gap * ca.size / ca.joint_lengths
@@ -238,7 +257,28 @@ class _Push:
         new.steps_in_window = 0
         return new
 
+    def _drive(self) -> None:
+        """Velocities of turning supports for the next step: each kinematic body (at the
+        origin at rest, its vertices world points) goes to c - R(angle + w dt) c, so that it
+        turns about its foot c exactly (no drift off the circle)."""
+        for body, (rate, c) in zip(self.ca.abutment_bodies, self.turn):
+            if body.body_type == body.STATIC:
+                continue
+            w = rate * self.speed * self.fac
+            a = body.angle + w * self.dt
+            target = c - np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]) @ c
+            body.angular_velocity = float(w)
+            body.velocity = tuple(float(v) for v in (target - np.array(tuple(body.position)))
+                                  / self.dt)
+
     def set_moving(self, moving: bool) -> None:
+        if self.turn is not None:
+            self.fac = 1.0 if moving else 0.0
+            if not moving:
+                for body in self.ca.abutment_bodies:
+                    if body.body_type != body.STATIC:
+                        body.velocity, body.angular_velocity = (0.0, 0.0), 0.0
+            return
         v = self.speed if moving else 0.0
         for body, u in zip(self.ca.abutment_bodies, self.unit):
             if body.body_type != body.STATIC:
@@ -246,13 +286,29 @@ class _Push:
 
     def displacement(self) -> float:
         """d [m] from the moving supports' positions (kinematic bodies start at the origin):
-        the mean over them of position . u / |u|^2."""
+        the mean over them of position . u / |u|^2; turning supports: their outward turn x
+        the size."""
+        if self.turn is not None:
+            out = [abs(b.angle / rate) for b, (rate, _) in zip(self.ca.abutment_bodies,
+                                                                self.turn)
+                   if b.body_type != b.STATIC]
+            return float(np.mean(out))
         out = [float(np.array(tuple(b.position)) @ u / (u @ u))
                for b, u in zip(self.ca.abutment_bodies, self.unit) if b.body_type != b.STATIC]
         return float(np.mean(out))
 
     def support_offsets(self) -> tuple[np.ndarray, np.ndarray]:
+        """The displacement [m] of each support: of its springing joint's two ends, (2, 2),
+        when it turns."""
         bl, br = self.ca.abutment_bodies
+        if self.turn is not None:
+            pts = np.asarray(self.ca.arch.joint_points, float)
+            out = []
+            for b, ends in ((bl, pts[0]), (br, pts[-1])):
+                a, p = b.angle, np.array(tuple(b.position))
+                rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+                out.append(ends @ rot.T + p - ends)
+            return tuple(out)
         return tuple(np.zeros(2) if b.body_type == b.STATIC else np.array(tuple(b.position))
                      for b in (bl, br))
 
@@ -277,6 +333,8 @@ class _Push:
     def step(self, steps: int) -> None:
         space, dt = self.ca.space, self.dt
         for _ in range(steps):
+            if self.turn is not None:
+                self._drive()
             space.step(dt)
             self.force += self._support_forces()
         self.steps_in_window += steps
@@ -341,8 +399,11 @@ class _Push:
                   if b.body_type != b.STATIC]
         for i in range(stop_steps):
             f = self.speed * (1.0 - (i + 0.5) / stop_steps)
-            for b, u in moving:
-                b.velocity = (float(u[0] * f), float(u[1] * f))
+            if self.turn is not None:
+                self.fac = f / self.speed
+            else:
+                for b, u in moving:
+                    b.velocity = (float(u[0] * f), float(u[1] * f))
             self.step(1)
         self.set_moving(False)
         half = onset = None
@@ -371,7 +432,7 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
                  max_displacement: float | None = None, sample: float = 1e-3,
                  open_gap: float = 1e-4, hold: float = 4.0, stop: float = 8.0,
                  tol: float = 0.01, ke_factor: float = 10.0, max_rotation: float = 0.5,
-                 max_time: float = 2e4, progress=None) -> PushResult:
+                 max_time: float = 2e4, progress=None, pivot_depth: float = 0.0) -> PushResult:
     """Push ``side``'s support(s) of ``arch`` slowly in the contact engine (module docstring).
 
     movement: 'spread', 'settlement' or 'close'; side: 'right', 'left' or 'both'; rate: the
@@ -383,7 +444,10 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
     stop's deceleration (rate / stop) g falls); tol: relative width of the capacity's bracket;
     ke_factor: the arch is suspected to run away when its kinetic energy
     exceeds ke_factor x 1/2 M v^2; max_rotation [rad]: a voussoir turned further has collapsed;
-    max_time [T]: the longest push allowed (max_displacement / speed must fit in it)."""
+    max_time [T]: the longest push allowed (max_displacement / speed must fit in it);
+    pivot_depth [m]: with movement 'rotate', how far below the springing's outer end the
+    support's foot is (module docstring; d, the capacity and its bracket are then the rotation
+    times the size, in m: divide by ``run['size']`` for rad)."""
     t_wall = _time.perf_counter()
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
@@ -418,7 +482,8 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
         raise ArchInputError(f"sample: {sample:g} x size = {sample * size:g} m; allowed at most "
                              f"max_displacement = {max_displacement:g} m")
 
-    live = _Push(arch, settings, movement, side, rate, open_gap)
+    pivot_depth = _num("pivot_depth", pivot_depth, 0.0, 1e4, "0 <= pivot_depth <= 1e4 m")
+    live = _Push(arch, settings, movement, side, rate, open_gap, pivot_depth)
     ca = live.ca
     v, dt = live.speed, live.dt
     window = max(1, int(round(sample * size / (v * dt))))
@@ -579,7 +644,9 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
            "window_steps": window, "open_gap": open_gap, "hold": hold, "stop": stop, "tol": tol,
            "ke_factor": ke_factor, "max_rotation": max_rotation, "max_time": max_time,
            "dt": dt, "size": size, "time_scale": ca.time_scale,
-           "ke_ratio_max": KE_RATIO_MAX, "ke_check_from": KE_CHECK_FROM, "fit_span": FIT_SPAN}
+           "ke_ratio_max": KE_RATIO_MAX, "ke_check_from": KE_CHECK_FROM, "fit_span": FIT_SPAN,
+           **({"pivot_depth": pivot_depth, "displacement": "rotation x size [m]"}
+              if movement == "rotate" else {})}
     return PushResult(movement, side, d_arr, np.array(rec["t"]), fl, fr, thrust,
                       np.array(rec["crown"]), np.array(rec["jrot"]), ke_arr, pe_arr,
                       float(thrust[0]), thrust_start, opening, tuple(hinges),

@@ -27,10 +27,12 @@ import numpy as np
 from ..errors import ArchInputError
 from .base import MAX_LENGTH_M, Load, VoussoirArch, _check_scalar
 
-__all__ = ["SupportMovement", "DisplacedArch", "SIDES"]
+__all__ = ["SupportMovement", "DisplacedArch", "SIDES", "MAX_ROTATION"]
 
 #: Which support moves: the right one, the left one, or both by half (symmetric).
 SIDES = ("right", "left", "both")
+#: Largest support rotation [rad] (about 28.6 deg): beyond it a pier or abutment has fallen.
+MAX_ROTATION = 0.5
 
 
 @dataclass(frozen=True)
@@ -41,12 +43,20 @@ class SupportMovement:
     settlement: vertical movement downward (> 0) or upward (< 0);
     side: "right" (the right support moves, the left one stays), "left" (the mirror: the left
     support moves by -spread horizontally) or "both" (each moves half, symmetrically: the right
-    one by (spread/2, -settlement/2), the left one by (-spread/2, -settlement/2)).
+    one by (spread/2, -settlement/2), the left one by (-spread/2, -settlement/2));
+    rotation [rad], |rotation| <= MAX_ROTATION: the support (abutment or pier) turns rigidly
+    about its foot, > 0 outward (its top away from the span: clockwise on the right, counter-
+    clockwise on the left; "both": each by half); pivot_depth [m] >= 0: the foot is the outer
+    end of the springing joint (joint 0 or n; on an arch on piers the pier's outer foot)
+    lowered by pivot_depth (the height of an abutment below the springing).  The rotation is
+    applied first, about the foot, then the translation.
     """
 
     spread: float = 0.0
     settlement: float = 0.0
     side: str = "right"
+    rotation: float = 0.0
+    pivot_depth: float = 0.0
 
     def __post_init__(self):
         for name in ("spread", "settlement"):
@@ -58,10 +68,36 @@ class SupportMovement:
             object.__setattr__(self, name, v)
         if self.side not in SIDES:
             raise ArchInputError(f"side: {self.side!r}; allowed 'right', 'left' or 'both'")
+        r = _check_scalar("rotation", self.rotation,
+                          allowed=f"a finite angle in rad, |rotation| <= {MAX_ROTATION:g} rad")
+        if abs(r) > MAX_ROTATION:
+            raise ArchInputError(f"rotation: {r:g} rad is out of range; allowed |rotation| <= "
+                                 f"{MAX_ROTATION:g} rad (about 28.6 deg; units? angles are in "
+                                 f"radians)")
+        object.__setattr__(self, "rotation", r)
+        dp = _check_scalar("pivot_depth", self.pivot_depth,
+                           allowed=f"a finite depth in m, 0 <= pivot_depth <= {MAX_LENGTH_M:g}")
+        if not 0.0 <= dp <= MAX_LENGTH_M:
+            raise ArchInputError(f"pivot_depth: {dp:g} m is out of range; allowed 0 <= "
+                                 f"pivot_depth <= {MAX_LENGTH_M:g} m")
+        object.__setattr__(self, "pivot_depth", dp)
 
     @property
     def is_zero(self) -> bool:
-        return self.spread == 0.0 and self.settlement == 0.0
+        return self.spread == 0.0 and self.settlement == 0.0 and self.rotation == 0.0
+
+    def rigid_motions(self, joint_points) -> tuple:
+        """((theta_l, c_l, u_l), (theta_r, c_r, u_r)): each support's rigid motion, a point p
+        of it going to R(theta) (p - c) + c + u [rad counter-clockwise, m]; c the foot about
+        which it turns (class docstring) in the arch's ``joint_points``."""
+        jp = np.asarray(joint_points, float)
+        ul, ur = self.supports
+        r = self.rotation
+        rl, rr = {"right": (0.0, r), "left": (r, 0.0), "both": (0.5 * r, 0.5 * r)}[self.side]
+        drop = np.array([0.0, self.pivot_depth])
+        cl = jp[0][int(np.argmin(jp[0][:, 0]))] - drop    # the outer (leftmost) end
+        cr = jp[-1][int(np.argmax(jp[-1][:, 0]))] - drop  # the outer (rightmost) end
+        return (rl, cl, ul), (-rr, cr, ur)
 
     @property
     def supports(self) -> tuple[np.ndarray, np.ndarray]:
@@ -81,25 +117,34 @@ class SupportMovement:
         return ur - ul
 
     def scaled(self, t: float) -> "SupportMovement":
-        """The same movement multiplied by ``t``."""
-        return SupportMovement(self.spread * t, self.settlement * t, self.side)
+        """The same movement multiplied by ``t`` (the foot stays where it is)."""
+        if self.rotation == 0.0 and self.pivot_depth == 0.0:
+            return SupportMovement(self.spread * t, self.settlement * t, self.side)
+        return SupportMovement(self.spread * t, self.settlement * t, self.side,
+                               self.rotation * t, self.pivot_depth)
 
     def mirrored(self) -> "SupportMovement":
-        """The movement that the mirrored arch receives: the same spread and settlement on the
-        other side."""
+        """The movement that the mirrored arch receives: the same spread, settlement and
+        (outward) rotation on the other side."""
         other = {"right": "left", "left": "right", "both": "both"}[self.side]
-        return SupportMovement(self.spread, self.settlement, other)
+        return SupportMovement(self.spread, self.settlement, other, self.rotation,
+                               self.pivot_depth)
 
     def to_dict(self) -> dict:
-        return {"spread": self.spread, "settlement": self.settlement, "side": self.side}
+        d = {"spread": self.spread, "settlement": self.settlement, "side": self.side}
+        if self.rotation or self.pivot_depth:  # written only when set: older dicts unchanged
+            d.update(rotation=self.rotation, pivot_depth=self.pivot_depth)
+        return d
 
     @classmethod
     def from_dict(cls, data) -> "SupportMovement":
-        if not isinstance(data, dict) or set(data) - {"spread", "settlement", "side"}:
-            raise ArchInputError("support movement: expected an object with spread, settlement "
-                                 "and side")
+        keys = {"spread", "settlement", "side", "rotation", "pivot_depth"}
+        if not isinstance(data, dict) or set(data) - keys:
+            raise ArchInputError("support movement: expected an object with spread, settlement, "
+                                 "side (and rotation, pivot_depth)")
         return cls(data.get("spread", 0.0), data.get("settlement", 0.0),
-                   data.get("side", "right"))
+                   data.get("side", "right"), data.get("rotation", 0.0),
+                   data.get("pivot_depth", 0.0))
 
     def describe(self) -> str:
         parts = []
@@ -107,6 +152,10 @@ class SupportMovement:
             parts.append(f"spread {self.spread:+.4g} m")
         if self.settlement:
             parts.append(f"settlement {self.settlement:+.4g} m")
+        if self.rotation:
+            parts.append(f"rotation {self.rotation:+.4g} rad outward about the foot"
+                         + (f" {self.pivot_depth:g} m below the springing"
+                            if self.pivot_depth else ""))
         return (", ".join(parts) or "no movement") + f" ({self.side} support" + (
             "s" if self.side == "both" else "") + ")"
 
@@ -257,7 +306,11 @@ class DisplacedArch(VoussoirArch):
         open springing joint the voussoir touches its support's face at the hinge point only."""
         base = np.asarray(self.base.joint_points, float)
         ul, ur = (np.zeros(2), np.zeros(2)) if self.movement is None else self.movement.supports
-        return np.array([base[0] + ul, base[-1] + ur])
+        if self.movement is None or self.movement.rotation == 0.0:
+            return np.array([base[0] + ul, base[-1] + ur])
+        (tl, cl, ul), (tr, cr, ur) = self.movement.rigid_motions(base)
+        return np.array([(base[0] - cl) @ _rot(tl).T + cl + ul,
+                         (base[-1] - cr) @ _rot(tr).T + cr + ur])
 
     @property
     def open_joints(self) -> tuple[int, ...]:
@@ -281,8 +334,9 @@ class DisplacedArch(VoussoirArch):
         return DisplacedArch(self.base.scaled(f), tuple(self.angles), tuple(self.origins * f),
                              tuple(self.images * f),
                              tuple((j, x * f, y * f) for j, x, y in self.point_joints),
-                             None if mv is None else SupportMovement(mv.spread * f,
-                                                                     mv.settlement * f, mv.side),
+                             None if mv is None else SupportMovement(
+                                 mv.spread * f, mv.settlement * f, mv.side, mv.rotation,
+                                 mv.pivot_depth * f),
                              self.hinges, self.name)
 
     def to_dict(self) -> dict:
@@ -310,7 +364,8 @@ def refuse_moved_supports(nominal) -> None:
     of its random arches (only the ensemble moves supports: EnsembleConfig(support=...))."""
     if isinstance(nominal, DisplacedArch):
         raise ArchInputError(
-            f"nominal: {nominal.name!r} stands on moved supports (--spread/--settlement); "
-            f"allowed an arch on fixed supports, with the movement given to the ensemble "
-            f"(EnsembleConfig(support=...); archrock ensemble --spread/--settlement): the other "
-            f"studies do not move supports yet")
+            f"nominal: {nominal.name!r} stands on moved supports (--spread/--settlement/"
+            f"--rotation); allowed here an arch on fixed supports: the studies move their random "
+            f"arches' supports themselves (EnsembleConfig(support=...), "
+            f"statics.supports.study_sampler for curves, fragility and sensitivity), "
+            f"random-arch does not")

@@ -102,10 +102,13 @@ def supports_from_args(args, arch):
     """``arch`` after the movement of --spread/--settlement/--support-side (the displaced arch
     of archrock.statics.supports.displace, re-closed; the arch itself at zero movement)."""
     given = values(args, "SupportMovement")
-    if "spread" not in given and "settlement" not in given:
-        if "side" in given:
-            raise OptionError("--support-side: needs --spread or --settlement (the movement, in "
-                              "metres)")
+    if not {"spread", "settlement", "rotation"} & set(given):
+        capacity = getattr(args, "capacity", None)
+        if "side" in given and capacity is None:
+            raise OptionError("--support-side: needs --spread, --settlement or --rotation (the "
+                              "movement)")
+        if "pivot_depth" in given and capacity != "rotation":
+            raise OptionError("--pivot-depth: needs --rotation or --capacity rotation")
         return arch
     from ..errors import ArchInputError
     from ..geometry.displaced import SupportMovement

@@ -50,14 +50,17 @@ def format_gap_closing(gc) -> str:
 def format_capacity(cap) -> str:
     """The capacity in words: movement, fraction of span, mechanism, hinge sets followed."""
     word = {"spread": "spreading", "closure": "closing", "settlement": "settlement",
-            "heave": "heave"}[cap.kind]
+            "heave": "heave"}.get(cap.kind, cap.kind)
     side = "both supports" if cap.side == "both" else f"the {cap.side} support"
-    lines = [f"{word} capacity of {side}: {cap.capacity:.6g} m = {100 * cap.fraction:.4g}% of "
-             f"the span ({cap.reason}; hinges at onset {hinge_labels(cap.hinges)}, at capacity "
+    size = (f"{cap.capacity:.6g} rad" if cap.fraction is None else
+            f"{cap.capacity:.6g} m = {100 * cap.fraction:.4g}% of the span")
+    lines = [f"{word} capacity of {side}: {size} "
+             f"({cap.reason}; hinges at onset {hinge_labels(cap.hinges)}, at capacity "
              f"{hinge_labels(cap.mechanism)})"]
     if len(cap.migrations) > 1:
         lines.append("hinge sets followed: " + "; ".join(
-            f"from {t:.4g} m: {hinge_labels(h)}" for t, h in cap.migrations))
+            f"from {t:.4g} {'m' if cap.fraction is not None else 'rad'}: {hinge_labels(h)}"
+            for t, h in cap.migrations))
     c = cap.curve
     lines.append(f"thrust H: {c[0, 1] / 1e3:.6g} kN/m at onset, {c[-1, 1] / 1e3:.6g} kN/m at "
                  f"capacity; crown drop at capacity {c[-1, 4]:.4g} m")
@@ -99,11 +102,11 @@ def plot_capacity(cap, axes=None):
     a.plot(c[:, 0], c[:, 1] / 1e3, label="H")
     a.plot(c[:, 0], c[:, 2] / 1e3, "--", label="V left")
     a.plot(c[:, 0], c[:, 3] / 1e3, ":", label="V right")
-    a.set_xlabel(f"{cap.kind} [m]")
+    a.set_xlabel(f"{cap.kind} [{'m' if cap.fraction is not None else 'rad'}]")
     a.set_ylabel("force [kN/m]")
     a.legend(fontsize=8, frameon=False)
     b.plot(c[:, 0], c[:, 4])
-    b.set_xlabel(f"{cap.kind} [m]")
+    b.set_xlabel(f"{cap.kind} [{'m' if cap.fraction is not None else 'rad'}]")
     b.set_ylabel("crown drop [m]")
     for ax in axes:
         ax.axvline(cap.capacity, color="0.4", lw=0.8)

@@ -30,6 +30,14 @@ supports" (Meccanica, 2015).  The numbers are archrock's.
 4. **Capacity.**  The movement is followed in steps (1/200 of the arch's size) until the arch
    can no longer stand (a fourth hinge forms, or the linkage cannot close: h1, h2, h3 in line);
    the capacity is then found by bisection to 1e-10 of the size.
+5. **A support that turns** (``SupportMovement(rotation=..., pivot_depth=...)``) moves rigidly
+   about its foot: the objective of 1. adds the rotation times the moment about the foot of
+   the force on that support (:func:`_work`), the bodies on its side of the nearer hinge turn
+   with it and the linkage closes between the moved h1 and h3 (:func:`_build_rotated`);
+   ``displacement_capacity(arch, "rotation")`` reports radians.
+6. **Studies.**  :func:`study_sampler` gives a study's random arches on the nominal's moved
+   supports (:class:`MovedSampler`, sample i = the ensemble's), or the plain ArchSampler on
+   fixed supports; :func:`movement_capacity` is the capacity along any movement's direction.
 """
 
 from __future__ import annotations
@@ -43,17 +51,19 @@ from scipy.optimize import linprog
 
 from ..errors import ArchInputError, CannotStandError, LimitExceededError
 from ..geometry import VoussoirArch
-from ..geometry.displaced import SIDES, DisplacedArch, SupportMovement
+from ..geometry.displaced import MAX_ROTATION, SIDES, DisplacedArch, SupportMovement
+from ..geometry.sampling import ArchSampler, Spreads
 from ..units import G
 from .hinges import EDGES, Hinge
 from .lp import ThrustLine, _statics, _thrust_from_x
 from .thrust import _touching
 
 __all__ = ["DisplacedState", "DisplacementCapacity", "onset_hinges", "displace",
-           "displacement_capacity", "closing_hinges", "reclosed", "on_moved_supports",
+           "displacement_capacity", "movement_capacity", "movement_size", "closing_hinges",
+           "reclosed", "on_moved_supports",
            "point_contacts", "gap_closing",
            "GapClosing", "CAPACITY_KINDS", "STEPS",
-           "BISECT_TOL"]
+           "BISECT_TOL", "moved_parts", "MovedSampler", "study_sampler", "SUPPORT_DRAWS"]
 
 #: What ``displacement_capacity`` can push: the kind and the unit movement it follows.
 CAPACITY_KINDS = {"spread": (1.0, 0.0), "closure": (-1.0, 0.0), "settlement": (0.0, 1.0),
@@ -86,13 +96,24 @@ def _small_rotations(P1, P2, P3, d):
     return np.linalg.solve(A, d)
 
 
-def _admissible(hinges, points, d) -> bool:
+def _admissible(hinges, points, d, motions=None) -> bool:
     """Whether every hinge of the three turns so that its joint opens (relative rotations
-    omega1, omega2 - omega1, -omega2 of the signs its edges require)."""
-    w = _small_rotations(*points, d)
-    if w is None:
-        return False
-    rel = (w[0], w[1] - w[0], -w[1])
+    omega1 - theta_l, omega2 - omega1, theta_r - omega2 of the signs its edges require; the
+    supports' rotations theta zero unless ``motions``, SupportMovement.rigid_motions of a
+    unit movement with a rotation)."""
+    if motions is None:
+        w = _small_rotations(*points, d)
+        if w is None:
+            return False
+        rel = (w[0], w[1] - w[0], -w[1])
+    else:
+        (tl, cl, ul), (tr, cr, ur) = motions
+        P1, _, P3 = points
+        # the small motions of h1 and h3 with their supports' bodies
+        w = _small_rotations(*points, (ur + tr * _perp(P3 - cr)) - (ul + tl * _perp(P1 - cl)))
+        if w is None:
+            return False
+        rel = (w[0] - tl, w[1] - w[0], tr - w[1])
     scale = max(abs(w[0]), abs(w[1]))
     return all(_EDGE_SIGN[h.edge] * r > 1e-9 * scale for h, r in zip(hinges, rel))
 
@@ -117,9 +138,55 @@ def _linkage(P1, P2, P3, d):
     return Q2, t1, t2
 
 
+def _build_rotated(arch: VoussoirArch, movement: SupportMovement, hinges, points):
+    """:func:`_build` where a support also turns: the bodies between a support and its nearer
+    hinge move with the support's rigid motion (SupportMovement.rigid_motions), h1 and h3 with
+    them, and the two middle bodies close the linkage between the moved h1 and h3 (h2 on the
+    branch continuous with the start)."""
+    (tl, cl, ul), (tr, cr, ur) = movement.rigid_motions(arch.joint_points)
+    P1, P2, P3 = (np.asarray(p, float) for p in points)
+    Q1 = _rot(tl) @ (P1 - cl) + cl + ul
+    Q3 = _rot(tr) @ (P3 - cr) + cr + ur
+    a, b = float(np.hypot(*(P2 - P1))), float(np.hypot(*(P3 - P2)))
+    D = float(np.hypot(*(Q3 - Q1)))
+    if not (abs(a - b) < D < a + b):
+        return None
+    e = (Q3 - Q1) / D
+    x = (a * a - b * b + D * D) / (2.0 * D)
+    h = math.sqrt(max(a * a - x * x, 0.0))
+    sigma = 1.0 if _cross(P3 - P1, P2 - P1) >= 0 else -1.0
+    Q2 = Q1 + x * e + sigma * h * _perp(e)
+    u, v = P2 - P1, Q2 - Q1
+    t1 = math.atan2(_cross(u, v), float(u @ v))
+    u, v = P3 - P2, Q3 - Q2
+    t2 = math.atan2(_cross(u, v), float(u @ v))
+    j1, j2, j3 = (h_.joint for h_ in hinges)
+    n = arch.n
+    angles, origins, images = np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2))
+    for i in range(n):
+        if i < j1:
+            angles[i], origins[i], images[i] = tl, cl, cl + ul
+        elif i < j2:
+            angles[i], origins[i], images[i] = t1, P1, Q1
+        elif i < j3:
+            angles[i], origins[i], images[i] = t2, P2, Q2
+        else:
+            angles[i], origins[i], images[i] = tr, cr, cr + ur
+    pts = ((j1, *Q1), (j2, *Q2), (j3, *Q3))
+    return DisplacedArch(arch, tuple(angles), tuple(origins), tuple(images), pts, movement,
+                         tuple(hinges))
+
+
+def _rot(a: float) -> np.ndarray:
+    c, s_ = math.cos(a), math.sin(a)
+    return np.array([[c, -s_], [s_, c]])
+
+
 def _build(arch: VoussoirArch, movement: SupportMovement, hinges, points):
     """The DisplacedArch of ``arch`` under ``movement`` with three hinges (base points);
     None where the linkage cannot close."""
+    if movement.rotation != 0.0:
+        return _build_rotated(arch, movement, hinges, points)
     ul, ur = movement.supports
     d = ur - ul
     P1, P2, P3 = (np.asarray(p, float) for p in points)
@@ -246,7 +313,7 @@ class DisplacementCapacity:
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "side": self.side, "capacity": float(self.capacity),
-                "fraction_of_span": float(self.fraction),
+                "fraction_of_span": None if self.fraction is None else float(self.fraction),
                 "hinges": [h.to_dict() for h in self.hinges],
                 "mechanism": [h.to_dict() for h in self.mechanism], "reason": self.reason,
                 "curve": {"movement": self.curve[:, 0].tolist(), "H": self.curve[:, 1].tolist(),
@@ -267,13 +334,47 @@ def _check(arch, movement):
     if not isinstance(movement, SupportMovement):
         raise ArchInputError(f"movement: expected a SupportMovement, got "
                              f"{type(movement).__name__}")
+    if (movement.rotation < 0.0 and movement.pivot_depth == 0.0 and movement.spread == 0.0
+            and movement.settlement == 0.0):
+        raise ArchInputError(
+            f"rotation: {movement.rotation:g} rad (inward) about the springing's outer end: the "
+            f"support turns away under the arch, which stays where it is on that corner (no "
+            f"hinge opens in it); allowed an outward rotation (> 0), or an inward one about a "
+            f"foot below the springing (pivot_depth > 0)")
 
 
-def _onset_lp(arch: VoussoirArch, d: np.ndarray):
-    """(x, line, touches, points) of the state the relative movement d selects."""
-    st = _statics(arch, "l")
-    scale = float(np.hypot(*d))
-    c = [float(d[0]) / scale, float(d[1]) / scale, 0.0, 0.0]
+def _work(arch: VoussoirArch, movement: SupportMovement) -> list:
+    """The objective of the onset's program: the work of the arch's forces on the supports
+    under ``movement``, linear in the redundants x (per total weight; module docstring, 1),
+    normalised.  Without rotation it is F_0 . d (d = u_right - u_left).  A support turning by
+    theta about its foot c adds theta times the moment about c of the force on it: the arch
+    pushes the right support with F_n and the left one with -F_0, and with lambda = 0 the
+    counter-clockwise moment about c of F_j is x[2] ref + (c_y - o_y) F_x - (c_x - o_x) F_y
+    plus a constant (o the program's origin, ref its length: statics.lp's joint-line form)."""
+    from .lp import _origin
+
+    d = movement.relative
+    if movement.rotation == 0.0:
+        scale = float(np.hypot(*d))
+        return [float(d[0]) / scale, float(d[1]) / scale, 0.0, 0.0]
+    (tl, cl, _), (tr, cr, _) = movement.rigid_motions(arch.joint_points)
+    o = np.asarray(_origin(arch), float)
+    ref = float(arch.reference_length)
+    c = np.array([d[0] + tr * (cr[1] - o[1]) - tl * (cl[1] - o[1]),
+                  d[1] - tr * (cr[0] - o[0]) + tl * (cl[0] - o[0]),
+                  ref * (tr - tl), 0.0])
+    return [float(v) for v in c / float(np.hypot(np.hypot(c[0], c[1]), c[2]))]
+
+
+def _onset_lp(arch: VoussoirArch, d: np.ndarray, c=None):
+    """(x, line, touches, points) of the state the relative movement d (or the objective c,
+    :func:`_work`) selects."""
+    if c is None:
+        st = _statics(arch, "l")
+        scale = float(np.hypot(*d))
+        c = [float(d[0]) / scale, float(d[1]) / scale, 0.0, 0.0]
+    else:  # the moments about the feet are the joint-line form's (statics.lp)
+        st = _statics(arch, "l", "joint-line")
     res = linprog(c=c, A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 3 + [(0.0, 0.0)],
                   method="highs")
     if res.status == 2:
@@ -299,18 +400,34 @@ def onset_hinges(arch: VoussoirArch, movement: SupportMovement) -> tuple[Hinge, 
     return _onset(arch, movement)[0]
 
 
+def _magnitude(arch, movement) -> float:
+    """The size of a movement [m]: |u_right - u_left|, and with a rotation hypot of that and
+    rotation x the arch's size (the metres a point one size from the foot moves)."""
+    d = float(np.hypot(*movement.relative))
+    if movement.rotation == 0.0:
+        return d
+    return float(np.hypot(d, movement.rotation * arch.size))
+
+
 def _onset(arch, movement):
     d = movement.relative
-    if not np.any(d):
+    rotating = movement.rotation != 0.0
+    if not np.any(d) and not rotating:
         return (), None, None
-    x, line, touches, _ = _onset_lp(arch, d)
+    motions = None
+    if rotating:
+        unit = movement.scaled(1.0 / _magnitude(arch, movement))
+        motions = unit.rigid_motions(arch.joint_points)
+        x, line, touches, _ = _onset_lp(arch, unit.relative, _work(arch, unit))
+    else:
+        x, line, touches, _ = _onset_lp(arch, d)
     jp = np.asarray(arch.joint_points, float)
     cands = []
     for trio in combinations(touches, 3):
         if len({h.joint for h in trio}) < 3:
             continue
         pts = [jp[h.joint, EDGES.index(h.edge)] for h in trio]
-        if _admissible(trio, pts, d):
+        if _admissible(trio, pts, None if rotating else d, motions):
             cands.append((trio, pts))
     if not cands:
         raise CannotStandError(
@@ -319,7 +436,8 @@ def _onset(arch, movement):
             f"of them open as a three-hinge arch under this movement")
     if len(cands) > 1:
         # the set under which the arch stands after a small step; then nearer the moving support
-        unit = movement.scaled(_TRIAL * arch.size / float(np.hypot(*d)))
+        unit = movement.scaled(_TRIAL * arch.size / (_magnitude(arch, movement) if rotating
+                                                     else float(np.hypot(*d))))
         moving_right = movement.side != "left"
 
         def key(c):
@@ -376,6 +494,10 @@ def _opening(disp: DisplacedArch) -> bool:
     j1, j2, _ = (h.joint for h in disp.hinges)
     t1, t2 = float(disp.angles[j1]), float(disp.angles[j2])
     rel = (t1, t2 - t1, -t2)
+    mv = disp.movement
+    if mv is not None and mv.rotation != 0.0:  # relative to the turned supports
+        (tl, _, _), (tr, _, _) = mv.rigid_motions(disp.base.joint_points)
+        rel = (t1 - tl, t2 - t1, tr - t2)
     return all(_EDGE_SIGN[h.edge] * r > 0 for h, r in zip(disp.hinges, rel))
 
 
@@ -504,7 +626,7 @@ def displace(arch: VoussoirArch, movement: SupportMovement) -> DisplacedState:
         return DisplacedState(movement, (), np.zeros((0, 2)), arch, None, math.nan, math.nan,
                               math.nan, 0.0, math.nan)
     d = movement.relative
-    if not np.any(d):
+    if not np.any(d) and movement.rotation == 0.0:
         # both supports settle alike: a rigid translation, no hinge opens
         ul, _ = movement.supports
         n = arch.n
@@ -512,11 +634,13 @@ def displace(arch: VoussoirArch, movement: SupportMovement) -> DisplacedState:
                              movement, ())
         return DisplacedState(movement, (), np.zeros((0, 2)), disp, None, math.nan, math.nan,
                               math.nan, float(-ul[1]), math.nan)
-    mag = float(np.hypot(movement.spread, movement.settlement))
+    if movement.rotation == 0.0:
+        mag = float(np.hypot(movement.spread, movement.settlement))
+    else:
+        mag = _magnitude(arch, movement)
     unit = movement.scaled(1.0 / mag)
     hinges, points, line0 = _onset(arch, unit)
-    rel = unit.relative / float(np.hypot(*unit.relative))
-    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    c_dir = _work(arch, unit)
     path = _follow(arch, unit, mag, c_dir, line0, hinges, points)
     if path.reason is not None:
         raise CannotStandError(
@@ -535,32 +659,99 @@ def _span(arch) -> float:
 
 
 def displacement_capacity(arch: VoussoirArch, kind: str = "spread",
-                          side: str = "right") -> DisplacementCapacity:
-    """The movement of ``kind`` ("spread", "closure", "settlement", "heave") on ``side``
+                          side: str = "right", pivot_depth: float = 0.0) -> DisplacementCapacity:
+    """The movement of ``kind`` ("spread", "closure", "settlement", "heave", or "rotation":
+    outward, about the foot ``pivot_depth`` [m] below the springing's outer end) on ``side``
     ("right", "left", "both") at which ``arch`` can no longer stand (module docstring, 4),
-    with its mechanism and the curve of thrust, reactions and crown drop against the movement.
-    Bounded: an arch still standing at MAX_MOVEMENT sizes reports that bound (reason
+    with its mechanism and the curve of thrust, reactions and crown drop against the movement
+    (in m; for "rotation" in rad, and its ``fraction`` is None).  Bounded: an arch still
+    standing at MAX_MOVEMENT sizes (for rotation: MAX_ROTATION) reports that bound (reason
     "bound")."""
-    if kind not in CAPACITY_KINDS:
-        raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(CAPACITY_KINDS)}")
+    if kind not in CAPACITY_KINDS and kind != "rotation":
+        raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(CAPACITY_KINDS)}, rotation")
     if side not in SIDES:
         raise ArchInputError(f"side: {side!r}; allowed 'right', 'left' or 'both'")
+    if kind == "rotation":
+        # t in metres: the unit turns 1 / size rad per metre (a point one size from the foot
+        # moves 1 m), so the steps and the tolerance are the translations'; reported in rad
+        unit = SupportMovement(0.0, 0.0, side, 1.0 / arch.size, pivot_depth)
+        _check(arch, unit)
+        return _capacity(arch, unit, kind, arch.size,
+                         min(MAX_MOVEMENT * arch.size, MAX_ROTATION * arch.size))
     s, v = CAPACITY_KINDS[kind]
     unit = SupportMovement(s, v, side)
     _check(arch, unit)
     if not np.any(unit.relative):
         raise ArchInputError(f"kind: {kind!r} on both supports is a rigid translation of the "
                              f"arch; allowed 'spread' or 'closure' with side 'both'")
+    return _capacity(arch, unit, kind)
+
+
+def movement_capacity(arch: VoussoirArch, movement: SupportMovement) -> DisplacementCapacity:
+    """The displacement capacity along ``movement``'s direction (spread and settlement in its
+    proportions, on its side): ``capacity`` is the magnitude hypot(spread, settlement) [m] at
+    which ``arch`` can no longer stand, so capacity / that of ``movement`` is how many times the
+    movement the arch takes (the assessment's "capacity remaining").  ``kind`` is the
+    :data:`CAPACITY_KINDS` name of a pure movement, else "combined"."""
+    _check(arch, movement)
+    if not np.any(movement.relative) and movement.rotation == 0.0:
+        raise ArchInputError(f"movement: {movement.describe()} is a rigid translation of the "
+                             f"arch (no hinge opens, no capacity); allowed a movement that "
+                             f"deforms it")
+    if movement.spread == 0.0 and movement.settlement == 0.0:
+        cap = displacement_capacity(arch, "rotation", movement.side, movement.pivot_depth)
+        if movement.rotation > 0:
+            return cap
+        return _capacity(arch, SupportMovement(0.0, 0.0, movement.side, -1.0 / arch.size,
+                                               movement.pivot_depth), "rotation inward",
+                         arch.size, MAX_ROTATION * arch.size)
+    mag = movement_size(arch, movement)
+    unit = movement.scaled(1.0 / mag)
+    kind = next((k for k, (a, b) in CAPACITY_KINDS.items()
+                 if a == unit.spread and b == unit.settlement and unit.rotation == 0.0),
+                "combined")
+    return _capacity(arch, unit, kind)
+
+
+def movement_size(arch: VoussoirArch, movement: SupportMovement) -> float:
+    """The size of ``movement`` in the units of :func:`movement_capacity`'s capacity: |rotation|
+    [rad] for a rotation alone, hypot(spread, settlement) [m] for a translation, and with both
+    hypot(spread, settlement, rotation x the arch's size) [m]."""
+    if movement.spread == 0.0 and movement.settlement == 0.0 and movement.rotation != 0.0:
+        return abs(movement.rotation)
+    if movement.rotation == 0.0:
+        return float(np.hypot(movement.spread, movement.settlement))
+    return float(np.hypot(np.hypot(movement.spread, movement.settlement),
+                          movement.rotation * arch.size))
+
+
+def _capacity(arch, unit: SupportMovement, kind: str, per: float = 1.0,
+              bound: float | None = None) -> DisplacementCapacity:
+    """The capacity along ``unit``, reported in units of 1 / ``per`` of its parameter (per =
+    the size for a rotation: rad), followed up to ``bound`` (default MAX_MOVEMENT sizes)."""
+    side = unit.side
     hinges, points, line0 = _onset(arch, unit)
-    rel = unit.relative / float(np.hypot(*unit.relative))
-    c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
-    path = _follow(arch, unit, MAX_MOVEMENT * arch.size, c_dir, line0, hinges, points)
+    if unit.rotation == 0.0:
+        rel = unit.relative / float(np.hypot(*unit.relative))
+        c_dir = [float(rel[0]), float(rel[1]), 0.0, 0.0]
+    else:
+        c_dir = _work(arch, unit)
+    path = _follow(arch, unit, MAX_MOVEMENT * arch.size if bound is None else bound, c_dir,
+                   line0, hinges, points)
     how = (f"hinges from the LP (HiGHS) that minimises the work on the moving support; exact "
            f"two-bar linkage; followed in steps of size/{STEPS} with hinge migration, the "
            f"capacity bisected to {BISECT_TOL:g} of the size")
-    return DisplacementCapacity(kind, side, float(path.end), float(path.end) / _span(arch),
-                                tuple(hinges), path.mechanism, path.reason or "bound",
-                                np.array(path.rows), how, tuple(path.sets))
+    if per == 1.0:
+        return DisplacementCapacity(kind, side, float(path.end), float(path.end) / _span(arch),
+                                    tuple(hinges), path.mechanism, path.reason or "bound",
+                                    np.array(path.rows), how, tuple(path.sets))
+    rows = np.array(path.rows)
+    rows[:, 0] /= per
+    how += (f"; the support turned about its foot {unit.pivot_depth:g} m below the springing's "
+            f"outer end, 1 / size rad per step unit")
+    return DisplacementCapacity(kind, side, float(path.end) / per, None, tuple(hinges),
+                                path.mechanism, path.reason or "bound", rows, how,
+                                tuple((t / per, hs) for t, hs in path.sets))
 
 
 def closing_hinges(arch: DisplacedArch, mechanism) -> tuple[int, ...]:
@@ -643,3 +834,106 @@ def gap_closing(arch: DisplacedArch) -> GapClosing | None:
     if not (shut_l or shut_r):
         return None
     return GapClosing(r.k_l, r.k_r, shut_l, shut_r)
+
+
+# ---------------------------------------------------------------------------- studies
+def moved_parts(arch: VoussoirArch) -> tuple[VoussoirArch, SupportMovement | None]:
+    """(base arch, movement) of an arch on moved supports as the studies take it (the
+    re-closed arch of :func:`on_moved_supports`, e.g. from ``--spread``/``--settlement``), or
+    (arch, None) for an arch on fixed supports.  A displaced arch with open point contacts
+    (``displace(...).arch``) is refused: the analyses take it re-closed (docs/supports.md)."""
+    if not isinstance(arch, DisplacedArch):
+        return arch, None
+    if arch.point_joints:
+        raise ArchInputError(f"nominal: {arch.name!r} has open joints as point contacts; allowed "
+                             f"the arch re-closed on its moved supports "
+                             f"(statics.supports.on_moved_supports(base, movement) or "
+                             f"reclosed(displace(...).arch)), as every analysis takes it")
+    if arch.movement is None:
+        raise ArchInputError(f"nominal: {arch.name!r} is displaced without a recorded support "
+                             f"movement; allowed an arch of on_moved_supports(base, movement)")
+    return arch.base, arch.movement
+
+
+#: How a study's random arches take the support movement: all of it, or U_i x it.
+SUPPORT_DRAWS = ("fixed", "uniform")
+
+
+@dataclass(frozen=True, eq=False)
+class MovedSampler(ArchSampler):
+    """The random arches of a study around a nominal arch on moved supports: sample i is
+    ``ArchSampler(nominal, spreads, seed).arch(i)`` (``nominal`` is the base arch, on fixed
+    supports) moved by ``movement`` (``support_draw='fixed'``) or by U_i x ``movement``
+    (``'uniform'``, U_i of :meth:`ArchSampler.movement_fractions`), and re-closed
+    (:func:`on_moved_supports`): the same arch as sample i of an ensemble with
+    ``EnsembleConfig(support=movement, support_draw=...)``.  A draw that cannot stand on its
+    moved supports is an InvalidSampleError ("cannot stand on its moved supports"), which the
+    studies leave out as "cannot stand"."""
+
+    movement: SupportMovement | None = None
+    support_draw: str = "fixed"
+
+    def __post_init__(self):
+        super().__post_init__()
+        if not isinstance(self.movement, SupportMovement):
+            raise ArchInputError(f"movement: expected a SupportMovement, got "
+                                 f"{type(self.movement).__name__}")
+        if self.support_draw not in SUPPORT_DRAWS:
+            raise ArchInputError(f"support_draw: {self.support_draw!r}; allowed "
+                                 f"{', '.join(SUPPORT_DRAWS)}")
+
+    @property
+    def moved_nominal(self) -> VoussoirArch:
+        """The nominal arch on the whole movement, as the study analyses it."""
+        return on_moved_supports(self.nominal, self.movement)
+
+    def movements(self, start: int, count: int) -> list:
+        """The support movement of samples start .. start + count - 1."""
+        if self.support_draw == "fixed":
+            return [self.movement] * int(count)
+        return [self.movement.scaled(float(u)) for u in self.movement_fractions(start, count)]
+
+    def arch(self, index: int) -> VoussoirArch:
+        return _moved_sample(super().arch(index), self.movements(index, 1)[0])
+
+    def arches(self, start: int, count: int) -> list:
+        return [a if isinstance(a, Exception) else _moved_sample(a, mv, raise_=False)
+                for a, mv in zip(super().arches(start, count), self.movements(start, count))]
+
+    def to_dict(self) -> dict:
+        d = super().to_dict()
+        d["support"] = self.movement.to_dict()
+        if self.support_draw != "fixed":
+            d["support_draw"] = self.support_draw
+        return d
+
+
+def _moved_sample(arch, movement, raise_=True):
+    """``arch`` on ``movement`` re-closed, or the InvalidSampleError saying it cannot stand
+    there (raised, or returned with ``raise_=False``, as ArchSampler.arches does)."""
+    from ..errors import ArchrockError, InvalidSampleError
+
+    try:
+        return on_moved_supports(arch, movement)
+    except ArchrockError as exc:
+        err = InvalidSampleError(f"cannot stand on its moved supports ({movement.describe()}): "
+                                 f"{' '.join(str(exc).split())}")
+    if raise_:
+        raise err
+    return err
+
+
+def study_sampler(nominal: VoussoirArch, spreads=None, seed: int = 0,
+                  support_draw: str = "fixed") -> ArchSampler:
+    """The sampler of a study's random arches around ``nominal``: an
+    :class:`~archrock.geometry.sampling.ArchSampler` on fixed supports (the same object as
+    before, so every fixed-support study is unchanged bit for bit), or a :class:`MovedSampler`
+    around the base of a nominal on moved supports (:func:`moved_parts`)."""
+    base, mv = moved_parts(nominal)
+    spreads = Spreads.from_dict(spreads)
+    if mv is None:
+        if support_draw != "fixed":
+            raise ArchInputError(f"support_draw: {support_draw!r} needs an arch on moved "
+                                 f"supports (--spread/--settlement)")
+        return ArchSampler(nominal, spreads, seed)
+    return MovedSampler(base, spreads, seed, movement=mv, support_draw=support_draw)

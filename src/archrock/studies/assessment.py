@@ -400,6 +400,69 @@ def section_limit(ctx: Context) -> Section:
     return Section("limit", "Limit analysis (both directions)", blocks, data, head)
 
 
+@titled('supports', 'Supports that have moved')
+def section_supports(ctx: Context) -> Section | None:
+    """The arch on moved supports (docs/supports.md): the movement, the hinges it opened, the
+    multipliers on the displaced arch beside those on fixed supports, and the capacity that
+    remains along the movement's direction.  None (left out) on fixed supports."""
+    from ..statics.limit import limit_analysis
+    from ..statics.supports import (displace, gap_closing, moved_parts, movement_capacity,
+                                    movement_size)
+
+    base, mv = moved_parts(ctx.arch)
+    if mv is None:
+        return None
+    lim, fixed = ctx.limit, limit_analysis(base, verify=False)
+    st = displace(base, mv)
+    labels = ", ".join(f"{h.joint}{h.edge[0]}" for h in st.hinges) or "none (a rigid move)"
+    rows = [("k_l [g]", f"{fixed.k_l:.6f}", f"{lim.k_l:.6f}"),
+            ("k_r [g]", f"{fixed.k_r:.6f}", f"{lim.k_r:.6f}")]
+    data = {"movement": mv.to_dict(), "hinges": [h.to_dict() for h in st.hinges],
+            "points": st.points.tolist(), "fixed": {"k_l": fixed.k_l, "k_r": fixed.k_r},
+            "moved": {"k_l": lim.k_l, "k_r": lim.k_r}, "units": {"k": "g", "H": "N/m",
+                                                                 "movement": "m"}}
+    text = (f"The supports have moved: {mv.describe()}. Hinges {labels} opened; the arch is "
+            f"analysed on the displaced geometry with those joints bearing on whole faces again "
+            f"(re-closed, docs/supports.md), as every other section of this report takes it.")
+    if st.hinges:
+        rows.append(("thrust H [kN/m]", "-", f"{st.thrust / 1e3:.4g}"))
+        rows.append(("crown drop [m]", "0", f"{st.crown_drop:.4g}"))
+        data.update(H=st.thrust, crown_drop=st.crown_drop)
+    head = [("support movement", mv.describe())]
+    blocks = [Paragraph(text)]
+    if np.any(mv.relative) or mv.rotation:
+        cap = movement_capacity(base, mv)
+        mag = movement_size(base, mv)  # in the capacity's units: rad for a turn alone, else m
+        unit = "rad" if cap.fraction is None else "m"
+        left = cap.capacity - mag
+        mech = ", ".join(f"{h.joint}{h.edge[0]}" for h in cap.mechanism)
+        span = "" if cap.fraction is None else f"{100 * cap.fraction:.3g}% of the span; "
+        blocks.append(Paragraph(
+            f"Pushed further the same way, the arch stands up to {cap.capacity:.4g} {unit} of "
+            f"this movement ({span}{cap.reason}, hinges {mech}): {left:.4g} {unit} remain, "
+            f"{cap.capacity / mag:.3g} times the movement so far"
+            + (f" (a turn with a translation is measured as hypot(spread, settlement, rotation x "
+               f"{base.size:.4g} m), docs/supports.md)" if mv.rotation and unit == "m" else "")
+            + "."))
+        data["capacity"] = {k: v for k, v in cap.to_dict().items() if k != "curve"}
+        data["capacity_remaining"] = left
+        data["units"]["capacity"] = unit
+        head.append((f"support capacity remaining [{unit}]",
+                     f"{left:.4g} ({cap.capacity / mag:.3g} x the movement)"))
+        gc = gap_closing(ctx.arch)
+        if gc is not None:
+            shut = sorted(set(gc.closing_l) | set(gc.closing_r))
+            blocks.append(Paragraph(
+                f"Before those multipliers, the open joints' point contacts let the arch rock "
+                f"from k_l = {gc.k_l:.4g}, k_r = {gc.k_r:.4g} g, turning joint(s) "
+                f"{', '.join(map(str, shut))} back until their gaps close: a bounded motion, "
+                f"not a collapse."))
+            data["gap_closing"] = gc.to_dict()
+    blocks += [Table(("", "fixed supports", "moved supports"), tuple(rows)),
+               Figure("arch", f"{ctx.arch.name}: the arch on its moved supports.", ctx.arch)]
+    return Section("supports", "Supports that have moved", tuple(blocks), data, tuple(head))
+
+
 def _mu(x) -> str:
     return "no finite friction" if x is None else f"{x:.3f}"
 
@@ -781,7 +844,9 @@ def section_assumptions(ctx: Context) -> Section:
 #: The report's sections in order.  Optional ones (friction, defects, contact) say so when their
 #: module is absent; fragility appears only with records.
 SECTIONS: list[Callable[[Context], Section | None]] = [
-    section_geometry, section_limit, section_friction, section_impact, section_response,
+    section_geometry, section_limit,
+    section_supports,  # left out on fixed supports (docs/supports.md)
+    section_friction, section_impact, section_response,
     section_curves, section_defects, section_fragility, section_contact, section_codecheck,
     section_assumptions,
 ]

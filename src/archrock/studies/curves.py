@@ -39,7 +39,7 @@ from ..groundmotion import MAX_PGA_G, pulse, pulse_kind
 from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import left_out_summary, prepare_sample
 from ..dynamics.response import DynamicModel, prepare, respond
-from ..geometry.sampling import ArchSampler, Spreads
+from ..geometry.sampling import Spreads
 from .work import PROGRESS_S, check_work, response_cost_s
 
 __all__ = [
@@ -617,6 +617,8 @@ class EnsembleCurve:
     samples: tuple = ()
     n_requested: int = 0
     band_note: str | None = None
+    #: the support movement of every arch (its dict; docs/supports.md), None on fixed supports
+    support: dict | None = None
 
     def __post_init__(self):
         readonly_arrays(self)
@@ -637,6 +639,7 @@ class EnsembleCurve:
             "seed": self.seed, "spreads": self.spreads.to_dict(),
             "impact": self.impact.to_dict(), "cv": self.cv, "failed": [list(x) for x in self.failed],
             "nominal": self.nominal.to_dict(),
+            **({} if self.support is None else {"support": self.support}),
         }
 
 
@@ -700,7 +703,11 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
         raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
     samples = _check_int("samples", samples, 1)
     workers = _check_int("workers", workers, 1)
-    sampler = ArchSampler(nominal, Spreads.from_dict(spreads), seed)
+    from ..statics.supports import study_sampler
+
+    # on moved supports (a nominal of statics.supports.on_moved_supports) every random arch
+    # takes the movement too (docs/supports.md); on fixed supports the ArchSampler as before
+    sampler = study_sampler(nominal, Spreads.from_dict(spreads), seed)
     q = np.asarray(quantiles, dtype=float)
     if q.ndim != 1 or q.size == 0 or np.any(~np.isfinite(q)) or np.any((q < 0) | (q > 1)):
         raise ArchInputError(f"quantiles: {quantiles!r}; allowed numbers between 0 and 1")
@@ -774,4 +781,6 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
         bands, note = np.full_like(bands, np.nan), "not estimated: one usable arch"
     return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
                          sampler.seed, sampler.spreads, spec, resolved.cv, samples,
-                         failed, kept, requested, note)
+                         failed, kept, requested, note,
+                         None if getattr(sampler, "movement", None) is None
+                         else sampler.movement.to_dict())

@@ -40,7 +40,7 @@ from ..groundmotion.intensity import IM_NAMES, im_at, im_units, intensity, parse
 from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import PreparedArches, left_out_summary, prepare_many
 from ..dynamics.response import DynamicModel, prepare, respond
-from ..geometry.sampling import ArchSampler, Spreads
+from ..geometry.sampling import Spreads
 from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
                    response_cost_s)
 
@@ -149,8 +149,13 @@ def random_models(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads |
     """
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ArchInputError(f"samples: {samples!r}; allowed an integer >= 1")
-    sampler = ArchSampler(nominal, Spreads.from_dict(spreads), seed)
-    return prepare_many(sampler, int(samples), ImpactSpec.parse(impact, literal=literal_cv))
+    from ..statics.supports import MovedSampler, study_sampler
+
+    sampler = study_sampler(nominal, Spreads.from_dict(spreads), seed)
+    spec = ImpactSpec.parse(impact, literal=literal_cv)
+    if isinstance(sampler, MovedSampler):  # the c_v of the nominal as analysed (moved), as the
+        spec = spec.resolved(nominal)      # ensemble on moved supports takes it
+    return prepare_many(sampler, int(samples), spec)
 
 
 def _check_analyses(what, recs, n_models, per_pair, n_boot, fit_s) -> float:

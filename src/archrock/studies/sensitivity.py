@@ -19,6 +19,10 @@ S1 (the share of the output's variance explained by the group alone) and the tot
 thickness, radius, tilt), ``voussoir`` (the three draws of each voussoir; each tilted joint its
 own group) or ``input`` (every draw alone).
 
+On moved supports (a nominal of :func:`archrock.statics.supports.on_moved_supports`, e.g.
+``--spread``), the arches are drawn around the base arch and one more input, ``support`` on
+[-1, 1], sets the fraction (x + 1) / 2 of the movement each arch takes (docs/supports.md).
+
 Outputs: k_l, k_r, k = min(k_l, k_r) [g] and, with a ground motion (default: the paper's
 pulse, a = -1 g, t_p = 0.2 s), the collapse indicator (1 collapsed, 0 not), whose mean is the
 collapse probability.  An arch that cannot stand counts as k = 0 and collapsed (Sobol indices
@@ -173,6 +177,8 @@ class SobolResult:
     impact: dict | None = None
     seconds: dict = field(default_factory=dict)
     method: str = ""
+    #: the support movement (its dict) whose fraction is the input 'support'; None: fixed
+    support: dict | None = None
 
     def __post_init__(self):
         readonly_arrays(self)
@@ -209,14 +215,16 @@ class SobolResult:
                 "samples": self.samples, "runs": self.runs, "unusable": self.unusable,
                 "seed": self.seed, "conf_level": self.conf_level, "motion": self.motion,
                 "impact": self.impact, "outputs": per, "seconds": self.seconds,
-                "method": self.method}
+                "method": self.method, **({} if self.support is None else
+                                          {"support": self.support})}
 
 
 def _groups(layout, by: str):
     if by == "kind":
         return [kind for _, kind, _, _, _ in layout]
     if by == "voussoir":
-        return [f"voussoir {i}" if kind != "tilt" else f"joint {i}" for _, kind, i, _, _ in layout]
+        return ["support" if kind == "support" else f"voussoir {i}" if kind != "tilt"
+                else f"joint {i}" for _, kind, i, _, _ in layout]
     return [name for name, _, _, _, _ in layout]
 
 
@@ -232,6 +240,28 @@ def _r2(x: np.ndarray, y: np.ndarray) -> float:
     a = np.column_stack([np.ones(len(x)), x])
     coef, *_ = np.linalg.lstsq(a, y, rcond=None)
     return float(1.0 - np.var(y - a @ coef) / var)
+
+
+def _moved_arches(base, spreads, movement, x) -> list:
+    """The arches of input rows ``x`` whose last column is the support input: the random arch
+    of the other columns around ``base`` (:func:`arches_from_inputs`) on the supports moved by
+    (x + 1) / 2 times ``movement``, re-closed; an InvalidSampleError where the draw is no arch
+    or cannot stand on its moved supports."""
+    from ..statics.supports import _moved_sample
+
+    drawn = arches_from_inputs(base, spreads, x[:, :-1])
+    if isinstance(base, Arch):
+        spans, thick, radii = drawn
+        drawn = []
+        for b in range(len(x)):
+            try:
+                drawn.append(Arch(spans[b], radii[b], thick[b], base.density, name=f"run {b}"))
+            except ArchInputError as exc:
+                drawn.append(InvalidSampleError(f"not a valid arch: {exc}"))
+    frac = 0.5 * (np.asarray(x, float)[:, -1] + 1.0)
+    return [a if isinstance(a, Exception) else
+            _moved_sample(a, movement.scaled(float(f)), raise_=False)
+            for a, f in zip(drawn, frac)]
 
 
 def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resamples: int = 200
@@ -289,13 +319,20 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     from ..dynamics.impact import ImpactSpec
     from ..dynamics.response import default_steps
 
+    from ..statics.supports import moved_parts
+
     spreads = Spreads.from_dict(spreads)
-    if not (spreads.span or spreads.thickness or spreads.radius or spreads.tilt):
+    # on moved supports: the random arches are drawn around the base arch, and the movement is
+    # one more input, the fraction (x + 1) / 2 of it that each arch takes (_moved_arches)
+    base, movement = moved_parts(nominal)
+    if not (spreads.span or spreads.thickness or spreads.radius or spreads.tilt or movement):
         raise ArchInputError("spreads: all 0 (span, thickness, radius, tilt); allowed at least one "
                              "spread > 0 (--spread-span, --spread-thickness, --spread-radius or "
                              "--spread-tilt): with none every arch is the nominal one and there "
                              "is no variance to share out")
-    layout = input_layout(nominal, spreads)
+    layout = input_layout(base, spreads)
+    if movement is not None:
+        layout = layout + [("support", "support", 0, -1, -1)]
     if by not in GROUPINGS:
         raise ArchInputError(f"by: {by!r}; allowed {', '.join(GROUPINGS)}")
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 16 \
@@ -339,12 +376,13 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     for start in range(0, runs, _CHUNK):
         sl = slice(start, min(runs, start + _CHUNK))
         ta = time.perf_counter()
-        arches = arches_from_inputs(nominal, spreads, x[sl])
-        if isinstance(nominal, Arch):
-            spans, thick, radii = arches
+        if movement is not None:
+            pb = prepare_batch(_moved_arches(base, spreads, movement, x[sl]), impact=resolved)
+        elif isinstance(nominal, Arch):
+            spans, thick, radii = arches_from_inputs(nominal, spreads, x[sl])
             pb = prepare_batch(spans, radii, thick, nominal.density, impact=resolved)
         else:
-            pb = prepare_batch(arches, impact=resolved)
+            pb = prepare_batch(arches_from_inputs(nominal, spreads, x[sl]), impact=resolved)
         tb = time.perf_counter()
         ok[sl] = pb.ok
         k_l[sl] = np.where(pb.ok, pb.k_l, 0.0)
@@ -380,9 +418,14 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
            f"calc_second_order=False), {int(samples)} base samples x ({G} groups + 2) = {runs} "
            f"arches through archrock.dynamics.batch; SALib.analyze.sobol with {int(num_resamples)} "
            f"bootstrap resamples, {conf_level:.0%} intervals")
+    if movement is not None:
+        how += (f"; the supports moved by U x ({movement.describe()}), U = (x + 1) / 2 the input "
+                f"'support', each arch displaced and re-closed "
+                f"(statics.supports.on_moved_supports)")
     return SobolResult(
         nominal.name, spreads, by, tuple(ys), tuple(names), s1, s1c, st, stc, mean, var, r2,
         int(samples), runs, int((~ok).sum()), int(seed), float(conf_level),
         None if motion is None else {**motion.to_dict(), "description": motion.describe()},
         {**spec.to_dict(), "description": spec.describe()},
-        {"prepare": t_prep, "simulate": t_sim, "analyse": t_analyse}, how)
+        {"prepare": t_prep, "simulate": t_sim, "analyse": t_analyse}, how,
+        None if movement is None else movement.to_dict())
