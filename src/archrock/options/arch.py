@@ -116,12 +116,13 @@ def supports_from_args(args, arch):
 
     try:
         mv = SupportMovement(**{"spread": 0.0, "settlement": 0.0, "side": "right", **given})
+        # the analyses take the displaced geometry with its open joints bearing on whole faces:
+        # a mechanism that turns an open joint back only closes its gap (docs/supports.md, "One
+        # answer: the re-closed arch"); limit reports that bounded motion beside it.  A
+        # movement the arch cannot follow is refused here too, by its flag.
+        return on_moved_supports(arch, mv)  # the arch itself at zero movement
     except ArchInputError as exc:
         worded = flag_message(str(exc), "SupportMovement")
         if worded is not None:
             raise ArchInputError(worded) from None
         raise
-    # the analyses take the displaced geometry with its open joints bearing on whole faces: a
-    # mechanism that turns an open joint back only closes its gap (docs/supports.md, "One
-    # answer: the re-closed arch"); limit reports that bounded motion beside it
-    return on_moved_supports(arch, mv)  # the arch itself at zero movement
