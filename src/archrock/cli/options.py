@@ -207,9 +207,11 @@ def _undamaged_arch_from_args(args: argparse.Namespace):
 
 
 # ---------------------------------------------------------------------------- random arches
-def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False) -> argparse.ArgumentParser:
+def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
+                       piers: bool = False) -> argparse.ArgumentParser:
     """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths),
-    and with ``tilt`` --spread-tilt (joint tilt of family arches, degrees)."""
+    with ``tilt`` --spread-tilt (joint tilt of family arches, degrees), with ``piers`` the
+    pier spreads --spread-pier-lean/-width/-height/-course (docs/piers.md, Irregular piers)."""
     p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
                    help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
     p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
@@ -221,6 +223,13 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False) -> argpar
                        help="half-width of the tilt of each interior joint [deg] about its "
                             "centreline point, 0 <= tilt < 45 (default 0); an arch of a family "
                             "(--shape ...) other than the exact circular Arch")
+    if piers:  # an arch on piers: each pier drawn on its own (geometry.sampling.PIER_SPREADS)
+        from ..geometry.sampling import PIER_SPREADS
+
+        for name, hi, closed, what in PIER_SPREADS:
+            p.add_argument("--spread-" + name.replace("_", "-"), type=finite_float, default=0.0,
+                           metavar="S", help=f"on piers: {what}, 0 <= s {'<=' if closed else '<'}"
+                                             f" {hi:g} (default 0)")
     return p
 
 
@@ -230,15 +239,25 @@ def add_random_arches_options(p: argparse.ArgumentParser,
     of a study (curves, fragility)."""
     p.add_argument("--samples", type=non_negative_int, default=0, metavar="N", help=samples_help)
     p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    return add_spread_options(p, tilt=True)
+    return add_spread_options(p, tilt=True, piers=True)
 
 
 def spreads(args: argparse.Namespace):
     """The :class:`~archrock.geometry.sampling.Spreads` of :func:`add_spread_options`."""
-    from ..geometry.sampling import Spreads
+    from ..errors import ArchInputError
+    from ..geometry.sampling import PIER_SPREADS, Spreads
 
-    return Spreads(args.spread_span, args.spread_thickness, args.spread_radius,
-                   getattr(args, "spread_tilt", 0.0))
+    pier = {name: getattr(args, "spread_" + name, 0.0) for name, *_ in PIER_SPREADS}
+    try:
+        return Spreads(args.spread_span, args.spread_thickness, args.spread_radius,
+                       getattr(args, "spread_tilt", 0.0), **pier)
+    except ArchInputError as exc:  # the flag's name, not the field's
+        msg = str(exc)
+        for name, *_ in PIER_SPREADS:
+            if msg.startswith(name + ":"):
+                raise ArchInputError("--spread-" + name.replace("_", "-") + msg[len(name):]) \
+                    from None
+        raise
 
 
 # ---------------------------------------------------------------------------- ground motion

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import Load, VoussoirArch, _check_scalar
-from .polygon import PolygonArch
+from .polygon import PolygonArch, _signed_area, _simple
 
 __all__ = ["ArchOnPiers", "with_piers", "MAX_COURSES", "BLOCK_KINDS", "MAX_BATTER",
            "joint_place", "hinge_place", "lean_pier", "reshape_piers", "pier_sizes", "MAX_LEAN",
@@ -494,13 +494,16 @@ def _check_lean(name: str, value) -> float:
 
 
 def reshape_piers(arch, kinds, left: dict | None = None, right: dict | None = None,
-                  name: str | None = None) -> ArchOnPiers:
+                  name: str | None = None, _trusted: bool = False) -> ArchOnPiers:
     """``arch`` (a polygon arch whose blocks have the ``kinds``, e.g. an ArchOnPiers or a
     sample drawn around one) with its piers changed: ``left`` / ``right`` dicts of
     ``width`` and ``height`` factors, ``shifts`` (the interior bed joints' moves [m], foot up)
     and ``lean`` [deg, outward positive] (docs/piers.md, Irregular piers).  Applied to the
     left pier, then to the right one (in the mirror image); an empty change leaves a side
-    as it was, to the bit."""
+    as it was, to the bit.  ``_trusted`` (the sampler, ``arch`` a checked polygon arch): only
+    the changed piers' blocks are checked as polygons (the voussoirs, moved by a lean's
+    near-rigid map, are not checked again: a draw with a 0.8 m voussoir would need to turn
+    it by far more than the 15 degrees allowed to fold it)."""
     if len(kinds) != arch.n:
         raise ArchInputError(f"kinds: {len(kinds)} for {arch.n} blocks; allowed one per block")
     lrun, rrun = _pier_runs(kinds)
@@ -521,6 +524,13 @@ def reshape_piers(arch, kinds, left: dict | None = None, right: dict | None = No
                               side=side, **change)
         if side == "right":
             intr, extr, loads = _mirror(intr, extr, loads, n)
+    if _trusted and isinstance(arch, PolygonArch):
+        for i in lrun + rrun:  # each pier block: a simple polygon of positive area
+            poly = np.vstack([intr[i], extr[i][::-1]])
+            if not _simple(poly) or _signed_area(poly) <= 1e-12 * arch.size ** 2:
+                raise ArchInputError(f"voussoirs[{i}]: the changed pier block is not a simple "
+                                     f"polygon of positive area")
+        return _unchecked(intr, extr, arch.density, name or arch.name, loads, kinds)
     return ArchOnPiers(tuple(intr), tuple(extr), arch.density, name or arch.name, tuple(loads),
                        block_kinds=tuple(kinds))
 

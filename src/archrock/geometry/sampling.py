@@ -38,10 +38,15 @@ from ..errors import ArchInputError, InvalidSampleError
 from . import Arch, FamilyArch, PolygonArch, VoussoirArch, perturb_voussoirs
 from .families import perturb_family
 
-__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS"]
+__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS", "PIER_SPREADS"]
 
 #: Samples per random stream.
 BLOCK = 500
+#: The pier spreads: (field, upper bound, bound included, what it is).
+PIER_SPREADS = (("pier_lean", 15.0, True, "degrees out of plumb, U x s, outward positive"),
+                ("pier_width", 1.0, False, "the pier's width times 1 + U s"),
+                ("pier_height", 1.0, False, "the pier's height times 1 + U s"),
+                ("pier_course", 0.5, False, "bed joints moved by U s course heights"))
 
 
 @dataclass(frozen=True)
@@ -53,14 +58,33 @@ class Spreads:
     of a family arch rotated about its centreline point by U x tilt (0: joints as the family's).
     Frozen; ``to_dict``/``from_dict`` use the keys spread_span, spread_thickness,
     spread_radius and spread_tilt_deg (the command-line names); spread_tilt_deg is written only
-    when the tilt is not 0, so configurations without tilt (and their hashes) are 0.1.0's."""
+    when the tilt is not 0, so configurations without tilt (and their hashes) are 0.1.0's.
+
+    Piers (an arch on piers only; docs/piers.md, Irregular piers), each pier drawn on its own:
+    ``pier_lean`` [deg], 0 <= s <= 15: the pier out of plumb by U x s (outward positive);
+    ``pier_width`` and ``pier_height``, 0 <= s < 1: its width and height times (1 + U s);
+    ``pier_course``, 0 <= s < 0.5: each interior bed joint moved up or down by U s x the
+    pier's mean course height.  Written (keys: the field names) only when not 0."""
 
     span: float = 0.1
     thickness: float = 0.1
     radius: float = 0.05
     tilt: float = 0.0
+    pier_lean: float = 0.0
+    pier_width: float = 0.0
+    pier_height: float = 0.0
+    pier_course: float = 0.0
 
     def __post_init__(self):
+        for name, hi, closed, what in PIER_SPREADS:
+            v = getattr(self, name)
+            ok = not isinstance(v, bool) and isinstance(v, (int, float, np.integer, np.floating)) \
+                and math.isfinite(float(v)) and 0.0 <= float(v) and \
+                (float(v) <= hi if closed else float(v) < hi)
+            if not ok:
+                raise ArchInputError(f"{name}: {v!r}; allowed 0 <= {name} "
+                                     f"{'<=' if closed else '<'} {hi:g} ({what})")
+            object.__setattr__(self, name, float(v))
         v = self.tilt
         if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or \
                 not (math.isfinite(float(v)) and 0.0 <= float(v) < 45.0):
@@ -81,7 +105,15 @@ class Spreads:
              "spread_radius": self.radius}
         if self.tilt:
             d["spread_tilt_deg"] = self.tilt
+        for name, *_ in PIER_SPREADS:
+            if getattr(self, name):
+                d[name] = getattr(self, name)
         return d
+
+    @property
+    def piers(self) -> bool:
+        """Whether any pier spread is not 0."""
+        return any(getattr(self, name) for name, *_ in PIER_SPREADS)
 
     @classmethod
     def from_dict(cls, data) -> "Spreads":
@@ -93,7 +125,7 @@ class Spreads:
             raise ArchInputError(f"spreads: {data!r}; allowed an object with spread_span, "
                                  f"spread_thickness, spread_radius")
         keys = {"spread_span": "span", "spread_thickness": "thickness", "spread_radius": "radius",
-                "spread_tilt_deg": "tilt"}
+                "spread_tilt_deg": "tilt", **{name: name for name, *_ in PIER_SPREADS}}
         unknown = set(data) - set(keys)
         if unknown:
             raise ArchInputError(f"spreads: unknown key(s) {sorted(unknown)}; allowed "
@@ -147,6 +179,15 @@ class ArchSampler:
             raise ArchInputError(f"nominal: expected an Arch or a FamilyArch, got "
                                  f"{type(a).__name__}")
 
+        if self.spreads.piers and not getattr(a, "pier_blocks", ()):
+            raise ArchInputError(self._no_piers())
+
+    def _no_piers(self) -> str:
+        given = ", ".join(f"{n} {getattr(self.spreads, n):g}" for n, *_ in PIER_SPREADS
+                          if getattr(self.spreads, n))
+        return (f"pier spreads: {given} for {self.nominal.name!r}, which stands on no piers; "
+                f"allowed 0 (pier spreads need an arch on piers: --pier-height/--pier-width)")
+
     @property
     def circular(self) -> bool:
         """Whether the nominal is a circular Arch (draws as arrays, :meth:`draw`)."""
@@ -191,6 +232,48 @@ class ArchSampler:
         not change, and sample i's fraction depends on (seed, i) alone."""
         return self._stream(start, count, (), 0.0, (1,))
 
+    def pier_uniforms(self, start: int, count: int) -> np.ndarray:
+        """U on [-1, 1] of samples start .. start + count - 1 for their piers, shape (count, 2,
+        2 + C): per side (left, right) the lean, width, height and the C - 1 interior bed
+        joints' draws (C the most courses of a side).  Block k's stream is the child
+        ``SeedSequence(seed, spawn_key=(k, 2))``: the voussoirs' draws do not change."""
+        left, right = self.nominal.piers
+        return self._stream(start, count, (2, 2 + max(len(left), len(right))), -1.0, (2,))
+
+    def _pier_changes(self, u) -> dict:
+        """The changes of :func:`archrock.geometry.piers.reshape_piers` from one sample's pier
+        draws ``u`` (2, 2 + C)."""
+        s = self.spreads
+        left, right = self.nominal.piers
+        out = {}
+        for row, side, run in ((0, "left", left), (1, "right", right)):
+            if not run:
+                continue
+            jp = self.nominal.joint_points
+            if side == "left":
+                top, foot = jp[len(run)], jp[0]
+            else:
+                top, foot = jp[self.nominal.n - len(run)], jp[self.nominal.n]
+            course = (float(min(top[:, 1])) - float(max(foot[:, 1]))) / len(run)
+            out[side] = {"lean": s.pier_lean * u[row, 0], "width": 1.0 + s.pier_width * u[row, 1],
+                         "height": 1.0 + s.pier_height * u[row, 2],
+                         "shifts": s.pier_course * course * u[row, 3:3 + len(run) - 1]
+                         if s.pier_course and len(run) > 1 else None}
+        return out
+
+    def _with_piers(self, arch, index: int):
+        """A drawn arch with its piers drawn too (pier spreads not 0), else ``arch``."""
+        if not self.spreads.piers:
+            return arch
+        from .piers import reshape_piers
+
+        ch = self._pier_changes(self.pier_uniforms(index, 1)[0])
+        try:
+            return reshape_piers(arch, self.nominal.block_kinds, ch.get("left"),
+                                 ch.get("right"), name=arch.name, _trusted=True)
+        except ArchInputError as exc:
+            raise InvalidSampleError(f"not a valid arch: {exc}") from None
+
     def draw(self, start: int, count: int):
         """(spans [rad], thicknesses [m], radii [m]) of samples start .. start + count - 1,
         each of shape (count, n), for a circular nominal; nothing is validated (see :meth:`arch`;
@@ -221,10 +304,11 @@ class ArchSampler:
             from .survey import perturb_survey
 
             try:
-                return perturb_survey(self.nominal, u, s.thickness, s.radius,
-                                      name=f"sample {index}")
+                drawn = perturb_survey(self.nominal, u, s.thickness, s.radius,
+                                       name=f"sample {index}")
             except ArchInputError as exc:
                 raise InvalidSampleError(f"not a valid arch: {exc}") from None
+            return self._with_piers(drawn, index)
         from .batchdraw import compiled_drawing, draw_lines, family_plan
 
         if compiled_drawing(self):  # the same polylines as perturb_family, compiled
