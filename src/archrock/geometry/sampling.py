@@ -261,16 +261,17 @@ class ArchSampler:
                          if s.pier_course and len(run) > 1 else None}
         return out
 
-    def _with_piers(self, arch, index: int):
-        """A drawn arch with its piers drawn too (pier spreads not 0), else ``arch``."""
+    def _pier_nominal(self, index: int):
+        """The nominal arch on sample ``index``'s irregular piers (pier spreads not 0; the
+        voussoir draws are then applied to it), else the nominal itself."""
         if not self.spreads.piers:
-            return arch
+            return self.nominal
         from .piers import reshape_piers
 
         ch = self._pier_changes(self.pier_uniforms(index, 1)[0])
         try:
-            return reshape_piers(arch, self.nominal.block_kinds, ch.get("left"),
-                                 ch.get("right"), name=arch.name, _trusted=True)
+            return reshape_piers(self.nominal, self.nominal.block_kinds, ch.get("left"),
+                                 ch.get("right"), _trusted=True)
         except ArchInputError as exc:
             raise InvalidSampleError(f"not a valid arch: {exc}") from None
 
@@ -303,12 +304,18 @@ class ArchSampler:
         if getattr(self.nominal, "recipe", None) is None:  # a surveyed arch
             from .survey import perturb_survey
 
+            nominal = self._pier_nominal(index)
             try:
-                drawn = perturb_survey(self.nominal, u, s.thickness, s.radius,
+                drawn = perturb_survey(nominal, u, s.thickness, s.radius,
                                        name=f"sample {index}")
             except ArchInputError as exc:
                 raise InvalidSampleError(f"not a valid arch: {exc}") from None
-            return self._with_piers(drawn, index)
+            if nominal is self.nominal:
+                return drawn
+            from .piers import _unchecked  # a checked polygon arch: its kinds put back
+
+            return _unchecked(drawn.intrados, drawn.extrados, drawn.density, drawn.name,
+                              drawn.loads, nominal.block_kinds)
         from .batchdraw import compiled_drawing, draw_lines, family_plan
 
         if compiled_drawing(self):  # the same polylines as perturb_family, compiled
