@@ -87,7 +87,9 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                    help="a defect applied to the arch, repeatable: VOUSSOIR:thickness=F"
                         "[,side=intrados|extrados] (keeps F of its thickness, 0 < F < 1), "
                         "JOINT:tilt=DEG (-45 < DEG < 45) or JOINT:mortar=F[,side=extrados] "
-                        "(no mortar over F of the contact); docs/defects.md")
+                        "(no mortar over F of the contact); on piers pier-tilt=DEG"
+                        "[,side=left|right] (out of plumb, outward positive, |DEG| <= 15; "
+                        "docs/piers.md); docs/defects.md")
     g.add_argument("--pier-height", type=finite_float, metavar="H",
                    help="the arch on two piers: height [m] of each pier from its foundation to "
                         "the springing, > 0 (with --pier-width; docs/piers.md)")
@@ -105,6 +107,12 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
         g.add_argument(f"--right-pier-{what}", type=_int if what == "courses" else finite_float,
                        metavar=flag, help=f"the right pier's {what} where it differs from the "
                                           f"left one's (default: --pier-{what})")
+    for side in ("", "right-"):  # a stepped buttress (docs/piers.md)
+        g.add_argument(f"--{side}pier-steps", metavar="H:W,...",
+                       help=(f"the {side[:-1] or 'both'} pier{'s' if not side else ''} as a "
+                             f"stepped buttress: HEIGHT:WIDTH [m] per step from the foot up, "
+                             f"widths not growing upward (instead of --{side}pier-height/width)"
+                             if not side else "the right pier's steps where they differ"))
     add_support_options(parser)
     return parser
 
@@ -116,11 +124,19 @@ def arch_from_args(args: argparse.Namespace):
     (archrock.geometry.apply_defect), on the piers of --pier-height/--pier-width (an
     ArchOnPiers, archrock.geometry.with_piers); raises ArchInputError / CLIError on bad input."""
     arch = _undamaged_arch_from_args(args)
-    if getattr(args, "defect", None):
+    specs = list(getattr(args, "defect", None) or ())
+    # a pier tilt turns a pier: applied once the arch stands on its piers
+    tilts = [d for d in specs if isinstance(d, str) and "pier-tilt" in d]
+    if len(tilts) < len(specs):
         from ..geometry import apply_defects
 
-        arch = apply_defects(arch, args.defect)
-    return _supports_from_args(args, _piers_from_args(args, arch))
+        arch = apply_defects(arch, [d for d in specs if d not in tilts])
+    arch = _piers_from_args(args, arch)
+    if tilts:
+        from ..geometry import apply_defects
+
+        arch = apply_defects(arch, tilts)
+    return _supports_from_args(args, arch)
 
 
 def _piers_from_args(args: argparse.Namespace, arch):
@@ -134,6 +150,9 @@ def _piers_from_args(args: argparse.Namespace, arch):
              for k in ("height", "width", "courses", "batter")}
     others = [("--pier-courses", c), ("--pier-batter", b)] + \
         [(f"--right-pier-{k}", v) for k, v in right.items()]
+    st, st_r = getattr(args, "pier_steps", None), getattr(args, "right_pier_steps", None)
+    if st is not None or st_r is not None:
+        return _stepped_from_args(arch, h, w, others, st, st_r)
     if h is None and w is None and all(v is None for _, v in others):
         return arch
     if h is None or w is None:
@@ -159,6 +178,31 @@ def _piers_from_args(args: argparse.Namespace, arch):
                             ("width_right:", "--right-pier-width:"),
                             ("courses_right:", "--right-pier-courses:"),
                             ("batter_right:", "--right-pier-batter:")):
+            if msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
+
+
+def _stepped_from_args(arch, h, w, others, steps, steps_right):
+    """``arch`` on the stepped buttresses of --pier-steps/--right-pier-steps (docs/piers.md)."""
+    from ..errors import ArchInputError
+    from ..geometry import with_piers
+    from ..geometry.piers import parse_steps
+
+    given = [f for f, v in [("--pier-height", h), ("--pier-width", w)] + others if v is not None]
+    if steps is None or given:
+        raise CLIError(f"{'--pier-steps' if steps is None else given[0]}: "
+                       f"{'needed with --right-pier-steps' if steps is None else 'given with --pier-steps'}"
+                       f" (stepped piers take their heights and widths from the steps)")
+    sl = parse_steps(steps, "--pier-steps")
+    sr = None if steps_right is None else parse_steps(steps_right, "--right-pier-steps")
+    try:
+        return with_piers(arch, None, None, steps=sl, steps_right=sr)
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("steps_right", "--right-pier-steps"), ("steps", "--pier-steps"),
+                            ("width_right:", "--right-pier-steps: top step"),
+                            ("width:", "--pier-steps: top step")):
             if msg.startswith(field):
                 raise ArchInputError(flag + msg[len(field):]) from None
         raise
