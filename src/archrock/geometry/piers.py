@@ -28,7 +28,7 @@ from .polygon import PolygonArch, _signed_area, _simple
 
 __all__ = ["ArchOnPiers", "with_piers", "MAX_COURSES", "BLOCK_KINDS", "MAX_BATTER",
            "joint_place", "hinge_place", "lean_pier", "reshape_piers", "pier_sizes", "MAX_LEAN",
-           "parse_steps"]
+           "parse_steps", "arch_without_piers"]
 
 #: Most courses a pier may be cut into.
 MAX_COURSES = 200
@@ -596,3 +596,17 @@ def parse_steps(text: str, flag: str = "--pier-steps") -> tuple:
                                  f"pairs in metres, comma-separated, from the foot up "
                                  f"(e.g. 2:3,2:2.5,1:2)") from None
     return tuple(out)
+
+
+def arch_without_piers(arch: ArchOnPiers) -> PolygonArch:
+    """The voussoirs of an arch on piers as a polygon arch on rigid ground (its loads
+    renumbered), e.g. for :func:`archrock.statics.buttress.minimum_pier_width`."""
+    if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
+        return arch
+    left, right = arch.piers
+    vous = range(len(left), arch.n - len(right))
+    loads = tuple(Load(ld.voussoir - len(left), ld.mass, ld.at) for ld in arch.loads
+                  if ld.voussoir in vous)
+    return PolygonArch(tuple(arch.intrados[i] for i in vous),
+                       tuple(arch.extrados[i] for i in vous), arch.density,
+                       f"{arch.name} (voussoirs)", loads)

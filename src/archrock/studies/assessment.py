@@ -400,6 +400,90 @@ def section_limit(ctx: Context) -> Section:
     return Section("limit", "Limit analysis (both directions)", blocks, data, head)
 
 
+@titled('piers', 'The piers')
+def section_piers(ctx: Context) -> Section | None:
+    """An arch on piers (docs/piers.md): each pier's size, where the mechanisms' hinges are
+    (named as ``archrock limit`` names them), the least width of rectangular piers of that
+    height that carry the arch (statics.buttress), and whether the four-link model (one
+    degree of freedom) can follow the structure (dynamics.piers).  None (left out) on rigid
+    ground."""
+    from ..geometry.piers import ArchOnPiers, arch_without_piers, hinge_place, pier_sizes
+
+    arch = ctx.arch
+    if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
+        return None
+    sizes = pier_sizes(arch)
+    rows = tuple((side, sz["kind"], sz["blocks"], f"{sz['height']:.3f}",
+                  _f(sz["width_top"], ".3f"), f"{sz['width_foot']:.3f}")
+                 for side, sz in sizes.items())
+    words = "; ".join(f"{side} {sz['kind']} {sz['height']:.3g} m high, "
+                      f"{sz['width_top']:.3g} m wide at its top and {sz['width_foot']:.3g} m at "
+                      f"its foot, {sz['blocks']} block(s)" for side, sz in sizes.items())
+    blocks = [Paragraph(f"The arch stands on piers ({words}). Blocks are numbered from the "
+                        f"left pier's foot; hinges are named where they are on the drawing."),
+              Table(("pier", "kind", "blocks", "height [m]", "width at top [m]",
+                     "width at foot [m]"), rows)]
+    lim = ctx.limit
+    hinge_rows, at_piers = [], []
+    for d in ("l", "r"):
+        for lab, h in lim.mechanism(d).labelled():
+            place = hinge_place(arch, h.joint, h.edge)
+            hinge_rows.append((f"M_{d}", lab, f"{h.joint}{h.edge[0]}", place))
+            if "pier" in place or "buttress" in place:
+                at_piers.append(f"M_{d} {lab}: {place}")
+    blocks.append(Table(("mechanism", "hinge", "joint", "where"), tuple(hinge_rows),
+                        "The hinges of the limit mechanisms, named as archrock limit names "
+                        "them."))
+    data = {"piers": sizes, "hinges": [dict(zip(("mechanism", "hinge", "joint", "place"), r))
+                                       for r in hinge_rows],
+            "units": {"height": "m", "width_top": "m", "width_foot": "m", "foot_level": "m"}}
+    head = [("piers", words)]
+    if at_piers:
+        blocks.append(Paragraph("Hinges in the piers: " + "; ".join(at_piers) + "."))
+    # the buttress question: the least width of rectangular piers of this height
+    from ..statics.buttress import minimum_pier_width
+
+    mins = {}
+    for h in sorted({round(sz["height"], 9) for sz in sizes.values()}):
+        try:
+            mw = minimum_pier_width(arch_without_piers(arch), h, tol=1e-6)
+            mins[h] = {"width": mw.width, "governed_by": mw.governed_by}
+        except ArchrockError as exc:
+            mins[h] = {"width": None, "error": " ".join(str(exc).split())}
+    data["minimum_pier_width"] = [{"height": h, **v} for h, v in mins.items()]
+    txt = []
+    for side, sz in sizes.items():
+        m = mins[round(sz["height"], 9)]
+        if m["width"] is None:
+            txt.append(f"{side}: not computed ({m['error']})")
+        else:
+            ratio = sz["width_top"] / m["width"] if math.isfinite(sz["width_top"]) else math.nan
+            txt.append(f"{side}: {m['width']:.4f} m for piers {sz['height']:.3g} m high "
+                       f"(this pier {sz['width_top']:.3g} m, {ratio:.2f} x"
+                       + (", the springing joint's own width governs" if m["governed_by"] ==
+                          "springing" else "") + ")")
+    blocks.append(Paragraph("The least width of two rectangular monolithic piers of this height "
+                            "with which the arch stands under its own weight (a line of thrust "
+                            "inside arch and piers; Heyman 1995, Ochsendorf 2002): "
+                            + "; ".join(txt) + "."))
+    # one degree of freedom or more (docs/piers-dynamics.md)
+    try:
+        from ..dynamics.piers import single_dof_check
+
+        chk = single_dof_check(ctx.model)
+        data["single_dof"] = chk.to_dict()
+        if not chk.valid:
+            blocks.append(Paragraph(
+                f"WARNING single degree of freedom not valid: {chk.reason}. The response, "
+                f"curves and fragility of this report are the four-link model's: on piers they "
+                f"can be unconservative (docs/piers-dynamics.md)."))
+            head.append(("four-link model on piers", "not valid: a pier rocks with the arch "
+                         "(figures can be unconservative)"))
+    except ArchrockError as exc:
+        data["single_dof"] = {"error": " ".join(str(exc).split())}
+    return Section("piers", "The piers", tuple(blocks), data, tuple(head))
+
+
 def _mu(x) -> str:
     return "no finite friction" if x is None else f"{x:.3f}"
 
@@ -777,7 +861,7 @@ def section_assumptions(ctx: Context) -> Section:
 #: The report's sections in order.  Optional ones (friction, defects, contact) say so when their
 #: module is absent; fragility appears only with records.
 SECTIONS: list[Callable[[Context], Section | None]] = [
-    section_geometry, section_limit, section_friction, section_impact, section_response,
+    section_geometry, section_limit, section_piers, section_friction, section_impact, section_response,
     section_curves, section_defects, section_fragility, section_contact, section_codecheck,
     section_assumptions,
 ]
