@@ -63,6 +63,11 @@ def test_leaning_pier_turns_rigidly_about_its_outer_foot(ref):
     assert lp.intrados[1][-1][0] - top[0] == pytest.approx(-(top[1] - c[1]) * np.sin(t)
                                                           + (top[0] - c[0]) * (np.cos(t) - 1),
                                                           abs=1e-12)
+    size = pier_sizes(lp)["left"]
+    assert size["lean_deg"] == pytest.approx(th, abs=1e-12)
+    assert size["height"] == pytest.approx(4.0, abs=1e-12)
+    assert size["width_top"] == pytest.approx(2.0, abs=1e-12)
+    assert pier_sizes(lean_pier(ap, "right", -th))["right"]["lean_deg"] == pytest.approx(-th)
     for i in ap.piers[1]:
         assert np.array_equal(lp.intrados[i], ap.intrados[i])
         assert np.array_equal(lp.extrados[i], ap.extrados[i])

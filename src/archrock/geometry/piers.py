@@ -551,34 +551,42 @@ def lean_pier(arch: ArchOnPiers, side: str, degrees: float) -> ArchOnPiers:
 
 
 def pier_sizes(arch) -> dict:
-    """Each side's pier as built (``{"left": {...}, "right": {...}}``, a side without piers
-    absent): kind, blocks (courses), height [m] from the foot to the springing level, width
-    [m] at the top and at the foot (horizontal reach of the top and bottom courses)."""
+    """Each side's pier (``{"left": {...}, "right": {...}}``, a side without piers absent):
+    kind, blocks (courses), ``lean_deg`` (out of plumb, outward positive: the turn of its
+    foundation joint), and in the pier's own frame (turned back by that lean about its outer
+    foot corner) ``height`` [m] from the foot to the springing level and the widths
+    ``width_top`` and ``width_foot`` [m] (horizontal reach of the top and bottom courses)."""
     if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
         return {}
     out = {}
     jp = arch.joint_points
     left, right = arch.piers
+    tol = 1e-9 * arch.size
     for side, run, j_foot, j_top in (("left", left, 0, len(left)),
                                      ("right", right, arch.n, arch.n - len(right))):
         if not run:
             continue
-        foot = jp[j_foot]
-        top = jp[j_top]
-        h = float(min(top[0][1], top[1][1]) - max(foot[0][1], foot[1][1]))
-        bottom_block = run[0] if side == "left" else run[-1]
-        top_block = run[-1] if side == "left" else run[0]
+        sign = 1.0 if side == "left" else -1.0
+        v = jp[j_foot][1] - jp[j_foot][0]  # inner to outer end of the foundation joint
+        lean = float(np.arctan2(-v[1], -sign * v[0]))
+        c = jp[j_foot][1]
+        t = -sign * lean  # turn the pier back to plumb
+        rot = np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
 
-        def reach(b, level):
-            pts = np.vstack([arch.intrados[b], arch.extrados[b]])
-            near = np.abs(pts[:, 1] - level) <= 1e-9 * arch.size
-            return float(np.ptp(pts[near, 0])) if np.count_nonzero(near) > 1 else float("nan")
+        def back(p):
+            return c + (np.asarray(p, float) - c) @ rot.T
+        foot, top = back(jp[j_foot]), back(jp[j_top])
         ylo = float(max(foot[0][1], foot[1][1]))
         ytop = float(min(top[0][1], top[1][1]))
-        out[side] = {"kind": arch.block_kinds[run[0]], "blocks": len(run), "height": h,
-                     "width_top": reach(top_block, ytop),
+        top_block = run[-1] if side == "left" else run[0]
+        pts = back(np.vstack([arch.intrados[top_block], arch.extrados[top_block]]))
+        near = np.abs(pts[:, 1] - ytop) <= tol
+        out[side] = {"kind": arch.block_kinds[run[0]], "blocks": len(run),
+                     "lean_deg": float(np.degrees(lean)) + 0.0, "height": ytop - ylo,
+                     "width_top": float(np.ptp(pts[near, 0])) if np.count_nonzero(near) > 1
+                     else float("nan"),
                      "width_foot": float(np.hypot(*(foot[1] - foot[0]))),
-                     "foot_level": ylo}
+                     "foot_level": float(min(jp[j_foot][:, 1]))}
     return out
 
 

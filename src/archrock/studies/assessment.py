@@ -414,15 +414,19 @@ def section_piers(ctx: Context) -> Section | None:
         return None
     sizes = pier_sizes(arch)
     rows = tuple((side, sz["kind"], sz["blocks"], f"{sz['height']:.3f}",
-                  _f(sz["width_top"], ".3f"), f"{sz['width_foot']:.3f}")
-                 for side, sz in sizes.items())
+                  _f(sz["width_top"], ".3f"), f"{sz['width_foot']:.3f}",
+                  f"{sz['lean_deg']:.3f}") for side, sz in sizes.items())
     words = "; ".join(f"{side} {sz['kind']} {sz['height']:.3g} m high, "
                       f"{sz['width_top']:.3g} m wide at its top and {sz['width_foot']:.3g} m at "
-                      f"its foot, {sz['blocks']} block(s)" for side, sz in sizes.items())
+                      f"its foot, {sz['blocks']} block(s)"
+                      + (f", {abs(sz['lean_deg']):.3g} deg out of plumb "
+                         f"{'outward' if sz['lean_deg'] > 0 else 'inward'}"
+                         if abs(sz["lean_deg"]) > 1e-9 else "") for side, sz in sizes.items())
     blocks = [Paragraph(f"The arch stands on piers ({words}). Blocks are numbered from the "
                         f"left pier's foot; hinges are named where they are on the drawing."),
               Table(("pier", "kind", "blocks", "height [m]", "width at top [m]",
-                     "width at foot [m]"), rows)]
+                     "width at foot [m]", "lean [deg, outward +]"), rows,
+                    "Sizes in each pier's own frame (turned back by its lean).")]
     lim = ctx.limit
     hinge_rows, at_piers = [], []
     for d in ("l", "r"):
@@ -436,7 +440,8 @@ def section_piers(ctx: Context) -> Section | None:
                         "them."))
     data = {"piers": sizes, "hinges": [dict(zip(("mechanism", "hinge", "joint", "place"), r))
                                        for r in hinge_rows],
-            "units": {"height": "m", "width_top": "m", "width_foot": "m", "foot_level": "m"}}
+            "units": {"height": "m", "width_top": "m", "width_foot": "m", "foot_level": "m",
+                      "lean_deg": "deg"}}
     head = [("piers", words)]
     if at_piers:
         blocks.append(Paragraph("Hinges in the piers: " + "; ".join(at_piers) + "."))
