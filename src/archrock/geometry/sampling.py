@@ -23,7 +23,12 @@ sectors, :func:`~archrock.geometry.perturb_voussoirs`) or a family arch
 or fill, its arithmetic compiled in :mod:`archrock.geometry.batchdraw`: the same polylines).  A
 polygon arch without a recipe (a surveyed arch, e.g. from a DXF drawing) keeps its joints and
 varies each voussoir's thickness and centreline offset (:mod:`archrock.geometry.survey`; span
-and tilt spreads must be 0).
+and tilt spreads must be 0).  An arch on piers is drawn so, pier courses included; with pier
+spreads (``Spreads.pier_*``) each pier is first drawn on its own (lean, width, height, bed
+joints; :func:`archrock.geometry.piers.reshape_piers`) from the child stream
+``SeedSequence(seed, spawn_key=(k, 2))`` (:meth:`ArchSampler.pier_uniforms`), and the blocks'
+draws are applied to that arch: the voussoirs' uniforms are unchanged, and with the pier
+spreads 0 the samples are those drawn before, to the bit (docs/piers.md, Irregular piers).
 """
 
 from __future__ import annotations
