@@ -291,3 +291,21 @@ def test_invalid_pier_draw_is_an_invalid_sample(ref):
     bad = [a for a in out if isinstance(a, InvalidSampleError)]
     assert bad and all("narrower than its springing" in str(e) for e in bad)
     assert len(bad) < 8
+
+
+def test_ensemble_configuration_keeps_the_pier_spreads(ref):
+    """An ensemble's configuration writes the pier spreads under their field names and reads
+    them back; without them its dict is as before."""
+    from archrock.groundmotion import PulseSpec
+    from archrock.studies.ensemble import EnsembleConfig
+
+    _, ap, _ = ref
+    cfg = EnsembleConfig.from_arch(ap, samples=3, spreads=IRREGULAR,
+                                   motion=PulseSpec("oppenheim", -0.3, 0.2))
+    d = cfg.to_dict()
+    assert d["spreads"]["pier_course"] == 0.2 and d["spreads"]["pier_lean"] == 1.0
+    back = EnsembleConfig.from_dict(d)
+    assert back.spreads == IRREGULAR and back.to_json() == cfg.to_json()
+    plain = EnsembleConfig.from_arch(ap, samples=3, spreads=SPREADS)
+    assert not any(k.startswith("pier_") for k in plain.to_dict()["spreads"])
+    assert isinstance(back.sampler.arch(1), type(ap))
