@@ -107,12 +107,12 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
         g.add_argument(f"--right-pier-{what}", type=_int if what == "courses" else finite_float,
                        metavar=flag, help=f"the right pier's {what} where it differs from the "
                                           f"left one's (default: --pier-{what})")
-    for side in ("", "right-"):  # a stepped buttress (docs/piers.md)
-        g.add_argument(f"--{side}pier-steps", metavar="H:W,...",
-                       help=(f"the {side[:-1] or 'both'} pier{'s' if not side else ''} as a "
-                             f"stepped buttress: HEIGHT:WIDTH [m] per step from the foot up, "
-                             f"widths not growing upward (instead of --{side}pier-height/width)"
-                             if not side else "the right pier's steps where they differ"))
+    g.add_argument("--pier-steps", metavar="H:W,...",
+                   help="both piers as stepped buttresses: HEIGHT:WIDTH [m] per step from the "
+                        "foot up, widths not growing upward (instead of --pier-height and "
+                        "--pier-width; docs/piers.md)")
+    g.add_argument("--right-pier-steps", metavar="H:W,...",
+                   help="the right pier's steps where they differ (with --pier-steps)")
     add_support_options(parser)
     return parser
 
@@ -190,10 +190,11 @@ def _stepped_from_args(arch, h, w, others, steps, steps_right):
     from ..geometry.piers import parse_steps
 
     given = [f for f, v in [("--pier-height", h), ("--pier-width", w)] + others if v is not None]
-    if steps is None or given:
-        raise CLIError(f"{'--pier-steps' if steps is None else given[0]}: "
-                       f"{'needed with --right-pier-steps' if steps is None else 'given with --pier-steps'}"
-                       f" (stepped piers take their heights and widths from the steps)")
+    why = "(stepped piers take their heights and widths from the steps)"
+    if steps is None:
+        raise CLIError(f"--pier-steps: needed with --right-pier-steps {why}")
+    if given:
+        raise CLIError(f"{given[0]}: given with --pier-steps {why}")
     sl = parse_steps(steps, "--pier-steps")
     sr = None if steps_right is None else parse_steps(steps_right, "--right-pier-steps")
     try:
