@@ -126,6 +126,10 @@ def test_reshaped_piers_have_the_drawn_sizes(ref):
         reshape_piers(ap, ap.block_kinds, right={"width": 0.3})
     with pytest.raises(ArchInputError, match="bed joints cross"):
         reshape_piers(ap, ap.block_kinds, left={"shifts": [2.5]})
+    with pytest.raises(ArchInputError, match=r"shift \[m\] per interior bed joint \(1\)"):
+        reshape_piers(ap, ap.block_kinds, left={"shifts": [0.1, 0.2]})
+    with pytest.raises(ArchInputError, match="left pier width factor: -1 is out of range"):
+        reshape_piers(ap, ap.block_kinds, left={"width": -1})
 
 
 # ------------------------------------------------------------------------- stepped buttresses

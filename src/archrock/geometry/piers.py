@@ -416,7 +416,7 @@ def _reshape_left(intr, extr, loads, cl, cr, *, width=1.0, height=1.0, shifts=No
                                  f"with horizontal bed joints for a changed pier")
     new = levels.copy()
     if shifts is not None and cl > 1:
-        new[1:-1] = levels[1:-1] + np.asarray(shifts, float)[:cl - 1]
+        new[1:-1] = levels[1:-1] + np.asarray(shifts, float)
         if np.any(np.diff(new) <= tol):
             raise ArchInputError(f"{side} pier: its bed joints cross (course shifts "
                                  f"{np.round(shifts, 6).tolist()} m); allowed shifts that keep "
@@ -510,7 +510,7 @@ def reshape_piers(arch, kinds, left: dict | None = None, right: dict | None = No
     cl, cr, n = len(lrun), len(rrun), arch.n
     intr, extr, loads = list(arch.intrados), list(arch.extrados), list(arch.loads)
     for side, change, run in (("left", left, cl), ("right", right, cr)):
-        change = {k: v for k, v in (change or {}).items() if v is not None}
+        change = _check_change(side, change, run)
         if not change or all(change.get(k, d) == d for k, d in
                              (("width", 1.0), ("height", 1.0), ("lean", 0.0))) \
                 and change.get("shifts") is None:
@@ -533,6 +533,29 @@ def reshape_piers(arch, kinds, left: dict | None = None, right: dict | None = No
         return _unchecked(intr, extr, arch.density, name or arch.name, loads, kinds)
     return ArchOnPiers(tuple(intr), tuple(extr), arch.density, name or arch.name, tuple(loads),
                        block_kinds=tuple(kinds))
+
+
+def _check_change(side: str, change, run) -> dict:
+    """A pier change of :func:`reshape_piers`, checked: factors > 0, a lean within
+    :data:`MAX_LEAN`, one shift [m] per interior bed joint."""
+    if change is None:
+        return {}
+    if not isinstance(change, dict) or set(change) - {"width", "height", "shifts", "lean"}:
+        raise ArchInputError(f"{side}: {change!r}; allowed a dict of width, height, shifts, lean")
+    out = {k: v for k, v in change.items() if v is not None}
+    for k in ("width", "height"):
+        if k in out:
+            out[k] = _check_scalar(f"{side} pier {k} factor", out[k], 0.0, None,
+                                   allowed="a factor > 0")
+    if "lean" in out:
+        out["lean"] = _check_lean(f"{side} pier lean", out["lean"])
+    if "shifts" in out:
+        sh = np.asarray(out["shifts"], float)
+        if sh.shape != (max(run - 1, 0),) or not np.all(np.isfinite(sh)):
+            raise ArchInputError(f"{side} pier shifts: {out['shifts']!r}; allowed one finite "
+                                 f"shift [m] per interior bed joint ({max(run - 1, 0)})")
+        out["shifts"] = sh
+    return out
 
 
 def lean_pier(arch: ArchOnPiers, side: str, degrees: float) -> ArchOnPiers:
