@@ -33,3 +33,35 @@ def test_assess_names_the_piers():
     html = render_html(a, figures={})
     assert "right pier foot, outer face" in html and "The piers" in html
     assert [s.key for s in assess(arch, sections=[section_piers]).sections] == []
+
+
+def test_assess_names_the_piers_of_a_file_without_kinds():
+    """shared/cases/heavy_piers.json names no kinds: the end blocks the single-DOF check takes
+    for piers are reported as piers, said to be guessed, with the warning."""
+    from pathlib import Path
+
+    from archrock.geometry.files import read_arch
+
+    heavy = Path(__file__).resolve().parents[3] / "shared" / "cases" / "heavy_piers.json"
+    if not heavy.exists():
+        heavy = Path("/work/shared/cases/heavy_piers.json")
+    if not heavy.exists():
+        pytest.skip("shared/cases/heavy_piers.json not here")
+    sec = assess(read_arch(heavy), sections=[section_piers]).section("piers")
+    assert sec.data["piers"]["left"]["width_foot"] == pytest.approx(5.0, abs=1e-9)
+    assert sec.data["piers"]["left"]["width_top"] == pytest.approx(5.0, abs=1e-9)
+    places = {(h["mechanism"], h["hinge"]): h["place"] for h in sec.data["hinges"]}
+    assert places[("M_l", "D")] == "right pier foot, outer face"
+    text = " ".join(getattr(b, "text", "") for b in sec.blocks)
+    assert "names no block kinds: block(s) 0, 13 are taken for piers" in text
+    assert sec.data["single_dof"]["valid"] is False
+
+
+def test_single_dof_check_counts_buttresses():
+    """A stepped or battered buttress is a pier to the single-DOF check (it rocks on its
+    foot as a pier does)."""
+    from archrock.dynamics.piers import pier_blocks
+
+    arch = nominal_arch(radius=5.0, embrace_deg=180, thickness=0.8, voussoirs=9)
+    sb = with_piers(arch, None, None, steps=((2.0, 3.0), (6.0, 2.0)))
+    assert pier_blocks(sb) == ((0, 1, 11, 12), "block_kinds")

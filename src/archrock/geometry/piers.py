@@ -578,7 +578,8 @@ def pier_sizes(arch) -> dict:
     kind, blocks (courses), ``lean_deg`` (out of plumb, outward positive: the turn of its
     foundation joint), and in the pier's own frame (turned back by that lean about its outer
     foot corner) ``height`` [m] from the foot to the springing level and the widths
-    ``width_top`` and ``width_foot`` [m] (horizontal reach of the top and bottom courses)."""
+    ``width_top`` and ``width_foot`` [m] (horizontal reach of the top course at the springing
+    level, or at its own top where it rises above the springing, and of the foundation)."""
     if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
         return {}
     out = {}
@@ -604,6 +605,8 @@ def pier_sizes(arch) -> dict:
         top_block = run[-1] if side == "left" else run[0]
         pts = back(np.vstack([arch.intrados[top_block], arch.extrados[top_block]]))
         near = np.abs(pts[:, 1] - ytop) <= tol
+        if np.count_nonzero(near) < 2:  # a pier rising above its springing (a file's): its top
+            near = np.abs(pts[:, 1] - pts[:, 1].max()) <= tol
         out[side] = {"kind": arch.block_kinds[run[0]], "blocks": len(run),
                      "lean_deg": float(np.degrees(lean)) + 0.0, "height": ytop - ylo,
                      "width_top": float(np.ptp(pts[near, 0])) if np.count_nonzero(near) > 1

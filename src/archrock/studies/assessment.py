@@ -28,7 +28,7 @@ import numpy as np
 
 from .codecheck import CodeCheckConfig
 from ..errors import ArchInputError, ArchrockError
-from ..geometry import Arch, VoussoirArch
+from ..geometry import Arch, PolygonArch, VoussoirArch
 from ..dynamics.impact import PAPER_PRACTICE, ImpactSpec
 from ..geometry.sampling import Spreads
 
@@ -410,11 +410,25 @@ def section_piers(ctx: Context) -> Section | None:
     from ..geometry.piers import ArchOnPiers, arch_without_piers, hinge_place, pier_sizes
 
     arch = ctx.arch
+    guessed = ""
     if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
-        return None
+        # a geometry file that names no kinds: the end blocks the single-DOF check takes for
+        # piers (heavy, rising as columns from level foundations), if any
+        from ..dynamics.piers import pier_blocks
+
+        found, how = pier_blocks(arch) if isinstance(arch, PolygonArch) else ((), "none")
+        if how != "geometry":
+            return None
+        kinds = tuple("pier" if i in found else "voussoir" for i in range(arch.n))
+        arch = ArchOnPiers(arch.intrados, arch.extrados, arch.density, arch.name, arch.loads,
+                           block_kinds=kinds)
+        guessed = (f" The geometry names no block kinds: block(s) "
+                   f"{', '.join(map(str, found))} are taken for piers (heavy end blocks rising "
+                   f"as columns from level foundations; kinds in the file would say so).")
     sizes = pier_sizes(arch)
     rows = tuple((side, sz["kind"], sz["blocks"], f"{sz['height']:.3f}",
-                  _f(sz["width_top"], ".3f"), f"{sz['width_foot']:.3f}",
+                  f"{sz['width_top']:.3f}" if math.isfinite(sz["width_top"]) else "-",
+                  f"{sz['width_foot']:.3f}",
                   f"{sz['lean_deg']:.3f}") for side, sz in sizes.items())
     words = "; ".join(f"{side} {sz['kind']} {sz['height']:.3g} m high, "
                       f"{sz['width_top']:.3g} m wide at its top and {sz['width_foot']:.3g} m at "
@@ -423,7 +437,8 @@ def section_piers(ctx: Context) -> Section | None:
                          f"{'outward' if sz['lean_deg'] > 0 else 'inward'}"
                          if abs(sz["lean_deg"]) > 1e-9 else "") for side, sz in sizes.items())
     blocks = [Paragraph(f"The arch stands on piers ({words}). Blocks are numbered from the "
-                        f"left pier's foot; hinges are named where they are on the drawing."),
+                        f"left pier's foot; hinges are named where they are on the drawing."
+                        + guessed),
               Table(("pier", "kind", "blocks", "height [m]", "width at top [m]",
                      "width at foot [m]", "lean [deg, outward +]"), rows,
                     "Sizes in each pier's own frame (turned back by its lean).")]
