@@ -254,9 +254,13 @@ def test_pier_spreads_draw_each_pier_from_its_own_stream(ref):
     _, ap, _ = ref
     s0, s1 = ArchSampler(ap, SPREADS, 0), ArchSampler(ap, IRREGULAR, 0)
     assert np.array_equal(s0.uniforms(0, 5), s1.uniforms(0, 5))
-    pu = s1.pier_uniforms(0, 5)
-    assert pu.shape == (5, 2, 4) and not np.array_equal(pu[:, 0], pu[:, 1])
-    assert np.array_equal(pu[3], s1.pier_uniforms(3, 1)[0])  # sample i alone gives its draws
+    pl, pr = s1.pier_uniforms(0, 5, "left"), s1.pier_uniforms(0, 5, "right")
+    assert pl.shape == pr.shape == (5, 4) and not np.array_equal(pl, pr)
+    assert np.array_equal(pl[3], s1.pier_uniforms(3, 1, "left")[0])  # sample i alone
+    # one pier's draws do not depend on the other's courses
+    other = ArchSampler(with_piers(ref[0], 4.0, 2.0, courses=2, courses_right=5), IRREGULAR, 0)
+    assert np.array_equal(other.pier_uniforms(0, 5, "left"), pl)
+    assert other.pier_uniforms(0, 5, "right").shape == (5, 7)
     tiny = ArchSampler(ap, Spreads(0.0, 0.1, 0.05, pier_width=1e-12), 0)
     for i in range(2):
         k0 = limit_analysis(s0.arch(i)).k_l

@@ -25,9 +25,9 @@ polygon arch without a recipe (a surveyed arch, e.g. from a DXF drawing) keeps i
 varies each voussoir's thickness and centreline offset (:mod:`archrock.geometry.survey`; span
 and tilt spreads must be 0).  An arch on piers is drawn so, pier courses included; with pier
 spreads (``Spreads.pier_*``) each pier is first drawn on its own (lean, width, height, bed
-joints; :func:`archrock.geometry.piers.reshape_piers`) from the child stream
-``SeedSequence(seed, spawn_key=(k, 2))`` (:meth:`ArchSampler.pier_uniforms`), and the blocks'
-draws are applied to that arch: the voussoirs' uniforms are unchanged, and with the pier
+joints; :func:`archrock.geometry.piers.reshape_piers`) from its own child stream
+``SeedSequence(seed, spawn_key=(k, 2, 0))`` (left) or ``(k, 2, 1)`` (right;
+:meth:`ArchSampler.pier_uniforms`), and the blocks' draws are applied to that arch: the voussoirs' uniforms are unchanged, and with the pier
 spreads 0 the samples are those drawn before, to the bit (docs/piers.md, Irregular piers).
 """
 
@@ -237,32 +237,37 @@ class ArchSampler:
         not change, and sample i's fraction depends on (seed, i) alone."""
         return self._stream(start, count, (), 0.0, (1,))
 
-    def pier_uniforms(self, start: int, count: int) -> np.ndarray:
-        """U on [-1, 1] of samples start .. start + count - 1 for their piers, shape (count, 2,
-        2 + C): per side (left, right) the lean, width, height and the C - 1 interior bed
-        joints' draws (C the most courses of a side).  Block k's stream is the child
-        ``SeedSequence(seed, spawn_key=(k, 2))``: the voussoirs' draws do not change."""
-        left, right = self.nominal.piers
-        return self._stream(start, count, (2, 2 + max(len(left), len(right))), -1.0, (2,))
+    def pier_uniforms(self, start: int, count: int, side: str) -> np.ndarray:
+        """U on [-1, 1] of samples start .. start + count - 1 for their ``side`` ('left' or
+        'right') pier, shape (count, 2 + c): its lean, width, height and its c - 1 interior bed
+        joints' draws (c its courses).  Each pier has its own stream: block k reads the child
+        ``SeedSequence(seed, spawn_key=(k, 2, 0))`` (left) or ``(k, 2, 1)`` (right), so the
+        voussoirs' draws do not change, nor one pier's with the other's courses."""
+        if side not in ("left", "right"):
+            raise ArchInputError(f"side: {side!r}; allowed left, right")
+        run = self.nominal.piers[0 if side == "left" else 1]
+        return self._stream(start, count, (2 + len(run),), -1.0,
+                            (2, 0 if side == "left" else 1))
 
-    def _pier_changes(self, u) -> dict:
-        """The changes of :func:`archrock.geometry.piers.reshape_piers` from one sample's pier
-        draws ``u`` (2, 2 + C)."""
+    def _pier_changes(self, index: int) -> dict:
+        """The changes of :func:`archrock.geometry.piers.reshape_piers` of sample ``index``'s
+        piers (:meth:`pier_uniforms`)."""
         s = self.spreads
         left, right = self.nominal.piers
         out = {}
-        for row, side, run in ((0, "left", left), (1, "right", right)):
+        for side, run in (("left", left), ("right", right)):
             if not run:
                 continue
+            u = self.pier_uniforms(index, 1, side)[0]
             jp = self.nominal.joint_points
             if side == "left":
                 top, foot = jp[len(run)], jp[0]
             else:
                 top, foot = jp[self.nominal.n - len(run)], jp[self.nominal.n]
             course = (float(min(top[:, 1])) - float(max(foot[:, 1]))) / len(run)
-            out[side] = {"lean": s.pier_lean * u[row, 0], "width": 1.0 + s.pier_width * u[row, 1],
-                         "height": 1.0 + s.pier_height * u[row, 2],
-                         "shifts": s.pier_course * course * u[row, 3:3 + len(run) - 1]
+            out[side] = {"lean": s.pier_lean * u[0], "width": 1.0 + s.pier_width * u[1],
+                         "height": 1.0 + s.pier_height * u[2],
+                         "shifts": s.pier_course * course * u[3:]
                          if s.pier_course and len(run) > 1 else None}
         return out
 
@@ -273,7 +278,7 @@ class ArchSampler:
             return self.nominal
         from .piers import reshape_piers
 
-        ch = self._pier_changes(self.pier_uniforms(index, 1)[0])
+        ch = self._pier_changes(index)
         try:
             return reshape_piers(self.nominal, self.nominal.block_kinds, ch.get("left"),
                                  ch.get("right"), _trusted=True)
