@@ -32,7 +32,9 @@ EXTRA_KEYS = {PulseSpec: {"type"}, RecordSpec: {"type"}, SiteSpectrum: {"paramet
 IMPLIED = {ImpactSpec: {"fallback", "note"},
            # zero turn written by omission, so that the hash of a 0.6 ensemble on moved
            # supports keeps its form
-           SupportMovement: {"rotation", "pivot_depth"}}
+           SupportMovement: {"rotation", "pivot_depth"},
+           # the piers' spreads likewise: a configuration without them hashes as before
+           Spreads: {"pier_lean", "pier_width", "pier_height", "pier_course"}}
 #: Geometry files have their own documented format (docs/geometry.md), not a config's.
 FILE_FORMATS = {"Arch", "PolygonArch", "FamilyArch", "ArchOnPiers", "Arcade"}
 
@@ -49,6 +51,7 @@ def configs(record):
     table = SiteSpectrum("table", periods=(0.0, 0.5, 2.0), values=(0.3, 0.6, 0.1))
     return [
         Spreads(0.2, 0.15, 0.05, 3.0), Spreads(),
+        Spreads(pier_lean=1.0, pier_width=0.1, pier_height=0.05, pier_course=0.2),
         PulseSpec("ricker", 0.5, 0.4), record,
         PAPER_PRACTICE, ImpactSpec.fixed(0.8, literal=True), ImpactSpec.parse("least-loss"),
         Defect.parse("3:thickness=0.5,side=extrados"), Defect.parse("2:tilt=-5"),
@@ -110,7 +113,9 @@ def test_spreads_read_the_old_keys_as_aliases():
            "spread_tilt_deg": 3.0}
     assert Spreads.from_dict(old) == Spreads(0.2, 0.15, 0.05, 3.0)
     assert Spreads.from_dict({"spread_span": 0.3, "tilt": 1.0}) == Spreads(span=0.3, tilt=1.0)
-    assert set(LEGACY_KEYS.values()) == {f.name for f in dataclasses.fields(Spreads)}
+    # every field of 0.6 has its old key; the piers' spreads (0.7) never had another
+    assert set(LEGACY_KEYS.values()) == {f.name for f in dataclasses.fields(Spreads)
+                                         if not f.name.startswith("pier_")}
     assert Spreads(0.2, 0.15, 0.05, 3.0).legacy_dict() == old
     assert "spread_tilt_deg" not in Spreads().legacy_dict()  # 0.1.0's dict without a tilt
     with pytest.raises(ArchInputError, match="span given twice"):

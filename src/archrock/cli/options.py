@@ -91,7 +91,9 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                    help="a defect applied to the arch, repeatable: VOUSSOIR:thickness=F"
                         "[,side=intrados|extrados] (keeps F of its thickness, 0 < F < 1), "
                         "JOINT:tilt=DEG (-45 < DEG < 45) or JOINT:mortar=F[,side=extrados] "
-                        "(no mortar over F of the contact); docs/defects.md")
+                        "(no mortar over F of the contact); on piers pier-tilt=DEG"
+                        "[,side=left|right] (out of plumb, outward positive, |DEG| <= 15; "
+                        "docs/piers.md); docs/defects.md")
     g.add_argument("--pier-height", type=finite_float, metavar="H",
                    help="the arch on two piers: height [m] of each pier from its foundation to "
                         "the springing, > 0 (with --pier-width; docs/piers.md)")
@@ -109,14 +111,22 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
         g.add_argument(f"--right-pier-{what}", type=_int if what == "courses" else finite_float,
                        metavar=flag, help=f"the right pier's {what} where it differs from the "
                                           f"left one's (default: --pier-{what})")
+    g.add_argument("--pier-steps", metavar="H:W,...",
+                   help="both piers as stepped buttresses: HEIGHT:WIDTH [m] per step from the "
+                        "foot up, widths not growing upward (instead of --pier-height and "
+                        "--pier-width; docs/piers.md)")
+    g.add_argument("--right-pier-steps", metavar="H:W,...",
+                   help="the right pier's steps where they differ (with --pier-steps)")
     add_support_options(parser)
     return parser
 
 
 # ---------------------------------------------------------------------------- random arches
-def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False) -> argparse.ArgumentParser:
+def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
+                       piers: bool = False) -> argparse.ArgumentParser:
     """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths),
-    and with ``tilt`` --spread-tilt (joint tilt of family arches, degrees)."""
+    with ``tilt`` --spread-tilt (joint tilt of family arches, degrees), with ``piers`` the
+    pier spreads --spread-pier-lean/-width/-height/-course (docs/piers.md, Irregular piers)."""
     p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
                    help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
     p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
@@ -128,6 +138,13 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False) -> argpar
                        help="half-width of the tilt of each interior joint [deg] about its "
                             "centreline point, 0 <= tilt < 45 (default 0); an arch of a family "
                             "(--shape ...) other than the exact circular Arch")
+    if piers:  # an arch on piers: each pier drawn on its own (geometry.sampling.PIER_SPREADS)
+        from ..geometry.sampling import PIER_SPREADS
+
+        for name, hi, closed, what in PIER_SPREADS:
+            p.add_argument("--spread-" + name.replace("_", "-"), type=finite_float, default=0.0,
+                           metavar="S", help=f"on piers: {what}, 0 <= s {'<=' if closed else '<'}"
+                                             f" {hi:g} (default 0)")
     return p
 
 
@@ -137,7 +154,7 @@ def add_random_arches_options(p: argparse.ArgumentParser,
     of a study (curves, fragility)."""
     p.add_argument("--samples", type=non_negative_int, default=0, metavar="N", help=samples_help)
     p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    return add_spread_options(p, tilt=True)
+    return add_spread_options(p, tilt=True, piers=True)
 
 
 # ---------------------------------------------------------------------------- ground motion

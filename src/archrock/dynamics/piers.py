@@ -62,7 +62,7 @@ def pier_blocks(arch) -> tuple[tuple, str]:
     (monolithic piers of a geometry file such as ``shared/cases/heavy_piers.json``)."""
     kinds = getattr(arch, "block_kinds", None)
     if kinds:
-        idx = tuple(i for i, k in enumerate(kinds) if k == "pier")
+        idx = tuple(i for i, k in enumerate(kinds) if k in ("pier", "buttress"))
         return (idx, "block_kinds") if idx else ((), "none")
     n = arch.n
     if n < 3 or getattr(arch, "intrados", None) is None:

@@ -1,6 +1,6 @@
 """Local defects of one voussoir or one joint, applied to any :class:`VoussoirArch`.
 
-Three kinds (:class:`Defect`):
+Four kinds (:class:`Defect`):
 
 * ``thickness``: voussoir i keeps a fraction ``value`` in (0, 1) of its thickness (``0.7``: 30%
   lost).  ``at`` says where the masonry is lost: ``centreline`` (default: both faces move
@@ -16,6 +16,11 @@ Three kinds (:class:`Defect`):
 * ``mortar``: joint j has no mortar over a depth ``value`` in (0, 1) of its contact length,
   measured from its ``intrados`` (default) or ``extrados`` end: the contact segment is that much
   shorter, the masonry (masses, centroids) unchanged.
+* ``pier-tilt``: an arch on piers (:class:`~archrock.geometry.ArchOnPiers`) whose ``left``
+  (default) or ``right`` pier stands out of plumb by ``value`` degrees, outward positive
+  (|value| <= 15): the pier turned rigidly about its outer foot corner, the voussoirs following
+  (:func:`archrock.geometry.piers.lean_pier`; docs/piers.md, Irregular piers).  It has no
+  index (0).
 
 A circular :class:`Arch` with a thickness defect stays an exact ``Arch`` (the damaged voussoir
 is an annular sector with a new radius and thickness); every other case gives a
@@ -28,6 +33,7 @@ String form (:meth:`Defect.parse`, the command line's ``--defect``)::
     3:thickness=0.7[,side=intrados|extrados|centreline]
     4:tilt=5
     2:mortar=0.2[,side=intrados|extrados]
+    pier-tilt=2[,side=left|right]
 
 the number before the colon being the voussoir (0..n-1, from the left springing) or the joint
 (0..n).
@@ -54,8 +60,9 @@ DEFECT_KINDS = {
     "thickness": ("voussoir", ("centreline", "intrados", "extrados"), "centreline"),
     "tilt": ("joint", ("",), ""),
     "mortar": ("joint", ("intrados", "extrados"), "intrados"),
+    "pier-tilt": ("pier", ("left", "right"), "left"),
 }
-_SIDE_KEY = {"thickness": "at", "mortar": "from"}
+_SIDE_KEY = {"thickness": "at", "mortar": "from", "pier-tilt": "side"}
 #: largest angle [rad] of one polyline segment when a circular arch is written as a polygon
 _ARC_STEP = 0.002
 
@@ -63,7 +70,9 @@ _ARC_STEP = 0.002
 def _allowed_value(kind: str) -> str:
     return {"thickness": "a remaining fraction of the thickness, 0 < value < 1",
             "tilt": "an angle in degrees, -45 < tilt < 45 (counter-clockwise positive)",
-            "mortar": "a fraction of the joint's contact length, 0 < value < 1"}[kind]
+            "mortar": "a fraction of the joint's contact length, 0 < value < 1",
+            "pier-tilt": "an angle in degrees, -15 <= tilt <= 15 (outward positive: the pier "
+                         "top moves away from the opening)"}[kind]
 
 
 @dataclass(frozen=True)
@@ -91,7 +100,13 @@ class Defect:
                 or self.index < 0:
             raise ArchInputError(f"defect {what}: {self.index!r}; allowed an integer index >= 0")
         object.__setattr__(self, "index", int(self.index))
-        if self.kind == "tilt":
+        if self.kind == "pier-tilt":
+            if self.index != 0:
+                raise ArchInputError(f"defect pier: {self.index}; allowed 0 (a pier tilt names "
+                                     f"its pier by side=left|right)")
+            v = _check_scalar("defect pier-tilt", self.value, -15.0, 15.0, lo_open=False,
+                              hi_open=False, allowed=_allowed_value("pier-tilt"))
+        elif self.kind == "tilt":
             v = _check_scalar("defect tilt", self.value, -45.0, 45.0, allowed=_allowed_value("tilt"))
         else:
             v = _check_scalar(f"defect {self.kind}", self.value, 0.0, 1.0,
@@ -129,10 +144,20 @@ class Defect:
 
     def at_index(self, index: int) -> "Defect":
         """The same defect on another voussoir or joint."""
+        if self.kind == "pier-tilt":
+            raise ArchInputError("defect pier-tilt: has no voussoir or joint index; allowed "
+                                 "side=left|right")
         return Defect(self.kind, index, self.value, self.side)
 
     def check(self, arch: VoussoirArch) -> None:
-        """ArchInputError unless the index exists on ``arch``."""
+        """ArchInputError unless the index (a pier tilt: the pier) exists on ``arch``."""
+        if self.kind == "pier-tilt":
+            run = dict(zip(("left", "right"), getattr(arch, "piers", ((), ()))))
+            if not getattr(arch, "pier_blocks", ()) or not run[self.side]:
+                raise ArchInputError(f"defect pier-tilt: {arch.name!r} has no {self.side} pier; "
+                                     f"allowed on an arch on piers (--pier-height/--pier-width, "
+                                     f"or a file with pier blocks)")
+            return
         hi = arch.n - 1 if self.target == "voussoir" else arch.n
         if self.index > hi:
             raise ArchInputError(f"defect {self.target}: {self.index}; allowed 0..{hi} (the arch "
@@ -142,6 +167,8 @@ class Defect:
     def spec(self) -> str:
         """The string form (:meth:`parse` reads it back)."""
         s = f"{self.index}:{self.kind}={self.value:g}"
+        if self.kind == "pier-tilt":
+            s = f"{self.kind}={self.value:g}"
         if self.kind in _SIDE_KEY and self.side != DEFECT_KINDS[self.kind][2]:
             s += f",side={self.side}"
         return s
@@ -154,6 +181,9 @@ class Defect:
                     f"({1 - self.value:.0%} lost {where})")
         if self.kind == "tilt":
             return f"joint {self.index} tilted by {self.value:g} deg (counter-clockwise positive)"
+        if self.kind == "pier-tilt":
+            return (f"{self.side} pier out of plumb by {self.value:g} deg ("
+                    f"{'outward' if self.value >= 0 else 'inward'}, about its outer foot corner)")
         return (f"joint {self.index} without mortar over {self.value:.0%} of its contact "
                 f"from its {self.side}")
 
@@ -176,7 +206,7 @@ class Defect:
         return parse_defect(text, n)
 
 
-_SPEC = re.compile(r"^\s*([^:]*):\s*([a-z]+)\s*=\s*([^,]*)(.*)$")
+_SPEC = re.compile(r"^\s*(?:([^:]*):)?\s*([a-z-]+)\s*=\s*([^,]*)(.*)$")
 
 
 def parse_defect(text: str, n: int | None = None) -> Defect:
@@ -184,16 +214,18 @@ def parse_defect(text: str, n: int | None = None) -> Defect:
     if not isinstance(text, str):
         raise ArchInputError(f"defect: {text!r}; allowed a string like '3:thickness=0.7'")
     m = _SPEC.match(text)
-    forms = ("VOUSSOIR:thickness=F[,side=intrados|extrados|centreline], JOINT:tilt=DEG or "
-             "JOINT:mortar=F[,side=intrados|extrados]")
+    forms = ("VOUSSOIR:thickness=F[,side=intrados|extrados|centreline], JOINT:tilt=DEG, "
+             "JOINT:mortar=F[,side=intrados|extrados] or pier-tilt=DEG[,side=left|right]")
     if not m:
         raise ArchInputError(f"defect: {text!r}; allowed {forms}")
     idx_text, kind, value_text, rest = m.groups()
     if kind not in DEFECT_KINDS:
         raise ArchInputError(f"defect kind: {kind!r} in {text!r}; allowed {', '.join(DEFECT_KINDS)}")
     what = DEFECT_KINDS[kind][0]
+    if (kind == "pier-tilt") != (idx_text is None):
+        raise ArchInputError(f"defect: {text!r}; allowed {forms}")
     try:
-        index = int(idx_text.strip())
+        index = 0 if idx_text is None else int(idx_text.strip())
     except ValueError:
         raise ArchInputError(f"defect {what}: {idx_text.strip()!r} in {text!r}; allowed an "
                              f"integer index" + (f" 0..{n - 1 if what == 'voussoir' else n}"
@@ -212,7 +244,7 @@ def parse_defect(text: str, n: int | None = None) -> Defect:
                                  + ("side=..." if old else "none for a tilt"))
         side = val.strip()
     d = Defect(kind, index, value, side)
-    if n is not None:
+    if n is not None and kind != "pier-tilt":
         hi = n - 1 if what == "voussoir" else n
         if d.index > hi:
             raise ArchInputError(f"defect {what}: {d.index} in {text!r}; allowed 0..{hi}")
@@ -245,7 +277,7 @@ def defect_base(arch: VoussoirArch, kind: str) -> VoussoirArch:
     the exact sectors)."""
     if kind not in DEFECT_KINDS:
         raise ArchInputError(f"defect kind: {kind!r}; allowed {', '.join(DEFECT_KINDS)}")
-    if kind == "thickness" and isinstance(arch, Arch):
+    if kind == "thickness" and isinstance(arch, Arch) or kind == "pier-tilt":
         return arch
     return _as_polygon(arch)
 
@@ -427,6 +459,18 @@ def _unmortared(arch: VoussoirArch, d: Defect) -> PolygonArch:
     return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads)
 
 
+def _pier_tilted(arch, d: Defect):
+    from .piers import lean_pier
+
+    out = lean_pier(arch, d.side, d.value)
+    if out is arch:  # 0 deg: the same arch, under its own name
+        from .piers import ArchOnPiers
+
+        out = ArchOnPiers(arch.intrados, arch.extrados, arch.density, arch.name, arch.loads,
+                          block_kinds=arch.block_kinds)
+    return out
+
+
 def apply_defect(arch: VoussoirArch, defect: Defect | str) -> VoussoirArch:
     """``arch`` with one defect (a :class:`Defect` or its string form; module docstring): an
     exact :class:`Arch` for a thickness loss on a circular arch, else a :class:`PolygonArch`
@@ -438,7 +482,8 @@ def apply_defect(arch: VoussoirArch, defect: Defect | str) -> VoussoirArch:
         raise ArchInputError(f"defect: {defect!r}; allowed a Defect or a string like "
                              f"'3:thickness=0.7'")
     d.check(arch)
-    out = {"thickness": _thinner, "tilt": _tilted, "mortar": _unmortared}[d.kind](arch, d)
+    out = {"thickness": _thinner, "tilt": _tilted, "mortar": _unmortared,
+           "pier-tilt": _pier_tilted}[d.kind](arch, d)
     object.__setattr__(out, "name", f"{arch.name} [{d.spec()}]")
     return out
 

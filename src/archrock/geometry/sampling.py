@@ -23,7 +23,12 @@ sectors, :func:`~archrock.geometry.perturb_voussoirs`) or a family arch
 or fill, its arithmetic compiled in :mod:`archrock.geometry.batchdraw`: the same polylines).  A
 polygon arch without a recipe (a surveyed arch, e.g. from a DXF drawing) keeps its joints and
 varies each voussoir's thickness and centreline offset (:mod:`archrock.geometry.survey`; span
-and tilt spreads must be 0).
+and tilt spreads must be 0).  An arch on piers is drawn so, pier courses included; with pier
+spreads (``Spreads.pier_*``) each pier is first drawn on its own (lean, width, height, bed
+joints; :func:`archrock.geometry.piers.reshape_piers`) from its own child stream
+``SeedSequence(seed, spawn_key=(k, 2, 0))`` (left) or ``(k, 2, 1)`` (right;
+:meth:`ArchSampler.pier_uniforms`), and the blocks' draws are applied to that arch: the voussoirs' uniforms are unchanged, and with the pier
+spreads 0 the samples are those drawn before, to the bit (docs/piers.md, Irregular piers).
 """
 
 from __future__ import annotations
@@ -38,10 +43,15 @@ from ..errors import ArchInputError, InvalidSampleError
 from . import Arch, FamilyArch, PolygonArch, VoussoirArch, perturb_voussoirs
 from .families import perturb_family
 
-__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS", "LEGACY_KEYS"]
+__all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS", "LEGACY_KEYS", "PIER_SPREADS"]
 
 #: Samples per random stream.
 BLOCK = 500
+#: The pier spreads: (field, upper bound, bound included, what it is).
+PIER_SPREADS = (("pier_lean", 15.0, True, "degrees out of plumb, U x s, outward positive"),
+                ("pier_width", 1.0, False, "the pier's width times 1 + U s"),
+                ("pier_height", 1.0, False, "the pier's height times 1 + U s"),
+                ("pier_course", 0.5, False, "bed joints moved by U s course heights"))
 
 
 @dataclass(frozen=True)
@@ -51,17 +61,38 @@ class Spreads:
     thickness (for a family arch: the voussoir's length along the centreline, its thickness,
     the normal offset of its centreline); ``tilt`` [deg], 0 <= tilt < 45: each interior joint
     of a family arch rotated about its centreline point by U x tilt (0: joints as the family's).
-    Frozen; ``to_dict`` writes the field names (span, thickness, radius, tilt) and ``from_dict``
-    reads them or archrock <= 0.6's keys (:data:`LEGACY_KEYS`: spread_span, spread_thickness,
-    spread_radius, spread_tilt_deg, the command-line names); :meth:`legacy_dict` writes those old
-    keys, for the ensemble configuration's hash, which keeps its 0.4 form."""
+    Frozen; ``to_dict`` writes the field names (span, thickness, radius, tilt, and the pier
+    spreads when not 0) and ``from_dict`` reads them or archrock <= 0.6's keys
+    (:data:`LEGACY_KEYS`: spread_span, spread_thickness, spread_radius, spread_tilt_deg, the
+    command-line names); :meth:`legacy_dict` writes those old keys, for the ensemble
+    configuration's hash, which keeps its 0.4 form.
+
+    Piers (an arch on piers only; docs/piers.md, Irregular piers), each pier drawn on its own:
+    ``pier_lean`` [deg], 0 <= s <= 15: the pier out of plumb by U x s (outward positive);
+    ``pier_width`` and ``pier_height``, 0 <= s < 1: its width and height times (1 + U s);
+    ``pier_course``, 0 <= s < 0.5: each interior bed joint moved up or down by U s x the
+    pier's mean course height.  Written (keys: the field names) only when not 0, so that the
+    hash of a configuration without them is unchanged."""
 
     span: float = 0.1
     thickness: float = 0.1
     radius: float = 0.05
     tilt: float = 0.0
+    pier_lean: float = 0.0
+    pier_width: float = 0.0
+    pier_height: float = 0.0
+    pier_course: float = 0.0
 
     def __post_init__(self):
+        for name, hi, closed, what in PIER_SPREADS:
+            v = getattr(self, name)
+            ok = not isinstance(v, bool) and isinstance(v, (int, float, np.integer, np.floating)) \
+                and math.isfinite(float(v)) and 0.0 <= float(v) and \
+                (float(v) <= hi if closed else float(v) < hi)
+            if not ok:
+                raise ArchInputError(f"{name}: {v!r}; allowed 0 <= {name} "
+                                     f"{'<=' if closed else '<'} {hi:g} ({what})")
+            object.__setattr__(self, name, float(v))
         v = self.tilt
         if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or \
                 not (math.isfinite(float(v)) and 0.0 <= float(v) < 45.0):
@@ -78,9 +109,14 @@ class Spreads:
             object.__setattr__(self, name, v)
 
     def to_dict(self) -> dict:
-        """The fields by name: ``{"span", "thickness", "radius", "tilt"}``."""
-        return {"span": self.span, "thickness": self.thickness, "radius": self.radius,
-                "tilt": self.tilt}
+        """The fields by name: ``{"span", "thickness", "radius", "tilt"}``, and the pier spreads
+        that are not 0."""
+        d = {"span": self.span, "thickness": self.thickness, "radius": self.radius,
+             "tilt": self.tilt}
+        for name, *_ in PIER_SPREADS:
+            if getattr(self, name):
+                d[name] = getattr(self, name)
+        return d
 
     def legacy_dict(self) -> dict:
         """archrock 0.1-0.6's dict (:data:`LEGACY_KEYS`; spread_tilt_deg only when the tilt is
@@ -90,7 +126,15 @@ class Spreads:
              "spread_radius": self.radius}
         if self.tilt:
             d["spread_tilt_deg"] = self.tilt
+        for name, *_ in PIER_SPREADS:
+            if getattr(self, name):
+                d[name] = getattr(self, name)
         return d
+
+    @property
+    def piers(self) -> bool:
+        """Whether any pier spread is not 0."""
+        return any(getattr(self, name) for name, *_ in PIER_SPREADS)
 
     @classmethod
     def from_dict(cls, data) -> "Spreads":
@@ -103,7 +147,7 @@ class Spreads:
         if not isinstance(data, dict):
             raise ArchInputError(f"spreads: {data!r}; allowed an object with span, thickness, "
                                  f"radius, tilt")
-        fields = ("span", "thickness", "radius", "tilt")
+        fields = ("span", "thickness", "radius", "tilt") + tuple(n for n, *_ in PIER_SPREADS)
         unknown = set(data) - set(fields) - set(LEGACY_KEYS)
         if unknown:
             raise ArchInputError(f"spreads: unknown key(s) {sorted(unknown)}; allowed "
@@ -171,6 +215,15 @@ class ArchSampler:
             raise ArchInputError(f"nominal: expected an Arch or a FamilyArch, got "
                                  f"{type(a).__name__}")
 
+        if self.spreads.piers and not getattr(a, "pier_blocks", ()):
+            raise ArchInputError(self._no_piers())
+
+    def _no_piers(self) -> str:
+        given = ", ".join(f"{n} {getattr(self.spreads, n):g}" for n, *_ in PIER_SPREADS
+                          if getattr(self.spreads, n))
+        return (f"pier spreads: {given} for {self.nominal.name!r}, which stands on no piers; "
+                f"allowed 0 (pier spreads need an arch on piers: --pier-height/--pier-width)")
+
     @property
     def circular(self) -> bool:
         """Whether the nominal is a circular Arch (draws as arrays, :meth:`draw`)."""
@@ -215,6 +268,54 @@ class ArchSampler:
         not change, and sample i's fraction depends on (seed, i) alone."""
         return self._stream(start, count, (), 0.0, (1,))
 
+    def pier_uniforms(self, start: int, count: int, side: str) -> np.ndarray:
+        """U on [-1, 1] of samples start .. start + count - 1 for their ``side`` ('left' or
+        'right') pier, shape (count, 2 + c): its lean, width, height and its c - 1 interior bed
+        joints' draws (c its courses).  Each pier has its own stream: block k reads the child
+        ``SeedSequence(seed, spawn_key=(k, 2, 0))`` (left) or ``(k, 2, 1)`` (right), so the
+        voussoirs' draws do not change, nor one pier's with the other's courses."""
+        if side not in ("left", "right"):
+            raise ArchInputError(f"side: {side!r}; allowed left, right")
+        run = self.nominal.piers[0 if side == "left" else 1]
+        return self._stream(start, count, (2 + len(run),), -1.0,
+                            (2, 0 if side == "left" else 1))
+
+    def _pier_changes(self, index: int) -> dict:
+        """The changes of :func:`archrock.geometry.piers.reshape_piers` of sample ``index``'s
+        piers (:meth:`pier_uniforms`)."""
+        s = self.spreads
+        left, right = self.nominal.piers
+        out = {}
+        for side, run in (("left", left), ("right", right)):
+            if not run:
+                continue
+            u = self.pier_uniforms(index, 1, side)[0]
+            jp = self.nominal.joint_points
+            if side == "left":
+                top, foot = jp[len(run)], jp[0]
+            else:
+                top, foot = jp[self.nominal.n - len(run)], jp[self.nominal.n]
+            course = (float(min(top[:, 1])) - float(max(foot[:, 1]))) / len(run)
+            out[side] = {"lean": s.pier_lean * u[0], "width": 1.0 + s.pier_width * u[1],
+                         "height": 1.0 + s.pier_height * u[2],
+                         "shifts": s.pier_course * course * u[3:]
+                         if s.pier_course and len(run) > 1 else None}
+        return out
+
+    def _pier_nominal(self, index: int):
+        """The nominal arch on sample ``index``'s irregular piers (pier spreads not 0; the
+        voussoir draws are then applied to it), else the nominal itself."""
+        if not self.spreads.piers:
+            return self.nominal
+        from .piers import reshape_piers
+
+        ch = self._pier_changes(index)
+        try:
+            return reshape_piers(self.nominal, self.nominal.block_kinds, ch.get("left"),
+                                 ch.get("right"), _trusted=True)
+        except ArchInputError as exc:
+            raise InvalidSampleError(f"not a valid arch: {exc}") from None
+
     def draw(self, start: int, count: int):
         """(spans [rad], thicknesses [m], radii [m]) of samples start .. start + count - 1,
         each of shape (count, n), for a circular nominal; nothing is validated (see :meth:`arch`;
@@ -244,11 +345,18 @@ class ArchSampler:
         if getattr(self.nominal, "recipe", None) is None:  # a surveyed arch
             from .survey import perturb_survey
 
+            nominal = self._pier_nominal(index)
             try:
-                return perturb_survey(self.nominal, u, s.thickness, s.radius,
-                                      name=f"sample {index}")
+                drawn = perturb_survey(nominal, u, s.thickness, s.radius,
+                                       name=f"sample {index}")
             except ArchInputError as exc:
                 raise InvalidSampleError(f"not a valid arch: {exc}") from None
+            if nominal is self.nominal:
+                return drawn
+            from .piers import _unchecked  # a checked polygon arch: its kinds put back
+
+            return _unchecked(drawn.intrados, drawn.extrados, drawn.density, drawn.name,
+                              drawn.loads, nominal.block_kinds)
         from .batchdraw import compiled_drawing, draw_lines, family_plan
 
         if compiled_drawing(self):  # the same polylines as perturb_family, compiled

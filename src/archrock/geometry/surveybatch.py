@@ -151,13 +151,18 @@ def survey_properties(plan: SurveyPlan, U, spreads, parallel: bool = True) -> di
     """Draws ``U`` (B, rows, n) around the plan's surveyed arch with ``spreads`` (thickness and
     radius used), as :func:`archrock.geometry.batchdraw.batch_properties` gives them for a
     family: state (B,), the refused voussoir in ``index``, areas, centroids, polar,
-    joint_points, size and area_sum (rows not in state OK hold garbage there)."""
+    joint_points, size and area_sum (rows not in state OK hold garbage there).  With pier
+    spreads every row is UNCERTIFIED: its arch is drawn as an object."""
     U = np.ascontiguousarray(U, dtype=float)
     B, n = U.shape[0], plan.n
     out = {"state": np.full(B, UNCERTIFIED, dtype=np.int64), "index": np.zeros(B, np.int64),
            "areas": np.zeros((B, n)), "centroids": np.zeros((B, n, 2)), "polar": np.zeros((B, n)),
            "joint_points": np.zeros((B, n + 1, 2, 2)), "size": np.zeros(B),
            "area_sum": np.zeros(B)}
+    if getattr(spreads, "piers", False):
+        # irregular piers (a lean, a width ...) are drawn on the arch objects
+        # (ArchSampler.arch): every row is left uncertified and goes back to them
+        return out
     loop = (_loop_nb if parallel else _loop_serial) if HAVE_NUMBA else _loop_py
     loop(U, float(spreads.thickness), float(spreads.radius), *plan.args(), out["state"],
          out["index"], out["areas"], out["centroids"], out["polar"], out["joint_points"],

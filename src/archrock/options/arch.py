@@ -25,11 +25,18 @@ def arch_from_args(args):
     (archrock.geometry.apply_defect), on the piers of --pier-height/--pier-width (an
     ArchOnPiers, archrock.geometry.with_piers); raises ArchInputError / OptionError on bad input."""
     arch = undamaged_arch_from_args(args)
-    if getattr(args, "defect", None):
-        from ..geometry import apply_defects
+    specs = list(getattr(args, "defect", None) or ())
+    # a pier tilt turns a pier: applied once the arch stands on its piers; the others number
+    # the arch's own voussoirs and joints, so they come first
+    tilts = [d for d in specs if isinstance(d, str) and "pier-tilt" in d]
+    from ..geometry import apply_defects
 
-        arch = apply_defects(arch, args.defect)
-    return supports_from_args(args, piers_from_args(args, arch))
+    if len(tilts) < len(specs):
+        arch = apply_defects(arch, [d for d in specs if d not in tilts])
+    arch = piers_from_args(args, arch)
+    if tilts:
+        arch = apply_defects(arch, tilts)
+    return supports_from_args(args, arch)
 
 
 def piers_from_args(args, arch):
@@ -37,9 +44,11 @@ def piers_from_args(args, arch):
     number the arch's own voussoirs and joints, are applied first), or ``arch`` without them.
     The flags are read through the one table of :mod:`archrock.options.fields`."""
     given = values(args, "with_piers")  # {field: value} of the flags given, in the table's order
+    flag = FLAGS["with_piers"]
+    if "steps" in given or "steps_right" in given:
+        return _stepped_from_args(arch, given)
     if not given:
         return arch
-    flag = FLAGS["with_piers"]
     if "height" not in given or "width" not in given:
         missing = " and ".join(flag[f] for f in ("height", "width") if f not in given)
         raise OptionError(f"{missing}: needed with {flag[next(iter(given))]} (the piers' height "
@@ -53,6 +62,34 @@ def piers_from_args(args, arch):
         worded = flag_message(str(exc), "with_piers")
         if worded is not None:
             raise ArchInputError(worded) from None
+        raise
+
+
+def _stepped_from_args(arch, given):
+    """``arch`` on the stepped buttresses of --pier-steps/--right-pier-steps (docs/piers.md)."""
+    from ..errors import ArchInputError
+    from ..geometry import with_piers
+    from ..geometry.piers import parse_steps
+
+    flag = FLAGS["with_piers"]
+    why = "(stepped piers take their heights and widths from the steps)"
+    if "steps" not in given:
+        raise OptionError(f"--pier-steps: needed with --right-pier-steps {why}")
+    others = [f for f in given if f not in ("steps", "steps_right")]
+    if others:
+        raise OptionError(f"{flag[others[0]]}: given with --pier-steps {why}")
+    sl = parse_steps(given["steps"], "--pier-steps")
+    sr = None if "steps_right" not in given else parse_steps(given["steps_right"],
+                                                             "--right-pier-steps")
+    try:
+        return with_piers(arch, None, None, steps=sl, steps_right=sr)
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, fl in (("steps_right", "--right-pier-steps"), ("steps", "--pier-steps"),
+                          ("width_right:", "--right-pier-steps: top step"),
+                          ("width:", "--pier-steps: top step")):
+            if msg.startswith(field):
+                raise ArchInputError(fl + msg[len(field):]) from None
         raise
 
 

@@ -15,7 +15,9 @@ __all__ = ["FLAGS", "DERIVED", "dest", "values", "flag_message"]
 #: arguments of archrock.geometry.with_piers (the arch on piers has no spec of its own)
 FLAGS: dict[str, dict[str, str | None]] = {
     "Spreads": {"span": "--spread-span", "thickness": "--spread-thickness",
-                "radius": "--spread-radius", "tilt": "--spread-tilt"},
+                "radius": "--spread-radius", "tilt": "--spread-tilt",
+                "pier_lean": "--spread-pier-lean", "pier_width": "--spread-pier-width",
+                "pier_height": "--spread-pier-height", "pier_course": "--spread-pier-course"},
     "PulseSpec": {"kind": "--pulse", "amplitude_g": "--amplitude", "duration": "--pulse-duration"},
     "RecordSpec": {"path": "--record", "units": "--units", "scale": "--scale", "sha256": None},
     "ImpactSpec": {"model": "--impact", "cv": "--cv", "literal": "--literal-cv",
@@ -27,7 +29,8 @@ FLAGS: dict[str, dict[str, str | None]] = {
                    "courses": "--pier-courses", "batter": "--pier-batter",
                    "height_right": "--right-pier-height", "width_right": "--right-pier-width",
                    "courses_right": "--right-pier-courses",
-                   "batter_right": "--right-pier-batter", "name": None},
+                   "batter_right": "--right-pier-batter", "steps": "--pier-steps",
+                   "steps_right": "--right-pier-steps", "name": None},
 }
 
 #: (spec, field) set by no flag -> why

@@ -6,14 +6,21 @@ from __future__ import annotations
 
 from .arch import arch_from_args
 from .errors import OptionError
-from .fields import values
+from .fields import flag_message, values
 
 
 def spreads(args):
     """The :class:`~archrock.geometry.sampling.Spreads` of :func:`add_spread_options`."""
+    from ..errors import ArchInputError
     from ..geometry.sampling import Spreads
 
-    return Spreads(**values(args, "Spreads"))  # a command without --spread-tilt: no tilt
+    try:  # a command without --spread-tilt (or the pier spreads): none of it
+        return Spreads(**values(args, "Spreads"))
+    except ArchInputError as exc:  # the flag's name, not the field's
+        worded = flag_message(str(exc), "Spreads")
+        if worded is not None:
+            raise ArchInputError(worded) from None
+        raise
 
 
 def motion_spec_from_args(args):

@@ -28,7 +28,7 @@ import numpy as np
 
 from .codecheck import CodeCheckConfig
 from ..errors import ArchInputError, ArchrockError
-from ..geometry import Arch, VoussoirArch
+from ..geometry import Arch, PolygonArch, VoussoirArch
 from ..dynamics.impact import PAPER_PRACTICE, ImpactSpec
 from ..geometry.sampling import Spreads
 
@@ -461,6 +461,108 @@ def section_supports(ctx: Context) -> Section | None:
     blocks += [Table(("", "fixed supports", "moved supports"), tuple(rows)),
                Figure("arch", f"{ctx.arch.name}: the arch on its moved supports.", ctx.arch)]
     return Section("supports", "Supports that have moved", tuple(blocks), data, tuple(head))
+@titled('piers', 'The piers')
+def section_piers(ctx: Context) -> Section | None:
+    """An arch on piers (docs/piers.md): each pier's size, where the mechanisms' hinges are
+    (named as ``archrock limit`` names them), the least width of rectangular piers of that
+    height that carry the arch (statics.buttress), and whether the four-link model (one
+    degree of freedom) can follow the structure (dynamics.piers).  None (left out) on rigid
+    ground."""
+    from ..geometry.piers import ArchOnPiers, arch_without_piers, hinge_place, pier_sizes
+
+    arch = ctx.arch
+    guessed = ""
+    if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
+        # a geometry file that names no kinds: the end blocks the single-DOF check takes for
+        # piers (heavy, rising as columns from level foundations), if any
+        from ..dynamics.piers import pier_blocks
+
+        found, how = pier_blocks(arch) if isinstance(arch, PolygonArch) else ((), "none")
+        if how != "geometry":
+            return None
+        kinds = tuple("pier" if i in found else "voussoir" for i in range(arch.n))
+        arch = ArchOnPiers(arch.intrados, arch.extrados, arch.density, arch.name, arch.loads,
+                           block_kinds=kinds)
+        guessed = (f" The geometry names no block kinds: block(s) "
+                   f"{', '.join(map(str, found))} are taken for piers (heavy end blocks rising "
+                   f"as columns from level foundations; kinds in the file would say so).")
+    sizes = pier_sizes(arch)
+    rows = tuple((side, sz["kind"], sz["blocks"], f"{sz['height']:.3f}",
+                  f"{sz['width_top']:.3f}" if math.isfinite(sz["width_top"]) else "-",
+                  f"{sz['width_foot']:.3f}",
+                  f"{sz['lean_deg']:.3f}") for side, sz in sizes.items())
+    words = "; ".join(f"{side} {sz['kind']} {sz['height']:.3g} m high, "
+                      f"{sz['width_top']:.3g} m wide at its top and {sz['width_foot']:.3g} m at "
+                      f"its foot, {sz['blocks']} block(s)"
+                      + (f", {abs(sz['lean_deg']):.3g} deg out of plumb "
+                         f"{'outward' if sz['lean_deg'] > 0 else 'inward'}"
+                         if abs(sz["lean_deg"]) > 1e-9 else "") for side, sz in sizes.items())
+    blocks = [Paragraph(f"The arch stands on piers ({words}). Blocks are numbered from the "
+                        f"left pier's foot; hinges are named where they are on the drawing."
+                        + guessed),
+              Table(("pier", "kind", "blocks", "height [m]", "width at top [m]",
+                     "width at foot [m]", "lean [deg, outward +]"), rows,
+                    "Sizes in each pier's own frame (turned back by its lean).")]
+    lim = ctx.limit
+    hinge_rows, at_piers = [], []
+    for d in ("l", "r"):
+        for lab, h in lim.mechanism(d).labelled():
+            place = hinge_place(arch, h.joint, h.edge)
+            hinge_rows.append((f"M_{d}", lab, f"{h.joint}{h.edge[0]}", place))
+            if "pier" in place or "buttress" in place:
+                at_piers.append(f"M_{d} {lab}: {place}")
+    blocks.append(Table(("mechanism", "hinge", "joint", "where"), tuple(hinge_rows),
+                        "The hinges of the limit mechanisms, named as archrock limit names "
+                        "them."))
+    data = {"piers": sizes, "hinges": [dict(zip(("mechanism", "hinge", "joint", "place"), r))
+                                       for r in hinge_rows],
+            "units": {"height": "m", "width_top": "m", "width_foot": "m", "foot_level": "m",
+                      "lean_deg": "deg"}}
+    head = [("piers", words)]
+    if at_piers:
+        blocks.append(Paragraph("Hinges in the piers: " + "; ".join(at_piers) + "."))
+    # the buttress question: the least width of rectangular piers of this height
+    from ..statics.buttress import minimum_pier_width
+
+    mins = {}
+    for h in sorted({round(sz["height"], 9) for sz in sizes.values()}):
+        try:
+            mw = minimum_pier_width(arch_without_piers(arch), h, tol=1e-6)
+            mins[h] = {"width": mw.width, "governed_by": mw.governed_by}
+        except ArchrockError as exc:
+            mins[h] = {"width": None, "error": " ".join(str(exc).split())}
+    data["minimum_pier_width"] = [{"height": h, **v} for h, v in mins.items()]
+    txt = []
+    for side, sz in sizes.items():
+        m = mins[round(sz["height"], 9)]
+        if m["width"] is None:
+            txt.append(f"{side}: not computed ({m['error']})")
+        else:
+            ratio = sz["width_top"] / m["width"] if math.isfinite(sz["width_top"]) else math.nan
+            txt.append(f"{side}: {m['width']:.4f} m for piers {sz['height']:.3g} m high "
+                       f"(this pier {sz['width_top']:.3g} m, {ratio:.2f} x"
+                       + (", the springing joint's own width governs" if m["governed_by"] ==
+                          "springing" else "") + ")")
+    blocks.append(Paragraph("The least width of two rectangular monolithic piers of this height "
+                            "with which the arch stands under its own weight (a line of thrust "
+                            "inside arch and piers; Heyman 1995, Ochsendorf 2002): "
+                            + "; ".join(txt) + "."))
+    # one degree of freedom or more (docs/piers-dynamics.md)
+    try:
+        from ..dynamics.piers import single_dof_check
+
+        chk = single_dof_check(ctx.model)
+        data["single_dof"] = chk.to_dict()
+        if not chk.valid:
+            blocks.append(Paragraph(
+                f"WARNING single degree of freedom not valid: {chk.reason}. The response, "
+                f"curves and fragility of this report are the four-link model's: on piers they "
+                f"can be unconservative (docs/piers-dynamics.md)."))
+            head.append(("four-link model on piers", "not valid: a pier rocks with the arch "
+                         "(figures can be unconservative)"))
+    except ArchrockError as exc:
+        data["single_dof"] = {"error": " ".join(str(exc).split())}
+    return Section("piers", "The piers", tuple(blocks), data, tuple(head))
 
 
 def _mu(x) -> str:
@@ -845,6 +947,7 @@ def section_assumptions(ctx: Context) -> Section:
 #: module is absent; fragility appears only with records.
 SECTIONS: list[Callable[[Context], Section | None]] = [
     section_geometry, section_limit,
+    section_piers,  # left out on rigid ground (docs/piers.md)
     section_supports,  # left out on fixed supports (docs/supports.md)
     section_friction, section_impact, section_response,
     section_curves, section_defects, section_fragility, section_contact, section_codecheck,
