@@ -58,11 +58,12 @@ class StderrProgress:
 STDERR_PROGRESS = StderrProgress()
 
 
-def run_settings(args, *, out=None, workers=True, scheduler=True, progress=True):
+def run_settings(args, *, out=None, workers=True, scheduler=True, progress=True,
+                 sink=STDERR_PROGRESS):
     """The :class:`RunSettings` of a study command's flags: ``--workers`` (1: in-process),
     ``--scheduler``, ``out`` (the checked ``--out`` folder, or None) and ``--no-progress``
-    (progress on stderr unless given).  workers/scheduler/progress False: the command has no
-    such flag (or does not run on it), the field stays at its default."""
+    (progress to ``sink``, stderr by default, unless given).  workers/scheduler/progress False:
+    the command has no such flag (or does not run on it), the field stays at its default."""
     from ..studies.runner import RunSettings
 
     w = getattr(args, "workers", None) if workers else None
@@ -70,5 +71,4 @@ def run_settings(args, *, out=None, workers=True, scheduler=True, progress=True)
         workers=None if w is None or w == 1 else w,
         scheduler=getattr(args, "scheduler", None) if scheduler else None,
         out=out,
-        progress=(STDERR_PROGRESS if progress and not getattr(args, "no_progress", False)
-                  else None))
+        progress=(sink if progress and not getattr(args, "no_progress", False) else None))

@@ -105,6 +105,16 @@ class RunSettings:
         """The progress callable (None: silent)."""
         return check_progress(self.progress)
 
+    def only(self, study: str, *used: str) -> "RunSettings":
+        """These settings, refused by field when ``study`` does not use it (``used``: the
+        fields of workers, scheduler and out it does use; progress every study uses)."""
+        for name in ("workers", "scheduler", "out"):
+            if name not in used and getattr(self, name) is not None:
+                raise ArchInputError(f"{name}: {getattr(self, name)!r}; {study} runs in this "
+                                     f"process and keeps no folder of finished work; allowed "
+                                     f"None")
+        return self
+
     def replace(self, **changes) -> "RunSettings":
         return replace(self, **changes)
 

@@ -8,7 +8,7 @@ import time
 from ...errors import ArchInputError
 from ...geometry import Arch
 from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
-from .config import EnsembleConfig, int_field
+from .config import EnsembleConfig
 from .executors import execute
 from ..._progress import Progress
 from ..runner import UNSET, resolve_settings
