@@ -55,11 +55,11 @@ def check_workers(workers) -> int | None:
 
 
 def _is_client(scheduler) -> bool:
-    try:
-        from distributed import Client
-    except ImportError:
-        return False
-    return isinstance(scheduler, Client)
+    """A ``distributed.Client`` (without importing Dask: a Client exists only once it is)."""
+    import sys
+
+    mod = sys.modules.get("distributed")
+    return mod is not None and isinstance(scheduler, mod.Client)
 
 
 @dataclass(frozen=True)
