@@ -28,9 +28,10 @@ def execute(config: EnsembleConfig, todo: list[int], finished, settings) -> str:
     Dask one batch a task, each worker's loop serial (one worker = one core)."""
     if not todo:
         return "in-process"
-    # a worker reads the configuration once, when it starts (Dask: once a task)
-    with Executor(settings, shared=config.to_dict(), setup=EnsembleConfig.from_dict,
-                  local=config) as ex:
+    # a worker reads the configuration once, when it starts (Dask: once a task); in-process
+    # the object itself, never its dict
+    shared = None if settings.executor == "in-process" else config.to_dict()
+    with Executor(settings, shared=shared, setup=EnsembleConfig.from_dict, local=config) as ex:
         groups = _groups(config, todo) if ex.in_process else [[b] for b in todo]
         for _, done in ex.map_unordered(_batches_task, [(g, ex.in_process) for g in groups]):
             for b, df, timings in done:
