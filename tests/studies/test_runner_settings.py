@@ -84,8 +84,9 @@ def test_a_study_refuses_the_fields_it_does_not_use():
 def test_ensemble_with_settings_is_bit_for_bit_the_old_call(tmp_path):
     cfg = small_config()
     new = run_ensemble(cfg, settings=RunSettings())
-    with pytest.warns(DeprecationWarning):
+    with pytest.warns(DeprecationWarning) as said:
         old = run_ensemble(cfg, workers=1, progress=False)
+    assert {w.filename for w in said} == {__file__}  # the warning names the caller's line
     pd.testing.assert_frame_equal(new.frame, old.frame)
     assert new.timing["executor"] == "in-process" and new.timing["workers"] == 1
     # kept in a folder, then resumed: nothing computed, the same table

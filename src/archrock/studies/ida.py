@@ -173,6 +173,14 @@ def _progress(what, total, est, progress, unit="analysis"):
     return Progress(total, progress if est > PROGRESS_S else None, desc=what, unit=unit)
 
 
+def _inputs(study, records, models, im, settings, **old):
+    """The records, models, sample indices, arches left out, IM and run settings of
+    :func:`ida` and :func:`msa`, checked."""
+    recs, ms = _records(records), _models(models)
+    ids, failed = _ids_failed(models, ms)
+    return recs, ms, ids, failed, _im(im), resolve_settings(settings, study, stacklevel=4, **old)
+
+
 ENGINES = ("batch", "respond")
 
 
@@ -462,11 +470,9 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     engine): a folder that keeps every finished response (:class:`archrock.studies.store.
     ResultStore`), so that the same call after an interruption recomputes nothing it had
     finished."""
-    settings = resolve_settings(settings, "ida", workers=workers, scheduler=scheduler, out=out,
-                                progress=progress)
-    recs, ms = _records(records), _models(models)
-    ids, failed = _ids_failed(models, ms)
-    im = _im(im)
+    recs, ms, ids, failed, im, settings = _inputs(
+        "ida", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
+        progress=progress)
     s = _grid("scales", scales)
     engine = _engine(engine)
     top = max(recs, key=lambda r: r.pga)
@@ -555,11 +561,9 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     beyond the work bound (:mod:`archrock.studies.work`); ``engine``, ``early_stop`` and
     ``settings`` (and the 0.6 keywords) as :func:`ida` (every level x arch x record in one
     sweep)."""
-    settings = resolve_settings(settings, "msa", workers=workers, scheduler=scheduler, out=out,
-                                progress=progress)
-    recs, ms = _records(records), _models(models)
-    ids, failed = _ids_failed(models, ms)
-    im = _im(im)
+    recs, ms, ids, failed, im, settings = _inputs(
+        "msa", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
+        progress=progress)
     lv = _grid("levels", levels)
     engine = _engine(engine)
     factors = [_im_factor(r, im) for r in recs]

@@ -163,11 +163,12 @@ _OLD = {"workers": "workers", "scheduler": "scheduler", "out": "out", "out_dir":
         "progress": "progress"}
 
 
-def resolve_settings(settings, study: str, **old) -> RunSettings:
+def resolve_settings(settings, study: str, *, stacklevel: int = 3, **old) -> RunSettings:
     """The :class:`RunSettings` of a study called with ``settings`` (a RunSettings, its dict or
     None) and the 0.6 keywords ``old`` (:data:`UNSET`: not given).  A keyword given says a
     DeprecationWarning (it goes in archrock 0.8); one given beside ``settings``, or a field
-    given twice (``out`` and ``out_dir``), is refused by name."""
+    given twice (``out`` and ``out_dir``), is refused by name.  stacklevel: that of the
+    warning, so that it names the caller's line (3: the study called this itself)."""
     given = {k: v for k, v in old.items() if v is not UNSET}
     base = RunSettings.from_dict(settings)
     if not given:
@@ -181,7 +182,7 @@ def resolve_settings(settings, study: str, **old) -> RunSettings:
         new = _OLD[k]
         warnings.warn(f"{study}({k}=...) is now {study}(settings=RunSettings({new}=...)) (one "
                       f"settings object in every study); {k}= goes in archrock 0.8",
-                      DeprecationWarning, stacklevel=3)
+                      DeprecationWarning, stacklevel=stacklevel)
     return RunSettings(**{_OLD[k]: v for k, v in given.items()})
 
 
