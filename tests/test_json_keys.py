@@ -23,6 +23,7 @@ from archrock.studies.assessment import AssessConfig
 from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
 from archrock.studies.ensemble import EnsembleConfig
 from archrock.studies.enginestudy import EngineRun
+from archrock.studies.runner import RunSettings
 
 DATA = Path(__file__).parent / "data"
 
@@ -56,7 +57,8 @@ def configs(record):
         PAPER_PRACTICE, ImpactSpec.fixed(0.8, literal=True), ImpactSpec.parse("least-loss"),
         Defect.parse("3:thickness=0.5,side=extrados"), Defect.parse("2:tilt=-5"),
         SupportMovement(0.01, 0.002, "both"), SupportMovement(0.0, 0.0, "left", 0.02, 1.5), Load(2, 150.0, (0.5, 9.0)),
-        EngineSettings(), EngineRun(t_free=20.0, collapse_drop=0.3), CodeCheckConfig(fc=1.2, control=3, spectrum=table),
+        EngineSettings(), EngineRun(t_free=20.0, collapse_drop=0.3),
+        RunSettings(workers=2, out="runs/a", progress=True), RunSettings(), CodeCheckConfig(fc=1.2, control=3, spectrum=table),
         SiteSpectrum("ntc", ag=0.2, f0=2.4, tc_star=0.3), table,
         AssessConfig(samples=3, spreads=Spreads(0.05, 0.05, 0.02), records=("a.AT2",)),
         EnsembleConfig.from_arch(nominal_arch(), samples=30, seed=4, batch_size=7,

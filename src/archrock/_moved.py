@@ -56,10 +56,20 @@ class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def create_module(self, spec):
         new = new_name(spec.name)
         warn(spec.name, new, stacklevel=8)
-        return importlib.import_module(new)
+        module = importlib.import_module(new)
+        # its own spec, kept the first time (by the new name: aliases may nest)
+        _REAL_SPECS.setdefault(new, module.__spec__)
+        return module
 
     def exec_module(self, module):
-        pass  # the module at its new name is already executed
+        # the module at its new name is already executed; the import system has just set its
+        # __spec__ to the old name's, which would make the module's own relative imports
+        # resolve against the old package: give it back its own
+        module.__spec__ = _REAL_SPECS[module.__name__]
+
+
+#: new full name -> the module's own spec (restored after each alias import)
+_REAL_SPECS: dict = {}
 
 
 def install() -> None:

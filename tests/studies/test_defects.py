@@ -366,8 +366,9 @@ def test_progress_lines_go_to_the_callback_not_stderr(capsys):
         for j, i in enumerate((0, 3))]
     defect_map(oppenheim_arch(), "thickness", 0.7, indices=[0])
     assert capsys.readouterr() == ("", "")
-    with pytest.raises(ArchInputError, match=r"^progress: True; allowed None or a callable"):
-        defect_map(oppenheim_arch(), progress=True)
+    # the one protocol (archrock._progress): anything but None, True or a callable is refused
+    with pytest.raises(ArchInputError, match=r"^progress: 'yes'; allowed None, True"):
+        defect_map(oppenheim_arch(), settings={"progress": "yes"})
 
 
 def test_side_is_one_spelling_with_the_old_ones_read(capsys):

@@ -185,7 +185,8 @@ def test_progress_callable_receives_the_resume_notes(base, tmp_path, capsys):
 
 
 def test_out_dir_is_the_old_name_of_out(base, tmp_path):
-    with pytest.warns(DeprecationWarning, match=r"run_ensemble\(out_dir=...\) is now out="):
+    with pytest.warns(DeprecationWarning, match=r"run_ensemble\(out_dir=...\) is now "
+                      r"run_ensemble\(settings=RunSettings\(out=...\)\)"):
         res = run_ensemble(config(), out_dir=tmp_path / "a", progress=None)
     assert res.timing["computed_batches"] == [0, 1, 2, 3]
     assert run_ensemble(config(), tmp_path / "a", progress=None).timing["loaded_batches"] == [
@@ -351,7 +352,7 @@ def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
     pytest.importorskip("distributed")
     import time
 
-    from archrock.studies.ensemble import executors
+    from archrock.studies import executors  # the one executor family
 
     monkeypatch.setattr(executors, "SCHEDULER_TIMEOUT_S", 1.0)
     address = f"127.0.0.1:{_unused_port()}"
@@ -522,9 +523,11 @@ def written(base, tmp_path):
 
 
 def _resume(out, capsys):
-    capsys.readouterr()
-    res = run_ensemble(config(), out=out, progress=True)
-    return res, capsys.readouterr().err
+    from archrock.studies.runner import RunSettings
+
+    lines = []  # the progress lines (the library prints nothing)
+    res = run_ensemble(config(), settings=RunSettings(out=out, progress=lines.append))
+    return res, "\n".join(lines)
 
 
 def test_resume_without_manifest_is_refused(written):
@@ -608,8 +611,12 @@ def test_a_folder_written_by_0_4_0_resumes_by_verification(tmp_path, capsys):
         f"batch-{b:05d}.parquet" for b in range(3)]
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["versions"]["archrock"] == "0.4.0"
-    res = run_ensemble(EnsembleConfig.from_dict(manifest["config"]), out=out, progress=True)
-    err = capsys.readouterr().err
+    from archrock.studies.runner import RunSettings
+
+    lines = []
+    res = run_ensemble(EnsembleConfig.from_dict(manifest["config"]),
+                       settings=RunSettings(out=out, progress=lines.append))
+    err = "\n".join(lines)
     if res.timing["loaded_batches"] == [1, 2]:  # the numbers of this installation's numpy/numba
         assert res.timing["computed_batches"] == [0]
         assert "its 2 other batch(es) kept" in err

@@ -448,11 +448,12 @@ def test_progress_lines_are_throttled(capsys, monkeypatch):
     """`fragility --samples 200` wrote 1,205 progress lines (a tqdm redraw ten times a second
     into a log). Off a terminal the lines now come once per 1% and 1 s, or once a minute, and
     the last: 10,000 updates over 500 s give at most 100 + 500 / 60 + 1 lines."""
-    import archrock.studies.ensemble.progress as progress
+    import archrock._progress as progress
+    from archrock.cli.runsettings import STDERR_PROGRESS  # the CLI renders; the library never prints
 
     clock = [1000.0]
     monkeypatch.setattr(progress.time, "monotonic", lambda: clock[0])
-    bar = progress.Progress(10_000, True, desc="ida", unit="response")
+    bar = progress.Progress(10_000, STDERR_PROGRESS, desc="ida", unit="response")
     assert bar.bar is None  # captured stderr is no terminal: plain lines, no tqdm redraws
     for _ in range(10_000):
         clock[0] += 0.05
@@ -462,7 +463,7 @@ def test_progress_lines_are_throttled(capsys, monkeypatch):
     assert 90 <= len(lines) <= 110
     assert lines[-1] == "ida: 10000/10000 responses (100%)"
     # slow progress: a line a minute at most, whatever is done
-    bar = progress.Progress(10**9, True, desc="ida", unit="response")
+    bar = progress.Progress(10**9, STDERR_PROGRESS, desc="ida", unit="response")
     for _ in range(1000):
         clock[0] += 1.0
         bar.update(1)
@@ -473,10 +474,11 @@ def test_progress_lines_are_throttled(capsys, monkeypatch):
     assert capsys.readouterr().err == ""
 
 
-def test_progress_callable_gets_the_lines_and_nothing_is_printed(capsys, monkeypatch):
+def test_progress_callable_gets_the_lines_and_nothing_is_printed(capsys, monkeypatch, caplog):
     """The one progress protocol: a callable receives the same throttled lines (and notes)
-    that True prints on stderr; the library prints nothing then; anything else is refused."""
-    import archrock.studies.ensemble.progress as progress
+    that the CLI prints on stderr; the library prints nothing; True hands them to the
+    'archrock.progress' logger; anything else is refused."""
+    import archrock._progress as progress
 
     clock = [0.0]
     monkeypatch.setattr(progress.time, "monotonic", lambda: clock[0])
@@ -490,8 +492,15 @@ def test_progress_callable_gets_the_lines_and_nothing_is_printed(capsys, monkeyp
     assert capsys.readouterr().err == ""
     assert got[0] == "curves: starting" and got[-1] == "curves: 200/200 arches (100%)"
     assert len(got) == 101  # 1% of 200 is two arches: a line every other update, and the note
-    with pytest.raises(ArchInputError, match="progress: 'yes'; allowed None or a callable"):
+    with pytest.raises(ArchInputError, match="progress: 'yes'; allowed None, True"):
         progress.Progress(10, "yes")
+    import logging
+
+    with caplog.at_level(logging.INFO, logger="archrock.progress"):
+        bar = progress.Progress(3, True, desc="msa", unit="analysis")
+        bar.update(3)
+    assert capsys.readouterr().err == ""
+    assert [r.getMessage() for r in caplog.records] == ["msa: 3/3 analyses (100%)"]
 
 
 def test_cli_one_scale_without_collapse_names_scales(capsys, tmp_path):

@@ -831,7 +831,9 @@ def run_report_job(req: dict, progress, cancelled) -> dict | None:
 
     t0 = time.perf_counter()
     try:
-        result = assess(req["arch"], req["config"], progress=said,
+        from ..studies.runner import RunSettings
+
+        result = assess(req["arch"], req["config"], settings=RunSettings(progress=said),
                         sections=[counted(f) for f in chosen])
     except _Cancelled:
         return None

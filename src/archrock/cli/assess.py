@@ -71,7 +71,9 @@ def run_assess(args) -> int:
         codecheck=codecheck_config_from_args(args))
     arch = arch_from_args(args)
     say(f"archrock assess: {arch.name}, {arch.n} voussoirs")
-    result = assess(arch, cfg, progress=say)
+    from ..studies.runner import RunSettings
+
+    result = assess(arch, cfg, settings=RunSettings(progress=say))
     say("rendering the report ...")
     html_path, json_path = write_report(result, args.out, progress=say)
     print(f"wrote {html_path}")

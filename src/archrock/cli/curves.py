@@ -6,6 +6,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import _int, emit_json, interrupted_study, positive_float
+from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
 
@@ -67,8 +68,6 @@ def run_curves(args) -> int:
     durations = parse_range(args.durations, "durations")
     if args.n_scan < 2:
         raise ArchInputError(f"n_scan: {args.n_scan}; allowed an integer >= 2")
-    if args.workers < 1:
-        raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     impact = impact_spec_from_args(args)
     from ..studies.enginestudy import choose_dynamics
 
@@ -78,6 +77,7 @@ def run_curves(args) -> int:
 
         return run_engine_curves(args, nominal, durations, choice, plot)
     out = folder_arg(args.out)
+    settings = run_settings(args, out=out)
     if args.engine == "respond":
         if args.scheduler:
             raise ArchInputError("scheduler: run by the batch engine; allowed --scheduler with "
@@ -87,19 +87,16 @@ def run_curves(args) -> int:
                                  "batch")
     kw = dict(kind=args.pulse, sign=args.sign, a_max=args.a_max, n_scan=args.n_scan, tol=args.tol,
               engine=args.engine)
-    if args.engine == "batch":
-        kw.update(scheduler=args.scheduler, out=out)
     band = None
     try:
         if args.samples > 0:
             band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,
-                                  impact=impact, workers=args.workers,
-                                  progress=not args.no_progress, **kw)
+                                  impact=impact, settings=settings, **kw)
             curve = band.nominal
         else:
-            curve = collapse_curve(prepare(nominal, impact), durations,
-                                   workers=args.workers if args.engine == "batch" else None,
-                                   **kw)
+            # one curve: arch after arch has no pool (the respond engine runs here)
+            curve = collapse_curve(prepare(nominal, impact), durations, settings=(
+                settings if args.engine == "batch" else settings.replace(workers=None)), **kw)
     except KeyboardInterrupt:
         return interrupted_study(out)
     if plot:

@@ -3,8 +3,8 @@ costs the most capacity)."""
 
 from __future__ import annotations
 
-import sys
 
+from .runsettings import run_settings
 from ._parser import _int, emit_json, finite_float, positive_float
 from .options import add_geometry_options, add_impact_options, arch_from_args, figure_arg
 
@@ -59,11 +59,6 @@ def add_defects_parser(subparsers):
     return p
 
 
-def _say(line: str) -> None:
-    """A progress line of the library, on stderr."""
-    print(line, file=sys.stderr, flush=True)
-
-
 def run_defects(args) -> int:
     from ..studies.defectmap import defect_map
     from ..reports.defects import defects_summary, format_defects
@@ -89,8 +84,7 @@ def run_defects(args) -> int:
     dmap = defect_map(arch, args.kind, args.value, side, pulse_duration=args.pulse_duration,
                       pulse_kind=args.pulse, sign=args.sign, impact=impact, a_max=args.a_max,
                       n_scan=args.n_scan, tol=args.tol,
-                      progress=None if args.pulse_duration is None or args.no_progress
-                      else _say)
+                      settings=run_settings(args, progress=args.pulse_duration is not None))
     if plot:
         from ..reports.plots import plot_defect_map
 

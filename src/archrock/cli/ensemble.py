@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from ..errors import ArchInputError
 import sys
 from pathlib import Path
 
 from ._parser import EXIT_INTERRUPTED, PROG, CLIError, _int, emit_json
+from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
                       add_spread_options, arch_from_args, figure_arg, folder_arg,
                       impact_spec_from_args, motion_spec_from_args, spreads)
@@ -74,9 +74,8 @@ def run_ensemble_cmd(args) -> int:
     from ..studies.ensemble import PAPER_RANDOM_ARCHES, EnsembleConfig, run_ensemble
     from ..reports.ensemble import format_ensemble
 
-    if args.workers < 1:
-        raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     out, plot = folder_arg(args.out), figure_arg(args.plot)
+    settings = run_settings(args, out=out)
     nominal = arch_from_args(args)
     support = None
     if isinstance(nominal, DisplacedArch):  # --spread/--settlement: every sample's supports move
@@ -105,9 +104,8 @@ def run_ensemble_cmd(args) -> int:
                                       early_stop=bool(args.early_stop), support=support,
                                       support_draw=args.support_draw)
     try:
-        result = run_ensemble(config, out=out, workers=args.workers,
-                              scheduler=args.scheduler, progress=not args.no_progress,
-                              keep_frame=not args.low_memory, dynamics=args.dynamics)
+        result = run_ensemble(config, keep_frame=not args.low_memory, settings=settings,
+                              dynamics=args.dynamics)
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; " + _kept(out, config.n_batches), file=sys.stderr)
         return EXIT_INTERRUPTED

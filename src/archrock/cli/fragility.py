@@ -6,6 +6,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import _int, emit_json, interrupted_study, non_negative_int
+from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
 
@@ -72,7 +73,7 @@ def run_fragility(args) -> int:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
-    if args.workers < 1:
+    if args.workers < 1:  # before any records are read
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     if args.engine == "respond" and (args.workers > 1 or args.scheduler):
         raise ArchInputError("engine: 'respond' runs in this process only; allowed --workers "
@@ -90,16 +91,14 @@ def run_fragility(args) -> int:
         raise ArchInputError("out: kept by the batch engine; allowed --out with --engine batch")
     if args.early_stop and args.engine == "respond":
         raise ArchInputError("early-stop: a batch-engine option; allowed with --engine batch")
-    run = dict(engine=args.engine, workers=args.workers if args.workers > 1 else None,
-               scheduler=args.scheduler, out=out, early_stop=args.early_stop) \
-        if args.engine == "batch" else dict(engine="respond")
+    run = dict(engine=args.engine, settings=run_settings(args, out=out))
+    if args.engine == "batch":
+        run.update(early_stop=args.early_stop)
     try:
-        res_ida = ida(records, models, scales, im=im, n_boot=boot, seed=args.seed,
-                      progress=not args.no_progress, **run)
+        res_ida = ida(records, models, scales, im=im, n_boot=boot, seed=args.seed, **run)
         levels = (parse_range(args.levels, "levels") if args.levels
                   else default_stripe_levels(res_ida, scales, records))
-        res_msa = msa(records, models, levels, im=im, n_boot=boot, seed=args.seed,
-                      progress=not args.no_progress, **run)
+        res_msa = msa(records, models, levels, im=im, n_boot=boot, seed=args.seed, **run)
     except KeyboardInterrupt:
         return interrupted_study(out)
     if plot:

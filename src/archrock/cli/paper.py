@@ -16,6 +16,9 @@ def run_paper(args) -> int:
     from ..reports.plots import PAPER_FIGURES
     from ..studies.paper import run_paper_study
     from .options import folder_arg
+    from .runsettings import run_settings
 
-    run_paper_study(folder_arg(args.out), progress=print, figures=PAPER_FIGURES)
+    # the paper's lines (and its table) are the command's output: on stdout
+    run_paper_study(figures=PAPER_FIGURES,
+                    settings=run_settings(args, out=folder_arg(args.out), sink=print))
     return 0

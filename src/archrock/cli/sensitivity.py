@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-import sys
 
+from .runsettings import run_settings
 from ._parser import _int, emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
                       add_spread_options, arch_from_args, impact_spec_from_args,
@@ -40,11 +40,6 @@ def add_sensitivity_parser(subparsers):
     return p
 
 
-def _say(line: str) -> None:
-    """A progress line of the library, on stderr."""
-    print(line, file=sys.stderr, flush=True)
-
-
 def run_sensitivity(args) -> int:
     from ..reports.sensitivity import format_sensitivity, sensitivity_summary
     from ..studies.sensitivity import PAPER_PULSE, sobol_indices
@@ -58,7 +53,7 @@ def run_sensitivity(args) -> int:
     res = sobol_indices(arch_from_args(args), spreads(args), args.samples, by=args.by,
                         motion=None if args.limit_only else motion,
                         impact=impact_spec_from_args(args), seed=args.seed,
-                        progress=None if args.no_progress else _say)
+                        settings=run_settings(args))
     if args.json:
         emit_json(sensitivity_summary(res))
     else:

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-import sys
 
+from .runsettings import run_settings
 from ._parser import CLIError, _int, emit_json, finite_float, non_negative_int
 from .dem import add_engine_options, engine_settings_from_args
 from .options import add_geometry_options, add_spread_options, arch_from_args, figure_arg, spreads
@@ -84,11 +84,10 @@ def _run_ensemble(args) -> int:
     sampler = ArchSampler(nominal, spreads(args), args.seed)
     import_pymunk()
     # progress goes to stderr even with --json (stdout holds only the JSON), as in ensemble
-    progress = lambda m: print(m, file=sys.stderr, flush=True)  # noqa: E731
     opts = {} if args.ramp_tol is None else {"tol": args.ramp_tol}
     res = verify_ensemble(sampler, args.samples, settings=engine_settings_from_args(args),
                           k_tol=DEFAULT_K_TOL if args.k_tol is None else args.k_tol,
-                          workers=args.workers, ramp_options=opts, progress=progress)
+                          ramp_options=opts, run_settings=run_settings(args))
     if args.json:
         emit_json(res.to_dict())
     else:
@@ -115,9 +114,9 @@ def run_verify(args) -> int:
     arch = arch_from_args(args)
     import_pymunk()
     # progress goes to stderr even with --json (stdout holds only the JSON), as in ensemble
-    progress = lambda m: print(m, file=sys.stderr, flush=True)  # noqa: E731
     res = verify(arch, args.amplitudes, args.durations, pulse=args.pulse,
-                 settings=engine_settings_from_args(args), progress=progress)
+                 settings=engine_settings_from_args(args),
+                 run_settings=run_settings(args, workers=False))
     if plot:
         from ..reports.contactplots import save_verify_figure
 

@@ -27,6 +27,7 @@ from typing import Callable
 import numpy as np
 
 from .codecheck import CodeCheckConfig
+from .runner import UNSET
 from ..errors import ArchInputError, ArchrockError
 from ..geometry import Arch, PolygonArch, VoussoirArch
 from ..dynamics.impact import PAPER_PRACTICE, ImpactSpec
@@ -1023,9 +1024,13 @@ def _version() -> str:
 
 
 def assess(arch: VoussoirArch, config: AssessConfig | None = None, *,
-           progress: Callable[[str], None] | None = None, sections=None) -> Assessment:
-    """Run every section of :data:`SECTIONS` (or ``sections``) on ``arch``; ``progress``
-    receives one line per section as it starts and ends."""
+           progress=UNSET, sections=None, settings=None) -> Assessment:
+    """Run every section of :data:`SECTIONS` (or ``sections``) on ``arch``; the ``progress``
+    of ``settings`` (a :class:`~archrock.studies.runner.RunSettings`; 0.6's ``progress=``
+    with a DeprecationWarning) receives one line per section as it starts and ends."""
+    from .runner import resolve_settings
+
+    progress = resolve_settings(settings, "assess", progress=progress).only("assess").sink
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
     ctx = Context(arch, AssessConfig() if config is None else config,

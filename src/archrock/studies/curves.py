@@ -40,6 +40,7 @@ from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import left_out_summary, prepare_sample
 from ..dynamics.response import DynamicModel, prepare, respond
 from ..geometry.sampling import Spreads
+from .runner import UNSET, resolve_settings
 from .work import PROGRESS_S, check_work, response_cost_s
 
 __all__ = [
@@ -334,9 +335,9 @@ class _PulseRunner:
     (threads, a process pool or Dask; finished items kept in ``out``), remembered per
     (model, duration, |a|)."""
 
-    def __init__(self, models, d, kind, sign, dt, bar=None, *, workers=None, scheduler=None,
-                 out=None):
-        from .runner import ResultStore, SweepRunner
+    def __init__(self, models, d, kind, sign, dt, bar=None, *, settings=None):
+        from .runner import RunSettings, SweepRunner
+        from .store import ResultStore
         from ..dynamics.sweep import SweepArches, SweepMotions
 
         arches = SweepArches.from_models(models, dt)
@@ -344,15 +345,16 @@ class _PulseRunner:
         # what the digest of a kept folder reads); item (m, j, a) is pulse j scaled to |a|
         units = SweepMotions.of([pulse(kind, float(sign), float(tp)) for tp in d])
         self.index = {float(tp): j for j, tp in enumerate(d)}
+        settings = RunSettings.from_dict(settings)
         store = None
-        if out is not None:
-            store = ResultStore(out, arches, units,
+        if settings.out is not None:
+            store = ResultStore(settings.out, arches, units,
                                 about={"study": "collapse-acceleration curves", "pulse": kind,
                                        "sign": sign, "durations": [float(x) for x in d],
                                        "arches": len(models)},
                                 settings={"study": "curves", "kind": kind, "sign": sign,
                                           "max_events": _RESPOND["max_events"]})
-        self.runner = SweepRunner(arches, units, workers=workers, scheduler=scheduler,
+        self.runner = SweepRunner(arches, units, settings,
                                   max_events=_RESPOND["max_events"], bar=bar, store=store,
                                   pulses=(kind, sign, d))
         self.cache: dict = {}
@@ -375,12 +377,13 @@ class _PulseRunner:
         return [self.cache[k][0] for k in keys]
 
 
-def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None, workers=None,
-                      scheduler=None, out=None) -> list:
+def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None,
+                      settings=None) -> list:
     """:func:`collapse_amplitude` of every (model, duration), arch-major: the grids of all in
     one sweep, then the bisections of every first collapse and survival-window edge together,
     one step per sweep (the same midpoints as :func:`bisect_boundary`); on the executor of
-    ``workers``/``scheduler``, the finished responses kept in ``out`` (:class:`_PulseRunner`)."""
+    ``settings`` (a :class:`~archrock.studies.runner.RunSettings`), the finished responses
+    kept in its ``out`` (:class:`_PulseRunner`)."""
     kind = pulse_kind(kind)
     sign = _check_sign(sign)
     tol = check_tol(tol)
@@ -390,8 +393,7 @@ def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None
         if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
             raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation "
                                  f"threshold {thr:.4f} g and <= {MAX_PGA_G:g} g")
-    with _PulseRunner(models, d, kind, sign, dt, bar, workers=workers, scheduler=scheduler,
-                      out=out) as run:
+    with _PulseRunner(models, d, kind, sign, dt, bar, settings=settings) as run:
         return _search(run, models, d, kind, sign, thrs, a_max=a_max, n_scan=n_scan, tol=tol,
                        dt=dt)
 
@@ -463,10 +465,10 @@ def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list
     return points
 
 
-def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None, workers=None,
-                  scheduler=None, out=None) -> list:
+def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None,
+                  settings=None) -> list:
     pts = _amplitudes_batch(models, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt,
-                            bar=bar, workers=workers, scheduler=scheduler, out=out)
+                            bar=bar, settings=settings)
     out = []
     for i, model in enumerate(models):
         mine = tuple(pts[i * d.size:(i + 1) * d.size])
@@ -543,39 +545,38 @@ def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: 
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
                    literal_cv: bool = False, dt: float | None = None,
-                   engine: str = "batch", workers: int | None = None, scheduler=None,
-                   out=None) -> CollapseCurve:
+                   engine: str = "batch", workers=UNSET, scheduler=UNSET, out=UNSET,
+                   settings=None) -> CollapseCurve:
     """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
     of :mod:`archrock.studies.work`.  engine: "batch" (default) runs the scans of every duration in one
     parallel sweep, then every bisection step of all of them in one more
     (:mod:`archrock.dynamics.sweep`); "respond" runs response after response (0.1.0's path).  Both give
-    the same curve, bit for bit.  Batch engine only: ``workers`` N > 1 a local process pool,
-    ``scheduler`` a Dask cluster (address or Client), ``out`` a folder keeping every finished
-    response so that the same call again recomputes nothing it had finished
-    (:mod:`archrock.studies.runner`)."""
+    the same curve, bit for bit.  settings (:class:`~archrock.studies.runner.RunSettings`; the
+    0.6 keywords ``workers``, ``scheduler``, ``out`` with a DeprecationWarning), batch engine
+    only: ``workers`` N > 1 a local process pool, ``scheduler`` a Dask cluster (address or
+    Client), ``out`` a folder keeping every finished response so that the same call again
+    recomputes nothing it had finished."""
+    settings = resolve_settings(settings, "collapse_curve", workers=workers,
+                                scheduler=scheduler, out=out)
     model = _model(model, impact, cv, literal_cv)
     d = _durations(durations)
     engine = _engine(engine)
-    workers = _check_batch_run(engine, workers, scheduler, out)
-    _check_curve_work(1, d.size, n_scan, a_max, tol, workers or 1)
+    _check_batch_run(engine, settings)
+    _check_curve_work(1, d.size, n_scan, a_max, tol, settings.workers or 1)
     if engine == "batch":
         _check_real("a_max", a_max, None, "a finite number > the activation threshold")
         return _curves_batch([model], d, kind, sign, a_max=float(a_max), n_scan=n_scan,
-                             tol=tol, dt=dt, workers=workers, scheduler=scheduler, out=out)[0]
+                             tol=tol, dt=dt, settings=settings)[0]
     return _curve(model, d, kind, sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
 
 
-def _check_batch_run(engine, workers, scheduler, out) -> int | None:
-    """``workers`` checked (None or >= 1); ``scheduler`` and ``out`` only with the batch engine."""
-    from .runner import check_workers
-
-    workers = check_workers(workers)
+def _check_batch_run(engine, settings) -> None:
+    """``scheduler`` and ``out`` of the run settings only with the batch engine."""
     if engine != "batch":
-        for name, v in (("scheduler", scheduler), ("out", out)):
+        for name, v in (("scheduler", settings.scheduler), ("out", settings.out)):
             if v is not None:
                 raise ArchInputError(f"{name}: run by the batch engine; allowed with "
                                      f"engine='batch'")
-    return workers
 
 
 def _curve(model, d, kind, sign, *, a_max, n_scan, tol, dt) -> CollapseCurve:
@@ -655,7 +656,7 @@ def _one_sample(job):
 
 def _batch_rows(nominal, sampler, samples, impact, d, kwargs, bar, run) -> tuple:
     """(the nominal model's curve, the rows of :func:`_one_sample` for samples 0 .. samples - 1),
-    the nominal and every usable random arch in one batch (``run``: workers, scheduler, out)."""
+    the nominal and every usable random arch in one batch (``run``: the run settings)."""
     prepared = [prepare_sample(sampler, i, impact) for i in range(samples)]
     usable = [m for m, _ in prepared if m is not None]
     kw = {k: v for k, v in kwargs.items() if k != "a_max"}
@@ -675,9 +676,9 @@ def _batch_rows(nominal, sampler, samples, impact, d, kwargs, bar, run) -> tuple
 def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
-                   tol: float = 1e-3, dt: float | None = None, workers: int = 1,
-                   progress=False, engine: str = "batch", scheduler=None,
-                   out=None) -> EnsembleCurve:
+                   tol: float = 1e-3, dt: float | None = None, workers=UNSET,
+                   progress=UNSET, engine: str = "batch", scheduler=UNSET,
+                   out=UNSET, settings=None) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
     Arch i is sample i of :class:`~archrock.geometry.sampling.ArchSampler` (nominal, spreads, seed): the
@@ -690,19 +691,23 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     out and listed in ``failed``; ArchInputError only when no arch is usable.  literal_cv: apply a
     fixed c_v to the rates literally instead of energy-consistently (docs/method.md, Impact).
     engine "batch" (default): the nominal and every random arch and duration of a search step in
-    one sweep (:func:`collapse_curve`): in-process numba threads, ``workers`` > 1 a local process
-    pool, ``scheduler`` a Dask cluster; ``out`` a folder keeping every finished response (a rerun
-    recomputes nothing it had finished; :mod:`archrock.studies.runner`).  "respond": arch after arch,
+    one sweep (:func:`collapse_curve`), on the executor of ``settings``
+    (:class:`~archrock.studies.runner.RunSettings`; the 0.6 keywords ``workers``, ``scheduler``,
+    ``out``, ``progress`` with a DeprecationWarning): in-process numba threads, ``workers`` > 1
+    a local process pool, ``scheduler`` a Dask cluster; ``out`` a folder keeping every finished
+    response (a rerun recomputes nothing it had finished).  "respond": arch after arch,
     ``workers`` > 1 of them at once in a process pool (workers die with this process; no
     ``scheduler`` nor ``out``).  Both give the same curves, bit for bit.  The work is
-    estimated first and refused beyond the bound of :mod:`archrock.studies.work`; ``progress`` reports
-    the arches done when the estimate exceeds a few seconds (True: on stderr; a callable: given
-    each line).
+    estimated first and refused beyond the bound of :mod:`archrock.studies.work`; the settings'
+    ``progress`` reports the responses (or arches) done when the estimate exceeds a few
+    seconds (:mod:`archrock._progress`).
     """
+    settings = resolve_settings(settings, "ensemble_curve", workers=workers,
+                                scheduler=scheduler, out=out, progress=progress)
     if not isinstance(nominal, VoussoirArch):
         raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
     samples = _check_int("samples", samples, 1)
-    workers = _check_int("workers", workers, 1)
+    workers = settings.workers or 1
     from ..statics.supports import study_sampler
 
     # on moved supports (a nominal of statics.supports.on_moved_supports) every random arch
@@ -717,29 +722,30 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     resolved = spec.resolved(nominal)
     kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
     engine = _engine(engine)
-    _check_batch_run(engine, workers, scheduler, out)
+    _check_batch_run(engine, settings)
     if engine == "batch":  # the checks of collapse_curve, before the arches are drawn
         _check_real("a_max", a_max, None, "a finite number > the activation threshold")
         nominal_model = prepare(nominal, spec)
     else:
         nominal_curve = collapse_curve(prepare(nominal, spec), d, engine=engine, **kwargs)
     jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
-    from .ensemble.progress import Progress
+    from .._progress import Progress
 
     if engine == "batch":
         # responses: the scan and (about) three bisections per arch and duration
         per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
             max(float(a_max) / float(tol), 2.0))))
-        bar = Progress((samples + 1) * d.size * per_curve, progress if est > PROGRESS_S else None,
+        bar = Progress((samples + 1) * d.size * per_curve,
+                       settings.progress if est > PROGRESS_S else None,
                        desc="curves", unit="response")
-        run = dict(workers=workers if workers > 1 else None, scheduler=scheduler, out=out)
+        run = dict(settings=settings)
         try:
             nominal_curve, rows = _batch_rows(nominal_model, sampler, samples, resolved, d,
                                               kwargs, bar, run)
         finally:
             bar.close()
     else:
-        bar = Progress(samples, progress if est > PROGRESS_S else None, desc="curves",
+        bar = Progress(samples, settings.progress if est > PROGRESS_S else None, desc="curves",
                        unit="arch")
         try:
             if workers == 1:
@@ -748,7 +754,7 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
                     rows.append(_one_sample(j))
                     bar.update(1)
             else:
-                from .ensemble.executors import worker_pool
+                from .executors import worker_pool
 
                 with worker_pool(min(workers, os.cpu_count() or 1)) as ex:
                     rows = []

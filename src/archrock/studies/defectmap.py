@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -25,7 +24,7 @@ from ..errors import UNUSABLE_ARCH, ArchInputError, CannotStandError, GeometryOu
 from ..geometry import Defect, VoussoirArch, apply_defect
 from ..geometry.defect import defect_base
 from ..statics.kinematic import kinematic_mechanisms
-from .._progress import check_progress
+from .runner import UNSET, resolve_settings
 
 __all__ = ["DefectMap", "defect_map"]
 
@@ -188,7 +187,7 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
                side: str = "", *, indices=None, pulse_duration: float | None = None,
                pulse_kind: str = "oppenheim", sign: int = -1, impact=None, a_max: float = 10.0,
                n_scan: int = 60, tol: float = 1e-3,
-               progress: Callable[[str], None] | None = None) -> DefectMap:
+               progress=UNSET, settings=None) -> DefectMap:
     """The defect map of ``arch`` (module docstring).
 
     kind: 'thickness' (value: remaining fraction, default 0.7), 'tilt' (value [deg], default 5)
@@ -199,12 +198,14 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     amplitude of the two) on each arch, with the impact law
     ``impact`` (an ImpactSpec or its name; default the paper's practice, evaluated on the
     undamaged arch), scanning ``n_scan`` amplitudes up to ``a_max`` [g] and bisecting to
-    ``tol`` [g]; progress: None (silent) or a callable given one line of text per damaged arch
-    (the CLI prints them on stderr).
+    ``tol`` [g]; settings: a :class:`~archrock.studies.runner.RunSettings` whose ``progress``
+    gets one line of text per damaged arch (:mod:`archrock._progress`; 0.6's ``progress=``
+    with a DeprecationWarning).
     """
+    settings = resolve_settings(settings, "defect_map", progress=progress).only("defect_map")
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
-    progress = check_progress(progress)
+    progress = settings.sink
     if isinstance(kind, Defect):
         if value is not None or side:
             raise ArchInputError("value, side: given with a Defect, which holds its own; give "

@@ -41,6 +41,7 @@ from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import PreparedArches, left_out_summary, prepare_many
 from ..dynamics.response import DynamicModel, prepare, respond
 from ..geometry.sampling import Spreads
+from .runner import UNSET, resolve_settings
 from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
                    response_cost_s)
 
@@ -172,9 +173,17 @@ def _check_analyses(what, recs, n_models, per_pair, n_boot, fit_s) -> float:
 
 
 def _progress(what, total, est, progress, unit="analysis"):
-    from .ensemble.progress import Progress
+    from .._progress import Progress
 
     return Progress(total, progress if est > PROGRESS_S else None, desc=what, unit=unit)
+
+
+def _inputs(study, records, models, im, settings, **old):
+    """The records, models, sample indices, arches left out, IM and run settings of
+    :func:`ida` and :func:`msa`, checked."""
+    recs, ms = _records(records), _models(models)
+    ids, failed = _ids_failed(models, ms)
+    return recs, ms, ids, failed, _im(im), resolve_settings(settings, study, stacklevel=4, **old)
 
 
 ENGINES = ("batch", "respond")
@@ -190,23 +199,24 @@ def _engine(engine: str) -> str:
 _TEST_EVENTS = 50_000
 
 
-def _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop=False, out=None):
-    from .runner import ResultStore, SweepRunner
+def _runner(recs, ms, dt, t_free, settings, bar, early_stop=False):
+    from .runner import SweepRunner
+    from .store import ResultStore
     from ..dynamics.sweep import SweepArches, SweepMotions
 
     arches, motions = SweepArches.from_models(ms, dt, t_free), SweepMotions.of(recs)
     store = None
-    if out is not None:
-        store = ResultStore(out, arches, motions,
+    if settings.out is not None:
+        store = ResultStore(settings.out, arches, motions,
                             about={"study": "fragility (IDA and stripes)",
                                    "records": [r.name for r in recs], "arches": len(ms)},
                             settings={"max_events": _TEST_EVENTS, "early_stop": bool(early_stop)})
-    return SweepRunner(arches, motions, workers=workers, scheduler=scheduler,
+    return SweepRunner(arches, motions, settings,
                        max_events=_TEST_EVENTS, early_stop=early_stop, bar=bar, store=store)
 
 
-def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
-               early_stop=False, factors=None, out=None) -> list:
+def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, settings, bar,
+               early_stop=False, factors=None) -> list:
     """The curves of :func:`ida_curve` for every (arch, record), arch-major, each round of the
     search in one sweep: the grid of every pair, then the no-activation checks of the pairs
     whose lowest grid scale collapsed, then the bisection steps of all pairs together (the same
@@ -215,7 +225,7 @@ def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, workers, scheduler, bar,
     P = A * Rn
     pa = np.repeat(np.arange(A), Rn)  # pair p = (arch p // Rn, record p % Rn)
     pr = np.tile(np.arange(Rn), A)
-    with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop, out) as run:
+    with _runner(recs, ms, dt, t_free, settings, bar, early_stop) as run:
         st = run(np.repeat(pa, n), np.repeat(pr, n), np.tile(s, P))["status"]
         flags = (st == 1).reshape(P, n)
         lo = np.full(P, np.nan)
@@ -446,25 +456,28 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
         seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress=False, engine: str = "batch", workers: int | None = None,
-        scheduler=None, early_stop: bool = False, out=None) -> IDAResult:
+        progress=UNSET, engine: str = "batch", workers=UNSET,
+        scheduler=UNSET, early_stop: bool = False, out=UNSET, settings=None) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
-    (:mod:`archrock.studies.work`); ``progress``: the responses (or curves) done, for a long run
-    (True: on stderr; a callable: given each line; :mod:`archrock.studies.ensemble.progress`).
+    (:mod:`archrock.studies.work`).  settings: how it runs
+    (:class:`~archrock.studies.runner.RunSettings`; the 0.6 keywords ``workers``,
+    ``scheduler``, ``out``, ``progress`` with a DeprecationWarning); its ``progress`` gets the
+    responses (or curves) done, for a long run (:mod:`archrock._progress`).
 
     engine: "batch" (default) runs every (arch, record, scale) of a round (the grid scan, then
     each bisection step) in one parallel call (:mod:`archrock.studies.runner`: in-process numba
-    threads, ``workers`` > 1 processes or a Dask ``scheduler``); "respond" runs curve after curve
+    threads, the settings' ``workers`` > 1 processes or a Dask ``scheduler``); "respond" runs curve after curve
     with :func:`ida_curve` (archrock 0.1.0's path).  Both give the same curves, bit for bit
     (:mod:`archrock.dynamics.sweep`).  early_stop (batch engine): end a response once it can no longer
     collapse (:data:`archrock.dynamics.sweep.HAVE_EARLY_STOP`; the outcome is that of the full run unless
-    the energy lies within the kernel's 1% margin of a barrier).  out (batch engine): a folder
-    that keeps every finished response (:class:`archrock.studies.runner.ResultStore`), so that the
-    same call after an interruption recomputes nothing it had finished."""
-    recs, ms = _records(records), _models(models)
-    ids, failed = _ids_failed(models, ms)
-    im = _im(im)
+    the energy lies within the kernel's 1% margin of a barrier).  The settings' out (batch
+    engine): a folder that keeps every finished response (:class:`archrock.studies.store.
+    ResultStore`), so that the same call after an interruption recomputes nothing it had
+    finished."""
+    recs, ms, ids, failed, im, settings = _inputs(
+        "ida", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
+        progress=progress)
     s = _grid("scales", scales)
     engine = _engine(engine)
     top = max(recs, key=lambda r: r.pga)
@@ -475,15 +488,15 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     est = _check_analyses("ida", recs, len(ms), s.size + bisect_steps, n_boot, FIT_MOMENTS_S)
     factors = [_im_factor(r, im) for r in recs]
     if engine == "batch":
-        bar = _progress("ida", len(ms) * len(recs) * (s.size + bisect_steps), est, progress,
-                        unit="response")
+        bar = _progress("ida", len(ms) * len(recs) * (s.size + bisect_steps), est,
+                        settings.progress, unit="response")
         try:
-            curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, workers,
-                                scheduler, bar, early_stop, factors, out)
+            curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, settings, bar,
+                                early_stop, factors)
         finally:
             bar.close()
     else:
-        bar = _progress("ida", len(ms) * len(recs), est, progress)
+        bar = _progress("ida", len(ms) * len(recs), est, settings.progress)
         curves = []
         try:
             for j, m in zip(ids, ms):
@@ -546,16 +559,16 @@ class StripeResult:
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress=False, engine: str = "batch", workers: int | None = None,
-        scheduler=None, early_stop: bool = False, out=None) -> StripeResult:
+        progress=UNSET, engine: str = "batch", workers=UNSET,
+        scheduler=UNSET, early_stop: bool = False, out=UNSET, settings=None) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
-    beyond the work bound (:mod:`archrock.studies.work`); ``progress`` as :func:`ida`; ``engine``,
-    ``workers``, ``scheduler``, ``early_stop``, ``out`` as :func:`ida` (every level x arch x
-    record in one sweep)."""
-    recs, ms = _records(records), _models(models)
-    ids, failed = _ids_failed(models, ms)
-    im = _im(im)
+    beyond the work bound (:mod:`archrock.studies.work`); ``engine``, ``early_stop`` and
+    ``settings`` (and the 0.6 keywords) as :func:`ida` (every level x arch x record in one
+    sweep)."""
+    recs, ms, ids, failed, im, settings = _inputs(
+        "msa", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
+        progress=progress)
     lv = _grid("levels", levels)
     engine = _engine(engine)
     factors = [_im_factor(r, im) for r in recs]
@@ -566,7 +579,7 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     top = max(float(scale_for(f, im, lv[-1])) * r.pga_g for r, f in zip(recs, factors))
     check_pga(top, f"levels: {lv[-1]:g}", "reduce the top level", warn=False)
     est = _check_analyses("msa", recs, len(ms), lv.size, n_boot, FIT_MLE_S)
-    bar = _progress("msa", lv.size * len(ms) * len(recs), est, progress)
+    bar = _progress("msa", lv.size * len(ms) * len(recs), est, settings.progress)
     outcomes = np.zeros((lv.size, len(ms), len(recs)), dtype=bool)
     # scale of record k at level i: the same float as the arch-by-arch loop computes
     scale = np.array([[float(scale_for(f, im, x)) for f in factors] for x in lv])
@@ -574,7 +587,7 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         if engine == "batch":
             L, A, Rn = lv.size, len(ms), len(recs)
             li, ai, ri = np.meshgrid(np.arange(L), np.arange(A), np.arange(Rn), indexing="ij")
-            with _runner(recs, ms, dt, t_free, workers, scheduler, bar, early_stop, out) as run:
+            with _runner(recs, ms, dt, t_free, settings, bar, early_stop) as run:
                 st = run(ai.ravel(), ri.ravel(), scale[li.ravel(), ri.ravel()])["status"]
             outcomes[:] = (st == 1).reshape(L, A, Rn)
         else:

@@ -1,18 +1,23 @@
-"""Where a study's sweeps run: in this process (numba threads), a local process pool, or Dask.
+"""How a study runs: one frozen :class:`RunSettings` (workers, scheduler, output folder,
+progress) taken by every study as ``settings=``, as scikit-learn's estimators take ``n_jobs``;
+and the :class:`SweepRunner` of the studies that search collapse boundaries.
+
+Every study (:func:`~archrock.studies.ensemble.run_ensemble`, the collapse curves, IDA and
+multiple stripes, Sobol indices, defect maps, verification ensembles, the paper's study, the
+assessment) runs on the executors of :mod:`archrock.studies.executors` (in-process, process
+pool, Dask), keeps its finished work in the store of :mod:`archrock.studies.store` (atomic
+Parquet files, a manifest, provenance, resume by verification) and reports through the one
+progress protocol of :mod:`archrock._progress` (the CLI renders it).  The 0.6 keyword arguments
+(``workers=``, ``scheduler=``, ``out=``, ``out_dir=``, ``progress=``) still work for one
+release, with a DeprecationWarning (:func:`resolve_settings`).
 
 IDA, multiple stripes and the collapse-acceleration curves search collapse boundaries in rounds
 (a scan, then bisection steps); every round is one list of items (arch, motion, scale) for
-:func:`archrock.dynamics.sweep.sweep`.  A :class:`SweepRunner` holds the packed arches and motions and runs
-round after round on one executor, as ``ensemble`` does:
-
-* in-process (default): the numba ``prange`` loop over the items, all numba threads;
-* ``workers`` N > 1: a local process pool of N workers (one core each, serial compiled loop); the
-  arches and motions are sent to each worker once, when it starts;
-* ``scheduler``: an existing Dask cluster (an address or a ``distributed.Client``); the arches
-  and motions are scattered to every worker once.
-
-The items of a round are cut into chunks so that progress can be shown; results never depend on
-the executor or the chunks (each item is independent).
+:func:`archrock.dynamics.sweep.sweep`.  A :class:`SweepRunner` holds the packed arches and
+motions and runs round after round on one executor (in-process: the numba ``prange`` loop over
+the items; a pool or Dask: the arches and motions sent to each worker once).  The items of a
+round are cut into chunks so that progress can be shown; results never depend on the executor
+or the chunks (each item is independent).
 
 With ``pulses=(kind, sign, durations)`` (the collapse-acceleration curves) an item carries its own
 motion: item (arch, j, a) is arch under ``pulse(kind, sign * a, durations[j])``, scale 1, the very
@@ -24,15 +29,20 @@ items per sweep call to bound their memory.
 from __future__ import annotations
 
 import os
+import warnings
+from dataclasses import dataclass, fields, replace
+from pathlib import Path
 
 import numpy as np
 
+from .._progress import check_progress
 from ..errors import ArchInputError
 from ..dynamics.sweep import SweepArches, SweepMotions, sweep
+from .executors import Executor
+from .store import ResultStore  # noqa: F401 - its 0.6 home
 
-__all__ = ["SweepRunner", "ResultStore", "check_workers"]
-
-_STATE: dict = {}
+__all__ = ["RunSettings", "resolve_settings", "UNSET", "SweepRunner", "ResultStore",
+           "check_workers"]
 
 
 def check_workers(workers) -> int | None:
@@ -44,12 +54,143 @@ def check_workers(workers) -> int | None:
     return int(workers)
 
 
-def _init_worker(parent, arches, motions):
-    from .ensemble.executors import _worker_init
+def _is_client(scheduler) -> bool:
+    """A ``distributed.Client`` (without importing Dask: a Client exists only once it is)."""
+    import sys
 
-    _worker_init(parent)
-    _STATE["arches"] = SweepArches.from_arrays(arches)
-    _STATE["motions"] = SweepMotions(**motions)
+    mod = sys.modules.get("distributed")
+    return mod is not None and isinstance(scheduler, mod.Client)
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    """How a study runs (never what it computes: results are bit for bit the same whatever
+    these are).
+
+    workers: None or 1, in this process (numba threads); N > 1, a local process pool of
+    min(N, cores) workers.  scheduler: None, or an existing Dask cluster (its address, or a
+    ``distributed.Client``), which takes precedence over ``workers``.  out: None, or the folder
+    that keeps the finished work (a rerun with the same folder recomputes nothing it had
+    finished).  progress: None (silent), True (lines to the ``archrock.progress`` logger) or a
+    callable given one line of text (:mod:`archrock._progress`; the CLI renders on stderr)."""
+
+    workers: int | None = None
+    scheduler: object = None
+    out: Path | None = None
+    progress: object = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "workers", check_workers(self.workers))
+        sch = self.scheduler
+        if sch is not None and not (isinstance(sch, str) and sch.strip()) and not _is_client(sch):
+            raise ArchInputError(f"scheduler: {sch!r}; allowed None, a Dask scheduler's "
+                                 f"address (e.g. 'tcp://host:8786') or a distributed.Client")
+        if self.out is not None:
+            if not isinstance(self.out, (str, os.PathLike)) or not str(self.out).strip():
+                raise ArchInputError(f"out: {self.out!r}; allowed None or a folder path")
+            object.__setattr__(self, "out", Path(self.out))
+        if self.progress is False:
+            object.__setattr__(self, "progress", None)
+        check_progress(self.progress)
+
+    @property
+    def executor(self) -> str:
+        """"dask", "process pool" or "in-process" (what these settings run on)."""
+        if self.scheduler is not None:
+            return "dask"
+        return "process pool" if self.workers is not None and self.workers > 1 else "in-process"
+
+    @property
+    def sink(self):
+        """The progress callable (None: silent)."""
+        return check_progress(self.progress)
+
+    def only(self, study: str, *used: str) -> "RunSettings":
+        """These settings, refused by field when ``study`` does not use it (``used``: the
+        fields of workers, scheduler and out it does use; progress every study uses)."""
+        for name in ("workers", "scheduler", "out"):
+            if name not in used and getattr(self, name) is not None:
+                raise ArchInputError(f"{name}: {getattr(self, name)!r}; {study} runs in this "
+                                     f"process and keeps no folder of finished work; allowed "
+                                     f"None")
+        return self
+
+    def replace(self, **changes) -> "RunSettings":
+        return replace(self, **changes)
+
+    def to_dict(self) -> dict:
+        """The settings as JSON values; a Client or a progress callable cannot be written and
+        is refused by name."""
+        if self.scheduler is not None and not isinstance(self.scheduler, str):
+            raise ArchInputError("scheduler: a distributed.Client cannot be written to JSON; "
+                                 "allowed its address")
+        if self.progress not in (None, True):
+            raise ArchInputError("progress: a callable cannot be written to JSON; allowed "
+                                 "None or true")
+        return {"workers": self.workers, "scheduler": self.scheduler,
+                "out": None if self.out is None else str(self.out), "progress": self.progress}
+
+    @classmethod
+    def from_dict(cls, data) -> "RunSettings":
+        if isinstance(data, RunSettings):
+            return data
+        if data is None:
+            return cls()
+        if not isinstance(data, dict):
+            raise ArchInputError(f"settings: {data!r}; allowed a RunSettings or a dict")
+        known = {f.name for f in fields(cls)}
+        extra = sorted(set(data) - known)
+        if extra:
+            raise ArchInputError(f"settings: unknown field {extra[0]!r}; allowed "
+                                 f"{', '.join(sorted(known))}")
+        return cls(**data)
+
+
+class _Unset:
+    """The default of a 0.6 run keyword: not given (None is a value some callers give)."""
+
+    def __repr__(self):
+        return "<unset>"
+
+    def __bool__(self):
+        return False
+
+
+UNSET = _Unset()
+
+#: the 0.6 keywords and the fields they set
+_OLD = {"workers": "workers", "scheduler": "scheduler", "out": "out", "out_dir": "out",
+        "progress": "progress"}
+
+
+def resolve_settings(settings, study: str, *, stacklevel: int = 3, **old) -> RunSettings:
+    """The :class:`RunSettings` of a study called with ``settings`` (a RunSettings, its dict or
+    None) and the 0.6 keywords ``old`` (:data:`UNSET`: not given).  A keyword given says a
+    DeprecationWarning (it goes in archrock 0.8); one given beside ``settings``, or a field
+    given twice (``out`` and ``out_dir``), is refused by name.  stacklevel: that of the
+    warning, so that it names the caller's line (3: the study called this itself)."""
+    given = {k: v for k, v in old.items() if v is not UNSET}
+    base = RunSettings.from_dict(settings)
+    if not given:
+        return base
+    if settings is not None:
+        raise ArchInputError(f"{next(iter(given))}: give the run options once, in settings= "
+                             f"(RunSettings); the keyword is their 0.6 spelling")
+    if "out" in given and "out_dir" in given:
+        raise ArchInputError("out_dir: give the folder once, as out (out_dir is its old name)")
+    for k in given:
+        new = _OLD[k]
+        warnings.warn(f"{study}({k}=...) is now {study}(settings=RunSettings({new}=...)) (one "
+                      f"settings object in every study); {k}= goes in archrock 0.8",
+                      DeprecationWarning, stacklevel=stacklevel)
+    return RunSettings(**{_OLD[k]: v for k, v in given.items()})
+
+
+
+def _sweep_state(shared):
+    """A pool or Dask worker's arches and motions, rebuilt from their arrays."""
+    arches, motions = shared
+    return SweepArches.from_arrays(arches), SweepMotions(**motions)
 
 
 #: items per sweep call when each item carries its own pulse (``pulses``, module doc)
@@ -72,201 +213,50 @@ def _sweep_items(arches, motions, a, m, s, pulses, **kw):
     return sweep(arches, own, a, np.arange(n), np.ones(n), **kw)
 
 
-def _pool_chunk(a, m, s, max_events, early_stop, pulses=None):
-    return _sweep_items(_STATE["arches"], _STATE["motions"], a, m, s, pulses, parallel=False,
-                        max_events=max_events, early_stop=early_stop)
-
-
-def _dask_chunk(arches, motions, a, m, s, max_events, early_stop, pulses=None):
-    return _sweep_items(SweepArches.from_arrays(arches), SweepMotions(**motions), a, m, s,
-                        pulses, parallel=False, max_events=max_events, early_stop=early_stop)
-
-
-#: columns of a stored chunk of items (:class:`ResultStore`)
-_STORED = ("status", "peak", "t_collapse", "t_unstable", "t_limit", "n_events")
-STORE_FORMAT = "archrock-sweep/1"
-
-
-def _digest(arches: SweepArches, motions: SweepMotions, extra: dict) -> str:
-    """sha256 of everything an item's result depends on: the packed arches and motions (their
-    bytes), the run settings and the package's sources."""
-    import hashlib
-    import json
-
-    from .._jit import _package_digest
-
-    h = hashlib.sha256()
-    for name, arr in sorted(arches.arrays().items()) + [
-            (k, v) for k, v in sorted(motions.arrays().items()) if k != "names"]:
-        a = np.ascontiguousarray(arr)
-        h.update(f"{name}\0{a.dtype.str}\0{a.shape}\0".encode())
-        h.update(a.tobytes())
-    h.update(json.dumps(extra, sort_keys=True).encode())
-    h.update(_package_digest().encode())
-    return h.hexdigest()
-
-
-class ResultStore:
-    """Finished items of a study's sweeps kept in a folder (``--out DIR``), so that a killed
-    study started again recomputes nothing it had finished: ``manifest.json`` (format, the
-    digest of the inputs, what the study is) and ``items/chunk-NNNNN.parquet`` (arch, motion,
-    scale and the results of each item), each written atomically.  A folder holding another
-    study's items (another digest) is refused.  Needs pyarrow (the 'ensemble' extra)."""
-
-    def __init__(self, folder, arches, motions, *, about: dict | None = None,
-                 settings: dict | None = None):
-        from pathlib import Path
-
-        try:
-            import pyarrow.parquet as pq  # noqa: F401
-        except ImportError:
-            raise ImportError("--out needs pyarrow: pip install 'archrock[ensemble]'") from None
-        self.folder = Path(folder)
-        self.digest = _digest(arches, motions, settings or {})
-        man = self.folder / "manifest.json"
-        import json
-
-        if man.exists():
-            try:
-                old = json.loads(man.read_text(encoding="utf-8"))
-            except (OSError, ValueError) as exc:
-                raise ArchInputError(f"out: {str(man)!r} cannot be read ({exc}); allowed a "
-                                     f"folder written by this study, or a new one") from None
-            if old.get("format") != STORE_FORMAT or old.get("digest") != self.digest:
-                raise ArchInputError(f"out: {str(self.folder)!r} holds another study (other "
-                                     f"arches, records, settings or archrock version); allowed "
-                                     f"the folder of this very study, or a new one")
-        else:
-            self.folder.mkdir(parents=True, exist_ok=True)
-            tmp = man.with_name(f"manifest.json.tmp-{os.getpid()}")
-            tmp.write_text(json.dumps({"format": STORE_FORMAT, "digest": self.digest,
-                                       "study": about or {}}, indent=2), encoding="utf-8")
-            os.replace(tmp, man)
-        (self.folder / "items").mkdir(exist_ok=True)
-        for stale in (self.folder / "items").glob("*.tmp-*"):
-            stale.unlink()
-        self.done: dict = {}
-        self.next = 0  # number of the next chunk file: after every existing one, never reused
-        for f in sorted((self.folder / "items").glob("chunk-*.parquet")):
-            try:
-                self._load(f)
-            except Exception:  # noqa: BLE001 - an unreadable chunk is recomputed, not fatal
-                continue
-            finally:
-                num = f.stem.split("-")[-1]
-                if num.isdigit():
-                    self.next = max(self.next, int(num) + 1)
-        self.loaded = len(self.done)
-
-    @staticmethod
-    def _key(a, m, s):
-        return (int(a), int(m), float(s))
-
-    def _load(self, path):
-        import pyarrow.parquet as pq
-
-        tab = pq.read_table(path).to_pydict()
-        for i, (a, m, s) in enumerate(zip(tab["arch"], tab["motion"], tab["scale"])):
-            self.done[self._key(a, m, s)] = tuple(tab[c][i] for c in _STORED)
-
-    def lookup(self, a, m, s):
-        """(indices of items found, their rows), the rest missing."""
-        return [self.done.get(self._key(*x)) for x in zip(a, m, s)]
-
-    def write(self, a, m, s, res):
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-
-        cols = {"arch": np.asarray(a, np.int64), "motion": np.asarray(m, np.int64),
-                "scale": np.asarray(s, float), **{c: np.asarray(res[c]) for c in _STORED}}
-        path = self.folder / "items" / f"chunk-{self.next:05d}.parquet"
-        tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
-        pq.write_table(pa.table(cols), tmp)
-        os.replace(tmp, path)
-        self.next += 1
-        for i, key in enumerate(zip(a, m, s)):
-            self.done[self._key(*key)] = tuple(cols[c][i].item() for c in _STORED)
+def _chunk(state, a, m, s, max_events, early_stop, pulses, kw):
+    """A task of a sweep's round on any executor: ``state`` is (arches, motions)."""
+    return _sweep_items(state[0], state[1], a, m, s, pulses, max_events=max_events,
+                        early_stop=early_stop, **kw)
 
 
 class SweepRunner:
-    """Runs item lists on one executor (module doc); use as a context manager.  pulses:
-    (kind, sign, durations) when each item carries its own pulse (module doc); ``motions`` are
-    then the unit pulses of the durations (what a :class:`ResultStore`'s digest reads)."""
+    """Runs item lists on the executor of ``settings`` (module doc); use as a context manager.
+    pulses: (kind, sign, durations) when each item carries its own pulse (module doc);
+    ``motions`` are then the unit pulses of the durations (what a :class:`ResultStore`'s
+    digest reads).  ``bar``: a :class:`archrock._progress.Progress`; ``store``: the
+    :class:`ResultStore` of ``settings.out``, if any."""
 
-    def __init__(self, arches: SweepArches, motions: SweepMotions, *, workers=None,
-                 scheduler=None, max_events: int | None = None, early_stop: bool = False,
-                 bar=None, store: ResultStore | None = None, pulses=None):
+    def __init__(self, arches: SweepArches, motions: SweepMotions, settings=None, *,
+                 max_events: int | None = None, early_stop: bool = False, bar=None,
+                 store=None, pulses=None):
         self.arches, self.motions = arches, motions
         self.pulses = None if pulses is None else (
             str(pulses[0]), int(pulses[1]), tuple(float(x) for x in pulses[2]))
-        self.workers = check_workers(workers)
-        self.scheduler = scheduler
+        self.settings = RunSettings.from_dict(settings)
         self.max_events = max_events
         self.early_stop = bool(early_stop)
         self.bar = bar
         self.store = store
-        self.pool = self.client = None
         self.responses = 0
-        self.executor = "in-process"
+        self.ex = Executor(self.settings, shared=(arches.arrays(), motions.arrays()),
+                           setup=_sweep_state, local=(arches, motions))
+
+    @property
+    def executor(self) -> str:
+        return self.ex.name
 
     def __enter__(self):
-        if self.scheduler is not None:
-            self._start_dask()
-        elif self.workers is not None and self.workers > 1:
-            self._start_pool()
+        self.ex.__enter__()
         return self
 
-    def _start_pool(self):
-        import multiprocessing as mp
-        from concurrent.futures import ProcessPoolExecutor
-
-        n = min(self.workers, os.cpu_count() or 1) if self.workers else 1
-        self.pool = ProcessPoolExecutor(
-            max_workers=n, mp_context=mp.get_context("spawn"), initializer=_init_worker,
-            initargs=(os.getpid(), self.arches.arrays(), self.motions.arrays()))
-        self.n_parts = n
-        self.executor = f"process pool ({n})"
-
-    def _start_dask(self):
-        try:
-            from distributed import Client
-        except ImportError:
-            raise ImportError("running on a Dask cluster needs the 'dask' extra: "
-                              "pip install 'archrock[dask]'") from None
-        from .ensemble.executors import SCHEDULER_TIMEOUT_S
-
-        self.own = not isinstance(self.scheduler, Client)
-        if self.own:
-            try:
-                self.client = Client(self.scheduler, timeout=SCHEDULER_TIMEOUT_S)
-            except (OSError, ValueError, TypeError) as exc:
-                reason = " ".join(str(exc).split()) or type(exc).__name__
-                raise ArchInputError(f"scheduler: cannot connect to {self.scheduler!r} "
-                                     f"({reason})") from None
-        else:
-            self.client = self.scheduler
-        self.remote = (self.client.scatter(self.arches.arrays(), broadcast=True),
-                       self.client.scatter(self.motions.arrays(), broadcast=True))
-        self.n_parts = max(1, sum(self.client.nthreads().values()))
-        self.executor = "dask"
-
     def __exit__(self, exc_type, exc, tb):
-        if self.pool is not None:
-            if exc_type is not None:
-                procs = list((getattr(self.pool, "_processes", None) or {}).values())
-                self.pool.shutdown(wait=False, cancel_futures=True)
-                for p in procs:
-                    if p.is_alive():
-                        p.terminate()
-            else:
-                self.pool.shutdown(wait=True)
-        if self.client is not None and self.own:
-            self.client.close()
-        return False
+        return self.ex.__exit__(exc_type, exc, tb)
 
     def __call__(self, arch_index, motion_index, scales) -> dict:
-        """Results of :func:`~archrock.dynamics.sweep.sweep` for the items, in their order (items kept in
-        the :class:`ResultStore` are read, not run again)."""
+        """Results of :func:`~archrock.dynamics.sweep.sweep` for the items, in their order
+        (items kept in the :class:`ResultStore` are read, not run again)."""
+        from .store import _STORED
+
         a = np.asarray(arch_index, dtype=np.int64).ravel()
         m = np.asarray(motion_index, dtype=np.int64).ravel()
         s = np.asarray(scales, dtype=float).ravel()
@@ -291,10 +281,9 @@ class SweepRunner:
             return {"status": np.zeros(0, dtype=np.int64), "peak": np.zeros(0),
                     "t_collapse": np.zeros(0), "t_unstable": np.zeros(0),
                     "t_limit": np.zeros(0), "n_events": np.zeros(0, dtype=np.int64)}
-        parts = getattr(self, "n_parts", 1)
         # a few chunks per worker (load balance), at most ~20 per round (progress), >= 64 items
-        n_chunks = max(1, min(max(4 * parts, 20 if self.bar is not None else 1), N // 64))
-        if self.pool is None and self.client is None:
+        n_chunks = max(1, min(max(4 * self.ex.parts, 20 if self.bar is not None else 1), N // 64))
+        if self.ex.in_process:
             # in-process, every chunk is one parallel call that waits for its slowest item:
             # small chunks leave threads idle (items differ in cost by orders of magnitude)
             n_chunks = max(1, min(n_chunks, N // IN_PROCESS_CHUNK))
@@ -302,41 +291,17 @@ class SweepRunner:
             n_chunks = max(n_chunks, -(-N // PULSE_CHUNK))
         edges = np.linspace(0, N, n_chunks + 1).astype(int)
         chunks = [(edges[i], edges[i + 1]) for i in range(n_chunks) if edges[i + 1] > edges[i]]
+        # a worker's loop is serial (one worker, one core); in-process sweep's own default
+        kw = {} if self.ex.in_process else {"parallel": False}
+        tasks = [(a[i:j], m[i:j], s[i:j], self.max_events, self.early_stop, self.pulses, kw)
+                 for i, j in chunks]
         out = [None] * len(chunks)
-        if self.pool is not None or self.client is not None:
-            if self.pool is not None:
-                futs = {self.pool.submit(_pool_chunk, a[i:j], m[i:j], s[i:j], self.max_events,
-                                         self.early_stop, self.pulses): c
-                        for c, (i, j) in enumerate(chunks)}
-                from concurrent.futures import as_completed
-            else:
-                from distributed import as_completed
-
-                futs = {self.client.submit(_dask_chunk, *self.remote, a[i:j], m[i:j], s[i:j],
-                                           self.max_events, self.early_stop, self.pulses,
-                                           pure=False): c
-                        for c, (i, j) in enumerate(chunks)}
-            for fut in as_completed(list(futs)):
-                c = futs[fut]
-                out[c] = fut.result()
-                self._keep(a, m, s, chunks[c], out[c])
-                self._done(chunks[c][1] - chunks[c][0])
-        else:
-            for c, (i, j) in enumerate(chunks):
-                out[c] = _sweep_items(self.arches, self.motions, a[i:j], m[i:j], s[i:j],
-                                      self.pulses, max_events=self.max_events,
-                                      early_stop=self.early_stop)
-                self._keep(a, m, s, (i, j), out[c])
-                self._done(j - i)
-        res = {k: np.concatenate([o[k] for o in out]) for k in out[0] if k != "seconds"}
-        return res
-
-    def _keep(self, a, m, s, chunk, res):
-        if self.store is not None:
-            i, j = chunk
-            self.store.write(a[i:j], m[i:j], s[i:j], res)
-
-    def _done(self, n):
-        self.responses += n
-        if self.bar is not None:
-            self.bar.update(n)
+        for c, res in self.ex.map_unordered(_chunk, tasks):
+            out[c] = res
+            i, j = chunks[c]
+            if self.store is not None:
+                self.store.write(a[i:j], m[i:j], s[i:j], res)
+            self.responses += j - i
+            if self.bar is not None:
+                self.bar.update(j - i)
+        return {k: np.concatenate([o[k] for o in out]) for k in out[0] if k != "seconds"}

@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -45,7 +44,7 @@ from ..errors import ArchInputError, InvalidSampleError
 from ..geometry import Arch, FamilyArch, VoussoirArch, perturb_voussoirs
 from ..groundmotion import PulseSpec
 from ..geometry.sampling import DEFAULT_SPREADS, Spreads
-from .._progress import check_progress
+from .runner import UNSET, resolve_settings
 
 __all__ = ["SobolResult", "sobol_indices", "input_layout", "arches_from_inputs", "GROUPINGS",
            "PAPER_PULSE", "check_sensitivity_work"]
@@ -300,7 +299,7 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
 def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAULT_SPREADS,
                   samples: int = 1024, *, by: str = "kind", motion=PAPER_PULSE, impact=None,
                   seed: int = 0, conf_level: float = 0.95, num_resamples: int = 200,
-                  progress: Callable[[str], None] | None = None) -> SobolResult:
+                  progress=UNSET, settings=None) -> SobolResult:
     """Sobol indices of k_l, k_r, k and (with ``motion``) the collapse indicator over the
     random arches around ``nominal`` (module docstring).
 
@@ -309,9 +308,13 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     PulseSpec / RecordSpec or its dict (default the paper's pulse), or None for k only; impact:
     an ImpactSpec or its name (default the paper's practice: the paper's model on the nominal
     arch, its c_v fixed on every arch); seed: of the scrambled Sobol sequence and of the
-    bootstrap; conf_level: of the intervals; progress: None (silent) or a callable given one
-    line of text per chunk of arches run (the CLI prints them on stderr).
+    bootstrap; conf_level: of the intervals; settings: a
+    :class:`~archrock.studies.runner.RunSettings` whose ``progress`` gets one line of text per
+    chunk of arches run (:mod:`archrock._progress`; 0.6's ``progress=`` with a
+    DeprecationWarning); it runs in this process (numba threads).
     """
+    settings = resolve_settings(settings, "sobol_indices", progress=progress).only(
+        "sobol_indices")
     sample, analyze = _salib()
     from ..dynamics.batch import prepare_batch, simulate_batch
     from ..dynamics.kernel import ST_COLLAPSED
@@ -346,7 +349,7 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     if isinstance(num_resamples, bool) or not isinstance(num_resamples, (int, np.integer)) \
             or num_resamples < 2:
         raise ArchInputError(f"num_resamples: {num_resamples!r}; allowed an integer >= 2")
-    progress = check_progress(progress)
+    progress = settings.sink
     if isinstance(motion, dict):
         motion = motion_spec_from_dict(motion)
     if motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):

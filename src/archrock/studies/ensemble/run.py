@@ -4,16 +4,16 @@ others loaded, and the per-sample tables joined into an :class:`EnsembleResult`.
 from __future__ import annotations
 
 import time
-from pathlib import Path
 
 from ...errors import ArchInputError
 from ...geometry import Arch
 from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
-from .config import EnsembleConfig, int_field
+from .config import EnsembleConfig
 from .executors import execute
-from .progress import Progress
+from ..._progress import Progress
+from ..runner import UNSET, resolve_settings
 from .compute import run_batches
-from .store import (OTHER_CODE, Manifest, batch_path, code_digest, read_batch, same_bits,
+from ..store import (OTHER_CODE, Manifest, batch_path, code_digest, read_batch, same_bits,
                     write_batch, written_by)
 from .summary import EnsembleResult
 
@@ -85,20 +85,22 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
                       "cluster (--scheduler)", cores)
 
 
-def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=None,
-                 progress=True, keep_frame: bool = True, *, out_dir=None, dynamics: str = "auto",
-                 engine=None) -> EnsembleResult:
+def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNSET,
+                 progress=UNSET, keep_frame: bool = True, *, out_dir=UNSET,
+                 settings=None, dynamics: str = "auto", engine=None) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
-    out: folder for the batches and manifest (None: nothing written; ``out_dir``, its 0.5 name,
-    still read with a DeprecationWarning, as ``out`` is spelled in every study); workers: 1 runs
-    in-process (numba parallel loop), > 1 a local process pool over batches; scheduler: address
-    of a Dask scheduler (or a ``distributed.Client``), which takes precedence over ``workers``;
-    progress: True, a progress bar on stderr; a callable, given each
-    progress line (nothing printed); None/False, silent; keep_frame: False keeps no per-sample table in memory
-    (needs ``out``): each batch is written and dropped, the result's ``frame`` is None and
-    its summary is computed from the stored batches (:mod:`archrock.studies.ensemble.streaming`), so
-    memory stays that of one batch however many samples (10^7 and more).
+    settings: how it runs (:class:`~archrock.studies.runner.RunSettings`, default in-process,
+    nothing written, silent): ``out`` the folder of the batches and manifest, resumed if it
+    exists; ``workers`` > 1 a local process pool over batches (None or 1: in-process, the numba
+    parallel loop); ``scheduler`` a Dask cluster, which takes precedence over ``workers``;
+    ``progress`` the progress protocol of :mod:`archrock._progress`.  The 0.6 keywords ``out``
+    (also positional), ``out_dir``, ``workers``, ``scheduler`` and ``progress`` still work for
+    one release, with a DeprecationWarning.  keep_frame: False keeps no per-sample table in
+    memory (needs ``out``): each batch is written and dropped, the result's ``frame`` is None
+    and its summary is computed from the stored batches
+    (:mod:`archrock.studies.ensemble.streaming`), so memory stays that of one batch however
+    many samples (10^7 and more).
     dynamics: "auto" (default), "fourlink" or "engine" (:func:`archrock.studies.enginestudy.
     choose_dynamics`): under a motion, where one degree of freedom cannot follow the nominal
     arch (its piers rock with it) or where asked, the arches are run in the contact engine
@@ -111,17 +113,12 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
 
     if not isinstance(config, EnsembleConfig):
         raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
-    workers = int_field("workers", workers, 1)
+    settings = resolve_settings(settings, "run_ensemble", out=out, out_dir=out_dir,
+                                workers=workers, scheduler=scheduler, progress=progress)
+    workers = settings.workers or 1
+    scheduler, out = settings.scheduler, settings.out
     if not isinstance(keep_frame, bool):
         raise ArchInputError(f"keep_frame: {keep_frame!r}; allowed true or false")
-    if out_dir is not None:
-        import warnings
-
-        if out is not None:
-            raise ArchInputError("out_dir: give the folder once, as out (out_dir is its old name)")
-        warnings.warn("run_ensemble(out_dir=...) is now out=... (one name in every study); "
-                      "out_dir goes in archrock 0.7", DeprecationWarning, stacklevel=2)
-        out = out_dir
     if not keep_frame and out is None:
         raise ArchInputError("keep_frame: False needs out (the summary is then read from "
                              "the stored batches)")
@@ -131,7 +128,7 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
     if choice.engine and config.motion is not None:  # docs/piers-dynamics.md
         from ..enginestudy import engine_ensemble
 
-        bar = Progress(config.samples, progress, desc="engine ensemble")
+        bar = Progress(config.samples, settings.progress, desc="engine ensemble")
         try:
             return engine_ensemble(config, engine, dynamics=choice,
                                    progress=lambda line: bar.update(1))
@@ -143,7 +140,6 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
     nominal = _nominal_info(config)
     if choice.single_dof is not None or choice.requested != "auto":
         nominal["dynamics"] = choice.to_dict()  # rigid ground under "auto": as before
-    out = Path(out) if out is not None else None
     manifest = Manifest(out, config, impact, nominal) if out is not None else None
     frames: dict[int, object] = {}
     done: set[int] = set()
@@ -151,7 +147,7 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
     todo = []
     recomputed: dict[int, str] = {}
     foreign: dict[str, list[int]] = {}  # batches written by other sources, by their digest
-    bar = Progress(config.samples, progress)
+    bar = Progress(config.samples, settings.progress)
 
     def loaded(b, df):
         done.add(b)
@@ -198,7 +194,8 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
             old, _ = read_batch(out, bs[0], config, any_code=True)
             recomputed[bs[0]] = manifest.run["recomputed"][str(bs[0])] = (
                 f"{OTHER_CODE} ({str(digest)[:12]}): recomputed to verify its other batches")
-            (_, new, timings), = run_batches(config, [bs[0]], workers == 1 and scheduler is None)
+            (_, new, timings), = run_batches(config, [bs[0]],
+                                                 settings.executor == "in-process")
             finished(bs[0], new, timings)
             differs = same_bits(old, read_batch(out, bs[0], config)[0])
             del old, new
@@ -221,7 +218,7 @@ def run_ensemble(config: EnsembleConfig, out=None, workers: int = 1, scheduler=N
         if manifest is not None:
             manifest.save()
 
-        executor = execute(config, todo, finished, workers, scheduler)
+        executor = execute(config, todo, finished, settings)
     finally:
         bar.close()
         if manifest is not None:
