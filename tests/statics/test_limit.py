@@ -285,3 +285,36 @@ def test_candidate_hinges_unranks_the_candidate_list():
         jq, eq = _candidates(n)
         for i in range(0, len(jq), 5):
             assert candidate_hinges(n, i) == (tuple(jq[i]), tuple(eq[i]))
+
+
+def test_one_enumeration_of_four_hinge_sets():
+    """four_hinge_sets is the one list of quadruples: C(n+1, 4) rows, each a < b < c < d, in
+    lexicographic order, the same order the combinadic unranking (candidate_hinges) computes
+    without the list; four_hinge_candidates walks it with the 14 patterns that can open, and a
+    pool of joints keeps that order (quadruples)."""
+    import math
+
+    from archrock.statics.hinges import (_active_candidates, candidate_hinges,
+                                         four_hinge_candidates, four_hinge_sets, quadruples)
+
+    for n in (3, 6, 11):
+        q = four_hinge_sets(n)
+        assert q.shape == (math.comb(n + 1, 4), 4) and not q.flags.writeable
+        assert np.all(np.diff(q, axis=1) > 0) and q.min() == 0 and q.max() == n
+        keys = q @ (n + 1) ** np.arange(3, -1, -1)  # lexicographic order = increasing keys
+        assert np.all(np.diff(keys) > 0)
+        for r in range(0, len(q), 7):
+            assert candidate_hinges(n, 16 * r + 5)[0] == tuple(q[r].tolist())
+        mechs = list(four_hinge_candidates(n, "r"))
+        assert len(mechs) == 14 * len(q) == len(_active_candidates(n)[0])
+        idx = _active_candidates(n)[0]
+        for i in range(0, len(mechs), 11):
+            joints, edges = candidate_hinges(n, int(idx[i]))
+            assert mechs[i].joints == joints and mechs[i].direction == "r"
+            assert tuple(h.edge for h in mechs[i].hinges) == tuple(
+                ("intrados", "extrados")[e] for e in edges)
+    pool = [1, 4, 5, 9, 10]
+    sub = quadruples(pool)
+    full = four_hinge_sets(10)
+    assert np.array_equal(sub, full[np.isin(full, pool).all(axis=1)])
+    assert quadruples([2, 3, 4]).shape == (0, 4)

@@ -147,10 +147,8 @@ def step_mechanism(model, accel_g: float) -> StepMechanism:
     step of several k the contact engine opens this one (heavy piers at 0.7 g: both piers
     rocking, ``0i-4e-12i-14e``).  Enumerates every joint 0..n and edge (as the least-loss law
     does): seconds on a 14-block chain."""
-    from itertools import combinations, product
-
     from ..errors import ArchInputError
-    from ..statics.hinges import EDGES, Hinge, Mechanism
+    from ..statics.hinges import Mechanism, four_hinge_candidates
     from ..units import G
     from .fourlink import four_link
 
@@ -170,19 +168,14 @@ def step_mechanism(model, accel_g: float) -> StepMechanism:
     limit_s = best_s
     best_s = -1.0 if best_s is None else best_s
     count = 0
-    for joints in combinations(range(arch.n + 1), 4):
-        for edges in product(EDGES, repeat=4):
-            if len(set(edges)) == 1:
-                continue  # all intrados or all extrados never opens
-            mech = Mechanism(direction, tuple(Hinge(j, e) for j, e in zip(joints, edges)),
-                             float("nan"))
-            try:
-                fl = four_link(arch, mech)
-            except (ArchInputError, ZeroDivisionError):
-                continue
-            count += 1
-            s = score(fl)
-            if s is not None and s > best_s * (1 + 1e-12):
-                best_s = s
-                best = Mechanism(direction, mech.hinges, abs(fl.static_multiplier()))
+    for mech in four_hinge_candidates(arch.n, direction):
+        try:
+            fl = four_link(arch, mech)
+        except (ArchInputError, ZeroDivisionError):
+            continue
+        count += 1
+        s = score(fl)
+        if s is not None and s > best_s * (1 + 1e-12):
+            best_s = s
+            best = Mechanism(direction, mech.hinges, abs(fl.static_multiplier()))
     return StepMechanism(direction, float(accel_g), best, float(best_s), limit_s, count)

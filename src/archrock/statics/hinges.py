@@ -8,7 +8,11 @@ activates it (kinematic theorem).
 
 Four-hinge candidates: every quadruple of joints a < b < c < d in lexicographic order, with the
 16 edge patterns of each (pattern bits: joint a's edge is bit 3, ..., joint d's bit 0); a
-candidate's index is rank(quadruple) * 16 + pattern.  :func:`_candidates` lists them,
+candidate's index is rank(quadruple) * 16 + pattern.  :func:`four_hinge_sets` lists the
+quadruples (the one enumeration of them: statics, the least-loss law and the pier diagnostics
+start from it; a search that keeps only some joints takes the same order from
+:func:`quadruples`), :func:`four_hinge_candidates` the mechanisms, :func:`_candidates` the
+index arrays,
 :func:`candidate_hinges` and :func:`_candidate_index` convert between an index and its hinges
 without the list; every search in :mod:`archrock.statics` uses this order (ties resolve to the
 first candidate in it).
@@ -19,11 +23,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from itertools import combinations
+from itertools import chain, combinations
 
 import numpy as np
 
-__all__ = ["Hinge", "Mechanism", "HINGE_LABELS", "EDGES", "DIRECTIONS", "candidate_hinges"]
+__all__ = ["Hinge", "Mechanism", "HINGE_LABELS", "EDGES", "DIRECTIONS", "candidate_hinges",
+           "four_hinge_sets", "four_hinge_candidates", "quadruples"]
 
 
 EDGES = ("intrados", "extrados")
@@ -31,6 +36,8 @@ DIRECTIONS = ("l", "r")
 # Sign s_e such that a hinge at edge e opens when s_e * (omega_right - omega_left) > 0.
 _EDGE_SIGN = np.array([-1.0, 1.0])
 _ADMISSIBLE_TOL = 1e-9
+#: The 16 edge patterns of a quadruple (0 intrados, 1 extrados; joint a's edge is bit 3).
+_PATTERNS = np.array([[(p >> k) & 1 for k in (3, 2, 1, 0)] for p in range(16)], dtype=np.int64)
 
 
 @dataclass(frozen=True)
@@ -119,13 +126,43 @@ class Mechanism:
                 "lift_off": [int(j) for j in self.lift_off], "label": self.label}
 
 
+def quadruples(items) -> np.ndarray:
+    """Every four of ``items`` (increasing integers: joints, or joint-end rows) as rows
+    a < b < c < d of a (K, 4) int64 array, in lexicographic order; on joints, the order of
+    :func:`four_hinge_sets` restricted to them."""
+    items = [int(i) for i in items]
+    k = math.comb(len(items), 4)
+    flat = np.fromiter(chain.from_iterable(combinations(items, 4)), dtype=np.int64, count=4 * k)
+    return flat.reshape(k, 4)
+
+
+@lru_cache(maxsize=64)
+def four_hinge_sets(n: int) -> np.ndarray:
+    """The joint quadruples a < b < c < d of an n-voussoir arch (joints 0..n), in lexicographic
+    order: (C(n+1, 4), 4) int64, read-only.  The one enumeration of four-hinge sets; a
+    candidate's rank is its row here."""
+    quads = quadruples(range(n + 1))
+    quads.setflags(write=False)
+    return quads
+
+
+def four_hinge_candidates(n: int, direction: str):
+    """Every four-hinge mechanism of an n-voussoir arch that can open toward ``direction``, in
+    the candidate order (quadruples of :func:`four_hinge_sets`, then edge patterns), without the
+    two patterns that never open (four intrados or four extrados hinges: the relative rotations
+    add up to zero).  Yields :class:`Mechanism` with a NaN multiplier (not yet computed)."""
+    for joints in four_hinge_sets(n).tolist():
+        for pattern in _PATTERNS[1:15].tolist():
+            yield Mechanism(direction, tuple(Hinge(j, EDGES[e]) for j, e in zip(joints, pattern)),
+                            float("nan"))
+
+
 @lru_cache(maxsize=64)
 def _candidates(n: int):
     """All (joint quadruple, edge pattern) candidates for n voussoirs, as index arrays."""
-    quads = np.array(list(combinations(range(n + 1), 4)), dtype=np.int64)
-    edges = np.array([[(p >> k) & 1 for k in (3, 2, 1, 0)] for p in range(16)], dtype=np.int64)
+    quads = four_hinge_sets(n)
     jq = np.repeat(quads, 16, axis=0)
-    eq = np.tile(edges, (len(quads), 1))
+    eq = np.tile(_PATTERNS, (len(quads), 1))
     return jq, eq
 
 
@@ -167,9 +204,6 @@ def _candidate_index(n: int, joints, edges) -> np.ndarray:
              + x[:, 2] * (x[:, 2] - 1) // 2 + x[:, 3])
     rank = math.comb(m, 4) - 1 - after
     return rank * 16 + (e[:, 0] << 3 | e[:, 1] << 2 | e[:, 2] << 1 | e[:, 3])
-
-
-_PATTERNS = np.array([[(p >> k) & 1 for k in (3, 2, 1, 0)] for p in range(16)], dtype=np.int64)
 
 
 def candidate_hinges(n: int, idx: int) -> tuple[tuple[int, ...], tuple[int, ...]]:

@@ -22,7 +22,6 @@ import time
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
-from itertools import combinations
 
 import numpy as np
 
@@ -31,7 +30,7 @@ from .._progress import check_progress
 from ..errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
 from ..geometry import Arch, VoussoirArch
 from .hinges import (_EDGE_SIGN, _PATTERNS, DIRECTIONS, Mechanism, _active_candidates,
-                     _candidate_index, _mechanism_from_candidate)
+                     _candidate_index, _mechanism_from_candidate, quadruples)
 from .liftoff import (_DUAL_CONFIRM, GENERAL_MAX_VOUSSOIRS, _certify_arch, _lp_mechanism,
                       general_mechanisms)
 from .lp import ThrustLine, _radial, _stands, static_multiplier
@@ -470,7 +469,7 @@ def _best_in_pool(sums, n: int, allowed: np.ndarray, direction: str):
     pool = np.flatnonzero(allowed.any(axis=1))
     if pool.size < 4 or math.comb(pool.size, 4) * 16 > _GUIDED_MAX_CANDIDATES:
         return None
-    quads = np.array(list(combinations(pool.tolist(), 4)), dtype=np.int64)
+    quads = quadruples(pool)  # the order of four_hinge_sets, restricted to the pool
     # the 14 edge patterns that can be admissible, each hinge at an allowed edge
     ok = np.all(allowed[quads[:, None, :], _PATTERNS[None, :, :]], axis=-1)
     ok[:, [0, 15]] = False

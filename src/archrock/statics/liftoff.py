@@ -18,7 +18,8 @@ from scipy.optimize import linprog
 
 from ..errors import ArchInputError, CannotStandError, NoMechanismError
 from ..geometry import VoussoirArch
-from .hinges import _ADMISSIBLE_TOL, DIRECTIONS, EDGES, Hinge, Mechanism, candidate_hinges
+from .hinges import (_ADMISSIBLE_TOL, DIRECTIONS, EDGES, Hinge, Mechanism, candidate_hinges,
+                     quadruples)
 from .lp import _statics, _thrust_from_x
 from .sums import _origin, _weights_centroids, arch_sums
 
@@ -258,9 +259,9 @@ def _lp_mechanism(arch: VoussoirArch, direction: str):
         # involved, both ends
         joints = np.unique(support % (arch.n + 1))
         cand = np.union1d(support, np.concatenate([joints, joints + arch.n + 1]))
-        pool = np.array(list(combinations(cand.tolist(), 4)), dtype=np.int64)
+        pool = quadruples(cand)
     elif support.size <= _POOL_MAX_ROWS:
-        pool = np.array(list(combinations(support.tolist(), 4)), dtype=np.int64)
+        pool = quadruples(support)
     else:
         return lam_s, thrust, None
     if not len(pool):

@@ -8,10 +8,8 @@ of the other direction keeps the most kinetic energy under the momentum (project
 from __future__ import annotations
 
 from dataclasses import dataclass
-from itertools import combinations, product
-
 from ...errors import ArchInputError
-from ...statics.hinges import EDGES, Hinge, Mechanism
+from ...statics.hinges import Mechanism, four_hinge_candidates
 from ..fourlink import FourLink, four_link
 from .laws import _m0, momentum_rate_ratio
 
@@ -67,18 +65,14 @@ def least_loss_mechanism(old: FourLink, limit_new: FourLink) -> LeastLoss:
     c_lim, e_lim = energy(limit_new)
     best = (e_lim, c_lim, limit_new.mechanism)
     count = 0
-    for joints in combinations(range(arch.n + 1), 4):
-        for edges in product(EDGES, repeat=4):
-            if len(set(edges)) == 1:
-                continue  # all intrados or all extrados never opens
-            mech = Mechanism(direction, tuple(Hinge(j, e) for j, e in zip(joints, edges)), float("nan"))
-            try:
-                fl = four_link(arch, mech)
-            except (ArchInputError, ZeroDivisionError):
-                continue
-            count += 1
-            c, e = energy(fl)
-            if e > best[0] * (1 + 1e-12):
-                # its own activation multiplier (virtual work), for the record
-                best = (e, c, Mechanism(direction, mech.hinges, abs(fl.static_multiplier())))
+    for mech in four_hinge_candidates(arch.n, direction):
+        try:
+            fl = four_link(arch, mech)
+        except (ArchInputError, ZeroDivisionError):
+            continue
+        count += 1
+        c, e = energy(fl)
+        if e > best[0] * (1 + 1e-12):
+            # its own activation multiplier (virtual work), for the record
+            best = (e, c, Mechanism(direction, mech.hinges, abs(fl.static_multiplier())))
     return LeastLoss("l" if direction == "r" else "r", best[2], best[1], best[0], c_lim, e_lim, count)
