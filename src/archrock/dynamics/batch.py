@@ -42,6 +42,7 @@ from ..statics.kinematic import kinematic_multipliers_arches, kinematic_multipli
 from ..statics.liftoff import LIFT_OFF_REASON, certify_candidates
 from ..statics.lp import static_multiplier
 from ..statics.sums import _batch_sums, arch_sums
+from .chain import pack_chains
 from .fourlink import (GEO_ERRORS, GEO_SIZE, check_table_intervals, coefficients, dead_point,
                        init_table, mechanism_geo, rest_rate, rotation_limit, table_range,
                        table_size, unstable_rotation)
@@ -606,21 +607,13 @@ def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
         chains[b] = model.chain
         c_lr[b], c_rl[b] = model.impact.l_to_r, model.impact.r_to_l
         v_rest[b] = model.v_rest
-    R = max([2] + [len(c[0]) for c in chains.values()])
-    arr = {"chain_geo": np.full((B, R, GEO_SIZE), np.nan), "chain_limit": np.full((B, R), np.nan),
-           "chain_unstable": np.full((B, R), np.nan), "chain_direction": np.zeros((B, R)),
-           "chain_next": np.zeros((B, R), dtype=np.int64), "chain_ratio": np.full((B, R), np.nan),
-           "chain_table": np.full((B, R, 2), np.nan),
-           "n_mechanisms": np.zeros(B, dtype=np.int64)}
-    for b, (mechs, lims, trans) in chains.items():
-        arr["n_mechanisms"][b] = len(mechs)
-        for j, (fl, lim, (nxt, c)) in enumerate(zip(mechs, lims, trans)):
-            arr["chain_geo"][b, j] = fl.geo
-            arr["chain_limit"][b, j] = lim
-            arr["chain_unstable"][b, j] = fl.phi_unstable
-            arr["chain_direction"][b, j] = 1.0 if fl.direction == "l" else -1.0
-            arr["chain_next"][b, j] = nxt
-            arr["chain_ratio"][b, j] = c
+    c = pack_chains(chains, size=B, fill=np.nan, width=GEO_SIZE)
+    R = c["rows"].shape[1]
+    arr = {"chain_geo": c["rows"], "chain_limit": c["limit"], "chain_unstable": c["unstable"],
+           "chain_direction": c["direction"], "chain_next": c["next"], "chain_ratio": c["ratio"],
+           "chain_table": np.full((B, R, 2), np.nan), "n_mechanisms": c["n_rows"]}
+    for b, (mechs, lims, _) in chains.items():
+        for j, (fl, lim) in enumerate(zip(mechs, lims)):
             # the range of FourLink.tabulated(lim), which the one-arch fast integrator reads
             arr["chain_table"][b, j] = table_range(fl.geo, lim, fl.phi_dead)
     return arr

@@ -36,8 +36,9 @@ from .._records import readonly_arrays
 from ..errors import ArchInputError, LimitExceededError
 from ..geometry import VoussoirArch
 from ..groundmotion import G, GroundMotion
-from .impact import ImpactLaw, ImpactSpec, impact_law, least_loss_mechanism
+from .impact import ImpactLaw, ImpactSpec, impact_law
 from ..statics.limit import LimitResult, limit_analysis, require_four_hinge
+from .chain import least_loss_chain, pack_chains, rotation_limit
 from .fourlink import FourLink, exact_acceleration, four_link, rest_rate
 from .piers import SingleDofCheck, single_dof_check
 
@@ -184,7 +185,7 @@ def prepare(arch: VoussoirArch, impact=None, *, cv: float | None = None,
     law = impact if spec is None else impact_law(m_l, m_r, spec.model, cv=spec.cv,
                                                  literal=spec.literal, fallback=spec.fallback,
                                                  note=spec.note)
-    pl_l, pl_r = _rotation_limit(m_l, limit_factor), _rotation_limit(m_r, limit_factor)
+    pl_l, pl_r = rotation_limit(m_l, limit_factor), rotation_limit(m_r, limit_factor)
     v_rest = float(rest_rate(m_l.geo, m_l.phi_unstable, m_r.phi_unstable, G))
     return DynamicModel(arch, lim, m_l, m_r, law, pl_l, pl_r, v_rest)
 
@@ -198,36 +199,10 @@ def _same_arch(a, b) -> bool:
                     for k in ("joint_points", "masses", "centroids", "inertias")))
 
 
-def _rotation_limit(fl: FourLink, limit_factor: float | None) -> float:
-    if limit_factor is None:
-        return fl.default_limit()
-    if not math.isfinite(limit_factor) or limit_factor <= 1.0:
-        raise ArchInputError(f"limit factor: {limit_factor!r}; allowed > 1 (a multiple of the "
-                             f"unstable rotation)")
-    return min(limit_factor * fl.phi_unstable, fl.phi_dead * (1 - 1e-6))
-
-
 def _prepare_least_loss(arch, lim, m_l, m_r, limit_factor) -> DynamicModel:
-    """The chain of mechanisms of the least-loss law: from each mechanism, the impact opens the
-    admissible mechanism of the other direction that keeps the most kinetic energy (momentum
-    law); new mechanisms are added until every closing has its successor."""
-    mechs = [m_l, m_r]
-    lims = [_rotation_limit(m_l, limit_factor), _rotation_limit(m_r, limit_factor)]
-    keys = [m_l.mechanism.hinges, m_r.mechanism.hinges]
-    trans = []
-    k = 0
-    while k < len(mechs):
-        old = mechs[k]
-        best = least_loss_mechanism(old, m_r if old.direction == "l" else m_l)
-        key = best.mechanism.hinges
-        if key not in keys:
-            fl = four_link(arch, best.mechanism)
-            mechs.append(fl)
-            lims.append(_rotation_limit(fl, limit_factor))
-            keys.append(key)
-        nxt = keys.index(key)
-        trans.append((nxt, best.rate_ratio))
-        k += 1
+    """The model of the least-loss law over its chain (:func:`~archrock.dynamics.chain.
+    least_loss_chain`): its impact law holds the first impacts out of M_l and M_r."""
+    mechs, lims, trans = least_loss_chain(arch, m_l, m_r, limit_factor)
     m0 = [fl.coefficients(0.0)[0] for fl in mechs]
     (n_l, c_l), (n_r, c_r) = trans[0], trans[1]
     law = ImpactLaw("least-loss", c_l, c_r, c_l**2 * m0[n_l] / m0[0], c_r**2 * m0[n_r] / m0[1])
@@ -442,17 +417,11 @@ def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *,
     accel = np.ascontiguousarray(motion.accel, dtype=float)
     settings = {"t_end": t_end, "dt_out": dt_out, "t_free": t_free}
     if integrator == "fast":
-        mechs, lims, trans = model.chain
-        rows = model.tables if tabulate else tuple(fl.geo for fl in mechs)
-        geos = np.zeros((len(rows), max(r.size for r in rows)))
-        for j, r in enumerate(rows):
-            geos[j, :r.size] = r
+        c = pack_chains([model.chain], rows=[model.tables] if tabulate else None)
         res = K.simulate_chain(
-            geos, np.array(lims, float), np.array([fl.phi_unstable for fl in mechs]),
-            np.array([1.0 if fl.direction == "l" else -1.0 for fl in mechs]),
-            np.array([n + 1 for n, _ in trans]), np.array([c for _, c in trans], float),
-            model.k_l, model.k_r, model.v_rest, times, accel, G, n_out, dt_out, dt, t_free,
-            max_events)
+            c["rows"][0], c["limit"][0], c["unstable"][0], c["direction"][0], c["next"][0] + 1,
+            c["ratio"][0], model.k_l, model.k_r, model.v_rest, times, accel, G, n_out, dt_out,
+            dt, t_free, max_events)
         settings.update(dt=dt, tabulated=tabulate, method="RK4 fixed step with event location"
                         + (" (numba)" if HAVE_NUMBA else " (pure Python)"))
     elif integrator == "reference":

@@ -9,7 +9,8 @@ scale factor), in one numba ``prange`` loop over the items: item k integrates
 calls.
 
 Exactness.  :meth:`SweepArches.from_models` packs prepared :class:`~archrock.dynamics.response.DynamicModel`
-objects with the numbers ``respond`` reads: the same chain (four-link vectors, rotation limits,
+objects with the numbers ``respond`` reads, through the same packer
+(:func:`archrock.dynamics.chain.pack_chains`): the same chain (four-link vectors, rotation limits,
 unstable rotations, successors and rate ratios), the same tables (``model.tables``, built
 once per arch instead of once per item), ``v_rest``, k_l, k_r, and per arch the step ``dt`` and
 free-motion cap ``t_free`` of :func:`archrock.dynamics.response.default_steps`.  The scaled acceleration is
@@ -31,6 +32,7 @@ from . import kernel as K
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError, LimitExceededError
 from ..groundmotion import G, GroundMotion
+from .chain import pack_chains
 from .fourlink import build_table, check_table_intervals, init_table, table_size
 
 __all__ = ["SweepArches", "SweepMotions", "sweep", "SWEEP_EVENTS"]
@@ -83,37 +85,17 @@ class SweepArches:
         if not ms or not all(isinstance(m, DynamicModel) for m in ms):
             raise ArchInputError("models: allowed a non-empty list of DynamicModel")
         B = len(ms)
-        chains = [m.chain for m in ms]
-        R = max(len(c[0]) for c in chains)
-        if tabulate:
-            tabs = [m.tables for m in ms]
-        else:
-            tabs = [tuple(fl.geo for fl in c[0]) for c in chains]
-        S = max(t.size for ts in tabs for t in ts)
-        rows = np.zeros((B, R, S))
-        lims = np.zeros((B, R))
-        phus = np.zeros((B, R))
-        dirs = np.zeros((B, R))
-        nexts = np.zeros((B, R), dtype=np.int64)
-        ratios = np.zeros((B, R))
-        n_rows = np.zeros(B, dtype=np.int64)
+        c = pack_chains([m.chain for m in ms], rows=[m.tables for m in ms] if tabulate else None)
         dts = np.zeros(B)
         frees = np.zeros(B)
-        for b, (m, (mechs, lim, trans), ts) in enumerate(zip(ms, chains, tabs)):
-            n_rows[b] = len(mechs)
-            for j, (fl, t) in enumerate(zip(mechs, ts)):
-                rows[b, j, :t.size] = t
-                phus[b, j] = fl.phi_unstable
-                dirs[b, j] = 1.0 if fl.direction == "l" else -1.0
-            lims[b, :len(lim)] = lim
-            nexts[b, :len(trans)] = [n for n, _ in trans]
-            ratios[b, :len(trans)] = [c for _, c in trans]
+        for b, m in enumerate(ms):
             d0, f0 = default_steps(m.arch)
             dts[b] = d0 if dt is None else dt
             frees[b] = f0 if t_free is None else t_free
-        return cls(rows, n_rows, lims, phus, dirs, nexts, ratios,
-                   np.array([m.k_l for m in ms], float), np.array([m.k_r for m in ms], float),
-                   np.array([m.v_rest for m in ms], float), dts, frees)
+        return cls(c["rows"], c["n_rows"], c["limit"], c["unstable"], c["direction"], c["next"],
+                   c["ratio"], np.array([m.k_l for m in ms], float),
+                   np.array([m.k_r for m in ms], float), np.array([m.v_rest for m in ms], float),
+                   dts, frees)
 
     @classmethod
     def from_batch(cls, prepared, dt: float = 2e-3, t_free: float = 60.0,
