@@ -374,3 +374,23 @@ def test_curves_say_when_the_default_impact_law_fell_back(capsys):
     d = json.loads(capsys.readouterr().out)
     assert d["impact"]["applied_cv"] == pytest.approx(0.595972, abs=5e-7)
     assert "creates energy" in d["impact"]["applied_note"]
+
+
+def test_a_scan_point_with_many_impacts_grows_its_event_table(nominal_model, monkeypatch):
+    """A response with more impacts than the scan's event table (an arch whose impacts lose
+    almost nothing rocks on near its threshold) is run again with a larger table, not stopped
+    with a Python argument's name; its outcome and impacts are those of one large table."""
+    import archrock.studies.curves as C
+    from archrock.errors import LimitExceededError
+
+    motion = oppenheim_pulse(-1.2 * nominal_model.k_l, 0.5)
+    whole = respond(nominal_model, motion, t_end=0.5, dt_out=0.5, max_events=100_000)
+    n = len(whole.events)
+    assert n > 4
+    monkeypatch.setitem(C._RESPOND, "max_events", 2)  # the table x10 until the events fit
+    r = C._respond_scan(nominal_model, motion, None)
+    assert r.collapsed == whole.collapsed
+    assert [e.time for e in r.events] == [e.time for e in whole.events]
+    monkeypatch.setattr(C, "MAX_RESPONSE_EVENTS", 3)  # bounded: a clear message past the cap
+    with pytest.raises(LimitExceededError, match=r"curves: .* more than 3 impacts.*--a-max"):
+        C._respond_scan(nominal_model, motion, None)
