@@ -13,8 +13,8 @@ def format_engine_ensemble(summary: dict, arch_name: str) -> str:
     dyn = summary.get("dynamics") or {}
     oc = summary["outcomes"]
     lines = [f"{summary['samples']} random arches around {arch_name} (seed {summary['seed']}, "
-             f"spreads {sp['spread_span']:g}/{sp['spread_thickness']:g}/"
-             f"{sp['spread_radius']:g})",
+             f"spreads {sp['span']:g}/{sp['thickness']:g}/"
+             f"{sp['radius']:g})",
              f"computed by the contact engine: {dyn.get('reason', 'asked for')}"]
     nom = summary.get("nominal") or {}
     if nom.get("k_l") is not None:
