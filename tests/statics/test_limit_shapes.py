@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from archrock.statics import limit
@@ -152,7 +152,14 @@ def test_static_equals_kinematic_on_perturbed_polygons(n, seed, points, scale):
 @settings(max_examples=600, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(*polygon_params)
 def test_static_equals_kinematic_on_perturbed_polygons_many(n, seed, points, scale):
-    _check_static_equals_kinematic(_perturbed(_random(n, seed), points, scale, seed))
+    try:
+        arch = _perturbed(_random(n, seed), points, scale, seed)
+    except ArchInputError as exc:
+        # a large move of a short voussoir's vertices can fold its outline (n=12, seed=1705,
+        # points=9, scale=0.117): the arch refuses it, rightly; that is not an arch to compare
+        assert "intersects itself" in str(exc)
+        assume(False)
+    _check_static_equals_kinematic(arch)
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])

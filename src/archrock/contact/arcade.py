@@ -25,13 +25,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._records import readonly_arrays
-from ..errors import ArchInputError, LimitExceededError
+from ..errors import ArchInputError
 from ..geometry.arcade import GROUND, Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
 from .convex import convex_pieces, inset, simplify_outline, strip_pieces
 from .engine import import_pymunk
-from .ramp import ramp_range
+from .ramp import ramp_range, ramp_until_moving
 from .settings import EngineSettings, engine_scales
 
 __all__ = ["ContactArcade", "ArcadeRampDirection", "ArcadeRamp", "arcade_ramp",
@@ -306,20 +306,10 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
     thr_slide = slide_threshold * float(np.mean(ca.contact_lengths))
     check = max(1, int(settings.steps_per_T // 100))
     dlam = rate / settings.steps_per_T
-    lam, lam_seen = float(lambda_start), None
-    while True:
-        for _ in range(check):
-            lam += dlam
-            ca.step(-sign * lam * G, 1)
-        rot, sl, measure, pos, ang = _motion(ca, threshold, thr_slide)
-        if lam_seen is None and measure > 1.0:
-            lam_seen = lam
-        if measure > 4.0:
-            break
-        if lam > lambda_max:
-            raise LimitExceededError(
-                f"the arcade did not move in the contact engine up to |xg''|/g = "
-                f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
+    lam_seen, (rot, sl, measure, pos, ang) = ramp_until_moving(
+        ca, lambda m: _motion(m, threshold, thr_slide), sign, float(lambda_start), dlam, check,
+        lambda_max, f"the arcade did not move in the contact engine up to |xg''|/g = "
+                    f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
     if progress:
         progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
     ramp_reading = _read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)

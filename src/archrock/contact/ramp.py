@@ -120,6 +120,27 @@ def _motion(ca: ContactArch, thr_rot: float, thr_slide: float):
     return rot, sl, measure, pos, ang
 
 
+def ramp_until_moving(blocks, motion, sign: float, lam: float, dlam: float, check: int,
+                      lambda_max: float, refusal: str):
+    """Stage 1 of a ramp: raise |xg''|/g from ``lam`` by ``dlam`` per engine step on ``blocks``
+    (a settled ContactArch or ContactArcade), reading ``motion(blocks)`` -> (rotations, slips,
+    measure, pos, angles) every ``check`` steps, until the measure passes 4 (four times the
+    thresholds).  Returns (the first lambda whose measure passed 1, that last reading); raises
+    LimitExceededError(``refusal``) past ``lambda_max`` (bounded)."""
+    lam_seen = None
+    while True:
+        for _ in range(check):
+            lam += dlam
+            blocks.step(-sign * lam * G, 1)
+        reading = motion(blocks)
+        if lam_seen is None and reading[2] > 1.0:
+            lam_seen = lam
+        if reading[2] > 4.0:
+            return lam_seen, reading
+        if lam > lambda_max:
+            raise LimitExceededError(refusal)
+
+
 def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> bool:
     ca = ContactArch(arch, settings)
     ca.settle()
@@ -168,22 +189,12 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     thr_slide = slide_threshold * float(np.mean(ca.joint_lengths))
     check = max(1, int(settings.steps_per_T // 100))
     dlam = rate / settings.steps_per_T
-    lam = float(lambda_start)
-    lam_seen = None
-    while True:
-        for _ in range(check):
-            lam += dlam
-            ca.step(-sign * lam * G, 1)
-        rot, sl, measure, pos, ang = _motion(ca, threshold, thr_slide)
-        if lam_seen is None and measure > 1.0:
-            lam_seen = lam
-        if measure > 4.0:
-            break
-        if lam > lambda_max:
-            raise LimitExceededError(
-                f"the arch did not move in the contact engine up to |xg''|/g = {lambda_max:g} "
-                f"in direction {direction!r} (the ramp's range; the limit analysis may give a "
-                f"larger multiplier or none: raise lambda_max, `archrock dem --ramp --ramp-max`)")
+    lam_seen, (rot, sl, measure, pos, ang) = ramp_until_moving(
+        ca, lambda m: _motion(m, threshold, thr_slide), sign, float(lambda_start), dlam, check,
+        lambda_max, f"the arch did not move in the contact engine up to |xg''|/g = "
+                    f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
+                    f"analysis may give a larger multiplier or none: raise lambda_max, "
+                    f"`archrock dem --ramp --ramp-max`)")
     if progress:
         progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
     # hinges: joints opening by at least a quarter of the largest relative rotation
