@@ -4,6 +4,7 @@ costs the most capacity)."""
 from __future__ import annotations
 
 
+from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
 from ._parser import _int, emit_json, finite_float, positive_float
 from .options import add_geometry_options, add_impact_options, arch_from_args, figure_arg
@@ -55,6 +56,7 @@ def add_defects_parser(subparsers):
     p.add_argument("--plot", metavar="FILE.png",
                    help="write the arch coloured by the capacity lost at each voussoir or joint")
     p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
+    add_fourlink_dynamics_option(p)
     p.set_defaults(func=run_defects)
     return p
 
@@ -73,6 +75,8 @@ def run_defects(args) -> int:
     if args.n_scan < 2:
         raise CLIError(f"--n-scan: {args.n_scan}; allowed an integer >= 2")
     arch = arch_from_args(args)
+    if args.pulse_duration is not None:  # the multipliers alone need no dynamics
+        check_fourlink(arch, args, "defects")
     impact = impact_spec_from_args(args)
     given = [v for v in (args.side, args.at, args.from_) if v is not None]
     if len(given) > 1:

@@ -6,6 +6,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import _int, emit_json, interrupted_study, non_negative_int
+from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
@@ -57,6 +58,7 @@ def add_fragility_parser(subparsers):
     p.add_argument("--no-progress", action="store_true",
                    help="no progress on stderr (shown for runs estimated above a few seconds)")
     p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
+    add_fourlink_dynamics_option(p)
     p.set_defaults(func=run_fragility)
     return p
 
@@ -73,6 +75,7 @@ def run_fragility(args) -> int:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
+    check_fourlink(nominal, args, "fragility")
     if args.workers < 1:  # before any records are read
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     if args.engine == "respond" and (args.workers > 1 or args.scheduler):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 
+from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
 from ._parser import _int, emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
@@ -36,6 +37,7 @@ def add_sensitivity_parser(subparsers):
     add_impact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
+    add_fourlink_dynamics_option(p)
     p.set_defaults(func=run_sensitivity)
     return p
 
@@ -50,7 +52,10 @@ def run_sensitivity(args) -> int:
         raise CLIError("--limit-only: cannot be combined with a ground motion")
     if motion is None and not args.limit_only:
         motion = PAPER_PULSE
-    res = sobol_indices(arch_from_args(args), spreads(args), args.samples, by=args.by,
+    nominal = arch_from_args(args)
+    if not args.limit_only:  # the multipliers alone need no dynamics
+        check_fourlink(nominal, args, "sensitivity")
+    res = sobol_indices(nominal, spreads(args), args.samples, by=args.by,
                         motion=None if args.limit_only else motion,
                         impact=impact_spec_from_args(args), seed=args.seed,
                         settings=run_settings(args))

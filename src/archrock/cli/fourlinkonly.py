@@ -1,0 +1,36 @@
+"""``--dynamics`` for the studies that run the four-link model only (fragility, sensitivity,
+defect maps): on an arch whose piers rock with it, one degree of freedom cannot follow the arch
+and the four-link figures would be unconservative (docs/piers-dynamics.md), so those commands
+refuse it unless asked; ``ensemble``, ``curves`` and ``assess`` run the contact engine there."""
+
+from __future__ import annotations
+
+import sys
+
+from ..errors import ArchInputError
+
+
+def add_fourlink_dynamics_option(p) -> None:
+    p.add_argument("--dynamics", choices=("auto", "fourlink"), default="auto",
+                   help="auto (default): the four-link model, refused on an arch whose piers "
+                        "rock with it (one degree of freedom cannot follow it: "
+                        "docs/piers-dynamics.md; ensemble and curves run the contact engine "
+                        "there); fourlink: the four-link model anyway, with a warning")
+
+
+def check_fourlink(nominal, args, command: str) -> None:
+    """Refuse ``nominal`` where one degree of freedom cannot follow it (``--dynamics auto``);
+    with ``--dynamics fourlink`` say so on stderr and go on."""
+    from ..studies.enginestudy import choose_dynamics
+
+    choice = choose_dynamics(nominal, getattr(args, "dynamics", "auto"))
+    if choice.engine:
+        raise ArchInputError(
+            f"--dynamics: {command} runs the four-link model only, and on this arch "
+            f"{choice.reason}; its figures would be unconservative (docs/piers-dynamics.md: on "
+            f"heavy piers the first collapse is 3.02 g by the four-link model, 0.70 g by the "
+            f"contact engine). Use `archrock ensemble` or `archrock curves`, which run the "
+            f"contact engine on this arch, or --dynamics fourlink for the four-link figures "
+            f"anyway")
+    if "WARNING" in choice.reason:
+        print(f"archrock {command}: {choice.reason}", file=sys.stderr)
