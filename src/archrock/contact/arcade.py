@@ -29,8 +29,7 @@ from ..errors import ArchInputError
 from ..geometry.arcade import GROUND, Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
-from .convex import convex_pieces, inset, simplify_outline, strip_pieces
-from .engine import import_pymunk
+from .engine import add_block, import_pymunk
 from .ramp import ramp_range, ramp_until_moving
 from .settings import EngineSettings, engine_scales
 
@@ -70,33 +69,11 @@ class ContactArcade:
                 if blk != GROUND:
                     ends[blk] += [ct.points[0], ct.points[1]]
         for i, blk in enumerate(arc.blocks):
-            body = pymunk.Body(float(self.masses[i]), float(self.inertias[i]),
-                               pymunk.Body.DYNAMIC)
-            c = self.centroids0[i]
-            body.position = (float(c[0]), float(c[1]))
-            body.center_of_gravity = (0.0, 0.0)
-            outline = np.asarray(blk.outline, float)
-            pieces = None
-            if sc.outline_tol > 0:
-                simple = simplify_outline(outline, sc.outline_tol, np.array(ends[i]))
-                try:
-                    pieces = strip_pieces(simple)
-                except ArchInputError:
-                    pieces = None
-            if pieces is None:
-                pieces = convex_pieces(outline)
+            # the arcade keeps its blocks' own outlines (the pieces carry the cut)
+            body, _, pieces = add_block(pymunk, space, np.asarray(blk.outline, float),
+                                        np.array(ends[i]), self.masses[i], self.inertias[i],
+                                        self.centroids0[i], sc, mu, e, r)
             self.pieces.append(pieces)
-            shapes = []
-            for pc in pieces:
-                core = inset(pc, r)
-                core, rad = (pc, 0.0) if core is None else (core, r)
-                s = pymunk.Poly(body, [(float(x - c[0]), float(y - c[1])) for x, y in core],
-                                radius=rad)
-                s.friction, s.elasticity = mu, e
-                shapes.append(s)
-            space.add(body, *shapes)
-            body.mass = float(self.masses[i])
-            body.moment = float(self.inertias[i])
             self.bodies.append(body)
         normals = np.asarray(arc.contact_normals, float)
         self.ground_outlines = []

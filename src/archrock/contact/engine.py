@@ -47,6 +47,40 @@ def import_pymunk():
     return pymunk
 
 
+def add_block(pymunk, space, outline, ends, mass, inertia, centroid, sc, mu, e, r):
+    """One rigid block in ``space``: a pymunk body of ``mass`` [kg/m] and ``inertia`` about its
+    ``centroid``, its shapes the outline cut into convex pieces (simplified within
+    ``sc.outline_tol`` keeping the contact ``ends``, else the fine exact cut), each inset by the
+    rounding ``r`` where it can be, with friction ``mu`` and elasticity ``e`` (per shape: pymunk
+    multiplies the two shapes' values).  Returns (body, the outline cut, its pieces)."""
+    body = pymunk.Body(float(mass), float(inertia), pymunk.Body.DYNAMIC)
+    body.position = (float(centroid[0]), float(centroid[1]))
+    body.center_of_gravity = (0.0, 0.0)
+    pieces = None
+    if sc.outline_tol > 0:
+        simple = simplify_outline(outline, sc.outline_tol, ends)
+        try:
+            pieces = strip_pieces(simple)
+            outline = simple
+        except ArchInputError:  # not simple any more: keep the fine cut
+            pieces = None
+    if pieces is None:
+        pieces = convex_pieces(outline)
+    shapes = []
+    for pc in pieces:
+        core = inset(pc, r)
+        core, rad = (pc, 0.0) if core is None else (core, r)
+        shape = pymunk.Poly(body, [(float(x - centroid[0]), float(y - centroid[1]))
+                                   for x, y in core], radius=rad)
+        shape.friction, shape.elasticity = mu, e
+        shapes.append(shape)
+    space.add(body, *shapes)
+    # explicit values after the shapes: shapes without mass or density leave them alone
+    body.mass = float(mass)
+    body.moment = float(inertia)
+    return body, outline, pieces
+
+
 class ContactArch:
     """One arch in a pymunk space, at rest in its initial configuration.
 
@@ -90,35 +124,11 @@ class ContactArch:
         self.outlines = []
         jp = np.asarray(arch.joint_points, float)
         for i in range(arch.n):
-            body = pymunk.Body(float(self.masses[i]), float(self.inertias[i]), pymunk.Body.DYNAMIC)
-            c = self.centroids0[i]
-            body.position = (float(c[0]), float(c[1]))
-            body.center_of_gravity = (0.0, 0.0)
-            outline = arch.outline(i)
-            pieces = None
-            if sc.outline_tol > 0:
-                simple = simplify_outline(outline, sc.outline_tol, jp[[i, i + 1]].reshape(-1, 2))
-                try:
-                    pieces = strip_pieces(simple)
-                    outline = simple
-                except ArchInputError:  # not simple any more: keep the fine cut
-                    pieces = None
-            if pieces is None:
-                pieces = convex_pieces(outline)
+            body, outline, pieces = add_block(
+                pymunk, space, arch.outline(i), jp[[i, i + 1]].reshape(-1, 2),
+                self.masses[i], self.inertias[i], self.centroids0[i], sc, mu, e, r)
             self.outlines.append(np.asarray(outline, float))
             self.pieces.append(pieces)
-            shapes = []
-            for pc in pieces:
-                core = inset(pc, r)
-                core, rad = (pc, 0.0) if core is None else (core, r)
-                s = pymunk.Poly(body, [(float(x - c[0]), float(y - c[1])) for x, y in core],
-                                radius=rad)
-                s.friction, s.elasticity = mu, e
-                shapes.append(s)
-            space.add(body, *shapes)
-            # explicit values after the shapes: shapes without mass or density leave them alone
-            body.mass = float(self.masses[i])
-            body.moment = float(self.inertias[i])
             self.bodies.append(body)
         pts = np.asarray(arch.joint_points, float)
         self.joint_points = pts
