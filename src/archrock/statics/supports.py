@@ -121,17 +121,23 @@ def _admissible(hinges, points, d, motions=None) -> bool:
 def _linkage(P1, P2, P3, d):
     """(P2', theta1, theta2): h2's place and the rotations of the middle bodies when h3 moves by
     d with h1 fixed; None where the linkage cannot close."""
+    return _close_linkage(P1, P2, P3, P1, P3 + d)
+
+
+def _close_linkage(P1, P2, P3, Q1, Q3):
+    """(Q2, theta1, theta2): the two-bar linkage h1-h2-h3 (hinge places P1, P2, P3) closed
+    between the moved ends Q1, Q3, with h2 on the branch continuous with the start (the side of
+    P1-P3 that P2 is on), and the rotations of the two bars; None where it cannot close."""
     a, b = float(np.hypot(*(P2 - P1))), float(np.hypot(*(P3 - P2)))
-    Q3 = P3 + d
-    D = float(np.hypot(*(Q3 - P1)))
+    D = float(np.hypot(*(Q3 - Q1)))
     if not (abs(a - b) < D < a + b):
         return None
-    e = (Q3 - P1) / D
+    e = (Q3 - Q1) / D
     x = (a * a - b * b + D * D) / (2.0 * D)
     h = math.sqrt(max(a * a - x * x, 0.0))
     sigma = 1.0 if _cross(P3 - P1, P2 - P1) >= 0 else -1.0
-    Q2 = P1 + x * e + sigma * h * _perp(e)
-    u, v = P2 - P1, Q2 - P1
+    Q2 = Q1 + x * e + sigma * h * _perp(e)
+    u, v = P2 - P1, Q2 - Q1
     t1 = math.atan2(_cross(u, v), float(u @ v))
     u, v = P3 - P2, Q3 - Q2
     t2 = math.atan2(_cross(u, v), float(u @ v))
@@ -147,19 +153,10 @@ def _build_rotated(arch: VoussoirArch, movement: SupportMovement, hinges, points
     P1, P2, P3 = (np.asarray(p, float) for p in points)
     Q1 = _rot(tl) @ (P1 - cl) + cl + ul
     Q3 = _rot(tr) @ (P3 - cr) + cr + ur
-    a, b = float(np.hypot(*(P2 - P1))), float(np.hypot(*(P3 - P2)))
-    D = float(np.hypot(*(Q3 - Q1)))
-    if not (abs(a - b) < D < a + b):
+    link = _close_linkage(P1, P2, P3, Q1, Q3)
+    if link is None:
         return None
-    e = (Q3 - Q1) / D
-    x = (a * a - b * b + D * D) / (2.0 * D)
-    h = math.sqrt(max(a * a - x * x, 0.0))
-    sigma = 1.0 if _cross(P3 - P1, P2 - P1) >= 0 else -1.0
-    Q2 = Q1 + x * e + sigma * h * _perp(e)
-    u, v = P2 - P1, Q2 - Q1
-    t1 = math.atan2(_cross(u, v), float(u @ v))
-    u, v = P3 - P2, Q3 - Q2
-    t2 = math.atan2(_cross(u, v), float(u @ v))
+    Q2, t1, t2 = link
     j1, j2, j3 = (h_.joint for h_ in hinges)
     n = arch.n
     angles, origins, images = np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2))
