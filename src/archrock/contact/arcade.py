@@ -29,7 +29,7 @@ from ..errors import ArchInputError
 from ..geometry.arcade import GROUND, Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
-from .engine import add_block, import_pymunk
+from .engine import add_block, import_pymunk, settle_blocks
 from .ramp import ramp_range, ramp_until_moving
 from .settings import EngineSettings, engine_scales
 
@@ -108,14 +108,7 @@ class ContactArcade:
     def settle(self, duration: float = 0.5) -> None:
         """Settle under gravity for ``duration`` T, stop every body, restart the clock: the
         reference of every rotation and slip reported."""
-        self.step(0.0, max(1, int(round(duration * self.settings.steps_per_T))))
-        for bd in self.bodies:
-            bd.velocity = (0.0, 0.0)
-            bd.angular_velocity = 0.0
-        pos, ang, _, _ = self.state()
-        self.ref_pos, self.ref_ang = pos, ang
-        self.ref_slide = self.contact_sliding(pos, ang)
-        self.steps, self.time = 0, 0.0
+        settle_blocks(self, duration, self.contact_sliding)
 
     def state(self):
         """(centres (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,))."""

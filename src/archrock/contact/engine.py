@@ -47,6 +47,20 @@ def import_pymunk():
     return pymunk
 
 
+def settle_blocks(blocks, duration: float, sliding) -> None:
+    """Step ``blocks`` (a ContactArch or ContactArcade) under gravity alone for ``duration`` T,
+    stop every body and restart the clock; the settled positions, angles and ``sliding(pos,
+    angles)`` become the reference of every rotation, slip and drop reported."""
+    blocks.step(0.0, max(1, int(round(duration * blocks.settings.steps_per_T))))
+    for b in blocks.bodies:
+        b.velocity = (0.0, 0.0)
+        b.angular_velocity = 0.0
+    pos, ang, _, _ = blocks.state()
+    blocks.ref_pos, blocks.ref_ang = pos, ang
+    blocks.ref_slide = sliding(pos, ang)
+    blocks.steps, blocks.time = 0, 0.0
+
+
 def add_block(pymunk, space, outline, ends, mass, inertia, centroid, sc, mu, e, r):
     """One rigid block in ``space``: a pymunk body of ``mass`` [kg/m] and ``inertia`` about its
     ``centroid``, its shapes the outline cut into convex pieces (simplified within
@@ -183,14 +197,7 @@ class ContactArch:
         """Let the arch settle under gravity for ``duration`` T (its rounded joints close by
         about 2 x rounding x size), then stop every body and restart the clock: the settled state
         is the reference of every rotation, sliding and drop reported."""
-        self.step(0.0, max(1, int(round(duration * self.settings.steps_per_T))))
-        for b in self.bodies:
-            b.velocity = (0.0, 0.0)
-            b.angular_velocity = 0.0
-        pos, ang, _, _ = self.state()
-        self.ref_pos, self.ref_ang = pos, ang
-        self.ref_slide = self.joint_sliding(pos, ang)
-        self.steps, self.time = 0, 0.0
+        settle_blocks(self, duration, self.joint_sliding)
 
     # ------------------------------------------------------------------ state
     def state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
