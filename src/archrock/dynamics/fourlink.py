@@ -30,7 +30,7 @@ from ..geometry import VoussoirArch
 from ..statics.hinges import EDGES, Mechanism
 from ..units import G
 
-__all__ = ["FourLink", "four_link", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",
+__all__ = ["FourLink", "four_link", "candidate_four_links", "GEO_SIZE", "coefficients", "configuration", "coefficient_table",
            "fast_coefficients", "exact_acceleration", "table_acceleration",
            "filling_acceleration", "init_table", "empty_table", "build_interval", "build_table",
            "table_size"]
@@ -527,6 +527,21 @@ TABLE_HEADER = 4
 
 #: fewest table intervals: the one-sided slopes at the ends use five knots
 MIN_TABLE_INTERVALS = 4
+
+
+def candidate_four_links(arch: VoussoirArch, direction: str):
+    """(mechanism, FourLink) of every four-hinge candidate of ``arch`` in ``direction``, in the
+    one order of :func:`archrock.statics.hinges.four_hinge_candidates`, skipping the sets whose
+    four-link model cannot be built (degenerate links): the candidates a post-impact
+    mechanism is chosen from (least loss, a pier's step)."""
+    from ..statics.hinges import four_hinge_candidates
+
+    for mech in four_hinge_candidates(arch.n, direction):
+        try:
+            fl = four_link(arch, mech)
+        except (ArchInputError, ZeroDivisionError):
+            continue
+        yield mech, fl
 
 
 def check_table_intervals(n, name: str = "table_intervals") -> int:

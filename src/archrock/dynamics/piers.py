@@ -148,9 +148,9 @@ def step_mechanism(model, accel_g: float) -> StepMechanism:
     rocking, ``0i-4e-12i-14e``).  Enumerates every joint 0..n and edge (as the least-loss law
     does): seconds on a 14-block chain."""
     from ..errors import ArchInputError
-    from ..statics.hinges import Mechanism, four_hinge_candidates
+    from ..statics.hinges import Mechanism
     from ..units import G
-    from .fourlink import four_link
+    from .fourlink import candidate_four_links
 
     if isinstance(accel_g, bool) or not isinstance(accel_g, (int, float)) or not (
             np.isfinite(accel_g) and accel_g != 0):
@@ -168,11 +168,7 @@ def step_mechanism(model, accel_g: float) -> StepMechanism:
     limit_s = best_s
     best_s = -1.0 if best_s is None else best_s
     count = 0
-    for mech in four_hinge_candidates(arch.n, direction):
-        try:
-            fl = four_link(arch, mech)
-        except (ArchInputError, ZeroDivisionError):
-            continue
+    for mech, fl in candidate_four_links(arch, direction):
         count += 1
         s = score(fl)
         if s is not None and s > best_s * (1 + 1e-12):

@@ -8,9 +8,8 @@ of the other direction keeps the most kinetic energy under the momentum (project
 from __future__ import annotations
 
 from dataclasses import dataclass
-from ...errors import ArchInputError
-from ...statics.hinges import Mechanism, four_hinge_candidates
-from ..fourlink import FourLink, four_link
+from ...statics.hinges import Mechanism
+from ..fourlink import FourLink, candidate_four_links
 from .laws import _m0, momentum_rate_ratio
 
 __all__ = ["LeastLoss", "least_loss_mechanism"]
@@ -65,11 +64,7 @@ def least_loss_mechanism(old: FourLink, limit_new: FourLink) -> LeastLoss:
     c_lim, e_lim = energy(limit_new)
     best = (e_lim, c_lim, limit_new.mechanism)
     count = 0
-    for mech in four_hinge_candidates(arch.n, direction):
-        try:
-            fl = four_link(arch, mech)
-        except (ArchInputError, ZeroDivisionError):
-            continue
+    for mech, fl in candidate_four_links(arch, direction):
         count += 1
         c, e = energy(fl)
         if e > best[0] * (1 + 1e-12):
