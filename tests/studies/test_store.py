@@ -152,6 +152,12 @@ def test_cli_names_the_damaged_batch_on_stderr(capsys, folder):
     assert again["timing"]["computed_batches"] == [1]
     clean.pop("timing"), again.pop("timing")
     assert again == clean
+    # without progress output it is still said, once, as a warning
+    _flip(store.batch_path(folder, 2), seed=3)
+    assert main(argv + ["--no-progress"]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith("archrock: warning: ensemble: recomputing batch 2: batch-00002.parquet "
+                          "damaged: its sha256") and err.count("\n") == 1
     (folder / "manifest.json").write_text("{}")
     assert main(argv) == 2
     err = capsys.readouterr().err
@@ -222,6 +228,10 @@ def test_a_chunk_without_a_checksum_is_kept_and_recorded(sweep_inputs, tmp_path)
     sidecar_path(chunk).unlink()
     again = store.ResultStore(out, arches, motions, note=pytest.fail)
     assert again.loaded == 4 and check_sidecar(chunk) is None
+    chunk.write_bytes(chunk.read_bytes()[:100])  # truncated; no progress sink: a warning
+    with pytest.warns(UserWarning, match=r"^out: recomputing the items of items/chunk-00000"
+                                         r"\.parquet in .*: damaged: its sha256"):
+        assert store.ResultStore(out, arches, motions).loaded == 0
 
 
 def test_a_damaged_sweep_manifest_is_refused(sweep_inputs, tmp_path):

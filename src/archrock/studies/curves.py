@@ -378,7 +378,7 @@ class _PulseRunner:
                                 # item's outcome does not depend on its event table)
                                 settings={"study": "curves", "kind": kind, "sign": sign,
                                           "max_events": _RESPOND["max_events"]},
-                                note=bar.note if bar is not None else None)
+                                note=bar.note if getattr(bar, "enabled", False) else None)
         self.runner = SweepRunner(arches, units, settings,
                                   max_events=None, bar=bar, store=store,
                                   pulses=(kind, sign, d))

@@ -40,11 +40,30 @@ if TYPE_CHECKING:  # imported lazily: the ensemble package imports this module
     from .ensemble.config import EnsembleConfig
 
 __all__ = ["EnsembleConfigMismatch", "Manifest", "batch_path", "read_batch", "write_batch",
-           "written_by", "same_bits", "code_digest", "MANIFEST", "FORMAT", "PROVENANCE_KEY",
-           "OTHER_CODE", "ResultStore", "SWEEP_FORMAT"]
+           "written_by", "same_bits", "code_digest", "is_damage", "say_damage", "MANIFEST",
+           "FORMAT", "PROVENANCE_KEY", "OTHER_CODE", "ResultStore", "SWEEP_FORMAT"]
 
 #: Why a batch is not loaded as it is: the sources that wrote it differ from these.
 OTHER_CODE = "written by other archrock code"
+#: how the reasons for a damaged file begin (:func:`is_damage`)
+_DAMAGE = ("damaged", "unreadable", "no recorded checksum, and")
+
+
+def is_damage(why: str | None) -> bool:
+    """Whether a reason of :func:`read_batch` (or a chunk's) says the file is damaged: said
+    even when progress output is off (a warning), unlike the other reasons to recompute."""
+    return bool(why) and why.startswith(_DAMAGE)
+
+
+def say_damage(line: str, note=None) -> None:
+    """A damaged file, in one line: to ``note`` (the progress sink) if there is one, else as a
+    warning (the CLI prints ``archrock: warning: ...``), so it is never silent."""
+    if note is not None:
+        note(line)
+    else:
+        import warnings
+
+        warnings.warn(line, stacklevel=3)
 
 MANIFEST = "manifest.json"
 # 2: spreads and impact as objects; draws by ArchSampler.  3: t_collapse is the last passage of
@@ -433,8 +452,8 @@ class ResultStore:
     scale and the results of each item), each written atomically, with its checksum, as the
     ensemble's batches are.  A folder holding another study's items (another digest) or a
     damaged manifest is refused; a chunk that fails its checksum or cannot be read is removed
-    and its items recomputed, with a line to ``note`` (the progress sink) naming it
-    (:attr:`damaged`).  Needs pyarrow (the 'ensemble' extra)."""
+    and its items recomputed, with a line naming it to ``note`` (the progress sink; None: a
+    warning) (:attr:`damaged`).  Needs pyarrow (the 'ensemble' extra)."""
 
     def __init__(self, folder, arches, motions, *, about: dict | None = None,
                  settings: dict | None = None, note=None):
@@ -508,8 +527,7 @@ class ResultStore:
         """Remove a chunk that cannot be trusted (its items are computed again), saying so."""
         name = f"{path.parent.name}/{path.name}"
         self.damaged.append(name)
-        if note is not None:
-            note(f"out: recomputing the items of {name} in {str(self.folder)!r}: {why}")
+        say_damage(f"out: recomputing the items of {name} in {str(self.folder)!r}: {why}", note)
         for p in (path, sidecar_path(path)):
             try:
                 p.unlink()
