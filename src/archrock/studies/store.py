@@ -6,7 +6,12 @@ resumption.  Two layouts share its writing, provenance and clean-up:
 * a sweep's kept items (:class:`ResultStore`): IDA, multiple stripes and the curves.
 
 Ensemble layout: ``manifest.json`` (configuration, seeds, versions, runs) next to
-``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID`` then rename).  Each batch
+``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID``, fsync, rename).  Every
+table has its SHA-256 in a sidecar (``batch-00000.parquet.sha256``, written before the table is
+renamed into place) and every manifest its own inside (:mod:`archrock.studies.checksums`),
+checked before the file is read: a damaged or truncated table is recomputed, never read (a
+table without a sidecar, from a folder older than checksums, is read whole, checked by
+:func:`_implausible` and its checksum recorded); a damaged manifest is refused.  Each batch
 file carries in its Parquet metadata (key ``archrock.ensemble``) the configuration's sha256, its
 batch number and the sha256 of the package's sources; a file whose metadata, ``batch`` or
 ``index`` columns do not match (or that cannot be read) is recomputed, with the reason.  Batches
