@@ -6,7 +6,7 @@ resumption.  Two layouts share its writing, provenance and clean-up:
 * a sweep's kept items (:class:`ResultStore`): IDA, multiple stripes and the curves.
 
 Ensemble layout: ``manifest.json`` (configuration, seeds, versions, runs) next to
-``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID``, fsync, rename).  Every
+``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID``, then rename).  Every
 table has its SHA-256 in a sidecar (``batch-00000.parquet.sha256``, written before the table is
 renamed into place) and every manifest its own inside (:mod:`archrock.studies.checksums`),
 checked before the file is read: a damaged or truncated table is recomputed, never read (a
@@ -38,8 +38,8 @@ import numpy as np
 from typing import TYPE_CHECKING
 
 from ..errors import ArchInputError
-from .checksums import (check_seal, check_sidecar, file_sha256, fsync_file, rename_durably,
-                        seal, sidecar_path, write_atomic, write_sidecar)
+from .checksums import (check_seal, check_sidecar, file_sha256, seal, sidecar_path, write_atomic,
+                        write_sidecar)
 
 if TYPE_CHECKING:  # imported lazily: the ensemble package imports this module
     from .ensemble.config import EnsembleConfig
@@ -106,8 +106,12 @@ def _read_manifest(path: Path) -> dict:
     """A manifest's JSON, checked against its own checksum: ArchInputError naming the file
     when it is not readable JSON or is damaged (its configuration cannot then be trusted)."""
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise ArchInputError(f"out: {str(path)!r} cannot be read ({exc.strerror or exc})") from None
+    try:
+        data = json.loads(raw.decode("utf-8"))
+    except ValueError as exc:  # UnicodeDecodeError too
         why = f"not readable JSON ({exc})"
     else:
         why = check_seal(data)
@@ -159,11 +163,10 @@ def write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
 
 
 def _commit_table(tmp: Path, path: Path) -> None:
-    """Put a written table in place: its bytes flushed, its checksum recorded (sidecar) and
-    only then the rename, so a table in place always has its checksum (module checksums)."""
-    fsync_file(tmp)
+    """Put a written table in place: its checksum recorded (sidecar) first, then the rename,
+    so a table in place always has its checksum (module checksums)."""
     write_sidecar(path, file_sha256(tmp))
-    rename_durably(tmp, path)
+    os.replace(tmp, path)
 
 
 def code_digest() -> str:
