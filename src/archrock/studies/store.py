@@ -217,7 +217,7 @@ def read_batch(out: Path, b: int, config: EnsembleConfig, any_code: bool = False
     try:
         damaged, legacy = check_sidecar(path), None
     except FileNotFoundError:
-        damaged, legacy = None, file_sha256(path)  # the bytes that are checked, then recorded
+        damaged, legacy = _legacy_sha256(path)  # the bytes that are checked, then recorded
     if damaged is not None:
         return None, damaged
     df, why = _read_checked(path, b, config, any_code)
@@ -227,6 +227,14 @@ def read_batch(out: Path, b: int, config: EnsembleConfig, any_code: bool = False
             return None, f"no recorded checksum, and {why}"
         write_sidecar(path, legacy)
     return (df, None) if why is None else (None, why)
+
+
+def _legacy_sha256(path: Path) -> tuple:
+    """(None, sha256) of a table without a recorded checksum, or (why, None) if unreadable."""
+    try:
+        return None, file_sha256(path)
+    except OSError as exc:
+        return f"unreadable ({exc.strerror or type(exc).__name__})", None
 
 
 def _read_checked(path: Path, b: int, config: EnsembleConfig, any_code: bool):
@@ -506,14 +514,14 @@ class ResultStore:
 
     def _load(self, path) -> str | None:
         """Read a chunk's items, its checksum checked first (None), or say why they cannot be
-        trusted.  A chunk without a checksum (a crash or older code) is read whole and checked
-        (:func:`_chunk_implausible`), and its checksum recorded if it passes."""
+        trusted.  A chunk without a checksum (older code, or put there by hand) is read whole
+        and checked (:func:`_chunk_implausible`), and its checksum recorded if it passes."""
         import pyarrow.parquet as pq
 
         try:
             why, legacy = check_sidecar(path), None
         except FileNotFoundError:
-            why, legacy = None, file_sha256(path)
+            why, legacy = _legacy_sha256(path)
         if why is not None:
             return why
         try:
