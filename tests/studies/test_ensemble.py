@@ -152,7 +152,7 @@ def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     first = run_ensemble(config(), out=out, progress=False)
     pd.testing.assert_frame_equal(first.frame, base.frame)
     files = sorted(p.name for p in (out / "batches").iterdir())
-    assert files == [f"batch-{b:05d}.parquet" for b in range(4)]
+    assert files == [f"batch-{b:05d}.parquet{x}" for b in range(4) for x in ("", ".sha256")]
     (out / "batches" / "batch-00002.parquet").unlink()
     # a half-written file of a killed run (its process is gone) is removed
     stale = out / "batches" / "batch-00003.parquet.tmp-99999999"
@@ -180,7 +180,7 @@ def test_progress_callable_receives_the_resume_notes(base, tmp_path, capsys):
     again = run_ensemble(config(), out=out, progress=lines.append)
     pd.testing.assert_frame_equal(again.frame, base.frame)
     assert capsys.readouterr().err == ""
-    assert any("recomputing batch 1: batch-00001.parquet unreadable" in x for x in lines)
+    assert any("recomputing batch 1: batch-00001.parquet damaged: its sha256" in x for x in lines)
     assert lines[-1].startswith("ensemble: ") and lines[-1].endswith("(100%)")
 
 
@@ -534,13 +534,17 @@ def test_resume_without_manifest_is_refused(written):
     (written / "manifest.json").unlink()
     with pytest.raises(ArchInputError, match=r"batches'? holds batch files but .*manifest.json"):
         run_ensemble(config(seed=12), out=written, progress=False)
-    assert len(list((written / "batches").iterdir())) == 4  # nothing touched
+    assert len(list((written / "batches").iterdir())) == 8  # nothing touched (4 + checksums)
 
 
 def test_resume_recomputes_a_copied_batch(base, written, capsys):
     import shutil
 
-    shutil.copy(written / "batches" / "batch-00000.parquet", written / "batches" / "batch-00001.parquet")
+    from archrock.studies.checksums import file_sha256, write_sidecar
+
+    copy = written / "batches" / "batch-00001.parquet"
+    shutil.copy(written / "batches" / "batch-00000.parquet", copy)
+    write_sidecar(copy, file_sha256(copy))  # its checksum right: the provenance catches it
     res, err = _resume(written, capsys)
     pd.testing.assert_frame_equal(res.frame, base.frame)
     assert res.frame["index"].is_unique
@@ -557,14 +561,16 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     other = written.parent / "other"
     run_ensemble(config(seed=12), out=other, progress=False)
     batches = written / "batches"
-    (other / "batches" / "batch-00002.parquet").replace(batches / "batch-00002.parquet")
+    for name in ("batch-00002.parquet", "batch-00002.parquet.sha256"):  # with its checksum
+        (other / "batches" / name).replace(batches / name)
     # right metadata, wrong index column
     df = pd.read_parquet(batches / "batch-00003.parquet")
     df["index"] = df["index"] + 1
     store.write_batch(written, 3, df, config())
-    # no metadata at all: written by older code
+    # no metadata at all: written by older code (no checksum either)
     pd.read_parquet(batches / "batch-00000.parquet").to_parquet(batches / "batch-00000.parquet",
                                                                 index=False)
+    (batches / "batch-00000.parquet.sha256").unlink()
     res, err = _resume(written, capsys)
     pd.testing.assert_frame_equal(res.frame, base.frame)
     why = res.timing["recomputed_batches"]
@@ -626,6 +632,12 @@ def test_a_folder_written_by_0_4_0_resumes_by_verification(tmp_path, capsys):
                    for b in (1, 2))
     assert res.summary()["p_collapse"]["collapses"] == 14  # as 0.4.0 reported
     assert {store.written_by(out, b) for b in range(3)} == {store.code_digest()}
+    # checksums recorded for all three (none in 0.4.0's folder), and the manifest sealed
+    from archrock.studies.checksums import check_seal, check_sidecar
+
+    assert [check_sidecar(store.batch_path(out, b)) for b in range(3)] == [None] * 3
+    sealed = json.loads((out / "manifest.json").read_text())
+    assert "checksum" in sealed and check_seal(sealed) is None
 
 
 def test_tmp_files_of_live_processes_are_kept(written):

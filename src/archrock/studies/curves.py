@@ -377,7 +377,8 @@ class _PulseRunner:
                                 # 0.6's folders resume; the sweep no longer stops at it (an
                                 # item's outcome does not depend on its event table)
                                 settings={"study": "curves", "kind": kind, "sign": sign,
-                                          "max_events": _RESPOND["max_events"]})
+                                          "max_events": _RESPOND["max_events"]},
+                                note=bar.note if getattr(bar, "enabled", False) else None)
         self.runner = SweepRunner(arches, units, settings,
                                   max_events=None, bar=bar, store=store,
                                   pulses=(kind, sign, d))

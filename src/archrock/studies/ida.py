@@ -210,7 +210,8 @@ def _runner(recs, ms, dt, t_free, settings, bar, early_stop=False):
         store = ResultStore(settings.out, arches, motions,
                             about={"study": "fragility (IDA and stripes)",
                                    "records": [r.name for r in recs], "arches": len(ms)},
-                            settings={"max_events": _TEST_EVENTS, "early_stop": bool(early_stop)})
+                            settings={"max_events": _TEST_EVENTS, "early_stop": bool(early_stop)},
+                            note=bar.note if getattr(bar, "enabled", False) else None)
     return SweepRunner(arches, motions, settings,
                        max_events=_TEST_EVENTS, early_stop=early_stop, bar=bar, store=store)
 

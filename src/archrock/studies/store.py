@@ -6,7 +6,12 @@ resumption.  Two layouts share its writing, provenance and clean-up:
 * a sweep's kept items (:class:`ResultStore`): IDA, multiple stripes and the curves.
 
 Ensemble layout: ``manifest.json`` (configuration, seeds, versions, runs) next to
-``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID`` then rename).  Each batch
+``batches/batch-00000.parquet``, each written atomically (``*.tmp-PID``, then rename).  Every
+table has its SHA-256 in a sidecar (``batch-00000.parquet.sha256``, written before the table is
+renamed into place) and every manifest its own inside (:mod:`archrock.studies.checksums`),
+checked before the file is read: a damaged or truncated table is recomputed, never read (a
+table without a sidecar, from a folder older than checksums, is read whole, checked by
+:func:`_implausible` and its checksum recorded); a damaged manifest is refused.  Each batch
 file carries in its Parquet metadata (key ``archrock.ensemble``) the configuration's sha256, its
 batch number and the sha256 of the package's sources; a file whose metadata, ``batch`` or
 ``index`` columns do not match (or that cannot be read) is recomputed, with the reason.  Batches
@@ -33,16 +38,37 @@ import numpy as np
 from typing import TYPE_CHECKING
 
 from ..errors import ArchInputError
+from .checksums import (check_seal, check_sidecar, file_sha256, seal, sidecar_path, write_atomic,
+                        write_sidecar)
 
 if TYPE_CHECKING:  # imported lazily: the ensemble package imports this module
     from .ensemble.config import EnsembleConfig
 
 __all__ = ["EnsembleConfigMismatch", "Manifest", "batch_path", "read_batch", "write_batch",
-           "written_by", "same_bits", "code_digest", "MANIFEST", "FORMAT", "PROVENANCE_KEY",
-           "OTHER_CODE", "ResultStore", "SWEEP_FORMAT"]
+           "written_by", "same_bits", "code_digest", "is_damage", "say_damage", "MANIFEST",
+           "FORMAT", "PROVENANCE_KEY", "OTHER_CODE", "ResultStore", "SWEEP_FORMAT"]
 
 #: Why a batch is not loaded as it is: the sources that wrote it differ from these.
 OTHER_CODE = "written by other archrock code"
+#: how the reasons for a damaged file begin (:func:`is_damage`)
+_DAMAGE = ("damaged", "unreadable", "no recorded checksum, and")
+
+
+def is_damage(why: str | None) -> bool:
+    """Whether a reason of :func:`read_batch` (or a chunk's) says the file is damaged: said
+    even when progress output is off (a warning), unlike the other reasons to recompute."""
+    return bool(why) and why.startswith(_DAMAGE)
+
+
+def say_damage(line: str, note=None) -> None:
+    """A damaged file, in one line: to ``note`` (the progress sink) if there is one, else as a
+    warning (the CLI prints ``archrock: warning: ...``), so it is never silent."""
+    if note is not None:
+        note(line)
+    else:
+        import warnings
+
+        warnings.warn(line, stacklevel=3)
 
 MANIFEST = "manifest.json"
 # 2: spreads and impact as objects; draws by ArchSampler.  3: t_collapse is the last passage of
@@ -72,9 +98,28 @@ def _now() -> str:
 
 
 def _write_json_atomic(path: Path, obj) -> None:
-    tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
-    tmp.write_text(json.dumps(obj, indent=2, allow_nan=False), encoding="utf-8")
-    os.replace(tmp, path)
+    """Write a manifest atomically and durably, sealed with its own checksum."""
+    write_atomic(path, json.dumps(seal(obj), indent=2, allow_nan=False).encode("utf-8"))
+
+
+def _read_manifest(path: Path) -> dict:
+    """A manifest's JSON, checked against its own checksum: ArchInputError naming the file
+    when it is not readable JSON or is damaged (its configuration cannot then be trusted)."""
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise ArchInputError(f"out: {str(path)!r} cannot be read ({exc.strerror or exc})") from None
+    try:
+        data = json.loads(raw.decode("utf-8"))
+    except ValueError as exc:  # UnicodeDecodeError too
+        why = f"not readable JSON ({exc})"
+    else:
+        why = check_seal(data)
+        if why is None:
+            return data
+    raise ArchInputError(f"out: {str(path)!r} is damaged ({why}), so what it records cannot be "
+                         f"trusted; use another output folder, or delete this one to start "
+                         f"again") from None
 
 
 def batch_path(out: Path, b: int) -> Path:
@@ -114,6 +159,13 @@ def write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
     meta = dict(table.schema.metadata or {})
     meta[PROVENANCE_KEY] = json.dumps(_provenance(config, b), sort_keys=True).encode()
     pq.write_table(table.replace_schema_metadata(meta), tmp)
+    _commit_table(tmp, path)
+
+
+def _commit_table(tmp: Path, path: Path) -> None:
+    """Put a written table in place: its checksum recorded (sidecar) first, then the rename,
+    so a table in place always has its checksum (module checksums)."""
+    write_sidecar(path, file_sha256(tmp))
     os.replace(tmp, path)
 
 
@@ -154,14 +206,43 @@ def read_batch(out: Path, b: int, config: EnsembleConfig, any_code: bool = False
     """(DataFrame, None) for a verified batch file; (None, None) when there is none; (None,
     reason) when the file exists but cannot be used (it is then recomputed).  ``any_code``: a
     file written by other archrock sources is returned too (the caller verifies it, see
-    :func:`written_by`); otherwise it is (None, :data:`OTHER_CODE`)."""
+    :func:`written_by`); otherwise it is (None, :data:`OTHER_CODE`).
+
+    The file's SHA-256 is checked against its sidecar before it is read: a damaged or
+    truncated file is never read.  A file without one (written before checksums) is read
+    whole and checked (:func:`_implausible`), and its checksum recorded if it passes."""
+    path = batch_path(out, b)
+    if not path.is_file():
+        return None, None
+    try:
+        damaged, legacy = check_sidecar(path), None
+    except FileNotFoundError:
+        damaged, legacy = _legacy_sha256(path)  # the bytes that are checked, then recorded
+    if damaged is not None:
+        return None, damaged
+    df, why = _read_checked(path, b, config, any_code)
+    if df is not None and legacy is not None:
+        why = _implausible(df)
+        if why is not None:
+            return None, f"no recorded checksum, and {why}"
+        write_sidecar(path, legacy)
+    return (df, None) if why is None else (None, why)
+
+
+def _legacy_sha256(path: Path) -> tuple:
+    """(None, sha256) of a table without a recorded checksum, or (why, None) if unreadable."""
+    try:
+        return None, file_sha256(path)
+    except OSError as exc:
+        return f"unreadable ({exc.strerror or type(exc).__name__})", None
+
+
+def _read_checked(path: Path, b: int, config: EnsembleConfig, any_code: bool):
+    """:func:`read_batch` of a file whose checksum was checked: its provenance and rows."""
     import pyarrow.parquet as pq
 
     from .ensemble.compute import COLUMNS
 
-    path = batch_path(out, b)
-    if not path.is_file():
-        return None, None
     try:
         table = pq.read_table(path)
         meta = json.loads((table.schema.metadata or {}).get(PROVENANCE_KEY, b"null"))
@@ -186,6 +267,54 @@ def read_batch(out: Path, b: int, config: EnsembleConfig, any_code: bool = False
             and np.array_equal(df["index"].to_numpy(), np.arange(start, start + nb))):
         return None, f"its batch/index columns are not batch {b}, samples {start}..{start + nb - 1}"
     return df, None
+
+
+#: a batch's columns by kind (:data:`archrock.studies.ensemble.compute.COLUMNS`)
+_INTS = ("batch", "index", "n_impacts", "n_activations")
+_BOOLS = ("collapsed", "events_truncated", "early_stopped")
+_FLOATS = ("k_l", "k_r", "c_l_to_r", "c_r_to_l", "peak", "t_collapse", "t_limit", "t_unstable")
+_TEXT = ("mech_l", "mech_r", "status", "error")
+_SIGNED = ("k_l", "k_r", "c_l_to_r", "c_r_to_l")
+#: no stored float is this large: multipliers and restitution coefficients are of order 1,
+#: peaks are radians, times seconds of the motion and its free run
+_FLOAT_BOUND = 1e3
+#: event counts stop at the batch kernel's table (4096), with a wide margin
+_COUNT_BOUND = 10**7
+
+
+def _implausible(df) -> str | None:
+    """Why a batch table without a recorded checksum cannot be trusted (None: its types and
+    values are those this code writes).  Not a proof: a damaged digit within range passes."""
+    from ..dynamics.batch import STATUS_NAMES
+
+    for cols, kinds, what in ((_INTS, "iu", "integers"), (_BOOLS, "b", "booleans"),
+                              (_FLOATS, "f", "floats")):
+        for c in cols:
+            if df[c].dtype.kind not in kinds:
+                return f"column {c!r} does not hold {what} ({df[c].dtype})"
+    for c in _FLOATS:
+        v = df[c].to_numpy()
+        v = v[~np.isnan(v)]
+        if c in ("k_l", "k_r"):
+            v = v[v != np.inf]  # no mechanism: k = +inf
+        lo = -_FLOAT_BOUND if c in _SIGNED else 0.0  # peaks and times are not negative
+        bad = v[~((v >= lo) & (v <= _FLOAT_BOUND))]
+        if bad.size:
+            return f"column {c!r} holds {bad[0]:.6g} (allowed NaN or {lo:g}..{_FLOAT_BOUND:g})"
+    for c in ("n_impacts", "n_activations"):
+        v = df[c].to_numpy()
+        if ((v < 0) | (v > _COUNT_BOUND)).any():
+            return f"column {c!r} holds {v[(v < 0) | (v > _COUNT_BOUND)][0]} (allowed 0..{_COUNT_BOUND})"
+    for c in _TEXT:
+        if not all(isinstance(x, str) for x in df[c]):
+            return f"column {c!r} does not hold text"
+    known = set(STATUS_NAMES.values()) | {"failed", "limit-only"}
+    unknown = set(df["status"]) - known
+    if unknown:
+        return f"column 'status' holds {sorted(unknown)[0]!r} (allowed {sorted(known)})"
+    if not np.array_equal(df["collapsed"].to_numpy(), (df["status"] == "collapsed").to_numpy()):
+        return "its collapsed and status columns disagree"
+    return None
 
 
 def _pid_alive(pid: int) -> bool:
@@ -235,10 +364,13 @@ class Manifest:
                 f"missing, so their configuration is unknown; use another output folder or "
                 f"delete that folder")
         if self.path.is_file():
-            try:
-                data = json.loads(self.path.read_text(encoding="utf-8"))
-            except (OSError, ValueError) as exc:
-                raise ArchInputError(f"out: {str(self.path)!r} is not a readable manifest ({exc})") from None
+            data = _read_manifest(self.path)
+            if not (isinstance(data.get("config"), dict) and isinstance(data.get("runs"), list)
+                    and isinstance(data.get("batches"), dict)):
+                raise ArchInputError(
+                    f"out: {str(self.path)!r} is damaged (its config, runs or batches are "
+                    f"missing), so what it records cannot be trusted; use another output "
+                    f"folder, or delete this one to start again")
             from .ensemble.config import EnsembleConfig
 
             old = EnsembleConfig.upgrade_dict(data.get("config", {}))  # 0.4-0.6's keys too
@@ -333,12 +465,14 @@ class ResultStore:
     """Finished items of a study's sweeps kept in a folder (``--out DIR``), so that a killed
     study started again recomputes nothing it had finished: ``manifest.json`` (format, the
     digest of the inputs, what the study is) and ``items/chunk-NNNNN.parquet`` (arch, motion,
-    scale and the results of each item), each written atomically as the ensemble's batches
-    are.  A folder holding another study's items (another digest) is refused; an unreadable
-    chunk is recomputed.  Needs pyarrow (the 'ensemble' extra)."""
+    scale and the results of each item), each written atomically, with its checksum, as the
+    ensemble's batches are.  A folder holding another study's items (another digest) or a
+    damaged manifest is refused; a chunk that fails its checksum or cannot be read is removed
+    and its items recomputed, with a line naming it to ``note`` (the progress sink; None: a
+    warning) (:attr:`damaged`).  Needs pyarrow (the 'ensemble' extra)."""
 
     def __init__(self, folder, arches, motions, *, about: dict | None = None,
-                 settings: dict | None = None):
+                 settings: dict | None = None, note=None):
         try:
             import pyarrow.parquet as pq  # noqa: F401
         except ImportError:
@@ -347,11 +481,7 @@ class ResultStore:
         self.digest = _digest(arches, motions, settings or {})
         man = self.folder / MANIFEST
         if man.exists():
-            try:
-                old = json.loads(man.read_text(encoding="utf-8"))
-            except (OSError, ValueError) as exc:
-                raise ArchInputError(f"out: {str(man)!r} cannot be read ({exc}); allowed a "
-                                     f"folder written by this study, or a new one") from None
+            old = _read_manifest(man)
             if old.get("format") != SWEEP_FORMAT or old.get("digest") != self.digest:
                 raise ArchInputError(f"out: {str(self.folder)!r} holds another study (other "
                                      f"arches, records, settings or archrock version); allowed "
@@ -367,28 +497,58 @@ class ResultStore:
         (self.folder / "items").mkdir(exist_ok=True)
         _remove_stale_tmp(self.folder, "items")
         self.done: dict = {}
+        self.damaged: list[str] = []  # chunks removed, their items to be computed again
         self.next = 0  # number of the next chunk file: after every existing one, never reused
         for f in sorted((self.folder / "items").glob("chunk-*.parquet")):
-            try:
-                self._load(f)
-            except Exception:  # noqa: BLE001 - an unreadable chunk is recomputed, not fatal
-                continue
-            finally:
-                num = f.stem.split("-")[-1]
-                if num.isdigit():
-                    self.next = max(self.next, int(num) + 1)
+            num = f.stem.split("-")[-1]
+            if num.isdigit():
+                self.next = max(self.next, int(num) + 1)
+            why = self._load(f)
+            if why is not None:
+                self._discard(f, why, note)
         self.loaded = len(self.done)
 
     @staticmethod
     def _key(a, m, s):
         return (int(a), int(m), float(s))
 
-    def _load(self, path):
+    def _load(self, path) -> str | None:
+        """Read a chunk's items, its checksum checked first (None), or say why they cannot be
+        trusted.  A chunk without a checksum (older code, or put there by hand) is read whole
+        and checked (:func:`_chunk_implausible`), and its checksum recorded if it passes."""
         import pyarrow.parquet as pq
 
-        tab = pq.read_table(path).to_pydict()
+        try:
+            why, legacy = check_sidecar(path), None
+        except FileNotFoundError:
+            why, legacy = _legacy_sha256(path)
+        if why is not None:
+            return why
+        try:
+            tab = pq.read_table(path).to_pydict()
+        except Exception as exc:  # noqa: BLE001 - a damaged chunk is recomputed, not fatal
+            return f"unreadable ({type(exc).__name__})"
+        if set(tab) != {"arch", "motion", "scale", *_STORED}:
+            return "unexpected columns"
+        if legacy is not None:
+            why = _chunk_implausible(tab)
+            if why is not None:
+                return f"no recorded checksum, and {why}"
+            write_sidecar(path, legacy)
         for i, (a, m, s) in enumerate(zip(tab["arch"], tab["motion"], tab["scale"])):
             self.done[self._key(a, m, s)] = tuple(tab[c][i] for c in _STORED)
+        return None
+
+    def _discard(self, path, why: str, note) -> None:
+        """Remove a chunk that cannot be trusted (its items are computed again), saying so."""
+        name = f"{path.parent.name}/{path.name}"
+        self.damaged.append(name)
+        say_damage(f"out: recomputing the items of {name} in {str(self.folder)!r}: {why}", note)
+        for p in (path, sidecar_path(path)):
+            try:
+                p.unlink()
+            except OSError:
+                pass
 
     def lookup(self, a, m, s):
         """The stored row of each item (None: not stored)."""
@@ -405,7 +565,30 @@ class ResultStore:
         path = self.folder / "items" / f"chunk-{self.next:05d}.parquet"
         tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
         pq.write_table(pa.table(cols), tmp)
-        os.replace(tmp, path)
+        _commit_table(tmp, path)
         self.next += 1
         for i, key in enumerate(zip(a, m, s)):
             self.done[self._key(*key)] = tuple(cols[c][i].item() for c in _STORED)
+
+
+def _chunk_implausible(tab: dict) -> str | None:
+    """Why a chunk without a recorded checksum cannot be trusted (None: its values are those
+    this code writes: statuses -1..3, finite scales, times and peaks NaN or 0..1000, counts
+    0..10^7)."""
+    for c in ("arch", "motion", "status", "n_events"):
+        if not all(isinstance(x, int) and not isinstance(x, bool) for x in tab[c]):
+            return f"column {c!r} does not hold integers"
+    if any(x < 0 for x in tab["arch"] + tab["motion"]):
+        return "a negative arch or motion index"
+    if any(not -1 <= x <= 3 for x in tab["status"]):
+        return "column 'status' holds a code outside -1..3"
+    if any(not 0 <= x <= _COUNT_BOUND for x in tab["n_events"]):
+        return f"column 'n_events' holds a count outside 0..{_COUNT_BOUND}"
+    if not np.isfinite(np.asarray(tab["scale"], dtype=float)).all():
+        return "column 'scale' holds a value that is not finite"
+    for c in ("peak", "t_collapse", "t_unstable", "t_limit"):
+        v = np.asarray(tab[c], dtype=float)
+        bad = v[~np.isnan(v) & ~((v >= 0.0) & (v <= _FLOAT_BOUND))]
+        if bad.size:
+            return f"column {c!r} holds {bad[0]:.6g} (allowed NaN or 0..{_FLOAT_BOUND:g})"
+    return None

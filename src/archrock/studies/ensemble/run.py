@@ -13,8 +13,8 @@ from .executors import execute
 from ..._progress import Progress
 from ..runner import UNSET, resolve_settings
 from .compute import run_batches
-from ..store import (OTHER_CODE, Manifest, batch_path, code_digest, read_batch, same_bits,
-                    write_batch, written_by)
+from ..store import (OTHER_CODE, Manifest, batch_path, code_digest, is_damage, read_batch,
+                    same_bits, say_damage, write_batch, written_by)
 from .summary import EnsembleResult
 
 __all__ = ["run_ensemble"]
@@ -160,7 +160,11 @@ def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNS
         todo.append(b)
         recomputed[b] = why
         manifest.run["recomputed"][str(b)] = why
-        bar.note(f"ensemble: recomputing batch {b}: {batch_path(out, b).name} {why}")
+        line = f"ensemble: recomputing batch {b}: {batch_path(out, b).name} {why}"
+        if is_damage(why):  # never silent, even without progress output
+            say_damage(line, bar.note if bar.enabled else None)
+        else:
+            bar.note(line)
 
     def finished(b, df, timings):
         done.add(b)

@@ -289,8 +289,25 @@ def summarize_store(out_dir, config, nominal: dict, impact: dict, timing: dict |
 
     def batches():
         for p in paths:
+            _check_batch(p)
             cols = [c for c in SUMMARY_COLUMNS if c in pq.read_schema(p).names]
             yield pq.read_table(p, columns=cols).to_pandas()
 
     return summarize_batches(batches, config, nominal, impact, timing, confidence)
 
+
+
+def _check_batch(path: Path) -> None:
+    """Refuse a batch file that no longer matches its recorded checksum (damaged since the run
+    that verified or wrote it): its numbers are never summarized."""
+    from ..checksums import check_sidecar
+
+    try:
+        why = check_sidecar(path)
+    except FileNotFoundError:  # a folder older than checksums: its run checked it whole
+        return
+    if why is not None:
+        from ...errors import ArchInputError
+
+        raise ArchInputError(f"out: {str(path)!r} is {why}; run the ensemble again to "
+                             f"recompute it")
