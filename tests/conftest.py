@@ -9,6 +9,19 @@ import pytest
 
 import archrock
 
+#: The test data folder, inside the repository: no test reads a file outside it.
+DATA = Path(__file__).resolve().parent / "data"
+
+
+@pytest.fixture(scope="session")
+def heavy_piers_file() -> Path:
+    """tests/data/heavy_piers.json: 12 voussoirs on two free piers 5 m wide and 30 m tall, 90% of
+    the mass in the piers (HybriDFEM's COMPDYN 2025 example rebuilt as a geometry file; its
+    ``metadata`` gives the motion and the figures measured with three models)."""
+    path = DATA / "heavy_piers.json"
+    assert path.is_file(), f"{path} is part of the repository"
+    return path
+
 
 @pytest.fixture
 def without_numba():
