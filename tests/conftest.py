@@ -40,6 +40,29 @@ def without_numba():
     return run
 
 
+def _rows_close(new, old, fields, rtol):
+    """``new`` and ``old`` (batches of rows: PreparedBatch or the like) field by field: labels,
+    messages, integers and booleans exactly, floats to ``rtol`` of the field's largest
+    magnitude (NaN where NaN).  For two computation paths (compiled vs numpy, batch vs one
+    arch), which agree to rounding, not to the bit."""
+    import numpy as np
+
+    for f in fields:
+        x, y = np.asarray(getattr(new, f)), np.asarray(getattr(old, f))
+        if x.dtype.kind in "biuUSO":
+            assert x.tolist() == y.tolist(), f
+        else:
+            scale = float(np.nanmax(np.abs(y), initial=0.0)) if y.size else 0.0
+            np.testing.assert_allclose(x, y, rtol=rtol, atol=rtol * scale, equal_nan=True,
+                                       err_msg=f)
+
+
+@pytest.fixture
+def rows_close():
+    """The comparison of two paths' rows to rounding (:func:`_rows_close`)."""
+    return _rows_close
+
+
 def _rocking_frame(b, h, beam_depth, span=6.0, density=2000.0, loads=()):
     """Makris & Vassiliou's rocking frame as a 3-block polygon arch: two columns 2b x 2h
     standing at x = 0 and x = span under a free rectangular beam of depth ``beam_depth`` resting
