@@ -8,8 +8,8 @@ A :class:`GroundMotion` is a piecewise-linear history through its samples.  The 
 pulses encode a step (a jump in acceleration) by a time twice in a row; the history is
 right-continuous there (at the repeated time the later value applies).  A record (a file, an
 upload) has strictly increasing times: a repeated time is refused naming its line
-(:func:`.records.check_time_order`; a step is written as a short ramp).  Before t = 0 and after the last sample the
-acceleration is 0.  So a record whose last sample is nonzero drops to 0 just after its end; the
+(:func:`.records.check_time_order`; a step is written as a short ramp).  Before t = 0 and after
+the last sample the acceleration is 0.  So a record whose last sample is nonzero drops to 0 just after its end; the
 pulse constructors end their histories with an explicit 0 where the drop matters.
 
 Modules: :mod:`.motion` (the model, :func:`from_samples`), :mod:`.pulses` (idealised pulses),
