@@ -9,6 +9,19 @@ import pytest
 
 import archrock
 
+#: The test data folder, inside the repository: no test reads a file outside it.
+DATA = Path(__file__).resolve().parent / "data"
+
+
+@pytest.fixture(scope="session")
+def heavy_piers_file() -> Path:
+    """tests/data/heavy_piers.json: 12 voussoirs on two free piers 5 m wide and 30 m tall, 90% of
+    the mass in the piers (HybriDFEM's COMPDYN 2025 example rebuilt as a geometry file; its
+    ``metadata`` gives the motion and the figures measured with three models)."""
+    path = DATA / "heavy_piers.json"
+    assert path.is_file(), f"{path} is part of the repository"
+    return path
+
 
 @pytest.fixture
 def without_numba():
@@ -25,6 +38,29 @@ def without_numba():
         return proc.stdout
 
     return run
+
+
+def _rows_close(new, old, fields, rtol):
+    """``new`` and ``old`` (batches of rows: PreparedBatch or the like) field by field: labels,
+    messages, integers and booleans exactly, floats to ``rtol`` of the field's largest
+    magnitude (NaN where NaN).  For two computation paths (compiled vs numpy, batch vs one
+    arch), which agree to rounding, not to the bit."""
+    import numpy as np
+
+    for f in fields:
+        x, y = np.asarray(getattr(new, f)), np.asarray(getattr(old, f))
+        if x.dtype.kind in "biuUSO":
+            assert x.tolist() == y.tolist(), f
+        else:
+            scale = float(np.nanmax(np.abs(y), initial=0.0)) if y.size else 0.0
+            np.testing.assert_allclose(x, y, rtol=rtol, atol=rtol * scale, equal_nan=True,
+                                       err_msg=f)
+
+
+@pytest.fixture
+def rows_close():
+    """The comparison of two paths' rows to rounding (:func:`_rows_close`)."""
+    return _rows_close
 
 
 def _rocking_frame(b, h, beam_depth, span=6.0, density=2000.0, loads=()):

@@ -147,6 +147,21 @@ def test_code_and_docs_cite_only_what_users_have():
     assert not bad, "\n".join(bad)
 
 
+def test_tests_read_nothing_outside_the_repository():
+    """A fresh clone runs every test: no test reads the shared folder beside the checkout, an
+    absolute path of the development machine or a folder above the checkout (cases live in
+    tests/data, read through conftest's fixtures)."""
+    import re
+
+    tests = Path(__file__).resolve().parent
+    outside = re.compile(r"parents\[[3-9]\]|[\"']/work/|\.\./shared|[\"']shared[\"']\s*/")
+    bad = [f"{p.relative_to(tests)}:{i}: {line.strip()}"
+           for p in sorted(tests.rglob("*.py"))
+           for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+           if outside.search(line) and "outside = re.compile" not in line]
+    assert not bad, "\n".join(bad)
+
+
 if __name__ == "__main__":  # the figures of docs/architecture.md
     g = import_graph()
     print(f"{len(g)} places, {sum(map(len, g.values()))} edges, {levels(g)} levels")

@@ -93,6 +93,8 @@ def test_a_scaled_at2_record_is_the_librarys_and_its_window_is_bounded(client, t
     ("bad.txt", b"0 0\n0.01 0.1\n0.02 abc\n", "record bad.txt: line 3: 'abc' is not a number"),
     ("bad.AT2", b"a\nb\nc\nd\n1 2\n", "record bad.AT2: line 4: header 'd'; allowed"),
     ("empty.txt", b"", "record: the file is empty"),
+    ("step.txt", b"0 0\n0.01 0.1\n0.01 0.2\n0.02 0\n",
+     "record step.txt: line 3: time 0.01 s repeats line 2; allowed strictly increasing times"),
     ("../../etc/passwd", b"0 0\n0.01 0.1\n0.02 x\n", "record passwd: line 3:"),
 ])
 def test_a_bad_record_answers_400_with_the_librarys_message(client, name, data, starts):

@@ -678,6 +678,21 @@ def test_codecheck_spectrum_in_cm_per_s2_is_refused_with_a_units_hint(capsys, tm
     assert code == 0 and err == ""
 
 
+def test_a_record_with_a_repeated_time_is_refused_in_one_line(capsys, tmp_path):
+    """Issue 29: a record's times strictly increase; a time twice (a step) was accepted by
+    respond although the README says refused.  Increasing times run."""
+    f = tmp_path / "step.txt"
+    f.write_text("# corners\n0 -1\n0.2 -1\n0.2 0.5\n0.6 0.5\n0.6 0\n")
+    code, out, err = run(capsys, "respond", "--record", str(f))
+    assert code == 2 and out == ""
+    assert err == ("archrock: error: record step.txt: line 4: time 0.2 s repeats line 3; allowed "
+                   "strictly increasing times (one value per instant; write a step as a short "
+                   "ramp, e.g. '0.2 -1' then '0.2001 0.5')\n")
+    f.write_text("# corners\n0 -1\n0.2 -1\n0.2001 0.5\n0.6 0.5\n0.6001 0\n")
+    code, out, err = run(capsys, "respond", "--record", str(f))
+    assert code == 0 and err == "" and "step" in out
+
+
 def test_voussoirs_and_lengths_out_of_range_are_one_line(capsys):
     """Issue 17: --voussoirs 1e6 ran 40 s into Python advice; huge or tiny radii leaked numpy
     overflow warnings and a traceback."""

@@ -3,33 +3,27 @@ with it (one degree of freedom cannot follow it, docs/piers-dynamics.md) they re
 --dynamics instead of printing figures about 4x unconservative, and go on, warned, with
 --dynamics fourlink; on rigid ground nothing changes."""
 
-from pathlib import Path
 
 import pytest
 
 from archrock.cli import main
 
-HEAVY = Path(__file__).resolve().parents[3] / "shared" / "cases" / "heavy_piers.json"
-needs_case = pytest.mark.skipif(not HEAVY.exists(), reason="shared/cases/heavy_piers.json absent")
 
-
-@needs_case
 @pytest.mark.parametrize("argv", [
     ["fragility", "--records", "nowhere.AT2"],
     ["sensitivity", "--samples", "8"],
     ["defects", "--pulse-duration", "0.2"],
 ])
-def test_four_link_only_studies_refuse_an_arch_whose_piers_rock(argv, capsys):
-    assert main([argv[0], "--geometry", str(HEAVY), *argv[1:]]) == 2
+def test_four_link_only_studies_refuse_an_arch_whose_piers_rock(heavy_piers_file, argv, capsys):
+    assert main([argv[0], "--geometry", str(heavy_piers_file), *argv[1:]]) == 2
     err = capsys.readouterr().err
     assert f"--dynamics: {argv[0]} runs the four-link model only" in err
     assert "single degree of freedom not valid" in err and "--dynamics fourlink" in err
 
 
-@needs_case
-def test_dynamics_fourlink_goes_on_with_a_warning(capsys):
+def test_dynamics_fourlink_goes_on_with_a_warning(heavy_piers_file, capsys):
     # it gets past the check, warned, to the next refusal (the record file)
-    assert main(["fragility", "--geometry", str(HEAVY), "--records", "nowhere.AT2",
+    assert main(["fragility", "--geometry", str(heavy_piers_file), "--records", "nowhere.AT2",
                  "--dynamics", "fourlink"]) == 2
     err = capsys.readouterr().err
     assert "WARNING single degree of freedom not valid" in err

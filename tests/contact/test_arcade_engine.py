@@ -40,8 +40,9 @@ def test_bodies_are_the_chain_engine_s(semicircle):
     chain = with_piers(semicircle, 4.0, 2.0)
     ca = ContactArcade(arcade([semicircle], 4.0, 2.0))
     cc = ContactArch(chain)
-    assert np.array_equal(ca.masses, cc.masses)
-    assert np.array_equal(ca.inertias, cc.inertias)
+    # to rounding: the arcade and the chain compute their blocks' properties by their own code
+    np.testing.assert_allclose(ca.masses, cc.masses, rtol=1e-12)
+    np.testing.assert_allclose(ca.inertias, cc.inertias, rtol=1e-12)
     assert len(ca.ground_outlines) == 2
     ca.settle()
     ca.step(0.0, 200)

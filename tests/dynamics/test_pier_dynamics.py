@@ -1,6 +1,6 @@
 """The four-link model on arches on piers (issue 19, docs/piers-dynamics.md).
 
-On ``shared/cases/heavy_piers.json`` (12 voussoirs on two 30 m piers, 90% of the mass in the
+On ``tests/data/heavy_piers.json`` (12 voussoirs on two 30 m piers, 90% of the mass in the
 piers) under Oppenheim's pulse (t_p = 0.2 s, archrock amplitude -a) the four-link model's first
 collapse is 3.0212 g, the contact engine's 0.697-0.706 g: the piers rock with the arch and one
 degree of freedom cannot follow.  The model says so (``single_dof_valid``); nothing on rigid
@@ -10,7 +10,6 @@ ground changes.
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -24,9 +23,6 @@ from archrock.geometry import nominal_arch, oppenheim_arch
 from archrock.geometry.files import read_arch
 from archrock.geometry.piers import with_piers
 
-# shared/ beside the checkout (docs/piers.md)
-HEAVY = Path(__file__).resolve().parents[3] / "shared" / "cases" / "heavy_piers.json"
-needs_case = pytest.mark.skipif(not HEAVY.exists(), reason="shared/cases/heavy_piers.json absent")
 
 #: The contact engine's first collapse on heavy_piers.json under Oppenheim's pulse, t_p = 0.2 s,
 #: measured with the default engine settings (400 steps per T, 40 iterations, friction 0.8,
@@ -41,11 +37,10 @@ ENGINE_FIRST_COLLAPSE_G = 0.70
 
 
 @pytest.fixture(scope="module")
-def heavy():
-    return prepare(read_arch(HEAVY))
+def heavy(heavy_piers_file):
+    return prepare(read_arch(heavy_piers_file))
 
 
-@needs_case
 def test_heavy_piers_are_found_and_flagged(heavy):
     """The monolithic piers of the geometry file are found (heavy end blocks on horizontal
     foundation joints) and both limit mechanisms move one: 85% of M(0) is the pier's."""
@@ -57,7 +52,6 @@ def test_heavy_piers_are_found_and_flagged(heavy):
     assert heavy.labels == ["1i-6e-12i-14e", "0e-2i-8e-13i"]
 
 
-@needs_case
 def test_heavy_piers_four_link_first_collapse_against_the_engine(heavy):
     """The four-link model's first collapse (3.0212 g, before any impact, in M_l) is 4.3x the
     contact engine's stored 0.70 g: the response is flagged, not silently wrong."""
@@ -113,11 +107,10 @@ def test_single_dof_check_is_a_pure_function(heavy):
     assert again == heavy.single_dof
 
 
-@needs_case
-def test_respond_prints_the_warning(capsys):
+def test_respond_prints_the_warning(heavy_piers_file, capsys):
     """The command line says it in a line of its own, and not on rigid ground."""
-    argv = ["respond", "--geometry", str(HEAVY), "--pulse", "oppenheim", "--amplitude", "-0.7",
-            "--pulse-duration", "0.2"]
+    argv = ["respond", "--geometry", str(heavy_piers_file), "--pulse", "oppenheim",
+            "--amplitude", "-0.7", "--pulse-duration", "0.2"]
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert "WARNING single degree of freedom not valid: the piers rock with the arch" in out
@@ -128,15 +121,14 @@ def test_respond_prints_the_warning(capsys):
     assert "WARNING" not in capsys.readouterr().out
 
 
-@needs_case
 @pytest.mark.slow
-def test_engine_first_collapse_on_heavy_piers():
+def test_engine_first_collapse_on_heavy_piers(heavy_piers_file):
     """The stored engine figure: the contact engine survives 0.65 g and collapses at 0.75 g
     (default settings; about 10 s)."""
     pytest.importorskip("pymunk")
     from archrock.contact.motion import engine_respond
 
-    arch = read_arch(HEAVY)
+    arch = read_arch(heavy_piers_file)
     model = prepare(arch, "momentum")
     lo = engine_respond(arch, gm.pulse("oppenheim", -0.65, 0.2), model=model, t_end=1.0,
                         dt_out=0.05, t_free=30.0)
@@ -146,7 +138,6 @@ def test_engine_first_collapse_on_heavy_piers():
     assert abs(ENGINE_FIRST_COLLAPSE_G - 0.70) < 0.05 * 0.70
 
 
-@needs_case
 def test_a_step_of_several_k_opens_both_piers(heavy):
     """Gauss's principle (step_mechanism): a step just above k opens the limit mechanism; a step
     of 0.7 g opens 0i-4e-12i-14e, both piers rocking, the engine's first mechanism at 0.7 g

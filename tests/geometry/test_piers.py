@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,10 +19,6 @@ from archrock.geometry import (Arch, ArchOnPiers, Load, PolygonArch, arch_from_d
 from archrock.statics.limit import limit_analysis
 from archrock.dynamics.fourlink import four_link
 from archrock.units import G
-
-HEAVY = Path(__file__).resolve().parents[3] / "shared" / "cases" / "heavy_piers.json"
-if not HEAVY.exists():
-    HEAVY = Path("/work/shared/cases/heavy_piers.json")
 
 
 def run(capsys, *argv):
@@ -204,14 +199,12 @@ def test_family_arch_on_piers():
     assert 0 < min(res.k_l, res.k_r) < limit_analysis(arch).k
 
 
-def test_heavy_piers_case():
-    """shared/cases/heavy_piers.json (12 voussoirs on two 30 m piers 5 m wide, the springing
+def test_heavy_piers_case(heavy_piers_file):
+    """tests/data/heavy_piers.json (12 voussoirs on two 30 m piers 5 m wide, the springing
     wedge in the pier's block): the limit analysis gives the four-link activation of its
     metadata, 0.1131 (measured 0.113071), D at the right pier's outer foot."""
-    if not HEAVY.exists():
-        pytest.skip("shared/cases/heavy_piers.json is not in this checkout")
-    arch = read_arch(HEAVY)
-    meta = json.loads(HEAVY.read_text())["metadata"]
+    arch = read_arch(heavy_piers_file)
+    meta = json.loads(heavy_piers_file.read_text())["metadata"]
     assert "0.1131" in meta["measured"]
     res = limit_analysis(arch)
     assert res.k_l == pytest.approx(0.1131, abs=5e-5)

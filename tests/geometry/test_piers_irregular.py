@@ -232,7 +232,8 @@ IRREGULAR = Spreads(0.0, 0.1, 0.05, pier_lean=1.0, pier_width=0.1, pier_height=0
 
 def test_zero_pier_spreads_are_the_arches_on_piers_bit_for_bit(ref):
     """With the pier spreads 0 each sample is the surveyed arch's draw as before (the object
-    path and the batch path, to the bit), and the configuration's dict has no pier keys."""
+    path; the batch path's compiled lines to 1e-12 of the span: another path, which rounds
+    differently by CPU), and the configuration's dict has no pier keys."""
     _, ap, _ = ref
     s = ArchSampler(ap, SPREADS, 3)
     u = s.uniforms(0, 2)
@@ -241,7 +242,8 @@ def test_zero_pier_spreads_are_the_arches_on_piers_bit_for_bit(ref):
         b = perturb_survey(ap, u[i], 0.1, 0.05)
         assert _same_lines(a, b)
         intr, extr = survey_lines(plan, u[i], SPREADS)
-        assert all(np.array_equal(p, q) for p, q in zip(a.intrados + a.extrados, intr + extr))
+        for p, q in zip(a.intrados + a.extrados, intr + extr):
+            np.testing.assert_allclose(q, p, rtol=0, atol=1e-12 * ap.size)
     assert set(SPREADS.legacy_dict()) == {"spread_span", "spread_thickness", "spread_radius"}
     assert not SPREADS.piers
 

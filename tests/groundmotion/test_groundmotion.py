@@ -198,11 +198,10 @@ def test_two_column_comments_commas_header_and_units(tmp_path):
         np.testing.assert_allclose(gm.times, [0.0, 0.5, 1.0])
         np.testing.assert_allclose(gm.accel, [0.1 * factor, -0.2 * factor, 0.0])
         assert gm.name == "rec"
-    gm = read_two_column(write(tmp_path, "ws.txt", "0 1\n0.5   2\n0.5 3\n1 0\n"), units="m/s2", name="ws")
+    gm = read_two_column(write(tmp_path, "ws.txt", "# corners\n0 1\n0.5   2\n1 0\n"), units="m/s2",
+                         name="ws")
     assert gm.name == "ws"
-    # a repeated time is a step, right-continuous: the later value, to rounding
-    assert gm(0.5) == pytest.approx(3.0, rel=1e-12)
-    assert gm(0.25) == pytest.approx(1.5)
+    assert gm(0.25) == pytest.approx(1.5) and gm(0.75) == pytest.approx(1.0)
 
 
 def test_two_column_prepends_zero_sample(tmp_path):
@@ -225,7 +224,7 @@ def test_two_column_prepends_zero_sample(tmp_path):
         ("0 0\n0.1 1 2\n", r"line 2: 3 columns; allowed 2"),
         ("-0.1 0\n0.1 1\n", r"line 1: time -0\.1 s; allowed >= 0 s"),
         ("0 0\n0.2 1\n0.1 1\n", r"line 3: time 0\.1 s after 0\.2 s"),
-        ("0 0\n0.2 1\n0.2 1\n0.2 1\n", r"line 4: time 0\.2 s a third time"),
+        ("0 0\n0.2 1\n0.2 1\n0.2 1\n", r"line 3: time 0\.2 s repeats line 2"),
     ],
 )
 def test_two_column_errors(tmp_path, text, field):
@@ -495,8 +494,10 @@ def test_suspicious_records_warn_once_with_the_field(tmp_path):
 
 
 @pytest.mark.parametrize("edit, match", [
-    (lambda r: r.__setitem__(5, r[4]), r"line 6: time 0\.04 s repeats line 5 with the same value"),
-    (lambda r: r.__setitem__(5, "0.02 0.1"), r"line 6: time 0\.02 s after 0\.04 s"),
+    (lambda r: r.__setitem__(5, r[4]), r"line 6: time 0\.04 s repeats line 5; allowed strictly "
+                                       r"increasing times \(one value per instant; write a step"),
+    (lambda r: r.__setitem__(5, "0.02 0.1"), r"line 6: time 0\.02 s after 0\.04 s \(line 5\); "
+                                             r"allowed strictly increasing times$"),
     (lambda r: r.__setitem__(5, "0.05 NaN"), r"line 6: 'NaN' is not finite"),
 ])
 def test_records_that_cannot_be_meant_are_refused(tmp_path, edit, match):
@@ -552,21 +553,46 @@ def test_two_column_at_007_s_warns_like_at2_even_when_short(tmp_path):
     assert gm.duration == pytest.approx(0.63)
 
 
-def test_repeated_time_in_a_sampled_record_is_refused(tmp_path):
+@pytest.mark.parametrize("marker", ["", "# corners\n"])
+def test_a_repeated_time_is_refused_in_every_record(tmp_path, marker):
+    """One rule for every record (issue 29): times strictly increase.  A time twice, with a new
+    value (a step) or the same (a row written twice), is refused naming the line, the time and
+    the line it repeats, in a sampled record and in a corner list alike."""
     rows = _sampled(tmp_path, "step.txt", _wave()).read_text().splitlines()
     rows[30] = rows[29].split()[0] + " 0.123"  # a repeated time with a new value
-    with raises(r"record step\.txt: line 31: time 0\.29 s repeats line 30 in a sampled record of "
-                r"200 rows; allowed increasing times \(a step, a time twice, only in a "
-                r"piecewise-linear motion given by its corners") as e:
+    with raises(r"^record step\.txt: line 31: time 0\.29 s repeats line 30; allowed strictly "
+                r"increasing times \(one value per instant; write a step as a short ramp") as e:
         load_record(write(tmp_path, "step.txt", "\n".join(rows) + "\n"))
     one_line(e)
-    # declared a corner list, the same rows are a motion with a step there
-    gm = load_record(write(tmp_path, "step.txt", "# corners\n" + "\n".join(rows) + "\n"))
-    assert gm(0.29) == pytest.approx(0.123 * G) and gm(0.289) != pytest.approx(0.123 * G)
+    line = 1 + len(marker.splitlines())
+    with raises(rf"^record opp\.txt: line {line + 2}: time 0\.2 s repeats line {line + 1}; "):
+        load_record(write(tmp_path, "opp.txt", marker + "0 -1\n0.2 -1\n0.2 0.5\n0.6 0.5\n0.6 0\n"))
 
 
-def test_short_pulse_with_steps_is_a_corner_list(tmp_path):
-    """The docs' idealised pulses as two-column files (Oppenheim's a = -1 g, t_p = 0.2 s): a
-    few rows with steps are corners, read without a marker."""
-    gm = load_record(write(tmp_path, "opp.txt", "0 -1\n0.2 -1\n0.2 0.5\n0.6 0.5\n0.6 0\n"))
-    assert gm(0.1) == pytest.approx(-G) and gm(0.4) == pytest.approx(0.5 * G)
+def test_a_decreasing_time_is_refused_and_increasing_times_are_read(tmp_path):
+    with raises(r"^record back\.txt: line 4: time 0\.1 s after 0\.2 s \(line 3\); allowed "
+                r"strictly increasing times$") as e:
+        load_record(write(tmp_path, "back.txt", "# corners\n0 0\n0.2 1\n0.1 0\n"))
+    one_line(e)
+    gm = load_record(write(tmp_path, "up.txt", "# corners\n0 0\n0.2 1\n0.4 0\n"))
+    np.testing.assert_allclose(gm.times, [0.0, 0.2, 0.4], rtol=0, atol=0)
+    assert gm(0.1) == pytest.approx(0.5 * G, rel=1e-12)
+
+
+def test_a_step_written_as_a_short_ramp_follows_the_pulse(tmp_path):
+    """Oppenheim's pulse (a = -1 g, t_p = 0.2 s) as a corner list with its two steps written
+    as 0.1 ms ramps (the refusal's advice): the record differs from the pulse only inside the
+    ramps, so Oppenheim's arch rocks as under the pulse (peak rotation to 0.1%)."""
+    from archrock.dynamics.response import prepare, respond
+    from archrock.geometry import oppenheim_arch
+
+    gm = load_record(write(tmp_path, "opp.txt", "# corners\n0 -1\n0.2 -1\n0.2001 0.5\n"
+                                               "0.6 0.5\n0.6001 0\n"))
+    ref = pulse("oppenheim", -1.0, 0.2)
+    t = np.linspace(0.0, 0.7, 701)
+    outside = (np.abs(t - 0.2) > 2e-4) & (np.abs(t - 0.6) > 2e-4)
+    np.testing.assert_allclose(gm(t[outside]), ref(t[outside]), rtol=0, atol=1e-9)
+    model = prepare(oppenheim_arch())
+    got, want = respond(model, gm), respond(model, ref)
+    assert got.status == want.status
+    assert got.peak == pytest.approx(want.peak, rel=1e-3)

@@ -33,8 +33,13 @@ def _assert_same_as_enumeration(arch):
         # guided search says so with -inf (or finds the same negative one when an LP solves)
         assert min(g[0][0], g[1][0]) <= 0
         return
-    for x, y in zip(e, g):  # same multipliers (bit for bit) and the same candidates (hinges)
-        np.testing.assert_array_equal(x, y)
+    # the same candidates (hinges) exactly; the multipliers to rel 1e-12: the guided search
+    # and the enumeration evaluate them on two paths, which may round differently by CPU
+    for x, y in zip(e, g):
+        if np.asarray(x).dtype.kind in "biu":
+            np.testing.assert_array_equal(x, y)
+        else:
+            np.testing.assert_allclose(y, x, rtol=1e-12)
 
 
 QUICK = [
@@ -214,7 +219,7 @@ for n, seed in ((60, None), (120, 7), (300, 9)):
     a = nom if seed is None else random_arch(nom, seed=seed, spread_span=0.2, spread_thickness=0.2,
                                              spread_radius=0.1)
     r = limit.limit_analysis(a)
-    out.append([r.k_l.hex(), r.k_r.hex(), r.mechanism_l.label, r.mechanism_r.label])
+    out.append([r.k_l, r.k_r, r.mechanism_l.label, r.mechanism_r.label])
 print(json.dumps(out))
 """
 
@@ -223,7 +228,11 @@ def test_guided_search_same_without_numba(without_numba):
     ref = json.loads(without_numba("-c", _SCRIPT))
     scope = {}
     exec(compile(_SCRIPT.replace("print(json.dumps(out))", ""), "<script>", "exec"), scope)
-    assert ref == scope["out"]
+    got = scope["out"]
+    # the mechanisms exactly; k to rtol=1e-12, not bit for bit: the pure-Python and numba
+    # kernels are two paths whose roundings may differ (FMA, SIMD width by CPU)
+    assert [r[2:] for r in ref] == [g[2:] for g in got]
+    np.testing.assert_allclose([r[:2] for r in ref], [g[:2] for g in got], rtol=1e-12, atol=0)
 
 
 def test_cli_prints_the_progress_of_a_long_enumeration(monkeypatch, capsys):

@@ -81,12 +81,14 @@ def _check_static_equals_kinematic(arch, tol=1e-9):
 @pytest.mark.parametrize("arch", [oppenheim_arch(), oppenheim_arch().scaled(1e-3),
                                   oppenheim_arch().scaled(3.7e3), _random(9, 3).scaled(0.37),
                                   _random(13, 5).scaled(123.4), nominal_arch(7.3, 150, 1.1, 45)])
-def test_arch_sums_are_the_batch_sums_bit_for_bit(arch):
+def test_arch_sums_are_the_batch_sums(arch):
     ours = limit.arch_sums(arch)
     batch = limit._batch_sums(arch.spans[None], arch.radii[None], arch.thicknesses[None])[:5]
     for a, b in zip(ours, batch):
         assert a.shape == b.shape
-        np.testing.assert_array_equal(a, b)
+        # one arch's sums and the batch's are two codes (the same operations by design, equal
+        # to the bit here): asserted to rounding, which holds on any CPU
+        np.testing.assert_allclose(a, b, rtol=1e-13, atol=1e-13 * float(np.max(np.abs(b))))
 
 
 @pytest.mark.parametrize("arch", [oppenheim_arch(), oppenheim_arch().scaled(1e-3), _random(7, 1),

@@ -35,18 +35,12 @@ def test_assess_names_the_piers():
     assert [s.key for s in assess(arch, sections=[section_piers]).sections] == []
 
 
-def test_assess_names_the_piers_of_a_file_without_kinds():
-    """shared/cases/heavy_piers.json names no kinds: the end blocks the single-DOF check takes
+def test_assess_names_the_piers_of_a_file_without_kinds(heavy_piers_file):
+    """tests/data/heavy_piers.json names no kinds: the end blocks the single-DOF check takes
     for piers are reported as piers, said to be guessed, with the warning."""
-    from pathlib import Path
-
     from archrock.geometry.files import read_arch
 
-    heavy = Path(__file__).resolve().parents[3] / "shared" / "cases" / "heavy_piers.json"
-    if not heavy.exists():
-        heavy = Path("/work/shared/cases/heavy_piers.json")
-    if not heavy.exists():
-        pytest.skip("shared/cases/heavy_piers.json not here")
+    heavy = heavy_piers_file
     sec = assess(read_arch(heavy), sections=[section_piers]).section("piers")
     assert sec.data["piers"]["left"]["width_foot"] == pytest.approx(5.0, abs=1e-9)
     assert sec.data["piers"]["left"]["width_top"] == pytest.approx(5.0, abs=1e-9)

@@ -294,7 +294,7 @@ def test_cli_fragility_bootstrap_one_is_refused(capsys, tmp_path):
     from archrock.cli import main
 
     f = tmp_path / "opp.txt"
-    f.write_text("0 -1\n0.2 -1\n0.2 0.5\n0.6 0.5\n0.6 0\n")
+    f.write_text("# corners\n0 -1\n0.2 -1\n0.2001 0.5\n0.6 0.5\n0.6001 0\n")
     assert main(["fragility", "--records", str(f), "--scales", "1,2", "--bootstrap", "1"]) == 2
     assert capsys.readouterr().err.startswith("archrock: error: bootstrap: 1; allowed 0")
     assert main(["fragility", "--records", str(f), "--scales", "0.1:3:1"]) == 2

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,17 +19,14 @@ from archrock.studies import enginestudy as es
 from archrock.studies.ensemble import EnsembleConfig, EnsembleResult, run_ensemble
 from archrock.studies.fragility import collapse_probability
 
-HEAVY = Path(__file__).resolve().parents[3] / "shared" / "cases" / "heavy_piers.json"
-needs_case = pytest.mark.skipif(not HEAVY.exists(), reason="shared/cases/heavy_piers.json absent")
 pytest.importorskip("pymunk")
 
 
 @pytest.fixture(scope="module")
-def heavy_arch():
-    return read_arch(HEAVY)
+def heavy_arch(heavy_piers_file):
+    return read_arch(heavy_piers_file)
 
 
-@needs_case
 def test_routing_picks_the_engine_on_heavy_piers_and_four_link_on_rigid_ground(heavy_arch):
     ch = es.choose_dynamics(heavy_arch)
     assert ch.used == "engine" and ch.engine and ch.requested == "auto"
@@ -117,7 +113,6 @@ def _check_counts(res, cfg):
     return s
 
 
-@needs_case
 def test_engine_ensemble_counts_on_a_tiny_coarse_ensemble(heavy_arch):
     """Three irregular arches on the heavy piers, a coarse engine (100 steps per T, 10
     iterations, 3 T of free motion: fast, not converged) so that the test runs in seconds."""
@@ -134,7 +129,6 @@ def test_engine_ensemble_counts_on_a_tiny_coarse_ensemble(heavy_arch):
     assert s["engine"]["settings"]["steps_per_T"] == 100.0 and s["dynamics"] is None
 
 
-@needs_case
 @pytest.mark.slow
 def test_engine_ensemble_summary_counts_are_consistent(heavy_arch):
     """Four irregular arches on the heavy piers under a strong pulse (1.5 g: every one collapses
@@ -248,7 +242,6 @@ def test_first_collapse_refuses_bad_input_naming_the_field(kw, field):
         es.engine_first_collapse(nominal_arch(), 0.2, **kw)
 
 
-@needs_case
 @pytest.mark.slow
 def test_engine_first_collapse_on_heavy_piers(heavy_arch):
     """docs/piers-dynamics.md: the engine's first collapse under Oppenheim's pulse, t_p = 0.2
@@ -258,45 +251,45 @@ def test_engine_first_collapse_on_heavy_piers(heavy_arch):
     assert r.bracket[1] - r.bracket[0] <= 0.01 * r.bracket[1]
 
 
-@needs_case
 @pytest.mark.slow
-def test_the_cli_runs_the_engine_on_heavy_piers(capsys):
-    assert main(["ensemble", "--geometry", str(HEAVY), "--spread-span", "0", "--samples", "2",
+def test_the_cli_runs_the_engine_on_heavy_piers(heavy_piers_file, capsys):
+    heavy = str(heavy_piers_file)
+    assert main(["ensemble", "--geometry", heavy, "--spread-span", "0", "--samples", "2",
                  "--pulse", "oppenheim", "--amplitude", "-1.5", "--pulse-duration", "0.2",
                  "--no-progress"]) == 0
     out = capsys.readouterr().out
     assert "computed by the contact engine: single degree of freedom not valid" in out
     assert "P(collapse | run) = 1.0000" in out
-    assert main(["ensemble", "--geometry", str(HEAVY), "--spread-span", "0", "--samples", "2",
+    assert main(["ensemble", "--geometry", heavy, "--spread-span", "0", "--samples", "2",
                  "--pulse", "oppenheim", "--amplitude", "-1.5", "--pulse-duration", "0.2",
                  "--no-progress", "--dynamics", "fourlink"]) == 0
     out = capsys.readouterr().out
     assert "dynamics: four-link model: asked for" in out and "WARNING" in out
 
 
-@needs_case
-def test_the_curves_command_routes_heavy_piers_to_the_engine(monkeypatch, capsys):
+def test_the_curves_command_routes_heavy_piers_to_the_engine(heavy_piers_file, monkeypatch,
+                                                              capsys):
     """`archrock curves` on the heavy piers: the engine's bisection (here a stand-in engine
     that collapses from 0.7 g), with the reason; --samples refused; --dynamics fourlink keeps
     the four-link curve."""
     step = _Step(0.7)
+    heavy = str(heavy_piers_file)
     monkeypatch.setattr(es.EngineRun, "respond", lambda self, a, m, model=None: step(a, m))
-    assert main(["curves", "--geometry", str(HEAVY), "--durations", "0.2", "--no-progress"]) == 0
+    assert main(["curves", "--geometry", heavy, "--durations", "0.2", "--no-progress"]) == 0
     out = capsys.readouterr().out
     assert "by the contact engine" in out and "why the engine: single degree of freedom not valid" in out
     row = [ln for ln in out.splitlines() if ln.strip().startswith("0.2")][0]
     amp = float(row.split()[1])
     assert 0.7 <= amp <= 0.7 / (1 - 0.01)
-    assert main(["curves", "--geometry", str(HEAVY), "--durations", "0.2", "--no-progress",
+    assert main(["curves", "--geometry", heavy, "--durations", "0.2", "--no-progress",
                  "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["how"] == "contact engine" and d["dynamics"]["used"] == "engine"
-    assert main(["curves", "--geometry", str(HEAVY), "--durations", "0.2", "--samples", "2",
+    assert main(["curves", "--geometry", heavy, "--durations", "0.2", "--samples", "2",
                  "--no-progress"]) == 2
     assert "--samples: the engine curve is of the nominal arch only" in capsys.readouterr().err
 
 
-@needs_case
 def test_the_single_dof_reason_points_to_the_engine(heavy_arch):
     from archrock.dynamics.piers import single_dof_check
     from archrock.dynamics.response import prepare
@@ -306,7 +299,6 @@ def test_the_single_dof_reason_points_to_the_engine(heavy_arch):
     assert "studies and the report do so by default" in reason
 
 
-@needs_case
 def test_the_report_takes_the_collapse_curve_from_the_engine_with_the_reason(monkeypatch,
                                                                               heavy_arch):
     from archrock.studies.assessment import AssessConfig, Context, Paragraph, section_curves

@@ -4,7 +4,7 @@ The four-link model moves the whole chain in one four-hinge mechanism at a time 
 closing, stops every block that the next mechanism does not move.  A pier that rocks on its
 foundation in a mechanism is a slender rocking block of its own: in the contact engine it keeps
 its momentum through its own impacts (Housner's c = 1 - 1.5 sin^2(alpha), 0.96 for the 30 x 5 m
-piers of ``shared/cases/heavy_piers.json``) while the arch above it moves in another mechanism,
+piers of ``tests/data/heavy_piers.json``) while the arch above it moves in another mechanism,
 so the motion has two or more degrees of freedom.  Measured (docs/piers-dynamics.md): where a
 limit mechanism moves a pier, the four-link model's first collapse under Oppenheim's pulse is
 2-4x the engine's (heavy piers: 3.02 g against 0.70 g).
@@ -59,7 +59,7 @@ def pier_blocks(arch) -> tuple[tuple, str]:
     polygon arch that stand on a horizontal foundation joint (joint 0 / n, its ends level to
     1e-9 of the size), weigh at least :data:`PIER_MASS_RATIO` times the median block and rise
     from it as a column, both faces straight and vertical over at least the foundation's width
-    (monolithic piers of a geometry file such as ``shared/cases/heavy_piers.json``)."""
+    (monolithic piers of a geometry file such as ``tests/data/heavy_piers.json``)."""
     kinds = getattr(arch, "block_kinds", None)
     if kinds:
         idx = tuple(i for i, k in enumerate(kinds) if k in ("pier", "buttress"))

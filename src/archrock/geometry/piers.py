@@ -11,7 +11,7 @@ and extending outward, from its top (the springing level) down to its foundation
 A springing joint that is not horizontal (a segmental arch with radial joints, a horseshoe) is
 carried on a horizontal pier top by the wedge between that top (at the lower end of the
 springing joint) and the joint, built into the top course (as in
-``shared/cases/heavy_piers.json``): the top course's intrados runs up the pier's inner face to
+``tests/data/heavy_piers.json``): the top course's intrados runs up the pier's inner face to
 the intrados springing point, its extrados along the outer face, across the pier top and up
 (or down) to the extrados springing point.
 """

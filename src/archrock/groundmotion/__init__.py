@@ -4,10 +4,12 @@ Conventions: SI units (s, m/s^2); ``accel`` is positive toward +x (to the right)
 the arch geometry.  Amplitudes passed to the pulse constructors are in g (multiples of ``G``) and
 may be negative: the paper's forcing is Oppenheim's pulse with a = -1 g, t_p = 0.20 s.
 
-A :class:`GroundMotion` is a piecewise-linear history through its samples.  A time may appear
-twice in a row to encode a step (a jump in acceleration); the history is right-continuous there
-(at the repeated time the later value applies).  Before t = 0 and after the last sample the
-acceleration is 0.  So a record whose last sample is nonzero drops to 0 just after its end; the
+A :class:`GroundMotion` is a piecewise-linear history through its samples.  The idealised
+pulses encode a step (a jump in acceleration) by a time twice in a row; the history is
+right-continuous there (at the repeated time the later value applies).  A record (a file, an
+upload) has strictly increasing times: a repeated time is refused naming its line
+(:func:`.records.check_time_order`; a step is written as a short ramp).  Before t = 0 and after
+the last sample the acceleration is 0.  So a record whose last sample is nonzero drops to 0 just after its end; the
 pulse constructors end their histories with an explicit 0 where the drop matters.
 
 Modules: :mod:`.motion` (the model, :func:`from_samples`), :mod:`.pulses` (idealised pulses),

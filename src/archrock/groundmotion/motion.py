@@ -1,7 +1,8 @@
 """The ground-motion model: a horizontal ground acceleration history xg''(t) (docs/method.md, Response).
 
 Conventions: SI units (s, m/s^2); ``accel`` is positive toward +x (to the right), the same x as
-the arch geometry.  A time may appear twice in a row to encode a step; the history is
+the arch geometry.  A time may appear twice in a row to encode a step (the idealised pulses;
+records have strictly increasing times, :func:`.records.check_time_order`); the history is
 right-continuous there.  Before t = 0 and after the last sample the acceleration is 0.
 """
 

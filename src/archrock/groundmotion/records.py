@@ -20,17 +20,16 @@ from .motion import (MAX_RECORD_DT_S, WARN_RECORD_DT_S, GroundMotion, _unit_fact
                      check_pga)
 
 #: A two-column file is a sampled record, checked as a PEER ``.AT2`` file is (time step at most
-#: MAX_RECORD_DT_S, warned above WARN_RECORD_DT_S; strictly increasing times), unless it is a
-#: corner list: a piecewise-linear motion given by its corners, where long intervals and steps
-#: (a time twice, with a new value) are meant.  A corner list is declared by a comment line
-#: ``# corners`` (any length), or is a file of fewer than this many rows with a step (the
-#: idealised pulses of the docs: "0 -1 / 0.2 -1 / 0.2 0.5 / 0.6 0.5 / 0.6 0").
-MIN_SAMPLED_ROWS = 20
-#: The comment that declares a two-column file a corner list.
+#: MAX_RECORD_DT_S, warned above WARN_RECORD_DT_S), unless it is a corner list: a
+#: piecewise-linear motion given by its corners, where long intervals are meant, declared by a
+#: comment line ``# corners``.  Every record, sampled or corners, file or upload, has strictly
+#: increasing times (:func:`check_time_order`).
 CORNERS_MARK = "corners"
 _CORNERS_HINT = f"a piecewise-linear motion given by its corners: put a '# {CORNERS_MARK}' line first"
+#: How a step (a jump of the acceleration) is written in a record: a short ramp, not a time twice.
+STEP_HINT = "one value per instant; write a step as a short ramp, e.g. '0.2 -1' then '0.2001 0.5'"
 
-__all__ = ["read_two_column", "read_at2", "load_record", "file_sha256"]
+__all__ = ["read_two_column", "read_at2", "load_record", "file_sha256", "check_time_order"]
 
 
 def file_sha256(path) -> str:
@@ -66,6 +65,22 @@ def _read_lines(path) -> tuple[Path, list[str]]:
     if "\x00" in text:
         raise ArchInputError(f"record {p}: binary data; allowed a text file")
     return p, text.splitlines()  # splitlines handles the CRLF endings of PEER files
+
+
+def check_time_order(what: str, line: int, t: float, prev_line: int, t_prev: float) -> None:
+    """The one rule on a record's times: each row's time ``t`` [s] (file line ``line``) is
+    strictly after the previous row's ``t_prev`` (line ``prev_line``).  A repeated time (two
+    values at one instant) or a decreasing one raises ArchInputError naming ``what`` (the
+    record), the line and the time.  Every reader of records applies it: the library's
+    :func:`read_two_column` (so :func:`load_record`, RecordSpec, suites), the CLI's
+    ``--record``/``--records`` and the app's upload, which all read through it."""
+    if t > t_prev:
+        return
+    if t == t_prev:
+        raise ArchInputError(f"{what}: line {line}: time {t:g} s repeats line {prev_line}; "
+                             f"allowed strictly increasing times ({STEP_HINT})")
+    raise ArchInputError(f"{what}: line {line}: time {t:g} s after {t_prev:g} s (line "
+                         f"{prev_line}); allowed strictly increasing times")
 
 
 def _number(p: Path, lineno: int, token: str) -> float:
@@ -123,15 +138,14 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
     """Read "time accel" rows (whitespace- or comma-separated) into a GroundMotion.
 
     '#' starts a comment (whole line or trailing); blank lines are skipped; the first non-comment
-    line may be a non-numeric header.  Times [s] must be >= 0 and increasing.  If the first time
-    is > 0, a zero sample (0, 0) is prepended, so the record ramps from 0 to its first value.
-    ``units`` in UNITS, converted to m/s^2.
+    line may be a non-numeric header.  Times [s] must be >= 0 and strictly increasing
+    (:func:`check_time_order`: a repeated time is refused; a step is a short ramp).  If the first
+    time is > 0, a zero sample (0, 0) is prepended, so the record ramps from 0 to its first
+    value.  ``units`` in UNITS, converted to m/s^2.
 
     A sampled record is checked as a PEER ``.AT2`` file is: a time step above MAX_RECORD_DT_S
-    (0.1 s) or a repeated time is refused, above WARN_RECORD_DT_S (0.05 s) a warning.  A corner
-    list (:data:`MIN_SAMPLED_ROWS`: a ``# corners`` comment line, or fewer than 20 rows with a
-    step) is a piecewise-linear motion by its corners: any interval, and one time may appear
-    twice in a row (a step to a new value).
+    (0.1 s) is refused, above WARN_RECORD_DT_S (0.05 s) a warning.  A corner list (a
+    ``# corners`` comment line) is a piecewise-linear motion by its corners: any interval.
     """
     factor = _unit_factor(units)
     p, lines = _read_lines(path)
@@ -160,20 +174,13 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
         a = _number(p, lineno, tokens[1])
         if not ts and t < 0.0:
             raise ArchInputError(f"record {p.name}: line {lineno}: time {t:g} s; allowed >= 0 s")
-        if ts and t < ts[-1]:
-            raise ArchInputError(
-                f"record {p.name}: line {lineno}: time {t:g} s after {ts[-1]:g} s; allowed increasing times"
-            )
-        if len(ts) >= 2 and t == ts[-1] == ts[-2]:
-            raise ArchInputError(
-                f"record {p.name}: line {lineno}: time {t:g} s a third time; allowed at most 2 equal times (a step)"
-            )
+        if ts:
+            check_time_order(f"record {p.name}", lineno, t, linenos[-1], ts[-1])
         ts.append(t)
         acs.append(a)
         linenos.append(lineno)
     if not ts:
         raise ArchInputError(f"record {p.name}: empty record (no 'time accel' rows); allowed >= 2 samples")
-    ts_file, acs_file = list(ts), list(acs)
     if ts[0] > 0.0:
         ts.insert(0, 0.0)
         acs.insert(0, 0.0)
@@ -183,21 +190,7 @@ def read_two_column(path, units: str = "g", name: str | None = None) -> GroundMo
         np.array(ts), np.array(acs) * factor, name if name is not None else p.stem,
         f"{p} (two-column, {units})",
     )
-    steps = [i for i in range(1, len(linenos)) if ts_file[i] == ts_file[i - 1]]
-    dup = [i for i in steps if acs_file[i] == acs_file[i - 1]]
-    if dup:  # a step to the same value is no step: a row written twice
-        i = dup[0]
-        raise ArchInputError(f"record {p.name}: line {linenos[i]}: time {ts_file[i]:g} s repeats "
-                             f"line {linenos[i - 1]} with the same value; allowed increasing times "
-                             f"(a time twice only for a step to a new value)")
-    corners = marked or (bool(steps) and len(linenos) < MIN_SAMPLED_ROWS)
-    if steps and not corners:
-        # a sampled record has no repeated time (an AT2 file cannot have one): an export slip
-        i = steps[0]
-        raise ArchInputError(f"record {p.name}: line {linenos[i]}: time {ts_file[i]:g} s repeats "
-                             f"line {linenos[i - 1]} in a sampled record of {len(linenos)} rows; "
-                             f"allowed increasing times (a step, a time twice, only in {_CORNERS_HINT})")
-    if corners:
+    if marked:
         check_pga(motion.pga / G, f"record {p.name}", _units_cause(motion.pga / G, units))
     else:
         off = len(ts) - len(linenos)  # 1 if a zero sample was put in front
