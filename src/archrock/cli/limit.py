@@ -87,11 +87,27 @@ def _supports_extra(args, arch, result):
     return lines, out, cap
 
 
+def _frictionless(arch, mu):
+    """(LimitResult, None), or (None, why) where no frictionless mechanism opens but a
+    friction ``mu`` is given: the friction analysis then answers (docs/friction.md)."""
+    from ..errors import NoMechanismError
+    from ..statics.limit import limit_analysis
+
+    try:
+        return limit_analysis(arch, verify=True), None
+    except NoMechanismError as exc:
+        if mu is None:  # name what gives an answer
+            raise NoMechanismError(f"{exc}; --friction MU gives the multipliers at which its "
+                                   f"joints slide") from None
+        return None, str(exc)
+
+
 def run_limit(args) -> int:
     from ..errors import CannotStandError
     from ..statics.friction import friction_analysis, friction_minimum_thickness, friction_needed
-    from ..statics.limit import limit_analysis, minimum_thickness
-    from ..reports.limit import format_limit_table, limit_summary
+    from ..statics.limit import minimum_thickness
+    from ..reports.limit import (format_friction_only, format_limit_table,
+                                 friction_only_summary, limit_summary)
 
     plot = figure_arg(args.supports_plot)
     if args.capacity is not None and (args.spread or args.settlement
@@ -100,7 +116,7 @@ def run_limit(args) -> int:
                        "--settlement (the capacity's curve gives every movement up to it)")
     arch = arch_from_args(args)
     mpw = _min_pier_width(args, arch)
-    result = limit_analysis(arch, verify=True)
+    result, no_mech = _frictionless(arch, args.friction)
     sup_lines, sup_json, cap = _supports_extra(args, arch, result)
     mu = args.friction
     mt = None
@@ -114,7 +130,7 @@ def run_limit(args) -> int:
             raise
         raise CannotStandError(f"{exc}; with friction {mu:g} the minimum thickness is "
                                f"{_thickness_words(arch, mt)}") from None
-    needed = None if fr is not None else friction_needed(arch)
+    needed = None if fr is not None or no_mech is not None else friction_needed(arch)
     extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
     if mpw is not None:
         extra["min_pier_width"] = mpw
@@ -135,6 +151,16 @@ def run_limit(args) -> int:
             raise CLIError("--supports-plot: needs --spread/--settlement or --capacity")
         path = save_supports_figure(plot, state=state, capacity=cap)
         print(f"wrote {path}", file=sys.stderr)
+    if no_mech is not None:
+        # only friction brings this arch to a mechanism: its result is the answer
+        extra.pop("needed")
+        if args.json:
+            emit_json({**friction_only_summary(arch, no_mech, mt, **extra), **sup_json})
+        else:
+            print(format_friction_only(arch, no_mech, mt, **extra))
+            for line in sup_lines:
+                print(line)
+        return 0
     if args.json:
         emit_json({**limit_summary(result, mt, **extra), **sup_json})
     else:
