@@ -195,9 +195,12 @@ def add_random_arch_parser(subparsers):
 
 def run_random_arch(args) -> int:
     from ..geometry import random_arch
+    from ..geometry.sampling import DEFAULT_SPREADS
 
     out = folder_arg(args.out, "--out", "a file name (omit --out for stdout)")
     nominal = arch_from_args(args)
+    if args.spread_span is None:  # random_arch draws circular and family arches only
+        args.spread_span = DEFAULT_SPREADS.span
     arch = random_arch(nominal, seed=args.seed, spread_span=args.spread_span,
                        spread_thickness=args.spread_thickness, spread_radius=args.spread_radius,
                        spread_tilt_deg=args.spread_tilt)

@@ -7,12 +7,13 @@ and the rest keep working)."""
 from __future__ import annotations
 
 import argparse
+import sys
 
 from ..options import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args,  # noqa: F401
                        impact_spec_from_args, model_from_args, motion_from_args,
                        motion_spec_from_args, piers_from_args, spreads, supports_from_args,
                        undamaged_arch_from_args)
-from ._parser import CLIError, _int, finite_float, non_negative_int
+from ._parser import PROG, CLIError, _int, finite_float, non_negative_int
 
 # the old private names of the builders (archrock <= 0.6.0 imported them from here)
 _piers_from_args = piers_from_args
@@ -127,8 +128,10 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
     """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths),
     with ``tilt`` --spread-tilt (joint tilt of family arches, degrees), with ``piers`` the
     pier spreads --spread-pier-lean/-width/-height/-course (docs/piers.md, Irregular piers)."""
-    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
-                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
+    p.add_argument("--spread-span", type=finite_float, default=None, metavar="S_A",
+                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1; 0 for an "
+                        "arch whose joints stay where drawn: on piers, or a polygon without a "
+                        "family)")
     p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
                    help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
     p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
@@ -146,6 +149,30 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
                            metavar="S", help=f"on piers: {what}, 0 <= s {'<=' if closed else '<'}"
                                              f" {hi:g} (default 0)")
     return p
+
+
+def resolve_spread_span(args, nominal) -> None:
+    """Set an omitted --spread-span to its default for ``nominal``: 0.1, or 0 where its joints
+    stay where they are drawn (an arch on piers, a surveyed polygon: the span spread does not
+    apply), saying so in one line on stderr so the run states the spreads it applied."""
+    if getattr(args, "spread_span", 0.0) is not None:
+        return
+    from ..geometry.sampling import DEFAULT_SPREADS, fixed_joints
+
+    why = fixed_joints(getattr(nominal, "base", nominal))  # a moved arch: its own blocks
+    args.spread_span = DEFAULT_SPREADS.span if why is None else 0.0
+    if why is not None:
+        tilt = getattr(args, "spread_tilt", 0.0) or 0.0
+        print(f"{PROG}: spreads applied: span 0 (default for {nominal.name!r}, {why}, whose "
+              f"joints stay where drawn), thickness {args.spread_thickness:g}, radius "
+              f"{args.spread_radius:g}, tilt {tilt:g}", file=sys.stderr)
+
+
+def spreads_for(args, nominal):
+    """:func:`spreads` of ``args`` with --spread-span's default chosen for ``nominal``
+    (:func:`resolve_spread_span`)."""
+    resolve_spread_span(args, nominal)
+    return spreads(args)
 
 
 def add_random_arches_options(p: argparse.ArgumentParser,
