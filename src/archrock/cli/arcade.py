@@ -125,7 +125,7 @@ def arcade_from_args(args):
                            f"holds the whole arcade")
         from ..geometry.files import read_arcade
 
-        return read_arcade(args.arcade)
+        return read_arcade(args.arcade, on_size=lambda n: _check_work(args, n))
     if args.geometry:
         given = [f for f, v in arch_flags if v is not None]
         if given:
@@ -199,11 +199,31 @@ def arcade_from_args(args):
         if v is None:
             raise CLIError(f"{flag}: needed (one value for every pier, or {len(arches) + 1}, "
                            f"in metres)")
+    # courses are checked by arcade(); only a plausible count enters the estimate
+    courses = [c for c in (args.pier_courses or [1]) if isinstance(c, int) and 0 < c <= 10**6]
+    n_piers = len(arches) + 1
+    pier_blocks = (courses[0] * n_piers if len(courses) == 1 else sum(courses)) if courses else 0
+    _check_work(args, sum(a.n for a in arches) + pier_blocks)
     try:
         return arcade(arches, list(args.pier_height), list(args.pier_width),
                       courses=list(args.pier_courses or [1]))
     except ArchInputError as exc:
         raise _renamed(exc) from None
+
+
+def _check_work(args, n_blocks: int) -> float:
+    """The estimated seconds of the static program on ``n_blocks`` blocks (both directions);
+    refused past the work bound (ARCHROCK_MAX_WORK_S), a warning past a minute, which also
+    turns on one progress line per direction (``args._say_progress``)."""
+    from ..statics.graph import graph_limit_cost_s
+    from ..studies.work import WARN_WORK_S, check_work
+
+    est = check_work("arcade", n_blocks, "blocks", graph_limit_cost_s(n_blocks) / max(1, n_blocks),
+                     "fewer voussoirs (--voussoirs), courses (--pier-courses) or spans: the "
+                     "static program's time grows as the square of the number of blocks",
+                     kernel=False)
+    args._say_progress = est > WARN_WORK_S
+    return est
 
 
 def _progress(msg):
@@ -304,7 +324,11 @@ def run_arcade(args) -> int:
     arc = arcade_from_args(args)
     from ..statics.graph import graph_limit
 
-    results = {d: graph_limit(arc, d, friction=args.friction) for d in ("l", "r")}
+    results = {}
+    for d in ("l", "r"):
+        if getattr(args, "_say_progress", False):
+            _progress(f"arcade: static program in direction {d!r} ({arc.n_blocks} blocks) ...")
+        results[d] = graph_limit(arc, d, friction=args.friction)
     ramp = response = None
     progress = None if args.json else _progress
     if args.ramp or spec is not None:
