@@ -53,3 +53,21 @@ def test_without_friction_the_outcome_names_the_flag(capsys):
     assert err.startswith("archrock: outcome: arch: no mechanism opens")
     assert "--friction MU gives the multipliers at which its joints slide" in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_capacity_on_an_arch_without_frictionless_mechanism(capsys):
+    """--capacity is answered where no mechanism opens under horizontal forces (it stopped on
+    the limit analysis's outcome before)."""
+    rc, out, err = run(capsys, "limit", *FLAT, "--capacity", "spread", "--json")
+    assert rc == 0, err
+    d = json.loads(out)
+    assert d["frictionless_mechanism"] is False and d["k"] is None
+    assert 2.2 < d["capacity"]["capacity"] < 2.4
+
+
+def test_closure_of_a_flat_arch_says_why_there_is_no_capacity(capsys):
+    rc, _, err = run(capsys, "limit", *FLAT, "--capacity", "closure")
+    assert rc == 3
+    assert err.startswith("archrock: outcome: arch: a closure of the right support cannot bring "
+                          "this arch to a mechanism: a straight line of thrust fits inside it")
+    assert "horizontal forces" not in err

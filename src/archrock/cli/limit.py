@@ -87,16 +87,18 @@ def _supports_extra(args, arch, result):
     return lines, out, cap
 
 
-def _frictionless(arch, mu):
-    """(LimitResult, None), or (None, why) where no frictionless mechanism opens but a
-    friction ``mu`` is given: the friction analysis then answers (docs/friction.md)."""
+def _frictionless(arch, args):
+    """(LimitResult, None), or (None, why) where no frictionless mechanism opens but another
+    question has an answer: with --friction the friction analysis (docs/friction.md), with
+    --capacity the support movement's (docs/supports.md)."""
     from ..errors import NoMechanismError
     from ..statics.limit import limit_analysis
 
+    mu = args.friction
     try:
         return limit_analysis(arch, verify=True), None
     except NoMechanismError as exc:
-        if mu is None:  # name what gives an answer
+        if mu is None and args.capacity is None:  # name what gives an answer
             raise NoMechanismError(f"{exc}; --friction MU gives the multipliers at which its "
                                    f"joints slide") from None
         return None, str(exc)
@@ -116,7 +118,7 @@ def run_limit(args) -> int:
                        "--settlement (the capacity's curve gives every movement up to it)")
     arch = arch_from_args(args)
     mpw = _min_pier_width(args, arch)
-    result, no_mech = _frictionless(arch, args.friction)
+    result, no_mech = _frictionless(arch, args)
     sup_lines, sup_json, cap = _supports_extra(args, arch, result)
     mu = args.friction
     mt = None
@@ -152,7 +154,7 @@ def run_limit(args) -> int:
         path = save_supports_figure(plot, state=state, capacity=cap)
         print(f"wrote {path}", file=sys.stderr)
     if no_mech is not None:
-        # only friction brings this arch to a mechanism: its result is the answer
+        # no frictionless mechanism: friction's result and/or the capacity are the answer
         extra.pop("needed")
         if args.json:
             emit_json({**friction_only_summary(arch, no_mech, mt, **extra), **sup_json})

@@ -302,15 +302,18 @@ def friction_only_summary(arch, why: str, min_thickness=None, friction=None,
     multipliers with friction, ``frictionless_mechanism`` is false, ``mechanism_l``/``_r`` name
     the sliding joints; the friction keys of :func:`friction_summary` follow."""
     units = {"k": "g (horizontal load / weight)"}
-    out = {"arch": arch.name, "k": friction.k, "k_l": friction.l.multiplier,
-           "k_r": friction.r.multiplier, "frictionless_mechanism": False,
+    fr = friction
+    out = {"arch": arch.name, "k": None if fr is None else fr.k,
+           "k_l": None if fr is None else fr.l.multiplier,
+           "k_r": None if fr is None else fr.r.multiplier, "frictionless_mechanism": False,
            "no_frictionless_mechanism": why,
-           "mechanism_l": _sliding_mechanism(friction.l),
-           "mechanism_r": _sliding_mechanism(friction.r),
+           "mechanism_l": None if fr is None else _sliding_mechanism(fr.l),
+           "mechanism_r": None if fr is None else _sliding_mechanism(fr.r),
            "four_link_holds": False, "geometry": arch.to_dict(),
            **({} if isinstance(arch, Arch) else {"voussoirs": _voussoir_properties(arch)}),
            "units": units}
-    out.update(friction_summary(None, friction))
+    if fr is not None:
+        out.update(friction_summary(None, fr))
     if min_thickness is not None:
         t = min_thickness.thicknesses
         out["min_thickness"] = {"factor": min_thickness.factor,
@@ -329,10 +332,14 @@ def friction_only_summary(arch, why: str, min_thickness=None, friction=None,
 def format_friction_only(arch, why: str, min_thickness=None, friction=None,
                          min_thickness_friction=None, thrust=None, min_pier_width=None) -> str:
     """Readable report of an arch with no frictionless mechanism: the friction analysis is the
-    answer (the joints slide at k_l, k_r)."""
+    answer (the joints slide at k_l, k_r); without friction, only the lines of the other
+    results (the capacity's follow)."""
     lines = _circular_lines(arch) if isinstance(arch, Arch) else _general_lines(arch)
-    lines += ["", f"No frictionless mechanism: {why.removeprefix('arch: ')}",
-              f"Limit analysis with friction mu = {friction.mu:g} (Coulomb |T| <= mu N at every "
+    lines += ["", f"No frictionless mechanism: {why.removeprefix('arch: ')}"]
+    if friction is None:
+        lines += _extras(min_thickness, min_thickness_friction, thrust, min_pier_width)
+        return "\n".join(lines)
+    lines += [f"Limit analysis with friction mu = {friction.mu:g} (Coulomb |T| <= mu N at every "
               f"joint; associative: docs/friction.md)",
               "  mechanism  k (friction)  sliding governs  joints needing most friction (|T|/N)"]
     for d in ("l", "r"):
@@ -342,15 +349,23 @@ def format_friction_only(arch, why: str, min_thickness=None, friction=None,
                      f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
     lines.append(f"  k = min(k_l, k_r) with friction = {friction.k:.4f} (joints slide; the "
                  f"four-link model does not hold)")
+    lines += _extras(min_thickness, min_thickness_friction, thrust, min_pier_width)
+    lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
+                 "M_r: by xg''/g >= k_r, forces toward -x)")
+    return "\n".join(lines)
+
+
+def _extras(min_thickness, min_thickness_friction, thrust, min_pier_width) -> list[str]:
+    """The lines of --min-thickness, --thrust-range and --min-pier-width."""
+    lines = []
     if min_thickness is not None:
         ratio = "" if min_thickness.ratio is None else f", mean t/R = {min_thickness.ratio:.4f}"
-        lines.append(f"  minimum thickness under self-weight with friction "
-                     f"{min_thickness_friction:g}: factor {min_thickness.factor:.4f} of the "
-                     f"given thicknesses{ratio}")
+        with_mu = ("" if min_thickness_friction is None
+                   else f" with friction {min_thickness_friction:g}")
+        lines.append(f"  minimum thickness under self-weight{with_mu}: factor "
+                     f"{min_thickness.factor:.4f} of the given thicknesses{ratio}")
     if thrust is not None:
         lines.append(f"  {thrust_range_line(thrust)}")
     if min_pier_width is not None:
         lines.append(f"  {min_pier_width_line(min_pier_width)}")
-    lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
-                 "M_r: by xg''/g >= k_r, forces toward -x)")
-    return "\n".join(lines)
+    return lines
