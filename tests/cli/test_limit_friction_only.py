@@ -29,7 +29,8 @@ def test_friction_answers_without_frictionless_mechanism(capsys, library):
     rc, out, err = run(capsys, "limit", *FLAT, "--friction", "0.3")
     assert rc == 0, err
     assert "No frictionless mechanism: no mechanism opens under horizontal forces" in out
-    line = next(ln for ln in out.splitlines() if ln.startswith("  k = min(k_l, k_r) with friction"))
+    line = next(ln for ln in out.splitlines()
+                if ln.startswith("  k = min(k_l, k_r) with friction"))
     assert abs(float(line.split("= ")[2].split()[0]) - library.k) < 1e-4
     assert library.l.sliding_governs and library.r.sliding_governs
 

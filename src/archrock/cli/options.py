@@ -199,7 +199,8 @@ def piers_too_narrow(args, exc, arch=None):
     from ..statics.lp import _stands
 
     given = values(args, "with_piers")
-    if ("on its piers" in str(exc) or getattr(args, "defect", None) or not {"height", "width"} <= set(given)
+    if ("on its piers" in str(exc) or getattr(args, "defect", None)
+            or not {"height", "width"} <= set(given)
             or set(given) - {"height", "width", "courses", "batter"}):
         return None
     try:
