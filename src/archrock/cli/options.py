@@ -198,6 +198,8 @@ def piers_too_narrow(args, exc, arch=None):
     from ..statics.buttress import minimum_pier_width
     from ..statics.lp import _stands
 
+    if not hasattr(args, "embrace"):  # not a command of one arch (add_geometry_options)
+        return None
     given = values(args, "with_piers")
     if ("on its piers" in str(exc) or getattr(args, "defect", None)
             or not {"height", "width"} <= set(given)
