@@ -102,3 +102,19 @@ def test_unheld_arcade_names_blocks_not_highs(capsys, tmp_path):
                           "in direction 'l': every contact is on the ground (a = -1), so no "
                           "block rests on another; block ")
     assert "HiGHS" not in err and "cannot be held by its contacts" in err
+
+
+def test_engine_part_is_estimated_and_bounded(capsys, monkeypatch):
+    """--ramp and a motion add the contact engine's steps to the estimate: refused past the
+    bound (here 1 s) after the static program, with what to leave out."""
+    pytest.importorskip("pymunk")
+    monkeypatch.setenv("ARCHROCK_MAX_WORK_S", "1")
+    code, out, err = run(capsys, *THREE, "--pulse", "one-sine", "--amplitude", "0.3",
+                         "--pulse-duration", "0.5")
+    assert code == 3 and out == ""
+    assert err.startswith("archrock: error: arcade engine: about 8.28e+03 engine steps, "
+                          "estimated ")
+    assert "leave out --ramp / the motion" in err
+    code, out, err = run(capsys, *THREE, "--ramp")
+    assert code == 3
+    assert err.startswith("archrock: error: arcade engine: about ")

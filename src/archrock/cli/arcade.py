@@ -226,6 +226,32 @@ def _check_work(args, n_blocks: int) -> float:
     return est
 
 
+def _check_engine_work(args, arc, settings, results, motion) -> float:
+    """The estimated seconds of the contact engine's part (--ramp: both directions' ramp and
+    holds; a motion: the response run to the end of its free motion, an upper estimate), at
+    :data:`~archrock.studies.enginestudy.ENGINE_STEP_S` per step and contact piece (about 3
+    per block); refused past the work bound, a warning past a minute."""
+    import math
+
+    from ..contact.ramp import ramp_range
+    from ..studies.enginestudy import ENGINE_STEP_S
+    from ..units import G
+    from ..studies.work import check_work
+
+    spt = settings.steps_per_T
+    if args.ramp:  # the ramp up to the motion, then about log2(1/tol) + 4 holds
+        holds = math.log2(1.0 / args.ramp_tol) + 4.0
+        steps = sum(min(1.2 * g.k if g.k > 0 else ramp_range(None)[1], ramp_range(g.k)[1])
+                    / 0.05 * spt + holds * 4.0 * spt for g in results.values())
+    else:  # the motion, then up to 20 T of free motion
+        t_scale = math.sqrt(arc.size / G)
+        steps = (float(motion.times[-1]) / t_scale + 20.0) * spt
+    each = (3 * arc.n_blocks + 2) * ENGINE_STEP_S * settings.iterations / 40.0
+    return check_work("arcade engine", steps, "engine steps", each,
+                      "leave out --ramp / the motion (the static program's k and mechanism "
+                      "need no engine), or use fewer blocks", kernel=False)
+
+
 def _progress(msg):
     print(msg, file=sys.stderr, flush=True)
 
@@ -337,6 +363,8 @@ def run_arcade(args) -> int:
 
         import_pymunk()
         settings = EngineSettings(friction=args.friction or DEFAULT_FRICTION)
+        motion = None if spec is None else spec.build()
+        _check_engine_work(args, arc, settings, results, motion)
         if args.ramp:
             from ..contact.arcade import arcade_ramp
 
@@ -345,7 +373,7 @@ def run_arcade(args) -> int:
         else:
             from ..contact.arcade import arcade_respond
 
-            response = arcade_respond(arc, spec.build(), settings, t_end=args.t_end)
+            response = arcade_respond(arc, motion, settings, t_end=args.t_end)
     written = None
     if args.write:
         from ..geometry.files import write_arcade
