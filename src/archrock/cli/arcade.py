@@ -125,7 +125,7 @@ def arcade_from_args(args):
                            f"holds the whole arcade")
         from ..geometry.files import read_arcade
 
-        return read_arcade(args.arcade)
+        return read_arcade(args.arcade, on_size=lambda n: _check_work(args, n))
     if args.geometry:
         given = [f for f, v in arch_flags if v is not None]
         if given:
@@ -199,11 +199,57 @@ def arcade_from_args(args):
         if v is None:
             raise CLIError(f"{flag}: needed (one value for every pier, or {len(arches) + 1}, "
                            f"in metres)")
+    # courses are checked by arcade(); only a plausible count enters the estimate
+    courses = [c for c in (args.pier_courses or [1]) if isinstance(c, int) and 0 < c <= 10**6]
+    n_piers = len(arches) + 1
+    pier_blocks = (courses[0] * n_piers if len(courses) == 1 else sum(courses)) if courses else 0
+    _check_work(args, sum(a.n for a in arches) + pier_blocks)
     try:
         return arcade(arches, list(args.pier_height), list(args.pier_width),
                       courses=list(args.pier_courses or [1]))
     except ArchInputError as exc:
         raise _renamed(exc) from None
+
+
+def _check_work(args, n_blocks: int) -> float:
+    """The estimated seconds of the static program on ``n_blocks`` blocks (both directions);
+    refused past the work bound (ARCHROCK_MAX_WORK_S), a warning past a minute, which also
+    turns on one progress line per direction (``args._say_progress``)."""
+    from ..statics.graph import graph_limit_cost_s
+    from ..studies.work import WARN_WORK_S, check_work
+
+    est = check_work("arcade", n_blocks, "blocks", graph_limit_cost_s(n_blocks) / max(1, n_blocks),
+                     "fewer voussoirs (--voussoirs), courses (--pier-courses) or spans: the "
+                     "static program's time grows as the square of the number of blocks",
+                     kernel=False)
+    args._say_progress = est > WARN_WORK_S
+    return est
+
+
+def _check_engine_work(args, arc, settings, results, motion) -> float:
+    """The estimated seconds of the contact engine's part (--ramp: both directions' ramp and
+    holds; a motion: the response run to the end of its free motion, an upper estimate), at
+    :data:`~archrock.studies.enginestudy.ENGINE_STEP_S` per step and contact piece (about 3
+    per block); refused past the work bound, a warning past a minute."""
+    import math
+
+    from ..contact.ramp import ramp_range
+    from ..studies.enginestudy import ENGINE_STEP_S
+    from ..units import G
+    from ..studies.work import check_work
+
+    spt = settings.steps_per_T
+    if args.ramp:  # the ramp up to the motion, then about log2(1/tol) + 4 holds
+        holds = math.log2(1.0 / args.ramp_tol) + 4.0
+        steps = sum(min(1.2 * g.k if g.k > 0 else ramp_range(None)[1], ramp_range(g.k)[1])
+                    / 0.05 * spt + holds * 4.0 * spt for g in results.values())
+    else:  # the motion, then up to 20 T of free motion
+        t_scale = math.sqrt(arc.size / G)
+        steps = (float(motion.times[-1]) / t_scale + 20.0) * spt
+    each = (3 * arc.n_blocks + 2) * ENGINE_STEP_S * settings.iterations / 40.0
+    return check_work("arcade engine", steps, "engine steps", each,
+                      "leave out --ramp / the motion (the static program's k and mechanism "
+                      "need no engine), or use fewer blocks", kernel=False)
 
 
 def _progress(msg):
@@ -304,7 +350,11 @@ def run_arcade(args) -> int:
     arc = arcade_from_args(args)
     from ..statics.graph import graph_limit
 
-    results = {d: graph_limit(arc, d, friction=args.friction) for d in ("l", "r")}
+    results = {}
+    for d in ("l", "r"):
+        if getattr(args, "_say_progress", False):
+            _progress(f"arcade: static program in direction {d!r} ({arc.n_blocks} blocks) ...")
+        results[d] = graph_limit(arc, d, friction=args.friction)
     ramp = response = None
     progress = None if args.json else _progress
     if args.ramp or spec is not None:
@@ -313,6 +363,8 @@ def run_arcade(args) -> int:
 
         import_pymunk()
         settings = EngineSettings(friction=args.friction or DEFAULT_FRICTION)
+        motion = None if spec is None else spec.build()
+        _check_engine_work(args, arc, settings, results, motion)
         if args.ramp:
             from ..contact.arcade import arcade_ramp
 
@@ -321,7 +373,7 @@ def run_arcade(args) -> int:
         else:
             from ..contact.arcade import arcade_respond
 
-            response = arcade_respond(arc, spec.build(), settings, t_end=args.t_end)
+            response = arcade_respond(arc, motion, settings, t_end=args.t_end)
     written = None
     if args.write:
         from ..geometry.files import write_arcade

@@ -8,7 +8,7 @@ import time
 from ._parser import CLIError, _int, non_negative_int
 from .codecheck import add_codecheck_options, codecheck_config_from_args
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, impact_spec_from_args, spreads)
+                      arch_from_args, impact_spec_from_args, spreads_for)
 
 
 def add_assess_parser(subparsers):
@@ -63,13 +63,14 @@ def run_assess(args) -> int:
     say = (lambda msg: None) if args.no_progress else (lambda msg: print(msg, file=sys.stderr,
                                                                           flush=True))
     t0 = time.perf_counter()
+    arch = arch_from_args(args)
     cfg = AssessConfig(
         impact=impact_spec_from_args(args), durations=tuple(parse_range(args.durations, "durations")),
-        n_scan=args.n_scan, samples=args.samples, seed=args.seed, spreads=spreads(args),
+        n_scan=args.n_scan, samples=args.samples, seed=args.seed,
+        spreads=spreads_for(args, arch),
         records=record_paths(args.records), record_units=args.record_units,
         scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
         codecheck=codecheck_config_from_args(args))
-    arch = arch_from_args(args)
     say(f"archrock assess: {arch.name}, {arch.n} voussoirs")
     from ..studies.runner import RunSettings
 

@@ -8,7 +8,7 @@ from ..errors import ArchInputError
 from ._parser import _int, emit_json, interrupted_study, positive_float
 from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads_for)
 
 
 def add_curves_parser(subparsers):
@@ -90,8 +90,9 @@ def run_curves(args) -> int:
     band = None
     try:
         if args.samples > 0:
-            band = ensemble_curve(nominal, args.samples, args.seed, spreads(args), durations,
-                                  impact=impact, settings=settings, **kw)
+            band = ensemble_curve(nominal, args.samples, args.seed,
+                                  spreads_for(args, nominal), durations, impact=impact,
+                                  settings=settings, **kw)
             curve = band.nominal
         else:
             # one curve: arch after arch has no pool (the respond engine runs here)

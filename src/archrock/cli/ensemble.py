@@ -9,7 +9,7 @@ from ._parser import EXIT_INTERRUPTED, PROG, CLIError, _int, emit_json
 from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
                       add_spread_options, arch_from_args, figure_arg, folder_arg,
-                      impact_spec_from_args, motion_spec_from_args, spreads)
+                      impact_spec_from_args, motion_spec_from_args, spreads_for)
 
 
 def add_ensemble_parser(subparsers):
@@ -99,7 +99,7 @@ def run_ensemble_cmd(args) -> int:
                        f"analysis only); give --pulse ... or --record FILE, or drop {given[0]}")
     config = EnsembleConfig.from_arch(nominal, samples=args.samples, seed=args.seed,
                                       batch_size=args.batch_size,
-                                      motion=motion, spreads=spreads(args),
+                                      motion=motion, spreads=spreads_for(args, nominal),
                                       impact=impact_spec_from_args(args),
                                       early_stop=bool(args.early_stop), support=support,
                                       support_draw=args.support_draw)

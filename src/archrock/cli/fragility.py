@@ -9,7 +9,7 @@ from ._parser import _int, emit_json, interrupted_study, non_negative_int
 from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads)
+                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads_for)
 
 
 def add_fragility_parser(subparsers):
@@ -86,7 +86,7 @@ def run_fragility(args) -> int:
     records = list(suite.records)
     scales = parse_range(args.scales, "scales")
     impact = impact_spec_from_args(args)
-    models = (random_models(nominal, args.samples, args.seed, spreads(args), impact)
+    models = (random_models(nominal, args.samples, args.seed, spreads_for(args, nominal), impact)
               if args.samples > 0 else [prepare(nominal, impact)])
     boot = args.bootstrap
     out = folder_arg(args.out)

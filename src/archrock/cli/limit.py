@@ -87,11 +87,29 @@ def _supports_extra(args, arch, result):
     return lines, out, cap
 
 
+def _frictionless(arch, args):
+    """(LimitResult, None), or (None, why) where no frictionless mechanism opens but another
+    question has an answer: with --friction the friction analysis (docs/friction.md), with
+    --capacity the support movement's (docs/supports.md)."""
+    from ..errors import NoMechanismError
+    from ..statics.limit import limit_analysis
+
+    mu = args.friction
+    try:
+        return limit_analysis(arch, verify=True), None
+    except NoMechanismError as exc:
+        if mu is None and args.capacity is None:  # name what gives an answer
+            raise NoMechanismError(f"{exc}; --friction MU gives the multipliers at which its "
+                                   f"joints slide") from None
+        return None, str(exc)
+
+
 def run_limit(args) -> int:
     from ..errors import CannotStandError
     from ..statics.friction import friction_analysis, friction_minimum_thickness, friction_needed
-    from ..statics.limit import limit_analysis, minimum_thickness
-    from ..reports.limit import format_limit_table, limit_summary
+    from ..statics.limit import minimum_thickness
+    from ..reports.limit import (format_friction_only, format_limit_table,
+                                 friction_only_summary, limit_summary)
 
     plot = figure_arg(args.supports_plot)
     if args.capacity is not None and (args.spread or args.settlement
@@ -100,7 +118,7 @@ def run_limit(args) -> int:
                        "--settlement (the capacity's curve gives every movement up to it)")
     arch = arch_from_args(args)
     mpw = _min_pier_width(args, arch)
-    result = limit_analysis(arch, verify=True)
+    result, no_mech = _frictionless(arch, args)
     sup_lines, sup_json, cap = _supports_extra(args, arch, result)
     mu = args.friction
     mt = None
@@ -114,7 +132,7 @@ def run_limit(args) -> int:
             raise
         raise CannotStandError(f"{exc}; with friction {mu:g} the minimum thickness is "
                                f"{_thickness_words(arch, mt)}") from None
-    needed = None if fr is not None else friction_needed(arch)
+    needed = None if fr is not None or no_mech is not None else friction_needed(arch)
     extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
     if mpw is not None:
         extra["min_pier_width"] = mpw
@@ -135,6 +153,16 @@ def run_limit(args) -> int:
             raise CLIError("--supports-plot: needs --spread/--settlement or --capacity")
         path = save_supports_figure(plot, state=state, capacity=cap)
         print(f"wrote {path}", file=sys.stderr)
+    if no_mech is not None:
+        # no frictionless mechanism: friction's result and/or the capacity are the answer
+        extra.pop("needed")
+        if args.json:
+            emit_json({**friction_only_summary(arch, no_mech, mt, **extra), **sup_json})
+        else:
+            print(format_friction_only(arch, no_mech, mt, **extra))
+            for line in sup_lines:
+                print(line)
+        return 0
     if args.json:
         emit_json({**limit_summary(result, mt, **extra), **sup_json})
     else:
@@ -169,9 +197,12 @@ def add_random_arch_parser(subparsers):
 
 def run_random_arch(args) -> int:
     from ..geometry import random_arch
+    from ..geometry.sampling import DEFAULT_SPREADS
 
     out = folder_arg(args.out, "--out", "a file name (omit --out for stdout)")
     nominal = arch_from_args(args)
+    if args.spread_span is None:  # random_arch draws circular and family arches only
+        args.spread_span = DEFAULT_SPREADS.span
     arch = random_arch(nominal, seed=args.seed, spread_span=args.spread_span,
                        spread_thickness=args.spread_thickness, spread_radius=args.spread_radius,
                        spread_tilt_deg=args.spread_tilt)

@@ -7,12 +7,14 @@ and the rest keep working)."""
 from __future__ import annotations
 
 import argparse
+import math
+import sys
 
 from ..options import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args,  # noqa: F401
                        impact_spec_from_args, model_from_args, motion_from_args,
                        motion_spec_from_args, piers_from_args, spreads, supports_from_args,
                        undamaged_arch_from_args)
-from ._parser import CLIError, _int, finite_float, non_negative_int
+from ._parser import PROG, CLIError, _int, finite_float, non_negative_int
 
 # the old private names of the builders (archrock <= 0.6.0 imported them from here)
 _piers_from_args = piers_from_args
@@ -127,8 +129,10 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
     """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths),
     with ``tilt`` --spread-tilt (joint tilt of family arches, degrees), with ``piers`` the
     pier spreads --spread-pier-lean/-width/-height/-course (docs/piers.md, Irregular piers)."""
-    p.add_argument("--spread-span", type=finite_float, default=0.1, metavar="S_A",
-                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1)")
+    p.add_argument("--spread-span", type=finite_float, default=None, metavar="S_A",
+                   help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1; 0 for an "
+                        "arch whose joints stay where drawn: on piers, or a polygon without a "
+                        "family)")
     p.add_argument("--spread-thickness", type=finite_float, default=0.1, metavar="S_T",
                    help="relative half-width of the thicknesses, 0 <= s_t < 1 (default 0.1)")
     p.add_argument("--spread-radius", type=finite_float, default=0.05, metavar="S_R",
@@ -146,6 +150,82 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
                            metavar="S", help=f"on piers: {what}, 0 <= s {'<=' if closed else '<'}"
                                              f" {hi:g} (default 0)")
     return p
+
+
+def resolve_spread_span(args, nominal) -> None:
+    """Set an omitted --spread-span to its default for ``nominal``: 0.1, or 0 where its joints
+    stay where they are drawn (an arch on piers, a surveyed polygon: the span spread does not
+    apply), saying so in one line on stderr so the run states the spreads it applied."""
+    if getattr(args, "spread_span", 0.0) is not None:
+        return
+    from ..geometry.sampling import DEFAULT_SPREADS, fixed_joints
+
+    why = fixed_joints(getattr(nominal, "base", nominal))  # a moved arch: its own blocks
+    args.spread_span = DEFAULT_SPREADS.span if why is None else 0.0
+    if why is not None:
+        tilt = getattr(args, "spread_tilt", 0.0) or 0.0
+        print(f"{PROG}: spreads applied: span 0 (default for {nominal.name!r}, {why}, whose "
+              f"joints stay where drawn), thickness {args.spread_thickness:g}, radius "
+              f"{args.spread_radius:g}, tilt {tilt:g}", file=sys.stderr)
+
+
+def spreads_for(args, nominal):
+    """:func:`spreads` of ``args`` with --spread-span's default chosen for ``nominal``
+    (:func:`resolve_spread_span`)."""
+    resolve_spread_span(args, nominal)
+    return spreads(args)
+
+
+def _pier_names(arch) -> str:
+    """The pier blocks of an arch on piers in words: "blocks 0 and 8", "blocks 0-2 and 12-14"."""
+    piers = arch.pier_blocks
+    first = arch.block_kinds.index("voussoir")
+    sides = [[i for i in piers if i < first], [i for i in piers if i > first]]
+    words = [f"{s[0]}" if len(s) == 1 else f"{s[0]}-{s[-1]}" for s in sides if s]
+    return "blocks " + " and ".join(words)
+
+
+def piers_too_narrow(args, exc, arch=None):
+    """Where the arch on two equal piers of --pier-height/--pier-width cannot stand under its
+    own weight but stands on rigid supports: the CannotStandError ``exc`` reworded to name the
+    piers and the least width that carries it (:func:`archrock.statics.buttress.
+    minimum_pier_width`, a bisection: seconds, spent only on this failure); None elsewhere
+    (unequal or stepped piers, a defect, moved supports, an arch that stands on these piers or
+    falls on rigid supports too).  ``arch``: the arch of ``args`` where already built."""
+    from ..errors import ArchrockError, CannotStandError
+    from ..geometry import ArchOnPiers
+    from ..options.fields import values
+    from ..statics.buttress import minimum_pier_width
+    from ..statics.lp import _stands
+
+    if not hasattr(args, "embrace"):  # not a command of one arch (add_geometry_options)
+        return None
+    given = values(args, "with_piers")
+    if ("on its piers" in str(exc) or getattr(args, "defect", None)
+            or not {"height", "width"} <= set(given)
+            or set(given) - {"height", "width", "courses", "batter"}):
+        return None
+    try:
+        arch = arch_from_args(args) if arch is None else arch
+        if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks or _stands(arch):
+            return None
+    except ArchrockError:
+        return None
+    bare = argparse.Namespace(**{k: (None if k.startswith("pier_") else v)
+                                 for k, v in vars(args).items()})
+    try:
+        mpw = minimum_pier_width(arch_from_args(bare), given["height"],
+                                 courses=given.get("courses", 1), batter=given.get("batter", 0.0))
+    except CannotStandError:  # not the piers: it falls on rigid supports too
+        return None
+    head = "arch: it cannot stand under its own weight "
+    why = " " + str(exc)[len(head):].split(";")[0] if str(exc).startswith(head) else ""
+    need = math.ceil(mpw.width * 1000) / 1000  # a width the user can type that stands
+    return CannotStandError(
+        f"arch: it cannot stand on its piers ({_pier_names(arch)}: {given['width']:g} m wide, "
+        f"{given['height']:g} m high) under its own weight{why}; on rigid supports it stands, "
+        f"and piers {given['height']:g} m high carry it from {mpw.width:.4f} m wide: give "
+        f"--pier-width {need:g} or more (docs/piers.md)")
 
 
 def add_random_arches_options(p: argparse.ArgumentParser,

@@ -8,7 +8,7 @@ from .runsettings import run_settings
 from ._parser import _int, emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
                       add_spread_options, arch_from_args, impact_spec_from_args,
-                      motion_spec_from_args, spreads)
+                      motion_spec_from_args, spreads_for)
 
 
 def add_sensitivity_parser(subparsers):
@@ -55,7 +55,7 @@ def run_sensitivity(args) -> int:
     nominal = arch_from_args(args)
     if not args.limit_only:  # the multipliers alone need no dynamics
         check_fourlink(nominal, args, "sensitivity")
-    res = sobol_indices(nominal, spreads(args), args.samples, by=args.by,
+    res = sobol_indices(nominal, spreads_for(args, nominal), args.samples, by=args.by,
                         motion=None if args.limit_only else motion,
                         impact=impact_spec_from_args(args), seed=args.seed,
                         settings=run_settings(args))

@@ -6,7 +6,8 @@ from __future__ import annotations
 from .runsettings import run_settings
 from ._parser import CLIError, _int, emit_json, finite_float, non_negative_int
 from .dem import add_engine_options, engine_settings_from_args
-from .options import add_geometry_options, add_spread_options, arch_from_args, figure_arg, spreads
+from .options import (add_geometry_options, add_spread_options, arch_from_args, figure_arg,
+                      spreads_for)
 
 
 DEFAULT_AMPLITUDES = [-0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0]
@@ -81,7 +82,7 @@ def _run_ensemble(args) -> int:
             raise CLIError(f"{flag}: the pulse grid's; not with --samples (the ensemble is "
                            f"checked by the engine's ramp)")
     nominal = arch_from_args(args)
-    sampler = ArchSampler(nominal, spreads(args), args.seed)
+    sampler = ArchSampler(nominal, spreads_for(args, nominal), args.seed)
     import_pymunk()
     # progress goes to stderr even with --json (stdout holds only the JSON), as in ensemble
     opts = {} if args.ramp_tol is None else {"tol": args.ramp_tol}

@@ -444,9 +444,16 @@ class Arcade:
                     for g in groups):
                 raise ArchInputError(f"{key}: expected lists of block indices 0 to "
                                      f"{len(blocks) - 1}")
-        return cls(tuple(blocks), tuple(contacts), data.get("density", DEFAULT_DENSITY),
-                   str(data.get("name", name)), tuple(map(tuple, spans)),
-                   tuple(map(tuple, piers)))
+        arc = cls(tuple(blocks), tuple(contacts), data.get("density", DEFAULT_DENSITY),
+                  str(data.get("name", name)), tuple(map(tuple, spans)),
+                  tuple(map(tuple, piers)))
+        from .overlap import find_overlap, overlap_message  # a document is not built by arcade()
+
+        hit = find_overlap([b.outline for b in arc.blocks],
+                           FACE_TOLERANCE * min(1.0, 0.1 * arc.extent))
+        if hit is not None:
+            raise ArchInputError(overlap_message(arc, hit))
+        return arc
 
     def mirrored(self) -> "Arcade":
         """The mirror image about x = 0 (blocks and contacts in the same order; each contact's

@@ -50,13 +50,16 @@ def read_arch(path: str | os.PathLike) -> VoussoirArch:
         raise ArchInputError(f"{p}: {exc}") from None
 
 
-def read_arcade(path: str | os.PathLike):
+def read_arcade(path: str | os.PathLike, on_size=None):
     """Read an arcade document (module docstring) as an :class:`~archrock.geometry.arcade.
-    Arcade`; name = file stem."""
+    Arcade`; name = file stem.  ``on_size``: called with the number of blocks the document
+    lists before they are checked (a work bound can refuse it first)."""
     from .arcade import Arcade
 
     p = Path(path)
     data = _read_json(p)
+    if on_size is not None and isinstance(data, dict) and isinstance(data.get("blocks"), list):
+        on_size(len(data["blocks"]))
     try:
         return Arcade.from_dict(data, name=p.stem)
     except ArchInputError as exc:

@@ -179,6 +179,16 @@ def _seed(seed) -> int:
     return int(seed)
 
 
+def fixed_joints(nominal) -> str | None:
+    """Why the joints of ``nominal`` stay where they are drawn when it is sampled (no span or
+    tilt spread: an arch on piers, a polygon arch without a family), or None where they move."""
+    if not isinstance(nominal, PolygonArch) or getattr(nominal, "recipe", None) is not None:
+        return None
+    return ("an arch on piers, whose blocks (piers included) are perturbed as a surveyed arch's"
+            if getattr(nominal, "pier_blocks", ()) else
+            "a polygon arch without a family (e.g. surveyed)")
+
+
 @dataclass(frozen=True, eq=False)
 class ArchSampler:
     """Random arches around ``nominal`` (a circular Arch or a family arch) with ``spreads``,
@@ -198,12 +208,10 @@ class ArchSampler:
                     "spread tilt: the circular Arch has radial joints only; for tilted joints give "
                     "the nominal as family_arch('circular', span, rise, t, n, exact=False) "
                     "(--shape circular with --joints or --thickness-crown on the command line)")
-        elif isinstance(a, PolygonArch) and getattr(a, "recipe", None) is None:
+        elif fixed_joints(a) is not None:
             # a surveyed arch: thickness and offset vary, its joints stay (geometry.survey)
             if self.spreads.span or self.spreads.tilt:
-                what = ("an arch on piers, whose blocks (piers included) are perturbed as a "
-                        "surveyed arch's" if getattr(a, "pier_blocks", ()) else
-                        "a polygon arch without a family (e.g. surveyed)")
+                what = fixed_joints(a)
                 raise ArchInputError(
                     f"spread span and tilt: {self.spreads.span:g} and {self.spreads.tilt:g}; "
                     f"allowed 0 and 0 for {a.name!r}, {what}, whose joints stay where they were "

@@ -15,7 +15,8 @@ from ..geometry import Arch, ArchOnPiers
 from ..geometry.piers import hinge_place
 
 __all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
-           "thrust_range_line", "min_pier_width_line"]
+           "thrust_range_line", "min_pier_width_line", "friction_only_summary",
+           "format_friction_only"]
 
 
 def _on_piers(arch) -> bool:
@@ -284,3 +285,87 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
                  "M_r: by xg''/g >= k_r, forces toward -x)")
     lines += friction_lines(needed, friction)
     return "\n".join(lines)
+
+
+def _sliding_mechanism(fd) -> str:
+    """The friction collapse of one direction in words: the joints that slide (or need most
+    friction where sliding does not govern)."""
+    joints = ", ".join(str(j) for j in fd.joints)
+    what = "sliding at joint" if fd.sliding_governs else "most friction at joint"
+    return f"{what}{'s' if len(fd.joints) != 1 else ''} {joints}"
+
+
+def friction_only_summary(arch, why: str, min_thickness=None, friction=None,
+                          min_thickness_friction=None, thrust=None, min_pier_width=None) -> dict:
+    """The ``archrock limit --friction --json`` object of an arch that no frictionless mechanism
+    brings down (``why``: the limit analysis's reason): ``k``, ``k_l``, ``k_r`` are the
+    multipliers with friction, ``frictionless_mechanism`` is false, ``mechanism_l``/``_r`` name
+    the sliding joints; the friction keys of :func:`friction_summary` follow."""
+    units = {"k": "g (horizontal load / weight)"}
+    fr = friction
+    out = {"arch": arch.name, "k": None if fr is None else fr.k,
+           "k_l": None if fr is None else fr.l.multiplier,
+           "k_r": None if fr is None else fr.r.multiplier, "frictionless_mechanism": False,
+           "no_frictionless_mechanism": why,
+           "mechanism_l": None if fr is None else _sliding_mechanism(fr.l),
+           "mechanism_r": None if fr is None else _sliding_mechanism(fr.r),
+           "four_link_holds": False, "geometry": arch.to_dict(),
+           **({} if isinstance(arch, Arch) else {"voussoirs": _voussoir_properties(arch)}),
+           "units": units}
+    if fr is not None:
+        out.update(friction_summary(None, fr))
+    if min_thickness is not None:
+        t = min_thickness.thicknesses
+        out["min_thickness"] = {"factor": min_thickness.factor,
+                                "ratio_t_over_R": min_thickness.ratio,
+                                "thicknesses": None if t is None else [float(x) for x in t],
+                                "friction": min_thickness_friction}
+    if thrust is not None:
+        td = thrust.to_dict()
+        out["thrust_min"], out["thrust_max"] = td["thrust_min"], td["thrust_max"]
+        units["H"] = "N/m (horizontal thrust per metre of depth)"
+    if min_pier_width is not None:
+        out["min_pier_width"] = min_pier_width.to_dict()
+    return out
+
+
+def format_friction_only(arch, why: str, min_thickness=None, friction=None,
+                         min_thickness_friction=None, thrust=None, min_pier_width=None) -> str:
+    """Readable report of an arch with no frictionless mechanism: the friction analysis is the
+    answer (the joints slide at k_l, k_r); without friction, only the lines of the other
+    results (the capacity's follow)."""
+    lines = _circular_lines(arch) if isinstance(arch, Arch) else _general_lines(arch)
+    lines += ["", f"No frictionless mechanism: {why.removeprefix('arch: ')}"]
+    if friction is None:
+        lines += _extras(min_thickness, min_thickness_friction, thrust, min_pier_width)
+        return "\n".join(lines)
+    lines += [f"Limit analysis with friction mu = {friction.mu:g} (Coulomb |T| <= mu N at every "
+              f"joint; associative: docs/friction.md)",
+              "  mechanism  k (friction)  sliding governs  joints needing most friction (|T|/N)"]
+    for d in ("l", "r"):
+        fd = friction.direction(d)
+        joints = ", ".join(f"{j} ({fd.ratios[j]:.4f})" for j in fd.joints)
+        lines.append(f"  M_{d}        {fd.multiplier:12.4f}  "
+                     f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
+    lines.append(f"  k = min(k_l, k_r) with friction = {friction.k:.4f} (joints slide; the "
+                 f"four-link model does not hold)")
+    lines += _extras(min_thickness, min_thickness_friction, thrust, min_pier_width)
+    lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
+                 "M_r: by xg''/g >= k_r, forces toward -x)")
+    return "\n".join(lines)
+
+
+def _extras(min_thickness, min_thickness_friction, thrust, min_pier_width) -> list[str]:
+    """The lines of --min-thickness, --thrust-range and --min-pier-width."""
+    lines = []
+    if min_thickness is not None:
+        ratio = "" if min_thickness.ratio is None else f", mean t/R = {min_thickness.ratio:.4f}"
+        with_mu = ("" if min_thickness_friction is None
+                   else f" with friction {min_thickness_friction:g}")
+        lines.append(f"  minimum thickness under self-weight{with_mu}: factor "
+                     f"{min_thickness.factor:.4f} of the given thicknesses{ratio}")
+    if thrust is not None:
+        lines.append(f"  {thrust_range_line(thrust)}")
+    if min_pier_width is not None:
+        lines.append(f"  {min_pier_width_line(min_pier_width)}")
+    return lines

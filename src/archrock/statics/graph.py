@@ -39,10 +39,23 @@ from .friction import check_friction
 from .hinges import DIRECTIONS
 
 __all__ = ["GraphHinge", "GraphMechanism", "GraphLimit", "graph_multiplier", "graph_limit",
-           "mechanism_velocities", "generalized_mass", "generalized_loads"]
+           "graph_limit_cost_s", "mechanism_velocities", "generalized_mass", "generalized_loads"]
 
 #: A relative velocity smaller than this fraction of the largest block velocity counts as zero.
 VELOCITY_TOL = 1e-6
+#: Seconds of :func:`graph_limit` in one direction per block squared (the dense program's
+#: arrays and HiGHS): two semicircles on 10-course piers, 230 to 830 blocks, took 11 to 116 s
+#: on the 2-core development machine, shared (t ~ nb^2).
+GRAPH_LIMIT_S_PER_BLOCK2 = 1.5e-4
+#: Seconds to build or read and check one block of an arcade (830 blocks: 1.4 s).
+GRAPH_BUILD_S = 2e-3
+
+
+def graph_limit_cost_s(n_blocks: int, directions: int = 2) -> float:
+    """Rough seconds [s] to build an arcade of ``n_blocks`` blocks and solve its static program
+    in ``directions`` directions (within a factor of a few)."""
+    n = float(n_blocks)
+    return n * GRAPH_BUILD_S + directions * GRAPH_LIMIT_S_PER_BLOCK2 * n * n
 
 
 @dataclass(frozen=True)
@@ -244,18 +257,33 @@ def graph_multiplier(arc: Arcade, direction: str, friction: float | None = None)
     """The LP's optimum k alone (module docstring)."""
     prog = _Program(arc, direction, None if friction is None else check_friction(friction))
     res = _solve(prog)
-    _check_status(res, direction)
+    _check_status(res, direction, prog)
     return float(res.x[-1])
 
 
-def _check_status(res, direction):
+def _check_status(res, direction, prog: _Program):
+    """Raise where the program has no optimum, naming the block or contact that explains it
+    where one does (:mod:`archrock.statics.graphdiagnose`)."""
+    if res.status not in (2, 3):
+        if res.status != 0:
+            raise CannotStandError(f"arcade: no set of contact forces holds the blocks in "
+                                   f"direction {direction!r} (linear program status "
+                                   f"{res.status}: {res.message}); it cannot stand")
+        return
+    from .graphdiagnose import diagnose, input_mistake
+
+    mistake = input_mistake(prog.arc)  # the arcade itself is wrong: say what to change
+    if mistake is not None:
+        raise ArchInputError(mistake)
+    why = diagnose(prog, res.status)
     if res.status == 3:
         raise NoMechanismError(f"arcade: no mechanism opens under horizontal loads in direction "
-                               f"{direction!r} (the static program is unbounded)")
-    if res.status != 0:
-        raise CannotStandError(f"arcade: no set of contact forces holds the blocks in direction "
-                               f"{direction!r} (linear program status {res.status}: "
-                               f"{res.message}); it cannot stand")
+                               f"{direction!r} (the static program is unbounded"
+                               + (f": {why})" if why else ")"))
+    raise CannotStandError(f"arcade: no set of contact forces holds the blocks in direction "
+                           f"{direction!r}: " + (why or "the linear program is infeasible, "
+                                                 "though every block alone can be held")
+                           + "; it cannot stand")
 
 
 def _classify(prog: _Program, v: np.ndarray, tol: float):
@@ -288,7 +316,7 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     mu = None if friction is None else check_friction(friction)
     prog = _Program(arc, direction, mu)
     res = _solve(prog)
-    _check_status(res, direction)
+    _check_status(res, direction, prog)
     k = float(res.x[-1])
     y = np.asarray(res.eqlin.marginals, float).reshape(prog.nb, 3)
     # the dual's sign: the velocities under which no contact end closes

@@ -49,7 +49,7 @@ from itertools import combinations
 import numpy as np
 from scipy.optimize import linprog
 
-from ..errors import ArchInputError, CannotStandError, LimitExceededError
+from ..errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
 from ..geometry import VoussoirArch
 from ..geometry.displaced import MAX_ROTATION, SIDES, DisplacedArch, SupportMovement
 from ..geometry.sampling import ArchSampler, Spreads
@@ -363,9 +363,10 @@ def _work(arch: VoussoirArch, movement: SupportMovement) -> list:
     return [float(v) for v in c / float(np.hypot(np.hypot(c[0], c[1]), c[2]))]
 
 
-def _onset_lp(arch: VoussoirArch, d: np.ndarray, c=None):
+def _onset_lp(arch: VoussoirArch, d: np.ndarray, c=None, what: str = "the movement"):
     """(x, line, touches, points) of the state the relative movement d (or the objective c,
-    :func:`_work`) selects."""
+    :func:`_work`) selects; ``what``: the movement in words, for the outcome where it opens no
+    hinge."""
     if c is None:
         st = _statics(arch, "l")
         scale = float(np.hypot(*d))
@@ -378,9 +379,14 @@ def _onset_lp(arch: VoussoirArch, d: np.ndarray, c=None):
         raise CannotStandError(f"arch: no line of thrust fits inside the arch under its own "
                                f"weight (linear program status {res.status}); it cannot stand")
     if res.status == 3:
-        raise CannotStandError("arch: the movement meets no resistance (the linear program is "
-                               "unbounded: a flat arch wedged between its springings closes "
-                               "with any thrust); no hinges open")
+        # the program's ray is a state without weight: a straight line of thrust inside the
+        # arch from one springing to the other, which carries any thrust; moving the supports
+        # this way would shorten that strut, i.e. crush the masonry
+        raise NoMechanismError(
+            f"arch: {what} cannot bring this arch to a mechanism: a straight line of thrust "
+            f"fits inside it from one springing to the other (a flat arch wedged between its "
+            f"supports), so it carries any thrust and gives way only by crushing, which "
+            f"Heyman's hypotheses exclude; no hinges open and there is no capacity to report")
     if res.status != 0:
         raise LimitExceededError(f"support movement: the linear program did not finish "
                                  f"(status {res.status}: {res.message})")
@@ -406,6 +412,16 @@ def _magnitude(arch, movement) -> float:
     return float(np.hypot(d, movement.rotation * arch.size))
 
 
+def _movement_words(movement) -> str:
+    """The movement's kind in words ("a closure of the right support"), for outcomes."""
+    signs = (float(np.sign(movement.spread)), float(np.sign(movement.settlement)))
+    kind = next((k for k, v in CAPACITY_KINDS.items() if v == signs), None)
+    if not any(signs) and movement.rotation:
+        kind = "rotation"
+    side = "both supports" if movement.side == "both" else f"the {movement.side} support"
+    return f"a {kind} of {side}" if kind else f"the movement of {side}"
+
+
 def _onset(arch, movement):
     d = movement.relative
     rotating = movement.rotation != 0.0
@@ -415,9 +431,10 @@ def _onset(arch, movement):
     if rotating:
         unit = movement.scaled(1.0 / _magnitude(arch, movement))
         motions = unit.rigid_motions(arch.joint_points)
-        x, line, touches, _ = _onset_lp(arch, unit.relative, _work(arch, unit))
+        x, line, touches, _ = _onset_lp(arch, unit.relative, _work(arch, unit),
+                                        _movement_words(movement))
     else:
-        x, line, touches, _ = _onset_lp(arch, d)
+        x, line, touches, _ = _onset_lp(arch, d, what=_movement_words(movement))
     jp = np.asarray(arch.joint_points, float)
     cands = []
     for trio in combinations(touches, 3):
