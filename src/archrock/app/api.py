@@ -151,8 +151,17 @@ def arch_from_params(params: dict):
     else:
         arch = arch_from_args(ns)
     if arch.n > MAX_VOUSSOIRS:
-        raise ArchInputError(f"voussoirs: {arch.n}; the app allows 3 to {MAX_VOUSSOIRS}")
+        v, p = block_counts(arch)
+        field = "pier_courses" if p else "voussoirs"
+        raise ArchInputError(f"{field}: {arch.n} blocks in all ({v} voussoirs, {p} pier "
+                             f"courses); the app allows up to {MAX_VOUSSOIRS} blocks")
     return arch
+
+
+def block_counts(arch) -> tuple[int, int]:
+    """(voussoirs, pier courses) of an arch: the blocks of its piers are not voussoirs."""
+    p = len(getattr(arch, "pier_blocks", ()))
+    return int(arch.n) - p, p
 
 
 def _uploaded_arch(data, ns, name):
@@ -172,7 +181,8 @@ def _uploaded_arch(data, ns, name):
         raise ArchInputError("geometry: expected the JSON object of a geometry file")
     vs = data.get("voussoirs")
     if isinstance(vs, list) and len(vs) > MAX_VOUSSOIRS:
-        raise ArchInputError(f"geometry: {len(vs)} voussoirs; the app allows 3 to {MAX_VOUSSOIRS}")
+        raise ArchInputError(f"geometry: {len(vs)} blocks; the app allows up to {MAX_VOUSSOIRS} "
+                             f"blocks (voussoirs and pier courses)")
     label = name if isinstance(name, str) and name.strip() else "uploaded"
     try:
         arch = arch_from_dict(data, name=label[:80])
@@ -190,12 +200,15 @@ def _xy(a) -> list:
 
 
 def arch_drawing(arch) -> dict:
-    """What the page draws of an arch: each voussoir's closed outline [[x, y], ...] [m], each
+    """What the page draws of an arch: ``n`` blocks (``voussoirs`` and ``pier_courses``, the
+    blocks of both piers), each block's closed outline [[x, y], ...] [m], each
     joint's contact segment (intrados end, extrados end) [m] and the ground level [m]."""
     from ..reports.plots import springing_level, voussoir_outline
 
     outlines = [_xy(voussoir_outline(arch, i, points_per_rad=30.0)) for i in range(arch.n)]
-    return {"name": arch.name, "n": int(arch.n), "outlines": outlines,
+    v, p = block_counts(arch)
+    return {"name": arch.name, "n": int(arch.n), "voussoirs": v, "pier_courses": p,
+            "outlines": outlines,
             "joints": _xy(arch.joint_points), "ground": springing_level(arch),
             "kind": type(arch).__name__}
 

@@ -320,6 +320,9 @@ class _Guard:
         if not self._host_ok(host):
             return 403, (f"host: {host[:60]!r}; allowed {', '.join(sorted(self.names))} "
                          f"(the address the app listens on)")
+        path = scope["path"]
+        if not path.startswith("/api/"):  # the page and its files: anyone may load them
+            return None
         own = f"http://{host}"
         origin, referer = headers.get("origin"), headers.get("referer")
         if origin is not None:
@@ -328,9 +331,6 @@ class _Guard:
         elif referer is not None:
             if not (referer.lower() == own or referer.lower().startswith(own + "/")):
                 return 403, f"referer: another site; allowed only the app's own page ({own})"
-        path = scope["path"]
-        if not path.startswith("/api/"):
-            return None
         if origin is None and referer is None:
             return 403, f"origin: missing; the API answers only the app's own page ({own})"
         given = headers.get(TOKEN_HEADER, "").encode("latin-1")

@@ -167,7 +167,10 @@ function drawStatics(res, base) {
   app.redraws += 1;
   svg.setAttribute("data-redraws", app.redraws);
   svg.setAttribute("data-k", s.k);
-  $("arch-name").textContent = `${res.drawing.name} (${res.drawing.n} voussoirs)`;
+  // the blocks said as what they are: a pier's courses are not voussoirs
+  const d = res.drawing;
+  $("arch-name").textContent = `${d.name} (${d.voussoirs} voussoirs` +
+    (d.pier_courses ? `, ${d.pier_courses} pier courses)` : ")");
   $("k").textContent = `k = ${fmt(s.k)}`;
   $("k-detail").textContent = `k_l = ${fmt(s.k_l, 4)} g, k_r = ${fmt(s.k_r, 4)} g` +
       (s.four_link_holds ? "" : " (four-link model does not hold)");
