@@ -42,8 +42,9 @@ MAX_ENSEMBLE_WORK_S = 120.0
 #: Largest uploaded geometry (characters of JSON).
 MAX_UPLOAD_CHARS = 2_000_000
 
-#: Library calls are made one at a time: numba's parallel loops (ensemble batches) must not
-#: run in two threads at once, and a local app has one user.
+#: Library calls are made one at a time within a process: numba's parallel loops must not
+#: run in two threads at once.  The jobs (ensemble, curve, report) run in the job worker
+#: process (app/jobs.py), so the server's statics never wait on a job's lock.
 COMPUTE_LOCK = threading.RLock()
 
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
