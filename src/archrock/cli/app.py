@@ -64,6 +64,7 @@ def run_app(args) -> int:
         sock = socket.socket(family, socket.SOCK_STREAM)
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         sock.bind((args.host, args.port))
+        sock.listen(128)  # a request right after the URL is printed waits, not refused
     except (OSError, OverflowError) as exc:
         raise CLIError(f"--host/--port: cannot listen on {args.host}:{args.port} "
                        f"({getattr(exc, 'strerror', None) or exc})") from None
