@@ -204,3 +204,23 @@ def test_pier_courses_are_not_called_voussoirs(client):
     assert r.status_code == 400
     assert r.json()["error"] == ("pier_courses: 520 blocks in all (120 voussoirs, 400 pier "
                                  "courses); the app allows up to 120 blocks")
+
+
+def test_on_every_interface_an_address_names_the_server_and_a_name_does_not():
+    """``--host 0.0.0.0``: any IP address with the port (it cannot be rebound), not a name."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        from starlette.testclient import TestClient
+    from archrock.app import create_app
+
+    app = create_app("0.0.0.0", 9000)
+    c = TestClient(app, base_url="http://192.168.1.5:9000")
+    own = {"Origin": "http://192.168.1.5:9000", "X-Archrock-Token": app.state.token}
+    assert c.get("/api/limits", headers=own).status_code == 200
+    for host in ("evil.example:9000", "192.168.1.5:9001", "[::1]:9000x"):
+        r = c.get("/api/limits", headers={**own, "Host": host})
+        assert r.status_code == 403 and r.json()["error"].startswith("host: ")
+    r = c.get("/api/limits", headers={**own, "Host": "[::1]:9000", "Origin": "http://[::1]:9000"})
+    assert r.status_code == 200
