@@ -1,13 +1,21 @@
-"""Fixtures of the app's tests: one TestClient per module and the wait for a job."""
+"""Fixtures of the app's tests: one TestClient per module (sending what the app's own page
+sends: its origin and token) and the wait for a job."""
 
 import time
 
 import pytest
 
 
+#: The address the tests' app is made for (TestClient connects to no socket; the Host header
+#: and the page's origin are this).
+HOST, PORT = "127.0.0.1", 8765
+ORIGIN = f"http://{HOST}:{PORT}"
+
+
 @pytest.fixture(scope="module")
 def client():
-    """Starlette's TestClient on a fresh app (its jobs and uploads die with it)."""
+    """Starlette's TestClient on a fresh app (its jobs and uploads die with it), sending the
+    page's Origin and token on every request (``client.app.state.token``)."""
     pytest.importorskip("starlette")
     pytest.importorskip("httpx")
     import warnings
@@ -18,7 +26,9 @@ def client():
 
     from archrock.app import create_app
 
-    with TestClient(create_app()) as c:
+    app = create_app(HOST, PORT)
+    headers = {"Origin": ORIGIN, "X-Archrock-Token": app.state.token}
+    with TestClient(app, base_url=ORIGIN, headers=headers) as c:
         yield c
 
 

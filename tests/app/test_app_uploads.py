@@ -21,6 +21,8 @@ from archrock.app import api  # noqa: E402
 from archrock.units import G  # noqa: E402
 
 OPPENHEIM = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7}
+#: An upload's body as the page sends it: the file's bytes
+BYTES = {"Content-Type": "application/octet-stream"}
 
 
 def _two_column(motion, per=G, header="time accel") -> bytes:
@@ -39,7 +41,7 @@ def test_a_record_equal_to_a_sampled_pulse_responds_as_the_pulse(client, units, 
     motion = pulse("half-sine", -1.0, 0.3)
     assert len(motion.times) > 100  # a sampled record, not a corner list
     r = client.post(f"/api/record?name=half-sine.txt&units={units}&scale=1",
-                    content=_two_column(motion, per))
+                    headers=BYTES, content=_two_column(motion, per))
     assert r.status_code == 200, r.text
     info = r.json()
     assert info["samples"] == len(motion.times) and info["units"] == units
@@ -71,7 +73,7 @@ def test_a_scaled_at2_record_is_the_librarys_and_its_window_is_bounded(client, t
             "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=  800, DT=   .0100 SEC\n" + vals + "\n")
     f = tmp_path / "synth.AT2"
     f.write_text(text, encoding="utf-8")
-    r = client.post("/api/record?name=synth.AT2&units=g&scale=2", content=f.read_bytes())
+    r = client.post("/api/record?name=synth.AT2&units=g&scale=2", headers=BYTES, content=f.read_bytes())
     assert r.status_code == 200, r.text
     info = r.json()
     assert info["title"] == "A synthetic test record" and info["samples"] == 800
@@ -98,7 +100,7 @@ def test_a_scaled_at2_record_is_the_librarys_and_its_window_is_bounded(client, t
     ("../../etc/passwd", b"0 0\n0.01 0.1\n0.02 x\n", "record passwd: line 3:"),
 ])
 def test_a_bad_record_answers_400_with_the_librarys_message(client, name, data, starts):
-    r = client.post(f"/api/record?name={name}&units=g", content=data)
+    r = client.post(f"/api/record?name={name}&units=g", headers=BYTES, content=data)
     assert r.status_code == 400, r.text
     msg = r.json()["error"]
     assert msg.startswith(starts), msg
@@ -107,18 +109,18 @@ def test_a_bad_record_answers_400_with_the_librarys_message(client, name, data, 
 
 def test_record_units_and_scale_are_checked(client):
     ok = b"0 0\n0.01 0.1\n0.02 0\n"
-    r = client.post("/api/record?name=r.txt&units=furlongs", content=ok)
+    r = client.post("/api/record?name=r.txt&units=furlongs", headers=BYTES, content=ok)
     assert r.status_code == 400 and r.json()["error"].startswith("units: 'furlongs'; allowed")
-    r = client.post("/api/record?name=r.txt&scale=abc", content=ok)
+    r = client.post("/api/record?name=r.txt&scale=abc", headers=BYTES, content=ok)
     assert r.status_code == 400 and r.json()["error"].startswith("scale: expected a number")
-    r = client.post("/api/record?name=r.AT2&units=m/s2", content=ok)
+    r = client.post("/api/record?name=r.AT2&units=m/s2", headers=BYTES, content=ok)
     assert r.status_code == 400 and "allowed g" in r.json()["error"]
 
 
 @pytest.mark.parametrize("path,field", [("/api/record?name=big.txt", "record"),
                                         ("/api/dxf?name=big.dxf", "dxf")])
 def test_an_upload_above_the_limit_answers_413_with_the_limit(client, path, field):
-    r = client.post(path, content=b"0" * (api.MAX_FILE_BYTES + 1))
+    r = client.post(path, headers=BYTES, content=b"0" * (api.MAX_FILE_BYTES + 1))
     assert r.status_code == 413
     msg = r.json()["error"]
     assert msg.startswith(f"{field}: 20,000,001 bytes") and "up to 20 MB" in msg
@@ -155,7 +157,7 @@ def test_a_dxf_survey_has_the_k_of_import_dxf_and_limit(client, tmp_path):
     from archrock.statics.limit import limit_analysis
 
     f = _dxf_bytes(tmp_path, as_polygon(archrock.oppenheim_arch(), 20), scale=100.0)
-    r = client.post("/api/dxf?name=survey.dxf&units=cm", content=f.read_bytes())
+    r = client.post("/api/dxf?name=survey.dxf&units=cm", headers=BYTES, content=f.read_bytes())
     assert r.status_code == 200, r.text
     got = r.json()
     assert got["n"] == 7 and got["name"] == "survey" and len(got["handles"]) == 7
@@ -168,20 +170,20 @@ def test_a_dxf_survey_has_the_k_of_import_dxf_and_limit(client, tmp_path):
     assert lim["summary"]["k_l"] == pytest.approx(ref.k_l, rel=1e-12)
     assert abs(ref.k - 0.37) < 0.01 and lim["drawing"]["kind"] == "PolygonArch"
     # read in metres, the drawing is 20 m x 100 wide: the library names the units to give
-    bad = client.post("/api/dxf?name=survey.dxf", content=f.read_bytes())
+    bad = client.post("/api/dxf?name=survey.dxf", headers=BYTES, content=f.read_bytes())
     assert bad.status_code == 400
     assert bad.json()["error"].startswith("dxf: survey.dxf: the arch is ")
     assert "give --units cm" in bad.json()["error"]
-    none = client.post("/api/dxf?name=survey.dxf&units=cm&layer=walls", content=f.read_bytes())
+    none = client.post("/api/dxf?name=survey.dxf&units=cm&layer=walls", headers=BYTES, content=f.read_bytes())
     assert none.status_code == 400 and "layer 'walls' has no closed polylines" in none.json()["error"]
 
 
 def test_a_bad_dxf_answers_400_naming_the_field(client):
-    r = client.post("/api/dxf?name=notes.dxf", content=b"hello, not a drawing\n")
+    r = client.post("/api/dxf?name=notes.dxf", headers=BYTES, content=b"hello, not a drawing\n")
     assert r.status_code == 400
     msg = r.json()["error"]
     assert msg.startswith("dxf: notes.dxf: ") and "archrock-app-" not in msg
-    r = client.post("/api/dxf?name=s.dxf&units=inch", content=b"0")
+    r = client.post("/api/dxf?name=s.dxf&units=inch", headers=BYTES, content=b"0")
     assert r.status_code == 400 and r.json()["error"].startswith("units: 'inch'; allowed")
 
 
@@ -220,7 +222,7 @@ def test_the_report_is_cancelled_between_sections(client, wait_job):
     pytest.importorskip("matplotlib")
     job = client.post("/api/report", json={"arch": OPPENHEIM, "samples": 0}).json()
     assert job["estimate_s"] >= api.CONTACT_CHECK_S
-    client.post(f"/api/jobs/{job['id']}/cancel")
+    client.post(f"/api/jobs/{job['id']}/cancel", json={})
     s = wait_job(client, job["id"])
     assert s["state"] == "cancelled" and s["result"] is None and s["done"] < 9
     assert client.get(f"/api/jobs/{job['id']}/download").status_code == 400

@@ -18,6 +18,8 @@ import io
 import math
 import threading
 import time
+from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -40,8 +42,9 @@ MAX_ENSEMBLE_WORK_S = 120.0
 #: Largest uploaded geometry (characters of JSON).
 MAX_UPLOAD_CHARS = 2_000_000
 
-#: Library calls are made one at a time: numba's parallel loops (ensemble batches) must not
-#: run in two threads at once, and a local app has one user.
+#: Library calls are made one at a time within a process: numba's parallel loops must not
+#: run in two threads at once.  The jobs (ensemble, curve, report) run in the job worker
+#: process (app/jobs.py), so the server's statics never wait on a job's lock.
 COMPUTE_LOCK = threading.RLock()
 
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
@@ -149,8 +152,17 @@ def arch_from_params(params: dict):
     else:
         arch = arch_from_args(ns)
     if arch.n > MAX_VOUSSOIRS:
-        raise ArchInputError(f"voussoirs: {arch.n}; the app allows 3 to {MAX_VOUSSOIRS}")
+        v, p = block_counts(arch)
+        field = "pier_courses" if p else "voussoirs"
+        raise ArchInputError(f"{field}: {arch.n} blocks in all ({v} voussoirs, {p} pier "
+                             f"courses); the app allows up to {MAX_VOUSSOIRS} blocks")
     return arch
+
+
+def block_counts(arch) -> tuple[int, int]:
+    """(voussoirs, pier courses) of an arch: the blocks of its piers are not voussoirs."""
+    p = len(getattr(arch, "pier_blocks", ()))
+    return int(arch.n) - p, p
 
 
 def _uploaded_arch(data, ns, name):
@@ -170,7 +182,8 @@ def _uploaded_arch(data, ns, name):
         raise ArchInputError("geometry: expected the JSON object of a geometry file")
     vs = data.get("voussoirs")
     if isinstance(vs, list) and len(vs) > MAX_VOUSSOIRS:
-        raise ArchInputError(f"geometry: {len(vs)} voussoirs; the app allows 3 to {MAX_VOUSSOIRS}")
+        raise ArchInputError(f"geometry: {len(vs)} blocks; the app allows up to {MAX_VOUSSOIRS} "
+                             f"blocks (voussoirs and pier courses)")
     label = name if isinstance(name, str) and name.strip() else "uploaded"
     try:
         arch = arch_from_dict(data, name=label[:80])
@@ -188,12 +201,15 @@ def _xy(a) -> list:
 
 
 def arch_drawing(arch) -> dict:
-    """What the page draws of an arch: each voussoir's closed outline [[x, y], ...] [m], each
+    """What the page draws of an arch: ``n`` blocks (``voussoirs`` and ``pier_courses``, the
+    blocks of both piers), each block's closed outline [[x, y], ...] [m], each
     joint's contact segment (intrados end, extrados end) [m] and the ground level [m]."""
     from ..reports.plots import springing_level, voussoir_outline
 
     outlines = [_xy(voussoir_outline(arch, i, points_per_rad=30.0)) for i in range(arch.n)]
-    return {"name": arch.name, "n": int(arch.n), "outlines": outlines,
+    v, p = block_counts(arch)
+    return {"name": arch.name, "n": int(arch.n), "voussoirs": v, "pier_courses": p,
+            "outlines": outlines,
             "joints": _xy(arch.joint_points), "ground": springing_level(arch),
             "kind": type(arch).__name__}
 
@@ -556,6 +572,24 @@ RECORD_UNITS = ("g", "m/s2", "cm/s2")
 DXF_UNITS = ("m", "cm", "mm")
 
 
+class Upload(NamedTuple):
+    """An uploaded file as the server streamed it: its ``path`` (in a temporary folder of the
+    server, mode 0700, deleted after the request), ``size`` [bytes] and ``sha256``."""
+
+    path: Path
+    size: int
+    sha256: str
+
+    @classmethod
+    def of_bytes(cls, data: bytes, folder) -> Upload:
+        """The upload of ``data`` written into ``folder`` (scripts, tests)."""
+        import hashlib
+
+        path = Path(folder) / "upload.bin"
+        path.write_bytes(data)
+        return cls(path, len(data), hashlib.sha256(data).hexdigest())
+
+
 class TooLarge(ArchInputError):
     """An upload above :data:`MAX_FILE_BYTES` (HTTP 413)."""
 
@@ -579,20 +613,16 @@ def safe_name(name, default: str) -> str:
     return base or default
 
 
-def _parse_in_tempdir(data: bytes, name: str, read):
-    """``read(path)`` of ``data`` written as ``name`` in a new temporary folder of this
-    process (mode 0700), deleted when ``read`` returns; messages name the file, not the
-    folder."""
-    import tempfile
-    from pathlib import Path
-
-    with tempfile.TemporaryDirectory(prefix="archrock-app-") as tmp:
-        path = Path(tmp) / name
-        path.write_bytes(data)
-        try:
-            return read(path)
-        except ArchInputError as exc:
-            raise type(exc)(str(exc).replace(str(path), name).replace(tmp + "/", "")) from None
+def _parse_in(upload: Upload, name: str, read):
+    """``read(path)`` of the uploaded file renamed ``name`` in its own temporary folder (the
+    readers choose by the suffix); messages name the file, not the folder."""
+    path = upload.path.with_name(name)
+    upload.path.replace(path)
+    try:
+        return read(path)
+    except ArchInputError as exc:
+        folder = str(path.parent)
+        raise type(exc)(str(exc).replace(str(path), name).replace(folder + "/", "")) from None
 
 
 class RecordStore:
@@ -638,22 +668,21 @@ def _trace(times, accel_g, points: int = 2000) -> dict:
     return {"time": _xy(ts), "accel_g": _xy(vs)}
 
 
-def load_record_upload(data: bytes, params: dict, store: RecordStore) -> dict:
-    """Read an uploaded record file (``data``, its ``name``: ``.AT2`` is a PEER file in g,
+def load_record_upload(data: Upload, params: dict, store: RecordStore) -> dict:
+    """Read an uploaded record file (``data``, streamed by the server; its ``name``: ``.AT2`` is a PEER file in g,
     anything else two columns "time accel"), with ``units`` (g, m/s2, cm/s2) and ``scale``, by
     the library's :class:`~archrock.groundmotion.RecordSpec` (``load_record`` and the scale's
     check) in a temporary folder of the server; keep it in ``store``.  Returns its id and
     what the page shows of it: name, samples, time step, duration, PGA [g], sha256 and a small
     trace of it."""
-    import hashlib
     import warnings
 
     from ..groundmotion import RecordSpec
     from ..units import G
 
-    if len(data) > MAX_FILE_BYTES:
-        raise too_large("record", len(data))
-    if not data:
+    if data.size > MAX_FILE_BYTES:
+        raise too_large("record", data.size)
+    if not data.size:
         raise ArchInputError("record: the file is empty; allowed a PEER .AT2 file or two "
                              "columns 'time accel'")
     name = safe_name(params.get("name"), "record.txt")
@@ -665,10 +694,10 @@ def load_record_upload(data: bytes, params: dict, store: RecordStore) -> dict:
         raise ArchInputError(f"units: {units!r} for {name}; allowed g (PEER .AT2 values are in g)")
     with warnings.catch_warnings(record=True) as said:
         warnings.simplefilter("always")
-        motion = _parse_in_tempdir(
+        motion = _parse_in(
             data, name, lambda p: RecordSpec.from_file(p, None if name.lower().endswith(".at2")
                                                        else units, scale).build())
-    sha = hashlib.sha256(data).hexdigest()
+    sha = data.sha256
     key = f"{sha[:16]}-{units or 'g'}-{scale!r}"
     t = np.asarray(motion.times, float)
     dt = np.diff(t)
@@ -690,7 +719,7 @@ def record_motion(params, store: RecordStore | None):
     return store.get(params.get("id"))
 
 
-def load_dxf_upload(data: bytes, params: dict) -> dict:
+def load_dxf_upload(data: Upload, params: dict) -> dict:
     """Read an uploaded DXF survey (one closed polyline per voussoir) as ``archrock
     import-dxf`` does (:func:`archrock.geometry.dxf.read_dxf_outlines` then
     :func:`~archrock.geometry.dxf.arch_from_outlines`, the steps of ``read_dxf``, with its
@@ -700,9 +729,9 @@ def load_dxf_upload(data: bytes, params: dict) -> dict:
     from ..options import GEOMETRY_DEFAULTS
     from ..geometry.dxf import arch_from_outlines, read_dxf_outlines
 
-    if len(data) > MAX_FILE_BYTES:
-        raise too_large("dxf", len(data))
-    if not data:
+    if data.size > MAX_FILE_BYTES:
+        raise too_large("dxf", data.size)
+    if not data.size:
         raise ArchInputError("dxf: the file is empty; allowed a DXF drawing")
     name = safe_name(params.get("name"), "survey.dxf")
     layer = params.get("layer") or None
@@ -729,7 +758,7 @@ def load_dxf_upload(data: bytes, params: dict) -> dict:
 
     try:
         with COMPUTE_LOCK:
-            arch, handles = _parse_in_tempdir(data, name, read)
+            arch, handles = _parse_in(data, name, read)
     except ImportError as exc:  # ezdxf missing: the extra to install
         raise ArchInputError(f"dxf: {exc}") from None
     except ArchInputError as exc:

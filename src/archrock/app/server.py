@@ -21,22 +21,30 @@ Routes (JSON bodies; lengths m, accelerations g, times s):
 A bad value answers 400 with ``{"error": message}`` (the CLI's one-line message, naming the
 field); a valid arch with no answer of the kind asked (cannot stand, no mechanism) 422; never a
 traceback; an upload above api.MAX_FILE_BYTES 413.  Only the request bodies are read and only the
-downloads written; an uploaded file is written only into a new temporary folder of the server
+downloads written; an uploaded file is streamed into a new temporary folder of the server
 (mode 0700), read by the library and deleted with it in the same request.
+
+Who may ask (:class:`_Guard`, docs/app.md): the Host header must be the bound address and port;
+a request naming another origin (Origin, or failing that Referer) is refused 403; every API call
+must come from the page (its origin) and carry the page's token (``X-Archrock-Token``, made at
+launch and written into the served page) or it is refused 403; its body must be
+``application/json`` (``application/octet-stream`` on the two upload endpoints) or 415.
 """
 
 from __future__ import annotations
 
 import contextlib
+import hashlib
+import ipaddress
 import json
+import secrets
+import tempfile
 from pathlib import Path
 
 from starlette.applications import Starlette
 from starlette.concurrency import run_in_threadpool
-from starlette.middleware import Middleware
-from starlette.middleware.trustedhost import TrustedHostMiddleware
 from starlette.requests import Request
-from starlette.responses import FileResponse, JSONResponse, Response
+from starlette.responses import JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
@@ -49,7 +57,15 @@ STATIC = Path(__file__).parent / "static"
 #: The page may load only its own files (no CDN, no other site).
 CSP = ("default-src 'self'; img-src 'self' data: blob:; style-src 'self'; script-src 'self'; "
        "connect-src 'self'; object-src 'none'; base-uri 'none'; frame-ancestors 'none'")
-LOOPBACK_NAMES = ["127.0.0.1", "localhost", "[::1]", "testserver"]
+#: The request header carrying the page's token on every API call.
+TOKEN_HEADER = "x-archrock-token"
+#: Where the served page holds its token (index.html's empty meta element, filled at launch).
+TOKEN_META = '<meta name="archrock-token" content="">'
+#: The two upload endpoints, which take the file's bytes (application/octet-stream).
+UPLOADS = ("/api/record", "/api/dxf")
+#: Bound addresses meaning every interface: any IP literal may then name the server (a DNS
+#: name could be rebound to it by another site; an address cannot).
+WILDCARDS = ("0.0.0.0", "::", "[::]")
 
 
 def _json(data, status: int = 200) -> JSONResponse:
@@ -76,13 +92,27 @@ def _error(exc: Exception) -> JSONResponse:
                   "kind": "internal"}, 500)
 
 
-async def _body(request: Request) -> dict:
+async def _chunks(request: Request, cap: int, too_big):
+    """The body's chunks, refused (``too_big(size)`` raised) once past ``cap`` bytes: by its
+    declared length before any is read, else as they arrive (never more than ``cap`` held)."""
     size = request.headers.get("content-length")
-    if size is not None and size.isdigit() and int(size) > api.MAX_UPLOAD_CHARS:
-        raise ArchInputError(f"request: {int(size)} bytes; allowed up to {api.MAX_UPLOAD_CHARS}")
-    raw = await request.body()
-    if len(raw) > api.MAX_UPLOAD_CHARS:
-        raise ArchInputError(f"request: {len(raw)} bytes; allowed up to {api.MAX_UPLOAD_CHARS}")
+    if size is not None and size.isdigit() and int(size) > cap:
+        raise too_big(int(size))
+    n = 0
+    async for chunk in request.stream():
+        n += len(chunk)
+        if n > cap:
+            raise too_big(n)
+        yield chunk
+
+
+def _too_long(size: int) -> api.TooLarge:
+    return api.TooLarge(f"request: {size:,} bytes; allowed up to {api.MAX_UPLOAD_CHARS:,} "
+                        f"(a JSON body)")
+
+
+async def _body(request: Request) -> dict:
+    raw = b"".join([c async for c in _chunks(request, api.MAX_UPLOAD_CHARS, _too_long)])
     try:
         data = json.loads(raw or b"{}")
     except (ValueError, RecursionError) as exc:
@@ -92,19 +122,18 @@ async def _body(request: Request) -> dict:
     return data
 
 
-async def _upload(request: Request, field: str) -> bytes:
-    """The raw body of a file upload, refused (413) above api.MAX_FILE_BYTES before or while
-    it is read."""
-    size = request.headers.get("content-length")
-    if size is not None and size.isdigit() and int(size) > api.MAX_FILE_BYTES:
-        raise api.too_large(field, int(size))
-    chunks, n = [], 0
-    async for chunk in request.stream():
-        n += len(chunk)
-        if n > api.MAX_FILE_BYTES:
-            raise api.too_large(field, n)
-        chunks.append(chunk)
-    return b"".join(chunks)
+async def _upload(request: Request, field: str, folder: str) -> api.Upload:
+    """The body of a file upload streamed into ``folder`` (hashed on the way), refused (413)
+    above api.MAX_FILE_BYTES: memory holds one chunk at a time, not the file."""
+    path = Path(folder) / "upload.bin"
+    sha, n = hashlib.sha256(), 0
+    with open(path, "wb") as f:
+        async for chunk in _chunks(request, api.MAX_FILE_BYTES,
+                                   lambda size: api.too_large(field, size)):
+            f.write(chunk)
+            sha.update(chunk)
+            n += len(chunk)
+    return api.Upload(path, n, sha.hexdigest())
 
 
 def _endpoint(func):
@@ -118,28 +147,35 @@ def _endpoint(func):
     return endpoint
 
 
-def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlette:
-    """The app. ``hosts``: Host header names accepted besides the loopback ones (a guard
-    against DNS rebinding); ``warm_up``: compile the numba kernels in a background thread at
-    start (the first answer then does not wait for them)."""
-    jobs = Jobs()
+def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | None = None,
+               token: str | None = None, warm_up: bool = False) -> Starlette:
+    """The app served at ``host``:``port`` (the bound address: the only Host header accepted,
+    with the ``host:port`` names of ``hosts``); ``token``: the page's token (default a new
+    random one, ``app.state.token``); ``warm_up``: compile the numba kernels in the
+    background at start (the statics here, the ensemble's in the job worker)."""
+    token = token or secrets.token_urlsafe(32)
+    jobs = Jobs(warm_up=warm_up)
     records = api.RecordStore()
+    page = (STATIC / "index.html").read_text(encoding="utf-8")
+    if TOKEN_META not in page:
+        raise RuntimeError("index.html has lost its token element")
+    page = page.replace(TOKEN_META, f'<meta name="archrock-token" content="{token}">')
 
     async def index(request):
-        return FileResponse(STATIC / "index.html", headers={"Cache-Control": "no-store"})
+        return Response(page, media_type="text/html; charset=utf-8",
+                        headers={"Cache-Control": "no-store"})
 
     async def favicon(request):
-        return FileResponse(STATIC / "favicon.svg", media_type="image/svg+xml")
+        return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
 
     def job_route(check, total, run, extra=lambda req: {}):
         """A route that checks its request (``check``, in a thread: it may read files or
         estimate work) and starts ``run(req, progress, cancelled)`` as a job of ``total(req)``
-        steps."""
+        steps in the job worker."""
         async def route(request: Request):
             try:
                 req = await run_in_threadpool(check, await _body(request))
-                job = jobs.start(total(req), lambda progress, cancelled: run(req, progress,
-                                                                             cancelled))
+                job = await run_in_threadpool(jobs.start, total(req), run, req)
                 return _json({**job.to_dict(), **extra(req)})
             except Exception as exc:  # noqa: BLE001
                 return _error(exc)
@@ -165,9 +201,10 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
     def _uploader(field, func):
         async def endpoint(request: Request):
             try:
-                data = await _upload(request, field)
-                params = dict(request.query_params)
-                return _json(await run_in_threadpool(func, data, params))
+                with tempfile.TemporaryDirectory(prefix="archrock-app-") as folder:
+                    data = await _upload(request, field, folder)
+                    params = dict(request.query_params)
+                    return _json(await run_in_threadpool(func, data, params))
             except Exception as exc:  # noqa: BLE001
                 return _error(exc)
         return endpoint
@@ -180,7 +217,8 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
 
     async def job_cancel(request: Request):
         try:
-            return _json(jobs.cancel(request.path_params["job"]).to_dict())
+            return _json((await run_in_threadpool(jobs.cancel,
+                                                  request.path_params["job"])).to_dict())
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
 
@@ -229,16 +267,92 @@ def create_app(hosts: list[str] | None = None, warm_up: bool = False) -> Starlet
             import threading
 
             threading.Thread(target=_warm_up, name="archrock-warm-up", daemon=True).start()
+        await run_in_threadpool(jobs.prepare)  # the worker's imports start now, not at the job
         yield
-        jobs.cancel_all()
+        await run_in_threadpool(jobs.close)
 
-    app = Starlette(routes=routes,
-                    middleware=[Middleware(TrustedHostMiddleware,
-                                           allowed_hosts=LOOPBACK_NAMES + list(hosts or ())),
-                                Middleware(_SecurityHeaders)],
-                    lifespan=lifespan)
-    app.state.jobs = jobs
+    app = Starlette(routes=routes, lifespan=lifespan)
+    # outermost first: every answer (a refusal too) carries the security headers
+    app.add_middleware(_Guard, names=_host_names(host, port, hosts), port=port, token=token,
+                       any_ip=host.strip() in WILDCARDS)
+    app.add_middleware(_SecurityHeaders)
+    app.state.jobs, app.state.token = jobs, token
     return app
+
+
+def _host_names(host: str, port: int, hosts) -> set[str]:
+    """The Host header values naming the server bound at ``host``:``port``, with ``hosts``."""
+    h = host.strip()
+    if ":" in h and not h.startswith("["):
+        h = f"[{h}]"
+    names = {f"{h}:{port}", *(hosts or ())}
+    if h in ("127.0.0.1", "[::1]", "localhost", *WILDCARDS):
+        names.add(f"localhost:{port}")  # the loopback's own name: not rebindable by a site
+    return {n.lower() for n in names}
+
+
+class _Guard:
+    """ASGI middleware: refuses (403) a Host other than the server's, a request from another
+    origin, an API call without the page's origin and token; (415) an API body of another
+    media type. The security model in docs/app.md."""
+
+    def __init__(self, app, names: set[str], port: int, token: str, any_ip: bool):
+        self.app, self.names, self.port, self.any_ip = app, names, port, any_ip
+        self.token = token.encode()
+
+    def _host_ok(self, host: str) -> bool:
+        if host in self.names:
+            return True
+        if not self.any_ip:
+            return False
+        name, _, port = host.rpartition(":")
+        try:
+            ipaddress.ip_address(name.strip("[]"))
+        except ValueError:
+            return False
+        return port == str(self.port)
+
+    def refusal(self, scope) -> tuple[int, str] | None:
+        """(status, message) of a request refused, None for one let through."""
+        headers = {k.decode("latin-1").lower(): v.decode("latin-1")
+                   for k, v in scope["headers"]}
+        host = headers.get("host", "").lower()
+        if not self._host_ok(host):
+            return 403, (f"host: {host[:60]!r}; allowed {', '.join(sorted(self.names))} "
+                         f"(the address the app listens on)")
+        path = scope["path"]
+        if not path.startswith("/api/"):  # the page and its files: anyone may load them
+            return None
+        own = f"http://{host}"
+        origin, referer = headers.get("origin"), headers.get("referer")
+        if origin is not None:
+            if origin.lower() != own:
+                return 403, f"origin: {origin[:60]!r}; allowed only the app's own page ({own})"
+        elif referer is not None:
+            if not (referer.lower() == own or referer.lower().startswith(own + "/")):
+                return 403, f"referer: another site; allowed only the app's own page ({own})"
+        if origin is None and referer is None:
+            return 403, f"origin: missing; the API answers only the app's own page ({own})"
+        given = headers.get(TOKEN_HEADER, "").encode("latin-1")
+        if not secrets.compare_digest(given, self.token):
+            return 403, (f"{TOKEN_HEADER}: {'missing' if not given else 'wrong'}; the API "
+                         f"answers only the page the app served (reload it)")
+        if scope["method"] not in ("GET", "HEAD"):
+            media = headers.get("content-type", "").split(";")[0].strip().lower()
+            allowed = "application/octet-stream" if path in UPLOADS else "application/json"
+            if media != allowed:
+                return 415, f"content-type: {media or 'missing'!r}; allowed {allowed}"
+        return None
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            return await self.app(scope, receive, send)
+        refused = self.refusal(scope)
+        if refused is None:
+            return await self.app(scope, receive, send)
+        status, msg = refused
+        kind = "media-type" if status == 415 else "forbidden"
+        return await _json({"error": msg, "kind": kind}, status)(scope, receive, send)
 
 
 class _SecurityHeaders:
@@ -262,27 +376,41 @@ class _SecurityHeaders:
 
 
 def _warm_up() -> None:
-    """Compile (or load from numba's cache) the kernels of the page's first answers."""
+    """Compile (or load from numba's cache) the kernels of the page's first statics and
+    response here (the ensemble's are warmed in the job worker)."""
     try:
         arch = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7}
         api.limit({"arch": arch})
         api.respond({"arch": arch, "pulse": {"kind": "oppenheim", "amplitude": -1.0,
                                              "duration": 0.2}, "t_end": 1.0})
-        cfg = api.ensemble_config({"arch": arch, "samples": 50,
-                                   "pulse": {"kind": "oppenheim", "amplitude": -1.0,
-                                             "duration": 0.2}})
-        api.run_ensemble_job(cfg, lambda d, t: None, lambda: False)
     except Exception:  # noqa: BLE001 - warming up is an optimisation; a real request will say
         pass
 
 
+#: Seconds uvicorn waits for open requests when asked to stop (Ctrl-C) before closing them.
+GRACEFUL_S = 1.0
+
+
+def server_config(app, **kwargs):
+    """uvicorn's Config of the app: quiet, and stopping within about :data:`GRACEFUL_S`."""
+    import uvicorn
+
+    return uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=GRACEFUL_S,
+                          **kwargs)
+
+
 class BackgroundServer:
     """The app served by uvicorn in a daemon thread on a free loopback port (tests, scripts):
-    ``with BackgroundServer() as url: ...``; ``url`` is ``http://127.0.0.1:PORT/``."""
+    ``with BackgroundServer() as url: ...``; ``url`` is ``http://127.0.0.1:PORT/``, ``token``
+    the page's token (``headers``: what an API call of the page sends)."""
 
     def __init__(self, warm_up: bool = True, timeout_s: float = 30.0):
         self.warm_up, self.timeout_s = warm_up, timeout_s
-        self.server = self.thread = None
+        self.server = self.thread = self.token = self.url = None
+
+    @property
+    def headers(self) -> dict:
+        return {"Origin": self.url.rstrip("/"), "X-Archrock-Token": self.token}
 
     def __enter__(self) -> str:
         import socket
@@ -293,8 +421,10 @@ class BackgroundServer:
 
         sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         sock.bind(("127.0.0.1", 0))
-        self.server = uvicorn.Server(uvicorn.Config(create_app(warm_up=self.warm_up),
-                                                    log_level="warning"))
+        port = sock.getsockname()[1]
+        app = create_app("127.0.0.1", port, warm_up=self.warm_up)
+        self.token, self.url = app.state.token, f"http://127.0.0.1:{port}/"
+        self.server = uvicorn.Server(server_config(app))
         self.thread = threading.Thread(target=self.server.run, kwargs={"sockets": [sock]},
                                        name="archrock-app-server", daemon=True)
         self.thread.start()
@@ -303,7 +433,7 @@ class BackgroundServer:
             if time.monotonic() > end or not self.thread.is_alive():
                 raise RuntimeError("the app's server did not start")
             time.sleep(0.02)
-        return f"http://127.0.0.1:{sock.getsockname()[1]}/"
+        return self.url
 
     def __exit__(self, *exc):
         self.server.should_exit = True

@@ -37,7 +37,8 @@ def add_app_parser(subparsers):
                    help=f"TCP port (default {DEFAULT_PORT}; 0: any free port)")
     p.add_argument("--host", default=DEFAULT_HOST,
                    help=f"address to listen on (default {DEFAULT_HOST}: this machine only; "
-                        f"0.0.0.0 opens it to the network: the app has no login)")
+                        f"0.0.0.0 opens it to the network: the app has no login; there the page "
+                        f"must be opened by the machine's IP address, not a name)")
     p.add_argument("--no-browser", action="store_true", help="do not open a browser")
     p.set_defaults(func=run_app)
     return p
@@ -54,6 +55,7 @@ def run_app(args) -> int:
     import uvicorn
 
     from ..app import create_app
+    from ..app.server import server_config
 
     if not args.host.strip():
         raise CLIError("--host: empty; allowed an address such as 127.0.0.1")
@@ -62,21 +64,22 @@ def run_app(args) -> int:
         sock = socket.socket(family, socket.SOCK_STREAM)
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         sock.bind((args.host, args.port))
+        sock.listen(128)  # a request right after the URL is printed waits, not refused
     except (OSError, OverflowError) as exc:
         raise CLIError(f"--host/--port: cannot listen on {args.host}:{args.port} "
                        f"({getattr(exc, 'strerror', None) or exc})") from None
     port = sock.getsockname()[1]
     shown = "127.0.0.1" if args.host in ("0.0.0.0", "::") else args.host
     url = f"http://{shown if ':' not in shown else f'[{shown}]'}:{port}/"
-    hosts = [] if args.host in ("127.0.0.1", "localhost", "::1") else ["*"]
-    app = create_app(hosts=hosts, warm_up=True)
+    # the Host header must name this address and port (a guard against DNS rebinding); a
+    # page's API calls carry the token written into the page at launch (docs/app.md)
+    app = create_app(args.host, port, warm_up=True)
     print(f"archrock app: {url} (Ctrl-C stops it)", file=sys.stderr, flush=True)
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         print(f"archrock app: warning: listening on {args.host}: other machines can reach it",
               file=sys.stderr)
     if not args.no_browser:
         threading.Timer(0.8, webbrowser.open, (url,)).start()
-    config = uvicorn.Config(app, log_level="warning")
-    server = uvicorn.Server(config)
+    server = uvicorn.Server(server_config(app))
     server.run(sockets=[sock])
     return 0

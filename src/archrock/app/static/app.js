@@ -19,6 +19,12 @@ const app = window.__app = {redraws: 0, frame: -1, frames: 0, timings: {slider: 
 const MAX_FILE_BYTES = 20e6;
 
 const $ = (id) => document.getElementById(id);
+// the token the server wrote into this page at launch: every API call carries it (another
+// site's page cannot read it, so it cannot drive the app)
+const TOKEN = document.querySelector('meta[name="archrock-token"]').content;
+const api = (url, init = {}) => fetch(url, {...init, credentials: "same-origin",
+                                           headers: {...(init.headers || {}),
+                                                     "X-Archrock-Token": TOKEN}});
 
 function el(tag, attrs, parent) {
   const e = document.createElementNS(SVGNS, tag);
@@ -40,7 +46,7 @@ function clearError() { $("message").hidden = true; $("message").textContent = "
 async function post(url, body) {
   let resp;
   try {
-    resp = await fetch(url, {method: "POST", headers: {"Content-Type": "application/json"},
+    resp = await api(url, {method: "POST", headers: {"Content-Type": "application/json"},
                              body: JSON.stringify(body)});
   } catch (e) {
     showError("the archrock server does not answer (is `archrock app` still running?)");
@@ -161,7 +167,10 @@ function drawStatics(res, base) {
   app.redraws += 1;
   svg.setAttribute("data-redraws", app.redraws);
   svg.setAttribute("data-k", s.k);
-  $("arch-name").textContent = `${res.drawing.name} (${res.drawing.n} voussoirs)`;
+  // the blocks said as what they are: a pier's courses are not voussoirs
+  const d = res.drawing;
+  $("arch-name").textContent = `${d.name} (${d.voussoirs} voussoirs` +
+    (d.pier_courses ? `, ${d.pier_courses} pier courses)` : ")");
   $("k").textContent = `k = ${fmt(s.k)}`;
   $("k-detail").textContent = `k_l = ${fmt(s.k_l, 4)} g, k_r = ${fmt(s.k_r, 4)} g` +
       (s.four_link_holds ? "" : " (four-link model does not hold)");
@@ -299,7 +308,7 @@ async function download(what) {
   let motion;
   try { motion = what === "response-csv" ? motionParams() : {pulse: pulseParams()}; } catch (e) { return; }
   const body = {what, arch: archParams(), ...motion, t_end: $("t-end").value};
-  const resp = await fetch("/api/export", {method: "POST", headers: {"Content-Type": "application/json"},
+  const resp = await api("/api/export", {method: "POST", headers: {"Content-Type": "application/json"},
                                            body: JSON.stringify(body)});
   if (!resp.ok) {
     const data = await resp.json().catch(() => ({}));
@@ -388,7 +397,7 @@ async function upload(url, file, params) {
   const q = new URLSearchParams({name: file.name, ...params});
   let resp;
   try {
-    resp = await fetch(`${url}?${q}`, {method: "POST", body: file,
+    resp = await api(`${url}?${q}`, {method: "POST", body: file,
                                        headers: {"Content-Type": "application/octet-stream"}});
   } catch (e) {
     showError("the archrock server does not answer (is `archrock app` still running?)");
@@ -576,7 +585,7 @@ async function runCurve() {
 
 // a job's status from the server (an Error with the server's message when it answers one)
 async function jobStatus(id) {
-  const resp = await fetch(`/api/jobs/${id}`);
+  const resp = await api(`/api/jobs/${id}`);
   const s = await resp.json();
   if (!resp.ok) throw new Error(s.error);
   return s;
@@ -641,7 +650,7 @@ async function runReport() {
     finish();
     if (s.state === "cancelled") { said.textContent = "report cancelled"; return; }
     if (s.state !== "done") { showError(s.error); said.textContent = ""; return; }
-    const resp = await fetch(`/api/jobs/${job.id}/download`);
+    const resp = await api(`/api/jobs/${job.id}/download`);
     if (!resp.ok) { showError(`report: HTTP ${resp.status}`); return; }
     const name = (resp.headers.get("Content-Disposition") || "").match(/filename="([^"]+)"/);
     saveBlob(await resp.blob(), name ? name[1] : "assessment.html");
