@@ -187,11 +187,15 @@ class SiteSpectrum:
     @classmethod
     def from_file(cls, path) -> "SiteSpectrum":
         """A two-column text file: T [s], Se [g] ('#' comments, commas or blanks)."""
+        from ..geometry.inputfile import read_input
+
         try:
-            with open(path, encoding="utf-8") as fh:
-                text = fh.read()
-        except OSError as exc:
-            raise ArchInputError(f"spectrum file {str(path)!r}: cannot read it ({exc.strerror})") from None
+            text = read_input(path, "spectrum").decode("utf-8")  # bounded by size
+        except ArchInputError as exc:
+            raise ArchInputError(f"spectrum file {exc}") from None
+        except UnicodeDecodeError as exc:
+            raise ArchInputError(f"spectrum file {str(path)!r}: not a text file (UTF-8 decoding "
+                                 f"failed at byte {exc.start})") from None
         rows = []
         for k, line in enumerate(text.splitlines(), 1):
             line = line.split("#")[0].replace(",", " ").strip()
