@@ -603,9 +603,13 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
             if isinstance(v, (str, bool)) or not isinstance(v, (int, float, np.floating,
                                                                 np.integer)):
                 raise ArchInputError(f"{key}[{i}]: expected a number in metres, got {v!r}")
-            _check_scalar(f"{key}[{i}]", v, 0.0, hi, hi_open=False,
-                          allowed=f"> 0 m, at most 100 times the largest arch's extent "
-                                  f"({hi:.4g} m)")
+            v = _check_scalar(f"{key}[{i}]", v, 0.0, hi, hi_open=False,
+                              allowed=f"> 0 m, at most 100 times the largest arch's extent "
+                                      f"({hi:.4g} m)")
+            if v < 1e-8 * hi:  # as for one arch's piers (geometry.piers): a 1e-300 m pier
+                raise ArchInputError(f"{key}[{i}]: {v:g} m is out of range; allowed "
+                                     f"{1e-8 * hi:.4g} m (a millionth of the largest arch's "
+                                     f"extent) to {hi:.4g} m (100 times it)")
     hs, ws = [float(v) for v in hs], [float(v) for v in ws]
     tol = 1e-9 * max([extent] + hs + ws)
     # place the arches: each a translated copy (joints, outlines, loads) of its polygon form

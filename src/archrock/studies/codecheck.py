@@ -190,9 +190,8 @@ class SiteSpectrum:
         from ..geometry.inputfile import read_input
 
         try:
-            text = read_input(path, "spectrum").decode("utf-8")  # bounded by size
-        except ArchInputError as exc:
-            raise ArchInputError(f"spectrum file {exc}") from None
+            # bounded by size; its errors name the file, the kind and the limit
+            text = read_input(path, "spectrum").decode("utf-8")
         except UnicodeDecodeError as exc:
             raise ArchInputError(f"spectrum file {str(path)!r}: not a text file (UTF-8 decoding "
                                  f"failed at byte {exc.start})") from None
@@ -345,7 +344,7 @@ class AboveGround:
     c1: float = 0.05
 
     def __post_init__(self):
-        _real("height", self.height, 0.0, 1e4, True, "a structure height > 0 m")
+        _real("height", self.height, 0.0, 1e4, True, "a structure height 0 < H <= 10000 m")
         if isinstance(self.storeys, bool) or not isinstance(self.storeys, (int, np.integer)) \
                 or not 1 <= self.storeys <= 100:
             raise ArchInputError(f"storeys: {self.storeys!r}; allowed an integer 1 to 100")
