@@ -99,6 +99,9 @@ def test_a_load_past_1e12_kg(capsys, tmp_path):
     (("limit", "--pier-width", "2", "--pier-height", "1e-300"),
      "archrock: error: --pier-height: 1e-300 m is out of range; allowed 2.109e-05 m (a millionth "
      "of the arch's extent) to 2109 m (100 times it)"),
+    (("limit", "--defect", "2:mortar=1e-300"),
+     "archrock: error: defect mortar: 1e-300 is out of range; allowed a fraction of the joint's "
+     "contact length, 0 < value < 1 (at least 1e-09)"),
     (("limit", "--density", "1e300"),
      "archrock: error: density: 1e+300 is out of range; allowed 1e-08 to 1e+08 kg/m^3"),
     (("respond", "--pulse", "oppenheim", "--amplitude", "-0.5", "--pulse-duration", "1e-300"),
