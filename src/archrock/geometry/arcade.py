@@ -38,7 +38,7 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import (DEFAULT_DENSITY, MAX_LOAD_KG, VoussoirArch, _check_density,
-                   _check_points, _check_scalar, polygon_properties)
+                   _check_point, _check_points, _check_scalar, polygon_properties)
 from .piers import _courses, _dedupe, _left_pier, _polygon_of
 from .polygon import FACE_TOLERANCE, _signed_area, _simple
 
@@ -175,10 +175,7 @@ class Arcade:
                 except (TypeError, ValueError):
                     raise ArchInputError(f"blocks[{i}].loads[{k}]: expected (mass, (x, y))") \
                         from None
-                at = np.array(_check_points(f"blocks[{i}].loads[{k}].at", at, "a point [x, y]"))
-                if at.shape != (2,):
-                    raise ArchInputError(f"blocks[{i}].loads[{k}].at: shape {at.shape}; allowed "
-                                         f"a point [x, y] in metres")
+                at = _check_point(f"blocks[{i}].loads[{k}].at", at)
                 m = _check_scalar(f"blocks[{i}].loads[{k}].mass", m, 0.0, None, lo_open=False,
                                   allowed=">= 0 kg per metre of depth")
                 at.setflags(write=False)
@@ -193,11 +190,7 @@ class Arcade:
                 m, ii = (_check_scalar(f"blocks[{i}].mass_properties.{k}", v,
                                        allowed="a finite number") for k, v in (("mass", m),
                                                                                ("inertia", ii)))
-                g = np.array(_check_points(f"blocks[{i}].mass_properties.centre", g,
-                                           "a point [x, y]"))
-                if g.shape != (2,):
-                    raise ArchInputError(f"blocks[{i}].mass_properties.centre: shape {g.shape}; "
-                                         f"allowed a point [x, y] in metres")
+                g = _check_point(f"blocks[{i}].mass_properties.centre", g)
                 if not (m > 0 and ii >= 0 and math.isfinite(m) and math.isfinite(ii)
                         and np.all(np.isfinite(g))):
                     raise ArchInputError(f"blocks[{i}].mass_properties: mass {m!r}, inertia "

@@ -107,7 +107,8 @@ def _check_density(value, name: str = "density") -> float:
                          MIN_DENSITY, MAX_DENSITY, lo_open=False, hi_open=False, allowed=allowed)
 
 
-def _check_points(name: str, values, shape: str = "a list of [x, y] points in metres") -> np.ndarray:
+def _check_points(name: str, values,
+                  shape: str = "a list of [x, y] points in metres") -> np.ndarray:
     """Points [m] as a float array, every coordinate finite and within MAX_COORD_M of the
     origin; checked before any arithmetic (an int too large for a double included)."""
     try:
@@ -151,6 +152,14 @@ def _check_size(name: str, values) -> None:
         i = int(np.argmax(bad))
         raise ArchInputError(f"{name}: {float(v.flat[i]):g} m is out of range; allowed "
                              f"{MIN_SIZE_M:g} m to {MAX_SIZE_M:g} m (units? lengths are in metres)")
+
+
+def _check_point(name: str, value) -> np.ndarray:
+    """One point [x, y] [m], bounded as by :func:`_check_points`, as a writable (2,) array."""
+    p = np.array(_check_points(name, value, "a point [x, y] in metres"))
+    if p.shape != (2,):
+        raise ArchInputError(f"{name}: shape {p.shape}; allowed a point [x, y] in metres")
+    return p
 
 
 def power_of_two_near(x):
@@ -217,10 +226,7 @@ class Load:
         mass = _check_scalar(f"loads[{index}].mass", data["mass"], 0.0, MAX_LOAD_KG,
                              lo_open=False, hi_open=False,
                              allowed=f"0 to {MAX_LOAD_KG:g} kg per metre of depth")
-        at = data["at"]
-        if isinstance(at, (list, tuple)):
-            at = tuple(_check_points(f"loads[{index}].at", at, "a point [x, y] in metres"))
-        return cls(data["voussoir"], mass, at)
+        return cls(data["voussoir"], mass, tuple(_check_point(f"loads[{index}].at", data["at"])))
 
     def mirrored(self) -> tuple[float, float]:
         return (-self.at[0], self.at[1])

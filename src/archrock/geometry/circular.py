@@ -18,7 +18,8 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import (DEFAULT_DENSITY, MAX_VOUSSOIRS, Load, VoussoirArch, _check_length,
-                   _check_density, _check_load_reach, _check_scalar, _check_size, _check_voussoir_count,
+                   _check_density, _check_load_reach, _check_scalar, _check_size,
+                   _check_voussoir_count,
                    _finite_array, _loads)
 
 __all__ = [

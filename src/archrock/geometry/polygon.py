@@ -19,7 +19,8 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_density, _check_load_reach,
-                   _check_points, _check_scalar, _check_size, _check_voussoir_count, _loads, polygon_properties)
+                   _check_points, _check_scalar, _check_size, _check_voussoir_count, _loads,
+                   polygon_properties)
 
 __all__ = ["PolygonArch", "FACE_TOLERANCE", "as_polygon"]
 
