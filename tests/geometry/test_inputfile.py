@@ -182,3 +182,12 @@ def test_arcade_coordinates_and_loads_bounded(tmp_path):
     with pytest.raises(ArchInputError, match=r"blocks\[3\]\.loads\[0\]\.mass: a 401-digit number "
                                              r"is out of range; allowed 0 to 1e\+12 kg"):
         read_arcade(_json(tmp_path, "heavy.json", heavy))
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs named pipes")
+def test_a_named_pipe_without_writer_does_not_hang(tmp_path):
+    fifo = tmp_path / "pipe.json"
+    os.mkfifo(fifo)
+    assert read_input(fifo, "geometry") == b""  # opened without blocking: no writer, no bytes
+    with pytest.raises(ArchInputError, match=r"pipe\.json: invalid JSON at line 1, column 1"):
+        read_arch(fifo)

@@ -44,6 +44,18 @@ def _too_large(p: Path, kind: str, limit: int, size: str) -> ArchInputError:
                           f"{limit / MB:g} MB ({limit} bytes)")
 
 
+def _open(p: Path):
+    """``p`` opened for reading in binary.  Opened without blocking, then read blocking: a
+    named pipe with no writer gives no bytes at once instead of waiting forever at open."""
+    nonblock = getattr(os, "O_NONBLOCK", 0)  # POSIX only
+    fd = os.open(p, os.O_RDONLY | nonblock | getattr(os, "O_BINARY", 0))
+    if nonblock:
+        import fcntl
+
+        fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~nonblock)
+    return os.fdopen(fd, "rb")
+
+
 def read_input(path: str | os.PathLike, kind: str) -> bytes:
     """The bytes of the input file ``path`` of ``kind`` (module docstring), refused with an
     :class:`~archrock.errors.ArchInputError` naming the file when it is missing, a directory,
@@ -51,7 +63,7 @@ def read_input(path: str | os.PathLike, kind: str) -> bytes:
     limit = input_limit(kind)
     p = Path(path)
     try:
-        with open(p, "rb") as fh:
+        with _open(p) as fh:
             st = os.fstat(fh.fileno())
             if stat.S_ISDIR(st.st_mode):
                 raise IsADirectoryError
