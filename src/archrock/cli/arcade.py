@@ -39,7 +39,8 @@ def add_arcade_parser(subparsers):
     g.add_argument("--voussoirs", type=_int, nargs="+", metavar="N",
                    help="voussoirs of each arch, 3 to 2000 (default 9)")
     g.add_argument("--density", type=finite_float, metavar="RHO",
-                   help="density [kg/m^3] of the arches and piers, > 0 (default 2000)")
+                   help="density [kg/m^3] of the arches and piers, 1e-8 to 1e8 (default "
+                        "2000)")
     g.add_argument("--geometry", nargs="+", metavar="FILE",
                    help="an arch geometry file per span (or one, with --repeat); excludes "
                         "the flags above")

@@ -85,7 +85,7 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
     g.add_argument("--voussoirs", type=_int, metavar="N",
                    help=f"number of voussoirs, 3 to 2000 (default {d['voussoirs']})")
     g.add_argument("--density", type=finite_float, metavar="RHO",
-                   help=f"density [kg/m^3], > 0 (default {d['density']:g}; cancels from k)")
+                   help=f"density [kg/m^3], 1e-8 to 1e8 (default {d['density']:g}; cancels from k)")
     g.add_argument("--geometry", metavar="FILE",
                    help="JSON geometry file, circular or polygon voussoirs (from the left "
                         "springing); excludes the flags above")

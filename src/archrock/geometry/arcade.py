@@ -37,7 +37,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import DEFAULT_DENSITY, VoussoirArch, _check_scalar, polygon_properties
+from .base import (DEFAULT_DENSITY, MAX_LOAD_KG, VoussoirArch, _check_density,
+                   _check_point, _check_points, _check_scalar, polygon_properties)
 from .piers import _courses, _dedupe, _left_pier, _polygon_of
 from .polygon import FACE_TOLERANCE, _signed_area, _simple
 
@@ -151,8 +152,7 @@ class Arcade:
             raise ArchInputError("blocks: expected a non-empty list of blocks")
         if not isinstance(self.contacts, (list, tuple)) or not self.contacts:
             raise ArchInputError("contacts: expected a non-empty list of contacts")
-        object.__setattr__(self, "density", _check_scalar("density", self.density, 0.0, None,
-                                                          allowed="> 0 kg/m^3"))
+        object.__setattr__(self, "density", _check_density(self.density))
         blocks = []
         for i, b in enumerate(self.blocks):
             if not isinstance(b, Block):
@@ -160,17 +160,10 @@ class Arcade:
             if b.kind not in ARCADE_KINDS:
                 raise ArchInputError(f"blocks[{i}].kind: {b.kind!r}; allowed "
                                      f"{', '.join(ARCADE_KINDS)}")
-            try:
-                out = np.array(b.outline, dtype=float)
-            except (TypeError, ValueError):
-                raise ArchInputError(f"blocks[{i}].outline: expected a list of [x, y] points "
-                                     f"in metres") from None
+            out = np.array(_check_points(f"blocks[{i}].outline", b.outline))
             if out.ndim != 2 or out.shape[1] != 2 or out.shape[0] < 3:
                 raise ArchInputError(f"blocks[{i}].outline: shape {out.shape}; allowed at least "
                                      f"3 points [x, y]")
-            if not np.all(np.isfinite(out)):
-                raise ArchInputError(f"blocks[{i}].outline: every coordinate must be a finite "
-                                     f"number")
             if not b._checked and not _simple(out):
                 raise ArchInputError(f"blocks[{i}].outline: its boundary intersects itself; "
                                      f"allowed a simple polygon")
@@ -178,22 +171,26 @@ class Arcade:
             loads = []
             for k, ld in enumerate(b.loads):
                 try:
-                    m, at = float(ld[0]), np.array(ld[1], float).reshape(2)
-                except (TypeError, ValueError, IndexError):
+                    m, at = ld
+                except (TypeError, ValueError):
                     raise ArchInputError(f"blocks[{i}].loads[{k}]: expected (mass, (x, y))") \
                         from None
-                if not (math.isfinite(m) and m >= 0 and np.all(np.isfinite(at))):
-                    raise ArchInputError(f"blocks[{i}].loads[{k}]: mass {m!r} kg/m at {at}; "
-                                         f"allowed a finite mass >= 0 at a finite point")
+                at = _check_point(f"blocks[{i}].loads[{k}].at", at)
+                m = _check_scalar(f"blocks[{i}].loads[{k}].mass", m, 0.0, None, lo_open=False,
+                                  allowed=">= 0 kg per metre of depth")
                 at.setflags(write=False)
                 loads.append((m, at))
             mp = b.mass_properties
             if mp is not None:
                 try:
-                    m, g, ii = float(mp[0]), np.array(mp[1], float).reshape(2), float(mp[2])
-                except (TypeError, ValueError, IndexError):
+                    m, g, ii = mp
+                except (TypeError, ValueError):
                     raise ArchInputError(f"blocks[{i}].mass_properties: expected (mass, (x, y), "
                                          f"inertia)") from None
+                m, ii = (_check_scalar(f"blocks[{i}].mass_properties.{k}", v,
+                                       allowed="a finite number") for k, v in (("mass", m),
+                                                                               ("inertia", ii)))
+                g = _check_point(f"blocks[{i}].mass_properties.centre", g)
                 if not (m > 0 and ii >= 0 and math.isfinite(m) and math.isfinite(ii)
                         and np.all(np.isfinite(g))):
                     raise ArchInputError(f"blocks[{i}].mass_properties: mass {m!r}, inertia "
@@ -227,11 +224,7 @@ class Arcade:
             if a == b_:
                 raise ArchInputError(f"contacts[{c}]: block {a} against itself; allowed two "
                                      f"different blocks")
-            try:
-                pts = np.array(ct.points, dtype=float)
-            except (TypeError, ValueError):
-                raise ArchInputError(f"contacts[{c}].points: expected two [x, y] points") \
-                    from None
+            pts = np.array(_check_points(f"contacts[{c}].points", ct.points, "two [x, y] points"))
             if pts.shape != (2, 2) or not np.all(np.isfinite(pts)):
                 raise ArchInputError(f"contacts[{c}].points: expected two finite [x, y] points, "
                                      f"got shape {pts.shape}")
@@ -419,7 +412,11 @@ class Arcade:
             for k, ld in enumerate(b.get("loads", []) or []):
                 if not isinstance(ld, dict) or "mass" not in ld or "at" not in ld:
                     raise ArchInputError(f"blocks[{i}].loads[{k}]: expected {{mass, at}}")
-                loads.append((ld["mass"], ld["at"]))
+                # a file's load is bounded at the door (a built arcade's fill may weigh more)
+                loads.append((_check_scalar(f"blocks[{i}].loads[{k}].mass", ld["mass"], 0.0,
+                                            MAX_LOAD_KG, lo_open=False, hi_open=False,
+                                            allowed=f"0 to {MAX_LOAD_KG:g} kg per metre of "
+                                                    f"depth"), ld["at"]))
             mp = b.get("mass_properties")
             if mp is not None:
                 if not isinstance(mp, dict) or not {"mass", "centre", "inertia"} <= set(mp):
@@ -606,9 +603,13 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
             if isinstance(v, (str, bool)) or not isinstance(v, (int, float, np.floating,
                                                                 np.integer)):
                 raise ArchInputError(f"{key}[{i}]: expected a number in metres, got {v!r}")
-            _check_scalar(f"{key}[{i}]", v, 0.0, hi, hi_open=False,
-                          allowed=f"> 0 m, at most 100 times the largest arch's extent "
-                                  f"({hi:.4g} m)")
+            v = _check_scalar(f"{key}[{i}]", v, 0.0, hi, hi_open=False,
+                              allowed=f"> 0 m, at most 100 times the largest arch's extent "
+                                      f"({hi:.4g} m)")
+            if v < 1e-8 * hi:  # as for one arch's piers (geometry.piers): a 1e-300 m pier
+                raise ArchInputError(f"{key}[{i}]: {v:g} m is out of range; allowed "
+                                     f"{1e-8 * hi:.4g} m (a millionth of the largest arch's "
+                                     f"extent) to {hi:.4g} m (100 times it)")
     hs, ws = [float(v) for v in hs], [float(v) for v in ws]
     tol = 1e-9 * max([extent] + hs + ws)
     # place the arches: each a translated copy (joints, outlines, loads) of its polygon form

@@ -33,9 +33,18 @@ DEFAULT_DENSITY = 2000.0  # kg/m^3; cancels from multipliers and from the equati
 EDGE_NAMES = ("intrados", "extrados")
 
 
+def _digits(value: int) -> str:
+    """'a 401-digit number': a huge int described without writing it out (str() of an int over
+    4300 digits raises)."""
+    return f"a {int(abs(value).bit_length() * math.log10(2)) + 1}-digit number"
+
+
 def _finite_array(name: str, values, *, ndim: int = 1) -> np.ndarray:
     try:
         arr = np.asarray(values, dtype=float)
+    except OverflowError:  # an int past double precision (a JSON file's 401-digit integer)
+        raise ArchInputError(f"{name}: a number too large for double precision; allowed "
+                             f"finite numbers") from None
     except (TypeError, ValueError):
         raise ArchInputError(f"{name}: expected numbers, got {values!r}") from None
     if arr.ndim != ndim:
@@ -51,6 +60,9 @@ def _check_scalar(name: str, value, lo: float | None = None, hi: float | None = 
         raise ArchInputError(f"{name}: expected a number, got {value!r}")
     try:
         v = float(value)
+    except OverflowError:  # an int past double precision, caught before any arithmetic
+        raise ArchInputError(f"{name}: {_digits(value)} is out of range; allowed "
+                             f"{allowed or 'a finite number'}") from None
     except (TypeError, ValueError):
         raise ArchInputError(f"{name}: expected a number, got {value!r}") from None
     if not math.isfinite(v):
@@ -75,11 +87,50 @@ MIN_LENGTH_M, MAX_LENGTH_M = 1e-8, 1e8
 #: extent of a polygon one): wider than the inputs' range, so scaled and perturbed arches pass,
 #: and well inside what double precision squares and cubes without overflow.
 MIN_SIZE_M, MAX_SIZE_M = 1e-9, 1e9
+#: Largest |x| or |y| [m] of a point of an arch, an arcade's block or a load: as far from the
+#: origin as the largest arch is across, so that squares and cross products stay near 1e18,
+#: far from overflow (coordinates of 1e200 overflowed in the arcade's arithmetic).
+MAX_COORD_M = MAX_SIZE_M
+#: Range of the masonry's density [kg/m^3] (stone is 1,500-3,000; the density cancels from the
+#: multipliers, but 1e-300 or 1e300 under- or overflows the masses).
+MIN_DENSITY, MAX_DENSITY = 1e-8, 1e8
+#: Largest mass of a load given in a file or an option [kg per metre of depth]: a billion
+#: tonnes on one metre of arch, more than any fill, pier or tower; past it the number is a slip.
+MAX_LOAD_KG = 1e12
+
+
+def _check_density(value, name: str = "density") -> float:
+    """A density [kg/m^3] in [MIN_DENSITY, MAX_DENSITY]."""
+    allowed = f"{MIN_DENSITY:g} to {MAX_DENSITY:g} kg/m^3"
+    return _check_scalar(name, _check_scalar(name, value, 0.0, None, allowed=f"> 0 kg/m^3, "
+                                             f"{allowed}"),
+                         MIN_DENSITY, MAX_DENSITY, lo_open=False, hi_open=False, allowed=allowed)
+
+
+def _check_points(name: str, values,
+                  shape: str = "a list of [x, y] points in metres") -> np.ndarray:
+    """Points [m] as a float array, every coordinate finite and within MAX_COORD_M of the
+    origin; checked before any arithmetic (an int too large for a double included)."""
+    try:
+        arr = np.asarray(values, dtype=float)
+    except OverflowError:
+        raise ArchInputError(f"{name}: a coordinate too large for double precision; allowed "
+                             f"|x|, |y| <= {MAX_COORD_M:g} m") from None
+    except (TypeError, ValueError):
+        raise ArchInputError(f"{name}: expected {shape}") from None
+    if not np.all(np.isfinite(arr)):
+        raise ArchInputError(f"{name}: every coordinate must be a finite number")
+    big = np.abs(arr) > MAX_COORD_M
+    if np.any(big):
+        raise ArchInputError(f"{name}: coordinate {float(arr[big].flat[0]):g} m is out of range; "
+                             f"allowed |x|, |y| <= {MAX_COORD_M:g} m (units? lengths are in "
+                             f"metres)")
+    return arr
 
 
 def _check_length(name: str, value, extra: str = "") -> float:
     """A length [m] given to describe an arch, in [MIN_LENGTH_M, MAX_LENGTH_M]."""
-    v = _check_scalar(name, value, allowed=f"a length in m")
+    v = _check_scalar(name, value, allowed=f"{MIN_LENGTH_M:g} m to {MAX_LENGTH_M:g} m{extra}")
     if not MIN_LENGTH_M <= v <= MAX_LENGTH_M:
         raise ArchInputError(f"{name}: {v:g} m is out of range; allowed {MIN_LENGTH_M:g} m to "
                              f"{MAX_LENGTH_M:g} m{extra} (units? lengths are in metres)")
@@ -101,6 +152,14 @@ def _check_size(name: str, values) -> None:
         i = int(np.argmax(bad))
         raise ArchInputError(f"{name}: {float(v.flat[i]):g} m is out of range; allowed "
                              f"{MIN_SIZE_M:g} m to {MAX_SIZE_M:g} m (units? lengths are in metres)")
+
+
+def _check_point(name: str, value) -> np.ndarray:
+    """One point [x, y] [m], bounded as by :func:`_check_points`, as a writable (2,) array."""
+    p = np.array(_check_points(name, value, "a point [x, y] in metres"))
+    if p.shape != (2,):
+        raise ArchInputError(f"{name}: shape {p.shape}; allowed a point [x, y] in metres")
+    return p
 
 
 def power_of_two_near(x):
@@ -162,8 +221,12 @@ class Load:
         if not isinstance(data, dict) or set(data) - {"voussoir", "mass", "at"} or not {
                 "voussoir", "mass", "at"} <= set(data):
             raise ArchInputError(f"loads[{index}]: expected an object with voussoir, mass, at")
-        return cls(data["voussoir"], data["mass"], tuple(data["at"]) if isinstance(
-            data["at"], (list, tuple)) else data["at"])
+        # a file's numbers are bounded here, at the door (a constructed Load may be heavier:
+        # the fill of a large family arch)
+        mass = _check_scalar(f"loads[{index}].mass", data["mass"], 0.0, MAX_LOAD_KG,
+                             lo_open=False, hi_open=False,
+                             allowed=f"0 to {MAX_LOAD_KG:g} kg per metre of depth")
+        return cls(data["voussoir"], mass, tuple(_check_point(f"loads[{index}].at", data["at"])))
 
     def mirrored(self) -> tuple[float, float]:
         return (-self.at[0], self.at[1])

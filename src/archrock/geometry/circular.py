@@ -18,7 +18,8 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import (DEFAULT_DENSITY, MAX_VOUSSOIRS, Load, VoussoirArch, _check_length,
-                   _check_load_reach, _check_scalar, _check_size, _check_voussoir_count,
+                   _check_density, _check_load_reach, _check_scalar, _check_size,
+                   _check_voussoir_count,
                    _finite_array, _loads)
 
 __all__ = [
@@ -105,7 +106,7 @@ class Arch(VoussoirArch):
         _check_voussoir_count(n)
         _check_size("radii", radii)
         _check_size("thicknesses", thick)
-        density = _check_scalar("density", self.density, 0.0, None, allowed="> 0 kg/m^3")
+        density = _check_density(self.density)
         for arr in (spans, radii, thick):
             arr.setflags(write=False)
         object.__setattr__(self, "spans", spans)
@@ -266,12 +267,19 @@ class Arch(VoussoirArch):
                 val = v[key]
                 if isinstance(val, bool) or not isinstance(val, (int, float)):
                     raise ArchInputError(f"voussoirs[{i}].{key}: expected a number, got {val!r}")
-                if not math.isfinite(val):
-                    raise ArchInputError(f"voussoirs[{i}].{key}: must be finite, got {val!r}")
-                dest.append(float(val))
+                # bounded before any arithmetic (a 401-digit int overflows float()); a value
+                # <= 0 is left to the arch's own check, which says what the voussoir allows
+                field_ = f"voussoirs[{i}].{key}"
+                val = _check_scalar(field_, val, allowed="0 < span_deg < 360" if key ==
+                                    "span_deg" else "1e-08 m to 1e+08 m")
+                if key == "span_deg" and val >= 360.0:
+                    raise ArchInputError(f"{field_}: {val:g} deg is out of range; allowed "
+                                         f"0 < span_deg < 360")
+                dest.append(_check_length(field_, val) if key != "span_deg" and val > 0 else val)
         density = data.get("density", DEFAULT_DENSITY)
         if isinstance(density, bool) or not isinstance(density, (int, float)):
             raise ArchInputError(f"density: expected a number, got {density!r}")
+        density = _check_density(density)
         loads = data.get("loads", ())
         if not isinstance(loads, (list, tuple)):
             raise ArchInputError("loads: expected a list of {voussoir, mass, at} objects")

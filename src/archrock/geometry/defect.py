@@ -63,14 +63,19 @@ DEFECT_KINDS = {
     "pier-tilt": ("pier", ("left", "right"), "left"),
 }
 _SIDE_KEY = {"thickness": "at", "mortar": "from", "pier-tilt": "side"}
+#: Smallest fraction a thickness or mortar defect leaves: below it the damaged outline has
+#: coinciding points (1e-300 gave "voussoirs[2].intrados: two consecutive points coincide").
+MIN_DEFECT_FRACTION = 1e-9
 #: largest angle [rad] of one polyline segment when a circular arch is written as a polygon
 _ARC_STEP = 0.002
 
 
 def _allowed_value(kind: str) -> str:
-    return {"thickness": "a remaining fraction of the thickness, 0 < value < 1",
+    return {"thickness": f"a remaining fraction of the thickness, 0 < value < 1 (at least "
+                         f"{MIN_DEFECT_FRACTION:g})",
             "tilt": "an angle in degrees, -45 < tilt < 45 (counter-clockwise positive)",
-            "mortar": "a fraction of the joint's contact length, 0 < value < 1",
+            "mortar": f"a fraction of the joint's contact length, 0 < value < 1 (at least "
+                      f"{MIN_DEFECT_FRACTION:g})",
             "pier-tilt": "an angle in degrees, -15 <= tilt <= 15 (outward positive: the pier "
                          "top moves away from the opening)"}[kind]
 
@@ -111,6 +116,9 @@ class Defect:
         else:
             v = _check_scalar(f"defect {self.kind}", self.value, 0.0, 1.0,
                               allowed=_allowed_value(self.kind))
+            if v < MIN_DEFECT_FRACTION:
+                raise ArchInputError(f"defect {self.kind}: {v:g} is out of range; allowed "
+                                     f"{_allowed_value(self.kind)}")
         object.__setattr__(self, "value", v)
         side = self.side or default
         if side == "centre":

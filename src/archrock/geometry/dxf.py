@@ -39,6 +39,7 @@ import numpy as np
 
 from ..errors import ArchInputError
 from . import DEFAULT_DENSITY, FACE_TOLERANCE, PolygonArch
+from .inputfile import read_input
 
 __all__ = ["read_dxf", "read_dxf_outlines", "arch_from_outlines", "UNITS"]
 
@@ -370,6 +371,25 @@ def _is_closed(entity, pts: np.ndarray) -> bool:
     return bool(closed) or (len(pts) > 3 and np.all(pts[0] == pts[-1]))
 
 
+def _dxf_document(ezdxf, data: bytes):
+    """The ezdxf drawing of a DXF file's bytes, as ``ezdxf.readfile`` reads a file: binary DXF
+    by its signature, else text in the encoding its header names (universal newlines)."""
+    import io
+
+    from ezdxf.document import Drawing
+    from ezdxf.filemanagement import dxf_stream_info
+    from ezdxf.lldxf.tagger import binary_tags_loader
+    from ezdxf.lldxf.validator import is_dxf_stream
+
+    if data[:22] == b"AutoCAD Binary DXF\r\n\x1a\x00":
+        return Drawing.load(binary_tags_loader(data, errors="surrogateescape"))
+    if not is_dxf_stream(io.StringIO(data.decode("utf-8", errors="ignore"), newline=None)):
+        raise OSError("not a DXF file")
+    info = dxf_stream_info(io.StringIO(data.decode("utf-8", errors="ignore"), newline=None))
+    return ezdxf.read(io.StringIO(data.decode(info.encoding, errors="surrogateescape"),
+                                  newline=None))
+
+
 def read_dxf_outlines(path: str | os.PathLike, layer: str | None = None,
                       units: str = "m") -> list[tuple[str, np.ndarray]]:
     """(handle, vertices [m]) of each closed polyline of the model space on ``layer`` (every
@@ -381,8 +401,9 @@ def read_dxf_outlines(path: str | os.PathLike, layer: str | None = None,
     if not p.is_file():
         raise ArchInputError(f"{p}: DXF file not found" if not p.exists() else
                              f"{p}: not a file, expected a DXF drawing")
+    data = read_input(p, "DXF")  # bounded by size before ezdxf parses it
     try:
-        doc = ezdxf.readfile(str(p))
+        doc = _dxf_document(ezdxf, data)
     except ezdxf.DXFStructureError as exc:
         raise ArchInputError(f"{p}: not a valid DXF drawing ({exc})") from None
     except (OSError, UnicodeDecodeError, ValueError) as exc:

@@ -41,7 +41,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, Load, _check_length, _check_scalar, _check_voussoir_count,
+from .base import (DEFAULT_DENSITY, Load, _check_density, _check_length, _check_scalar,
+                   _check_voussoir_count,
                    polygon_properties)
 from .polygon import PolygonArch
 
@@ -437,7 +438,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
         "thickness_crown", thickness_crown, 0.0, None, allowed="> 0 m"))
     n = _check_voussoir_count(_positive_int("voussoirs", voussoirs, 3))
     ppr = _check_scalar("points_per_rad", points_per_rad, 0.0, None, allowed="> 0")
-    density = _check_scalar("density", density, 0.0, None, allowed="> 0 kg/m^3")
+    density = _check_density(density)
     user_loads = tuple(ld if isinstance(ld, Load) else Load.from_dict(ld, i)
                        for i, ld in enumerate(loads or ()))
     if fill is not None:
@@ -445,8 +446,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
             raise ArchInputError(f"fill: {fill!r}; allowed {{'level': y [m], 'density': rho "
                                  f"[kg/m^3]}}")
         fill = {"level": _check_scalar("fill level", fill["level"], allowed="a finite y [m]"),
-                "density": _check_scalar("fill density", fill["density"], 0.0, None,
-                                         allowed="> 0 kg/m^3")}
+                "density": _check_density(fill["density"], "fill density")}
     name = name if name is not None else f"{shape} S={span:g} F={rise:g} t={thickness:g}"
     recipe = dict(shape=shape, span=span, rise=rise, thickness=thickness,
                   thickness_crown=thickness_crown if thickness_crown is None else t_crown,

@@ -32,6 +32,7 @@ from pathlib import Path
 
 from ..errors import ArchInputError
 from . import VoussoirArch, arch_from_dict
+from .inputfile import read_input
 
 __all__ = ["read_arch", "write_arch", "read_arcade", "write_arcade"]
 
@@ -40,7 +41,7 @@ def read_arch(path: str | os.PathLike) -> VoussoirArch:
     """Read an arch from a JSON geometry file of either format (module docstring); name = file
     stem."""
     p = Path(path)
-    data = _read_json(p)
+    data = _read_json(p, "geometry")
     if isinstance(data, dict) and data.get("kind") == "arcade":
         raise ArchInputError(f"{p}: an arcade document (several spans); allowed an arch here "
                              f"(read it with `archrock arcade --geometry`)")
@@ -57,7 +58,7 @@ def read_arcade(path: str | os.PathLike, on_size=None):
     from .arcade import Arcade
 
     p = Path(path)
-    data = _read_json(p)
+    data = _read_json(p, "arcade")
     if on_size is not None and isinstance(data, dict) and isinstance(data.get("blocks"), list):
         on_size(len(data["blocks"]))
     try:
@@ -79,17 +80,13 @@ def write_arcade(arcade, path: str | os.PathLike, metadata: dict | None = None) 
     return _write_json(data, Path(path))
 
 
-def _read_json(p: Path):
+def _read_json(p: Path, kind: str):
+    """The JSON document of file ``p`` of ``kind`` ('geometry' or 'arcade'), bounded by size
+    (:mod:`.inputfile`)."""
     try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ArchInputError(f"{p}: geometry file not found") from None
-    except IsADirectoryError:
-        raise ArchInputError(f"{p}: is a directory, expected a JSON geometry file") from None
+        text = read_input(p, kind).decode("utf-8")
     except UnicodeDecodeError as exc:
         raise ArchInputError(f"{p}: not a text file (UTF-8 decoding failed at byte {exc.start})") from None
-    except OSError as exc:
-        raise ArchInputError(f"{p}: cannot read the geometry file ({exc.strerror or exc})") from None
     try:
         # NaN/Infinity tokens (not JSON, but Python writes them) are parsed here and refused
         # by the arch's from_dict, whose message names the voussoir and field that hold them.
@@ -99,6 +96,9 @@ def _read_json(p: Path):
             f"{p}: invalid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}") from None
     except RecursionError:
         raise ArchInputError(f"{p}: invalid JSON: nested too deeply") from None
+    except ValueError:  # an integer of over 4300 digits (Python's int-from-text limit)
+        raise ArchInputError(f"{p}: invalid JSON: a number of more than 4300 digits; allowed "
+                             f"numbers within double precision") from None
     return data
 
 

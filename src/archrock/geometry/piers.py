@@ -127,8 +127,15 @@ def _pier_runs(kinds) -> tuple:
 def _length(name: str, value, hi: float) -> float:
     if isinstance(value, str):
         raise ArchInputError(f"{name}: expected a number in metres, got {value!r}")
-    return _check_scalar(name, value, 0.0, hi, hi_open=False,
-                         allowed=f"> 0 m, at most 100 times the arch's extent ({hi:.4g} m)")
+    # at least a millionth of the arch's extent: a pier of 1e-300 m left a voussoir's outline
+    # with one point, and a message that named neither the flag nor the range
+    v = _check_scalar(name, value, 0.0, hi, hi_open=False,
+                      allowed=f"> 0 m, at most 100 times the arch's extent ({hi:.4g} m)")
+    lo = hi * 1e-8
+    if v < lo:
+        raise ArchInputError(f"{name}: {v:g} m is out of range; allowed {lo:.4g} m (a millionth "
+                             f"of the arch's extent) to {hi:.4g} m (100 times it)")
+    return v
 
 
 def _courses(name: str, value) -> int:

@@ -18,8 +18,9 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_load_reach, _check_scalar,
-                   _check_size, _check_voussoir_count, _loads, polygon_properties)
+from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_density, _check_load_reach,
+                   _check_points, _check_scalar, _check_size, _check_voussoir_count, _loads,
+                   polygon_properties)
 
 __all__ = ["PolygonArch", "FACE_TOLERANCE", "as_polygon"]
 
@@ -29,16 +30,11 @@ FACE_TOLERANCE = 1e-3
 
 
 def _polyline(name: str, values) -> np.ndarray:
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise ArchInputError(f"{name}: expected a list of [x, y] points in metres") from None
+    arr = _check_points(name, values)
     if arr.ndim != 2 or arr.shape[1] != 2:
         raise ArchInputError(f"{name}: expected a list of [x, y] points, got shape {arr.shape}")
     if arr.shape[0] < 2:
         raise ArchInputError(f"{name}: {arr.shape[0]} point(s); allowed at least 2")
-    if not np.all(np.isfinite(arr)):
-        raise ArchInputError(f"{name}: every coordinate must be a finite number")
     if np.any(np.all(np.diff(arr, axis=0) == 0, axis=1)):
         raise ArchInputError(f"{name}: two consecutive points coincide; allowed distinct points")
     arr.setflags(write=False)
@@ -105,8 +101,7 @@ class PolygonArch(VoussoirArch):
         _check_voussoir_count(n)
         pts = np.vstack(intr + extr)
         _check_size("voussoirs: the arch's extent", float(np.max(np.ptp(pts, axis=0))))
-        object.__setattr__(self, "density", _check_scalar("density", self.density, 0.0, None,
-                                                          allowed="> 0 kg/m^3"))
+        object.__setattr__(self, "density", _check_density(self.density))
         object.__setattr__(self, "loads", _loads(self.loads, n))
         self._check_order()
         for i in range(n):

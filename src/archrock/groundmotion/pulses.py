@@ -19,6 +19,19 @@ __all__ = ["PULSE_KINDS", "oppenheim_pulse", "rectangular_pulse", "half_sine_pul
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 
 _MIN_SAMPLES = 4  # smallest number of intervals for the sampled pulses
+#: Range of a pulse's duration or period [s]: an arch's own times scale with the square root of
+#: its size, so 0.2 s at 10 m is 6e-6 s at the smallest arch (1e-8 m) and 600 s at the largest
+#: (1e8 m); outside the range the number is a slip, and 1e-300 or 1e300 s hung the integrator.
+MIN_PULSE_S, MAX_PULSE_S = 1e-6, 1e4
+
+
+def _duration(field: str, value) -> float:
+    """A pulse duration or period [s] in [MIN_PULSE_S, MAX_PULSE_S]."""
+    tp = _positive(field, value)
+    if not MIN_PULSE_S <= tp <= MAX_PULSE_S:
+        raise ArchInputError(f"{field}: {tp:g} s is out of range; allowed {MIN_PULSE_S:g} s to "
+                             f"{MAX_PULSE_S:g} s")
+    return tp
 
 
 def _amplitude(value) -> float:
@@ -39,7 +52,7 @@ def oppenheim_pulse(amplitude_g: float = -1.0, duration: float = 0.2) -> GroundM
     """
     ag = _amplitude(amplitude_g)
     a = ag * G
-    tp = _positive("pulse duration", duration)
+    tp = _duration("pulse duration", duration)
     t = [0.0, tp, tp, 3.0 * tp, 3.0 * tp]
     acc = [a, a, -0.5 * a, -0.5 * a, 0.0]
     return GroundMotion(
@@ -52,7 +65,7 @@ def rectangular_pulse(amplitude_g: float, duration: float) -> GroundMotion:
     """xg'' = a on [0, t_p), 0 from t_p on (times [0, t_p, t_p], accel [a, a, 0])."""
     ag = _amplitude(amplitude_g)
     a = ag * G
-    tp = _positive("pulse duration", duration)
+    tp = _duration("pulse duration", duration)
     return GroundMotion(
         np.array([0.0, tp, tp]), np.array([a, a, 0.0]), "rectangular pulse",
         f"rectangular pulse: a = {ag:g} g, t_p = {tp:g} s",
@@ -66,7 +79,7 @@ def half_sine_pulse(amplitude_g: float, duration: float, samples_per_pulse: int 
     """
     ag = _amplitude(amplitude_g)
     a = ag * G
-    tp = _positive("pulse duration", duration)
+    tp = _duration("pulse duration", duration)
     n = _count("samples per pulse", samples_per_pulse, _MIN_SAMPLES)
     t = np.linspace(0.0, tp, n + 1)
     acc = a * np.sin(np.pi * t / tp)
@@ -81,7 +94,7 @@ def one_sine_pulse(amplitude_g: float, duration: float, samples_per_pulse: int =
     """
     ag = _amplitude(amplitude_g)
     a = ag * G
-    tp = _positive("pulse duration", duration)
+    tp = _duration("pulse duration", duration)
     n = _count("samples per pulse", samples_per_pulse, _MIN_SAMPLES)
     t = np.linspace(0.0, tp, n + 1)
     acc = a * np.sin(2.0 * np.pi * t / tp)
@@ -100,7 +113,7 @@ def ricker_pulse(amplitude_g: float, period: float, samples: int = 600) -> Groun
     """
     ag = _amplitude(amplitude_g)
     a = ag * G
-    T = _positive("pulse period", period)
+    T = _duration("pulse period", period)
     n = _count("samples", samples, _MIN_SAMPLES)
     if n % 2:
         raise ArchInputError(f"samples: {n}; allowed an even integer >= {_MIN_SAMPLES} (so the peak is sampled)")

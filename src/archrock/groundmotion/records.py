@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ArchInputError
+from ..geometry.inputfile import read_input
 from ..units import G
 from .motion import (MAX_RECORD_DT_S, WARN_RECORD_DT_S, GroundMotion, _unit_factor,
                      check_pga)
@@ -33,9 +34,10 @@ __all__ = ["read_two_column", "read_at2", "load_record", "file_sha256", "check_t
 
 
 def file_sha256(path) -> str:
-    """sha256 of a file's bytes (hex): the checksum every record spec and suite carries."""
-    with open(path, "rb") as f:
-        return hashlib.file_digest(f, "sha256").hexdigest()
+    """sha256 of a record file's bytes (hex): the checksum every record spec and suite carries.
+    Read through the bounded reader (a stream such as /dev/urandom is refused, not hashed
+    forever)."""
+    return hashlib.sha256(read_input(path, "record")).hexdigest()
 
 
 def _short(text: str, limit: int = 60) -> str:
@@ -54,14 +56,13 @@ def _read_lines(path) -> tuple[Path, list[str]]:
         what = "is not a file" if p.exists() else "file not found"
         raise ArchInputError(f"record {p}: {what}; allowed an existing readable file")
     try:
-        text = p.read_text(encoding="utf-8", errors="strict")
+        data = read_input(p, "record")  # bounded by size (geometry.inputfile)
+    except ArchInputError as exc:
+        raise ArchInputError(f"record {exc}") from None
+    try:
+        text = data.decode("utf-8")
     except UnicodeDecodeError:
-        try:
-            text = p.read_text(encoding="latin-1")  # old headers may hold accented site names
-        except OSError as exc:
-            raise ArchInputError(f"record {p}: cannot read ({exc.strerror}); allowed a readable file") from None
-    except OSError as exc:
-        raise ArchInputError(f"record {p}: cannot read ({exc.strerror}); allowed a readable file") from None
+        text = data.decode("latin-1")  # old headers may hold accented site names
     if "\x00" in text:
         raise ArchInputError(f"record {p}: binary data; allowed a text file")
     return p, text.splitlines()  # splitlines handles the CRLF endings of PEER files

@@ -162,10 +162,6 @@ def _build_record(spec: RecordSpec) -> GroundMotion:
 def _file_sha256(path) -> str:
     try:
         digest = file_sha256(path)
-    except FileNotFoundError:
-        raise ArchInputError(f"record path: {str(path)!r}: file not found; allowed an existing "
-                             "readable file") from None
-    except OSError as exc:
-        raise ArchInputError(f"record path: cannot read {str(path)!r} ({exc.strerror or exc}); "
-                             "allowed an existing readable file") from None
+    except ArchInputError as exc:  # missing, unreadable or past the size limit
+        raise ArchInputError(f"record path: {exc}") from None
     return digest

@@ -34,6 +34,7 @@ from .hinges import (_EDGE_SIGN, _PATTERNS, DIRECTIONS, Mechanism, _active_candi
 from .liftoff import (_DUAL_CONFIRM, GENERAL_MAX_VOUSSOIRS, _certify_arch, _lp_mechanism,
                       general_mechanisms)
 from .lp import ThrustLine, _radial, _stands, static_multiplier
+from .overload import cannot_stand_message
 from .sums import _batch_sums, _enumerate_sums, _virtual_work, arch_sums
 
 __all__ = ["kinematic_mechanisms", "kinematic_multipliers_batch", "kinematic_multipliers_arches",
@@ -608,15 +609,12 @@ def _governing(arch: VoussoirArch, method: str = "auto", max_seconds: float | No
     n = arch.n
     sums, k_l, k_r, i_l, i_r = _four_hinge_search(arch, method, max_seconds)
     if k_l == -np.inf:
-        raise CannotStandError(
-            "arch: no line of thrust fits inside the arch under any horizontal load; it cannot "
-            "stand (increase the thickness)")
+        raise CannotStandError(cannot_stand_message(
+            arch, "(no line of thrust fits inside it under any horizontal load)"))
     if k_l <= 0 or k_r <= 0:
         # a four-hinge mechanism opens under its own weight (kinematic theorem: the Heyman
         # multiplier is at most this one)
-        raise CannotStandError(
-            f"arch: it cannot stand under its own weight (k_l = {k_l:.4g}, k_r = {k_r:.4g}); "
-            f"increase the thickness")
+        raise CannotStandError(cannot_stand_message(arch, f"(k_l = {k_l:.4g}, k_r = {k_r:.4g})"))
     out = {}
     for d, k, i in (("l", k_l, i_l), ("r", k_r, i_r)):
         four = _mechanism_from_candidate(n, int(i), d, k) if np.isfinite(k) else None
@@ -645,10 +643,9 @@ def _governing(arch: VoussoirArch, method: str = "auto", max_seconds: float | No
         out[d] = _Governing(mech, four, lam_s, thrust, how)
     for d in DIRECTIONS:
         if out[d].mechanism.multiplier <= 0:
-            raise CannotStandError(
-                f"arch: it cannot stand under its own weight (k_l = "
-                f"{out['l'].mechanism.multiplier:.4g}, k_r = {out['r'].mechanism.multiplier:.4g}); "
-                f"increase the thickness")
+            raise CannotStandError(cannot_stand_message(
+                arch, f"(k_l = {out['l'].mechanism.multiplier:.4g}, k_r = "
+                      f"{out['r'].mechanism.multiplier:.4g})"))
     return out
 
 

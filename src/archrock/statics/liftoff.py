@@ -21,6 +21,7 @@ from ..geometry import VoussoirArch
 from .hinges import (_ADMISSIBLE_TOL, DIRECTIONS, EDGES, Hinge, Mechanism, candidate_hinges,
                      quadruples)
 from .lp import _statics, _thrust_from_x
+from .overload import cannot_stand_message
 from .sums import _origin, _weights_centroids, arch_sums
 
 __all__ = ["general_mechanisms", "mechanism_multiplier", "certify_four_hinge",
@@ -232,10 +233,9 @@ def _lp_mechanism(arch: VoussoirArch, direction: str):
     if res.status == 3:
         return math.inf, None, None
     if res.status != 0:
-        raise CannotStandError(
-            f"arch: it cannot stand under its own weight: no line of thrust fits inside it "
-            f"(direction {direction!r}, linear program status {res.status}); increase the "
-            f"thickness")
+        raise CannotStandError(cannot_stand_message(
+            arch, f"(no line of thrust fits inside it: direction {direction!r}, linear program "
+                  f"status {res.status})"))
     lam_s = float(res.x[3])
     with np.errstate(invalid="ignore", divide="ignore"):
         thrust = _thrust_from_x(st, res.x)

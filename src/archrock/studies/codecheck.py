@@ -187,11 +187,14 @@ class SiteSpectrum:
     @classmethod
     def from_file(cls, path) -> "SiteSpectrum":
         """A two-column text file: T [s], Se [g] ('#' comments, commas or blanks)."""
+        from ..geometry.inputfile import read_input
+
         try:
-            with open(path, encoding="utf-8") as fh:
-                text = fh.read()
-        except OSError as exc:
-            raise ArchInputError(f"spectrum file {str(path)!r}: cannot read it ({exc.strerror})") from None
+            # bounded by size; its errors name the file, the kind and the limit
+            text = read_input(path, "spectrum").decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise ArchInputError(f"spectrum file {str(path)!r}: not a text file (UTF-8 decoding "
+                                 f"failed at byte {exc.start})") from None
         rows = []
         for k, line in enumerate(text.splitlines(), 1):
             line = line.split("#")[0].replace(",", " ").strip()
@@ -341,7 +344,7 @@ class AboveGround:
     c1: float = 0.05
 
     def __post_init__(self):
-        _real("height", self.height, 0.0, 1e4, True, "a structure height > 0 m")
+        _real("height", self.height, 0.0, 1e4, True, "a structure height 0 < H <= 10000 m")
         if isinstance(self.storeys, bool) or not isinstance(self.storeys, (int, np.integer)) \
                 or not 1 <= self.storeys <= 100:
             raise ArchInputError(f"storeys: {self.storeys!r}; allowed an integer 1 to 100")
