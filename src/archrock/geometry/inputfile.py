@@ -56,6 +56,28 @@ def _open(p: Path):
     return os.fdopen(fd, "rb")
 
 
+#: Bytes read at a time from a stream (a pipe or a device reports no size).
+_CHUNK = 1 << 20
+
+
+def _read_capped(fh, size: int, limit: int) -> bytes:
+    """At most ``limit`` + 1 bytes of ``fh``, whose size is thought to be ``size`` (0 for a
+    stream).  The buffer asked for is the size expected, not the limit: ``read(limit + 1)``
+    allocated the whole limit (50 MB for a record) for a file of any size."""
+    first = fh.read(min(size, limit) + 1)
+    if len(first) <= size:
+        return first  # the whole file: one byte more was asked for and none came
+    chunks, total = [first], len(first)
+    # a stream, or a file that grew since fstat: read on, one byte past the limit to tell
+    while total <= limit:
+        chunk = fh.read(min(_CHUNK, limit + 1 - total))
+        if not chunk:
+            break
+        chunks.append(chunk)
+        total += len(chunk)
+    return b"".join(chunks)
+
+
 def read_input(path: str | os.PathLike, kind: str) -> bytes:
     """The bytes of the input file ``path`` of ``kind`` (module docstring), refused with an
     :class:`~archrock.errors.ArchInputError` naming the file when it is missing, a directory,
@@ -70,8 +92,7 @@ def read_input(path: str | os.PathLike, kind: str) -> bytes:
             regular = stat.S_ISREG(st.st_mode)
             if regular and st.st_size > limit:  # refused before a byte is read
                 raise _too_large(p, kind, limit, f"{st.st_size} bytes")
-            # a pipe or a device reports no size: read one byte past the limit to tell
-            data = fh.read(limit + 1)
+            data = _read_capped(fh, st.st_size if regular else 0, limit)
     except FileNotFoundError:
         raise ArchInputError(f"{p}: {kind} file not found") from None
     except IsADirectoryError:
