@@ -80,6 +80,34 @@ def _rocking_frame(b, h, beam_depth, span=6.0, density=2000.0, loads=()):
     return PolygonArch(intr, extr, density, name="rocking frame", loads=loads)
 
 
+def _narrowed_pier(doc: dict, delta: float) -> dict:
+    """An arcade document (``Arcade.to_dict``) with every point right of inner pier 2's middle
+    moved left by ``delta`` [m]: that pier ``delta`` narrower, the spans and piers right of it
+    moved with it (so its springings overlap once ``delta`` passes the pier's spare width)."""
+    import copy
+
+    d = copy.deepcopy(doc)
+    xs = [p[0] for i in d["piers"][1] for p in d["blocks"][i]["outline"]]
+    mid = (min(xs) + max(xs)) / 2
+
+    def shift(p):
+        return [p[0] - delta if p[0] > mid else p[0], p[1]]
+
+    for b in d["blocks"]:
+        b["outline"] = [shift(p) for p in b["outline"]]
+        if b.get("mass_properties"):
+            b["mass_properties"]["centre"] = shift(b["mass_properties"]["centre"])
+    for c in d["contacts"]:
+        c["points"] = [shift(p) for p in c["points"]]
+    return d
+
+
+@pytest.fixture
+def narrowed_pier():
+    """The arcade document narrower at inner pier 2 (:func:`_narrowed_pier`)."""
+    return _narrowed_pier
+
+
 @pytest.fixture
 def rocking_frame():
     """The builder of Makris & Vassiliou's rocking frame (:func:`_rocking_frame`)."""

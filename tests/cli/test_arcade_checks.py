@@ -3,21 +3,13 @@ static program with no answer named by block (docs/arcades.md)."""
 
 from __future__ import annotations
 
-import copy
 import json
 
 import pytest
 
-from archrock.cli import main
 
-THREE = ("arcade", "--spans", "10", "10", "10", "--thickness", "0.8", "--pier-height", "8",
-         "--pier-width", "2.5", "1.8", "1.8", "2.5")
-
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
+# the three-span arcade and the runner of the arcade command's own tests
+from test_arcade_cli import THREE, run  # noqa: E402
 
 
 def test_huge_arcade_refused_before_it_starts(capsys):
@@ -55,30 +47,12 @@ def test_document_refused_before_its_blocks_are_checked(capsys, tmp_path, monkey
     assert err.startswith("archrock: error: arcade: about 31 blocks, estimated ")
 
 
-def _shifted(doc: dict, delta: float) -> dict:
-    """Every point right of inner pier 2's middle moved left by ``delta``."""
-    d = copy.deepcopy(doc)
-    xs = [p[0] for i in d["piers"][1] for p in d["blocks"][i]["outline"]]
-    mid = (min(xs) + max(xs)) / 2
-
-    def shift(p):
-        return [p[0] - delta if p[0] > mid else p[0], p[1]]
-
-    for b in d["blocks"]:
-        b["outline"] = [shift(p) for p in b["outline"]]
-        if b.get("mass_properties"):
-            b["mass_properties"]["centre"] = shift(b["mass_properties"]["centre"])
-    for c in d["contacts"]:
-        c["points"] = [shift(p) for p in c["points"]]
-    return d
-
-
-def test_overlapping_document_named(capsys, tmp_path):
+def test_overlapping_document_named(capsys, tmp_path, narrowed_pier):
     doc = tmp_path / "three.json"
     assert run(capsys, *THREE, "--write", str(doc))[0] == 0
     bad = tmp_path / "narrow.json"
     # pier 2: 1.8 m -> 1.2 m under two springing joints of 0.8 m each: 0.4 m overlap
-    bad.write_text(json.dumps(_shifted(json.loads(doc.read_text()), 0.6)))
+    bad.write_text(json.dumps(narrowed_pier(json.loads(doc.read_text()), 0.6)))
     code, out, err = run(capsys, "arcade", "--arcade", str(bad))
     assert code == 2 and out == ""
     assert err.startswith(f"archrock: error: {bad}: blocks: block 9 (span 1 voussoir 9) and "

@@ -19,34 +19,15 @@ def two_spans():
     return arcade([a, a], [3], [1]).to_dict()
 
 
-def narrowed(doc: dict, delta: float) -> dict:
-    """The document with every point right of inner pier 2's middle moved left by ``delta``:
-    the pier delta narrower, the second span and pier 3 moved with it."""
-    d = copy.deepcopy(doc)
-    xs = [p[0] for i in d["piers"][1] for p in d["blocks"][i]["outline"]]
-    mid = (min(xs) + max(xs)) / 2
-
-    def shift(p):
-        return [p[0] - delta if p[0] > mid else p[0], p[1]]
-
-    for b in d["blocks"]:
-        b["outline"] = [shift(p) for p in b["outline"]]
-        if b.get("mass_properties"):
-            b["mass_properties"]["centre"] = shift(b["mass_properties"]["centre"])
-    for c in d["contacts"]:
-        c["points"] = [shift(p) for p in c["points"]]
-    return d
-
-
 def test_document_of_the_builder_has_no_overlap(two_spans):
     arc = Arcade.from_dict(two_spans)
     assert find_overlap([b.outline for b in arc.blocks], 1e-3) is None
 
 
-def test_inner_pier_narrower_than_its_springings(two_spans):
+def test_inner_pier_narrower_than_its_springings(two_spans, narrowed_pier):
     # pier 2 goes from 1 m to 0.5 m wide: the two 0.4 m springing joints overlap by 0.3 m
     with pytest.raises(ArchInputError) as err:
-        Arcade.from_dict(narrowed(two_spans, 0.5))
+        Arcade.from_dict(narrowed_pier(two_spans, 0.5))
     msg = str(err.value)
     assert msg.startswith("blocks: block 5 (span 1 voussoir 5) and block 7 (span 2 voussoir 1) "
                           "overlap by ")
@@ -56,9 +37,9 @@ def test_inner_pier_narrower_than_its_springings(two_spans):
     assert 0.1 < depth < 0.31
 
 
-def test_pier_just_wide_enough_is_accepted(two_spans):
+def test_pier_just_wide_enough_is_accepted(two_spans, narrowed_pier):
     # 0.2 m narrower: 0.8 m, exactly the two springing joints; they touch, no overlap
-    arc = Arcade.from_dict(narrowed(two_spans, 0.2))
+    arc = Arcade.from_dict(narrowed_pier(two_spans, 0.2))
     assert arc.n_blocks == 13
 
 

@@ -269,18 +269,7 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
         if why is not None:
             lines.append(f"  {why}: the four-link model does not hold for this arch; the "
                          f"contact engine follows it (archrock dem)")
-    if min_thickness is not None:
-        ratio = ("" if min_thickness.ratio is None
-                 else f", mean t/R = {min_thickness.ratio:.4f}" if isinstance(arch, Arch)
-                 else f", mean t / size = {min_thickness.ratio:.4f}")
-        with_mu = ("" if min_thickness_friction is None
-                   else f" with friction {min_thickness_friction:g}")
-        lines.append(f"  minimum thickness under self-weight{with_mu}: factor "
-                     f"{min_thickness.factor:.4f} of the given thicknesses{ratio}")
-    if thrust is not None:
-        lines.append(f"  {thrust_range_line(thrust)}")
-    if min_pier_width is not None:
-        lines.append(f"  {min_pier_width_line(min_pier_width)}")
+    lines += _extras(arch, min_thickness, min_thickness_friction, thrust, min_pier_width)
     lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
                  "M_r: by xg''/g >= k_r, forces toward -x)")
     lines += friction_lines(needed, friction)
@@ -337,7 +326,7 @@ def format_friction_only(arch, why: str, min_thickness=None, friction=None,
     lines = _circular_lines(arch) if isinstance(arch, Arch) else _general_lines(arch)
     lines += ["", f"No frictionless mechanism: {why.removeprefix('arch: ')}"]
     if friction is None:
-        lines += _extras(min_thickness, min_thickness_friction, thrust, min_pier_width)
+        lines += _extras(arch, min_thickness, min_thickness_friction, thrust, min_pier_width)
         return "\n".join(lines)
     lines += [f"Limit analysis with friction mu = {friction.mu:g} (Coulomb |T| <= mu N at every "
               f"joint; associative: docs/friction.md)",
@@ -349,17 +338,19 @@ def format_friction_only(arch, why: str, min_thickness=None, friction=None,
                      f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
     lines.append(f"  k = min(k_l, k_r) with friction = {friction.k:.4f} (joints slide; the "
                  f"four-link model does not hold)")
-    lines += _extras(min_thickness, min_thickness_friction, thrust, min_pier_width)
+    lines += _extras(arch, min_thickness, min_thickness_friction, thrust, min_pier_width)
     lines.append("  (M_l: activated by xg''/g <= -k_l, forces toward +x; "
                  "M_r: by xg''/g >= k_r, forces toward -x)")
     return "\n".join(lines)
 
 
-def _extras(min_thickness, min_thickness_friction, thrust, min_pier_width) -> list[str]:
+def _extras(arch, min_thickness, min_thickness_friction, thrust, min_pier_width) -> list[str]:
     """The lines of --min-thickness, --thrust-range and --min-pier-width."""
     lines = []
     if min_thickness is not None:
-        ratio = "" if min_thickness.ratio is None else f", mean t/R = {min_thickness.ratio:.4f}"
+        ratio = ("" if min_thickness.ratio is None
+                 else f", mean t/R = {min_thickness.ratio:.4f}" if isinstance(arch, Arch)
+                 else f", mean t / size = {min_thickness.ratio:.4f}")
         with_mu = ("" if min_thickness_friction is None
                    else f" with friction {min_thickness_friction:g}")
         lines.append(f"  minimum thickness under self-weight{with_mu}: factor "
