@@ -13,7 +13,7 @@ pytest.importorskip("starlette")
 pytest.importorskip("httpx")
 pytest.importorskip("pandas")
 
-from archrock.app import api  # noqa: E402
+from archrock.app import api, uploads  # noqa: E402
 from archrock.app.jobs import Jobs  # noqa: E402
 
 OPPENHEIM = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7}
@@ -145,7 +145,7 @@ def test_a_json_body_past_its_cap_is_413_while_it_streams(client):
 
 def test_an_upload_past_its_cap_is_413_while_it_streams(client):
     def chunks():
-        for _ in range(api.MAX_FILE_BYTES // 1_000_000 + 1):
+        for _ in range(uploads.MAX_FILE_BYTES // 1_000_000 + 1):
             yield b"0" * 1_000_001
 
     r = client.post("/api/record?name=big.txt", content=chunks(),

@@ -17,7 +17,7 @@ pytest.importorskip("httpx")
 pytest.importorskip("pandas")
 
 import archrock  # noqa: E402
-from archrock.app import api  # noqa: E402
+from archrock.app import api, uploads  # noqa: E402
 from archrock.units import G  # noqa: E402
 
 OPPENHEIM = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7}
@@ -120,17 +120,17 @@ def test_record_units_and_scale_are_checked(client):
 @pytest.mark.parametrize("path,field", [("/api/record?name=big.txt", "record"),
                                         ("/api/dxf?name=big.dxf", "dxf")])
 def test_an_upload_above_the_limit_answers_413_with_the_limit(client, path, field):
-    r = client.post(path, headers=BYTES, content=b"0" * (api.MAX_FILE_BYTES + 1))
+    r = client.post(path, headers=BYTES, content=b"0" * (uploads.MAX_FILE_BYTES + 1))
     assert r.status_code == 413
     msg = r.json()["error"]
     assert msg.startswith(f"{field}: 20,000,001 bytes") and "up to 20 MB" in msg
 
 
 def test_safe_names_stay_in_the_servers_folder():
-    assert api.safe_name("../../x/evil name.AT2", "d") == "evil_name.AT2"
-    assert api.safe_name("..", "d") == "d" and api.safe_name(None, "d") == "d"
-    assert api.safe_name("C:\\\\data\\\\rec.at2", "d") == "rec.at2"
-    long = api.safe_name("a" * 300 + ".AT2", "d")
+    assert uploads.safe_name("../../x/evil name.AT2", "d") == "evil_name.AT2"
+    assert uploads.safe_name("..", "d") == "d" and uploads.safe_name(None, "d") == "d"
+    assert uploads.safe_name("C:\\\\data\\\\rec.at2", "d") == "rec.at2"
+    long = uploads.safe_name("a" * 300 + ".AT2", "d")
     assert len(long) <= 80 and long.endswith(".AT2")
 
 

@@ -16,20 +16,19 @@ import argparse
 import csv
 import io
 import math
-import threading
 import time
-from pathlib import Path
-from typing import NamedTuple
 
 import numpy as np
 
 from ..errors import ArchInputError
 from ..options import JOINTS, SHAPES  # the command line's own lists
+from .fields import (COMPUTE_LOCK, MAX_VOUSSOIRS, choice, number, object_field,
+                     request_object, xy)
+from .uploads import (MAX_RECORD_T_END_S, MAX_RESPONSE_WORK_S, RecordStore, record_motion,
+                      trace)
 
 #: Work bounds of one request (the CLI allows more; an interactive page should answer in
-#: about a second): voussoirs of an arch, ...
-MAX_VOUSSOIRS = 120
-#: ... end of a response's output window [s] and the pulse's duration [s] ...
+#: about a second): voussoirs of an arch (fields.MAX_VOUSSOIRS), end of a response's output window [s] and the pulse's duration [s] ...
 MAX_T_END_S = 20.0
 MAX_PULSE_S = 5.0
 #: ... |amplitude| [g] of a pulse ...
@@ -42,11 +41,6 @@ MAX_ENSEMBLE_WORK_S = 120.0
 #: Largest uploaded geometry (characters of JSON).
 MAX_UPLOAD_CHARS = 2_000_000
 
-#: Library calls are made one at a time within a process: numba's parallel loops must not
-#: run in two threads at once.  The jobs (ensemble, curve, report) run in the job worker
-#: process (app/jobs.py), so the server's statics never wait on a job's lock.
-COMPUTE_LOCK = threading.RLock()
-
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 
 
@@ -57,61 +51,15 @@ def _random_arches(params: dict, default: int, lo: int, hi: int, where: str):
     spreads the CLI's --spread-*."""
     from ..geometry.sampling import Spreads
 
-    samples = _number(params, "samples", default, integer=True)
+    samples = number(params, "samples", default, integer=True)
     if not lo <= samples <= hi:
         raise ArchInputError(f"samples: {samples}; allowed {lo} to {hi} {where}")
-    seed = _number(params, "seed", 0, integer=True)
+    seed = number(params, "seed", 0, integer=True)
     if seed < 0:
         raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
-    sp = _dict(params, "spreads")
-    return samples, seed, Spreads(*(_number(sp, k, d) for k, d in (
+    sp = object_field(params, "spreads")
+    return samples, seed, Spreads(*(number(sp, k, d) for k, d in (
         ("span", 0.1), ("thickness", 0.1), ("radius", 0.05), ("tilt", 0.0))))
-
-
-def _number(params: dict, name: str, default=None, *, integer: bool = False):
-    """``params[name]`` as a finite float (or int), ``default`` when absent or null;
-    ArchInputError naming ``name`` otherwise."""
-    v = params.get(name, default)
-    if v is None:
-        return None
-    if isinstance(v, str):
-        try:
-            v = float(v.strip())
-        except ValueError:
-            raise ArchInputError(f"{name}: expected a number, got {v!r}") from None
-    if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise ArchInputError(f"{name}: expected a number, got {v!r}")
-    if not math.isfinite(v):
-        raise ArchInputError(f"{name}: must be a finite number, got {v!r}")
-    if integer:
-        if int(v) != v:
-            raise ArchInputError(f"{name}: expected an integer, got {v!r}")
-        return int(v)
-    return float(v)
-
-
-def _choice(params: dict, name: str, allowed, default=None):
-    v = params.get(name, default)
-    if v is None:
-        return None
-    if v not in allowed:
-        raise ArchInputError(f"{name}: {v!r}; allowed one of {', '.join(allowed)}")
-    return v
-
-
-def _dict(params, name: str) -> dict:
-    v = params.get(name) if isinstance(params, dict) else None
-    if v is None:
-        return {}
-    if not isinstance(v, dict):
-        raise ArchInputError(f"{name}: expected an object, got {type(v).__name__}")
-    return v
-
-
-def _request(body) -> dict:
-    if not isinstance(body, dict):
-        raise ArchInputError(f"request: expected a JSON object, got {type(body).__name__}")
-    return body
 
 
 # ---------------------------------------------------------------------------- the arch
@@ -126,8 +74,8 @@ def arch_from_params(params: dict):
     :func:`~archrock.options.arch_from_args`."""
     from ..options import arch_from_args
 
-    params = _request(params)
-    n = _number(params, "voussoirs", integer=True)
+    params = request_object(params)
+    n = number(params, "voussoirs", integer=True)
     if n is not None and n > MAX_VOUSSOIRS:
         raise ArchInputError(f"voussoirs: {n}; the app allows 3 to {MAX_VOUSSOIRS} "
                              f"(the command line up to 2000)")
@@ -138,14 +86,14 @@ def arch_from_params(params: dict):
     if len(defects) > 50:
         raise ArchInputError(f"defects: {len(defects)}; allowed at most 50")
     ns = argparse.Namespace(
-        radius=_number(params, "radius"), embrace=_number(params, "embrace"),
-        shape=_choice(params, "shape", SHAPES), span=_number(params, "span"),
-        rise=_number(params, "rise"), thickness=_number(params, "thickness"),
-        thickness_crown=_number(params, "thickness_crown"),
-        joints=_choice(params, "joints", JOINTS), voussoirs=n,
-        density=_number(params, "density"), geometry=None, defect=defects or None,
-        pier_height=_number(params, "pier_height"), pier_width=_number(params, "pier_width"),
-        pier_courses=_number(params, "pier_courses", integer=True))
+        radius=number(params, "radius"), embrace=number(params, "embrace"),
+        shape=choice(params, "shape", SHAPES), span=number(params, "span"),
+        rise=number(params, "rise"), thickness=number(params, "thickness"),
+        thickness_crown=number(params, "thickness_crown"),
+        joints=choice(params, "joints", JOINTS), voussoirs=n,
+        density=number(params, "density"), geometry=None, defect=defects or None,
+        pier_height=number(params, "pier_height"), pier_width=number(params, "pier_width"),
+        pier_courses=number(params, "pier_courses", integer=True))
     geometry = params.get("geometry")
     if geometry is not None:
         arch = _uploaded_arch(geometry, ns, params.get("name"))
@@ -196,21 +144,17 @@ def _uploaded_arch(data, ns, name):
     return piers_from_args(ns, arch)
 
 
-def _xy(a) -> list:
-    return np.round(np.asarray(a, float), 6).tolist()
-
-
 def arch_drawing(arch) -> dict:
     """What the page draws of an arch: ``n`` blocks (``voussoirs`` and ``pier_courses``, the
     blocks of both piers), each block's closed outline [[x, y], ...] [m], each
     joint's contact segment (intrados end, extrados end) [m] and the ground level [m]."""
     from ..reports.plots import springing_level, voussoir_outline
 
-    outlines = [_xy(voussoir_outline(arch, i, points_per_rad=30.0)) for i in range(arch.n)]
+    outlines = [xy(voussoir_outline(arch, i, points_per_rad=30.0)) for i in range(arch.n)]
     v, p = block_counts(arch)
     return {"name": arch.name, "n": int(arch.n), "voussoirs": v, "pier_courses": p,
             "outlines": outlines,
-            "joints": _xy(arch.joint_points), "ground": springing_level(arch),
+            "joints": xy(arch.joint_points), "ground": springing_level(arch),
             "kind": type(arch).__name__}
 
 
@@ -224,10 +168,10 @@ def limit(params: dict) -> dict:
     from ..statics.limit import limit_analysis
     from ..reports.limit import limit_summary
 
-    params = _request(params)
+    params = request_object(params)
     t0 = time.perf_counter()
-    arch = arch_from_params(_dict(params, "arch"))
-    mu = _number(params, "friction")
+    arch = arch_from_params(object_field(params, "arch"))
+    mu = number(params, "friction")
     if mu is not None and mu <= 0:
         raise ArchInputError(f"friction: {mu:g}; allowed a finite number > 0")
     want_thrust = bool(params.get("thrust_range", False))
@@ -246,13 +190,13 @@ def limit(params: dict) -> dict:
     for d in ("l", "r"):
         m = result.mechanism(d)
         hinges[d] = [{"label": lab, "joint": int(h.joint), "edge": h.edge,
-                      "point": _xy(arch.joint_point(h.joint, h.edge))}
+                      "point": xy(arch.joint_point(h.joint, h.edge))}
                      for lab, h in m.labelled()]
-    lines = {d: _xy((result.thrust_l if d == "l" else result.thrust_r).polyline)
+    lines = {d: xy((result.thrust_l if d == "l" else result.thrust_r).polyline)
              for d in ("l", "r")}
     if want_thrust:
         tr = extra["thrust"]
-        lines["min"], lines["max"] = _xy(tr.line_min.polyline), _xy(tr.line_max.polyline)
+        lines["min"], lines["max"] = xy(tr.line_min.polyline), xy(tr.line_max.polyline)
     return {"summary": summary, "drawing": arch_drawing(arch), "thrust_lines": lines,
             "hinges": hinges, "elapsed_ms": 1e3 * (time.perf_counter() - t0)}
 
@@ -265,9 +209,9 @@ def pulse_spec(params):
 
     if not isinstance(params, dict):
         raise ArchInputError("pulse: expected an object with kind, amplitude [g], duration [s]")
-    kind = _choice(params, "kind", PULSE_KINDS, "oppenheim")
-    a = _number(params, "amplitude")
-    tp = _number(params, "duration")
+    kind = choice(params, "kind", PULSE_KINDS, "oppenheim")
+    a = number(params, "amplitude")
+    tp = number(params, "duration")
     if a is None or tp is None:
         raise ArchInputError("pulse: amplitude [g] and duration [s] are both needed")
     if a == 0 or abs(a) > MAX_AMPLITUDE_G:
@@ -294,9 +238,9 @@ def respond(params: dict, records: RecordStore | None = None) -> dict:
     from ..dynamics.response import respond as respond_
     from ..units import G
 
-    params = _request(params)
+    params = request_object(params)
     t0 = time.perf_counter()
-    arch = arch_from_params(_dict(params, "arch"))
+    arch = arch_from_params(object_field(params, "arch"))
     record = params.get("record")
     if record is not None:
         from ..studies.work import format_duration, response_cost_s
@@ -304,7 +248,7 @@ def respond(params: dict, records: RecordStore | None = None) -> dict:
 
         motion, info = record_motion(record, records)
         spec = None
-        t_end = _number(params, "t_end", min(MAX_RECORD_T_END_S, info["duration_s"] + 2.0))
+        t_end = number(params, "t_end", min(MAX_RECORD_T_END_S, info["duration_s"] + 2.0))
         if not 0 < t_end <= MAX_RECORD_T_END_S:
             raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= "
                                  f"{MAX_RECORD_T_END_S:g} s for a record")
@@ -317,10 +261,10 @@ def respond(params: dict, records: RecordStore | None = None) -> dict:
     else:
         spec = pulse_spec(params.get("pulse"))
         motion = spec.build()
-        t_end = _number(params, "t_end", 3.0)
+        t_end = number(params, "t_end", 3.0)
         if not 0 < t_end <= MAX_T_END_S:
             raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= {MAX_T_END_S:g} s")
-    ex = _number(params, "exaggerate", 1.0)
+    ex = number(params, "exaggerate", 1.0)
     if not 1 <= ex <= 50:
         raise ArchInputError(f"exaggerate: {ex:g}; allowed 1 to 50 (the drawn rotations' factor)")
     dt_out = max(0.002, t_end / 2000)
@@ -362,13 +306,13 @@ def respond(params: dict, records: RecordStore | None = None) -> dict:
     step = max(1, len(t) // 1500)
     out.update({
         "drawing": arch_drawing(arch),
-        "chain_links": [{"direction": fl.direction, "points": _xy(fl.points),
+        "chain_links": [{"direction": fl.direction, "points": xy(fl.points),
                          "links": [list(map(int, v)) for v in fl.link_voussoirs],
                          "label": lab}
                         for fl, lab in zip(chain, model.labels)],
-        "time": _xy(t[::step]),
+        "time": xy(t[::step]),
         "phi": [None if not math.isfinite(x) else round(float(x), 7) for x in phi[::step]],
-        "ground": _trace(motion.times, np.asarray(motion.accel) / G),
+        "ground": trace(motion.times, np.asarray(motion.accel) / G),
         "frames": frames,
         "pulse": spec.to_dict() if spec is not None else None,
         "record": None if spec is not None else {k: v for k, v in info.items()
@@ -390,8 +334,8 @@ def ensemble_config(params: dict):
     from ..studies.ensemble import EnsembleConfig
     from ..studies.work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
 
-    params = _request(params)
-    nominal = arch_from_params(_dict(params, "arch"))
+    params = request_object(params)
+    nominal = arch_from_params(object_field(params, "arch"))
     samples, seed, spreads = _random_arches(params, 1000, 1, MAX_SAMPLES,
                                             "in the app (archrock ensemble for more)")
     motion = pulse_spec(params["pulse"]) if params.get("pulse") is not None else None
@@ -439,7 +383,7 @@ def run_ensemble_job(config, progress, cancelled) -> dict | None:
         ok = np.isfinite(kl) & np.isfinite(kr) & (kl > 0) & (kr > 0)
     k = np.minimum(kl, kr)[ok]
     counts, edges = (np.histogram(k, bins=30) if k.size else (np.zeros(0), np.zeros(0)))
-    return {"summary": summary, "histogram": {"edges": _xy(edges), "counts": counts.tolist(),
+    return {"summary": summary, "histogram": {"edges": xy(edges), "counts": counts.tolist(),
                                               "of": "k = min(k_l, k_r) [g]"},
             "wall_s": wall}
 
@@ -459,8 +403,8 @@ def curve_request(params: dict) -> dict:
     paper's)."""
     from ..studies.curves import parse_range
 
-    params = _request(params)
-    nominal = arch_from_params(_dict(params, "arch"))
+    params = request_object(params)
+    nominal = arch_from_params(object_field(params, "arch"))
     samples, seed, spreads = _random_arches(params, 30, 1, MAX_CURVE_SAMPLES, "for a curve in "
                                             "the app (archrock curves for more)")
     d = params.get("durations", "0.1,0.2,0.3,0.5,0.8,1.2")
@@ -483,7 +427,7 @@ def curve_request(params: dict) -> dict:
     if samples * len(durations) > bound:
         raise ArchInputError(f"samples: {samples} arches x {len(durations)} durations; the app "
                              f"allows {bound} here (archrock curves for more)")
-    kind = _choice(params, "kind", PULSE_KINDS, "oppenheim")
+    kind = choice(params, "kind", PULSE_KINDS, "oppenheim")
     return {"nominal": nominal, "samples": samples, "seed": seed, "spreads": spreads,
             "durations": durations, "kind": kind}
 
@@ -526,13 +470,13 @@ def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, 
 
     from ..options import json_safe
 
-    params = _request(params)
-    what = _choice(params, "what", ("geometry", "limit", "thrust-csv", "response-csv"))
+    params = request_object(params)
+    what = choice(params, "what", ("geometry", "limit", "thrust-csv", "response-csv"))
     if what is None:
         raise ArchInputError("what: needed; allowed one of geometry, limit, thrust-csv, "
                              "response-csv")
     if what == "geometry":
-        arch = arch_from_params(_dict(params, "arch"))
+        arch = arch_from_params(object_field(params, "arch"))
         data = {**arch.to_dict(), "metadata": {"generator": "archrock app"}}
         return "arch.json", "application/json", json.dumps(json_safe(data), indent=2) + "\n"
     if what == "limit":
@@ -544,7 +488,7 @@ def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, 
     if what == "thrust-csv":
         from ..statics.limit import limit_analysis
 
-        arch = arch_from_params(_dict(params, "arch"))
+        arch = arch_from_params(object_field(params, "arch"))
         with COMPUTE_LOCK:
             r = limit_analysis(arch, verify=True)
         w.writerow(["joint", "x_l_m", "y_l_m", "x_r_m", "y_r_m"])
@@ -556,220 +500,6 @@ def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, 
     for tk, ph in zip(res["time"], res["phi"]):
         w.writerow([f"{tk:.5f}", "" if ph is None else f"{ph:.7f}"])
     return "response.csv", "text/csv", buf.getvalue()
-
-
-# ---------------------------------------------------------------------------- uploaded files
-#: Largest uploaded file (a record or a DXF drawing) [bytes].
-MAX_FILE_BYTES = 20_000_000
-#: A recorded ground motion: the response window [s] (the record's own length is free; the
-#: response runs to the window's end) and the package's estimate of one response's time [s]
-#: (archrock.studies.work.response_cost_s; without numba about 50 times more).
-MAX_RECORD_T_END_S = 120.0
-MAX_RESPONSE_WORK_S = 2.0
-#: Loaded records kept in memory (the oldest is forgotten first).
-KEEP_RECORDS = 4
-RECORD_UNITS = ("g", "m/s2", "cm/s2")
-DXF_UNITS = ("m", "cm", "mm")
-
-
-class Upload(NamedTuple):
-    """An uploaded file as the server streamed it: its ``path`` (in a temporary folder of the
-    server, mode 0700, deleted after the request), ``size`` [bytes] and ``sha256``."""
-
-    path: Path
-    size: int
-    sha256: str
-
-    @classmethod
-    def of_bytes(cls, data: bytes, folder) -> Upload:
-        """The upload of ``data`` written into ``folder`` (scripts, tests)."""
-        import hashlib
-
-        path = Path(folder) / "upload.bin"
-        path.write_bytes(data)
-        return cls(path, len(data), hashlib.sha256(data).hexdigest())
-
-
-class TooLarge(ArchInputError):
-    """An upload above :data:`MAX_FILE_BYTES` (HTTP 413)."""
-
-
-def too_large(field: str, size: int) -> TooLarge:
-    return TooLarge(f"{field}: {size:,} bytes; the app reads files of up to "
-                    f"{MAX_FILE_BYTES // 1_000_000} MB ({MAX_FILE_BYTES:,} bytes)")
-
-
-def safe_name(name, default: str) -> str:
-    """A file name safe to create in the server's own temporary folder: the last path part of
-    ``name``, letters, digits and ``._-`` only, at most 80 characters (the suffix kept: the
-    readers choose by it), ``default`` when nothing is left."""
-    import re
-
-    base = str(name or "").replace("\\", "/").rsplit("/", 1)[-1]
-    base = re.sub(r"[^A-Za-z0-9._-]", "_", base).lstrip(".")
-    if len(base) > 80:
-        stem, dot, suffix = base.rpartition(".")
-        base = (stem[:70] + dot + suffix[:9]) if dot else base[:80]
-    return base or default
-
-
-def _parse_in(upload: Upload, name: str, read):
-    """``read(path)`` of the uploaded file renamed ``name`` in its own temporary folder (the
-    readers choose by the suffix); messages name the file, not the folder."""
-    path = upload.path.with_name(name)
-    upload.path.replace(path)
-    try:
-        return read(path)
-    except ArchInputError as exc:
-        folder = str(path.parent)
-        raise type(exc)(str(exc).replace(str(path), name).replace(folder + "/", "")) from None
-
-
-class RecordStore:
-    """The records loaded in this server: id -> (GroundMotion, info), the last
-    :data:`KEEP_RECORDS` kept."""
-
-    def __init__(self):
-        from collections import OrderedDict
-
-        self._items = OrderedDict()
-        self._lock = threading.Lock()
-
-    def put(self, key: str, motion, info: dict) -> None:
-        with self._lock:
-            self._items[key] = (motion, info)
-            self._items.move_to_end(key)
-            while len(self._items) > KEEP_RECORDS:
-                self._items.popitem(last=False)
-
-    def get(self, key):
-        with self._lock:
-            item = self._items.get(key) if isinstance(key, str) else None
-        if item is None:
-            raise ArchInputError(f"record: {str(key)[:20]!r} is not loaded in this server (it "
-                                 f"keeps the last {KEEP_RECORDS}); open the record file again")
-        return item
-
-
-def _trace(times, accel_g, points: int = 2000) -> dict:
-    """A record drawn small: the least and greatest value of each of ``points`` stretches
-    (the peaks kept), or every sample of a short one."""
-    t, a = np.asarray(times, float), np.asarray(accel_g, float)
-    if len(t) <= 2 * points:
-        return {"time": _xy(t), "accel_g": _xy(a)}
-    edges = np.linspace(0, len(t), points + 1).astype(int)
-    ts, vs = [], []
-    for i0, i1 in zip(edges[:-1], edges[1:]):
-        seg = a[i0:i1]
-        lo, hi = i0 + int(np.argmin(seg)), i0 + int(np.argmax(seg))
-        for j in sorted((lo, hi)):
-            ts.append(t[j])
-            vs.append(a[j])
-    return {"time": _xy(ts), "accel_g": _xy(vs)}
-
-
-def load_record_upload(data: Upload, params: dict, store: RecordStore) -> dict:
-    """Read an uploaded record file (``data``, streamed by the server; its ``name``: ``.AT2`` is a PEER file in g,
-    anything else two columns "time accel"), with ``units`` (g, m/s2, cm/s2) and ``scale``, by
-    the library's :class:`~archrock.groundmotion.RecordSpec` (``load_record`` and the scale's
-    check) in a temporary folder of the server; keep it in ``store``.  Returns its id and
-    what the page shows of it: name, samples, time step, duration, PGA [g], sha256 and a small
-    trace of it."""
-    import warnings
-
-    from ..groundmotion import RecordSpec
-    from ..units import G
-
-    if data.size > MAX_FILE_BYTES:
-        raise too_large("record", data.size)
-    if not data.size:
-        raise ArchInputError("record: the file is empty; allowed a PEER .AT2 file or two "
-                             "columns 'time accel'")
-    name = safe_name(params.get("name"), "record.txt")
-    units = _choice(params, "units", RECORD_UNITS)
-    scale = _number(params, "scale", 1.0)
-    if scale == 0:
-        raise ArchInputError("scale: 0; allowed a finite nonzero factor on the record")
-    if name.lower().endswith(".at2") and units not in (None, "g"):
-        raise ArchInputError(f"units: {units!r} for {name}; allowed g (PEER .AT2 values are in g)")
-    with warnings.catch_warnings(record=True) as said:
-        warnings.simplefilter("always")
-        motion = _parse_in(
-            data, name, lambda p: RecordSpec.from_file(p, None if name.lower().endswith(".at2")
-                                                       else units, scale).build())
-    sha = data.sha256
-    key = f"{sha[:16]}-{units or 'g'}-{scale!r}"
-    t = np.asarray(motion.times, float)
-    dt = np.diff(t)
-    info = {"id": key, "name": name, "units": units or "g", "scale": scale, "sha256": sha,
-            "samples": int(len(t)), "dt_s": float(np.median(dt)) if len(dt) else None,
-            "duration_s": float(t[-1]), "pga_g": float(motion.pga / G),
-            "title": str(motion.name)[:120],
-            "warnings": [" ".join(str(w.message).split()) for w in said]}
-    store.put(key, motion, info)
-    return {**info, "trace": _trace(t, np.asarray(motion.accel, float) / G)}
-
-
-def record_motion(params, store: RecordStore | None):
-    """The loaded record named by ``{"id": ...}`` and its info."""
-    if store is None:
-        raise ArchInputError("record: no record can be loaded here")
-    if not isinstance(params, dict):
-        raise ArchInputError("record: expected an object {id} of a loaded record")
-    return store.get(params.get("id"))
-
-
-def load_dxf_upload(data: Upload, params: dict) -> dict:
-    """Read an uploaded DXF survey (one closed polyline per voussoir) as ``archrock
-    import-dxf`` does (:func:`archrock.geometry.dxf.read_dxf_outlines` then
-    :func:`~archrock.geometry.dxf.arch_from_outlines`, the steps of ``read_dxf``, with its
-    defaults: every layer, drawing units m, density 2000 kg/m^3), the number of voussoirs
-    checked before the chain is built.  Returns the geometry file's JSON (what the page then
-    sends as an opened geometry file), the name and the DXF handles from the left springing."""
-    from ..options import GEOMETRY_DEFAULTS
-    from ..geometry.dxf import arch_from_outlines, read_dxf_outlines
-
-    if data.size > MAX_FILE_BYTES:
-        raise too_large("dxf", data.size)
-    if not data.size:
-        raise ArchInputError("dxf: the file is empty; allowed a DXF drawing")
-    name = safe_name(params.get("name"), "survey.dxf")
-    layer = params.get("layer") or None
-    if layer is not None and (not isinstance(layer, str) or len(layer) > 255):
-        raise ArchInputError("layer: expected a layer name")
-    units = _choice(params, "units", DXF_UNITS, "m")
-    density = _number(params, "density", GEOMETRY_DEFAULTS["density"])
-    if not density > 0:
-        raise ArchInputError(f"density: {density:g}; allowed > 0 kg/m^3")
-    stem = name.rsplit(".", 1)[0] or "survey"
-
-    def read(path):
-        found = read_dxf_outlines(path, layer, units)
-        if len(found) > MAX_VOUSSOIRS:
-            raise ArchInputError(f"{name}: {len(found)} closed polylines; the app allows 3 to "
-                                 f"{MAX_VOUSSOIRS} voussoirs")
-        handles = [h for h, _ in found]
-        try:
-            arch, order = arch_from_outlines([p for _, p in found], handles, density=density,
-                                             name=stem)
-        except ArchInputError as exc:
-            raise ArchInputError(f"{name}: {exc}") from None
-        return arch, [handles[i] for i in order]
-
-    try:
-        with COMPUTE_LOCK:
-            arch, handles = _parse_in(data, name, read)
-    except ImportError as exc:  # ezdxf missing: the extra to install
-        raise ArchInputError(f"dxf: {exc}") from None
-    except ArchInputError as exc:
-        raise ArchInputError(f"dxf: {exc}") from None
-    from ..options import json_safe
-
-    geometry = {**arch.to_dict(), "metadata": {"generator": "archrock app (import-dxf)",
-                                               "drawing": name, "layer": layer,
-                                               "units": units, "handles": handles}}
-    return {"geometry": json_safe(geometry), "name": stem, "n": int(arch.n),
-            "handles": handles}
 
 
 # ---------------------------------------------------------------------------- report
@@ -792,8 +522,8 @@ def report_request(params: dict) -> dict:
     from ..studies.work import format_duration, response_cost_s
     from .._jit import HAVE_NUMBA
 
-    params = _request(params)
-    arch = arch_from_params(_dict(params, "arch"))
+    params = request_object(params)
+    arch = arch_from_params(object_field(params, "arch"))
     samples, seed, spreads = _random_arches(params, 12, 0, MAX_REPORT_SAMPLES,
                                             "random arches for the report in the app "
                                             "(archrock assess for more)")

@@ -12,15 +12,15 @@ Routes (JSON bodies; lengths m, accelerations g, times s):
 * ``POST /api/export`` {what, arch, pulse?}: a download (:func:`.api.export`);
 * ``POST /api/record?name=&units=&scale=`` the bytes of a record file (PEER .AT2 or two
   columns): read by the library in a temporary folder of the server, kept in memory; its id then
-  stands for the pulse in ``/api/respond`` {arch, record: {id}, t_end?} (:func:`.api.load_record_upload`);
+  stands for the pulse in ``/api/respond`` {arch, record: {id}, t_end?} (:func:`.uploads.load_record_upload`);
 * ``POST /api/dxf?name=&layer=&units=&density=`` the bytes of a DXF survey: its polygon arch's
-  geometry file JSON (:func:`.api.load_dxf_upload`);
+  geometry file JSON (:func:`.uploads.load_dxf_upload`);
 * ``POST /api/report`` {arch, samples, seed, spreads, contact}: ``archrock assess`` as a job;
   ``GET /api/jobs/{id}/download`` its HTML file.
 
 A bad value answers 400 with ``{"error": message}`` (the CLI's one-line message, naming the
 field); a valid arch with no answer of the kind asked (cannot stand, no mechanism) 422; never a
-traceback; an upload above api.MAX_FILE_BYTES 413.  Only the request bodies are read and only the
+traceback; an upload above uploads.MAX_FILE_BYTES 413.  Only the request bodies are read and only the
 downloads written; an uploaded file is streamed into a new temporary folder of the server
 (mode 0700), read by the library and deleted with it in the same request.
 
@@ -50,7 +50,7 @@ from starlette.staticfiles import StaticFiles
 
 from ..options import OptionError as CLIError, json_safe
 from ..errors import ArchInputError, ArchrockError, GeometryOutcome
-from . import api
+from . import api, uploads
 from .jobs import Busy, Jobs
 
 STATIC = Path(__file__).parent / "static"
@@ -78,7 +78,7 @@ def _error(exc: Exception) -> JSONResponse:
         import logging
 
         logging.getLogger("archrock.app").error("request failed", exc_info=exc)
-    if isinstance(exc, api.TooLarge):
+    if isinstance(exc, uploads.TooLarge):
         return _json({"error": msg, "kind": "too-large"}, 413)
     if isinstance(exc, Busy):
         return _json({"error": msg, "kind": "busy"}, 409)
@@ -106,8 +106,8 @@ async def _chunks(request: Request, cap: int, too_big):
         yield chunk
 
 
-def _too_long(size: int) -> api.TooLarge:
-    return api.TooLarge(f"request: {size:,} bytes; allowed up to {api.MAX_UPLOAD_CHARS:,} "
+def _too_long(size: int) -> uploads.TooLarge:
+    return uploads.TooLarge(f"request: {size:,} bytes; allowed up to {api.MAX_UPLOAD_CHARS:,} "
                         f"(a JSON body)")
 
 
@@ -122,18 +122,18 @@ async def _body(request: Request) -> dict:
     return data
 
 
-async def _upload(request: Request, field: str, folder: str) -> api.Upload:
+async def _upload(request: Request, field: str, folder: str) -> uploads.Upload:
     """The body of a file upload streamed into ``folder`` (hashed on the way), refused (413)
-    above api.MAX_FILE_BYTES: memory holds one chunk at a time, not the file."""
+    above uploads.MAX_FILE_BYTES: memory holds one chunk at a time, not the file."""
     path = Path(folder) / "upload.bin"
     sha, n = hashlib.sha256(), 0
     with open(path, "wb") as f:
-        async for chunk in _chunks(request, api.MAX_FILE_BYTES,
-                                   lambda size: api.too_large(field, size)):
+        async for chunk in _chunks(request, uploads.MAX_FILE_BYTES,
+                                   lambda size: uploads.too_large(field, size)):
             f.write(chunk)
             sha.update(chunk)
             n += len(chunk)
-    return api.Upload(path, n, sha.hexdigest())
+    return uploads.Upload(path, n, sha.hexdigest())
 
 
 def _endpoint(func):
@@ -155,7 +155,7 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
     background at start (the statics here, the ensemble's in the job worker)."""
     token = token or secrets.token_urlsafe(32)
     jobs = Jobs(warm_up=warm_up)
-    records = api.RecordStore()
+    records = uploads.RecordStore()
     page = (STATIC / "index.html").read_text(encoding="utf-8")
     if TOKEN_META not in page:
         raise RuntimeError("index.html has lost its token element")
@@ -236,9 +236,9 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                       "max_t_end_s": api.MAX_T_END_S, "max_pulse_s": api.MAX_PULSE_S,
                       "max_amplitude_g": api.MAX_AMPLITUDE_G, "shapes": api.SHAPES,
                       "joints": api.JOINTS, "pulses": api.PULSE_KINDS,
-                      "max_file_bytes": api.MAX_FILE_BYTES,
-                      "max_record_t_end_s": api.MAX_RECORD_T_END_S,
-                      "record_units": api.RECORD_UNITS, "dxf_units": api.DXF_UNITS,
+                      "max_file_bytes": uploads.MAX_FILE_BYTES,
+                      "max_record_t_end_s": uploads.MAX_RECORD_T_END_S,
+                      "record_units": uploads.RECORD_UNITS, "dxf_units": uploads.DXF_UNITS,
                       "max_report_samples": api.MAX_REPORT_SAMPLES})
 
     routes = [
@@ -248,9 +248,9 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
         Route("/api/limit", _endpoint(api.limit), methods=["POST"]),
         Route("/api/respond", _endpoint(lambda body: api.respond(body, records)),
               methods=["POST"]),
-        Route("/api/record", _uploader("record", lambda data, params: api.load_record_upload(
+        Route("/api/record", _uploader("record", lambda data, params: uploads.load_record_upload(
             data, params, records)), methods=["POST"]),
-        Route("/api/dxf", _uploader("dxf", api.load_dxf_upload), methods=["POST"]),
+        Route("/api/dxf", _uploader("dxf", uploads.load_dxf_upload), methods=["POST"]),
         Route("/api/report", report, methods=["POST"]),
         Route("/api/jobs/{job}/download", job_download),
         Route("/api/ensemble", ensemble, methods=["POST"]),

@@ -15,7 +15,7 @@ const state = {...OPPENHEIM, geometry: null, geometryName: null, defects: new Se
 const app = window.__app = {redraws: 0, frame: -1, frames: 0, timings: {slider: [], pulse: [],
                             ensemble: [], record: [], png: []}, lastLimit: null,
                             lastResponse: null, job: null, record: null, report: null, plays: 0};
-// the largest file the server reads (api.MAX_FILE_BYTES)
+// the largest file the server reads (uploads.MAX_FILE_BYTES)
 const MAX_FILE_BYTES = 20e6;
 
 const $ = (id) => document.getElementById(id);
