@@ -142,6 +142,11 @@ def _needed_reasons(needed, friction) -> dict:
     return {d: (reasons or {}).get(d) for d in ("l", "r")}
 
 
+def _needing_friction(fd) -> str:
+    """The joints of one direction's friction analysis that need the most friction, with |T|/N."""
+    return ", ".join(f"{j} ({fd.ratios[j]:.4f})" for j in fd.joints)
+
+
 def friction_lines(needed=None, friction=None) -> list[str]:
     """Readable lines of a friction analysis (see :func:`friction_summary`)."""
     if needed is None and friction is None:
@@ -163,7 +168,7 @@ def friction_lines(needed=None, friction=None) -> list[str]:
               "joints needing most friction (|T|/N)"]
     for d in ("l", "r"):
         fd = friction.direction(d)
-        joints = ", ".join(f"{j} ({fd.ratios[j]:.4f})" for j in fd.joints)
+        joints = _needing_friction(fd)
         lines.append(f"  M_{d}        {fd.multiplier:12.4f}  {fd.frictionless:15.4f}  "
                      f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
     lines.append(f"  k with friction = {friction.k:.4f}")
@@ -333,7 +338,7 @@ def format_friction_only(arch, why: str, min_thickness=None, friction=None,
               "  mechanism  k (friction)  sliding governs  joints needing most friction (|T|/N)"]
     for d in ("l", "r"):
         fd = friction.direction(d)
-        joints = ", ".join(f"{j} ({fd.ratios[j]:.4f})" for j in fd.joints)
+        joints = _needing_friction(fd)
         lines.append(f"  M_{d}        {fd.multiplier:12.4f}  "
                      f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
     lines.append(f"  k = min(k_l, k_r) with friction = {friction.k:.4f} (joints slide; the "

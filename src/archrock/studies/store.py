@@ -147,24 +147,26 @@ def _provenance(config: EnsembleConfig, b: int) -> dict:
 def write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
     """Write batch ``b``'s table atomically, with its provenance in the Parquet metadata."""
     import pyarrow as pa
-    import pyarrow.parquet as pq
 
-    # pyarrow's own SIGINT handling can swallow a Ctrl-C that arrives while it writes (the run
-    # then goes on to the end); Python's handler must see it so the ensemble stops and says
-    # which batches it kept
-    pa.enable_signal_handlers(False)
-    path = batch_path(out, b)
-    tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
     table = pa.Table.from_pandas(df, preserve_index=False)
     meta = dict(table.schema.metadata or {})
     meta[PROVENANCE_KEY] = json.dumps(_provenance(config, b), sort_keys=True).encode()
-    pq.write_table(table.replace_schema_metadata(meta), tmp)
-    _commit_table(tmp, path)
+    _write_table(table.replace_schema_metadata(meta), batch_path(out, b))
 
 
-def _commit_table(tmp: Path, path: Path) -> None:
-    """Put a written table in place: its checksum recorded (sidecar) first, then the rename,
-    so a table in place always has its checksum (module checksums)."""
+def _write_table(table, path: Path) -> None:
+    """Write a pyarrow ``table`` as ``path`` atomically: a ``*.tmp-PID`` file, its checksum
+    recorded (sidecar) first, then the rename, so a table in place always has its checksum
+    (module checksums)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    # pyarrow's own SIGINT handling can swallow a Ctrl-C that arrives while it writes (the run
+    # then goes on to the end); Python's handler must see it so the study stops and says
+    # what it kept
+    pa.enable_signal_handlers(False)
+    tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
+    pq.write_table(table, tmp)
     write_sidecar(path, file_sha256(tmp))
     os.replace(tmp, path)
 
@@ -557,15 +559,10 @@ class ResultStore:
     def write(self, a, m, s, res):
         """Keep the items (a, m, s) and their results ``res`` (columns of :data:`_STORED`)."""
         import pyarrow as pa
-        import pyarrow.parquet as pq
 
-        pa.enable_signal_handlers(False)  # as write_batch: a Ctrl-C must reach Python
         cols = {"arch": np.asarray(a, np.int64), "motion": np.asarray(m, np.int64),
                 "scale": np.asarray(s, float), **{c: np.asarray(res[c]) for c in _STORED}}
-        path = self.folder / "items" / f"chunk-{self.next:05d}.parquet"
-        tmp = path.with_name(f"{path.name}.tmp-{os.getpid()}")
-        pq.write_table(pa.table(cols), tmp)
-        _commit_table(tmp, path)
+        _write_table(pa.table(cols), self.folder / "items" / f"chunk-{self.next:05d}.parquet")
         self.next += 1
         for i, key in enumerate(zip(a, m, s)):
             self.done[self._key(*key)] = tuple(cols[c][i].item() for c in _STORED)
