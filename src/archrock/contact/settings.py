@@ -12,9 +12,10 @@ from ..units import G
 __all__ = ["EngineSettings", "EngineScales", "engine_scales", "DEFAULT_FRICTION",
            "DEFAULT_OUTLINE_TOL", "FINE_CUT"]
 
-#: Coulomb coefficient of every contact unless --friction says otherwise: well above what the
-#: thrust of ordinary arches needs, so that the default run is Heyman's no-sliding masonry.
-DEFAULT_FRICTION = 0.8
+#: Coulomb coefficient of every contact unless --friction says otherwise: the package's one
+#: default (archrock.statics.friction.DEFAULT_FRICTION), so that the engine and the limit analysis
+#: with friction assume the same joints.
+from ..statics.friction import DEFAULT_FRICTION  # noqa: E402
 
 #: How far the contact shapes' outline may deviate from a voussoir's, as a fraction of the arch's
 #: size (0: the fine cut, every outline vertex kept).

@@ -53,9 +53,17 @@ from .hinges import DIRECTIONS
 from .lp import ThrustLine, _statics, _Statics, _thrust_from_x
 from .thickness import MinimumThickness, thickness_bisection
 
-__all__ = ["FrictionDirection", "FrictionResult", "FrictionNeeded", "friction_analysis",
+__all__ = ["DEFAULT_FRICTION", "FrictionDirection", "FrictionResult", "FrictionNeeded", "friction_analysis",
            "friction_needed", "friction_minimum_thickness", "joint_shear_normal",
            "check_friction", "MU_CAP", "NO_FINITE_FRICTION", "NO_MECHANISM"]
+
+#: The Coulomb friction coefficient of masonry joints that every archrock analysis uses unless
+#: the user states another (``--friction MU``): the limit analysis with friction, the routing of
+#: the dynamics (the four-link model assumes no sliding) and the contact engine alike, so that a
+#: report states one coefficient.  0.8 is within the range measured on dry and mortared stone
+#: joints (about 0.6-0.8) and above what the thrust of the documented arches needs (Oppenheim's
+#: arch 0.495); EN 1996-1-1's 0.4 is a design shear coefficient: pass it for a conservative check.
+DEFAULT_FRICTION = 0.8
 
 # A joint "needs the most friction" when its |T|/N is within this of the largest (absolute:
 # ratios are friction coefficients, O(0.1-1)).
