@@ -339,3 +339,22 @@ def test_a_four_link_ensemble_on_piers_carries_the_choice():
     s = eng.summary()
     assert s["how"] == "contact engine" and s["dynamics"]["reason"].startswith("asked for")
     assert [r["k_l"] for r in eng.rows] == pytest.approx(res.frame["k_l"].tolist(), rel=1e-9)
+
+
+def test_choose_dynamics_routes_sliding_joints_to_the_engine(oppenheim):
+    """Oppenheim's arch needs mu >= 0.495 to rock without sliding (docs/friction.md): at the
+    default 0.8 the four-link model follows it, at 0.4 the engine does, with sliding excluded
+    (None) the four-link model again; the four-link model asked for by name at 0.4 is labelled
+    not valid."""
+    from archrock.studies.enginestudy import choose_dynamics
+
+    default = choose_dynamics(oppenheim)
+    assert default.used == "fourlink" and default.friction == pytest.approx(0.8)
+    assert default.friction_needed["l"] == pytest.approx(0.49513, abs=1e-4)
+    low = choose_dynamics(oppenheim, friction=0.4)
+    assert low.used == "engine" and "0.495" in low.reason and "mu = 0.4" in low.reason
+    assert choose_dynamics(oppenheim, friction=None).used == "fourlink"
+    asked = choose_dynamics(oppenheim, "fourlink", friction=0.4)
+    assert asked.used == "fourlink" and "not valid here" in asked.reason
+    with pytest.raises(ArchInputError, match="friction"):
+        choose_dynamics(oppenheim, friction=-1.0)

@@ -46,6 +46,10 @@ DYNAMICS = ("auto", "fourlink", "engine")
 #: (0.5 g: 10 s an arch at a load of 6-8 on 2 cores).
 ENGINE_STEP_S = 1.5e-5
 
+#: choose_dynamics's friction when none is passed: the package's default coefficient (None is a
+#: value: sliding excluded by the user).
+UNSET_FRICTION = object()
+
 
 def check_dynamics(value) -> str:
     """``value`` if it is one of :data:`DYNAMICS`, else ArchInputError naming the field."""
@@ -66,6 +70,8 @@ class DynamicsChoice:
     used: str
     reason: str
     single_dof: dict | None = None
+    friction: float | None = None
+    friction_needed: dict | None = None
 
     @property
     def engine(self) -> bool:
@@ -73,17 +79,60 @@ class DynamicsChoice:
 
     def to_dict(self) -> dict:
         return {"requested": self.requested, "used": self.used, "reason": self.reason,
-                "single_dof": self.single_dof}
+                "single_dof": self.single_dof, "friction": self.friction,
+                "friction_needed": self.friction_needed}
 
 
-def choose_dynamics(arch, dynamics: str = "auto") -> DynamicsChoice:
-    """The dynamics for ``arch`` (:class:`DynamicsChoice`).  "auto": the four-link model on
-    arches without piers (no check needed: rigid ground is left exactly as it was) and where
-    :func:`~archrock.dynamics.piers.single_dof_check` is valid; the contact engine where it
-    is not.  "fourlink" / "engine": as asked, the check's verdict still stated."""
-    from ..dynamics.piers import pier_blocks
+def _sliding(arch, friction) -> tuple[dict | None, str]:
+    """({"l": mu or None, "r": ...}, '') the friction the four-link collapse needs in each
+    direction, and why one degree of freedom cannot follow at ``friction`` ('' where it can,
+    or where ``friction`` is None: sliding excluded by the user, Heyman's hypothesis)."""
+    if friction is None:
+        return None, ""
+    from ..statics.friction import friction_needed
+
+    try:
+        need = friction_needed(arch)
+    except ArchrockError as exc:
+        return None, f"the friction the rocking needs could not be found ({' '.join(str(exc).split())})"
+    need = {d: need[d] for d in ("l", "r")}
+    short = [d for d in ("l", "r") if need[d] is None or need[d] > friction]
+    if not short:
+        return need, ""
+    said = ", ".join(f"M_{d} {'no finite friction' if need[d] is None else f'{need[d]:.3f}'}"
+                     for d in short)
+    return need, (f"the joints need friction ({said}) to rock without sliding, more than mu = "
+                  f"{friction:g}: they slide, and the four-link model assumes they do not")
+
+
+def choose_dynamics(arch, dynamics: str = "auto", friction=UNSET_FRICTION) -> DynamicsChoice:
+    """The dynamics for ``arch`` (:class:`DynamicsChoice`), the one routing every command,
+    study, report and the app use.  "auto": the four-link model where one degree of freedom
+    follows the arch -- no piers, or piers that stay still in both limit mechanisms
+    (:func:`~archrock.dynamics.piers.single_dof_check`), and joints whose Coulomb ``friction``
+    (default :data:`~archrock.statics.friction.DEFAULT_FRICTION`; None: sliding excluded by the
+    user) carries the four-link collapse without sliding; the contact engine otherwise.
+    "fourlink" / "engine": as asked, the checks' verdicts still stated."""
+    from ..statics.friction import DEFAULT_FRICTION
 
     dynamics = check_dynamics(dynamics)
+    if friction is UNSET_FRICTION:
+        friction = DEFAULT_FRICTION
+    elif friction is not None and (isinstance(friction, bool)
+                                   or not isinstance(friction, (int, float))
+                                   or not math.isfinite(friction) or friction <= 0):
+        raise ArchInputError(f"friction: {friction!r}; allowed a finite number > 0, or None "
+                             f"(sliding excluded)")
+    need, slides = _sliding(arch, friction)
+    mu = None if friction is None else float(friction)
+    choice = _choose(arch, dynamics, slides)
+    return DynamicsChoice(choice.requested, choice.used, choice.reason, choice.single_dof, mu,
+                          need)
+
+
+def _choose(arch, dynamics: str, slides: str) -> DynamicsChoice:
+    from ..dynamics.piers import pier_blocks
+
     check = None
     if pier_blocks(arch)[0]:
         from ..dynamics.piers import single_dof_check
@@ -94,6 +143,9 @@ def choose_dynamics(arch, dynamics: str = "auto") -> DynamicsChoice:
         except ArchrockError as exc:
             check = {"valid": None, "reason": f"no four-link model: {' '.join(str(exc).split())}"}
     if dynamics == "auto":
+        if slides:
+            return DynamicsChoice("auto", "engine", "one degree of freedom cannot follow the "
+                                  "arch: " + slides, check)
         if check is None:
             return DynamicsChoice("auto", "fourlink", "no piers: one degree of freedom (the "
                                   "four-link model) follows the arch")
@@ -110,6 +162,8 @@ def choose_dynamics(arch, dynamics: str = "auto") -> DynamicsChoice:
     said = f"asked for (dynamics={dynamics!r})"
     if dynamics == "fourlink" and check is not None and check["valid"] is False:
         said += "; WARNING single degree of freedom not valid: " + check["reason"]
+    if dynamics == "fourlink" and slides:
+        said += "; WARNING not valid here: " + slides
     return DynamicsChoice(dynamics, dynamics, said, check)
 
 
