@@ -14,7 +14,7 @@ from ..options import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args,  # noq
                        impact_spec_from_args, model_from_args, motion_from_args,
                        motion_spec_from_args, piers_from_args, spreads, supports_from_args,
                        undamaged_arch_from_args)
-from ._parser import PROG, CLIError, _int, finite_float, non_negative_int
+from ._parser import PROG, CLIError, _int, finite_float, non_negative_int, positive_float
 
 # the old private names of the builders (archrock <= 0.6.0 imported them from here)
 _piers_from_args = piers_from_args
@@ -258,6 +258,54 @@ def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) 
                    help="scale factor applied to the record (default 1)")
     parser.set_defaults(_motion_required=required)
     return parser
+
+
+# ---------------------------------------------------------------------------- dynamics
+def friction_value(text: str):
+    """argparse type of --friction: a finite number > 0, or 'none' (None: sliding excluded by
+    the user, Heyman's hypothesis)."""
+    if text.strip().lower() == "none":
+        return None
+    return positive_float(text)
+
+
+def add_friction_option(parser, none: bool = True, group=None):
+    """--friction MU (default the package's :data:`~archrock.statics.friction.DEFAULT_FRICTION`)
+    with one meaning in every command: the Coulomb coefficient of every joint, used by the
+    routing of the dynamics (:func:`archrock.studies.enginestudy.choose_dynamics`) and by the
+    contact engine alike; ``none``: also 'none', sliding excluded."""
+    from ..statics.friction import DEFAULT_FRICTION
+
+    target = parser if group is None else group
+    target.add_argument(
+        "--friction", type=friction_value if none else positive_float,
+        default=DEFAULT_FRICTION, metavar="MU|none" if none else "MU",
+        help=f"Coulomb friction coefficient of every joint, finite and > 0 (default "
+             f"{DEFAULT_FRICTION:g}): where the four-link collapse needs more, the joints slide "
+             f"and the contact engine runs; the engine uses it too"
+             + ("; none: sliding excluded (Heyman's hypothesis)" if none else ""))
+
+
+def add_dynamics_option(parser, what: str = "the response"):
+    """--dynamics auto|fourlink|engine, as the studies route it (docs/piers-dynamics.md)."""
+    from ..studies.enginestudy import DYNAMICS
+
+    parser.add_argument(
+        "--dynamics", choices=DYNAMICS, default="auto",
+        help=f"auto (default): {what} by the four-link model where one degree of freedom "
+             f"follows the arch (no piers or still piers, and the joints' friction carries the "
+             f"collapse without sliding), else by the contact engine (docs/piers-dynamics.md); "
+             f"fourlink or engine as asked (fourlink where it is not valid: labelled so)")
+
+
+def friction_words(mu) -> str:
+    """The friction a command ran with, in words, stated once in its output."""
+    from ..statics.friction import DEFAULT_FRICTION
+
+    if mu is None:
+        return "friction: none (sliding excluded by the user, Heyman's hypothesis)"
+    return (f"friction: mu = {mu:g}" + (" (the default; --friction)" if mu == DEFAULT_FRICTION
+                                         else " (--friction)"))
 
 
 # ---------------------------------------------------------------------------- impact
