@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["ramp_dict", "format_ramp", "engine_response_dict", "format_engine_response",
-           "block_counts"]
+           "block_counts", "four_link_label"]
 
 
 def block_counts(arch) -> str:
@@ -73,26 +73,60 @@ def format_ramp(result, limit, arch) -> str:
     return "\n".join(lines)
 
 
-def engine_response_dict(res, four_link=None) -> dict:
+def engine_response_dict(res, four_link=None, choice=None) -> dict:
+    """``archrock dem --json`` of a response: the engine's run, the four-link run beside it
+    and, with ``choice``, the routing ("dynamics") and whether the four-link model holds."""
     d = res.to_dict()
     if four_link is not None:
         d["four_link"] = four_link.to_dict(samples=False)
+    if choice is not None:
+        d["dynamics"] = choice.to_dict()
+        if four_link is not None:
+            d["four_link"]["valid_here"] = not choice.engine
+            d["four_link"]["label"] = four_link_label(choice)
     return d
 
 
-def format_engine_response(res, four_link, arch, motion) -> str:
+def four_link_label(choice, short: bool = False) -> str:
+    """The four-link column beside the engine: "four-link", or "four-link (not valid here:
+    <why>)" where the routing (``choice``, a DynamicsChoice of "auto") sends this arch to the
+    engine; ``short``: without the why (a figure's legend)."""
+    if choice is None or not choice.engine:
+        return "four-link"
+    if short:
+        return "four-link (not valid here)"
+    why = choice.reason.split(": ", 1)[-1] if choice.reason.startswith("one degree") else \
+        choice.reason
+    return f"four-link (not valid here: {why})"
+
+
+def format_engine_response(res, four_link, arch, motion, choice=None) -> str:
+    """``archrock dem``'s text: the engine's run, the four-link run beside it (labelled not
+    valid here where ``choice``, the routing of "auto", says so) and the sliding."""
     s = res.settings
-    lines = [f"Contact engine: {arch.name}, {arch.n} voussoirs, {motion.name}, friction MU = "
-             f"{s.friction:g}, restitution {s.restitution:g}",
-             f"  engine   : {res.status}"
-             + (f" at t = {res.t_collapse:.3f} s (a voussoir dropped by "
+    lines = [f"Contact engine: {arch.name}, {block_counts(arch)}, {motion.name}, friction MU = "
+             f"{s.friction:g}, restitution {s.restitution:g}"]
+    if choice is not None:
+        lines.append(f"  governing model (--dynamics auto of respond and the studies): "
+                     f"{'contact engine' if choice.engine else 'four-link model'} "
+                     f"({choice.reason})")
+    lines += [f"  engine   : {res.status}"
+             + (f" at t = {res.t_collapse:.3f} s (a block dropped by "
                 f"{res.run['collapse_drop']:g} x size)" if res.collapsed else "")
              + f", peak equivalent phi {res.peak:.4f} rad, run to {res.t_final:.2f} s"]
     if four_link is not None:
-        lines.append(f"  four-link: {four_link.status}"
+        label = four_link_label(choice)
+        if label != "four-link":  # a model the output calls invalid: its numbers under the label
+            lines.append(f"  {label}:")
+            label = "  four-link outcome (not valid here)"
+        lines.append(f"  {label}: {four_link.status}"
                      + (f" at t = {four_link.t_collapse:.3f} s" if four_link.collapsed else "")
                      + f", peak phi {four_link.peak:.4f} rad, impacts "
                      + ", ".join(f"{t:.3f}" for t in four_link.impacts[:6]))
+        if four_link.model.impact.fallback:  # the law named is the law that ran
+            from .response import impact_law_line
+
+            lines.append(f"    four-link {impact_law_line(four_link.model.impact)}")
     ms = res.max_sliding
     j = int(np.argmax(ms))
     lines.append(f"  max sliding: {ms.max() * 1e3:.2f} mm at joint {j} (per joint, mm: "
