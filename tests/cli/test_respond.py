@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import json
 
-import numpy as np
 import pytest
 
 from archrock.cli import main
@@ -16,29 +15,8 @@ from archrock.groundmotion import oppenheim_pulse
 PULSE = ["--pulse", "oppenheim", "--pulse-duration", "0.2"]
 
 
-def fake_engine(calls):
-    """A stand-in for contact.motion.engine_respond: a collapse at 2.5 s, recording its
-    arguments (the engine itself takes tens of seconds on the heavy piers)."""
-    from archrock.contact.motion import ContactResponse
-
-    def engine_respond(arch, motion, settings, *, model=None, t_end=3.0, dt_out=0.005,
-                       t_free=20.0, collapse_drop=0.2, progress=None):
-        calls.append({"arch": arch, "friction": settings.friction, "t_end": t_end,
-                      "dt_out": dt_out, "t_free": t_free, "progress": progress})
-        k, n = 4, arch.n
-        t = np.linspace(0.0, t_end, k)
-        return ContactResponse(t, np.zeros((k, n)), np.zeros((k, n + 1)), np.zeros((k, n + 1)),
-                               np.linspace(0.0, 0.3, k), np.zeros((k, n, 2)),
-                               np.full(n + 1, 1e-3), 0.3, "collapsed", 2.5, 2.5, settings,
-                               {"t_end": t_end, "dt_out": dt_out, "t_free": t_free,
-                                "collapse_drop": collapse_drop, "dt": 1e-3,
-                                "motion": motion.name})
-
-    return engine_respond
-
-
 @pytest.fixture
-def engine_calls(monkeypatch):
+def engine_calls(monkeypatch, fake_engine):
     from archrock.contact import motion
 
     calls = []
