@@ -45,16 +45,28 @@ def test_heavy_piers_route_to_the_engine(heavy_piers_file, engine_calls, capsys)
     assert d["dynamics"]["used"] == "engine" and d["dynamics"]["friction"] == pytest.approx(1.5)
     assert d["engine"]["friction"] == pytest.approx(1.5, abs=1e-15)  # one friction, both uses
     assert "restitution" not in d and "impacts" not in d and "single_dof_valid" not in d
+    assert d["blocks"] == {"voussoirs": 12, "piers": 2} and d["unused_options"] == []
+    # a four-link option on a run the engine answers is said, not silently dropped
+    assert main(argv + ["--impact", "momentum", "--cv", "0.5"]) == 0
+    assert ("not used by the contact engine (four-link options): --impact, --cv"
+            in capsys.readouterr().out)
 
 
-def test_engine_figure_and_no_progress(heavy_piers_file, engine_calls, tmp_path, capsys):
-    """--plot draws the engine's run; --no-progress gives the engine no progress sink."""
-    png = tmp_path / "r.png"
+def test_engine_figure_animation_and_progress(heavy_piers_file, engine_calls, tmp_path,
+                                              capsys):
+    """--plot and --animate draw the engine's run, the animation's frames reported on stderr
+    up to 100%; --no-progress gives the engine no progress sink and prints none."""
+    png, gif = tmp_path / "r.png", tmp_path / "r.gif"
     argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
-            "--plot", str(png), "--no-progress"]
+            "--plot", str(png), "--animate", str(gif), "--t-end", "0.4"]
     assert main(argv) == 0
-    assert png.stat().st_size > 1000 and f"wrote {png}" in capsys.readouterr().out
-    assert engine_calls[0]["progress"] is None
+    cap = capsys.readouterr()
+    assert png.stat().st_size > 1000 and gif.stat().st_size > 1000
+    assert f"wrote {png}" in cap.out and f"wrote {gif}" in cap.out
+    assert cap.err.strip().splitlines()[-1] == "animation r.gif: frame 10/10 (100%)"
+    assert callable(engine_calls[0]["progress"])
+    assert main(argv[:-4] + ["--plot", str(png), "--no-progress"]) == 0
+    assert capsys.readouterr().err == "" and engine_calls[1]["progress"] is None
 
 
 def test_fourlink_by_name_is_labelled_not_valid(heavy_piers_file, capsys):

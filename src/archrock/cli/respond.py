@@ -104,7 +104,10 @@ def _run_fourlink(args, arch, motion, choice, plot, animation) -> int:
 
         animation = animate_response(shown, animation, progress=_progress(args))
     if args.json:
-        d = {"model": "fourlink", "dynamics": choice.to_dict(), **res.to_dict()}
+        from ..reports.contact import block_kinds_count
+
+        d = {"model": "fourlink", "dynamics": choice.to_dict(),
+             "blocks": block_kinds_count(arch), **res.to_dict()}
         d["valid_here"] = why_not is None
         d["not_valid_reason"] = why_not
         emit_json(d)
@@ -125,6 +128,15 @@ def _run_fourlink(args, arch, motion, choice, plot, animation) -> int:
         if f:
             print(f"wrote {f}")
     return 0
+
+
+def _four_link_options(args) -> list:
+    """The four-link model's options given on a run the engine answers (said, not silently
+    dropped)."""
+    given = [("--impact", args.impact), ("--impact-on", args.impact_on), ("--cv", args.cv),
+             ("--literal-cv", args.literal_cv or None), ("--limit-factor", args.limit_factor),
+             ("--integrator", None if args.integrator == "fast" else args.integrator)]
+    return [flag for flag, v in given if v is not None]
 
 
 def _engine_settings(args, choice):
@@ -170,11 +182,17 @@ def _run_engine(args, arch, motion, choice, plot, animation) -> int:
         from ..reports.contactplots import animate_engine
 
         animation = animate_engine(res, None, arch, animation, progress=_progress(args))
+    unused = _four_link_options(args)
     if args.json:
+        from ..reports.contact import block_kinds_count
+
         emit_json({"model": "engine", "dynamics": choice.to_dict(), "arch": arch.name,
-                   "engine_run": run.to_dict(), **res.to_dict()})
+                   "blocks": block_kinds_count(arch), "engine_run": run.to_dict(),
+                   "unused_options": unused, **res.to_dict()})
         return 0
     print(format_engine_outcome(res, arch, motion, choice, friction_words(args.friction)))
+    if unused:
+        print(f"not used by the contact engine (four-link options): {', '.join(unused)}")
     for f in (plot, animation):
         if f:
             print(f"wrote {f}")

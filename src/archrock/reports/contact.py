@@ -5,27 +5,30 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["ramp_dict", "format_ramp", "engine_response_dict", "format_engine_response",
-           "block_counts", "four_link_label"]
+           "block_counts", "block_kinds_count", "four_link_label"]
 
 
-def block_counts(arch) -> str:
-    """The blocks of ``arch`` counted by kind ("12 voussoirs, 2 piers"): an arch of 12
-    voussoirs on two piers is not an arch of 14 voussoirs.  Kinds from ``block_kinds`` where
-    the arch has them, else the piers a geometry file's end blocks are
-    (:func:`archrock.dynamics.piers.pier_blocks`)."""
+def block_kinds_count(arch) -> dict:
+    """{"voussoirs": n, "piers": m, "buttresses": b} (kinds present only) of ``arch``: kinds
+    from ``block_kinds`` where the arch has them, else the piers a geometry file's end blocks
+    are (:func:`archrock.dynamics.piers.pier_blocks`)."""
     from ..dynamics.piers import pier_blocks
 
     kinds = list(getattr(arch, "block_kinds", None) or ("voussoir",) * arch.n)
     if "pier" not in kinds and "buttress" not in kinds:
         for i in pier_blocks(arch)[0]:
             kinds[i] = "pier"
-    words = []
-    for kind, plural in (("voussoir", "voussoirs"), ("pier", "piers"),
-                         ("buttress", "buttresses")):
-        n = kinds.count(kind)
-        if n:
-            words.append(f"{n} {kind if n == 1 else plural}")
-    return ", ".join(words)
+    counts = {plural: kinds.count(kind) for kind, plural in
+              (("voussoir", "voussoirs"), ("pier", "piers"), ("buttress", "buttresses"))}
+    return {k: v for k, v in counts.items() if v}
+
+
+def block_counts(arch) -> str:
+    """The blocks of ``arch`` counted by kind ("12 voussoirs, 2 piers"): an arch of 12
+    voussoirs on two piers is not an arch of 14 voussoirs."""
+    one = {"voussoirs": "voussoir", "piers": "pier", "buttresses": "buttress"}
+    return ", ".join(f"{n} {plural if n != 1 else one[plural]}"
+                     for plural, n in block_kinds_count(arch).items())
 
 
 def _limit_hinges(limit, d):
