@@ -131,18 +131,18 @@ def test_low_friction_sends_oppenheim_to_the_engine(engine_calls, capsys):
 
 def test_oppenheim_unchanged(capsys):
     """Oppenheim's arch keeps the four-link answer: the paper's pulse gives the same text as
-    the four-link report itself, under the two lines that state the model and the friction."""
+    the four-link report itself, then two lines that state the model and the friction."""
     from archrock.dynamics.response import prepare, respond
     from archrock.reports.response import format_response
 
     assert main(["respond", *PULSE, "--amplitude", "-1"]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert out[0].startswith("dynamics: four-link model (no piers")
-    assert out[1] == "friction: mu = 0.8 (the default; --friction)"
+    assert out[-2].startswith("dynamics: four-link model (no piers")
+    assert out[-1] == "friction: mu = 0.8 (the default; --friction)"
     model = prepare(oppenheim_arch())
     motion = oppenheim_pulse(-1.0, 0.2)
-    assert out[2:] == format_response(respond(model, motion), model, motion).splitlines()
-    assert "k_l = 0.3700, k_r = 0.3700" in out[2]
+    assert out[:-2] == format_response(respond(model, motion), model, motion).splitlines()
+    assert "k_l = 0.3700, k_r = 0.3700" in out[0]
     assert main(["respond", *PULSE, "--amplitude", "-1", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["model"] == "fourlink" and d["valid_here"] is True

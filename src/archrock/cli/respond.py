@@ -115,7 +115,8 @@ def _run_fourlink(args, arch, motion, choice, plot, animation) -> int:
     text = format_response(res, model, motion)
     head = [f"dynamics: four-link model ({choice.reason})", friction_words(args.friction)]
     if why_not is None:
-        print("\n".join(head + [text]))
+        # the report as before, then the model that gave it and the friction it assumed
+        print("\n".join([text] + head))
     else:
         # issue 30: a model the same output calls invalid gives no bare answer line
         print(f"four-link model: not valid here ({why_not})")
