@@ -35,6 +35,7 @@ from ..errors import ArchrockError
 from ..statics.friction import DEFAULT_FRICTION, check_friction
 
 __all__ = ["Capacity", "Governing", "GoverningCapacity", "governing_capacity", "AGREEMENT",
+           "engine_friction",
            "NO_SLIDING", "WITH_FRICTION", "ENGINE", "ENGINE_NOT_ASKED"]
 
 #: Relative difference [-] below which the engine and the limit analysis agree (the engine's
@@ -210,7 +211,7 @@ def _with_friction(arch, mu) -> Capacity:
                      "method": fa.method})
 
 
-def _engine_friction(mu, needed) -> tuple[float, str]:
+def engine_friction(mu, needed) -> tuple[float, str]:
     """(friction the engine runs at, note): mu, or with sliding excluded a friction high enough
     not to slide: max(DEFAULT_FRICTION, 2 x the largest friction needed)."""
     if mu is not None:
@@ -243,7 +244,7 @@ def _engine(arch, lim, mu, needed, ref, progress):
     analysis at the same friction, per direction), refined where they disagree."""
     from ..contact import EngineSettings, ramp
 
-    run_mu, note = _engine_friction(mu, needed)
+    run_mu, note = engine_friction(mu, needed)
     settings = EngineSettings(friction=run_mu)
     res = ramp(arch, settings, progress, limit=lim)
     eng = {d: getattr(res, d) for d in DIRS}
