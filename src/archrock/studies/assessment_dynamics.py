@@ -267,7 +267,13 @@ def section_contact(ctx: Context) -> Section:
     from .governing import ENGINE
 
     title = "Contact-engine check"
-    gov = ctx.governing
+    try:
+        from ..contact import import_pymunk
+
+        import_pymunk()  # the package imports without pymunk; the engine needs it
+        gov = ctx.governing
+    except ImportError:
+        return _optional_missing("contact", title, "contact", "The contact-engine (pymunk) check")
     eng = gov.analysis(ENGINE)
     if eng is None:
         why = dict(gov.left_out).get(ENGINE, "not run")
