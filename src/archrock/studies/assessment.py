@@ -35,11 +35,12 @@ from ..dynamics.impact import PAPER_PRACTICE, ImpactSpec
 from ..geometry.sampling import Spreads
 from ..statics.friction import DEFAULT_FRICTION, check_friction
 # the sections live in three modules by layer of the answer; their names stay importable here
-from .assessment_blocks import (REFERENCES, Figure, Paragraph, Section, Table, _f,  # noqa: F401
-                                _optional_missing, titled)
-from .assessment_statics import (arch_extent, friction_caveat, friction_note,  # noqa: F401
-                                 section_friction, section_geometry, section_governing,
-                                 section_limit, section_piers, section_supports)
+from .assessment_blocks import (REFERENCES, Figure, Paragraph, Section, Table,  # noqa: F401
+                                _f, _optional_missing, titled)  # noqa: F401
+from .assessment_statics import (arch_extent, friction_caveat,  # noqa: F401
+                                 friction_note, section_friction, section_geometry,  # noqa: F401
+                                 section_governing, section_limit, section_piers,
+                                 section_supports)
 from .assessment_dynamics import (section_assumptions, section_codecheck,  # noqa: F401
                                   section_contact, section_curves, section_defects,
                                   section_fragility, section_impact, section_response)
@@ -144,6 +145,9 @@ class Context:
     config: AssessConfig
     progress: Callable[[str], None] = lambda msg: None
     cache: dict = field(default_factory=dict)
+    #: whether the governing decision ramps the contact engine: where the report has its
+    #: contact section (the app's fast report leaves both out)
+    engine: bool = True
 
     def once(self, key: str, compute: Callable):
         """compute() the first time; its result, or the error it raised, every time after (a
@@ -209,12 +213,13 @@ class Context:
     @property
     def governing(self):
         """The governing capacity at the report's friction (studies.governing), with the
-        contact engine where pymunk imports, computed once."""
+        contact engine where the report has its section and pymunk imports, computed once."""
         from .governing import governing_capacity
 
         return self.once("governing", lambda: governing_capacity(
-            self.arch, self.config.friction, engine=True, limit=self.limit,
-            progress=self.progress))
+            self.arch, self.config.friction, engine=self.engine, limit=self.limit,
+            progress=self.progress, engine_left_out="the contact-engine section is not part "
+                                                    "of this report"))
 
     @property
     def dynamics(self):
@@ -334,8 +339,10 @@ def assess(arch: VoussoirArch, config: AssessConfig | None = None, *,
     progress = resolve_settings(settings, "assess", progress=progress).only("assess").sink
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    funcs = SECTIONS if sections is None else sections
     ctx = Context(arch, AssessConfig() if config is None else config,
-                  progress or (lambda msg: None))
+                  progress or (lambda msg: None),
+                  engine=any(getattr(f, "key", "") == "contact" for f in funcs))
     ctx.records  # read (and check) the records before any long computation
     out = []
     t_all = time.perf_counter()

@@ -4,7 +4,6 @@ the assumptions (:mod:`archrock.studies.assessment` orders them)."""
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -16,6 +15,7 @@ from .assessment_blocks import (REFERENCES, Figure, Paragraph, Section, Table, _
 
 if TYPE_CHECKING:  # the context is assessment.py's; sections read it only
     from .assessment import Context
+
 
 @titled('impact', 'Impact coefficients by model')
 def section_impact(ctx: Context) -> Section:
@@ -300,9 +300,9 @@ def section_contact(ctx: Context) -> Section:
             "direction: the acceleration at which the arch starts to move and the joints that "
             "open, beside the limit analysis at the same friction (docs/verification.md, "
             "Contact engine). Joints are numbered from the left springing (0). Where the two "
-            f"differ by more than 2%, the ramp is run again refined (fine contact outline, "
-            f"twice the steps) to tell a disagreement of the models from one of the engine's "
-            f"discretisation.")
+            "differ by more than 2%, the ramp is run again refined (fine contact outline, "
+            "twice the steps) to tell a disagreement of the models from one of the engine's "
+            "discretisation.")
     blocks = [Paragraph(text),
               Table(("direction", "engine multiplier", "limit analysis at the same friction",
                      "difference", "engine refined", "engine hinges", "limit hinges",

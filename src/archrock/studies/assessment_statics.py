@@ -12,6 +12,10 @@ from ..errors import ArchrockError
 from ..geometry import Arch, PolygonArch, VoussoirArch
 from .assessment_blocks import Figure, Paragraph, Section, Table, _f, _optional_missing, titled
 
+if TYPE_CHECKING:  # the context is assessment.py's; sections read it only
+    from .assessment import Context
+
+
 def arch_extent(arch: VoussoirArch) -> tuple[float, float, float, float]:
     """(x_min, x_max, y_min, y_max) of the masonry [m]: of the voussoirs' outlines, so that the
     height is the extrados crown's (the crown is inside a voussoir when n is odd, above the
