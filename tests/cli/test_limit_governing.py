@@ -66,3 +66,14 @@ def test_bad_friction_is_one_line_exit_2(capsys, bad, tmp_path):
         rc, out, err = run(capsys, *cmd, "--friction", bad)
         assert rc == 2 and "--friction" in err and "'none'" in err
         assert "Traceback" not in err and len(err.strip().splitlines()) <= 3
+
+
+def test_friction_only_arch_governs_by_friction(capsys):
+    """An arch that only friction brings to a mechanism: the friction analysis governs, the
+    no-sliding analysis is left out with its reason."""
+    flat = ["--radius", "10", "--embrace", "70", "--thickness", "2", "--voussoirs", "7"]
+    d = json.loads(run(capsys, "limit", *flat, "--friction", "0.3", "--json")[1])
+    g = d["governing"]
+    assert g["governing"]["analysis"] == "limit analysis with friction mu = 0.3"
+    assert g["governing"]["value"] == pytest.approx(d["friction_k_l"], rel=1e-12)
+    assert "no mechanism" in g["left_out"][0]["why"]

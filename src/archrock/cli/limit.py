@@ -165,12 +165,17 @@ def run_limit(args) -> int:
     if no_mech is not None:
         # no frictionless mechanism: friction's result and/or the capacity are the answer
         extra.pop("needed")
+        gov = None if fr is None else _governing(arch, None, gov_mu)
         if args.json:
-            emit_json({**friction_only_summary(arch, no_mech, mt, **extra), **sup_json})
+            emit_json({**friction_only_summary(arch, no_mech, mt, **extra), **sup_json,
+                       **({} if gov is None else
+                          {"governing": {**gov.to_dict(), "friction_stated": gov_stated}})})
         else:
             print(format_friction_only(arch, no_mech, mt, **extra))
             for line in sup_lines:
                 print(line)
+            if gov is not None:
+                print(format_governing(gov, gov_stated))
         return 0
     gov = _governing(arch, result, gov_mu)
     if args.json:

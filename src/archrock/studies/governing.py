@@ -342,32 +342,46 @@ def governing_capacity(arch, friction=DEFAULT_FRICTION, *, engine: bool = False,
 
     friction: the joints' Coulomb coefficient (default the package's
     :data:`~archrock.statics.friction.DEFAULT_FRICTION`); None: sliding excluded by the user
-    (the friction analysis is left out). engine: also ramp the contact engine (minutes; left out
+    (the friction analysis is left out; NoMechanismError where no mechanism opens without
+    sliding, else the no-sliding analysis is left out with the reason). engine: also ramp the contact engine (minutes; left out
     where pymunk does not import); limit: the arch's LimitResult if already computed;
     progress: a callback of the engine's lines; engine_left_out: why the engine is left out
     when ``engine`` is False."""
     from ..statics.friction import friction_needed
     from ..statics.limit import limit_analysis
 
+    from ..errors import NoMechanismError
+
     mu = None if friction is None else check_friction(friction)
     analyses, left_out, findings = [], [], []
-    lim = limit if limit is not None else limit_analysis(arch, verify=True)
+    try:
+        lim = limit if limit is not None else limit_analysis(arch, verify=True)
+    except NoMechanismError as exc:  # only friction brings this arch to a mechanism
+        if mu is None:
+            raise
+        lim = None
+        left_out.append((NO_SLIDING, _one_line(exc)))
     try:
         needed = friction_needed(arch)
     except ArchrockError as exc:
         needed = None
         left_out.append(("friction needed", _one_line(exc)))
-    no_slide = _no_sliding(lim, needed, mu)
-    analyses.append(no_slide)
+    ref = {d: None for d in DIRS}
+    if lim is not None:
+        no_slide = _no_sliding(lim, needed, mu)
+        analyses.append(no_slide)
+        ref = {d: no_slide.k(d) for d in DIRS}
     if mu is None:
         left_out.append((WITH_FRICTION, "sliding excluded by the user (friction None, "
                                         "--friction none): Heyman's no-sliding hypothesis"))
-        ref = {d: no_slide.k(d) for d in DIRS}
     else:
         fr = _with_friction(arch, mu)
         analyses.append(fr)
         ref = {d: fr.k(d) for d in DIRS}
-    if not engine:
+    if engine and lim is None:
+        left_out.append((ENGINE, "no mechanism without sliding to set the ramp's range: "
+                                 "archrock dem --ramp --ramp-max"))
+    elif not engine:
         left_out.append((ENGINE, engine_left_out))
     else:
         try:
