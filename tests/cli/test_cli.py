@@ -304,10 +304,19 @@ def test_limit_reports_are_what_the_command_prints(capsys):
     arch = arch_from_args(_geometry_args("--thickness", "1.2"))
     res, mt = limit_analysis(arch, verify=True), minimum_thickness(arch)
     needed = friction_needed(arch)  # reported by every limit run
+    # and the governing answer at the default friction, stated (studies.governing, issue 30)
+    from archrock.reports.limit import format_governing
+    from archrock.studies.governing import governing_capacity
+
+    gov = governing_capacity(arch, 0.8, limit=res,
+                             engine_left_out="not run by limit: archrock dem --ramp")
+    stated = "mu = 0.8 (the default; --friction MU|none)"
     code, out, _ = run(capsys, "limit", "--thickness", "1.2", "--min-thickness")
-    assert code == 0 and out == format_limit_table(res, mt, needed=needed) + "\n"
+    assert code == 0 and out == (format_limit_table(res, mt, needed=needed) + "\n"
+                                 + format_governing(gov, stated) + "\n")
     assert run_json(capsys, "limit", "--thickness", "1.2", "--min-thickness", "--json") == \
-        json.loads(json.dumps(limit_summary(res, mt, needed=needed)))
+        json.loads(json.dumps({**limit_summary(res, mt, needed=needed),
+                               "governing": {**gov.to_dict(), "friction_stated": stated}}))
 
 
 def test_respond_report_is_what_the_command_prints(capsys):

@@ -16,7 +16,7 @@ from ..geometry.piers import hinge_place
 
 __all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
            "thrust_range_line", "min_pier_width_line", "friction_only_summary",
-           "format_friction_only"]
+           "format_friction_only", "format_governing"]
 
 
 def _on_piers(arch) -> bool:
@@ -365,3 +365,13 @@ def _extras(arch, min_thickness, min_thickness_friction, thrust, min_pier_width)
     if min_pier_width is not None:
         lines.append(f"  {min_pier_width_line(min_pier_width)}")
     return lines
+
+
+def format_governing(gov, stated: str) -> str:
+    """The governing answer of ``archrock limit`` (a
+    :class:`~archrock.studies.governing.GoverningCapacity`): its friction stated once, the
+    governing line, what was left out and why."""
+    lines = ["", f"Governing capacity, friction {stated}", "  " + gov.line()]
+    for name, why in gov.left_out:
+        lines.append(f"  left out: {name}: {why}")
+    return "\n".join(lines)
