@@ -56,3 +56,13 @@ def test_counts_survive_the_geometry_file(semicircle, tmp_path):
 
     path = write_arch(with_piers(semicircle, 4.0, 2.0, courses=2), tmp_path / "a.json")
     assert describe_blocks(read_arch(path)) == "9 voussoirs on two piers (2 courses each)"
+
+
+def test_arcade_counts_piers_not_courses(semicircle):
+    from archrock.geometry.arcade import arcade
+    from archrock.geometry.blocks import arcade_counts, describe_arcade
+
+    arc = arcade([semicircle, semicircle], [4.0] * 3, [2.0] * 3, courses=2)
+    assert describe_arcade(arc) == "18 voussoirs, 3 piers in 6 courses"
+    assert arcade_counts(arc) == {"voussoirs": 18, "pier_blocks": 6, "buttress_blocks": 0,
+                                  "beams": 0, "piers": 3, "blocks": 24}

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from .piers import _pier_runs
 
-__all__ = ["block_counts", "describe_blocks", "arch_phrase", "article", "block_kind", "block_name",
-           "block_names"]
+__all__ = ["block_counts", "describe_blocks", "arch_phrase", "article", "block_kind",
+           "block_name", "block_names", "arcade_counts", "describe_arcade"]
 
 
 def _plural_word(word: str) -> str:
@@ -94,3 +94,35 @@ def block_name(arch, i: int) -> str:
 def block_names(arch) -> tuple:
     """:func:`block_name` of every block of ``arch``, in chain order."""
     return tuple(block_name(arch, i) for i in range(arch.n))
+
+
+def arcade_counts(arc) -> dict:
+    """The blocks of an :class:`~archrock.geometry.arcade.Arcade` by kind: ``voussoirs``,
+    ``pier_blocks``, ``buttress_blocks``, ``beams``, ``blocks`` and ``piers`` (how many piers
+    its ``piers`` lists; None where it lists none, e.g. an arcade read from a file without
+    them)."""
+    kinds = tuple(arc.kinds)
+    piers = tuple(getattr(arc, "piers", ()) or ())
+    return {"voussoirs": kinds.count("voussoir"), "pier_blocks": kinds.count("pier"),
+            "buttress_blocks": kinds.count("buttress"), "beams": kinds.count("beam"),
+            "piers": len(piers) or None, "blocks": len(kinds)}
+
+
+def describe_arcade(arc) -> str:
+    """An arcade's blocks in words, each kind apart: "18 voussoirs, 3 piers in 6 courses",
+    "18 voussoirs, 4 pier blocks" (piers not numbered by their labels)."""
+    c = arcade_counts(arc)
+    parts = [_plural(c["voussoirs"], "voussoir")] if c["voussoirs"] else []
+    walls = c["pier_blocks"] + c["buttress_blocks"]
+    if walls:
+        what = ("pier" if not c["buttress_blocks"] else "buttress" if not c["pier_blocks"]
+                else "pier or buttress")
+        if c["piers"]:
+            word = "buttress" if what == "buttress" else "pier"
+            per = "" if walls == c["piers"] else f" in {_plural(walls, 'course')}"
+            parts.append(_plural(c["piers"], word) + per)
+        else:
+            parts.append(_plural(walls, f"{what} block"))
+    if c["beams"]:
+        parts.append(_plural(c["beams"], "beam"))
+    return ", ".join(parts)
