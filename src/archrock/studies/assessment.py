@@ -781,20 +781,34 @@ def section_defects(ctx: Context) -> Section:
     except ImportError:
         return _optional_missing("defects", title, "studies.defectmap", "The defect map")
     res = defect_map(ctx.arch)  # 30% thickness loss about the centreline, each voussoir
-    worst = res.worst_all
-    m = int(np.flatnonzero(res.indices == worst[0])[0])
-    where = " and ".join(str(w) for w in worst)
+    from ..reports.defects import _which
+
+    def worst_of(ties):
+        m = int(np.flatnonzero(res.indices == ties[0])[0])
+        return _which([res.place(t) for t in ties], " and ", ""), m
+
+    where, m = worst_of(res.worst_all)
+    # on piers a thinned pier course is a pier defect: said apart from the voussoirs'
+    piers = bool(res.worst_in("arch") and res.worst_pier_all)
+    pier_txt, head = "", ((("worst voussoir defect" if piers else "worst defect"),
+                           f"{where}: -{100 * res.relative_loss[m]:.1f}%"),)
+    if piers:
+        pwhere, pm = worst_of(res.worst_pier_all)
+        pier_txt = (f" Each pier course in turn loses 30% of its width the same way: the worst "
+                    f"pier defect is {pwhere}: min(k_l, k_r) falls to {res.k[pm]:.4f} g "
+                    f"({100 * res.relative_loss[pm]:.1f}%).")
+        head += (("worst pier defect", f"{pwhere}: -{100 * res.relative_loss[pm]:.1f}%"),)
     return Section("defects", title, (
         Paragraph(f"Each voussoir in turn loses 30% of its thickness about its centreline "
-                  f"(docs/defects.md). The largest loss of capacity comes from "
-                  f"{'voussoirs' if len(worst) > 1 else 'voussoir'} {where} (numbered from the left springing): min(k_l, k_r) falls from "
-                  f"{res.k0:.4f} to {res.k[m]:.4f} g ({100 * res.relative_loss[m]:.1f}%). "
-                  f"`archrock defects` maps the other defects (joint tilt, missing mortar) "
-                  f"and, with a pulse, the first-collapse amplitude."),
-        Figure("defects", "Capacity lost when each voussoir is the damaged one.", res)),
-        {"available": True, **res.to_dict()},
-        (("worst defect", f"{'voussoirs' if len(worst) > 1 else 'voussoir'} {where}: "
-                          f"-{100 * res.relative_loss[m]:.1f}%"),))
+                  f"(docs/defects.md). The largest loss of capacity comes from {where} "
+                  f"(numbered from the arch's left springing): min(k_l, k_r) falls from "
+                  f"{res.k0:.4f} to {res.k[m]:.4f} g ({100 * res.relative_loss[m]:.1f}%)."
+                  f"{pier_txt} `archrock defects` maps the other defects (joint tilt, missing "
+                  f"mortar) and, with a pulse, the first-collapse amplitude."),
+        Figure("defects", "Capacity lost when each voussoir" + (" or pier course" if piers else "")
+               + " is the damaged one (red: lost, blue: gained, in % of the undamaged k).",
+               res)),
+        {"available": True, **res.to_dict()}, head)
 
 
 @titled('fragility', 'Fragility curves')
