@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+from ..studies.defectmap import names_text
+
 __all__ = ["defects_summary", "format_defects"]
 
 
@@ -18,17 +20,6 @@ def defects_summary(dmap, impact=None) -> dict:
 
 def _num(x, spec=".4f") -> str:
     return "n/a" if x is None or not math.isfinite(x) else format(x, spec)
-
-
-def _which(places: list, sep: str = ", ", tied: str = " (tied)") -> str:
-    """'voussoir 2', 'voussoirs 2, 6 (tied)', 'left pier, right pier (tied)' (``sep`` between
-    the names, ``tied`` after several)."""
-    if len(places) == 1:
-        return places[0]
-    for word in ("voussoir", "arch joint", "joint"):
-        if all(p.startswith(word + " ") for p in places):
-            return f"{word}s {sep.join(p[len(word) + 1:] for p in places)}{tied}"
-    return sep.join(places) + tied
 
 
 def _table(dmap, d, rows) -> list[str]:
@@ -57,7 +48,7 @@ def _table(dmap, d, rows) -> list[str]:
 
 
 def _worst_line(dmap, label: str, w: dict) -> str:
-    return (f"{label}: {_which(w['places'])}: min(k_l, k_r) {dmap.k0:.4f} -> {w['k']:.4f} g, "
+    return (f"{label}: {names_text(w['places'])}: min(k_l, k_r) {dmap.k0:.4f} -> {w['k']:.4f} g, "
             f"-{w['loss']:.4f} g ({w['relative_loss']:.1%})")
 
 

@@ -1000,10 +1000,10 @@ def _defect_panel(ax, dmap, values, label, fmt):
 
 
 def _worst_text(dmap, ties) -> str:
-    from .defects import _which
+    from ..studies.defectmap import names_text
 
     m = int(np.flatnonzero(dmap.indices == ties[0])[0])
-    return (f"{_which([dmap.place(t) for t in ties])}, -{dmap.loss[m]:.4f} g "
+    return (f"{names_text([dmap.place(t) for t in ties])}, -{dmap.loss[m]:.4f} g "
             f"({dmap.relative_loss[m]:.1%})")
 
 

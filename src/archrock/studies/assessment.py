@@ -781,31 +781,25 @@ def section_defects(ctx: Context) -> Section:
     except ImportError:
         return _optional_missing("defects", title, "studies.defectmap", "The defect map")
     res = defect_map(ctx.arch)  # 30% thickness loss about the centreline, each voussoir
-    from ..reports.defects import _which
+    from .defectmap import worst_summary
 
-    def worst_of(ties):
-        m = int(np.flatnonzero(res.indices == ties[0])[0])
-        return _which([res.place(t) for t in ties], " and ", ""), m
-
-    where, m = worst_of(res.worst_all)
-    # on piers a thinned pier course is a pier defect: said apart from the voussoirs'
-    piers = bool(res.worst_in("arch") and res.worst_pier_all)
-    pier_txt, head = "", ((("worst voussoir defect" if piers else "worst defect"),
-                           f"{where}: -{100 * res.relative_loss[m]:.1f}%"),)
-    if piers:
-        pwhere, pm = worst_of(res.worst_pier_all)
+    w = worst_summary(res)  # on piers a thinned pier course is a pier defect, said apart
+    a, p = w["arch"], w["piers"]
+    head = ((w["label"], f"{a['where']}: -{100 * a['relative_loss']:.1f}%"),)
+    pier_txt = ""
+    if p:
         pier_txt = (f" Each pier course in turn loses 30% of its width the same way: the worst "
-                    f"pier defect is {pwhere}: min(k_l, k_r) falls to {res.k[pm]:.4f} g "
-                    f"({100 * res.relative_loss[pm]:.1f}%).")
-        head += (("worst pier defect", f"{pwhere}: -{100 * res.relative_loss[pm]:.1f}%"),)
+                    f"pier defect is {p['where']}: min(k_l, k_r) falls to {p['k']:.4f} g "
+                    f"({100 * p['relative_loss']:.1f}%).")
+        head += (("worst pier defect", f"{p['where']}: -{100 * p['relative_loss']:.1f}%"),)
     return Section("defects", title, (
         Paragraph(f"Each voussoir in turn loses 30% of its thickness about its centreline "
-                  f"(docs/defects.md). The largest loss of capacity comes from {where} "
+                  f"(docs/defects.md). The largest loss of capacity comes from {a['where']} "
                   f"(numbered from the arch's left springing): min(k_l, k_r) falls from "
-                  f"{res.k0:.4f} to {res.k[m]:.4f} g ({100 * res.relative_loss[m]:.1f}%)."
+                  f"{res.k0:.4f} to {a['k']:.4f} g ({100 * a['relative_loss']:.1f}%)."
                   f"{pier_txt} `archrock defects` maps the other defects (joint tilt, missing "
                   f"mortar) and, with a pulse, the first-collapse amplitude."),
-        Figure("defects", "Capacity lost when each voussoir" + (" or pier course" if piers else "")
+        Figure("defects", "Capacity lost when each voussoir" + (" or pier course" if p else "")
                + " is the damaged one (red: lost, blue: gained, in % of the undamaged k).",
                res)),
         {"available": True, **res.to_dict()}, head)

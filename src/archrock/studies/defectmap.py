@@ -35,11 +35,37 @@ from ..geometry.piers import _pier_runs, joint_place
 from ..statics.kinematic import kinematic_mechanisms
 from .runner import UNSET, resolve_settings
 
-__all__ = ["DefectMap", "defect_map", "defect_places"]
+__all__ = ["DefectMap", "defect_map", "defect_places", "names_text", "worst_summary"]
 
 #: The groups of a defect map's rows: the arch's own voussoirs and joints, and the piers'
 #: courses and bed joints (foundations included).
 GROUPS = ("arch", "piers")
+
+
+def names_text(places, sep: str = ", ", tied: str = " (tied)") -> str:
+    """'voussoir 2', 'voussoirs 2, 6 (tied)', 'left pier, right pier (tied)': damaged places
+    in words (``sep`` between several names, ``tied`` after them)."""
+    places = list(places)
+    if len(places) == 1:
+        return places[0]
+    for word in ("voussoir", "arch joint", "joint"):
+        if all(p.startswith(word + " ") for p in places):
+            return f"{word}s {sep.join(p[len(word) + 1:] for p in places)}{tied}"
+    return sep.join(places) + tied
+
+
+def worst_summary(dmap, sep: str = " and ", tied: str = "") -> dict:
+    """The worst defects of ``dmap`` in words, the arch's and (on piers) the piers' apart:
+    {"arch": {"where", "k", "relative_loss"}, "piers": the same or None, "label": "worst
+    defect" or "worst voussoir defect"} (the assessment report's summary rows)."""
+    def one(ties):
+        m = int(np.flatnonzero(dmap.indices == ties[0])[0])
+        return {"where": names_text([dmap.place(t) for t in ties], sep, tied),
+                "k": float(dmap.k[m]), "relative_loss": float(dmap.relative_loss[m])}
+    apart = bool(dmap.worst_in("arch") and dmap.worst_pier_all)
+    what = "voussoir" if dmap.target == "voussoir" else "arch joint"
+    return {"arch": one(dmap.worst_all), "piers": one(dmap.worst_pier_all) if apart else None,
+            "label": f"worst {what} defect" if apart else "worst defect"}
 
 
 def defect_places(arch, target: str, indices) -> tuple[tuple, tuple]:
