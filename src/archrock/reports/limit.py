@@ -13,7 +13,7 @@ import numpy as np
 
 from ..geometry import Arch, ArchOnPiers
 from ..geometry.piers import hinge_place
-from ..geometry.blocks import block_counts, describe_blocks
+from ..geometry.blocks import block_counts, block_name, describe_blocks
 
 __all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
            "thrust_range_line", "min_pier_width_line", "friction_only_summary",
@@ -243,7 +243,9 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
     arch = result.arch
     lines = _circular_lines(arch) if isinstance(arch, Arch) else _general_lines(arch)
     for ld in arch.loads:
-        lines.append(f"  load: {ld.mass:g} kg/m on voussoir {ld.voussoir} at "
+        on = (f"block {ld.voussoir} ({block_name(arch, ld.voussoir)})" if _on_piers(arch)
+              else f"voussoir {ld.voussoir}")  # on piers the index is the chain's
+        lines.append(f"  load: {ld.mass:g} kg/m on {on} at "
                      f"({ld.at[0]:g}, {ld.at[1]:g}) m")
     lines += ["", "Limit analysis (horizontal forces = multiplier x weight; Heyman's hypotheses)",
               "  mechanism  k (kinematic)  k (static LP)  hinges A-D (joint edge)"]
