@@ -651,4 +651,3 @@ def arch_without_piers(arch: ArchOnPiers) -> PolygonArch:
     return PolygonArch(tuple(arch.intrados[i] for i in vous),
                        tuple(arch.extrados[i] for i in vous), arch.density,
                        f"{arch.name} (voussoirs)", loads)
-
