@@ -75,7 +75,9 @@ def run_assess(args) -> int:
         records=record_paths(args.records), record_units=args.record_units,
         scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
         codecheck=codecheck_config_from_args(args), friction=mu)
-    say(f"archrock assess: {arch.name}, {arch.n} voussoirs; friction {stated}")
+    from ..geometry.blocks import describe_blocks
+
+    say(f"archrock assess: {arch.name}, {describe_blocks(arch)}; friction {stated}")
     from ..studies.runner import RunSettings
 
     result = assess(arch, cfg, settings=RunSettings(progress=say))

@@ -7,7 +7,6 @@ and the rest keep working)."""
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 
 from ..options import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args,  # noqa: F401
@@ -174,58 +173,6 @@ def spreads_for(args, nominal):
     (:func:`resolve_spread_span`)."""
     resolve_spread_span(args, nominal)
     return spreads(args)
-
-
-def _pier_names(arch) -> str:
-    """The pier blocks of an arch on piers in words: "blocks 0 and 8", "blocks 0-2 and 12-14"."""
-    piers = arch.pier_blocks
-    first = arch.block_kinds.index("voussoir")
-    sides = [[i for i in piers if i < first], [i for i in piers if i > first]]
-    words = [f"{s[0]}" if len(s) == 1 else f"{s[0]}-{s[-1]}" for s in sides if s]
-    return "blocks " + " and ".join(words)
-
-
-def piers_too_narrow(args, exc, arch=None):
-    """Where the arch on two equal piers of --pier-height/--pier-width cannot stand under its
-    own weight but stands on rigid supports: the CannotStandError ``exc`` reworded to name the
-    piers and the least width that carries it (:func:`archrock.statics.buttress.
-    minimum_pier_width`, a bisection: seconds, spent only on this failure); None elsewhere
-    (unequal or stepped piers, a defect, moved supports, an arch that stands on these piers or
-    falls on rigid supports too).  ``arch``: the arch of ``args`` where already built."""
-    from ..errors import ArchrockError, CannotStandError
-    from ..geometry import ArchOnPiers
-    from ..options.fields import values
-    from ..statics.buttress import minimum_pier_width
-    from ..statics.lp import _stands
-
-    if not hasattr(args, "embrace"):  # not a command of one arch (add_geometry_options)
-        return None
-    given = values(args, "with_piers")
-    if ("on its piers" in str(exc) or getattr(args, "defect", None)
-            or not {"height", "width"} <= set(given)
-            or set(given) - {"height", "width", "courses", "batter"}):
-        return None
-    try:
-        arch = arch_from_args(args) if arch is None else arch
-        if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks or _stands(arch):
-            return None
-    except ArchrockError:
-        return None
-    bare = argparse.Namespace(**{k: (None if k.startswith("pier_") else v)
-                                 for k, v in vars(args).items()})
-    try:
-        mpw = minimum_pier_width(arch_from_args(bare), given["height"],
-                                 courses=given.get("courses", 1), batter=given.get("batter", 0.0))
-    except CannotStandError:  # not the piers: it falls on rigid supports too
-        return None
-    head = "arch: it cannot stand under its own weight "
-    why = " " + str(exc)[len(head):].split(";")[0] if str(exc).startswith(head) else ""
-    need = math.ceil(mpw.width * 1000) / 1000  # a width the user can type that stands
-    return CannotStandError(
-        f"arch: it cannot stand on its piers ({_pier_names(arch)}: {given['width']:g} m wide, "
-        f"{given['height']:g} m high) under its own weight{why}; on rigid supports it stands, "
-        f"and piers {given['height']:g} m high carry it from {mpw.width:.4f} m wide: give "
-        f"--pier-width {need:g} or more (docs/piers.md)")
 
 
 def add_random_arches_options(p: argparse.ArgumentParser,

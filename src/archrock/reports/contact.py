@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.blocks import describe_blocks
+
 __all__ = ["ramp_dict", "format_ramp", "engine_response_dict", "format_engine_response"]
 
 
@@ -35,7 +37,7 @@ def _range_line(opts: dict) -> list[str]:
 
 def format_ramp(result, limit, arch) -> str:
     s = result.settings
-    lines = [f"Contact engine ramp: {arch.name}, {arch.n} voussoirs, friction MU = {s.friction:g}",
+    lines = [f"Contact engine ramp: {arch.name}, {describe_blocks(arch)}, friction MU = {s.friction:g}",
              f"  engine: {s.steps_per_T:g} steps per T, {s.iterations} iterations, "
              f"slop {s.slop:g}, rounding {s.rounding:g} (x size)",
              *_range_line(result.ramp),
@@ -61,7 +63,7 @@ def engine_response_dict(res, four_link=None) -> dict:
 
 def format_engine_response(res, four_link, arch, motion) -> str:
     s = res.settings
-    lines = [f"Contact engine: {arch.name}, {arch.n} voussoirs, {motion.name}, friction MU = "
+    lines = [f"Contact engine: {arch.name}, {describe_blocks(arch)}, {motion.name}, friction MU = "
              f"{s.friction:g}, restitution {s.restitution:g}",
              f"  engine   : {res.status}"
              + (f" at t = {res.t_collapse:.3f} s (a voussoir dropped by "

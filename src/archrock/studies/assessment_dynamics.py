@@ -206,20 +206,28 @@ def section_defects(ctx: Context) -> Section:
     except ImportError:
         return _optional_missing("defects", title, "studies.defectmap", "The defect map")
     res = defect_map(ctx.arch)  # 30% thickness loss about the centreline, each voussoir
-    worst = res.worst_all
-    m = int(np.flatnonzero(res.indices == worst[0])[0])
-    where = " and ".join(str(w) for w in worst)
+    from .defectmap import worst_summary
+
+    w = worst_summary(res)  # on piers a thinned pier course is a pier defect, said apart
+    a, p = w["arch"], w["piers"]
+    head = ((w["label"], f"{a['where']}: -{100 * a['relative_loss']:.1f}%"),)
+    pier_txt = ""
+    if p:
+        pier_txt = (f" Each pier course in turn loses 30% of its width the same way: the worst "
+                    f"pier defect is {p['where']}: min(k_l, k_r) falls to {p['k']:.4f} g "
+                    f"({100 * p['relative_loss']:.1f}%).")
+        head += (("worst pier defect", f"{p['where']}: -{100 * p['relative_loss']:.1f}%"),)
     return Section("defects", title, (
         Paragraph(f"Each voussoir in turn loses 30% of its thickness about its centreline "
-                  f"(docs/defects.md). The largest loss of capacity comes from "
-                  f"{'voussoirs' if len(worst) > 1 else 'voussoir'} {where} (numbered from the left springing): min(k_l, k_r) falls from "
-                  f"{res.k0:.4f} to {res.k[m]:.4f} g ({100 * res.relative_loss[m]:.1f}%). "
-                  f"`archrock defects` maps the other defects (joint tilt, missing mortar) "
-                  f"and, with a pulse, the first-collapse amplitude."),
-        Figure("defects", "Capacity lost when each voussoir is the damaged one.", res)),
-        {"available": True, **res.to_dict()},
-        (("worst defect", f"{'voussoirs' if len(worst) > 1 else 'voussoir'} {where}: "
-                          f"-{100 * res.relative_loss[m]:.1f}%"),))
+                  f"(docs/defects.md). The largest loss of capacity comes from {a['where']} "
+                  f"(numbered from the arch's left springing): min(k_l, k_r) falls from "
+                  f"{res.k0:.4f} to {a['k']:.4f} g ({100 * a['relative_loss']:.1f}%)."
+                  f"{pier_txt} `archrock defects` maps the other defects (joint tilt, missing "
+                  f"mortar) and, with a pulse, the first-collapse amplitude."),
+        Figure("defects", "Capacity lost when each voussoir" + (" or pier course" if p else "")
+               + " is the damaged one (red: lost, blue: gained, in % of the undamaged k).",
+               res)),
+        {"available": True, **res.to_dict()}, head)
 
 
 @titled('fragility', 'Fragility curves')

@@ -79,25 +79,38 @@ def section_geometry(ctx) -> Section:
     span, rise = x1 - x0, y1 - y0
     shape_txt, shape = _shape_lines(arch)
     masses = np.asarray(arch.masses, float)
-    rows = tuple((i, f"{m:.1f}", f"{c[0]:.3f}", f"{c[1]:.3f}",
-                  f"{math.hypot(*(jp[i, 1] - jp[i, 0])):.3f}")
+    from ..geometry.blocks import arch_phrase, block_counts, block_name, describe_blocks
+
+    counts = block_counts(arch)
+    piers = counts["piers"] > 0
+    # on piers each block named by kind (voussoirs in the arch's own numbering)
+    rows = tuple((f"{i} ({block_name(arch, i)})" if piers else i, f"{m:.1f}", f"{c[0]:.3f}",
+                  f"{c[1]:.3f}", f"{math.hypot(*(jp[i, 1] - jp[i, 0])):.3f}")
                  for i, (m, c) in enumerate(zip(masses, arch.centroids)))
     kind = "circular (exact sectors)" if isinstance(arch, Arch) else type(arch).__name__
-    blocks = [Paragraph(f"{arch.name}: a {kind} arch of {arch.n} voussoirs; {shape_txt}."),
+
+    # blocks by kind: "an arch of 9 voussoirs on two piers", never "of 11 voussoirs"
+    adjective = {"Arch": "circular (exact sectors)", "PolygonArch": "polygon",
+                 "FamilyArch": "family"}.get(type(arch).__name__, "")
+    blocks = [Paragraph(f"{arch.name}: {arch_phrase(arch, adjective)}; {shape_txt}."),
               Paragraph(f"Measured on the masonry: overall span {span:.3f} m (outside to outside), "
                         f"height {rise:.3f} m (from the lowest point of the springings to the top "
                         f"of the extrados at the crown), mass {masses.sum():.1f} kg per metre of "
                         f"depth" + (f", {len(arch.loads)} attached load(s)" if arch.loads else "")
                         + "."),
-              Figure("arch", f"{arch.name}: voussoirs and joints (joint 0 at the left springing).",
+              Figure("arch", f"{arch.name}: {'blocks' if piers else 'voussoirs'} and joints "
+                             f"(joint 0 at the left {'pier foot' if piers else 'springing'}).",
                      arch),
-              Table(("voussoir", "mass [kg/m]", "x_G [m]", "y_G [m]", "joint i contact length [m]"),
-                    rows, "Each voussoir with its loads; joint i is its left face.")]
-    data = {"name": arch.name, "kind": kind, "voussoirs": arch.n, "span": span, "height": rise,
+              Table(("block" if piers else "voussoir", "mass [kg/m]", "x_G [m]", "y_G [m]",
+                     "joint i contact length [m]"), rows,
+                    ("Each block (piers and voussoirs, in chain order from the left pier's foot)"
+                     if piers else "Each voussoir") + " with its loads; joint i is its left face.")]
+    data = {"name": arch.name, "kind": kind, "voussoirs": counts["voussoirs"], "blocks": counts,
+            "span": span, "height": rise,
             "mass": float(masses.sum()), "dimensions": shape, "geometry": arch.to_dict(),
             "units": {"span": "m", "height": "m", "mass": "kg/m", "radius": "m",
                       "thickness": "m", "embrace_deg": "deg", "rise": "m"}}
-    head = [("arch", shape_txt), ("voussoirs", str(arch.n)),
+    head = [("arch", shape_txt), ("blocks", describe_blocks(arch)),
             ("span x height [m]", f"{span:.3f} x {rise:.3f}"),
             ("mass [kg/m]", f"{masses.sum():.1f}")]
     return Section("geometry", "Geometry", tuple(blocks), data, tuple(head))
