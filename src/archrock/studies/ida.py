@@ -511,7 +511,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
     if np.any(np.isinf(x)):
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
-                        n_records=len(recs), censored="mle",
+                        n_records=len(recs), censored="mle", plateau="auto",
                         max_intensity=np.array([c.max_im for c in curves]))
     else:
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
@@ -602,7 +602,7 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     trials = np.full(lv.size, len(ms) * len(recs))
     coll = outcomes.reshape(lv.size, -1).sum(axis=1)
     fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed,
-                    confidence=confidence, n_records=len(recs))
+                    confidence=confidence, n_records=len(recs), plateau="auto")
     return StripeResult(lv, trials, coll, outcomes, im, fit, err, tuple(r.name for r in recs),
                         tuple(ids), failed)
 
