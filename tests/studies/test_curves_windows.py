@@ -88,3 +88,19 @@ def test_cli_curves_text_states_the_resolution(capsys):
     assert len(line) == 1
     assert "geometric grid of 40 points stepping 4.4% of |a|: windows narrower than" in line[0]
     assert line[0].endswith("edges of those found bisected to min(0.001, 0.0001 |a|) g")
+
+
+def test_curves_progress_ends_at_100_percent(monkeypatch):
+    """The curves' total counts ~3 bisections of 11 steps per curve; the count itself is
+    smaller and the last line still reads 100% (it stopped at ~80% in 0.6)."""
+    import archrock.studies.curves as curves
+    from archrock.studies.runner import RunSettings
+
+    monkeypatch.setattr(curves, "PROGRESS_S", -1.0)  # always show progress
+    got = []
+    curves.ensemble_curve(oppenheim_arch(), 1, durations=[0.5], n_scan=10, a_max=2.0,
+                          settings=RunSettings(progress=got.append))
+    lines = [x for x in got if x.startswith("curves: ")]
+    assert lines[-1].endswith("(100%)"), got
+    done, total = map(int, lines[-1].split()[1].split("/"))
+    assert done == total < 2 * (10 + 3 * 11)  # below the estimate the bar was sized for
