@@ -850,7 +850,8 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
     ax.set_xlim(0, x_hi)
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7.5, frameon=False, loc="lower right")
+    nothing = ida is not None and not np.isfinite(ida.first_ims).any()
+    ax.legend(fontsize=7.5, frameon=False, loc="upper left" if nothing else "lower right")
     src = stripes if stripes is not None else None
     if src is not None:
         n_rec, n_arch, failed = len(src.records), len(src.arches), len(src.failed)
@@ -882,6 +883,9 @@ def _ida_steps(ax, ida, unit: str) -> None:
         ax.plot([0.0, top], [0.0, 0.0], color="#444444", lw=1.0,
                 label=f"IDA: no collapse up to {top:.3g} {unit} "
                       f"({_plural(n, 'curve')}, none collapsed)")
+        up = ida.range_tried()["p_upper_95"]
+        ax.plot([0.0, top], [up, up], color="#444444", ls="--", lw=1.0,
+                label=f"P(collapse) $\\leq$ {up:.3f} up to {top:.3g} {unit} (one-sided 95%)")
         return
     # from P = 0 at the first collapse, so that one curve still draws its jump; on to the top
     xs = np.r_[f[fin][:1], f[fin], max(top, float(f[fin][-1]))]
