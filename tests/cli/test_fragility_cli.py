@@ -71,3 +71,41 @@ def test_a_failing_figure_is_a_warning_and_the_results_stay(capsys, tmp_path, we
                                 "(ValueError: x and y must have same first dimension); the "
                                 "results above are complete"]
     assert not (tmp_path / "g.png").exists()
+
+
+def test_report_states_the_plateau_and_the_json_carries_it():
+    """Where the data level off, the text gives p_max and the sentence of the test, the JSON
+    the fit's p_max and level_off (synthetic IDA: 45% of 300 records never collapse)."""
+    import math
+
+    from archrock.reports.fragility import format_fragility
+    from archrock.studies.fragility import fit_ida_moments, fit_stripes_mle
+    from archrock.studies.ida import IDACurve, IDAResult, StripeResult
+
+    rng = np.random.default_rng(5)
+    x = np.exp(rng.normal(math.log(0.3), 0.3, 300))
+    x[rng.random(300) < 0.45] = np.inf
+    x[x > 1.0] = np.inf
+    one = np.array([1.0])
+    curves = tuple(IDACurve(f"r{i}", 0, 1.0, one, np.array([np.isfinite(v)]),
+                            float(v) if np.isfinite(v) else None, None,
+                            float(v) if np.isfinite(v) else None, (), 0, 1.0)
+                   for i, v in enumerate(x))
+    res = IDAResult(curves, "pga", fit_ida_moments(x, censored="mle", max_intensity=1.0,
+                                                   plateau="auto"))
+    lv = np.array([0.2, 0.4, 0.8])
+    z = np.array([int(np.sum(x <= v)) for v in lv])
+    st = StripeResult(lv, np.full(3, 300), z, np.zeros((3, 1, 300), bool), "pga",
+                      fit_stripes_mle(lv, np.full(3, 300), z, plateau="auto"), None,
+                      tuple(c.record for c in curves), (0,))
+    text = format_fragility(res, st, arch_name="A", n_records=300, n_arches=1, n_requested=0)
+    never = int(np.sum(np.isinf(x)))
+    assert f"IDA: {never} of 300 curves never collapse up to 1.0000 g" in text
+    assert f"IDA: censored_mle theta = {res.fit.theta:.4f} g, beta = {res.fit.beta:.3f}, " \
+           f"p_max = {res.fit.p_max:.3f} (n = 300)" in text
+    assert "  the data level off below P = 1: fitted with an upper asymptote p_max" in text
+    d = json.loads(json.dumps(res.to_dict()))
+    assert d["fit"]["p_max"] == pytest.approx(1 - never / 300, abs=0.01)
+    assert d["fit"]["level_off"]["levels_off"] is True
+    assert d["range_tried"] == {"max_im": 1.0, "n_never": never, "n_curves": 300,
+                                "p_upper_95": None}
