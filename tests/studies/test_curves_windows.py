@@ -10,7 +10,7 @@ import pytest
 from archrock.dynamics.response import prepare, respond
 from archrock.geometry import oppenheim_arch
 from archrock.groundmotion import pulse
-from archrock.studies.curves import WINDOW_RTOL, collapse_amplitude, collapse_curve
+from archrock.studies.curves import WINDOW_RTOL, collapse_curve
 
 #: the window as a fine scan of respond finds it (issue 30), to 1e-5 g
 WINDOW = (0.46439, 0.46508)

@@ -351,8 +351,15 @@ def _with_plateau(fit0, plateau, negll, args, lnx_all, scale, p0, lnc, weights=N
     mc = float(np.average(lnc, weights=weights))
     sc = math.sqrt(max(float(np.average((lnc - mc) ** 2, weights=weights)), 1e-6))
     p0 = min(max(p0, 0.05), 1.0)
-    params, ll1 = _fit_plateau(negll, [(lt0, lb0, 1.0), (lt0, lb0, p0), (mc, math.log(sc), p0)],
-                               args, lnx_all, scale)
+    try:
+        params, ll1 = _fit_plateau(negll, [(lt0, lb0, 1.0), (lt0, lb0, p0),
+                                           (mc, math.log(sc), p0)], args, lnx_all, scale)
+    except FitError as exc:
+        if plateau is True:
+            raise
+        # the plain fit stands; say the alternative could not be tried
+        return replace(fit0, level_off={"levels_off": False, "p_max": 1.0,
+                                        "note": f"plateau not tested: {exc}"})
     if plateau is True:
         lt, lb, p = (float(v) for v in params)
         return replace(fit0, theta=math.exp(lt), beta=math.exp(lb), p_max=p,
