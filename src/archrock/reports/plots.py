@@ -767,6 +767,11 @@ def plot_collapse_curve(curve, path: str | os.PathLike | None = None, band=None,
             ax.plot([tp, tp], [lo, hi], color="#27ae60", lw=3.0, alpha=0.8, zorder=2,
                     label=f"{name}: survival above first collapse" if first else None)
             first = False
+    res = [p.resolution for p in curve.points if hasattr(p, "resolution")]
+    if res:  # a list of windows says the step it was searched at (issue 30)
+        rel = max(r["step_relative"] for r in res)
+        ax.plot([], [], " ", label=f"windows searched at {100 * rel:.2g}% steps of $|a|$: "
+                                   f"narrower ones may be missed")
     sign = curve.points[0].sign if curve.points else -1
     k = curve.k_l if sign < 0 else curve.k_r
     if math.isfinite(k):
@@ -810,8 +815,10 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
     if ida is not None:
         f = ida.first_ims
         xs.append(f[np.isfinite(f)])
-    if fit is not None:
-        xs.append(np.asarray(fit.quantile([0.01, 0.99])))
+        xs.append(np.array([max(c.max_im for c in ida.curves)]))  # the range tried
+    if fit is not None:  # a plateau's top quantile is never reached: up to 99% of p_max
+        q = np.asarray(fit.quantile(np.array([0.01, 0.99]) * fit.p_max))
+        xs.append(q if fit.p_max >= 1.0 else q[:1])
     if not xs:
         raise ArchInputError("fit: nothing to plot (give a fit, stripes or an IDA result)")
     x_hi = max(float(np.max(v)) for v in xs if np.size(v)) * 1.15
@@ -822,36 +829,35 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
 
             with np.errstate(divide="ignore"):
                 lnx = np.log(x)
-                curves = [ndtr((lnx - math.log(t)) / b) for t in fit.theta_ci for b in fit.beta_ci]
+                curves = [fit.p_max * ndtr((lnx - math.log(t)) / b)
+                          for t in fit.theta_ci for b in fit.beta_ci]
             ax.fill_between(x, np.min(curves, axis=0), np.max(curves, axis=0), color="#9bb7d4",
                             alpha=0.5, lw=0, label=f"{fit.confidence:.0%} bootstrap band")
         elif fit.ci_note:  # asked for but not estimated: no zero-width band
             import textwrap
 
             ax.plot([], [], " ", label=textwrap.fill(f"bootstrap band n/a: {fit.ci_note}", 55))
+        plateau = (f", plateau $p_{{max}}$ = {fit.p_max:.3f}" if fit.p_max < 1.0 else "")
         ax.plot(x, fit.probability(x), color="#1f4e9c", lw=1.6,
                 label=f"{fit.method} fit: $\\theta$ = {fit.theta:.3g} {unit}, "
-                      f"$\\beta$ = {fit.beta:.2f} ($n$ = "
+                      f"$\\beta$ = {fit.beta:.2f}{plateau} ($n$ = "
                       + (_plural(fit.n_records, 'analysis', 'analyses') if fit.method == "mle"
                          else _plural(fit.n_records, 'curve')) + ")")
+        if fit.p_max < 1.0:  # the data level off: say where, rather than run to P = 1
+            ax.axhline(fit.p_max, color="#1f4e9c", ls=":", lw=1.0,
+                       label=f"upper asymptote: P $\\leq$ {fit.p_max:.3f} over the range tried")
     if stripes is not None:
         ax.plot(stripes.levels, stripes.collapses / stripes.trials, "o", color="#c0392b",
                 label=f"stripes: collapsed fraction of {_plural(int(stripes.trials[0]), 'analysis', 'analyses')}")
     if ida is not None:
-        f = np.sort(ida.first_ims)
-        n = f.size
-        fin = np.isfinite(f)
-        # from P = 0 at the first collapse, so that one curve still draws its jump
-        ax.step(np.r_[f[fin][:1], f[fin]], np.r_[0.0, (np.arange(n)[fin] + 1) / n][:fin.sum() + 1],
-                where="post", color="#444444", lw=1.0,
-                label=f"IDA first collapses, empirical ($n$ = {_plural(n, 'curve')}, "
-                      f"{n - int(fin.sum())} never)")
+        _ida_steps(ax, ida, unit)
     ax.set_xlabel(im_label)
     ax.set_ylabel("$P(\\mathrm{collapse} \\mid \\mathrm{IM})$")
     ax.set_xlim(0, x_hi)
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7.5, frameon=False, loc="lower right")
+    nothing = ida is not None and not np.isfinite(ida.first_ims).any()
+    ax.legend(fontsize=7.5, frameon=False, loc="upper left" if nothing else "lower right")
     src = stripes if stripes is not None else None
     if src is not None:
         n_rec, n_arch, failed = len(src.records), len(src.arches), len(src.failed)
@@ -868,6 +874,31 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
     if fig is not None and path is not None:
         save_figure(fig, path, dpi=dpi)
     return fig if fig is not None else ax.figure
+
+
+def _ida_steps(ax, ida, unit: str) -> None:
+    """The IDA's first collapses as an empirical CDF over all its curves (those that never
+    collapse keep it below 1: the plateau), run on to the top of the range tried; where no
+    curve collapses, the observations at P = 0 and the sentence that says so."""
+    f = np.sort(ida.first_ims)
+    n = f.size
+    fin = np.isfinite(f)
+    top = max(c.max_im for c in ida.curves)
+    never = n - int(fin.sum())
+    if not fin.any():
+        ax.plot([0.0, top], [0.0, 0.0], color="#444444", lw=1.0,
+                label=f"IDA: no collapse up to {top:.3g} {unit} "
+                      f"({_plural(n, 'curve')}, none collapsed)")
+        up = ida.range_tried()["p_upper_95"]
+        ax.plot([0.0, top], [up, up], color="#444444", ls="--", lw=1.0,
+                label=f"P(collapse) $\\leq$ {up:.3f} up to {top:.3g} {unit} (one-sided 95%)")
+        return
+    # from P = 0 at the first collapse, so that one curve still draws its jump; on to the top
+    xs = np.r_[f[fin][:1], f[fin], max(top, float(f[fin][-1]))]
+    ys = np.r_[0.0, (np.arange(n)[fin] + 1) / n]
+    ax.step(xs, np.r_[ys, ys[-1]], where="post", color="#444444", lw=1.0,
+            label=f"IDA first collapses, empirical ($n$ = {_plural(n, 'curve')}, "
+                  f"{never} never up to {top:.3g} {unit})")
 
 
 # ---------------------------------------------------------------------------- ensembles
