@@ -1,0 +1,227 @@
+"""The registry of docs/scripts/doc_numbers.py: every number README.md and docs/*.md quote from a
+command, as a quote with ``{}`` for the number, the command and how to read the number from what
+it prints.  No number is written here: the docs hold them, ``doc_numbers.py --update`` rewrites
+them.  ``slow=True``: the command takes more than a few seconds (tests' ``-m slow`` set).
+
+Where other output lines change often (the assess report's summary, respond on arches with piers,
+the fragility fits), entries read the stable lines only; after a change of results run
+``python docs/scripts/doc_numbers.py --slow --update`` and review the diff of the docs."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+
+from doc_numbers import ROOT, Entry, Unchecked
+
+OPP_PULSE = ("--pulse", "oppenheim", "--amplitude", "-1", "--pulse-duration", "0.2")
+PIERS_4x2 = ("--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs", "9",
+             "--pier-height", "4", "--pier-width", "2")
+K_MIN = r"k = min\(k_l, k_r\) = (\S+)"
+
+
+# --- the Python examples of README.md, run as written there --------------------------------
+
+def _printed(fn) -> str:
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        fn()
+    return out.getvalue()
+
+
+def readme_statics() -> str:
+    def run():
+        from archrock.geometry import nominal_arch
+        from archrock.statics.limit import limit_analysis
+        res = limit_analysis(nominal_arch(radius=10.0, embrace_deg=157.5, thickness=1.5,
+                                          voussoirs=7))
+        print(f"statics {res.k_l:.6f} {res.k_r:.6f} discrepancy {res.discrepancy:.3e}")
+    return _printed(run)
+
+
+def readme_dynamics() -> str:
+    def run():
+        from archrock.dynamics.response import prepare, respond
+        from archrock.geometry import oppenheim_arch, random_arch
+        from archrock.groundmotion import oppenheim_pulse
+        model = prepare(oppenheim_arch(), "paper")
+        res = respond(model, oppenheim_pulse(-1.0, 0.2), t_end=3.0)
+        print("cv", model.impact.l_to_r)
+        print("paper", res.status, res.peak, *res.impacts[:3])
+        ra2 = respond(prepare(random_arch(seed=315), model.impact.l_to_r),
+                      oppenheim_pulse(-1.0, 0.2))
+        print("ra2", ra2.t_collapse, ra2.t_limit)
+    return _printed(run)
+
+
+def readme_namespace() -> str:
+    def run():
+        import archrock as ar
+        nominal = ar.oppenheim_arch()
+        print("cv", ar.PAPER_PRACTICE.resolved(nominal).cv)
+        sampler = ar.ArchSampler(nominal, ar.Spreads(0.1, 0.1, 0.05), seed=0)
+        model = ar.prepare(sampler.arch(7), ar.PAPER_PRACTICE, nominal=nominal)
+        print("sample7", model.k_l, model.k_r)
+        print("failed", len(ar.prepare_many(sampler, 20).failed))
+    return _printed(run)
+
+
+def readme_shapes() -> str:
+    def run():
+        import archrock as ar
+        pointed = ar.family_arch("pointed", span=10.0, rise=7.0, thickness=1.0, voussoirs=12)
+        print("pointed", ar.limit_analysis(pointed).k)
+        print("polygon", ar.limit_analysis(ar.as_polygon(ar.oppenheim_arch(), 40)).k)
+        print("sector", ar.limit_analysis(ar.oppenheim_arch()).k)
+        o = ar.oppenheim_arch()
+        loaded = ar.Arch(o.spans, o.radii, o.thicknesses,
+                         loads=[ar.Load(3, 23561.9, (0.0, 10.75))])
+        print("loaded", ar.limit_analysis(loaded).k)
+    return _printed(run)
+
+
+def readme_three_voussoirs() -> str:
+    """`archrock limit --geometry` on the README's three-voussoir file, taken from the README."""
+    import re
+    import tempfile
+    from pathlib import Path
+
+    from doc_numbers import run_archrock
+    block = re.search(r"```json\n(.*?)```", (ROOT / "README.md").read_text(), re.S).group(1)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "three.json"
+        path.write_text(block)
+        return run_archrock(["limit", "--geometry", str(path)])
+
+
+FUNCTIONS = {f.__name__: f for f in (readme_statics, readme_dynamics, readme_namespace,
+                                     readme_shapes, readme_three_voussoirs)}
+
+R = "README.md"
+
+ENTRIES: list[Entry] = [
+    # --- README: command line ---
+    Entry(R, "12 voussoirs: k = {}",
+          ("limit", "--shape", "pointed", "--span", "10", "--rise", "7", "--thickness", "1",
+           "--voussoirs", "12"), K_MIN),
+    Entry(R, "Oppenheim's arch: {} to {} kN/m.", ("limit", "--thrust-range"),
+          r"H_min = (\S+) kN/m.*H_max = (\S+) kN/m"),
+    Entry(R, "--pier-width 2` gives k = {}, hinges 2i-5e-8i-11e", ("limit",) + PIERS_4x2, K_MIN),
+    Entry(R, "movement the arch can take, {} m of spread for Oppenheim's arch",
+          ("limit", "--capacity", "spread"), r"spreading capacity of the right support: (\S+) m"),
+    Entry(R, "rotation`: {} rad for Oppenheim's arch", ("limit", "--capacity", "rotation"),
+          r"rotation capacity of the right support: (\S+) rad"),
+    Entry(R, "P(collapse) is {} on fixed supports",
+          ("ensemble", "--samples", "1000", "--seed", "0", *OPP_PULSE, "--no-progress"),
+          r"P\(collapse[^=]*= (\S+)"),
+    Entry(R, "and {} with 1 m of spread",
+          ("ensemble", "--samples", "1000", "--seed", "0", *OPP_PULSE, "--spread", "1",
+           "--no-progress"), r"P\(collapse[^=]*= (\S+)", slow=True),
+    Entry(R, "Oppenheim's arch: alpha_0 = {}, e* = {}, a_0* = {} g (FC 1.35), d_u* = {} m, "
+             "T_s = {} s", ("codecheck",),
+          r"alpha_0 \(activation multiplier\)\s+(\S+).*e\* = g M\* / sum P_i\s+(\S+)"
+          r".*a_0\* \[g\]\s+(\S+).*d_u\* = 0.4 d_0\* \[m\]\s+(\S+).*T_s \[s\]\s+(\S+)"),
+    Entry(R, "on it gives k = {} with the left springing lifting off for M_l (the best four-hinge "
+             "mechanism would need {})", "py:readme_three_voussoirs",
+          r"M_l is governed by .*? at k = (\S+) \(the best four-hinge mechanism \S+ would "
+          r"need k = ([\d.]+)\)"),
+    Entry(R, "`--shape circular --span 10 --rise 5 --thickness 0.9 --voussoirs 17`: kinetic "
+             "energy ratio {})",
+          ("respond", "--shape", "circular", "--span", "10", "--rise", "5", "--thickness", "0.9",
+           "--voussoirs", "17", *OPP_PULSE), r"kinetic energy ratio (\S+)"),
+    Entry(R, "costs most at **voussoirs 2 and 4** (either side of the crown voussoir): min(k_l, k_r) "
+             "drops from {} to {} g, **{} g ({}%)**; at the crown voussoir only {}%",
+          ("defects",), r"(?=.*min\(k_l, k_r\) (\S+) -> (\S+) g, (\S+) g \((\S+)%\))"
+                        r"(?=.*\n\s+3\s+\S+\s+\S+\s+\S+\s+(\S+)%)", scale=(1, 1, 1, -1, 1)),
+    # --- README: Python ---
+    Entry(R, 'print(f"{res.k_l:.4f} {res.k_r:.4f}") # {} {}', "py:readme_statics", r"statics (\S+) (\S+)"),
+    Entry(R, "# |kinematic - static|, ~{}", "py:readme_statics", r"discrepancy (\S+)"),
+    Entry(R, "print(model.impact.l_to_r) # {} (the paper's c_v)", "py:readme_dynamics",
+          r"cv (\S+)"),
+    Entry(R, "# rest {} [{}, {}, {}]", "py:readme_dynamics",
+          r"paper rest (\S+) (\S+) (\S+) (\S+)"),
+    Entry(R, "# {} {} s: RA-2 type", "py:readme_dynamics", r"ra2 (\S+) (\S+)"),
+    Entry(R, "# {}: the paper model's c_v on the nominal arch", "py:readme_namespace",
+          r"cv (\S+)"),
+    Entry(R, "print(model.k_l, model.k_r) # {} {}", "py:readme_namespace", r"sample7 (\S+) (\S+)"),
+    Entry(R, "# {} arches left out of 20", "py:readme_namespace", r"failed (\S+)"),
+    Entry(R, "print(ar.limit_analysis(pointed).k) # {}", "py:readme_shapes", r"pointed (\S+)"),
+    Entry(R, "# {} (sector: {})", "py:readme_shapes", r"polygon (\S+)\nsector (\S+)"),
+    Entry(R, "# {}: twice the crown voussoir's mass on top", "py:readme_shapes", r"loaded (\S+)"),
+]
+
+ENSEMBLE_10K = ("ensemble", "--samples", "10000", "--seed", "0", "--spread-span", "0.1",
+                "--spread-thickness", "0.1", "--spread-radius", "0.05", *OPP_PULSE, "--cv",
+                "0.8754", "--no-progress")
+P_LINE = r"P\(collapse \| integrated\) = (\S+) \[(\S+), (\S+)\] \((\d+) collapsed"
+ENTRIES += [
+    Entry(R, "k_l = {} ± {}, k_r = {} ± {} (nominal {}). Under the paper's pulse with the nominal "
+             "c_v, {}% of them collapse (95% CI {}-{}%)", ENSEMBLE_10K,
+          r"(?=.*k_l \(standing arches, n = 10000\): mean (\S+), std (\S+),)"
+          r"(?=.*k_r \(standing arches, n = 10000\): mean (\S+), std (\S+),)"
+          r"(?=.*nominal: k_l = (\S+),)(?=.*P\(collapse \| integrated\) = (\S+) \[(\S+), (\S+)\])",
+          scale=(1, 1, 1, 1, 1, 100, 100, 100), slow=True),
+    Entry(R, "{}% are at least as far from nominal as the paper's RA-1 in k_l or k_r, {}% as far "
+             "as RA-2", ENSEMBLE_10K, r"RA-1: .*?either (\S+),.*RA-2: .*?either (\S+),",
+          scale=100, slow=True),
+]
+E = "docs/ensemble.md"
+ENTRIES += [
+    Entry(E, "| k_l: mean, std (5%-95%) | {}, {} ({}-{}) |", ENSEMBLE_10K,
+          r"k_l \(standing arches, n = 10000\): mean (\S+), std (\S+), 5-95% \[(\S+), (\S+)\]",
+          slow=True),
+    Entry(E, "| k_r: mean, std (5%-95%) | {}, {} ({}-{}) |", ENSEMBLE_10K,
+          r"k_r \(standing arches, n = 10000\): mean (\S+), std (\S+), 5-95% \[(\S+), (\S+)\]",
+          slow=True),
+    Entry(E, "k_l: {}%, k_r: {}%, either: {}%, both: 0.8%, asymmetry: {}%", ENSEMBLE_10K,
+          r"RA-1: k_l (\S+), k_r (\S+), either (\S+), asymmetry \|k_l-k_r\| (\S+)",
+          scale=100, slow=True),
+    Entry(E, "k_l: {}%, k_r: {}%, either: {}%, both: 23.6%, asymmetry: {}%", ENSEMBLE_10K,
+          r"RA-2: k_l (\S+), k_r (\S+), either (\S+), asymmetry \|k_l-k_r\| (\S+)",
+          scale=100, slow=True),
+    Entry(E, "| M_l hinge patterns | 0i-3e-5i-7e {}, 0i-2e-5i-7e {}, 0i-3e-6i-7e {}, 1i-3e-5i-7e {},",
+          ENSEMBLE_10K, r"M_l hinges: 0i-3e-5i-7e (\d+), 0i-2e-5i-7e (\d+), 0i-3e-6i-7e (\d+), "
+                        r"1i-3e-5i-7e (\d+)", slow=True),
+    Entry(E, "| M_r hinge patterns | 0e-2i-4e-7i {}, 0e-2i-5e-7i {}, 0e-1i-4e-7i {}, 0e-2i-4e-6i {} |",
+          ENSEMBLE_10K, r"M_r hinges: 0e-2i-4e-7i (\d+), 0e-2i-5e-7i (\d+), 0e-1i-4e-7i (\d+), "
+                        r"0e-2i-4e-6i (\d+)", slow=True),
+    Entry(E, "| P(collapse) under the paper's pulse | {}, 95% Wilson interval [{}, {}] ({} / 10000) |",
+          ENSEMBLE_10K, P_LINE, slow=True),
+]
+
+D = "docs/defects.md"
+ENTRIES += [
+    Entry(D, "# k_r {} -> 0.2616", ("limit",), r"M_r\s+(\S+)"),
+    Entry(D, "# k_r 0.3700 -> {}", ("limit", "--defect", "2:thickness=0.7"), r"M_r\s+(\S+)"),
+    Entry(D, "undamaged k_l = k_r = {} g:", ("defects",), r"undamaged: k_l = (\S+),"),
+    Entry(D, "the crown voussoir): min(k_l, k_r) drops from {} to {} g, **{} g ({}%)**.",
+          ("defects",), r"min\(k_l, k_r\) (\S+) -> (\S+) g, (\S+) g \((\S+)%\)",
+          scale=(1, 1, 1, -1)),
+] + [Entry(D, f"| {i} | {{}} | {{}} | {{}} | {{}}% |" if i not in (2, 4) else
+           f"| {i} | {{}} | {{}} | **{{}}** | **{{}}%** |", ("defects",),
+           rf"\n\s+{i}\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)%") for i in range(7)]
+
+F = "docs/friction.md"
+ENTRIES += [
+    Entry(F, "7 voussoirs): k = {} (static LP)", ("limit", "--embrace", "80", "--friction", "0.5"),
+          K_MIN),
+    Entry(F, "(N = 0 and T = {} W at the springing", ("limit", "--embrace", "80", "--friction", "0.5"),
+          r"N = 0 W and T = (\S+) W"),
+    Entry(F, "with mu = 0.5 both springings slide at k = {}.",
+          ("limit", "--embrace", "80", "--friction", "0.5"), r"k with friction = (\S+)"),
+    Entry(F, "then k_l, k_r with friction ({} each at mu 0.3)",
+          ("limit", "--radius", "10", "--embrace", "70", "--thickness", "2", "--voussoirs", "7",
+           "--friction", "0.3"), r"M_l\s+(\S+)\s+yes"),
+    Entry(F, "(\"it needs a friction coefficient of at least {}\" for Oppenheim's arch at 0.2",
+          ("limit", "--friction", "0.2"), r"at least (\S+)", status=3),
+]
+
+A = "docs/assess.md"
+ENTRIES += [
+    Entry(A, "(`archrock.statics.friction.friction_needed`, docs/friction.md): {} on Oppenheim's "
+             "arch", ("limit", "--friction", "0.4"), r"on its thrust line\): M_l (\S+),"),
+    Entry(A, "the multipliers with masonry's friction mu = 0.4 (`friction_analysis`): {} on "
+             "Oppenheim's arch", ("limit", "--friction", "0.4"), r"k with friction = (\S+)"),
+]
+
+UNCHECKED: list[Unchecked] = []
