@@ -294,15 +294,15 @@ def unregistered(entries=None, unchecked=None) -> list[str]:
         text = (ROOT / doc).read_text()
         covered = []
         for item in [e for e in entries if e.doc == doc] + [u for u in unchecked if u.doc == doc]:
-            for m in item.pattern().finditer(text):
-                covered += [(m.start(i), m.end(i)) for i in range(1, (m.lastindex or 0) + 1)]
+            # a registered quote covers its literal numbers too (labels and inputs it echoes)
+            covered += [(m.start(), m.end()) for m in item.pattern().finditer(text)]
         for start, end, why in quoted_outputs(doc, text):
             for m in re.finditer(NUMBER, text[start:end]):
                 a, b = start + m.start(), start + m.end()
                 # digits inside words and labels (M_l, 2i-5e, RSN6, x2) are not quoted numbers
                 if a > 0 and (text[a - 1].isalnum() or text[a - 1] in "_."):
                     continue
-                if b < len(text) and (text[b].isalpha() and text[b] not in "e" or text[b] == "_"):
+                if b < len(text) and (text[b].isalpha() or text[b] == "_"):
                     continue
                 if not any(s <= a and b <= e for s, e in covered):
                     line = text.count("\n", 0, a) + 1

@@ -36,6 +36,7 @@ def readme_statics() -> str:
         res = limit_analysis(nominal_arch(radius=10.0, embrace_deg=157.5, thickness=1.5,
                                           voussoirs=7))
         print(f"statics {res.k_l:.6f} {res.k_r:.6f} discrepancy {res.discrepancy:.3e}")
+        print("hinges", *(f"{h.joint} {h.edge}" for h in res.mechanism_l.hinges))
     return _printed(run)
 
 
@@ -62,7 +63,7 @@ def readme_namespace() -> str:
         sampler = ar.ArchSampler(nominal, ar.Spreads(0.1, 0.1, 0.05), seed=0)
         model = ar.prepare(sampler.arch(7), ar.PAPER_PRACTICE, nominal=nominal)
         print("sample7", model.k_l, model.k_r)
-        print("failed", len(ar.prepare_many(sampler, 20).failed))
+        print("failed", len(ar.prepare_many(sampler, 20).failed), "of", 20)
     return _printed(run)
 
 
@@ -144,7 +145,9 @@ ENTRIES: list[Entry] = [
     Entry(R, "# {}: the paper model's c_v on the nominal arch", "py:readme_namespace",
           r"cv (\S+)"),
     Entry(R, "print(model.k_l, model.k_r) # {} {}", "py:readme_namespace", r"sample7 (\S+) (\S+)"),
-    Entry(R, "# {} arches left out of 20", "py:readme_namespace", r"failed (\S+)"),
+    Entry(R, "# {} arches left out of {}", "py:readme_namespace", r"failed (\S+) of (\S+)"),
+    Entry(R, "# joints {} intrados, {} extrados, {} intrados, {} extrados", "py:readme_statics",
+          r"hinges (\d+) intrados (\d+) extrados (\d+) intrados (\d+) extrados"),
     Entry(R, "print(ar.limit_analysis(pointed).k) # {}", "py:readme_shapes", r"pointed (\S+)"),
     Entry(R, "# {} (sector: {})", "py:readme_shapes", r"polygon (\S+)\nsector (\S+)"),
     Entry(R, "# {}: twice the crown voussoir's mass on top", "py:readme_shapes", r"loaded (\S+)"),
@@ -224,4 +227,53 @@ ENTRIES += [
              "Oppenheim's arch", ("limit", "--friction", "0.4"), r"k with friction = (\S+)"),
 ]
 
-UNCHECKED: list[Unchecked] = []
+P = "docs/piers.md"
+PIERS_ENSEMBLE = ("ensemble", *PIERS_4x2, "--pier-courses", "3", "--spread-span", "0",
+                  "--spread-pier-lean", "1", "--spread-pier-width", "0.1", "--spread-pier-height",
+                  "0.1", "--spread-pier-course", "0.2", "--samples", "100", "--pulse", "oppenheim",
+                  "--amplitude", "-0.3", "--pulse-duration", "0.2", "--no-progress")
+ENTRIES += [
+    Entry(P, "M_l  {}  {}  ...  D = 13e (right pier foot, outer face)",
+          ("limit", *PIERS_4x2, "--pier-courses", "2", "--defect", "pier-tilt=2,side=right"),
+          r"M_l\s+(\S+)\s+(\S+)"),
+    Entry(P, "k_l (standing arches, n = {}): mean {}, std {}, 5-95% [{}, {}]", PIERS_ENSEMBLE,
+          r"k_l \(standing arches, n = (\d+)\): mean (\S+), std (\S+), 5-95% \[(\S+), (\S+)\]",
+          slow=True),
+    Entry(P, "P(collapse | integrated) = {} [{}, {}] ({} collapsed of {}, 95% Wilson)",
+          PIERS_ENSEMBLE, P_LINE + r" of (\d+)", slow=True),
+]
+
+PD = "docs/piers-dynamics.md"
+HEAVY_ENSEMBLE = ("ensemble", "--geometry", "tests/data/heavy_piers.json", "--spread-span", "0",
+                  "--samples", "4", "--pulse", "oppenheim", "--amplitude", "-0.7",
+                  "--pulse-duration", "0.2", "--no-progress")
+HEAVY_CURVE = ("curves", "--geometry", "tests/data/heavy_piers.json", "--durations", "0.2",
+               "--a-max", "3", "--no-progress")
+ENTRIES += [
+    Entry(PD, "nominal: k_l = {}, k_r = {}\noutcomes", HEAVY_ENSEMBLE,
+          r"nominal: k_l = (\S+), k_r = (\S+)", slow=True),
+    Entry(PD, "outcomes: {} run to the end (rest {}, collapsed {}, still moving {}), {} failed",
+          HEAVY_ENSEMBLE, r"outcomes: (\d+) run to the end \(rest (\d+), collapsed (\d+), still "
+                          r"moving (\d+)\), (\d+) failed", slow=True),
+    Entry(PD, "P(collapse | run) = {} [{}, {}] ({} collapsed of {}, 95% Wilson)", HEAVY_ENSEMBLE,
+          r"P\(collapse \| run\) = (\S+) \[(\S+), (\S+)\] \((\d+) collapsed of (\d+)",
+          slow=True),
+    Entry(PD, "activation threshold k = {} g", HEAVY_CURVE, r"activation threshold k = (\S+) g",
+          slow=True),
+    Entry(PD, "0.2                  {}      {}-{}    {}", HEAVY_CURVE,
+          r"\n\s+0\.2\s+(\S+)\s+(\S+)-(\S+)\s+(\d+)", slow=True),
+]
+
+UNCHECKED: list[Unchecked] = [
+    Unchecked(PD, "4 random arches around heavy_piers (seed 0, spreads 0/0.1/0.05)",
+              "the inputs, echoed"),
+    Unchecked(PD, "moves a pier ({}% of its kinetic energy), M_r 0e-2i-8e-13i moves a pier ({}% of "
+                  "its kinetic energy)", "the check's reason, shortened in the doc (printed by "
+                                         "respond; the routing is docs/piers-dynamics.md's)"),
+    Unchecked(PD, "engine: 400 steps/T, 40 iterations, friction 0.8, restitution 0, free motion 30 T, "
+                  "collapse at a drop of 0.2 x size", "the engine's settings, echoed"),
+    Unchecked(PD, "time: {} s ({} s an arch; estimated beforehand {} s)", "wall times"),
+    Unchecked(PD, "(sign -1) by the contact engine, bisected to 0.01 of the amplitude",
+              "the inputs, echoed"),
+    Unchecked(PD, "    11    {}\n```", "wall time"),
+]
