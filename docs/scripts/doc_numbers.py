@@ -49,7 +49,10 @@ class Entry:
     expression over that text with one group per ``{}``, in the same order; ``scale``: what
     multiplies the command's value before comparing (100 for a fraction quoted in %);
     ``slow``: the command takes more than a few seconds (the ``-m slow`` set); ``status``: the
-    exit status the command must end with (3: an outcome quoted from its message)."""
+    exit status the command must end with (3: an outcome quoted from its message); ``order``:
+    which of ``read``'s groups each ``{}`` takes, where the output prints them in another order
+    (default: the groups in turn); ``skip``: the ``{}`` (by position) read but not compared,
+    because the command does not print them reproducibly (say why beside the entry)."""
 
     doc: str
     quote: str
@@ -58,10 +61,13 @@ class Entry:
     scale: float | tuple = 1.0
     slow: bool = False
     status: int = 0
+    order: tuple = ()
+    skip: tuple = ()
 
     @property
     def count(self) -> int:
-        return self.quote.count("{}")
+        """How many of the quote's numbers are compared."""
+        return self.quote.count("{}") - len(self.skip)
 
     def pattern(self) -> re.Pattern:
         """The quote as a regular expression: the numbers as groups, whitespace as ``\\s+``."""
@@ -74,7 +80,7 @@ class Entry:
             else:
                 if lit[:1].isspace() and i > 0:
                     text = r"\s+" + text
-                if lit[-1:].isspace() and i < self.count:
+                if lit[-1:].isspace() and i < self.quote.count("{}"):
                     text = text + r"\s+"
             parts.append(text)
         return re.compile(f"({NUMBER})".join(parts))
@@ -187,7 +193,7 @@ class Finding:
     @property
     def drifted(self) -> list[int]:
         return [i for i, (q, v, p) in enumerate(zip(self.quoted, self.values, self.printed))
-                if not agrees(q, v, p)]
+                if i not in self.entry.skip and not agrees(q, v, p)]
 
 
 def locate(entry: Entry, text: str | None = None) -> list[re.Match]:
@@ -211,11 +217,13 @@ def check(entry: Entry) -> Finding:
     if got is None:
         return Finding(entry, line, quoted, [], f"{entry.key()}: output no longer matches "
                                                 f"{entry.read!r}")
-    if len(got.groups()) != entry.count:
+    groups = [got.group(i + 1) for i in entry.order] if entry.order else list(got.groups())
+    if len(groups) != entry.quote.count("{}"):
         return Finding(entry, line, quoted, [], "read has a group count unlike the quote's")
-    scales = entry.scale if isinstance(entry.scale, tuple) else (entry.scale,) * entry.count
-    values = [parse(g) * s for g, s in zip(got.groups(), scales)]
-    printed = [unit(g) * abs(s) for g, s in zip(got.groups(), scales)]
+    scales = (entry.scale if isinstance(entry.scale, tuple) else
+              (entry.scale,) * entry.quote.count("{}"))
+    values = [parse(g) * s for g, s in zip(groups, scales)]
+    printed = [unit(g) * abs(s) for g, s in zip(groups, scales)]
     return Finding(entry, line, quoted, values, printed=printed)
 
 
