@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import re
 
 from doc_numbers import ROOT, Entry, Unchecked
 
@@ -223,6 +224,50 @@ ENTRIES += [
           slow=True),
     Entry(E, "The collapse probability of these 20,480 quasi-random arches, {}%", SOBOL_4096,
           r"\ncollapse: mean (\S+),", scale=100, slow=True),
+]
+
+C = "docs/codecheck.md"
+CODECHECK_SITE = ("codecheck", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3", "--soil", "B")
+
+
+def cc(label: str) -> str:
+    """The M_l column of a row of ``archrock codecheck``'s table."""
+    return re.escape(label) + r"\s+(\S+)"
+
+
+ENTRIES += [
+    Entry(C, "| alpha_0 | {} |", CODECHECK_SITE, cc("alpha_0 (activation multiplier)")),
+    Entry(C, "| sum m_i | {} kg/m |", CODECHECK_SITE, cc("sum m_i [kg/m]")),
+    Entry(C, "| M*, e* | {} kg/m, {} |", CODECHECK_SITE,
+          cc("M* [kg/m]") + ".*?" + cc("e* = g M* / sum P_i")),
+    Entry(C, "| a_0* | {} m/s^2 = {} g |", CODECHECK_SITE,
+          cc("a_0* [m/s^2] (FC = 1.35)") + ".*?" + cc("a_0* [g]")),
+    Entry(C, "| d_0 (control), d_0* | {} m, {} m |", CODECHECK_SITE,
+          cc("d_0 control [m]") + ".*?" + cc("d_0* [m]")),
+    Entry(C, "| d_u*, d_s* | {} m, {} m |", CODECHECK_SITE,
+          cc("d_u* = 0.4 d_0* [m]") + ".*?" + cc("d_s* = 0.4 d_u* [m]")),
+    Entry(C, "| a_s* exact / straight line | {} / {} m/s^2 |", CODECHECK_SITE,
+          cc("a_s* exact curve [m/s^2]") + ".*?" + cc("a_s* straight line [m/s^2]")),
+    Entry(C, "| T_s | {} s |", CODECHECK_SITE, cc("T_s [s]")),
+    Entry(C, "| site: S = {}, T_C = {} s | Se(0)/q = {} g; S_De(T_s) = {} m |", CODECHECK_SITE,
+          r"-> S = (\S+), T_B/T_C/T_D = \S+?/(\S+?)/.*?Se\(0\)/q = (\S+) g.*?= (\S+) m  ratio"),
+    Entry(C, "| linear check | {} >= {} g: ratio {}, pass |", CODECHECK_SITE,
+          r"M_l linear:\s+a_0\* = (\S+) g  vs  Se\(0\)/q = (\S+) g \(q = 2\)  ratio (\S+)  PASS"),
+    Entry(C, "| nonlinear check | {} >= {} m: ratio {}, pass |", CODECHECK_SITE,
+          r"M_l nonlinear: d_u\* = (\S+) m  vs  S_De\(T_s = \S+ s\) = (\S+) m  ratio (\S+)  PASS"),
+    Entry(C, "(Oppenheim's arch at d_s*: {} against {} m/s^2;", CODECHECK_SITE,
+          cc("a_s* exact curve [m/s^2]") + ".*?" + cc("a_s* straight line [m/s^2]")),
+]
+
+T = "docs/thrust.md"
+ENTRIES += [
+    Entry(T, "| minimum (spreading) | {} |", ("limit", "--thrust-range"), r"H_min = (\S+) kN/m"),
+    Entry(T, "| maximum (closing) | {} |", ("limit", "--thrust-range"), r"H_max = (\S+) kN/m"),
+    Entry(T, "thrust range under self-weight: H_min = {} kN/m (hinges 1 intrados, 3 extrados, 4 "
+             "extrados, 6 intrados), H_max = {} kN/m (hinges 0 extrados, 3 intrados, 4 intrados, "
+             "7 extrados)", ("limit", "--thrust-range"),
+          r"H_min = (\S+) kN/m \(hinges 1 intrados, 3 extrados, 4 extrados, 6 intrados\), "
+          r"H_max = (\S+) kN/m \(hinges 0 extrados, 3 intrados, 4 intrados, 7 extrados\)"),
 ]
 
 D = "docs/defects.md"
