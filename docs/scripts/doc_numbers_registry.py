@@ -270,6 +270,27 @@ ENTRIES += [
           r"H_max = (\S+) kN/m \(hinges 0 extrados, 3 intrados, 4 intrados, 7 extrados\)"),
 ]
 
+G = "docs/geometry.md"
+#: docs/geometry.md's family table (S = 10 m, t = 1 m, 12 voussoirs): label, shape, rise, M_l
+FAMILIES = [("circular (segmental)", "circular", "2.5", "0i-2e-7i-12e"),
+            ("circular (semicircle)", "circular", "5", "1i-5e-9i-12e"),
+            ("pointed", "pointed", "7", "1i-5e-9i-12e"),
+            ("elliptical", "elliptical", "4", "1i-5e-9i-12e"),
+            ("three-centred", "three-centred", "3.5", "1i-4e-10i-12e"),
+            ("parabolic", "parabolic", "5", "0i-3e-7i-12e")]
+
+
+def family(shape: str, rise: str) -> tuple:
+    return ("limit", "--shape", shape, "--span", "10", "--rise", rise, "--thickness", "1",
+            "--voussoirs", "12", "--min-thickness")
+
+
+ENTRIES += [
+    Entry(G, f"| {label} (F = {rise} m) | {{}} / {{}} | {hinges} | {{}} m |", family(shape, rise),
+          r"M_l\s+(\S+)\s+\S+\s+A:.*?M_r\s+(\S+).*?minimum thickness under self-weight: "
+          r"factor (\S+)") for label, shape, rise, hinges in FAMILIES
+]
+
 D = "docs/defects.md"
 ENTRIES += [
     Entry(D, "# k_r {} -> 0.2616", ("limit",), r"M_r\s+(\S+)"),
