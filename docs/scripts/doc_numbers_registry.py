@@ -288,7 +288,8 @@ def family(shape: str, rise: str) -> tuple:
 ENTRIES += [
     Entry(G, f"| {label} (F = {rise} m) | {{}} / {{}} | {hinges} | {{}} m |", family(shape, rise),
           r"M_l\s+(\S+)\s+\S+\s+A:.*?M_r\s+(\S+).*?minimum thickness under self-weight: "
-          r"factor (\S+)") for label, shape, rise, hinges in FAMILIES
+          r"factor (\S+)", slow=shape != "circular")   # polygon arches: 5-8 s each
+    for label, shape, rise, hinges in FAMILIES
 ]
 
 D = "docs/defects.md"
@@ -332,6 +333,15 @@ PIERS_ENSEMBLE = ("ensemble", *PIERS_4x2, "--pier-courses", "3", "--spread-span"
                   "0.1", "--spread-pier-course", "0.2", "--samples", "100", "--pulse", "oppenheim",
                   "--amplitude", "-0.3", "--pulse-duration", "0.2", "--no-progress")
 ENTRIES += [
+    Entry(P, "piers 4 m high: {} m (the thrust (H = {} kN/m, V = {} kN/m at the pier top)",
+          ("limit", "--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs", "9",
+           "--min-pier-width", "4"),
+          r"piers 4 m high: (\S+) m \(the thrust \(H = (\S+) kN/m, V = (\S+) kN/m"),
+    Entry(P, "under its own weight (k_l = {}, k_r = {}); on rigid supports it stands, and piers 8 m "
+             "high carry it from {} m wide: give --pier-width {} or more",
+          ("limit", "--pier-height", "8", "--pier-width", "1.6"),
+          r"k_l = (\S+), k_r = (\S+)\); on rigid supports it stands, and piers 8 m high carry it "
+          r"from (\S+) m wide: give --pier-width (\S+) or more", status=3),
     Entry(P, "M_l  {}  {}  ...  D = 13e (right pier foot, outer face)",
           ("limit", *PIERS_4x2, "--pier-courses", "2", "--defect", "pier-tilt=2,side=right"),
           r"M_l\s+(\S+)\s+(\S+)"),
