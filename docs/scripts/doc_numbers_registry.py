@@ -292,6 +292,20 @@ ENTRIES += [
     for label, shape, rise, hinges in FAMILIES
 ]
 
+CV = "docs/curves.md"
+CURVE_02 = ("curves", "--durations", "0.2", "--a-max", "20", "--n-scan", "250", "--no-progress")
+BANDS_02 = ("curves", "--durations", "0.2", "--samples", "100", "--seed", "0", "--no-progress")
+BAND_ROW = r"\n\s+0\.200\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)"
+ENTRIES += [
+    Entry(CV, "| 0.2 | {} | after 1 impact | 3.35 | {}-{} |", CURVE_02,
+          r"\n\s+0\.200\s+(\S+)\s+after 1 impact\s+(\S+)-(\S+)", slow=True),
+    Entry(CV, "| 0.2 | {} | {} | {} | {} |", BANDS_02, BAND_ROW, slow=True),
+    Entry(CV, "one irregular arch in twenty collapses at {} g or less, where the nominal arch needs "
+              "{} g;", BANDS_02, BAND_ROW, order=(1, 0), slow=True),
+    Entry(R, "one irregular arch in twenty collapses at {} g or less where the nominal arch needs "
+             "{} g.", BANDS_02, BAND_ROW, order=(1, 0), slow=True),
+]
+
 D = "docs/defects.md"
 ENTRIES += [
     Entry(D, "# k_r {} -> 0.2616", ("limit",), r"M_r\s+(\S+)"),
