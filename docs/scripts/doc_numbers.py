@@ -46,7 +46,8 @@ class Entry:
     ``quote``: the doc's text with ``{}`` for each number (whitespace matches any whitespace,
     so a quote may cross a line break); ``cmd``: archrock's argv, or ``"py:NAME"`` for the
     function ``NAME`` of doc_numbers_registry.py that returns the text to read; ``read``: a regular
-    expression over that text with one group per ``{}``, in the same order; ``scale``: what
+    expression over that text with one group per ``{}``, in the same order, or ``"json:"`` and
+    the comma-separated paths of the values in the JSON document it prints; ``scale``: what
     multiplies the command's value before comparing (100 for a fraction quoted in %);
     ``slow``: the command takes more than a few seconds (the ``-m slow`` set); ``status``: the
     exit status the command must end with (3: an outcome quoted from its message); ``order``:
@@ -196,6 +197,23 @@ class Finding:
                 if i not in self.entry.skip and not agrees(q, v, p)]
 
 
+def json_values(text: str, paths: str) -> list[str] | None:
+    """The values at ``paths`` (comma-separated, keys joined by dots: ``p_collapse.low``) of the
+    JSON document that ``text`` starts with, as text (full precision)."""
+    import json
+    try:
+        doc, _ = json.JSONDecoder().raw_decode(text[text.index("{"):])
+        values = []
+        for path in paths.split(","):
+            v = doc
+            for key in path.strip().split("."):
+                v = v[key]
+            values.append(repr(float(v)))
+        return values
+    except (ValueError, KeyError, TypeError):
+        return None
+
+
 def locate(entry: Entry, text: str | None = None) -> list[re.Match]:
     """Where the entry's quote stands in its doc."""
     if text is None:
@@ -213,11 +231,18 @@ def check(entry: Entry) -> Finding:
     m = found[0]
     line = text.count("\n", 0, m.start()) + 1
     quoted = list(m.groups())
-    got = re.search(entry.read, output(entry), re.S)
-    if got is None:
-        return Finding(entry, line, quoted, [], f"{entry.key()}: output no longer matches "
-                                                f"{entry.read!r}")
-    groups = [got.group(i + 1) for i in entry.order] if entry.order else list(got.groups())
+    if entry.read.startswith("json:"):
+        groups = json_values(output(entry), entry.read.removeprefix("json:"))
+        if groups is None:
+            return Finding(entry, line, quoted, [], f"{entry.key()}: no {entry.read!r} in its JSON")
+    else:
+        got = re.search(entry.read, output(entry), re.S)
+        if got is None:
+            return Finding(entry, line, quoted, [], f"{entry.key()}: output no longer matches "
+                                                    f"{entry.read!r}")
+        groups = list(got.groups())
+    if entry.order:
+        groups = [groups[i] for i in entry.order]
     if len(groups) != entry.quote.count("{}"):
         return Finding(entry, line, quoted, [], "read has a group count unlike the quote's")
     scales = (entry.scale if isinstance(entry.scale, tuple) else

@@ -19,6 +19,10 @@ OPP_PULSE = ("--pulse", "oppenheim", "--amplitude", "-1", "--pulse-duration", "0
 PIERS_4x2 = ("--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs", "9",
              "--pier-height", "4", "--pier-width", "2")
 K_MIN = r"k = min\(k_l, k_r\) = (\S+)"
+ENSEMBLE_1000 = ("ensemble", "--samples", "1000", "--seed", "0", *OPP_PULSE, "--no-progress", "--json")
+#: a row of an ensemble table: nominal k_l, k_r, median k_l, k_r, collapsed / integrated, P [CI]
+ENSEMBLE_ROW = ("json:nominal.k_l,nominal.k_r,k_l.median,k_r.median,p_collapse.collapses,"
+                "p_collapse.trials,p_collapse.p,p_collapse.low,p_collapse.high")
 
 
 # --- the Python examples of README.md, run as written there --------------------------------
@@ -113,12 +117,9 @@ ENTRIES: list[Entry] = [
           ("limit", "--capacity", "spread"), r"spreading capacity of the right support: (\S+) m"),
     Entry(R, "rotation`: {} rad for Oppenheim's arch", ("limit", "--capacity", "rotation"),
           r"rotation capacity of the right support: (\S+) rad"),
-    Entry(R, "P(collapse) is {} on fixed supports",
-          ("ensemble", "--samples", "1000", "--seed", "0", *OPP_PULSE, "--no-progress"),
-          r"P\(collapse[^=]*= (\S+)"),
-    Entry(R, "and {} with 1 m of spread",
-          ("ensemble", "--samples", "1000", "--seed", "0", *OPP_PULSE, "--spread", "1",
-           "--no-progress"), r"P\(collapse[^=]*= (\S+)", slow=True),
+    Entry(R, "P(collapse) is {} on fixed supports", ENSEMBLE_1000, "json:p_collapse.p"),
+    Entry(R, "and {} with 1 m of spread", ENSEMBLE_1000 + ("--spread", "1"), "json:p_collapse.p",
+          slow=True),
     Entry(R, "Oppenheim's arch: alpha_0 = {}, e* = {}, a_0* = {} g (FC 1.35), d_u* = {} m, "
              "T_s = {} s", ("codecheck",),
           r"alpha_0 \(activation multiplier\)\s+(\S+).*e\* = g M\* / sum P_i\s+(\S+)"
@@ -304,6 +305,14 @@ ENTRIES += [
               "{} g;", BANDS_02, BAND_ROW, order=(1, 0), slow=True),
     Entry(R, "one irregular arch in twenty collapses at {} g or less where the nominal arch needs "
              "{} g.", BANDS_02, BAND_ROW, order=(1, 0), slow=True),
+]
+
+S = "docs/supports.md"
+ENTRIES += [
+    Entry(S, f"| {label} | {m} | {{}} | {{}} | {{}} | {{}} | {{}} / {{}} | {{}} [{{}}, {{}}] |",
+          ENSEMBLE_1000 + flags, ENSEMBLE_ROW, slow=bool(flags))
+    for label, m, flags in [("none (fixed)", "0", ()), ("spread", "0.1", ("--spread", "0.1")),
+                            ("spread", "1.0", ("--spread", "1"))]
 ]
 
 D = "docs/defects.md"
