@@ -91,3 +91,15 @@ def test_count(capsys):
         print(f"\ndocs numbers: {fast + slow} registered ({fast} in the default run, {slow} slow), "
               f"{len(UNCHECKED)} quotes left out as not results")
     assert fast >= 50 and slow >= 20
+
+
+def test_examples_write_a_file_before_reading_it():
+    assert dn.read_before_written() == []
+
+
+def test_the_order_check_finds_a_file_read_too_early(tmp_path, monkeypatch):
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "README.md").write_text("archrock limit --geometry arch.json\n"
+                                        "archrock random-arch --seed 1 --out arch.json\n")
+    monkeypatch.setattr(dn, "ROOT", tmp_path)
+    assert dn.read_before_written() == ["README.md:1: reads arch.json, written below at line 2"]

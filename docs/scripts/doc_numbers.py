@@ -344,6 +344,29 @@ def unregistered(entries=None, unchecked=None) -> list[str]:
     return missing
 
 
+_READS = re.compile(r"--(?:geometry|records?|arcade)\s+((?:[\w./-]+\.(?:json|AT2|txt)\s*)+)"
+                    r"|read_arch\(\"([^\"]+)\"")
+_WRITES = re.compile(r"(?:--out|--write)\s+([\w./-]+\.(?:json|AT2|txt))"
+                     r"|write_arch\([^,]+,\s*\"([^\"]+)\"")
+
+
+def read_before_written() -> list[str]:
+    """Examples that read a file (``--geometry F``, ``read_arch("F")``) above the example of the
+    same page that writes it (``--out F``, ``write_arch(..., "F")``): ``doc:line: F ...``."""
+    found = []
+    for doc in doc_files():
+        reads, writes = {}, {}
+        for n, line in enumerate((ROOT / doc).read_text().splitlines(), 1):
+            for m in _READS.finditer(line):
+                for name in (m.group(1) or m.group(2)).split():
+                    reads.setdefault(name, n)
+            for m in _WRITES.finditer(line):
+                writes.setdefault(m.group(1) or m.group(2), n)
+        found += [f"{doc}:{n}: reads {name}, written below at line {writes[name]}"
+                  for name, n in reads.items() if writes.get(name, 0) > n]
+    return found
+
+
 def main(argv=None) -> int:
     from doc_numbers_registry import ENTRIES
 
@@ -363,15 +386,15 @@ def main(argv=None) -> int:
         for i in f.drifted:
             print(f"DRIFT {e.doc}:{f.line}: quoted {f.quoted[i]}, {e.key()} gives "
                   f"{formatted(f.quoted[i], f.values[i])} ({f.values[i]:.6g})", flush=True)
-    missing = unregistered()
+    missing = unregistered() + read_before_written()
     for m in missing:
-        print(f"UNREGISTERED {m}")
+        print(f"UNREGISTERED {m}" if " reads " not in m else f"ORDER {m}")
     numbers = sum(e.count for e in chosen)
     drifted = sum(len(f.drifted) for f in findings)
     errors = sum(bool(f.problem) for f in findings)
     print(f"{numbers} numbers in {len(chosen)} quotes checked against "
           f"{len({e.key() for e in chosen})} commands: {drifted} drifted, {errors} errors, "
-          f"{len(missing)} unregistered" + ("" if args.slow else
+          f"{len(missing)} unregistered or out of order" + ("" if args.slow else
                                            f" ({sum(e.count for e in ENTRIES if e.slow)} "
                                            "more with --slow)"))
     if args.update:

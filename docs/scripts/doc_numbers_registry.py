@@ -315,6 +315,23 @@ ENTRIES += [
                             ("spread", "1.0", ("--spread", "1"))]
 ]
 
+V = "docs/verification.md"
+PAPER = ("paper", "--out", "paper-out")   # run in a temporary folder
+ENTRIES += [
+    Entry(R, "It prints k = {} and c_v = {} as in the paper.", PAPER,
+          r"(?=.*\| k of Oppenheim's arch \| \S+ \| (\S+) \(k_l\))(?=.*paper model c_v = (\S+))",
+          slow=True),
+    Entry(V, "| recovers | seed 339: k_l {}, k_r {}, recovers |", PAPER,
+          r"RA-1 type: seed 339, k_l = (\S+), k_r = (\S+); recovers", slow=True),
+    Entry(V, "| collapses | seed 315: k_l {}, k_r {}, collapses at {} s after one impact, in M_r "
+             "(rotation limit reached at {} s)", PAPER,
+          r"RA-2 type: seed 315, k_l = (\S+), k_r = (\S+); collapses at (\S+) s \(last passage "
+          r"of the unstable position; rotation limit at (\S+) s\) after 1 impact", slow=True),
+    Entry(E, "computes it, {}, and gives the same", "py:readme_namespace", r"cv (\S+)"),
+    Entry(E, "and gives the same {} collapses, as does any", ENSEMBLE_1000[:2] + ("10000",)
+          + ENSEMBLE_1000[3:], "json:p_collapse.collapses", slow=True),
+]
+
 D = "docs/defects.md"
 ENTRIES += [
     Entry(D, "# k_r {} -> 0.2616", ("limit",), r"M_r\s+(\S+)"),
