@@ -332,6 +332,21 @@ ENTRIES += [
           + ENSEMBLE_1000[3:], "json:p_collapse.collapses", slow=True),
 ]
 
+AR = "docs/arcades.md"
+
+
+def arcade(spans: int) -> tuple:
+    """The reference arcade of docs/arcades.md with 1, 2 or 3 spans."""
+    widths = ("2.5",) + ("1.8",) * (spans - 1) + ("2.5",)
+    return ("arcade", "--spans", *("10",) * spans, "--thickness", "0.8", "--pier-height", "8",
+            "--pier-width", *widths)
+
+
+ENTRIES += [
+    Entry(AR, f"| {n} | {{}} | {{}} | {{}} | {{}} |", arcade(n),
+          r"(\d+) blocks .*?, (\d+) contacts.*?k_l = (\S+) .*?k_r = (\S+) ") for n in (1, 2, 3)
+]
+
 D = "docs/defects.md"
 ENTRIES += [
     Entry(D, "# k_r {} -> 0.2616", ("limit",), r"M_r\s+(\S+)"),
