@@ -428,6 +428,17 @@ ENTRIES += [
           r"\n\s+0\.2\s+(\S+)\s+(\S+)-(\S+)\s+(\d+)", slow=True),
 ]
 
+HEAVY_FOURLINK = HEAVY_CURVE[:-3] + ("--a-max", "5", "--dynamics", "fourlink", "--no-progress")
+FIRST_02 = r"\n\s+0\.20*\s+(\S+)"
+ENTRIES += [
+    Entry(PD, "the four-link model's first collapse is **{} g**.", HEAVY_FOURLINK, FIRST_02,
+          slow=True),
+    Entry(PD, "The contact engine's is **{} g** (the peer code's", HEAVY_CURVE, FIRST_02, slow=True),
+    Entry(R, "the first collapse is {} g, not the four-link model's", HEAVY_CURVE, FIRST_02,
+          slow=True),
+    Entry(R, "not the four-link model's {} g", HEAVY_FOURLINK, FIRST_02, slow=True),
+]
+
 UNCHECKED: list[Unchecked] = [
     Unchecked(PD, "4 random arches around heavy_piers (seed 0, spreads 0/0.1/0.05)",
               "the inputs, echoed"),
