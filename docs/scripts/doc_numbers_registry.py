@@ -347,6 +347,18 @@ ENTRIES += [
           r"(\d+) blocks .*?, (\d+) contacts.*?k_l = (\S+) .*?k_r = (\S+) ") for n in (1, 2, 3)
 ]
 
+CAP = r"capacity of the right support: (\S+) m = (\S+)% of the span"
+ENTRIES += [
+    Entry(S, f"| {kind} | {{}} | {{}} | {onset} |", ("limit", "--capacity", kind), CAP,
+          scale=(1, 0.01)) for kind, onset in (("spread", "1i, 4e, 6i"), ("closure", "0e, 4i, 7e"),
+                                               ("settlement", "1i, 4e, 7e"))
+] + [
+    Entry(S, "| Oppenheim's arch | springing's outer end | 1i, 4e, 6i | {} | 1i, 4e, 6i, 7e | {} -> "
+             "{} | {} |", ("limit", "--capacity", "rotation"),
+          r"rotation capacity of the right support: (\S+) rad.*?thrust H: (\S+) kN/m at onset, "
+          r"(\S+) kN/m at capacity; crown drop at capacity (\S+) m"),
+]
+
 D = "docs/defects.md"
 ENTRIES += [
     Entry(D, "# k_r {} -> 0.2616", ("limit",), r"M_r\s+(\S+)"),
