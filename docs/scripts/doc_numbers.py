@@ -1,9 +1,10 @@
 """The numbers README.md and docs/*.md quote from a command, each checked against what the
 command prints today.
 
-    python docs/scripts/doc_numbers.py            # check the fast entries: one line per drifted number
-    python docs/scripts/doc_numbers.py --slow     # also the long commands (minutes)
-    python docs/scripts/doc_numbers.py --update   # rewrite the drifted numbers in the docs, list them
+    python docs/scripts/doc_numbers.py              # the fast entries: a line per drifted number
+    python docs/scripts/doc_numbers.py --slow       # also the long commands (minutes)
+    python docs/scripts/doc_numbers.py --update     # rewrite drifted numbers in the docs, list them
+    python docs/scripts/doc_numbers.py --only TEXT  # the entries whose command contains TEXT
 
 The registry (:data:`ENTRIES`, in docs/scripts/doc_numbers_registry.py) holds no number: each entry
 is a quote of the doc with ``{}`` where the number stands, the command, and a regular expression
@@ -13,7 +14,8 @@ tests/test_docs_numbers.py until the docs change with it.  A quoted number match
 equals the command's value at the precision it is quoted at (its decimals, half a unit of the
 last digit).  :func:`unregistered` finds numbers in command-output code blocks and beside
 ``print(...)`` calls in Python blocks that no entry covers (and that are not listed as
-machine-dependent), so a new quoted number cannot slip in unchecked.
+machine-dependent), so a new quoted number cannot slip in unchecked, and
+:func:`read_before_written` finds an example that reads a file above the one that writes it.
 
 Run from anywhere with ``PYTHONPATH=src`` (the checkout's package); commands run in this
 process, in a temporary folder (paths under tests/ and docs/ are made absolute).

@@ -19,7 +19,8 @@ OPP_PULSE = ("--pulse", "oppenheim", "--amplitude", "-1", "--pulse-duration", "0
 PIERS_4x2 = ("--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs", "9",
              "--pier-height", "4", "--pier-width", "2")
 K_MIN = r"k = min\(k_l, k_r\) = (\S+)"
-ENSEMBLE_1000 = ("ensemble", "--samples", "1000", "--seed", "0", *OPP_PULSE, "--no-progress", "--json")
+ENSEMBLE_1000 = ("ensemble", "--samples", "1000", "--seed", "0", *OPP_PULSE, "--no-progress",
+                 "--json")
 #: a row of an ensemble table: nominal k_l, k_r, median k_l, k_r, collapsed / integrated, P [CI]
 ENSEMBLE_ROW = ("json:nominal.k_l,nominal.k_r,k_l.median,k_r.median,p_collapse.collapses,"
                 "p_collapse.trials,p_collapse.p,p_collapse.low,p_collapse.high")
@@ -132,12 +133,14 @@ ENTRIES: list[Entry] = [
              "energy ratio {})",
           ("respond", "--shape", "circular", "--span", "10", "--rise", "5", "--thickness", "0.9",
            "--voussoirs", "17", *OPP_PULSE), r"kinetic energy ratio (\S+)"),
-    Entry(R, "costs most at **voussoirs 2 and 4** (either side of the crown voussoir): min(k_l, k_r) "
+    Entry(R, "costs most at **voussoirs 2 and 4** (either side of the crown voussoir): "
+             "min(k_l, k_r) "
              "drops from {} to {} g, **{} g ({}%)**; at the crown voussoir only {}%",
           ("defects",), r"(?=.*min\(k_l, k_r\) (\S+) -> (\S+) g, (\S+) g \((\S+)%\))"
                         r"(?=.*\n\s+3\s+\S+\s+\S+\s+\S+\s+(\S+)%)", scale=(1, 1, 1, -1, 1)),
     # --- README: Python ---
-    Entry(R, 'print(f"{res.k_l:.4f} {res.k_r:.4f}") # {} {}', "py:readme_statics", r"statics (\S+) (\S+)"),
+    Entry(R, 'print(f"{res.k_l:.4f} {res.k_r:.4f}") # {} {}', "py:readme_statics",
+          r"statics (\S+) (\S+)"),
     Entry(R, "# |kinematic - static|, ~{}", "py:readme_statics", r"discrepancy (\S+)"),
     Entry(R, "print(model.impact.l_to_r) # {} (the paper's c_v)", "py:readme_dynamics",
           r"cv (\S+)"),
@@ -160,7 +163,8 @@ ENSEMBLE_10K = ("ensemble", "--samples", "10000", "--seed", "0", "--spread-span"
                 "0.8754", "--no-progress")
 P_LINE = r"P\(collapse \| integrated\) = (\S+) \[(\S+), (\S+)\] \((\d+) collapsed"
 ENTRIES += [
-    Entry(R, "k_l = {} ± {}, k_r = {} ± {} (nominal {}). Under the paper's pulse with the nominal "
+    Entry(R, "k_l = {} ± {}, k_r = {} ± {} (nominal {}). Under the paper's pulse with the "
+             "nominal "
              "c_v, {}% of them collapse (95% CI {}-{}%)", ENSEMBLE_10K,
           r"(?=.*k_l \(standing arches, n = 10000\): mean (\S+), std (\S+),)"
           r"(?=.*k_r \(standing arches, n = 10000\): mean (\S+), std (\S+),)"
@@ -184,13 +188,16 @@ ENTRIES += [
     Entry(E, "k_l: {}%, k_r: {}%, either: {}%, both: 23.6%, asymmetry: {}%", ENSEMBLE_10K,
           r"RA-2: k_l (\S+), k_r (\S+), either (\S+), asymmetry \|k_l-k_r\| (\S+)",
           scale=100, slow=True),
-    Entry(E, "| M_l hinge patterns | 0i-3e-5i-7e {}, 0i-2e-5i-7e {}, 0i-3e-6i-7e {}, 1i-3e-5i-7e {},",
+    Entry(E, "| M_l hinge patterns | 0i-3e-5i-7e {}, 0i-2e-5i-7e {}, 0i-3e-6i-7e {}, "
+             "1i-3e-5i-7e {},",
           ENSEMBLE_10K, r"M_l hinges: 0i-3e-5i-7e (\d+), 0i-2e-5i-7e (\d+), 0i-3e-6i-7e (\d+), "
                         r"1i-3e-5i-7e (\d+)", slow=True),
-    Entry(E, "| M_r hinge patterns | 0e-2i-4e-7i {}, 0e-2i-5e-7i {}, 0e-1i-4e-7i {}, 0e-2i-4e-6i {} |",
+    Entry(E, "| M_r hinge patterns | 0e-2i-4e-7i {}, 0e-2i-5e-7i {}, 0e-1i-4e-7i {}, "
+             "0e-2i-4e-6i {} |",
           ENSEMBLE_10K, r"M_r hinges: 0e-2i-4e-7i (\d+), 0e-2i-5e-7i (\d+), 0e-1i-4e-7i (\d+), "
                         r"0e-2i-4e-6i (\d+)", slow=True),
-    Entry(E, "| P(collapse) under the paper's pulse | {}, 95% Wilson interval [{}, {}] ({} / 10000) |",
+    Entry(E, "| P(collapse) under the paper's pulse | {}, 95% Wilson interval [{}, {}] "
+             "({} / 10000) |",
           ENSEMBLE_10K, P_LINE, slow=True),
 ]
 
@@ -301,7 +308,8 @@ ENTRIES += [
     Entry(CV, "| 0.2 | {} | after 1 impact | 3.35 | {}-{} |", CURVE_02,
           r"\n\s+0\.200\s+(\S+)\s+after 1 impact\s+(\S+)-(\S+)", slow=True),
     Entry(CV, "| 0.2 | {} | {} | {} | {} |", BANDS_02, BAND_ROW, slow=True),
-    Entry(CV, "one irregular arch in twenty collapses at {} g or less, where the nominal arch needs "
+    Entry(CV, "one irregular arch in twenty collapses at {} g or less, where the nominal arch "
+              "needs "
               "{} g;", BANDS_02, BAND_ROW, order=(1, 0), slow=True),
     Entry(R, "one irregular arch in twenty collapses at {} g or less where the nominal arch needs "
              "{} g.", BANDS_02, BAND_ROW, order=(1, 0), slow=True),
@@ -353,7 +361,8 @@ ENTRIES += [
           scale=(1, 0.01)) for kind, onset in (("spread", "1i, 4e, 6i"), ("closure", "0e, 4i, 7e"),
                                                ("settlement", "1i, 4e, 7e"))
 ] + [
-    Entry(S, "| Oppenheim's arch | springing's outer end | 1i, 4e, 6i | {} | 1i, 4e, 6i, 7e | {} -> "
+    Entry(S, "| Oppenheim's arch | springing's outer end | 1i, 4e, 6i | {} | 1i, 4e, 6i, 7e "
+             "| {} -> "
              "{} | {} |", ("limit", "--capacity", "rotation"),
           r"rotation capacity of the right support: (\S+) rad.*?thrust H: (\S+) kN/m at onset, "
           r"(\S+) kN/m at capacity; crown drop at capacity (\S+) m"),
@@ -375,7 +384,8 @@ F = "docs/friction.md"
 ENTRIES += [
     Entry(F, "7 voussoirs): k = {} (static LP)", ("limit", "--embrace", "80", "--friction", "0.5"),
           K_MIN),
-    Entry(F, "(N = 0 and T = {} W at the springing", ("limit", "--embrace", "80", "--friction", "0.5"),
+    Entry(F, "(N = 0 and T = {} W at the springing",
+          ("limit", "--embrace", "80", "--friction", "0.5"),
           r"N = 0 W and T = (\S+) W"),
     Entry(F, "with mu = 0.5 both springings slide at k = {}.",
           ("limit", "--embrace", "80", "--friction", "0.5"), r"k with friction = (\S+)"),
@@ -404,7 +414,8 @@ ENTRIES += [
           ("limit", "--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs", "9",
            "--min-pier-width", "4"),
           r"piers 4 m high: (\S+) m \(the thrust \(H = (\S+) kN/m, V = (\S+) kN/m"),
-    Entry(P, "under its own weight (k_l = {}, k_r = {}); on rigid supports it stands, and piers 8 m "
+    Entry(P, "under its own weight (k_l = {}, k_r = {}); on rigid supports it stands, and "
+             "piers 8 m "
              "high carry it from {} m wide: give --pier-width {} or more",
           ("limit", "--pier-height", "8", "--pier-width", "1.6"),
           r"k_l = (\S+), k_r = (\S+)\); on rigid supports it stands, and piers 8 m high carry it "
@@ -445,7 +456,8 @@ FIRST_02 = r"\n\s+0\.20*\s+(\S+)"
 ENTRIES += [
     Entry(PD, "the four-link model's first collapse is **{} g**.", HEAVY_FOURLINK, FIRST_02,
           slow=True),
-    Entry(PD, "The contact engine's is **{} g** (the peer code's", HEAVY_CURVE, FIRST_02, slow=True),
+    Entry(PD, "The contact engine's is **{} g** (the peer code's", HEAVY_CURVE, FIRST_02,
+          slow=True),
     Entry(R, "the first collapse is {} g, not the four-link model's", HEAVY_CURVE, FIRST_02,
           slow=True),
     Entry(R, "not the four-link model's {} g", HEAVY_FOURLINK, FIRST_02, slow=True),
@@ -457,7 +469,8 @@ UNCHECKED: list[Unchecked] = [
     Unchecked(PD, "moves a pier ({}% of its kinetic energy), M_r 0e-2i-8e-13i moves a pier ({}% of "
                   "its kinetic energy)", "the check's reason, shortened in the doc (printed by "
                                          "respond; the routing is docs/piers-dynamics.md's)"),
-    Unchecked(PD, "engine: 400 steps/T, 40 iterations, friction 0.8, restitution 0, free motion 30 T, "
+    Unchecked(PD, "engine: 400 steps/T, 40 iterations, friction 0.8, restitution 0, free motion "
+                  "30 T, "
                   "collapse at a drop of 0.2 x size", "the engine's settings, echoed"),
     Unchecked(PD, "time: {} s ({} s an arch; estimated beforehand {} s)", "wall times"),
     Unchecked(PD, "(sign -1) by the contact engine, bisected to 0.01 of the amplitude",
