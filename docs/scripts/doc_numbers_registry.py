@@ -405,6 +405,9 @@ ENTRIES += [
 ]
 
 P = "docs/piers.md"
+OUTCOMES = (r"outcomes: (\d+) run to the end \(rest (\d+), collapsed (\d+), still moving "
+            r"(\d+)\), (\d+) failed")
+P_RUN = r"P\(collapse \| run\) = (\S+) \[(\S+), (\S+)\] \((\d+) collapsed of (\d+)"
 PIERS_ENSEMBLE = ("ensemble", *PIERS_4x2, "--pier-courses", "3", "--spread-span", "0",
                   "--spread-pier-lean", "1", "--spread-pier-width", "0.1", "--spread-pier-height",
                   "0.1", "--spread-pier-course", "0.2", "--samples", "100", "--pulse", "oppenheim",
@@ -423,11 +426,19 @@ ENTRIES += [
     Entry(P, "M_l  {}  {}  ...  D = 13e (right pier foot, outer face)",
           ("limit", *PIERS_4x2, "--pier-courses", "2", "--defect", "pier-tilt=2,side=right"),
           r"M_l\s+(\S+)\s+(\S+)"),
-    Entry(P, "k_l (standing arches, n = {}): mean {}, std {}, 5-95% [{}, {}]", PIERS_ENSEMBLE,
-          r"k_l \(standing arches, n = (\d+)\): mean (\S+), std (\S+), 5-95% \[(\S+), (\S+)\]",
+    Entry(P, "moves a pier ({}% of its kinetic energy), M_r 0e-5i-8e-11i moves a pier ({}% of its "
+             "kinetic energy)", PIERS_ENSEMBLE,
+          r"moves a pier \((\d+)% of its kinetic energy\), M_r \S+ moves a pier \((\d+)%",
           slow=True),
-    Entry(P, "P(collapse | integrated) = {} [{}, {}] ({} collapsed of {}, 95% Wilson)",
-          PIERS_ENSEMBLE, P_LINE + r" of (\d+)", slow=True),
+    Entry(P, "nominal: k_l = {}, k_r = {}", PIERS_ENSEMBLE, r"nominal: k_l = (\S+), k_r = (\S+)",
+          slow=True),
+    Entry(P, "outcomes: {} run to the end (rest {}, collapsed {}, still moving {}), {} failed",
+          PIERS_ENSEMBLE, OUTCOMES, slow=True),
+    Entry(P, "P(collapse | run) = {} [{}, {}] ({} collapsed of {}, 95% Wilson)", PIERS_ENSEMBLE,
+          P_RUN, slow=True),
+    Entry(P, "100 random arches around nominal on piers (seed {}, spreads {}/{}/{})",
+          PIERS_ENSEMBLE, r"(\d+) random arches around nominal on piers \(seed (\d+), spreads "
+                          r"(\S+?)/(\S+?)/(\S+?)\)", order=(1, 2, 3, 4), slow=True),
 ]
 
 PD = "docs/piers-dynamics.md"
@@ -440,11 +451,9 @@ ENTRIES += [
     Entry(PD, "nominal: k_l = {}, k_r = {}\noutcomes", HEAVY_ENSEMBLE,
           r"nominal: k_l = (\S+), k_r = (\S+)", slow=True),
     Entry(PD, "outcomes: {} run to the end (rest {}, collapsed {}, still moving {}), {} failed",
-          HEAVY_ENSEMBLE, r"outcomes: (\d+) run to the end \(rest (\d+), collapsed (\d+), still "
-                          r"moving (\d+)\), (\d+) failed", slow=True),
+          HEAVY_ENSEMBLE, OUTCOMES, slow=True),
     Entry(PD, "P(collapse | run) = {} [{}, {}] ({} collapsed of {}, 95% Wilson)", HEAVY_ENSEMBLE,
-          r"P\(collapse \| run\) = (\S+) \[(\S+), (\S+)\] \((\d+) collapsed of (\d+)",
-          slow=True),
+          P_RUN, slow=True),
     Entry(PD, "activation threshold k = {} g", HEAVY_CURVE, r"activation threshold k = (\S+) g",
           slow=True),
     Entry(PD, "0.2                  {}      {}-{}    {}", HEAVY_CURVE,
