@@ -103,3 +103,20 @@ def test_the_order_check_finds_a_file_read_too_early(tmp_path, monkeypatch):
                                         "archrock random-arch --seed 1 --out arch.json\n")
     monkeypatch.setattr(dn, "ROOT", tmp_path)
     assert dn.read_before_written() == ["README.md:1: reads arch.json, written below at line 2"]
+
+
+def test_update_rewrites_a_drifted_number_in_the_doc_alone(tmp_path, monkeypatch):
+    (tmp_path / "docs").mkdir()
+    readme = tmp_path / "README.md"
+    readme.write_text("Oppenheim's arch: k = 0.2000 and\nP = 2,800 (seed 0).\n")
+    monkeypatch.setattr(dn, "ROOT", tmp_path)
+    monkeypatch.setattr(dn, "_OUTPUTS", {"archrock limit": "k = 0.370010\ncollapses 2803\n"})
+    entries = [dn.Entry("README.md", "arch: k = {} and P = {} (seed", ("limit",),
+                        r"k = (\S+)\ncollapses (\d+)")]
+    found = [dn.check(e) for e in entries]
+    assert found[0].line == 1 and found[0].drifted == [0, 1]
+    changes = dn.update(found)
+    assert readme.read_text() == "Oppenheim's arch: k = 0.3700 and\nP = 2,803 (seed 0).\n"
+    assert [c.split(": ", 1)[1] for c in changes] == ["0.2000 -> 0.3700   (archrock limit)",
+                                                      "2,800 -> 2,803   (archrock limit)"]
+    assert [dn.check(e).drifted for e in entries] == [[]]
