@@ -368,6 +368,21 @@ ENTRIES += [
           r"(\S+) kN/m at capacity; crown drop at capacity (\S+) m"),
 ]
 
+PAPER_CVS = r"paper model c_v = (\S+) .*?momentum model (\S+)"
+ENSEMBLE_10K_JSON = ENSEMBLE_1000[:2] + ("10000",) + ENSEMBLE_1000[3:]
+ENTRIES += [
+    Entry(R, "c_v = {} (paper model) and {} (momentum model) for Oppenheim's arch", PAPER,
+          PAPER_CVS, slow=True),
+    Entry(E, "energy-consistent \"momentum\" model (c_v = {} on the nominal arch)", PAPER,
+          PAPER_CVS, order=(1,), slow=True),
+    Entry(E, "P(collapse) is {} [{}, {}] with the per-geometry \"paper\" model",
+          ENSEMBLE_10K_JSON + ("--impact", "paper"), "json:p_collapse.p,p_collapse.low,"
+          "p_collapse.high", slow=True),
+    Entry(E, "and {} [{}, {}] with the energy-consistent \"momentum\" model",
+          ENSEMBLE_10K_JSON + ("--impact", "momentum"), "json:p_collapse.p,p_collapse.low,"
+          "p_collapse.high", slow=True),
+]
+
 D = "docs/defects.md"
 ENTRIES += [
     Entry(D, "# k_r {} -> 0.2616", ("limit",), r"M_r\s+(\S+)"),
