@@ -219,7 +219,7 @@ def test_ensemble_cancel_and_one_job_at_a_time(client, wait_job):
     body = {"arch": OPPENHEIM, "samples": 4000, "pulse": PULSE}
     job = client.post("/api/ensemble", json=body).json()
     busy = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 10})
-    assert busy.status_code == 409 and "another ensemble, curve or report" in busy.json()["error"]
+    assert busy.status_code == 409 and "another ensemble, curve, report" in busy.json()["error"]
     c = client.post(f"/api/jobs/{job['id']}/cancel", json={})
     assert c.status_code == 200
     s = wait_job(client, job["id"])
