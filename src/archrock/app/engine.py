@@ -137,9 +137,10 @@ def run_engine_job(req: dict, progress, cancelled) -> dict | None:
 
 
 def block_frames(res) -> dict:
-    """Every block's rigid motion at up to :data:`MAX_ENGINE_FRAMES` times: ``time`` [s] and,
-    per frame, [[dx, dy, theta], ...] per block: the page draws block i's outline turned by
-    theta [rad] about its first sampled position and moved by (dx, dy) [m]."""
+    """Every block's rigid motion at up to :data:`MAX_ENGINE_FRAMES` times: ``time`` [s],
+    ``phi`` [rad] (the equivalent rotation) and, per frame, [[dx, dy, theta], ...] per block:
+    the page draws block i's outline turned by theta [rad] about ``origin[i]`` (its first
+    sampled position [m]) and moved by (dx, dy) [m]."""
     t = np.asarray(res.time, float)
     pos, rot = np.asarray(res.positions, float), np.asarray(res.rotations, float)
     ok = np.isfinite(rot).all(axis=1) & np.isfinite(pos).all(axis=(1, 2))
@@ -150,4 +151,6 @@ def block_frames(res) -> dict:
                          .round().astype(int))]
     p0, r0 = pos[idx[0]], rot[idx[0]]
     frames = [np.round(np.column_stack([pos[k] - p0, rot[k] - r0]), 6).tolist() for k in pick]
-    return {"time": xy(t[pick]), "origin": xy(p0), "frames": frames}
+    phi = np.asarray(res.phi, float)[pick]
+    return {"time": xy(t[pick]), "origin": xy(p0), "frames": frames,
+            "phi": [None if not math.isfinite(x) else round(float(x), 7) for x in phi]}

@@ -53,6 +53,7 @@ from starlette.staticfiles import StaticFiles
 
 from ..options import OptionError as CLIError, json_safe
 from ..errors import ArchInputError, ArchrockError, GeometryOutcome
+from ..statics.friction import DEFAULT_FRICTION
 from . import api, engine, uploads
 from .jobs import Busy, Jobs
 
@@ -258,7 +259,8 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                       "max_file_bytes": uploads.MAX_FILE_BYTES,
                       "max_record_t_end_s": uploads.MAX_RECORD_T_END_S,
                       "record_units": uploads.RECORD_UNITS, "dxf_units": uploads.DXF_UNITS,
-                      "max_report_samples": api.MAX_REPORT_SAMPLES})
+                      "max_report_samples": api.MAX_REPORT_SAMPLES,
+                      "default_friction": DEFAULT_FRICTION, "dynamics": engine.DYNAMICS})
 
     routes = [
         Route("/", index),

@@ -57,9 +57,51 @@ async function post(url, body) {
     showError(data.error || `HTTP ${resp.status}`);
     const err = new Error(data.error);
     err.handled = true;
+    err.status = resp.status;
     throw err;
   }
   return data;
+}
+
+// ------------------------------------------------------------------ refusals beside their control
+// the element a refusal is shown after: the control's label (or the control itself)
+function anchorOf(id) {
+  const c = $(id);
+  if (!c) return null;
+  return c.closest("label") || c;
+}
+
+function showRefusal(id, msg) {
+  const a = anchorOf(id);
+  if (!a) return false;
+  let r = $(`refusal-${id}`);
+  if (!r) {
+    r = document.createElement("div");
+    r.id = `refusal-${id}`;
+    r.className = "refusal";
+    r.setAttribute("role", "alert");
+    a.insertAdjacentElement("afterend", r);
+  }
+  r.textContent = msg;
+  return true;
+}
+
+function clearRefusals(ids) {
+  for (const id of ids) { const r = $(`refusal-${id}`); if (r) r.remove(); }
+}
+
+// the control of a field the server names ("span: ...", "unknown field 'arch.span'")
+const FIELD_CONTROLS = {shape: "shape", span: "span", rise: "rise", thickness: "thickness",
+                        thickness_crown: "thickness", voussoirs: "voussoirs", joints: "joints",
+                        pier_height: "pier-height", pier_width: "pier-width",
+                        pier_courses: "pier-height", friction: "friction-mu", geometry: "upload",
+                        defects: "arch-svg", kind: "pulse-kind", amplitude: "amplitude",
+                        duration: "duration", t_end: "t-end", exaggerate: "exaggerate",
+                        dynamics: "dynamics-model", record: "record-file"};
+
+function fieldControl(msg) {
+  const m = /^unknown field '(?:[a-z]+\.)?([a-z_]+)'/.exec(msg || "") || /^([a-z_]+):/.exec(msg || "");
+  return m ? FIELD_CONTROLS[m[1]] || null : null;
 }
 
 function archParams(withDefects = true) {
@@ -71,6 +113,46 @@ function archParams(withDefects = true) {
   if (state.geometry) return {geometry: state.geometry, name: state.geometryName, defects, ...piers};
   return {shape: state.shape, span: state.span, rise: state.rise, thickness: state.thickness,
           voussoirs: state.voussoirs, joints: state.joints, defects, ...piers};
+}
+
+// ------------------------------------------------------------------ results that match their inputs
+// each result keeps the inputs it was computed from; once they differ from the page's, it is
+// greyed with a note (and shown again as it was if the inputs come back)
+function friction() { return $("friction-mu").value.trim(); }
+function inputsOf(name) {
+  const common = {arch: archParams(), seed: $("seed").value.trim(), spreads: spreadsParams()};
+  if (name === "response") {
+    const rec = $("motion").value === "record";
+    return {arch: common.arch, motion: rec ? {record: app.record && app.record.id} : {pulse: pulseParams()},
+            t_end: $("t-end").value.trim(), exaggerate: $("exaggerate").value, friction: friction(),
+            dynamics: $("dynamics-model").value};
+  }
+  if (name === "ensemble") return {...common, samples: $("samples").value.trim(),
+                                   pulse: $("with-pulse").checked ? pulseParams() : null};
+  if (name === "curve") return {...common, samples: $("curve-samples").value.trim(),
+                                durations: $("curve-durations").value.trim(), kind: $("pulse-kind").value};
+  return {...common, samples: $("report-samples").value.trim(), contact: $("report-contact").checked};
+}
+const RESULTS = {response: ["anim-title", "anim-svg", "history-svg", "dynamics-label", "outcome"],
+                 ensemble: ["hist-svg", "ensemble-result"], curve: ["curve-svg", "curve-result"],
+                 report: ["report-status"]};
+const shown = {};  // name -> the JSON of the inputs of the result shown
+
+function resultShown(name, inputs) { shown[name] = JSON.stringify(inputs); markStale(); }
+
+function markStale() {
+  for (const [name, ids] of Object.entries(RESULTS)) {
+    const stale = shown[name] !== undefined && shown[name] !== JSON.stringify(inputsOf(name));
+    for (const id of ids) $(id).classList.toggle("stale", stale);
+    let note = $(`stale-${name}`);
+    if (stale && !note) {
+      note = document.createElement("div");
+      note.id = `stale-${name}`;
+      note.className = "stale-note";
+      note.textContent = "inputs changed: run again (the result below is of the earlier inputs)";
+      $(ids[0]).insertAdjacentElement("beforebegin", note);
+    } else if (!stale && note) note.remove();
+  }
 }
 
 // ------------------------------------------------------------------ drawing helpers
@@ -114,10 +196,34 @@ function drawArch(svg, drawing, interactive) {
 
 // ------------------------------------------------------------------ statics
 let inFlight = false, pending = null;
+// the inputs of the arch drawn (the last the server accepted): restored when a change is refused
+let lastValid = null;
+const STATICS_CONTROLS = ["shape", "span", "rise", "thickness", "voussoirs", "joints", "typed-value",
+                          "pier-height", "friction-mu", "upload", "upload-dxf", "arch-svg"];
 
-function requestStatics(t0) {
+function archInputs() {
+  return {state: {shape: state.shape, span: state.span, rise: state.rise, thickness: state.thickness,
+                  voussoirs: state.voussoirs, joints: state.joints, geometry: state.geometry,
+                  geometryName: state.geometryName, defects: new Set(state.defects),
+                  showRange: state.showRange},
+          dom: {"pier-height": $("pier-height").value, "pier-width": $("pier-width").value,
+                "friction-mu": $("friction-mu").value}};
+}
+
+function restoreInputs(saved) {
+  Object.assign(state, saved.state, {defects: new Set(saved.state.defects)});
+  for (const [id, v] of Object.entries(saved.dom)) $(id).value = v;
+  $("show-range").checked = state.showRange;
+  showControls();
+  markStale();
+}
+
+// cause: the id of the control whose change asked for this (the refusal is shown beside it)
+function requestStatics(t0, cause = null) {
   // coalesce: while one request runs, keep only the newest input (and its earliest start time)
-  if (pending) pending.t0 = Math.min(pending.t0, t0); else pending = {t0};
+  if (pending) { pending.t0 = Math.min(pending.t0, t0); pending.cause = cause || pending.cause; }
+  else pending = {t0, cause};
+  markStale();
   if (!inFlight) runStatics();
 }
 
@@ -133,6 +239,8 @@ async function runStatics() {
     if (state.defects.size) calls.push(post("/api/limit", {arch: archParams(false)}));
     const [res, base] = await Promise.all(calls);
     clearError();
+    clearRefusals(STATICS_CONTROLS);
+    lastValid = archInputs();
     drawStatics(res, base);
     requestAnimationFrame(() => {
       const dt = performance.now() - job.t0;
@@ -142,10 +250,23 @@ async function runStatics() {
     });
   } catch (e) {
     if (!e.handled) console.warn(e);
+    else if (e.status === 400) refuseStatics(e.message, job.cause);
   } finally {
     inFlight = false;
     if (pending) runStatics();
   }
+}
+
+// a refused arch: its message beside the control that caused it, and the page back to the last
+// arch the server accepted (the drawing, k and the controls agree; never a default arch)
+function refuseStatics(msg, cause) {
+  const id = cause || fieldControl(msg) || "shape";
+  clearRefusals(STATICS_CONTROLS);
+  if (lastValid) {
+    restoreInputs(lastValid);
+    showRefusal(id, `refused: ${msg}; the page shows the last valid arch`);
+  } else showRefusal(id, `refused: ${msg}`);
+  app.refusals = (app.refusals || 0) + 1;
 }
 
 function drawStatics(res, base) {
@@ -194,7 +315,7 @@ function drawStatics(res, base) {
 
 function toggleDefect(i) {
   if (state.defects.has(i)) state.defects.delete(i); else state.defects.add(i);
-  requestStatics(performance.now());
+  requestStatics(performance.now(), "arch-svg");
 }
 
 // ------------------------------------------------------------------ the controls
@@ -224,14 +345,14 @@ function bindControls() {
       state[f] = f === "voussoirs" ? parseInt(ev.target.value, 10) : parseFloat(ev.target.value);
       if (f === "voussoirs") state.defects.clear();
       showControls();
-      requestStatics(t0);
+      requestStatics(t0, f);
     });
   }
   for (const f of ["shape", "joints"]) {
     $(f).addEventListener("change", (ev) => {
       leaveGeometryFile();
       state[f] = ev.target.value;
-      requestStatics(performance.now());
+      requestStatics(performance.now(), f);
     });
   }
   $("typed-apply").addEventListener("click", () => {
@@ -241,7 +362,7 @@ function bindControls() {
     // sent as typed when it is not a number: the server's message names the field
     state[f] = text !== "" && Number.isFinite(v) ? v : text;
     showControls();
-    requestStatics(performance.now());
+    requestStatics(performance.now(), "typed-value");
   });
   $("oppenheim").addEventListener("click", () => {
     Object.assign(state, OPPENHEIM, {geometry: null, geometryName: null});
@@ -250,7 +371,8 @@ function bindControls() {
     requestStatics(performance.now());
   });
   for (const id of ["pier-height", "pier-width", "friction-mu"]) {
-    $(id).addEventListener("change", () => requestStatics(performance.now()));
+    $(id).addEventListener("change", () => requestStatics(performance.now(),
+                                                          id === "pier-width" ? "pier-height" : id));
   }
   $("show-range").addEventListener("change", (ev) => {
     state.showRange = ev.target.checked;
@@ -269,7 +391,7 @@ function bindControls() {
     state.geometryName = file.name.replace(/\.json$/i, "");
     state.defects.clear();
     showControls();
-    requestStatics(performance.now());
+    requestStatics(performance.now(), "upload");
   });
   for (const b of document.querySelectorAll("button.export")) {
     b.addEventListener("click", () => download(b.dataset.what));
@@ -288,6 +410,14 @@ function bindControls() {
     }
   });
   $("play").addEventListener("click", play);
+  $("cancel-play").addEventListener("click", () => {
+    if (app.responseJob && app.responseJob.state === "running") {
+      post(`/api/jobs/${app.responseJob.id}/cancel`, {}).catch(() => null);
+    }
+  });
+  // any input changed: the results of other inputs are greyed at once
+  document.addEventListener("input", markStale);
+  document.addEventListener("change", markStale);
   $("run-ensemble").addEventListener("click", runEnsemble);
   $("run-curve").addEventListener("click", runCurve);
   $("cancel-ensemble").addEventListener("click", cancelEnsemble);
@@ -308,8 +438,20 @@ async function download(what) {
   let motion;
   try { motion = what === "response-csv" ? motionParams() : {pulse: pulseParams()}; } catch (e) { return; }
   const body = {what, arch: archParams(), ...motion, t_end: $("t-end").value};
-  const resp = await api("/api/export", {method: "POST", headers: {"Content-Type": "application/json"},
-                                           body: JSON.stringify(body)});
+  if (friction() !== "") body.friction = friction();
+  let url = "/api/export", init = {method: "POST", headers: {"Content-Type": "application/json"},
+                                   body: JSON.stringify(body)};
+  if (what === "response-csv") {
+    body.dynamics = $("dynamics-model").value;
+    init.body = JSON.stringify(body);
+    const last = app.lastResponse;
+    // the contact engine's response is its job's file, while it still matches the inputs
+    if (last && last.model === "engine" && shown.response === JSON.stringify(inputsOf("response"))) {
+      url = `/api/jobs/${last.job}/download`;
+      init = {};
+    }
+  }
+  const resp = await api(url, init);
   if (!resp.ok) {
     const data = await resp.json().catch(() => ({}));
     showError(data.error || `HTTP ${resp.status}`);
@@ -439,7 +581,7 @@ async function loadDxf() {
   state.geometryName = r.name;
   state.defects.clear();
   showControls();
-  requestStatics(performance.now());
+  requestStatics(performance.now(), "upload-dxf");
 }
 
 let animation = null;
@@ -485,7 +627,7 @@ function drawHistory(res) {
   const W = 400, H = 160, L = 44, R = 8, T = 10, B = 24;
   const tmax = res.time[res.time.length - 1] || 1;
   const finite = res.phi.filter((v) => v !== null);
-  const pmax = Math.max(1e-6, ...finite.map(Math.abs), ...res.frames.map((f) => Math.abs(f[1])));
+  const pmax = Math.max(1e-6, ...finite.map(Math.abs), ...(res.frames || []).map((f) => Math.abs(f[1])));
   const hx = app.hx = (t) => L + (W - L - R) * t / tmax;
   const hy = app.hy = (p) => T + (H - T - B) * (0.5 - 0.5 * p / pmax);
   el("line", {x1: L, x2: W - R, y1: hy(0), y2: hy(0), class: "axis"}, svg);
@@ -501,7 +643,7 @@ function drawHistory(res) {
     pen = true;
   });
   el("path", {d, class: "curve"}, svg);
-  for (const t of res.impacts.filter((t) => t <= tmax)) {
+  for (const t of (res.impacts || []).filter((t) => t <= tmax)) {
     el("line", {x1: hx(t), x2: hx(t), y1: H - B, y2: H - B + 5, class: "axis"}, svg);
   }
   const lab = (x, y, s, a = "middle") => { const e = el("text", {x, y, "text-anchor": a}, svg); e.textContent = s; };
@@ -513,44 +655,127 @@ function drawHistory(res) {
   el("circle", {id: "history-marker", r: 3.5, class: "marker", cx: hx(0), cy: hy(0)}, svg);
 }
 
-async function play() {
-  const t0 = performance.now();
-  if (animation) cancelAnimationFrame(animation);
-  let res;
-  try {
-    res = await post("/api/respond", {arch: archParams(), ...motionParams(), t_end: $("t-end").value.trim(),
-                                      exaggerate: Number($("exaggerate").value)});
-  } catch (e) { recordStart = null; if (!e.handled) console.warn(e); return; }
-  clearError();
+// the engine's frame k: every block turned by theta about its first position and moved
+function drawEngineFrame(res, polys, k) {
+  const bf = res.block_frames, f = bf.frames[k], t = bf.time[k], phi = bf.phi[k];
+  polys.forEach((p, i) => {
+    const [dx, dy, th] = f[i], o = bf.origin[i];
+    p.setAttribute("points", pts(res.drawing.outlines[i].map((q) => rot(q, o, th, [o[0] + dx, o[1] + dy]))));
+  });
+  const collapsed = res.collapsed && res.t_collapse !== null && t >= res.t_collapse;
+  $("anim-title").textContent = `contact engine: t = ${t.toFixed(2)} s` +
+      (phi === null ? "" : `, phi = ${phi >= 0 ? "+" : ""}${phi.toFixed(4)} rad`) + (collapsed ? ", COLLAPSED" : "");
+  if (phi !== null) {
+    const m = $("history-marker");
+    m.setAttribute("cx", app.hx(t));
+    m.setAttribute("cy", app.hy(phi));
+  }
+  app.frame = k;
+  app.frames += 1;
+  $("anim-svg").setAttribute("data-frame", k);
+}
+
+// what the page says of a response: the model that answered and why, then its outcome
+function describeResponse(res) {
+  const lab = $("dynamics-label");
+  lab.textContent = res.label;
+  lab.classList.toggle("invalid", res.valid === false);
+  const end = `, the run ends at t = ${fmt(res.t_final, 2)} s`;
+  if (res.model === "engine") {
+    return `${res.status}: ` + (res.t_collapse !== null ? `collapse at t = ${fmt(res.t_collapse, 3)} s, ` : "") +
+        `peak phi = ${fmt(res.peak, 4)} rad${end} (contact engine, friction mu = ${fmt(res.friction, 2)})`;
+  }
+  const imp = res.impacts.length, law = res.restitution || {};
+  // the impact law that ran (momentum where the paper's law does not apply, and why)
+  return (res.valid === false ? "not valid here: " : "") +
+      `${res.status}: peak phi = ${fmt(res.peak, 4)} rad, ` +
+      `${imp} impact${imp === 1 ? "" : "s"}` +
+      (res.t_collapse !== null ? `, collapse at t = ${fmt(res.t_collapse, 3)} s` : "") +
+      `${end} (${law.model || ""} impacts${law.fallback ? `: ${law.fallback}` : ""})`;
+}
+
+function showResponse(res, inputs, t0) {
   app.lastResponse = res;
   app.plays += 1;
   const svg = $("anim-svg");
   drawArch(svg, res.drawing, false);
   const polys = [...svg.querySelectorAll("polygon")];
   const size = 0.012 * svg.viewBox.baseVal.width;
-  const hingeMarks = [0, 1, 2, 3].map(() => el("circle", {r: size, class: "hinge-l", visibility: "hidden"}, svg));
+  const engine = res.model === "engine";
+  const hingeMarks = engine ? [] : [0, 1, 2, 3].map(() => el("circle", {r: size, class: "hinge-l", visibility: "hidden"}, svg));
   drawHistory(res);
-  const imp = res.impacts.length;
-  $("outcome").textContent = `${res.status}: peak phi = ${fmt(res.peak, 4)} rad, ` +
-      `${imp} impact${imp === 1 ? "" : "s"}` +
-      (res.t_collapse !== null ? `, collapse at t = ${fmt(res.t_collapse, 3)} s` : "") +
-      `, the run ends at t = ${fmt(res.t_final, 2)} s (${(res.restitution || {}).model || ""} impacts)`;
+  $("outcome").textContent = describeResponse(res);
+  resultShown("response", inputs);
+  const times = engine ? res.block_frames.time : res.frames.map((f) => f[0]);
+  if (!times.length) return;
   const start = performance.now();
   let first = true;
   const step = () => {
     const t = (performance.now() - start) / 1000;
-    let k = res.frames.findIndex((f) => f[0] > t) - 1;
-    if (k < 0) k = t >= res.frames[res.frames.length - 1][0] ? res.frames.length - 1 : 0;
-    drawFrame(res, polys, hingeMarks, k);
+    let k = times.findIndex((x) => x > t) - 1;
+    if (k < 0) k = t >= times[times.length - 1] ? times.length - 1 : 0;
+    if (engine) drawEngineFrame(res, polys, k); else drawFrame(res, polys, hingeMarks, k);
     if (first) {
       first = false;
       app.timings.pulse.push(performance.now() - t0);
       if (recordStart !== null) { app.timings.record.push(performance.now() - recordStart); recordStart = null; }
     }
-    if (k < res.frames.length - 1) animation = requestAnimationFrame(step);
+    if (k < times.length - 1) animation = requestAnimationFrame(step);
     else animation = null;
   };
   animation = requestAnimationFrame(step);
+}
+
+function playing(on) {
+  $("play").disabled = on;
+  $("cancel-play").disabled = !on;
+}
+
+async function play() {
+  const t0 = performance.now();
+  if (animation) cancelAnimationFrame(animation);
+  const inputs = inputsOf("response");
+  let res;
+  try {
+    const body = {arch: archParams(), ...motionParams(), t_end: $("t-end").value.trim(),
+                  exaggerate: Number($("exaggerate").value), dynamics: $("dynamics-model").value};
+    if (friction() !== "") body.friction = friction();
+    res = await post("/api/respond", body);
+  } catch (e) {
+    recordStart = null;
+    if (!e.handled) console.warn(e);
+    else if (e.status === 400) showRefusal(fieldControl(e.message) || "play", `refused: ${e.message}`);
+    else showRefusal("play", e.message);
+    return;
+  }
+  clearError();
+  clearRefusals(["play", ...Object.values(FIELD_CONTROLS)].filter((id) => !STATICS_CONTROLS.includes(id)));
+  if (!res.job) { showResponse(res, inputs, t0); return; }
+  // the contact engine answers this arch: a job of the server (seconds to minutes)
+  app.responseJob = res.job;
+  const lab = $("dynamics-label");
+  lab.textContent = res.label;
+  lab.classList.remove("invalid");
+  playing(true);
+  const poll = async () => {
+    let s;
+    try { s = await jobStatus(res.job.id); } catch (e) { showError(`engine: ${e.message}`); playing(false); return; }
+    app.responseJob = s;
+    if (s.state === "running") {
+      // progress in tenths of a simulated second (the run ends at collapse, at rest or at most there)
+      $("outcome").textContent = "contact engine running" + (s.total > 1 ?
+          `: t = ${(s.done / 10).toFixed(1)} s of at most ${(s.total / 10).toFixed(1)} s simulated` : "") +
+          `, ${s.elapsed_s.toFixed(1)} s`;
+      setTimeout(poll, 200);
+      return;
+    }
+    playing(false);
+    if (s.state === "done") showResponse({...s.result, job: s.id}, inputs, t0);
+    else if (s.state === "cancelled") $("outcome").textContent = "contact engine cancelled";
+    else { showError(s.error); $("outcome").textContent = ""; }
+  };
+  $("outcome").textContent = "contact engine starting ...";
+  setTimeout(poll, 150);
 }
 
 // ------------------------------------------------------------------ ensemble
@@ -566,10 +791,14 @@ async function runEnsemble() {
   const body = {arch: archParams(), samples: $("samples").value.trim(), seed: $("seed").value.trim(),
                 spreads: spreadsParams()};
   if ($("with-pulse").checked) body.pulse = pulseParams();
+  const inputs = inputsOf("ensemble");
   $("hist-svg").replaceChildren();
   $("ensemble-result").textContent = "";
+  delete shown.ensemble;
+  markStale();
   runJob("/api/ensemble", body, "arches", $("ensemble-result"), (s) => {
     drawHistogram(s.result);
+    resultShown("ensemble", inputs);
     app.timings.ensemble.push({samples: s.total, ms: performance.now() - t0, server_s: s.result.wall_s});
   });
 }
@@ -578,9 +807,15 @@ async function runCurve() {
   const body = {arch: archParams(), samples: $("curve-samples").value.trim(), seed: $("seed").value.trim(),
                 spreads: spreadsParams(), durations: $("curve-durations").value.trim(),
                 kind: $("pulse-kind").value};
+  const inputs = inputsOf("curve");
   $("curve-svg").replaceChildren();
   $("curve-result").textContent = "";
-  runJob("/api/curve", body, "arch-durations", $("curve-result"), (s) => drawCurve(s.result));
+  delete shown.curve;
+  markStale();
+  runJob("/api/curve", body, "arch-durations", $("curve-result"), (s) => {
+    drawCurve(s.result);
+    resultShown("curve", inputs);
+  });
 }
 
 // a job's status from the server (an Error with the server's message when it answers one)
@@ -629,10 +864,13 @@ async function runReport() {
                 seed: $("seed").value.trim(), spreads: spreadsParams(),
                 contact: $("report-contact").checked};
   const t0 = performance.now();
+  const inputs = inputsOf("report");
   let job;
   try { job = await post("/api/report", body); } catch (e) { if (!e.handled) console.warn(e); return; }
   clearError();
   app.report = job;
+  delete shown.report;
+  markStale();
   const said = $("report-status");
   said.textContent = `computing the report (about ${Math.max(1, Math.round(job.estimate_s + 2))} s) ...`;
   $("run-report").disabled = true;
@@ -658,6 +896,7 @@ async function runReport() {
     said.textContent = `report of ${r.name}: k = ${fmt(r.k)}, ${r.sections.length} sections, ` +
         `${(r.bytes / 1e6).toFixed(1)} MB, ${r.seconds.toFixed(1)} s on the server`;
     app.timings.report = performance.now() - t0;
+    resultShown("report", inputs);
   };
   setTimeout(poll, 200);
 }
