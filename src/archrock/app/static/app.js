@@ -827,9 +827,31 @@ async function jobStatus(id) {
 }
 
 // a background job: start it, poll its progress, then onDone(status) or say why it stopped
+// the controls of a job request's own fields (the arch's are those of FIELD_CONTROLS)
+const JOB_CONTROLS = {
+  "/api/ensemble": {samples: "samples", seed: "seed", span: "spread-span", thickness: "spread-thickness",
+                    radius: "spread-radius", spreads: "spread-span", button: "run-ensemble"},
+  "/api/curve": {samples: "curve-samples", seed: "seed", span: "spread-span", thickness: "spread-thickness",
+                 radius: "spread-radius", spreads: "spread-span", durations: "curve-durations",
+                 button: "run-curve"},
+  "/api/report": {samples: "report-samples", seed: "seed", span: "spread-span",
+                  thickness: "spread-thickness", radius: "spread-radius", spreads: "spread-span",
+                  button: "run-report"}};
+
+// a refused job request: its message beside the control of the field it names
+function refuseJob(url, e) {
+  const own = JOB_CONTROLS[url];
+  const ids = Object.values(own);
+  clearRefusals(ids);
+  if (!e.handled || e.status !== 400) return;
+  const m = /^unknown field '(?:[a-z]+\.)?([a-z_]+)'/.exec(e.message || "") || /^([a-z_]+):/.exec(e.message || "");
+  showRefusal((m && own[m[1]]) || own.button, `refused: ${e.message}`);
+}
+
 async function runJob(url, body, unit, said, onDone) {
   let job;
-  try { job = await post(url, body); } catch (e) { if (!e.handled) console.warn(e); return; }
+  try { job = await post(url, body); } catch (e) { if (!e.handled) console.warn(e); refuseJob(url, e); return; }
+  clearRefusals(Object.values(JOB_CONTROLS[url]));
   clearError();
   app.job = job;
   for (const id of ["run-ensemble", "run-curve"]) $(id).disabled = true;
@@ -866,7 +888,12 @@ async function runReport() {
   const t0 = performance.now();
   const inputs = inputsOf("report");
   let job;
-  try { job = await post("/api/report", body); } catch (e) { if (!e.handled) console.warn(e); return; }
+  try { job = await post("/api/report", body); } catch (e) {
+    if (!e.handled) console.warn(e);
+    refuseJob("/api/report", e);
+    return;
+  }
+  clearRefusals(Object.values(JOB_CONTROLS["/api/report"]));
   clearError();
   app.report = job;
   delete shown.report;
