@@ -117,6 +117,31 @@ def test_response_csv_where_the_engine_governs_points_to_the_job(client):
     assert r.json()["error"].startswith("dynamics: the contact engine answers this arch (")
 
 
+@pytest.mark.parametrize("url, body", [
+    ("/api/ensemble", {"arch": OPPENHEIM, "samples": 50, "friction": 0.4, "pulse": PULSE}),
+    ("/api/curve", {"arch": OPPENHEIM, "samples": 2, "friction": 0.4, "durations": "0.2"}),
+], ids=["ensemble", "curve"])
+def test_four_link_studies_are_refused_where_the_model_does_not_hold(client, url, body):
+    """The app's ensemble under a pulse and its curve run the four-link model: at mu = 0.4 on
+    Oppenheim's arch (the joints slide) they answer 422 naming the engine's command, never
+    the four-link numbers."""
+    r = client.post(url, json=body)
+    assert r.status_code == 422 and r.json()["kind"] == "outcome"
+    what, cmd = ("pulse", "ensemble") if "ensemble" in url else ("curve", "curves")
+    msg = r.json()["error"]
+    assert msg.startswith(f"{what}: the app runs it with the four-link model, which does not hold")
+    assert msg.endswith(f"archrock {cmd} --dynamics engine runs the contact engine")
+
+
+def test_a_four_link_ensemble_states_its_dynamics(client, wait_job):
+    r = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 50, "pulse": PULSE})
+    assert r.status_code == 200, r.text
+    s = wait_job(client, r.json()["id"])
+    dyn = s["result"]["dynamics"]
+    assert s["state"] == "done" and dyn["used"] == "fourlink"
+    assert abs(dyn["friction"] - DEFAULT_FRICTION) < 1e-12
+
+
 # ---------------------------------------------------------------------------- unknown keys
 @pytest.mark.parametrize("url, body, said", [
     ("/api/limit", {"arch": OPPENHEIM, "thickness": -3},
@@ -133,7 +158,7 @@ def test_response_csv_where_the_engine_governs_points_to_the_job(client):
     ("/api/ensemble", {"arch": OPPENHEIM, "spreads": {"span": 0.1, "rise": 0.1}},
      "unknown field 'spreads.rise'; allowed in spreads: span, thickness, radius, tilt"),
     ("/api/curve", {"arch": OPPENHEIM, "duration": 0.2},
-     "unknown field 'duration'; allowed: arch, samples, seed, spreads, durations, kind"),
+     "unknown field 'duration'; allowed: arch, samples, seed, spreads, durations, kind, friction"),
     ("/api/report", {"arch": OPPENHEIM, "contacts": False},
      "unknown field 'contacts'; allowed: arch, samples, seed, spreads, contact"),
     ("/api/export", {"what": "geometry", "arch": OPPENHEIM, "format": "svg"},

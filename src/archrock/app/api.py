@@ -47,8 +47,8 @@ PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 PULSE_FIELDS = ("kind", "amplitude", "duration")
 SPREAD_FIELDS = ("span", "thickness", "radius", "tilt")
 LIMIT_FIELDS = ("arch", "friction", "thrust_range")
-ENSEMBLE_FIELDS = ("arch", "samples", "seed", "spreads", "pulse")
-CURVE_FIELDS = ("arch", "samples", "seed", "spreads", "durations", "kind")
+ENSEMBLE_FIELDS = ("arch", "samples", "seed", "spreads", "pulse", "friction")
+CURVE_FIELDS = ("arch", "samples", "seed", "spreads", "durations", "kind", "friction")
 REPORT_FIELDS = ("arch", "samples", "seed", "spreads", "contact")
 
 
@@ -371,6 +371,28 @@ def four_link_response(req: dict) -> dict:
 
 
 # ---------------------------------------------------------------------------- ensemble
+def ensemble_request(params: dict) -> dict:
+    """The checked arguments of :func:`run_ensemble_request`: ``config``
+    (:func:`ensemble_config`) and, under a pulse, ``dynamics``: the routing's choice at the
+    request's ``friction`` (default DEFAULT_FRICTION), refused where the four-link model does
+    not hold for the nominal arch (:func:`archrock.app.engine.four_link_study`)."""
+    from ..statics.friction import DEFAULT_FRICTION
+    from .engine import four_link_study
+
+    config = ensemble_config(params)
+    chosen = None
+    if config.motion is not None:
+        mu = friction_field(params, DEFAULT_FRICTION)
+        chosen = four_link_study(config.analysed_nominal, mu, "pulse", "ensemble").to_dict()
+    return {"config": config, "dynamics": chosen}
+
+
+def run_ensemble_request(req: dict, progress, cancelled) -> dict | None:
+    """:func:`run_ensemble_job` of ``req["config"]``, its result with ``"dynamics"``."""
+    out = run_ensemble_job(req["config"], progress, cancelled)
+    return None if out is None else {**out, "dynamics": req["dynamics"]}
+
+
 def ensemble_config(params: dict):
     """The :class:`~archrock.studies.ensemble.EnsembleConfig` of an ensemble request: ``arch``,
     ``samples`` (1 to :data:`MAX_SAMPLES`), ``seed``, ``spreads`` ({span, thickness, radius,
@@ -475,8 +497,12 @@ def curve_request(params: dict) -> dict:
         raise ArchInputError(f"samples: {samples} arches x {len(durations)} durations; the app "
                              f"allows {bound} here (archrock curves for more)")
     kind = choice(params, "kind", PULSE_KINDS, "oppenheim")
+    from ..statics.friction import DEFAULT_FRICTION
+    from .engine import four_link_study
+
+    chosen = four_link_study(nominal, friction_field(params, DEFAULT_FRICTION), "curve", "curves")
     return {"nominal": nominal, "samples": samples, "seed": seed, "spreads": spreads,
-            "durations": durations, "kind": kind}
+            "durations": durations, "kind": kind, "dynamics": chosen.to_dict()}
 
 
 def run_curve_job(req: dict, progress, cancelled) -> dict | None:
@@ -504,7 +530,7 @@ def run_curve_job(req: dict, progress, cancelled) -> dict | None:
         n_used, failed = c.n_samples, len(c.failed)
         progress((i + 1) * req["samples"], total)
     return {**out, "samples": req["samples"], "n_used": n_used, "left_out": failed,
-            "kind": req["kind"], "wall_s": time.perf_counter() - t0}
+            "kind": req["kind"], "dynamics": req["dynamics"], "wall_s": time.perf_counter() - t0}
 
 
 # ---------------------------------------------------------------------------- export

@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from ..errors import ArchInputError, ArchrockError
+from ..errors import ArchInputError, ArchrockError, GeometryOutcome
 from .fields import COMPUTE_LOCK, choice, xy
 
 DYNAMICS = ("auto", "fourlink", "engine")
@@ -29,6 +29,28 @@ TICKS_PER_S = 10
 
 class EngineMissing(ArchrockError):
     """The contact engine governs the arch asked about but pymunk is not installed."""
+
+
+class FourLinkNotValid(GeometryOutcome):
+    """A four-link study of the app (the ensemble under a pulse, the collapse curve) asked for
+    an arch where the package's routing says the contact engine answers."""
+
+
+def four_link_study(arch, mu, what: str, command: str):
+    """The :class:`~archrock.studies.enginestudy.DynamicsChoice` of an app study that runs the
+    four-link model (``what``: the request's field, ``command``: the CLI command that runs the
+    engine instead) on ``arch`` at friction ``mu``; refused (:class:`FourLinkNotValid`) where
+    the contact engine answers: the app runs those studies with the four-link model only, and
+    never shows its numbers where it does not hold."""
+    from ..studies.enginestudy import choose_dynamics
+
+    with COMPUTE_LOCK:
+        chosen = choose_dynamics(arch, "auto", friction=mu)
+    if chosen.engine:
+        raise FourLinkNotValid(f"{what}: the app runs it with the four-link model, which does not "
+                               f"hold for this arch ({chosen.reason}); archrock {command} "
+                               f"--dynamics engine runs the contact engine")
+    return chosen
 
 
 def choose(arch, params: dict, mu):

@@ -187,7 +187,8 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                 return _error(exc)
         return route
 
-    ensemble = job_route(api.ensemble_config, lambda cfg: cfg.samples, api.run_ensemble_job)
+    ensemble = job_route(api.ensemble_request, lambda req: req["config"].samples,
+                         api.run_ensemble_request)
     curve = job_route(api.curve_request, lambda req: req["samples"] * len(req["durations"]),
                       api.run_curve_job)
     report = job_route(api.report_request, lambda req: 1, api.run_report_job,

@@ -128,8 +128,9 @@ function inputsOf(name) {
             dynamics: $("dynamics-model").value};
   }
   if (name === "ensemble") return {...common, samples: $("samples").value.trim(),
-                                   pulse: $("with-pulse").checked ? pulseParams() : null};
-  if (name === "curve") return {...common, samples: $("curve-samples").value.trim(),
+                                   pulse: $("with-pulse").checked ? pulseParams() : null,
+                                   friction: $("with-pulse").checked ? friction() : null};
+  if (name === "curve") return {...common, samples: $("curve-samples").value.trim(), friction: friction(),
                                 durations: $("curve-durations").value.trim(), kind: $("pulse-kind").value};
   return {...common, samples: $("report-samples").value.trim(), contact: $("report-contact").checked};
 }
@@ -791,6 +792,7 @@ async function runEnsemble() {
   const body = {arch: archParams(), samples: $("samples").value.trim(), seed: $("seed").value.trim(),
                 spreads: spreadsParams()};
   if ($("with-pulse").checked) body.pulse = pulseParams();
+  if (body.pulse && friction() !== "") body.friction = friction();
   const inputs = inputsOf("ensemble");
   $("hist-svg").replaceChildren();
   $("ensemble-result").textContent = "";
@@ -807,6 +809,7 @@ async function runCurve() {
   const body = {arch: archParams(), samples: $("curve-samples").value.trim(), seed: $("seed").value.trim(),
                 spreads: spreadsParams(), durations: $("curve-durations").value.trim(),
                 kind: $("pulse-kind").value};
+  if (friction() !== "") body.friction = friction();
   const inputs = inputsOf("curve");
   $("curve-svg").replaceChildren();
   $("curve-result").textContent = "";
@@ -843,7 +846,9 @@ function refuseJob(url, e) {
   const own = JOB_CONTROLS[url];
   const ids = Object.values(own);
   clearRefusals(ids);
-  if (!e.handled || e.status !== 400) return;
+  if (!e.handled) return;
+  // 422: a valid request with no answer of the kind asked (the four-link model does not hold)
+  if (e.status !== 400) { showRefusal(own.button, e.message); return; }
   const m = /^unknown field '(?:[a-z]+\.)?([a-z_]+)'/.exec(e.message || "") || /^([a-z_]+):/.exec(e.message || "");
   showRefusal((m && own[m[1]]) || own.button, `refused: ${e.message}`);
 }
