@@ -33,7 +33,7 @@ def test_page_and_its_files_are_served_from_the_package(client):
     assert r.status_code == 200 and "/static/app.js" in r.text
     csp = r.headers["content-security-policy"]
     assert "default-src 'self'" in csp and "script-src 'self'" in csp
-    for name in ("app.js", "app.css", "favicon.svg"):
+    for name in ("app.js", "dynamics.js", "studies.js", "app.css", "favicon.svg"):
         f = client.get(f"/static/{name}")
         assert f.status_code == 200 and len(f.text) > 100
         # nothing fetched from another site: the only URL is the SVG namespace
