@@ -37,8 +37,14 @@ async function upload(url, file, params) {
     return null;
   }
   const data = await resp.json().catch(() => ({error: `HTTP ${resp.status}`}));
-  if (!resp.ok) { showError(data.error || `HTTP ${resp.status}`); return null; }
+  const control = url === "/api/dxf" ? "upload-dxf" : "record-file";
+  if (!resp.ok) {
+    showError(data.error || `HTTP ${resp.status}`);
+    showRefusal(control, `refused: ${data.error || `HTTP ${resp.status}`}`);
+    return null;
+  }
   clearError();
+  clearRefusals([control]);
   return data;
 }
 
