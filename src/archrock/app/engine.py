@@ -144,7 +144,10 @@ def run_engine_job(req: dict, progress, cancelled) -> dict | None:
     out.pop("run", None)
     out.update({
         "model": "engine", "valid": True, "dynamics": req["choice"].to_dict(),
-        "label": "contact engine (pymunk): " + req["choice"].reason,
+        "label": "contact engine (pymunk): " + req["choice"].reason + (
+            "" if req["friction"] is not None else
+            f"; its joints cannot exclude sliding: mu = {run.settings.friction:g}, the "
+            f"package default"),
         "friction": run.settings.friction,
         "time": xy(t), "phi": [None if not math.isfinite(x) else round(float(x), 7) for x in phi],
         "ground": trace(motion.times, np.asarray(motion.accel) / G),
