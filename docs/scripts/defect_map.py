@@ -1,5 +1,6 @@
-"""The figures of docs/defects.md: defect maps of Oppenheim's arch (run from the repository root:
-``python docs/scripts/defect_map.py``; about a minute, most of it the pulse map)."""
+"""The figures of docs/defects.md: defect maps of Oppenheim's arch and of a semicircle on piers
+(run from the repository root: ``python docs/scripts/defect_map.py``; about a minute, most of it
+the pulse map)."""
 
 import time
 
@@ -24,3 +25,12 @@ for sign in (-1, 0):  # the paper's sign, then both signs (the smaller amplitude
     print(f"[{time.perf_counter() - t0:.1f} s]\n")
 plot_defect_map(m, "docs/figures/defect_map_oppenheim.png")
 print("wrote docs/figures/defect_map_oppenheim.png")
+
+# on piers (docs/defects.md, On piers): voussoirs and pier courses apart
+from archrock.geometry import nominal_arch, with_piers  # noqa: E402
+
+piers = with_piers(nominal_arch(5.0, 180.0, 0.8, 9), 4.0, 2.0)
+m = defect_map(piers)
+print(format_defects(m))
+plot_defect_map(m, "docs/figures/defect_map_piers.png")
+print("wrote docs/figures/defect_map_piers.png")

@@ -91,9 +91,12 @@ class Progress:
             return
         now = time.monotonic()
         if self._due(now):
-            self.last, self.printed = now, self.done
-            pct = f" ({100 * self.done / self.total:.0f}%)" if self.total > 0 else ""
-            self.sink(f"{self.desc}: {self.done}/{self.total} {self.plural}{pct}")
+            self._line(now)
+
+    def _line(self, now: float):
+        self.last, self.printed = now, self.done
+        pct = f" ({100 * self.done / self.total:.0f}%)" if self.total > 0 else ""
+        self.sink(f"{self.desc}: {self.done}/{self.total} {self.plural}{pct}")
 
     def note(self, text: str):
         """A line of progress output (above the bar)."""
@@ -103,6 +106,21 @@ class Progress:
             self.bar.write(text)
         else:
             self.sink(text)
+
+    def finish(self):
+        """The work is done: the last line (or the bar) reads 100%.  A study's total is an
+        estimate from above (bisections that end early, responses kept from an earlier run,
+        curves with no collapse to refine), so without this the count stopped short (at 80%)."""
+        if not self.enabled:
+            return
+        if self.bar is not None:
+            if self.done < self.total:  # the bar's own total is fixed: fill it
+                self.bar.update(self.total - self.done)
+                self.done = self.total
+            return
+        self.total = self.done  # what was done is the whole: done/done (100%)
+        if self.printed != self.done:
+            self._line(time.monotonic())
 
     def close(self):
         if self.bar is not None:

@@ -33,7 +33,7 @@ def test_page_and_its_files_are_served_from_the_package(client):
     assert r.status_code == 200 and "/static/app.js" in r.text
     csp = r.headers["content-security-policy"]
     assert "default-src 'self'" in csp and "script-src 'self'" in csp
-    for name in ("app.js", "app.css", "favicon.svg"):
+    for name in ("app.js", "dynamics.js", "studies.js", "app.css", "favicon.svg"):
         f = client.get(f"/static/{name}")
         assert f.status_code == 200 and len(f.text) > 100
         # nothing fetched from another site: the only URL is the SVG namespace
@@ -219,7 +219,7 @@ def test_ensemble_cancel_and_one_job_at_a_time(client, wait_job):
     body = {"arch": OPPENHEIM, "samples": 4000, "pulse": PULSE}
     job = client.post("/api/ensemble", json=body).json()
     busy = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 10})
-    assert busy.status_code == 409 and "another ensemble, curve or report" in busy.json()["error"]
+    assert busy.status_code == 409 and "another ensemble, curve, report" in busy.json()["error"]
     c = client.post(f"/api/jobs/{job['id']}/cancel", json={})
     assert c.status_code == 200
     s = wait_job(client, job["id"])

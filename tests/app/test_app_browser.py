@@ -138,7 +138,9 @@ def test_an_ensemble_is_cancelled_and_friction_is_shown(page):
     page.fill("#friction-mu", "0.3")
     page.press("#friction-mu", "Enter")
     page.locator("#friction-mu").blur()
-    got = wait(page, "document.getElementById('friction-k').textContent")
+    # the field starts at the package's default friction (0.8): wait for the new value's answer
+    got = wait(page, "document.getElementById('friction-k').textContent.includes('mu = 0.300') && "
+                     "document.getElementById('friction-k').textContent")
     assert got.startswith("with friction mu = 0.300: k_l = 0.1472 g") and "sliding governs" in got
     assert page.errors == []
 
@@ -254,3 +256,52 @@ def test_the_report_button_downloads_the_html_report(page):
                       " && document.getElementById('report-status').textContent")
     assert said.startswith("report of circular: k = 0.370, 11 sections")
     assert page.is_enabled("#run-report") and page.errors == []
+
+
+def test_a_refused_shape_leaves_the_last_valid_arch_and_old_results_grey(page):
+    """Issue 30: "pointed" refused (Oppenheim's rise is below half its span) -> the refusal
+    beside the shape selector, the selector and the drawing back on the last valid arch; a
+    response played before is greyed as soon as an input changes, and shown again when the
+    inputs come back to its own."""
+    page.click("#play")
+    wait(page, "window.__app.frames > 0")
+    drawn = page.get_attribute("#arch-svg polygon.voussoir", "points")
+    page.fill("#amplitude", "-2")
+    page.locator("#amplitude").blur()
+    wait(page, "document.getElementById('stale-response')")
+    assert "stale" in page.get_attribute("#outcome", "class")
+    assert page.text_content("#stale-response").startswith("inputs changed: run again")
+    page.fill("#amplitude", "-1")
+    page.locator("#amplitude").blur()
+    wait(page, "!document.getElementById('stale-response')")
+    page.select_option("#shape", "pointed")
+    said = wait(page, "document.getElementById('refusal-shape') && "
+                      "document.getElementById('refusal-shape').textContent")
+    assert said.startswith("refused: rise: 8.0491 is out of range") and "last valid arch" in said
+    assert page.input_value("#shape") == "circular" and page.text_content("#k") == "k = 0.370"
+    assert page.get_attribute("#arch-svg polygon.voussoir", "points") == drawn
+    assert page.locator("#stale-response").count() == 0  # the inputs are the response's again
+    page.fill("#thickness", "1.2")
+    wait(page, "document.getElementById('k').textContent === 'k = 0.266'")
+    assert page.locator("#refusal-shape").count() == 0 and page.locator("#stale-response").count() == 1
+    assert all("400" in e for e in page.errors), page.errors
+
+
+def test_the_engine_answers_where_the_joints_slide_and_four_link_is_labelled(page):
+    page.fill("#friction-mu", "0.4")
+    page.locator("#friction-mu").blur()
+    wait(page, "document.getElementById('friction-k').textContent.includes('mu = 0.400')")
+    page.fill("#amplitude", "-5")
+    page.fill("#duration", "1")
+    page.click("#play")
+    wait(page, "window.__app.lastResponse && window.__app.lastResponse.model === 'engine' && "
+               "window.__app.frames > 0", timeout=180)
+    assert page.text_content("#outcome").startswith("collapsed: collapse at t = 0.6")
+    assert page.text_content("#dynamics-label").startswith("contact engine (pymunk): one degree")
+    assert page.is_enabled("#play") and page.is_disabled("#cancel-play")
+    page.select_option("#dynamics-model", "fourlink")
+    page.click("#play")
+    wait(page, "window.__app.lastResponse.model === 'fourlink'")
+    assert page.text_content("#outcome").startswith("not valid here: collapsed")
+    assert "invalid" in page.get_attribute("#dynamics-label", "class")
+    assert page.errors == []

@@ -23,7 +23,7 @@ def run(capsys, *argv):
 def test_three_spans_table_and_json(capsys):
     code, out, err = run(capsys, *THREE)
     assert code == 0, err
-    assert out.startswith("arcade: 3 spans, 31 blocks (4 piers, 27 voussoirs), 34 contacts")
+    assert out.startswith("arcade: 3 spans, 31 blocks (27 voussoirs, 4 piers), 34 contacts")
     assert "k_l = 0.139911" in out and "k_r = 0.139911" in out
     assert "pier 4 foot, outer face" in out and "pier 1 foot, outer face" in out
     assert "1 degree of freedom" in out
@@ -170,6 +170,6 @@ def test_frame_document_under_a_record(capsys, tmp_path):
     code, out, err = run(capsys, "arcade", "--arcade", str(doc), "--record", str(rec),
                          "--units", "g", "--t-end", "1")
     assert code == 0, err
-    assert out.startswith("frame: 3 blocks (2 piers, 1 beam), 4 contacts")
+    assert out.startswith("frame: 3 blocks (2 pier blocks, 1 beam), 4 contacts")
     assert "k_l = 0.250000" in out and "column 1 foot, right; column 2 foot, right" in out
     assert "contact engine under rec: at rest" in out

@@ -305,10 +305,19 @@ def test_limit_reports_are_what_the_command_prints(capsys):
     arch = arch_from_args(_geometry_args("--thickness", "1.2"))
     res, mt = limit_analysis(arch, verify=True), minimum_thickness(arch)
     needed = friction_needed(arch)  # reported by every limit run
+    # and the governing answer at the default friction, stated (studies.governing, issue 30)
+    from archrock.reports.limit import format_governing
+    from archrock.studies.governing import governing_capacity
+
+    gov = governing_capacity(arch, 0.8, limit=res,
+                             engine_left_out="not run by limit: archrock dem --ramp")
+    stated = "mu = 0.8 (the default; --friction MU|none)"
     code, out, _ = run(capsys, "limit", "--thickness", "1.2", "--min-thickness")
-    assert code == 0 and out == format_limit_table(res, mt, needed=needed) + "\n"
+    assert code == 0 and out == (format_limit_table(res, mt, needed=needed) + "\n"
+                                 + format_governing(gov, stated) + "\n")
     assert run_json(capsys, "limit", "--thickness", "1.2", "--min-thickness", "--json") == \
-        json.loads(json.dumps(limit_summary(res, mt, needed=needed)))
+        json.loads(json.dumps({**limit_summary(res, mt, needed=needed),
+                               "governing": {**gov.to_dict(), "friction_stated": stated}}))
 
 
 def test_respond_report_is_what_the_command_prints(capsys):
@@ -323,7 +332,7 @@ def test_respond_report_is_what_the_command_prints(capsys):
     # issue 30: then the model that gave it and the friction, stated once
     assert code == 0 and out == format_response(res, model, motion) + (
         "\ndynamics: four-link model (no piers: one degree of freedom (the four-link model) "
-        "follows the arch)\nfriction: mu = 0.8 (the default; --friction)\n")
+        "follows the arch)\nfriction: mu = 0.8 (the default; --friction MU|none)\n")
     assert out.startswith("arch: Oppenheim; k_l = 0.3700") and "outcome: " in out
 
 
@@ -388,7 +397,7 @@ def test_curves_reports_are_what_the_command_prints(capsys, samples):
     choice = choose_dynamics(nominal, "auto", friction=0.8)
     assert code == 0 and out == format_curves(curve, band, **about) + (
         f"\ndynamics: four-link model ({choice.reason}); friction: mu = 0.8 (the default; "
-        f"--friction)\n")
+        f"--friction MU|none)\n")
     assert run_json(capsys, *argv, "--json") == json.loads(json.dumps(
         {**curves_summary(curve, band, **about), "dynamics": choice.to_dict()}))
 
@@ -460,7 +469,7 @@ def test_ensemble_report_is_what_the_command_prints(capsys):
     # the first line the routing at the command's friction (issue 30); the last the wall time,
     # which differs run to run
     assert out.splitlines()[0] == (f"dynamics: four-link model: {summary['dynamics']['reason']}; "
-                                   f"friction: mu = 0.8 (the default; --friction)")
+                                   f"friction: mu = 0.8 (the default; --friction MU|none)")
     assert out.splitlines()[1:-1] == format_ensemble(summary, "Oppenheim").splitlines()[:-1]
     assert out.splitlines()[-1].startswith("time: ")
 

@@ -28,8 +28,8 @@ def test_dem_labels_the_four_link_run_not_valid_on_heavy_piers(heavy_piers_file,
             "--friction", "0.9"]
     assert main(argv) == 0
     out = capsys.readouterr().out
-    assert out.startswith("Contact engine: heavy_piers, 12 voussoirs, 2 piers, Oppenheim pulse, "
-                          "friction MU = 0.9")
+    assert out.startswith("Contact engine: heavy_piers, 12 voussoirs on two piers (found by "
+                          "their geometry), Oppenheim pulse, friction MU = 0.9")
     assert ("governing model (--dynamics auto of respond and the studies): contact engine "
             "(single degree of freedom not valid") in out
     assert "  four-link (not valid here: single degree of freedom not valid: the piers" in out

@@ -32,8 +32,8 @@ def test_heavy_piers_route_to_the_engine(heavy_piers_file, engine_calls, capsys)
     out = capsys.readouterr().out
     assert "outcome (contact engine): COLLAPSED at t = 2.500 s" in out
     assert "dynamics: contact engine (single degree of freedom not valid: the piers rock" in out
-    assert "friction: mu = 0.8 (the default; --friction)" in out
-    assert "arch: heavy_piers (12 voussoirs, 2 piers)" in out
+    assert "friction: mu = 0.8 (the default; --friction MU|none)" in out
+    assert "arch: heavy_piers (12 voussoirs on two piers (found by their geometry))" in out
     assert "k_l" not in out and "impacts" not in out and "four-link outcome" not in out
     call, = engine_calls
     assert call["friction"] == pytest.approx(0.8, abs=1e-15) and call["t_free"] >= 30.0
@@ -45,7 +45,8 @@ def test_heavy_piers_route_to_the_engine(heavy_piers_file, engine_calls, capsys)
     assert d["dynamics"]["used"] == "engine" and d["dynamics"]["friction"] == pytest.approx(1.5)
     assert d["engine"]["friction"] == pytest.approx(1.5, abs=1e-15)  # one friction, both uses
     assert "restitution" not in d and "impacts" not in d and "single_dof_valid" not in d
-    assert d["blocks"] == {"voussoirs": 12, "piers": 2} and d["unused_options"] == []
+    assert d["blocks"] == {"voussoirs": 12, "pier_blocks": 2, "buttress_blocks": 0, "piers": 2,
+                           "blocks": 14} and d["unused_options"] == []
     # a four-link option on a run the engine answers is said, not silently dropped
     assert main(argv + ["--impact", "momentum", "--cv", "0.5"]) == 0
     assert ("not used by the contact engine (four-link options): --impact, --cv"
@@ -138,7 +139,7 @@ def test_oppenheim_unchanged(capsys):
     assert main(["respond", *PULSE, "--amplitude", "-1"]) == 0
     out = capsys.readouterr().out.splitlines()
     assert out[-2].startswith("dynamics: four-link model (no piers")
-    assert out[-1] == "friction: mu = 0.8 (the default; --friction)"
+    assert out[-1] == "friction: mu = 0.8 (the default; --friction MU|none)"
     model = prepare(oppenheim_arch())
     motion = oppenheim_pulse(-1.0, 0.2)
     assert out[:-2] == format_response(respond(model, motion), model, motion).splitlines()

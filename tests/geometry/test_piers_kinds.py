@@ -113,7 +113,8 @@ def test_limit_report_names_piers_and_hinges(capsys):
     code, out, err = run(capsys, "limit", *BASE, "--pier-height", "4", "--pier-width", "2",
                          "--pier-courses", "2")
     assert code == 0, err
-    assert "13 blocks (4 piers, 9 voussoirs" in out
+    # blocks by kind: two piers of two courses, not "4 piers" (issue 30)
+    assert "13 blocks: 9 voussoirs on two piers (2 courses each); ArchOnPiers" in out
     rows = [ln.split() for ln in out.splitlines() if ln[:7].strip().isdigit()]
     assert [r[1] for r in rows] == ["pier"] * 2 + ["voussoir"] * 9 + ["pier"] * 2
     assert "D = 13e (right pier foot, outer face)" in out
@@ -123,6 +124,8 @@ def test_limit_report_names_piers_and_hinges(capsys):
     d = json.loads(out)
     assert d["block_kinds"] == ["pier"] * 2 + ["voussoir"] * 9 + ["pier"] * 2
     assert [v["kind"] for v in d["voussoirs"]] == d["block_kinds"]
+    assert d["blocks"] == {"voussoirs": 9, "pier_blocks": 4, "buttress_blocks": 0, "piers": 2,
+                           "blocks": 13}
     assert [v["kind"] for v in d["geometry"]["voussoirs"]] == d["block_kinds"]
     last = d["hinge_labels"]["l"][-1]
     assert last == {"label": "D", "joint": 13, "edge": "extrados",

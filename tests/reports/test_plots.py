@@ -138,3 +138,48 @@ def test_dem_figure_legends_outside_the_axes(tmp_path, monkeypatch):
         leg, box = ax.get_legend(), ax.get_window_extent()
         assert leg.get_window_extent().x0 >= box.x1  # right of the plotting area
     assert len(fig.axes[1].get_legend().get_texts()) == a.n
+
+
+def test_fragility_figure_shows_the_plateau_through_the_stripes():
+    """Stripes that level off at ~0.54 (45% of the records never collapse): the figure's fitted
+    curve passes through the top stripes and stops at its asymptote, drawn and labelled, and
+    the IDA's empirical curve runs to the top of the range (issue 30)."""
+    import math
+
+    import matplotlib.pyplot as plt
+
+    from archrock.reports.plots import plot_fragility
+    from archrock.studies.fragility import fit_ida_moments, fit_stripes_mle
+    from archrock.studies.ida import IDACurve, IDAResult, StripeResult
+
+    rng = np.random.default_rng(5)
+    n = 300
+    x = np.exp(rng.normal(math.log(0.3), 0.3, n))
+    x[rng.random(n) < 0.45] = np.inf
+    x[x > 1.0] = np.inf
+    one = np.array([1.0])
+    curves = tuple(IDACurve(f"r{i}", 0, 1.0, one, np.array([np.isfinite(v)]),
+                            float(v) if np.isfinite(v) else None, None,
+                            float(v) if np.isfinite(v) else None, (), 0, 1.0)
+                   for i, v in enumerate(x))
+    ida = IDAResult(curves, "pga", fit_ida_moments(x, censored="mle", max_intensity=1.0,
+                                                   plateau="auto"))
+    lv = np.geomspace(0.15, 1.0, 8)
+    out = (np.isfinite(x) & (x <= lv[:, None]))[:, None, :]
+    z = out.reshape(8, -1).sum(axis=1)
+    fit = fit_stripes_mle(lv, np.full(8, n), z, plateau="auto")
+    st = StripeResult(lv, np.full(8, n), z, out, "pga", fit, None,
+                      tuple(f"r{i}" for i in range(n)), (0,))
+    fig = plot_fragility(fit, st, None, ida=ida)
+    ax = fig.axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any("upper asymptote" in lab for lab in labels)
+    assert any(f"plateau $p_{{max}}$ = {fit.p_max:.3f}" in lab for lab in labels)
+    line = next(ln for ln in ax.get_lines() if ln.get_label().startswith("mle fit"))
+    xs, ys = line.get_data()
+    top = z[-1] / n
+    assert ys.max() == pytest.approx(fit.p_max, abs=0.01)
+    assert np.interp(lv[-1], xs, ys) == pytest.approx(top, abs=0.02)
+    ecdf = next(ln for ln in ax.get_lines() if ln.get_label().startswith("IDA first collapses"))
+    assert ecdf.get_data()[0][-1] == pytest.approx(1.0) and ecdf.get_data()[1][-1] == pytest.approx(top)
+    plt.close(fig)

@@ -21,13 +21,13 @@ from archrock.reports.html import render_html, write_report
 
 FAST = AssessConfig(durations=(0.3, 0.7), n_scan=12, samples=2, t_end=3.0,
                     codecheck=CodeCheckConfig(spectrum=SiteSpectrum.ntc(0.25, 2.4, 0.3, "B")))
-TITLES = ["Geometry", "Limit analysis (both directions)", "Friction the thrust needs",
+TITLES = ["Geometry", "Governing answer", "Limit analysis (both directions)", "Friction the thrust needs",
           "Impact coefficients by model", "Response to the paper's pulse",
           "Collapse-acceleration curve and its band over irregular arches",
           "Defect map: which voussoir, if damaged, costs the most capacity",
           "Fragility curves", "Contact-engine check", "Code check: kinematic analysis (NTC 2018 / Circolare 2019)",
           "Assumptions, conventions and references"]
-KEYS = ["geometry", "limit", "friction", "impact", "response", "curves", "defects", "fragility",
+KEYS = ["geometry", "governing", "limit", "friction", "impact", "response", "curves", "defects", "fragility",
         "contact", "codecheck", "assumptions"]
 
 
@@ -207,24 +207,74 @@ def test_family_arch_echoes_span_and_rise():
     assert sec.data["height"] > 7.0 + 0.3
 
 
-def test_verdict_and_friction_beside_k(report):
-    """With a spectrum: a verdict; k = 0.370 needs friction 0.4951 > 0.4 (EN 1996-1-1): the
-    summary says so beside k, with the multiplier at mu = 0.4 from archrock.statics.friction."""
-    from archrock.statics.friction import friction_analysis
-
+def test_verdict_and_governing_at_the_default_friction(report):
+    """With a spectrum: a verdict that states the governing capacity; at the default friction
+    0.8 >= 0.4951 the no-sliding k = 0.370010 governs, first in the summary, with the dynamics
+    (the four-link model) and the engine at the same friction beside it."""
     res, text, data, _ = report
     assert data["verdict"]["status"] == "pass"
     assert "Verdict:" in text and "passes the kinematic check" in text
-    k_mu = friction_analysis(oppenheim_arch(), 0.4).l.multiplier
-    assert k_mu == pytest.approx(0.2638, abs=5e-5)
-    lim = data["sections"]["limit"]["data"]["friction"]
-    assert lim["k_with_mu"]["l"] == pytest.approx(k_mu, rel=1e-9)
+    assert "Governing capacity: k = 0.370010 g (limit analysis (no sliding), both directions)" \
+        in data["verdict"]["text"]
+    head = res.headline
+    assert head[0][0] == "governing capacity [g]"
+    assert head[0][1].startswith("0.370010 (limit analysis (no sliding), both directions, ")
+    assert "mu = 0.8" in head[0][1]
+    assert head[1][0] == "dynamics" and head[1][1].startswith("the four-link model")
+    assert dict(head)["k_l [g]"] == "0.370010"  # the friction is enough: no note beside k
+    gov = data["governing"]
+    assert gov["friction"] == pytest.approx(0.8, abs=1e-15)
+    assert gov["governing"]["value"] == pytest.approx(0.370010, abs=5e-7)
+    assert gov["dynamics"]["used"] == "fourlink"
+    names = [a["name"] for a in gov["analyses"]]
+    assert names == ["limit analysis (no sliding)", "limit analysis with friction mu = 0.8",
+                     "contact engine ramp at mu = 0.8"]
+    assert data["sections"]["contact"]["data"]["friction"] == pytest.approx(0.8, abs=1e-15)
+    assert "Not modelled: sliding" not in text
+    assert "associative Coulomb friction at mu = 0.8" in text
+
+
+@pytest.fixture
+def no_engine_ramp(monkeypatch):
+    """The governing decision without its engine ramp (minutes): the decision logic is
+    tests/studies/test_governing.py's; here only what the report makes of it."""
+    import archrock.studies.governing as gv
+
+    orig = gv.governing_capacity
+    monkeypatch.setattr(gv, "governing_capacity",
+                        lambda *a, **kw: orig(*a, **{**kw, "engine": False}))
+
+
+def test_low_friction_sliding_governs_and_the_engine_runs(no_engine_ramp):
+    """--friction 0.4 (EN 1996-1-1's coefficient): k = 0.370 needs 0.4951 > 0.4, so the friction
+    analysis's 0.2638 governs; the summary says so beside k; the dynamics go to the engine."""
+    from archrock.studies.assessment import section_governing, section_limit
+
+    res = assess(oppenheim_arch(), AssessConfig(samples=0, friction=0.4),
+                 sections=[section_limit, section_governing])
     head = dict(res.headline)
-    assert "0.370010" in head["k_l [g]"] and "needs friction mu >= 0.495" in head["k_l [g]"]
-    assert "masonry's mu = 0.4 (EN 1996-1-1" in head["k_l [g]"] and "0.2638" in head["k_l [g]"]
-    assert "no-sliding hypothesis: k (both directions) needs friction mu >= 0.495" in \
-        data["verdict"]["text"]
-    assert "EN 1996-1-1" in text and "0.4 sigma_d" in text
+    assert res.headline[0][0] == "governing capacity [g]"
+    assert head["governing capacity [g]"].startswith("0.263759 (limit analysis with friction "
+                                                     "mu = 0.4, both directions")
+    assert "needs friction mu >= 0.495" in head["k_l [g]"] and "0.2638" in head["k_l [g]"]
+    assert res.governing["dynamics"]["used"] == "engine"
+    assert "slide" in res.governing["dynamics"]["reason"]
+
+
+def test_friction_none_is_stated_and_round_trips(no_engine_ramp):
+    from archrock.errors import ArchInputError
+    from archrock.studies.assessment import section_friction, section_governing
+
+    cfg = AssessConfig(samples=0, friction=None)
+    assert AssessConfig.from_dict(cfg.to_dict()) == cfg
+    res = assess(oppenheim_arch(), cfg, sections=[section_friction, section_governing])
+    fr = res.section("friction")
+    assert "Sliding is excluded by the user (--friction none" in fr.blocks[0].text
+    assert res.governing["friction"] is None
+    assert any(x["name"] == "limit analysis with friction" for x in res.governing["left_out"])
+    for bad in (0.0, -1, float("nan"), True, "a"):
+        with pytest.raises(ArchInputError, match="friction"):
+            AssessConfig(friction=bad)
 
 
 def test_no_spectrum_no_verdict_and_why():
@@ -272,3 +322,28 @@ def test_print_css_is_a4_with_page_numbers(report):
     # bottom: Chromium does not honour break-after on its own)
     assert ".keep{" in css.replace("figure,table,.verdict,.keep{", ".keep{")
     assert text.count("<h2>") - text.count('<div class="keep"><h2>') == 0
+
+
+def test_heavy_piers_summary_gives_the_engine_outcome(heavy_piers_file, no_engine_ramp):
+    """The heavy-pier arch at the report's pulse (-1 g, 0.2 s): the four-link model is not
+    valid (a pier rocks with the arch), so the summary gives the contact engine's outcome
+    (collapse), the impact section says the engine needs no law, and the words of a four-link
+    answer ("survives") appear nowhere."""
+    pytest.importorskip("pymunk")
+    from archrock.geometry.files import read_arch
+    from archrock.studies.assessment import (section_governing, section_impact, section_piers,
+                                             section_response)
+
+    res = assess(read_arch(heavy_piers_file), AssessConfig(samples=0),
+                 sections=[section_governing, section_piers, section_impact, section_response])
+    head = dict(res.headline)
+    assert res.governing["dynamics"]["used"] == "engine"
+    assert head["paper pulse (contact engine)"].startswith("collapse at t = ")
+    assert "paper pulse" not in head
+    resp = res.section("response").data
+    assert resp["how"] == "contact engine" and resp["collapsed"] is True
+    assert resp["dynamics"]["used"] == "engine"
+    html = render_html(res, figures={})
+    assert "survives" not in html
+    assert "four-link model on piers" in head  # the warning stays, beside no four-link answer
+    assert "contact engine governs the dynamics" in html

@@ -348,13 +348,13 @@ def test_choose_dynamics_routes_sliding_joints_to_the_engine(oppenheim):
     not valid."""
     from archrock.studies.enginestudy import choose_dynamics
 
-    default = choose_dynamics(oppenheim)
+    default = choose_dynamics(oppenheim.arch)
     assert default.used == "fourlink" and default.friction == pytest.approx(0.8)
     assert default.friction_needed["l"] == pytest.approx(0.49513, abs=1e-4)
-    low = choose_dynamics(oppenheim, friction=0.4)
+    low = choose_dynamics(oppenheim.arch, friction=0.4)
     assert low.used == "engine" and "0.495" in low.reason and "mu = 0.4" in low.reason
-    assert choose_dynamics(oppenheim, friction=None).used == "fourlink"
-    asked = choose_dynamics(oppenheim, "fourlink", friction=0.4)
+    assert choose_dynamics(oppenheim.arch, friction=None).used == "fourlink"
+    asked = choose_dynamics(oppenheim.arch, "fourlink", friction=0.4)
     assert asked.used == "fourlink" and "not valid here" in asked.reason
     with pytest.raises(ArchInputError, match="friction"):
-        choose_dynamics(oppenheim, friction=-1.0)
+        choose_dynamics(oppenheim.arch, friction=-1.0)

@@ -540,3 +540,147 @@ def test_likelihood_maximisation_is_bounded_and_says_no_fit(monkeypatch):
     with pytest.raises(FitError, match="did not converge in 400 BFGS and 4000 Nelder-Mead"):
         fit_stripes_mle(x, n, z)
     assert seen == [("BFGS", 400), ("Nelder-Mead", 4000)]
+
+
+# ----------------------------------------------------------------------------- censoring, plateau
+
+def plateau_ida(n=1200, theta=0.3, beta=0.3, never=0.48, top=1.0, seed=5):
+    """IDA first collapses where a fraction ``never`` of the records never collapse whatever
+    the scale (capacity infinite), the others lognormal; censored at ``top``."""
+    rng = np.random.default_rng(seed)
+    x = np.exp(rng.normal(math.log(theta), beta, n))
+    x[rng.random(n) < never] = np.inf
+    x[x > top] = np.inf
+    return x
+
+
+def test_half_censored_lognormal_recovers_theta_and_beta_and_no_plateau():
+    """Lognormal capacities censored at their median (half the records never collapse up to
+    the top of the range): the censored MLE recovers theta and beta; the test finds no
+    levelling off (the data do not level off), so the plain curve is kept."""
+    rng = np.random.default_rng(5)
+    x = np.exp(rng.normal(math.log(0.5), 0.4, 1200))
+    x[x > 0.5] = np.inf
+    assert 0.45 < np.mean(np.isinf(x)) < 0.55
+    f = fit_ida_moments(x, censored="mle", max_intensity=0.5, plateau="auto")
+    assert f.theta == pytest.approx(0.5, rel=0.03) and f.beta == pytest.approx(0.4, rel=0.07)
+    assert f.p_max == 1.0 and f.level_off["levels_off"] is False
+    assert f.level_off["p_value"] > 0.05
+    plain = fit_ida_moments(x, censored="mle", max_intensity=0.5)
+    assert (f.theta, f.beta, f.log_likelihood) == (plain.theta, plain.beta, plain.log_likelihood)
+
+
+def test_ida_that_levels_off_gets_a_plateau_that_follows_the_data():
+    """48% of the records never collapse: the plain lognormal runs on towards P = 1 (0.56 at
+    the top of the range where 0.505 of the curves collapsed, the 0.6 failure mode), the plateau
+    fit recovers theta, beta and p_max and reads the empirical fraction at the top."""
+    x = plateau_ida()
+    emp = np.mean(np.isfinite(x))
+    plain = fit_ida_moments(x, censored="mle", max_intensity=1.0)
+    f = fit_ida_moments(x, censored="mle", max_intensity=1.0, plateau="auto")
+    assert plain.probability(1.0) > emp + 0.05 and plain.probability(3.0) > 0.75
+    assert f.level_off["levels_off"] and f.level_off["p_value"] < 1e-10
+    assert f.theta == pytest.approx(0.3, rel=0.05) and f.beta == pytest.approx(0.3, rel=0.1)
+    assert f.p_max == pytest.approx(1 - 0.48, abs=0.04)
+    assert f.probability(1.0) == pytest.approx(emp, abs=0.01)
+    assert f.probability(100.0) == pytest.approx(f.p_max, rel=1e-9)  # never beyond the plateau
+    assert math.isinf(f.quantile(0.9)) and f.quantile(0.25) < 1.0
+    assert f.level_off["lognormal"]["theta"] == pytest.approx(plain.theta, rel=1e-9)
+    d = json.loads(json.dumps(f.to_dict()))
+    assert d["p_max"] == pytest.approx(f.p_max) and d["level_off"]["levels_off"] is True
+
+
+def test_stripes_that_level_off_get_a_plateau_through_the_stripes():
+    """MSA (binomial likelihood, Baker 2015) where the stripes level off at ~0.52: the plateau
+    fit passes through the top stripes, the plain one overshoots them (0.755 read, 0.87 fitted
+    in the issue)."""
+    rng = np.random.default_rng(11)
+    lv = np.geomspace(0.1, 1.0, 8)
+    n = np.full(8, 150)
+    z = rng.binomial(n, 0.52 * norm.cdf(np.log(lv / 0.3) / 0.3))
+    plain = fit_stripes_mle(lv, n, z)
+    f = fit_stripes_mle(lv, n, z, plateau="auto")
+    top = z[-3:].sum() / n[-3:].sum()
+    assert plain.probability(lv[-1]) > top + 0.08
+    assert f.level_off["levels_off"] and f.p_max == pytest.approx(0.52, abs=0.06)
+    assert f.probability(lv[-1]) == pytest.approx(top, abs=0.05)
+    assert f.theta == pytest.approx(0.3, rel=0.1)
+    # the log-likelihood is the binomial one with its constant, as the plain fit's
+    p = f.probability(lv)
+    assert f.log_likelihood == pytest.approx(np.sum(binom.logpmf(z, n, p)), rel=1e-9)
+    assert f.level_off["lognormal"]["log_likelihood"] == pytest.approx(plain.log_likelihood, rel=1e-12)
+    # a plain lognormal suite: the test keeps the plain fit
+    z2 = synthetic_stripes(trials=150, levels=8)[2]
+    g = fit_stripes_mle(np.geomspace(0.15, 1.0, 8), np.full(8, 150), z2, plateau="auto")
+    assert g.p_max == 1.0 and not g.level_off["levels_off"]
+
+
+def test_bootstrap_keeps_the_plateau_the_data_chose():
+    x = plateau_ida(n=300)
+    f = bootstrap_fit(fit_ida_moments, x, censored="mle", max_intensity=1.0, plateau="auto",
+                      n_boot=30, seed=2)
+    assert f.p_max < 1.0 and f.theta_ci[0] < f.theta < f.theta_ci[1]
+    with pytest.raises(ArchInputError, match="plateau: 'yes'"):
+        fit_stripes_mle([0.1, 0.2], [5, 5], [1, 3], plateau="yes")
+
+
+def test_progress_finishes_at_100_percent_where_the_total_was_an_estimate():
+    """curves and fragility counted their bisections from above and stopped at ~80%: finish()
+    ends the count at 100% (lines: done/done; a bar: filled)."""
+    from archrock._progress import Progress
+
+    got = []
+    bar = Progress(1000, got.append, desc="curves", unit="response")
+    bar.update(800)
+    bar.finish()
+    bar.close()
+    assert got[-1] == "curves: 800/800 responses (100%)"
+
+    class Sink:
+        def __init__(self):
+            self.n = 0
+
+        def __call__(self, line):
+            pass
+
+        def bar(self, total, desc, unit):
+            sink = self
+
+            class B:
+                def update(self, n):
+                    sink.n += n
+
+                def close(self):
+                    pass
+            self.total = total
+            return B()
+
+    s = Sink()
+    bar = Progress(1000, s, desc="ida", unit="response")
+    bar.update(640)
+    bar.finish()
+    assert s.n == s.total == 1000
+
+
+def test_ida_and_msa_progress_end_at_100_percent(monkeypatch):
+    """The studies' bars: the IDA's total counts every bisection step of every curve, the last
+    line still reads 100% (it stopped at 80% in 0.6)."""
+    import archrock.studies.ida as ida_mod
+    from archrock.geometry import oppenheim_arch
+    from archrock.groundmotion import GroundMotion
+    from archrock.studies.runner import RunSettings
+
+    monkeypatch.setattr(ida_mod, "PROGRESS_S", -1.0)  # always show progress
+    t = np.arange(0, 2.0, 0.01)
+    rec = GroundMotion(t, 3.0 * np.sin(2 * np.pi * 2.0 * t) * np.sin(np.pi * t / 2.0) ** 2, "r")
+    got = []
+    res = ida_mod.ida([rec], oppenheim_arch(), [0.5, 1.0, 2.0], tol=0.05,
+                      settings=RunSettings(progress=got.append))
+    lines = [x for x in got if x.startswith("ida: ")]
+    assert lines[-1].endswith("(100%)"), got
+    done = int(lines[-1].split()[1].split("/")[0])
+    assert done < 1 * (3 + 2 + math.ceil(math.log2(1 / 0.05)))  # fewer than the estimate
+    got.clear()
+    ida_mod.msa([rec], oppenheim_arch(), [0.1, 0.2], settings=RunSettings(progress=got.append))
+    assert got[-1] == "msa: 2/2 analyses (100%)"
+    assert res.curves[0].first_im is None or res.curves[0].first_im > 0

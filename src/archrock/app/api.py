@@ -22,8 +22,9 @@ import numpy as np
 
 from ..errors import ArchInputError
 from ..options import JOINTS, SHAPES  # the command line's own lists
-from .fields import (COMPUTE_LOCK, MAX_VOUSSOIRS, choice, number, object_field,
-                     request_object, xy)
+from .fields import (ARCH_FIELDS, COMPUTE_LOCK, MAX_VOUSSOIRS, choice, number, object_field,
+                     only, request_object, xy)
+from .fields import friction as friction_field
 from .uploads import (MAX_RECORD_T_END_S, MAX_RESPONSE_WORK_S, RecordStore, record_motion,
                       trace)
 
@@ -42,6 +43,13 @@ MAX_ENSEMBLE_WORK_S = 120.0
 MAX_UPLOAD_CHARS = 2_000_000
 
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
+#: The fields each request may hold (any other key is refused, naming it: fields.only).
+PULSE_FIELDS = ("kind", "amplitude", "duration")
+SPREAD_FIELDS = ("span", "thickness", "radius", "tilt")
+LIMIT_FIELDS = ("arch", "friction", "thrust_range")
+ENSEMBLE_FIELDS = ("arch", "samples", "seed", "spreads", "pulse", "friction")
+CURVE_FIELDS = ("arch", "samples", "seed", "spreads", "durations", "kind", "friction")
+REPORT_FIELDS = ("arch", "samples", "seed", "spreads", "contact")
 
 
 # ---------------------------------------------------------------------------- field checks
@@ -57,7 +65,7 @@ def _random_arches(params: dict, default: int, lo: int, hi: int, where: str):
     seed = number(params, "seed", 0, integer=True)
     if seed < 0:
         raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
-    sp = object_field(params, "spreads")
+    sp = only(object_field(params, "spreads"), SPREAD_FIELDS, "spreads")
     return samples, seed, Spreads(*(number(sp, k, d) for k, d in (
         ("span", 0.1), ("thickness", 0.1), ("radius", 0.05), ("tilt", 0.0))))
 
@@ -74,7 +82,7 @@ def arch_from_params(params: dict):
     :func:`~archrock.options.arch_from_args`."""
     from ..options import arch_from_args
 
-    params = request_object(params)
+    params = only(request_object(params), ARCH_FIELDS, "arch")
     n = number(params, "voussoirs", integer=True)
     if n is not None and n > MAX_VOUSSOIRS:
         raise ArchInputError(f"voussoirs: {n}; the app allows 3 to {MAX_VOUSSOIRS} "
@@ -168,12 +176,10 @@ def limit(params: dict) -> dict:
     from ..statics.limit import limit_analysis
     from ..reports.limit import limit_summary
 
-    params = request_object(params)
+    params = only(request_object(params), LIMIT_FIELDS)
     t0 = time.perf_counter()
     arch = arch_from_params(object_field(params, "arch"))
-    mu = number(params, "friction")
-    if mu is not None and mu <= 0:
-        raise ArchInputError(f"friction: {mu:g}; allowed a finite number > 0")
+    mu = friction_field(params, None)
     want_thrust = bool(params.get("thrust_range", False))
     with COMPUTE_LOCK:
         result = limit_analysis(arch, verify=True)
@@ -209,6 +215,7 @@ def pulse_spec(params):
 
     if not isinstance(params, dict):
         raise ArchInputError("pulse: expected an object with kind, amplitude [g], duration [s]")
+    only(params, PULSE_FIELDS, "pulse")
     kind = choice(params, "kind", PULSE_KINDS, "oppenheim")
     a = number(params, "amplitude")
     tp = number(params, "duration")
@@ -221,43 +228,33 @@ def pulse_spec(params):
     return PulseSpec(kind, a, tp)
 
 
-def respond(params: dict, records: RecordStore | None = None) -> dict:
-    """``archrock respond --json`` of ``params["arch"]`` under ``params["pulse"]`` (or
-    ``params["record"]``: ``{"id"}`` of a record loaded in ``records`` by
-    :func:`load_record_upload`; its window up to :data:`MAX_RECORD_T_END_S` and the package's
-    work estimate up to :data:`MAX_RESPONSE_WORK_S`), with the
-    time history (``time`` [s], ``phi`` [rad], signed: + in M_l, - in M_r, null after the
-    rotation limit) and the animation: ``frames`` (at most :data:`MAX_FRAMES`), each
-    ``[t, phi, row, th1, th2, th3, bx, by, cx, cy]``: the chain row open (-1 at rest) and the
-    rotations [rad] of its three links and the moved hinges B, C [m] (the library's four-bar
-    kinematics, :func:`archrock.dynamics.fourlink.configuration`) at ``exaggerate`` (1 to 50,
-    default 1: to scale) times the rotation; ``chain_links`` gives, per row, the hinge points A,
-    B, C, D at rest and the voussoirs of each link."""
-    from ..dynamics.fourlink import configuration
-    from ..dynamics.response import prepare
-    from ..dynamics.response import respond as respond_
-    from ..units import G
+#: The fields of a response request (pulse or record).
+RESPOND_FIELDS = ("arch", "pulse", "record", "t_end", "exaggerate", "friction", "dynamics")
 
-    params = request_object(params)
+
+def respond_request(params: dict, records: RecordStore | None = None) -> dict:
+    """The checked arguments of a response: the ``arch``, the motion (``params["pulse"]``, or
+    ``params["record"]``: ``{"id"}`` of a record loaded in ``records`` by
+    :func:`~archrock.app.uploads.load_record_upload`), the window ``t_end`` [s],
+    ``exaggerate``, ``friction`` (default :data:`~archrock.statics.friction.DEFAULT_FRICTION`,
+    "none": sliding excluded) and ``choice``: the model that answers
+    (:func:`archrock.app.engine.choose`: ``dynamics`` auto, fourlink or engine)."""
+    from ..statics.friction import DEFAULT_FRICTION
+    from . import engine
+
+    params = only(request_object(params), RESPOND_FIELDS)
     t0 = time.perf_counter()
     arch = arch_from_params(object_field(params, "arch"))
+    mu = friction_field(params, DEFAULT_FRICTION)
     record = params.get("record")
+    info = spec = None
     if record is not None:
-        from ..studies.work import format_duration, response_cost_s
-        from .._jit import HAVE_NUMBA
-
         motion, info = record_motion(record, records)
-        spec = None
         t_end = number(params, "t_end", min(MAX_RECORD_T_END_S, info["duration_s"] + 2.0))
         if not 0 < t_end <= MAX_RECORD_T_END_S:
             raise ArchInputError(f"t_end: {t_end:g}; allowed 0 < t_end <= "
                                  f"{MAX_RECORD_T_END_S:g} s for a record")
-        est = response_cost_s(min(t_end, info["duration_s"])) * (1 if HAVE_NUMBA else 50)
-        if est > MAX_RESPONSE_WORK_S:
-            raise ArchInputError(f"t_end: {t_end:g} s of record, estimated "
-                                 f"{format_duration(est)} here; the app allows "
-                                 f"{format_duration(MAX_RESPONSE_WORK_S)} (archrock respond "
-                                 f"--record for more)")
+        info = {k: v for k, v in info.items() if k != "warnings"}
     else:
         spec = pulse_spec(params.get("pulse"))
         motion = spec.build()
@@ -267,6 +264,54 @@ def respond(params: dict, records: RecordStore | None = None) -> dict:
     ex = number(params, "exaggerate", 1.0)
     if not 1 <= ex <= 50:
         raise ArchInputError(f"exaggerate: {ex:g}; allowed 1 to 50 (the drawn rotations' factor)")
+    chosen = engine.choose(arch, params, mu)
+    if chosen.engine:
+        engine.check_engine_work(arch, motion, mu)
+    elif info is not None:
+        from ..studies.work import format_duration, response_cost_s
+        from .._jit import HAVE_NUMBA
+
+        est = response_cost_s(min(t_end, info["duration_s"])) * (1 if HAVE_NUMBA else 50)
+        if est > MAX_RESPONSE_WORK_S:
+            raise ArchInputError(f"t_end: {t_end:g} s of record, estimated "
+                                 f"{format_duration(est)} here; the app allows "
+                                 f"{format_duration(MAX_RESPONSE_WORK_S)} (archrock respond "
+                                 f"--record for more)")
+    return {"arch": arch, "motion": motion, "spec": spec, "record": info, "t_end": t_end,
+            "exaggerate": ex, "friction": mu, "choice": chosen, "t0": t0}
+
+
+def respond(params: dict, records: RecordStore | None = None) -> dict:
+    """The four-link response of a request (:func:`respond_request`) whose model is the
+    four-link one; where the contact engine answers, ArchInputError: its response is a job
+    (``POST /api/respond`` starts it, :func:`archrock.app.engine.run_engine_job`)."""
+    req = respond_request(params, records)
+    if req["choice"].engine:
+        raise ArchInputError(f"dynamics: the contact engine answers this arch "
+                             f"({req['choice'].reason}); its response is a job of the page "
+                             f"(play), not this call")
+    return four_link_response(req)
+
+
+def four_link_response(req: dict) -> dict:
+    """``archrock respond --json`` of a checked request (:func:`respond_request`), with the
+    time history (``time`` [s], ``phi`` [rad], signed: + in M_l, - in M_r, null after the
+    rotation limit) and the animation: ``frames`` (at most :data:`MAX_FRAMES`), each
+    ``[t, phi, row, th1, th2, th3, bx, by, cx, cy]``: the chain row open (-1 at rest) and the
+    rotations [rad] of its three links and the moved hinges B, C [m] (the library's four-bar
+    kinematics, :func:`archrock.dynamics.fourlink.configuration`) at ``exaggerate`` (1 to 50,
+    default 1: to scale) times the rotation; ``chain_links`` gives, per row, the hinge points A,
+    B, C, D at rest and the voussoirs of each link.  ``dynamics``: the choice that ran it;
+    ``valid`` False (and ``label`` "not valid here: ...") where it ran only because it was
+    asked for by name."""
+    from ..dynamics.fourlink import configuration
+    from ..dynamics.response import prepare
+    from ..dynamics.response import respond as respond_
+    from ..units import G
+    from .engine import four_link_valid
+
+    arch, motion, spec, t_end = req["arch"], req["motion"], req["spec"], req["t_end"]
+    ex, t0, chosen = req["exaggerate"], req["t0"], req["choice"]
     dt_out = max(0.002, t_end / 2000)
     with COMPUTE_LOCK:
         model = prepare(arch)
@@ -315,15 +360,39 @@ def respond(params: dict, records: RecordStore | None = None) -> dict:
         "ground": trace(motion.times, np.asarray(motion.accel) / G),
         "frames": frames,
         "pulse": spec.to_dict() if spec is not None else None,
-        "record": None if spec is not None else {k: v for k, v in info.items()
-                                                 if k != "warnings"},
+        "record": req["record"],
         "exaggerate": ex,
+        "model": "fourlink", "valid": four_link_valid(chosen), "dynamics": chosen.to_dict(),
+        "label": ("four-link model: " if four_link_valid(chosen)
+                  else "four-link model, not valid here: ") + chosen.reason,
         "elapsed_ms": 1e3 * (time.perf_counter() - t0),
     })
     return out
 
 
 # ---------------------------------------------------------------------------- ensemble
+def ensemble_request(params: dict) -> dict:
+    """The checked arguments of :func:`run_ensemble_request`: ``config``
+    (:func:`ensemble_config`) and, under a pulse, ``dynamics``: the routing's choice at the
+    request's ``friction`` (default DEFAULT_FRICTION), refused where the four-link model does
+    not hold for the nominal arch (:func:`archrock.app.engine.four_link_study`)."""
+    from ..statics.friction import DEFAULT_FRICTION
+    from .engine import four_link_study
+
+    config = ensemble_config(params)
+    chosen = None
+    if config.motion is not None:
+        mu = friction_field(params, DEFAULT_FRICTION)
+        chosen = four_link_study(config.analysed_nominal, mu, "pulse", "ensemble").to_dict()
+    return {"config": config, "dynamics": chosen}
+
+
+def run_ensemble_request(req: dict, progress, cancelled) -> dict | None:
+    """:func:`run_ensemble_job` of ``req["config"]``, its result with ``"dynamics"``."""
+    out = run_ensemble_job(req["config"], progress, cancelled)
+    return None if out is None else {**out, "dynamics": req["dynamics"]}
+
+
 def ensemble_config(params: dict):
     """The :class:`~archrock.studies.ensemble.EnsembleConfig` of an ensemble request: ``arch``,
     ``samples`` (1 to :data:`MAX_SAMPLES`), ``seed``, ``spreads`` ({span, thickness, radius,
@@ -334,7 +403,7 @@ def ensemble_config(params: dict):
     from ..studies.ensemble import EnsembleConfig
     from ..studies.work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
 
-    params = request_object(params)
+    params = only(request_object(params), ENSEMBLE_FIELDS)
     nominal = arch_from_params(object_field(params, "arch"))
     samples, seed, spreads = _random_arches(params, 1000, 1, MAX_SAMPLES,
                                             "in the app (archrock ensemble for more)")
@@ -403,7 +472,7 @@ def curve_request(params: dict) -> dict:
     paper's)."""
     from ..studies.curves import parse_range
 
-    params = request_object(params)
+    params = only(request_object(params), CURVE_FIELDS)
     nominal = arch_from_params(object_field(params, "arch"))
     samples, seed, spreads = _random_arches(params, 30, 1, MAX_CURVE_SAMPLES, "for a curve in "
                                             "the app (archrock curves for more)")
@@ -428,8 +497,12 @@ def curve_request(params: dict) -> dict:
         raise ArchInputError(f"samples: {samples} arches x {len(durations)} durations; the app "
                              f"allows {bound} here (archrock curves for more)")
     kind = choice(params, "kind", PULSE_KINDS, "oppenheim")
+    from ..statics.friction import DEFAULT_FRICTION
+    from .engine import four_link_study
+
+    chosen = four_link_study(nominal, friction_field(params, DEFAULT_FRICTION), "curve", "curves")
     return {"nominal": nominal, "samples": samples, "seed": seed, "spreads": spreads,
-            "durations": durations, "kind": kind}
+            "durations": durations, "kind": kind, "dynamics": chosen.to_dict()}
 
 
 def run_curve_job(req: dict, progress, cancelled) -> dict | None:
@@ -457,7 +530,7 @@ def run_curve_job(req: dict, progress, cancelled) -> dict | None:
         n_used, failed = c.n_samples, len(c.failed)
         progress((i + 1) * req["samples"], total)
     return {**out, "samples": req["samples"], "n_used": n_used, "left_out": failed,
-            "kind": req["kind"], "wall_s": time.perf_counter() - t0}
+            "kind": req["kind"], "dynamics": req["dynamics"], "wall_s": time.perf_counter() - t0}
 
 
 # ---------------------------------------------------------------------------- export
@@ -470,7 +543,8 @@ def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, 
 
     from ..options import json_safe
 
-    params = request_object(params)
+    params = only(request_object(params),
+                  ("what", *dict.fromkeys((*LIMIT_FIELDS, *RESPOND_FIELDS))))
     what = choice(params, "what", ("geometry", "limit", "thrust-csv", "response-csv"))
     if what is None:
         raise ArchInputError("what: needed; allowed one of geometry, limit, thrust-csv, "
@@ -480,7 +554,7 @@ def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, 
         data = {**arch.to_dict(), "metadata": {"generator": "archrock app"}}
         return "arch.json", "application/json", json.dumps(json_safe(data), indent=2) + "\n"
     if what == "limit":
-        res = limit(params)
+        res = limit({k: v for k, v in params.items() if k in LIMIT_FIELDS})
         return "limit.json", "application/json", json.dumps(json_safe(res["summary"]),
                                                             indent=2) + "\n"
     buf = io.StringIO()
@@ -495,7 +569,7 @@ def export(params: dict, records: RecordStore | None = None) -> tuple[str, str, 
         for j, (pl, pr) in enumerate(zip(r.thrust_l.points, r.thrust_r.points)):
             w.writerow([j, *(f"{v:.6f}" for v in (*pl, *pr))])
         return "thrust.csv", "text/csv", buf.getvalue()
-    res = respond(params, records)
+    res = respond({k: v for k, v in params.items() if k in RESPOND_FIELDS}, records)
     w.writerow(["t_s", "phi_rad"])
     for tk, ph in zip(res["time"], res["phi"]):
         w.writerow([f"{tk:.5f}", "" if ph is None else f"{ph:.7f}"])
@@ -522,7 +596,7 @@ def report_request(params: dict) -> dict:
     from ..studies.work import format_duration, response_cost_s
     from .._jit import HAVE_NUMBA
 
-    params = request_object(params)
+    params = only(request_object(params), REPORT_FIELDS)
     arch = arch_from_params(object_field(params, "arch"))
     samples, seed, spreads = _random_arches(params, 12, 0, MAX_REPORT_SAMPLES,
                                             "random arches for the report in the app "

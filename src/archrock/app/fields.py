@@ -15,8 +15,13 @@ import numpy as np
 
 from ..errors import ArchInputError
 
-__all__ = ["number", "choice", "object_field", "request_object", "xy", "MAX_VOUSSOIRS",
-           "COMPUTE_LOCK"]
+__all__ = ["number", "choice", "object_field", "request_object", "only", "friction", "xy",
+           "MAX_VOUSSOIRS", "COMPUTE_LOCK", "ARCH_FIELDS"]
+
+#: The fields of an arch (the JSON form of the CLI's geometry options).
+ARCH_FIELDS = ("shape", "span", "rise", "thickness", "thickness_crown", "joints", "voussoirs",
+               "density", "radius", "embrace", "defects", "pier_height", "pier_width",
+               "pier_courses", "geometry", "name")
 
 #: Most voussoirs of an arch the page may ask for (the CLI allows more; an interactive page
 #: should answer in about a second).
@@ -26,7 +31,6 @@ MAX_VOUSSOIRS = 120
 #: run in two threads at once.  The jobs (ensemble, curve, report) run in the job worker
 #: process (app/jobs.py), so the server's statics never wait on a job's lock.
 COMPUTE_LOCK = threading.RLock()
-
 
 
 def number(params: dict, name: str, default=None, *, integer: bool = False):
@@ -73,6 +77,36 @@ def request_object(body) -> dict:
     if not isinstance(body, dict):
         raise ArchInputError(f"request: expected a JSON object, got {type(body).__name__}")
     return body
+
+
+def only(params: dict, allowed, where: str | None = None) -> dict:
+    """``params`` when every key is in ``allowed``; else ArchInputError naming the first unknown
+    key (``where.key`` inside the object ``where``) and the allowed ones: a misspelt or
+    misplaced field is refused, never ignored (``{"thickness": -3}`` beside ``"arch"`` would
+    otherwise answer for the default thickness)."""
+    for key in params:
+        if key not in allowed:
+            name = f"{where}.{key}" if where else str(key)
+            hint = (f" ({key} is a field of the arch: put it inside \"arch\")"
+                    if where is None and key in ARCH_FIELDS and "arch" in allowed else "")
+            raise ArchInputError(f"unknown field {name[:60]!r}; allowed"
+                                 f"{' in ' + where if where else ''}: "
+                                 f"{', '.join(allowed)}{hint}")
+    return params
+
+
+def friction(params: dict, default):
+    """The Coulomb friction coefficient of ``params["friction"]``: a finite number > 0,
+    ``default`` when absent, None for "none" (sliding excluded by the user, Heyman's
+    hypothesis)."""
+    v = params.get("friction")
+    if isinstance(v, str) and v.strip().lower() == "none":
+        return None
+    mu = number(params, "friction", default)
+    if mu is not None and mu <= 0:
+        raise ArchInputError(f"friction: {mu:g}; allowed a finite number > 0, or none "
+                             f"(sliding excluded)")
+    return mu
 
 
 def xy(a) -> list:

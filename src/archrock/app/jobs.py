@@ -1,4 +1,5 @@
-"""Background jobs of the app (the ensemble, the curve, the report), each run in a worker
+"""Background jobs of the app (the ensemble, the curve, the report, the contact engine's
+response), each run in a worker
 process of its own so that cancelling one takes effect at once (a numba kernel being compiled
 cannot be interrupted in a thread; a process can be terminated) and the page's statics are
 answered meanwhile by the server's own threads.  Progress is polled; a job's file (the report)
@@ -163,8 +164,8 @@ class Jobs:
     def start(self, total: int, func, req) -> Job:
         with self._lock:
             if any(j.state == "running" for j in self._jobs.values()):
-                raise Busy("job: another ensemble, curve or report is running; cancel it or wait "
-                           "for it")
+                raise Busy("job: another ensemble, curve, report or engine response is running; "
+                           "cancel it or wait for it")
             worker = self._ensure_worker()
             job = Job(f"job-{secrets.token_urlsafe(16)}", total)
             self._jobs[job.id] = job

@@ -4,7 +4,10 @@ Routes (JSON bodies; lengths m, accelerations g, times s):
 
 * ``GET /`` the page; ``/static/...`` its script and style (package data, no CDN);
 * ``POST /api/limit`` {arch, friction?, thrust_range?}: :func:`.api.limit`;
-* ``POST /api/respond`` {arch, pulse: {kind, amplitude, duration}, t_end?}: :func:`.api.respond`;
+* ``POST /api/respond`` {arch, pulse: {kind, amplitude, duration}, t_end?, exaggerate?,
+  friction?, dynamics?}: the model of :func:`archrock.studies.enginestudy.choose_dynamics`
+  answers: the four-link response at once (:func:`.api.four_link_response`), or the contact
+  engine's as a job (``{"job": ..., "dynamics": ...}``, :func:`.engine.run_engine_job`);
 * ``POST /api/ensemble`` {arch, samples, seed, spreads, pulse?}: starts a job, returns its id;
   ``GET /api/jobs/{id}`` its progress and result; ``POST /api/jobs/{id}/cancel``;
 * ``POST /api/curve`` {arch, samples, seed, spreads, durations, kind}: the collapse-acceleration
@@ -50,7 +53,8 @@ from starlette.staticfiles import StaticFiles
 
 from ..options import OptionError as CLIError, json_safe
 from ..errors import ArchInputError, ArchrockError, GeometryOutcome
-from . import api, uploads
+from ..statics.friction import DEFAULT_FRICTION
+from . import api, engine, uploads
 from .jobs import Busy, Jobs
 
 STATIC = Path(__file__).parent / "static"
@@ -84,6 +88,8 @@ def _error(exc: Exception) -> JSONResponse:
         return _json({"error": msg, "kind": "busy"}, 409)
     if isinstance(exc, (ArchInputError, CLIError)):
         return _json({"error": msg, "kind": "input"}, 400)
+    if isinstance(exc, engine.EngineMissing):
+        return _json({"error": msg, "kind": "needs-engine"}, 422)
     if isinstance(exc, GeometryOutcome):
         return _json({"error": msg, "kind": "outcome"}, 422)
     if isinstance(exc, ArchrockError):
@@ -181,11 +187,26 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                 return _error(exc)
         return route
 
-    ensemble = job_route(api.ensemble_config, lambda cfg: cfg.samples, api.run_ensemble_job)
+    ensemble = job_route(api.ensemble_request, lambda req: req["config"].samples,
+                         api.run_ensemble_request)
     curve = job_route(api.curve_request, lambda req: req["samples"] * len(req["durations"]),
                       api.run_curve_job)
     report = job_route(api.report_request, lambda req: 1, api.run_report_job,
                        lambda req: {"estimate_s": req["estimate_s"]})
+
+    async def respond(request: Request):
+        """The response of the model that holds (the routing of the package): the four-link
+        one answered now, the contact engine's started as a job (seconds to minutes)."""
+        try:
+            req = await run_in_threadpool(api.respond_request, await _body(request), records)
+            chosen = req["choice"]
+            if not chosen.engine:
+                return _json(await run_in_threadpool(api.four_link_response, req))
+            job = await run_in_threadpool(jobs.start, 1, engine.run_engine_job, req)
+            return _json({"job": job.to_dict(), "model": "engine", "dynamics": chosen.to_dict(),
+                          "label": "contact engine (pymunk): " + chosen.reason})
+        except Exception as exc:  # noqa: BLE001
+            return _error(exc)
 
     async def job_download(request: Request):
         try:
@@ -239,15 +260,15 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                       "max_file_bytes": uploads.MAX_FILE_BYTES,
                       "max_record_t_end_s": uploads.MAX_RECORD_T_END_S,
                       "record_units": uploads.RECORD_UNITS, "dxf_units": uploads.DXF_UNITS,
-                      "max_report_samples": api.MAX_REPORT_SAMPLES})
+                      "max_report_samples": api.MAX_REPORT_SAMPLES,
+                      "default_friction": DEFAULT_FRICTION, "dynamics": engine.DYNAMICS})
 
     routes = [
         Route("/", index),
         Route("/favicon.ico", favicon),
         Route("/api/limits", limits),
         Route("/api/limit", _endpoint(api.limit), methods=["POST"]),
-        Route("/api/respond", _endpoint(lambda body: api.respond(body, records)),
-              methods=["POST"]),
+        Route("/api/respond", respond, methods=["POST"]),
         Route("/api/record", _uploader("record", lambda data, params: uploads.load_record_upload(
             data, params, records)), methods=["POST"]),
         Route("/api/dxf", _uploader("dxf", uploads.load_dxf_upload), methods=["POST"]),

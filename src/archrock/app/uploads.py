@@ -14,7 +14,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import ArchInputError
-from .fields import COMPUTE_LOCK, MAX_VOUSSOIRS, choice, number, xy
+from .fields import COMPUTE_LOCK, MAX_VOUSSOIRS, choice, number, only, xy
 
 #: Largest uploaded file (a record or a DXF drawing) [bytes].
 MAX_FILE_BYTES = 20_000_000
@@ -137,6 +137,7 @@ def load_record_upload(data: Upload, params: dict, store: RecordStore) -> dict:
     from ..groundmotion import RecordSpec
     from ..units import G
 
+    only(params, ("name", "units", "scale"), "record")
     if data.size > MAX_FILE_BYTES:
         raise too_large("record", data.size)
     if not data.size:
@@ -173,6 +174,7 @@ def record_motion(params, store: RecordStore | None):
         raise ArchInputError("record: no record can be loaded here")
     if not isinstance(params, dict):
         raise ArchInputError("record: expected an object {id} of a loaded record")
+    only(params, ("id",), "record")
     return store.get(params.get("id"))
 
 
@@ -186,6 +188,7 @@ def load_dxf_upload(data: Upload, params: dict) -> dict:
     from ..options import GEOMETRY_DEFAULTS
     from ..geometry.dxf import arch_from_outlines, read_dxf_outlines
 
+    only(params, ("name", "layer", "units", "density"), "dxf")
     if data.size > MAX_FILE_BYTES:
         raise too_large("dxf", data.size)
     if not data.size:

@@ -11,7 +11,7 @@ import sys
 import warnings
 from typing import Callable
 
-from ..errors import ArchInputError, ArchrockError, CannotStandError, GeometryOutcome
+from ..errors import ArchInputError, ArchrockError, GeometryOutcome
 from ..options import OptionError, json_safe  # noqa: F401 (json_safe: re-exported)
 
 PROG = "archrock"
@@ -196,13 +196,8 @@ def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
         return EXIT_USAGE
     except ArchrockError as exc:
         # a physical outcome or a limit of the method, not a mistake in the input: said as such
-        if isinstance(exc, CannotStandError):  # on piers too narrow: which, and what width
-            from .options import piers_too_narrow
-
-            try:
-                exc = piers_too_narrow(args, exc) or exc
-            except Exception:  # noqa: BLE001 - the advice must never hide the outcome itself
-                pass
+        # (on piers too narrow the library's message names them and the width that carries
+        # the arch: archrock.statics.buttress.piers_cannot_stand)
         msg = " ".join(str(exc).split())
         kind = "outcome" if isinstance(exc, GeometryOutcome) else "error"
         print(f"{PROG}: {kind}: {msg}", file=sys.stderr)

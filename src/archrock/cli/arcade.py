@@ -258,9 +258,9 @@ def _progress(msg):
 
 
 def format_result(arc, results, ramp=None, response=None) -> str:
-    kinds = arc.kinds
-    counts = ", ".join(f"{kinds.count(k)} {k}{'s' if kinds.count(k) != 1 else ''}"
-                       for k in ("pier", "buttress", "beam", "voussoir") if kinds.count(k))
+    from ..geometry.blocks import describe_arcade
+
+    counts = describe_arcade(arc)  # piers counted as piers, not as their courses
     spans = f"{len(arc.spans)} span{'s' if len(arc.spans) != 1 else ''}, " if arc.spans else ""
     lines = [f"{arc.name}: {spans}{arc.n_blocks} blocks ({counts}), "
              f"{len(arc.contacts)} contacts, {arc.masses.sum():.6g} kg/m"]
@@ -383,7 +383,10 @@ def run_arcade(args) -> int:
     if plot:
         plot = plot_arcade(arc, results, plot)
     if args.json:
+        from ..geometry.blocks import arcade_counts
+
         out = {"arcade": {"name": arc.name, "blocks": arc.n_blocks,
+                          "counts": arcade_counts(arc),
                           "contacts": len(arc.contacts), "spans": [list(s) for s in arc.spans],
                           "piers": [list(p) for p in arc.piers], "kinds": list(arc.kinds),
                           "labels": [c.label for c in arc.contacts]},

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
+from ._friction import add_friction_option, resolve_friction
 from ._parser import CLIError, _int, non_negative_int
 from .codecheck import add_codecheck_options, codecheck_config_from_args
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
@@ -43,6 +44,8 @@ def add_assess_parser(subparsers):
     p.add_argument("--bootstrap", type=non_negative_int, default=0, metavar="N",
                    help="fragility bootstrap resamples (0 = none, default)")
     add_impact_options(p)
+    add_friction_option(p, "the whole report: the friction analysis, the governing answer, the "
+                           "routing of the dynamics and the contact engine")
     add_codecheck_options(p)
     p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
     p.set_defaults(func=run_assess)
@@ -64,14 +67,17 @@ def run_assess(args) -> int:
                                                                           flush=True))
     t0 = time.perf_counter()
     arch = arch_from_args(args)
+    mu, stated = resolve_friction(args.friction)
     cfg = AssessConfig(
         impact=impact_spec_from_args(args), durations=tuple(parse_range(args.durations, "durations")),
         n_scan=args.n_scan, samples=args.samples, seed=args.seed,
         spreads=spreads_for(args, arch),
         records=record_paths(args.records), record_units=args.record_units,
         scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
-        codecheck=codecheck_config_from_args(args))
-    say(f"archrock assess: {arch.name}, {arch.n} voussoirs")
+        codecheck=codecheck_config_from_args(args), friction=mu)
+    from ..geometry.blocks import describe_blocks
+
+    say(f"archrock assess: {arch.name}, {describe_blocks(arch)}; friction {stated}")
     from ..studies.runner import RunSettings
 
     result = assess(arch, cfg, settings=RunSettings(progress=say))

@@ -17,17 +17,18 @@ def run_engine_curves(args, nominal, durations, choice, plot) -> int:
     is refused), printed or as JSON; the figure with --plot."""
     from ..contact import EngineSettings
     from ..studies.enginestudy import EngineRun, engine_collapse_curve
+    from .options import friction_mu
 
     if args.samples > 0:
         raise CLIError("--samples: the engine curve is of the nominal arch only (an engine run "
                        "takes seconds); for random arches run archrock ensemble (it routes to "
                        "the engine too), or give --dynamics fourlink")
-    if args.friction is None:
+    if friction_mu(args) is None:
         raise CLIError(f"--friction: none (sliding excluded) cannot be modelled by the contact "
                        f"engine, which this arch needs ({choice.reason}); give a finite MU > 0 "
                        f"(a large one, e.g. 10, for joints that hardly slide) or --dynamics "
                        f"fourlink")
-    run = EngineRun(settings=EngineSettings(friction=args.friction))  # the one friction
+    run = EngineRun(settings=EngineSettings(friction=friction_mu(args)))  # the one friction
     progress = None if args.no_progress else (lambda line: print(line, file=sys.stderr,
                                                                   flush=True))
     curve = engine_collapse_curve(nominal, durations, args.pulse, args.sign, a_max=args.a_max,
@@ -45,7 +46,7 @@ def run_engine_curves(args, nominal, durations, choice, plot) -> int:
     lines = [f"{nominal.name}: first collapse of the {args.pulse} pulse (sign {args.sign:+d}) "
              f"by the contact engine, bisected to {ENGINE_RTOL:g} of the amplitude",
              f"why the engine: {choice.reason}",
-             f"friction: mu = {args.friction:g} (the engine's and the routing's; --friction)",
+             f"friction: mu = {friction_mu(args):g} (the engine's and the routing's; --friction)",
              f"activation threshold k = {k:.4f} g",
              f"{'t_p [s]':>8}  {'first collapse |a| [g]':>22}  {'bracket [g]':>17}  runs  "
              f"seconds"]

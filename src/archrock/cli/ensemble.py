@@ -7,10 +7,10 @@ from pathlib import Path
 
 from ._parser import EXIT_INTERRUPTED, PROG, CLIError, _int, emit_json
 from .runsettings import run_settings
-from .options import (add_friction_option, add_geometry_options, add_impact_options,
-                      add_motion_options, add_spread_options, arch_from_args, figure_arg,
-                      folder_arg, friction_words, impact_spec_from_args, motion_spec_from_args,
-                      spreads_for)
+from ._friction import add_friction_option
+from .options import (add_geometry_options, add_impact_options, add_motion_options,
+                      add_spread_options, arch_from_args, figure_arg, folder_arg, friction_mu,
+                      friction_words, impact_spec_from_args, motion_spec_from_args, spreads_for)
 
 
 def add_ensemble_parser(subparsers):
@@ -56,7 +56,8 @@ def add_ensemble_parser(subparsers):
                         "freedom follows the arch, the contact engine where its piers rock with "
                         "it (docs/piers-dynamics.md) or where its joints slide at --friction; "
                         "fourlink or engine as asked")
-    add_friction_option(p)
+    add_friction_option(p, "the routing of the dynamics and, where it runs, the contact "
+                           "engine")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="histograms of k_l and k_r")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
@@ -78,7 +79,7 @@ def _engine_run(args, motion, choice):
     the engine cannot exclude sliding."""
     if motion is None or not choice.engine:
         return None
-    if args.friction is None:
+    if friction_mu(args) is None:
         raise CLIError(f"--friction: none (sliding excluded) cannot be modelled by the contact "
                        f"engine, which this arch needs ({choice.reason}); give a finite MU > 0 "
                        f"(a large one, e.g. 10, for joints that hardly slide) or --dynamics "
@@ -86,7 +87,7 @@ def _engine_run(args, motion, choice):
     from ..contact.settings import EngineSettings
     from ..studies.enginestudy import EngineRun
 
-    return EngineRun(settings=EngineSettings(friction=args.friction))
+    return EngineRun(settings=EngineSettings(friction=friction_mu(args)))
 
 
 def _choice(config, args):
@@ -94,7 +95,7 @@ def _choice(config, args):
     it: said in the text and JSON."""
     from ..studies.enginestudy import choose_dynamics
 
-    return choose_dynamics(config.analysed_nominal, args.dynamics, friction=args.friction)
+    return choose_dynamics(config.analysed_nominal, args.dynamics, friction=friction_mu(args))
 
 
 def run_ensemble_cmd(args) -> int:
@@ -135,7 +136,7 @@ def run_ensemble_cmd(args) -> int:
     engine = _engine_run(args, motion, choice)
     try:
         result = run_ensemble(config, keep_frame=not args.low_memory, settings=settings,
-                              dynamics=args.dynamics, engine=engine, friction=args.friction)
+                              dynamics=args.dynamics, engine=engine, friction=friction_mu(args))
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; " + _kept(out, config.n_batches), file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -164,7 +165,7 @@ def run_ensemble_cmd(args) -> int:
         return 0
     if motion is not None:
         print(f"dynamics: four-link model: {summary['dynamics']['reason']}; "
-              f"{friction_words(args.friction)}")
+              f"{friction_words(args)}")
     print(format_ensemble(summary, nominal.name))
     if out:
         print(f"results in {out}")

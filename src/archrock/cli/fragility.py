@@ -104,19 +104,32 @@ def run_fragility(args) -> int:
         res_msa = msa(records, models, levels, im=im, n_boot=boot, seed=args.seed, **run)
     except KeyboardInterrupt:
         return interrupted_study(out)
-    if plot:
-        from ..reports.plots import plot_fragility
-
-        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, plot,
-                       ida=res_ida)
+    # the results first, on stdout, then the figure: a figure that fails loses nothing
     if args.json:
         emit_json(fragility_summary(res_ida, res_msa, arch_name=nominal.name, records=records,
                                     n_arches=len(models), impact=impact,
                                     cv=impact.resolved(nominal).cv, suite=suite,
                                     note=impact.resolved(nominal).note))
-        return 0
-    print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
-                           n_arches=len(models), n_requested=args.samples))
-    if plot:
+    else:
+        print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
+                               n_arches=len(models), n_requested=args.samples))
+    sys.stdout.flush()
+    if plot and _figure(res_ida, res_msa, plot) and not args.json:
         print(f"wrote {plot}", file=sys.stderr)
     return 0
+
+
+def _figure(res_ida, res_msa, plot) -> bool:
+    """Draw the fragility figure; where drawing fails, one warning line on stderr (the results
+    are already written) and False, never a traceback that ends the run."""
+    from ..reports.plots import plot_fragility
+
+    try:
+        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, plot,
+                       ida=res_ida)
+    except Exception as exc:  # noqa: BLE001 -- any failure of a figure is a warning, by design
+        why = " ".join(str(exc).split()) or type(exc).__name__
+        print(f"archrock: warning: figure {plot} not written ({type(exc).__name__}: {why}); "
+              f"the results above are complete", file=sys.stderr)
+        return False
+    return True

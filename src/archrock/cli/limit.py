@@ -5,7 +5,9 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from ._friction import NOT_GIVEN, friction_or_none, resolve_friction
 from ._parser import CLIError, emit_json, non_negative_int, positive_float
+from ..statics.friction import DEFAULT_FRICTION
 from .options import (add_geometry_options, add_spread_options, arch_from_args, figure_arg,
                       folder_arg)
 
@@ -21,9 +23,12 @@ def add_limit_parser(subparsers):
     p.add_argument("--min-thickness", action="store_true",
                    help="also compute the minimum thickness under self-weight (bisection); "
                         "with --friction, the friction-limited one")
-    p.add_argument("--friction", type=positive_float, metavar="MU", default=None,
+    p.add_argument("--friction", type=friction_or_none, metavar="MU|none", default=NOT_GIVEN,
                    help="Coulomb friction coefficient at every joint (finite, > 0): multipliers "
-                        "with friction, whether sliding governs, the joints needing most friction")
+                        "with friction, whether sliding governs, the joints needing most "
+                        "friction, and the governing capacity at it; 'none': sliding excluded "
+                        "(Heyman's hypothesis); left out, the governing capacity is at the "
+                        f"default mu = {DEFAULT_FRICTION:g} and no friction table is printed")
     p.add_argument("--thrust-range", action="store_true",
                    help="also compute the least and greatest horizontal thrust under self-weight "
                         "(supports spreading or closing) and their hinges (docs/thrust.md)")
@@ -108,7 +113,7 @@ def run_limit(args) -> int:
     from ..errors import CannotStandError
     from ..statics.friction import friction_analysis, friction_minimum_thickness, friction_needed
     from ..statics.limit import minimum_thickness
-    from ..reports.limit import (format_friction_only, format_limit_table,
+    from ..reports.limit import (format_friction_only, format_governing, format_limit_table,
                                  friction_only_summary, limit_summary)
 
     plot = figure_arg(args.supports_plot)
@@ -117,6 +122,10 @@ def run_limit(args) -> int:
         raise CLIError("--capacity: computed on the arch as built; leave out --spread and "
                        "--settlement (the capacity's curve gives every movement up to it)")
     arch = arch_from_args(args)
+    # the governing answer's friction (stated); the friction table only where --friction MU
+    gov_mu, gov_stated = resolve_friction(args.friction)
+    if args.friction is NOT_GIVEN:
+        args.friction = None
     mpw = _min_pier_width(args, arch)
     result, no_mech = _frictionless(arch, args)
     sup_lines, sup_json, cap = _supports_extra(args, arch, result)
@@ -156,20 +165,36 @@ def run_limit(args) -> int:
     if no_mech is not None:
         # no frictionless mechanism: friction's result and/or the capacity are the answer
         extra.pop("needed")
+        gov = None if fr is None else _governing(arch, None, gov_mu)
         if args.json:
-            emit_json({**friction_only_summary(arch, no_mech, mt, **extra), **sup_json})
+            emit_json({**friction_only_summary(arch, no_mech, mt, **extra), **sup_json,
+                       **({} if gov is None else
+                          {"governing": {**gov.to_dict(), "friction_stated": gov_stated}})})
         else:
             print(format_friction_only(arch, no_mech, mt, **extra))
             for line in sup_lines:
                 print(line)
+            if gov is not None:
+                print(format_governing(gov, gov_stated))
         return 0
+    gov = _governing(arch, result, gov_mu)
     if args.json:
-        emit_json({**limit_summary(result, mt, **extra), **sup_json})
+        emit_json({**limit_summary(result, mt, **extra), **sup_json,
+                   "governing": {**gov.to_dict(), "friction_stated": gov_stated}})
     else:
         print(format_limit_table(result, mt, **extra))
         for line in sup_lines:
             print(line)
+        print(format_governing(gov, gov_stated))
     return 0
+
+
+def _governing(arch, result, mu):
+    """The governing capacity at ``mu`` (studies.governing), without the engine."""
+    from ..studies.governing import governing_capacity
+
+    return governing_capacity(arch, mu, engine=False, limit=result,
+                              engine_left_out="not run by limit: archrock dem --ramp")
 
 
 def _thickness_words(arch, mt) -> str:

@@ -7,14 +7,13 @@ and the rest keep working)."""
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 
 from ..options import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args,  # noqa: F401
                        impact_spec_from_args, model_from_args, motion_from_args,
                        motion_spec_from_args, piers_from_args, spreads, supports_from_args,
                        undamaged_arch_from_args)
-from ._parser import PROG, CLIError, _int, finite_float, non_negative_int, positive_float
+from ._parser import PROG, CLIError, _int, finite_float, non_negative_int
 
 # the old private names of the builders (archrock <= 0.6.0 imported them from here)
 _piers_from_args = piers_from_args
@@ -176,58 +175,6 @@ def spreads_for(args, nominal):
     return spreads(args)
 
 
-def _pier_names(arch) -> str:
-    """The pier blocks of an arch on piers in words: "blocks 0 and 8", "blocks 0-2 and 12-14"."""
-    piers = arch.pier_blocks
-    first = arch.block_kinds.index("voussoir")
-    sides = [[i for i in piers if i < first], [i for i in piers if i > first]]
-    words = [f"{s[0]}" if len(s) == 1 else f"{s[0]}-{s[-1]}" for s in sides if s]
-    return "blocks " + " and ".join(words)
-
-
-def piers_too_narrow(args, exc, arch=None):
-    """Where the arch on two equal piers of --pier-height/--pier-width cannot stand under its
-    own weight but stands on rigid supports: the CannotStandError ``exc`` reworded to name the
-    piers and the least width that carries it (:func:`archrock.statics.buttress.
-    minimum_pier_width`, a bisection: seconds, spent only on this failure); None elsewhere
-    (unequal or stepped piers, a defect, moved supports, an arch that stands on these piers or
-    falls on rigid supports too).  ``arch``: the arch of ``args`` where already built."""
-    from ..errors import ArchrockError, CannotStandError
-    from ..geometry import ArchOnPiers
-    from ..options.fields import values
-    from ..statics.buttress import minimum_pier_width
-    from ..statics.lp import _stands
-
-    if not hasattr(args, "embrace"):  # not a command of one arch (add_geometry_options)
-        return None
-    given = values(args, "with_piers")
-    if ("on its piers" in str(exc) or getattr(args, "defect", None)
-            or not {"height", "width"} <= set(given)
-            or set(given) - {"height", "width", "courses", "batter"}):
-        return None
-    try:
-        arch = arch_from_args(args) if arch is None else arch
-        if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks or _stands(arch):
-            return None
-    except ArchrockError:
-        return None
-    bare = argparse.Namespace(**{k: (None if k.startswith("pier_") else v)
-                                 for k, v in vars(args).items()})
-    try:
-        mpw = minimum_pier_width(arch_from_args(bare), given["height"],
-                                 courses=given.get("courses", 1), batter=given.get("batter", 0.0))
-    except CannotStandError:  # not the piers: it falls on rigid supports too
-        return None
-    head = "arch: it cannot stand under its own weight "
-    why = " " + str(exc)[len(head):].split(";")[0] if str(exc).startswith(head) else ""
-    need = math.ceil(mpw.width * 1000) / 1000  # a width the user can type that stands
-    return CannotStandError(
-        f"arch: it cannot stand on its piers ({_pier_names(arch)}: {given['width']:g} m wide, "
-        f"{given['height']:g} m high) under its own weight{why}; on rigid supports it stands, "
-        f"and piers {given['height']:g} m high carry it from {mpw.width:.4f} m wide: give "
-        f"--pier-width {need:g} or more (docs/piers.md)")
-
-
 def add_random_arches_options(p: argparse.ArgumentParser,
                               samples_help: str) -> argparse.ArgumentParser:
     """--samples N (0: the nominal arch only), --seed and the spreads with tilt: the random arches
@@ -261,29 +208,12 @@ def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) 
 
 
 # ---------------------------------------------------------------------------- dynamics
-def friction_value(text: str):
-    """argparse type of --friction: a finite number > 0, or 'none' (None: sliding excluded by
-    the user, Heyman's hypothesis)."""
-    if text.strip().lower() == "none":
-        return None
-    return positive_float(text)
+def friction_mu(args):
+    """The command's one friction coefficient from ``--friction MU|none``
+    (:mod:`archrock.cli._friction`): MU, None (sliding excluded) or the package's default."""
+    from ._friction import NOT_GIVEN, resolve_friction
 
-
-def add_friction_option(parser, none: bool = True, group=None):
-    """--friction MU (default the package's :data:`~archrock.statics.friction.DEFAULT_FRICTION`)
-    with one meaning in every command: the Coulomb coefficient of every joint, used by the
-    routing of the dynamics (:func:`archrock.studies.enginestudy.choose_dynamics`) and by the
-    contact engine alike; ``none``: also 'none', sliding excluded."""
-    from ..statics.friction import DEFAULT_FRICTION
-
-    target = parser if group is None else group
-    target.add_argument(
-        "--friction", type=friction_value if none else positive_float,
-        default=DEFAULT_FRICTION, metavar="MU|none" if none else "MU",
-        help=f"Coulomb friction coefficient of every joint, finite and > 0 (default "
-             f"{DEFAULT_FRICTION:g}): where the four-link collapse needs more, the joints slide "
-             f"and the contact engine runs; the engine uses it too"
-             + ("; none: sliding excluded (Heyman's hypothesis)" if none else ""))
+    return resolve_friction(getattr(args, "friction", NOT_GIVEN))[0]
 
 
 def add_dynamics_option(parser, what: str = "the response"):
@@ -298,14 +228,11 @@ def add_dynamics_option(parser, what: str = "the response"):
              f"fourlink or engine as asked (fourlink where it is not valid: labelled so)")
 
 
-def friction_words(mu) -> str:
+def friction_words(args) -> str:
     """The friction a command ran with, in words, stated once in its output."""
-    from ..statics.friction import DEFAULT_FRICTION
+    from ._friction import NOT_GIVEN, resolve_friction
 
-    if mu is None:
-        return "friction: none (sliding excluded by the user, Heyman's hypothesis)"
-    return (f"friction: mu = {mu:g}" + (" (the default; --friction)" if mu == DEFAULT_FRICTION
-                                         else " (--friction)"))
+    return "friction: " + resolve_friction(getattr(args, "friction", NOT_GIVEN))[1]
 
 
 # ---------------------------------------------------------------------------- impact

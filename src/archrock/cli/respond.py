@@ -8,9 +8,10 @@ import sys
 
 from ..errors import ArchInputError, GeometryOutcome
 from ._parser import emit_json, finite_float, positive_float
-from .options import (add_dynamics_option, add_friction_option, add_geometry_options,
+from ._friction import add_friction_option
+from .options import (add_dynamics_option, add_geometry_options,
                       add_impact_options, add_motion_options, animation_arg, arch_from_args,
-                      figure_arg, friction_words, model_from_args, motion_from_args)
+                      figure_arg, friction_mu, friction_words, model_from_args, motion_from_args)
 
 
 def add_respond_parser(subparsers):
@@ -26,7 +27,8 @@ def add_respond_parser(subparsers):
     add_motion_options(p, required=True)
     add_impact_options(p)
     add_dynamics_option(p)
-    add_friction_option(p)
+    add_friction_option(p, "the routing of the dynamics (the joints slide where the four-link "
+                           "collapse needs more) and the contact engine")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress on stderr (the engine's run, the animation's frames)")
     p.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
@@ -65,7 +67,7 @@ def run_respond(args) -> int:
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     motion = motion_from_args(args)
     arch = arch_from_args(args)
-    choice = choose_dynamics(arch, args.dynamics, friction=args.friction)
+    choice = choose_dynamics(arch, args.dynamics, friction=friction_mu(args))
     if choice.engine:
         return _run_engine(args, arch, motion, choice, plot, animation)
     return _run_fourlink(args, arch, motion, choice, plot, animation)
@@ -104,16 +106,16 @@ def _run_fourlink(args, arch, motion, choice, plot, animation) -> int:
 
         animation = animate_response(shown, animation, progress=_progress(args))
     if args.json:
-        from ..reports.contact import block_kinds_count
+        from ..reports.contact import blocks_count
 
         d = {"model": "fourlink", "dynamics": choice.to_dict(),
-             "blocks": block_kinds_count(arch), **res.to_dict()}
+             "blocks": blocks_count(arch), **res.to_dict()}
         d["valid_here"] = why_not is None
         d["not_valid_reason"] = why_not
         emit_json(d)
         return 0
     text = format_response(res, model, motion)
-    head = [f"dynamics: four-link model ({choice.reason})", friction_words(args.friction)]
+    head = [f"dynamics: four-link model ({choice.reason})", friction_words(args)]
     if why_not is None:
         # the report as before, then the model that gave it and the friction it assumed
         print("\n".join([text] + head))
@@ -144,13 +146,13 @@ def _engine_settings(args, choice):
     """The engine's settings at the command's one friction; --friction none cannot be run."""
     from ..contact import EngineSettings
 
-    if args.friction is None:
+    if friction_mu(args) is None:
         raise ArchInputError(
             f"friction: none (sliding excluded) cannot be modelled by the contact engine, which "
             f"this arch needs ({choice.reason}); allowed a finite number > 0 (a large one, e.g. "
             f"--friction 10, for joints that hardly slide), or --dynamics fourlink for the "
             f"four-link answer, labelled not valid here")
-    return EngineSettings(friction=args.friction)
+    return EngineSettings(friction=friction_mu(args))
 
 
 def _run_engine(args, arch, motion, choice, plot, animation) -> int:
@@ -185,13 +187,13 @@ def _run_engine(args, arch, motion, choice, plot, animation) -> int:
         animation = animate_engine(res, None, arch, animation, progress=_progress(args))
     unused = _four_link_options(args)
     if args.json:
-        from ..reports.contact import block_kinds_count
+        from ..reports.contact import blocks_count
 
         emit_json({"model": "engine", "dynamics": choice.to_dict(), "arch": arch.name,
-                   "blocks": block_kinds_count(arch), "engine_run": run.to_dict(),
+                   "blocks": blocks_count(arch), "engine_run": run.to_dict(),
                    "unused_options": unused, **res.to_dict()})
         return 0
-    print(format_engine_outcome(res, arch, motion, choice, friction_words(args.friction)))
+    print(format_engine_outcome(res, arch, motion, choice, friction_words(args)))
     if unused:
         print(f"not used by the contact engine (four-link options): {', '.join(unused)}")
     for f in (plot, animation):

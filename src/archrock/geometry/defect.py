@@ -492,6 +492,13 @@ def apply_defect(arch: VoussoirArch, defect: Defect | str) -> VoussoirArch:
     d.check(arch)
     out = {"thickness": _thinner, "tilt": _tilted, "mortar": _unmortared,
            "pier-tilt": _pier_tilted}[d.kind](arch, d)
+    kinds = getattr(arch, "block_kinds", ())
+    if kinds and "voussoir" in kinds and len(set(kinds)) > 1 and not hasattr(out, "block_kinds"):
+        # an arch on piers stays one: its piers are still piers, counted and named apart
+        from .piers import ArchOnPiers
+
+        out = ArchOnPiers(out.intrados, out.extrados, out.density, out.name, out.loads,
+                          block_kinds=kinds)
     object.__setattr__(out, "name", f"{arch.name} [{d.spec()}]")
     return out
 

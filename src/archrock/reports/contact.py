@@ -4,31 +4,43 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.blocks import block_counts, describe_blocks
+
 __all__ = ["ramp_dict", "format_ramp", "engine_response_dict", "format_engine_response",
-           "block_counts", "block_kinds_count", "four_link_label"]
+           "blocks_words", "blocks_count", "four_link_label"]
 
 
-def block_kinds_count(arch) -> dict:
-    """{"voussoirs": n, "piers": m, "buttresses": b} (kinds present only) of ``arch``: kinds
-    from ``block_kinds`` where the arch has them, else the piers a geometry file's end blocks
-    are (:func:`archrock.dynamics.piers.pier_blocks`)."""
+def _found_piers(arch) -> tuple:
+    """The pier blocks of an arch that does not name its kinds (a geometry file such as
+    tests/data/heavy_piers.json): its heavy end blocks on level foundations
+    (:func:`archrock.dynamics.piers.pier_blocks`); () where the arch names them or has none."""
+    if getattr(arch, "block_kinds", None):
+        return ()
     from ..dynamics.piers import pier_blocks
 
-    kinds = list(getattr(arch, "block_kinds", None) or ("voussoir",) * arch.n)
-    if "pier" not in kinds and "buttress" not in kinds:
-        for i in pier_blocks(arch)[0]:
-            kinds[i] = "pier"
-    counts = {plural: kinds.count(kind) for kind, plural in
-              (("voussoir", "voussoirs"), ("pier", "piers"), ("buttress", "buttresses"))}
-    return {k: v for k, v in counts.items() if v}
+    return tuple(pier_blocks(arch)[0])
 
 
-def block_counts(arch) -> str:
-    """The blocks of ``arch`` counted by kind ("12 voussoirs, 2 piers"): an arch of 12
-    voussoirs on two piers is not an arch of 14 voussoirs."""
-    one = {"voussoirs": "voussoir", "piers": "pier", "buttresses": "buttress"}
-    return ", ".join(f"{n} {plural if n != 1 else one[plural]}"
-                     for plural, n in block_kinds_count(arch).items())
+def blocks_words(arch) -> str:
+    """The blocks of ``arch`` by kind (:func:`archrock.geometry.blocks.describe_blocks`); on a
+    file without kinds whose end blocks are piers, "12 voussoirs on two piers (found by their
+    geometry)": an arch of 12 voussoirs on two piers is not an arch of 14 voussoirs."""
+    piers = _found_piers(arch)
+    if not piers:
+        return describe_blocks(arch)
+    nv = arch.n - len(piers)
+    two = "two piers" if len(piers) == 2 else "a pier"
+    return f"{nv} voussoir{'s' if nv != 1 else ''} on {two} (found by their geometry)"
+
+
+def blocks_count(arch) -> dict:
+    """:func:`archrock.geometry.blocks.block_counts`, the piers of a file without kinds
+    counted as piers (:func:`blocks_words`)."""
+    counts = block_counts(arch)
+    piers = _found_piers(arch)
+    if piers:
+        counts.update(voussoirs=arch.n - len(piers), pier_blocks=len(piers), piers=len(piers))
+    return counts
 
 
 def _limit_hinges(limit, d):
@@ -59,7 +71,7 @@ def _range_line(opts: dict) -> list[str]:
 
 def format_ramp(result, limit, arch) -> str:
     s = result.settings
-    lines = [f"Contact engine ramp: {arch.name}, {arch.n} voussoirs, friction MU = {s.friction:g}",
+    lines = [f"Contact engine ramp: {arch.name}, {describe_blocks(arch)}, friction MU = {s.friction:g}",
              f"  engine: {s.steps_per_T:g} steps per T, {s.iterations} iterations, "
              f"slop {s.slop:g}, rounding {s.rounding:g} (x size)",
              *_range_line(result.ramp),
@@ -107,7 +119,7 @@ def format_engine_response(res, four_link, arch, motion, choice=None) -> str:
     """``archrock dem``'s text: the engine's run, the four-link run beside it (labelled not
     valid here where ``choice``, the routing of "auto", says so) and the sliding."""
     s = res.settings
-    lines = [f"Contact engine: {arch.name}, {block_counts(arch)}, {motion.name}, friction MU = "
+    lines = [f"Contact engine: {arch.name}, {blocks_words(arch)}, {motion.name}, friction MU = "
              f"{s.friction:g}, restitution {s.restitution:g}"]
     if choice is not None:
         lines.append(f"  governing model (--dynamics auto of respond and the studies): "

@@ -6,7 +6,7 @@ import math
 
 from ._common import format_failed, format_left_out, impact_summary
 
-__all__ = ["curves_summary", "format_curves"]
+__all__ = ["curves_summary", "format_curves", "format_resolution"]
 
 
 def curves_summary(curve, band=None, *, arch_name: str, pulse: str, sign: int, impact,
@@ -25,6 +25,20 @@ def curves_summary(curve, band=None, *, arch_name: str, pulse: str, sign: int, i
 
 def _fmt_windows(ws) -> str:
     return ", ".join(f"{lo:.3f}-{hi:.3f}" for lo, hi in ws) or "-"
+
+
+def format_resolution(curve) -> str:
+    """The line that says at which resolution the windows were searched (the grid's step in g at
+    each first collapse: a narrower window can lie between two grid points unseen)."""
+    res = [p.resolution for p in curve.points]
+    steps = [r["step_g"] for r in res]
+    lo, hi = min(steps), max(steps)
+    span = f"{lo:.4f} g" if hi - lo < 5e-5 else f"{lo:.4f}-{hi:.4f} g"
+    r = res[0]
+    return (f"survival windows searched on a geometric grid of {r['n_scan']} points stepping "
+            f"{100 * r['step_relative']:.2g}% of |a|: windows narrower than {span} (the step at "
+            f"the first collapse; {max(x['step_g_at_a_max'] for x in res):.3g} g at a_max) may "
+            f"be missed; edges of those found bisected to {r['edge_tol_g']} g")
 
 
 def format_curves(curve, band=None, *, arch_name: str, pulse: str, sign: int, impact,
@@ -48,6 +62,7 @@ def format_curves(curve, band=None, *, arch_name: str, pulse: str, sign: int, im
             qs = " ".join(("n/a" if math.isnan(v) else "inf" if not math.isfinite(v)
                            else f"{v:.3f}").rjust(7) for v in band.bands[:, i]) + " "
         lines.append(f"{p.duration:8.3f} {a:>12}  {qs}{(p.mode or '-'):<22} {_fmt_windows(p.windows)}")
+    lines.append(format_resolution(curve))
     if band is not None:
         lines.append(format_left_out(band.to_dict()["left_out"], "quantiles (inf: no collapse "
                                      "up to a_max)"))

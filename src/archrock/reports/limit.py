@@ -13,10 +13,11 @@ import numpy as np
 
 from ..geometry import Arch, ArchOnPiers
 from ..geometry.piers import hinge_place
+from ..geometry.blocks import block_counts, block_name, describe_blocks
 
 __all__ = ["limit_summary", "format_limit_table", "friction_summary", "friction_lines",
            "thrust_range_line", "min_pier_width_line", "friction_only_summary",
-           "format_friction_only"]
+           "format_friction_only", "format_governing"]
 
 
 def _on_piers(arch) -> bool:
@@ -71,6 +72,7 @@ def limit_summary(result, min_thickness=None, needed=None, friction=None,
         # the four-link model (respond, studies) holds only where four-hinge mechanisms govern
         "four_link_holds": result.four_hinge,
         "geometry": arch.to_dict(),
+        "blocks": block_counts(arch),
         **({} if isinstance(arch, Arch) else {"voussoirs": _voussoir_properties(arch)}),
         **({"block_kinds": list(arch.block_kinds)} if _on_piers(arch) else {}),
         "units": units,
@@ -196,10 +198,8 @@ def _piers_lines(arch) -> list[str]:
     """The blocks of an arch on piers, each with its kind (chain order: left pier from its
     foot up, the voussoirs, right pier from its top down; docs/piers.md)."""
     kinds = arch.block_kinds
-    counts = {k: kinds.count(k) for k in ("pier", "buttress", "voussoir") if k in kinds}
-    lines = [f"Arch: {arch.name}, {arch.n} blocks ("
-             + ", ".join(f"{c} {k}" + ("s" if c != 1 else "") for k, c in counts.items())
-             + f"; {type(arch).__name__}), size {arch.size:.6g} m, density {arch.density:g} kg/m^3",
+    lines = [f"Arch: {arch.name}, {arch.n} blocks: {describe_blocks(arch)}; "
+             f"{type(arch).__name__}, size {arch.size:.6g} m, density {arch.density:g} kg/m^3",
              "  block  kind        area [m^2]  mass [kg/m]  mass centre x [m]  y [m]"
              + ("  (mass and centre with loads)" if arch.loads else "")]
     cents = np.where(np.abs(arch.centroids) < 1e-12 * arch.size, 0.0, arch.centroids)
@@ -243,7 +243,9 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
     arch = result.arch
     lines = _circular_lines(arch) if isinstance(arch, Arch) else _general_lines(arch)
     for ld in arch.loads:
-        lines.append(f"  load: {ld.mass:g} kg/m on voussoir {ld.voussoir} at "
+        on = (f"block {ld.voussoir} ({block_name(arch, ld.voussoir)})" if _on_piers(arch)
+              else f"voussoir {ld.voussoir}")  # on piers the index is the chain's
+        lines.append(f"  load: {ld.mass:g} kg/m on {on} at "
                      f"({ld.at[0]:g}, {ld.at[1]:g}) m")
     lines += ["", "Limit analysis (horizontal forces = multiplier x weight; Heyman's hypotheses)",
               "  mechanism  k (kinematic)  k (static LP)  hinges A-D (joint edge)"]
@@ -303,7 +305,7 @@ def friction_only_summary(arch, why: str, min_thickness=None, friction=None,
            "no_frictionless_mechanism": why,
            "mechanism_l": None if fr is None else _sliding_mechanism(fr.l),
            "mechanism_r": None if fr is None else _sliding_mechanism(fr.r),
-           "four_link_holds": False, "geometry": arch.to_dict(),
+           "four_link_holds": False, "geometry": arch.to_dict(), "blocks": block_counts(arch),
            **({} if isinstance(arch, Arch) else {"voussoirs": _voussoir_properties(arch)}),
            "units": units}
     if fr is not None:
@@ -365,3 +367,13 @@ def _extras(arch, min_thickness, min_thickness_friction, thrust, min_pier_width)
     if min_pier_width is not None:
         lines.append(f"  {min_pier_width_line(min_pier_width)}")
     return lines
+
+
+def format_governing(gov, stated: str) -> str:
+    """The governing answer of ``archrock limit`` (a
+    :class:`~archrock.studies.governing.GoverningCapacity`): its friction stated once, the
+    governing line, what was left out and why."""
+    lines = ["", f"Governing capacity, friction {stated}", "  " + gov.line()]
+    for name, why in gov.left_out:
+        lines.append(f"  left out: {name}: {why}")
+    return "\n".join(lines)

@@ -43,6 +43,7 @@ __all__ = [
     "displaced_outlines",
     "displaced_hinges",
     "plot_defect_map",
+    "defect_norm",
     "plot_k_against_pier_height",
     "block_faces",
 ]
@@ -766,6 +767,11 @@ def plot_collapse_curve(curve, path: str | os.PathLike | None = None, band=None,
             ax.plot([tp, tp], [lo, hi], color="#27ae60", lw=3.0, alpha=0.8, zorder=2,
                     label=f"{name}: survival above first collapse" if first else None)
             first = False
+    res = [p.resolution for p in curve.points if hasattr(p, "resolution")]
+    if res:  # a list of windows says the step it was searched at (issue 30)
+        rel = max(r["step_relative"] for r in res)
+        ax.plot([], [], " ", label=f"windows searched at {100 * rel:.2g}% steps of $|a|$: "
+                                   f"narrower ones may be missed")
     sign = curve.points[0].sign if curve.points else -1
     k = curve.k_l if sign < 0 else curve.k_r
     if math.isfinite(k):
@@ -809,8 +815,10 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
     if ida is not None:
         f = ida.first_ims
         xs.append(f[np.isfinite(f)])
-    if fit is not None:
-        xs.append(np.asarray(fit.quantile([0.01, 0.99])))
+        xs.append(np.array([max(c.max_im for c in ida.curves)]))  # the range tried
+    if fit is not None:  # a plateau's top quantile is never reached: up to 99% of p_max
+        q = np.asarray(fit.quantile(np.array([0.01, 0.99]) * fit.p_max))
+        xs.append(q if fit.p_max >= 1.0 else q[:1])
     if not xs:
         raise ArchInputError("fit: nothing to plot (give a fit, stripes or an IDA result)")
     x_hi = max(float(np.max(v)) for v in xs if np.size(v)) * 1.15
@@ -821,36 +829,35 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
 
             with np.errstate(divide="ignore"):
                 lnx = np.log(x)
-                curves = [ndtr((lnx - math.log(t)) / b) for t in fit.theta_ci for b in fit.beta_ci]
+                curves = [fit.p_max * ndtr((lnx - math.log(t)) / b)
+                          for t in fit.theta_ci for b in fit.beta_ci]
             ax.fill_between(x, np.min(curves, axis=0), np.max(curves, axis=0), color="#9bb7d4",
                             alpha=0.5, lw=0, label=f"{fit.confidence:.0%} bootstrap band")
         elif fit.ci_note:  # asked for but not estimated: no zero-width band
             import textwrap
 
             ax.plot([], [], " ", label=textwrap.fill(f"bootstrap band n/a: {fit.ci_note}", 55))
+        plateau = (f", plateau $p_{{max}}$ = {fit.p_max:.3f}" if fit.p_max < 1.0 else "")
         ax.plot(x, fit.probability(x), color="#1f4e9c", lw=1.6,
                 label=f"{fit.method} fit: $\\theta$ = {fit.theta:.3g} {unit}, "
-                      f"$\\beta$ = {fit.beta:.2f} ($n$ = "
+                      f"$\\beta$ = {fit.beta:.2f}{plateau} ($n$ = "
                       + (_plural(fit.n_records, 'analysis', 'analyses') if fit.method == "mle"
                          else _plural(fit.n_records, 'curve')) + ")")
+        if fit.p_max < 1.0:  # the data level off: say where, rather than run to P = 1
+            ax.axhline(fit.p_max, color="#1f4e9c", ls=":", lw=1.0,
+                       label=f"upper asymptote: P $\\leq$ {fit.p_max:.3f} over the range tried")
     if stripes is not None:
         ax.plot(stripes.levels, stripes.collapses / stripes.trials, "o", color="#c0392b",
                 label=f"stripes: collapsed fraction of {_plural(int(stripes.trials[0]), 'analysis', 'analyses')}")
     if ida is not None:
-        f = np.sort(ida.first_ims)
-        n = f.size
-        fin = np.isfinite(f)
-        # from P = 0 at the first collapse, so that one curve still draws its jump
-        ax.step(np.r_[f[fin][:1], f[fin]], np.r_[0.0, (np.arange(n)[fin] + 1) / n][:fin.sum() + 1],
-                where="post", color="#444444", lw=1.0,
-                label=f"IDA first collapses, empirical ($n$ = {_plural(n, 'curve')}, "
-                      f"{n - int(fin.sum())} never)")
+        _ida_steps(ax, ida, unit)
     ax.set_xlabel(im_label)
     ax.set_ylabel("$P(\\mathrm{collapse} \\mid \\mathrm{IM})$")
     ax.set_xlim(0, x_hi)
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7.5, frameon=False, loc="lower right")
+    nothing = ida is not None and not np.isfinite(ida.first_ims).any()
+    ax.legend(fontsize=7.5, frameon=False, loc="upper left" if nothing else "lower right")
     src = stripes if stripes is not None else None
     if src is not None:
         n_rec, n_arch, failed = len(src.records), len(src.arches), len(src.failed)
@@ -867,6 +874,31 @@ def plot_fragility(fit, stripes=None, path: str | os.PathLike | None = None, *, 
     if fig is not None and path is not None:
         save_figure(fig, path, dpi=dpi)
     return fig if fig is not None else ax.figure
+
+
+def _ida_steps(ax, ida, unit: str) -> None:
+    """The IDA's first collapses as an empirical CDF over all its curves (those that never
+    collapse keep it below 1: the plateau), run on to the top of the range tried; where no
+    curve collapses, the observations at P = 0 and the sentence that says so."""
+    f = np.sort(ida.first_ims)
+    n = f.size
+    fin = np.isfinite(f)
+    top = max(c.max_im for c in ida.curves)
+    never = n - int(fin.sum())
+    if not fin.any():
+        ax.plot([0.0, top], [0.0, 0.0], color="#444444", lw=1.0,
+                label=f"IDA: no collapse up to {top:.3g} {unit} "
+                      f"({_plural(n, 'curve')}, none collapsed)")
+        up = ida.range_tried()["p_upper_95"]
+        ax.plot([0.0, top], [up, up], color="#444444", ls="--", lw=1.0,
+                label=f"P(collapse) $\\leq$ {up:.3f} up to {top:.3g} {unit} (one-sided 95%)")
+        return
+    # from P = 0 at the first collapse, so that one curve still draws its jump; on to the top
+    xs = np.r_[f[fin][:1], f[fin], max(top, float(f[fin][-1]))]
+    ys = np.r_[0.0, (np.arange(n)[fin] + 1) / n]
+    ax.step(xs, np.r_[ys, ys[-1]], where="post", color="#444444", lw=1.0,
+            label=f"IDA first collapses, empirical ($n$ = {_plural(n, 'curve')}, "
+                  f"{never} never up to {top:.3g} {unit})")
 
 
 # ---------------------------------------------------------------------------- ensembles
@@ -929,10 +961,36 @@ def plot_multiplier_histograms(df, path: str | os.PathLike, dpi: int = 150,
 
 
 # ---------------------------------------------------------------------------- defect maps
-def _defect_panel(ax, dmap, values, label, fmt, cmap, vmax):
+#: The defect map's colours: a diverging map centred on 0, losses red, gains blue.
+DEFECT_CMAP = "RdBu_r"
+
+
+def defect_norm(values):
+    """The colour scale of a defect map: symmetric about 0 (white) over +-max|value|, so that
+    a small gain is pale and a large loss dark, whatever their signs (a 0.3% gain once took the
+    darkest blue of a scale whose blue half ran only to -0.3%)."""
+    from matplotlib.colors import Normalize
+
+    v = np.asarray(values, float)
+    v = v[np.isfinite(v)]
+    top = float(np.abs(v).max()) if v.size else 0.0
+    top = top if top > 0 else 1.0  # all unchanged: white over an arbitrary +-1
+    return Normalize(vmin=-top, vmax=top)
+
+
+def _short_place(place: str) -> str:
+    """A block's or joint's name for a label on the drawing: "voussoir 3" -> "3", "left pier
+    course 2" -> "L pier 2", "arch joint 4" -> "4", "right pier foot" -> "R foot"."""
+    for word in ("voussoir ", "arch joint ", "joint "):
+        if place.startswith(word):
+            return place[len(word):]
+    out = place.replace("left ", "L ").replace("right ", "R ").replace(" course ", " ")
+    return out.replace("springing (pier top)", "springing").replace("bed joint ", "bed ")
+
+
+def _defect_panel(ax, dmap, values, label, fmt):
     from matplotlib import colormaps
     from matplotlib.cm import ScalarMappable
-    from matplotlib.colors import Normalize, TwoSlopeNorm
     from matplotlib.patches import Polygon
 
     arch = dmap.arch
@@ -940,24 +998,22 @@ def _defect_panel(ax, dmap, values, label, fmt, cmap, vmax):
     finite = np.isfinite(values)
     if finite.any():  # round-off (an unchanged multiplier recomputed) is no gain nor loss
         values[finite & (np.abs(values) <= 1e-9 * max(np.abs(values[finite]).max(), 1e-300))] = 0.0
-    lo = float(np.nanmin(values)) if finite.any() else 0.0
-    if lo < 0:  # some defects raise the capacity: gains blue, losses red, 0 white
-        cmap = colormaps["RdBu_r"]
-        norm = TwoSlopeNorm(vcenter=0.0, vmin=lo, vmax=max(vmax, 1e-12 - lo * 1e-6))
-    else:
-        norm = Normalize(vmin=0.0, vmax=vmax)
+    cmap, norm = colormaps[DEFECT_CMAP], defect_norm(values)
     draw_arch(ax, arch, facecolor="#f4f4f4")
     size = arch.size
     for m, i in enumerate(dmap.indices):
         v = values[m]
         colour = cmap(norm(v)) if np.isfinite(v) else "#bbbbbb"
         text = fmt.format(v) if np.isfinite(v) else "n/a"
+        name = _short_place(dmap.places[m])
         if dmap.target == "voussoir":
+            pier = dmap.groups[m] == "piers"
             ax.add_patch(Polygon(voussoir_outline(arch, int(i)), closed=True, facecolor=colour,
-                                 edgecolor=STYLE["voussoir_edge"], linewidth=0.8, zorder=1.5))
+                                 edgecolor=STYLE["voussoir_edge"], linewidth=0.8, zorder=1.5,
+                                 hatch="//" if pier else None))
             x, y = arch.area_centroids[int(i)]
-            dark = np.isfinite(v) and abs(norm(v) - (0.5 if lo < 0 else 0.0)) > 0.3
-            ax.text(x, y, f"{int(i)}\n{text}", ha="center", va="center", fontsize=7.5, zorder=3,
+            dark = np.isfinite(v) and abs(norm(v) - 0.5) > 0.3
+            ax.text(x, y, f"{name}\n{text}", ha="center", va="center", fontsize=7.5, zorder=3,
                     color="white" if dark else "black")
         else:
             (x0, y0), (x1, y1) = arch.joint_points[int(i)]
@@ -965,24 +1021,33 @@ def _defect_panel(ax, dmap, values, label, fmt, cmap, vmax):
             u = np.array([x1 - x0, y1 - y0])
             u /= np.hypot(*u)
             at = (x1 + 0.12 * size * u[0], y1 + 0.12 * size * u[1])
-            ax.text(*at, f"{int(i)}\n{text}", ha="center", va="center", fontsize=7.5, zorder=3)
+            ax.text(*at, f"{name}\n{text}", ha="center", va="center", fontsize=7.5, zorder=3)
             ax.update_datalim([at, (at[0], at[1] + 0.06 * size)])  # room for the label
     sm = ScalarMappable(norm=norm, cmap=cmap)
-    ax.figure.colorbar(sm, ax=ax, shrink=0.7, label=label)
+    bar = ax.figure.colorbar(sm, ax=ax, shrink=0.7)
+    bar.set_label(label, fontsize=8)
     ax.set_axis_off()
     ax.autoscale_view()
+
+
+def _worst_text(dmap, ties) -> str:
+    from ..studies.defectmap import names_text
+
+    m = int(np.flatnonzero(dmap.indices == ties[0])[0])
+    return (f"{names_text([dmap.place(t) for t in ties])}, -{dmap.loss[m]:.4f} g "
+            f"({dmap.relative_loss[m]:.1%})")
 
 
 def plot_defect_map(dmap, path: str | os.PathLike | None = None, *, dpi: int = 150,
                     relative: bool = True):
     """The arch with each voussoir (or joint) coloured by the drop of min(k_l, k_r) when it
-    alone carries the map's defect (as a % of the undamaged k with ``relative``, else in g);
+    alone carries the map's defect (as a % of the undamaged k with ``relative``, else in g) on
+    a diverging scale centred on 0 (:func:`defect_norm`: losses red, gains blue, symmetric);
     with a pulse, a second panel with the drop of the first collapse amplitude.  Each one is
-    labelled with its number and the value.  Writes ``path`` when given; returns the figure."""
+    labelled with its name (voussoirs by their number from the arch's left springing, pier
+    courses hatched and named "L pier 1") and the value; on piers the title gives the worst
+    voussoir and the worst pier defect apart.  Writes ``path`` when given; returns the figure."""
     _require_matplotlib()
-    from matplotlib import colormaps
-
-    cmap = colormaps["OrRd"]
     panels = [("k", dmap.relative_loss if relative else dmap.loss)]
     amp = dmap.amplitude_loss
     if amp is not None and dmap.amplitude0 and np.isfinite(dmap.amplitude0):
@@ -990,26 +1055,28 @@ def plot_defect_map(dmap, path: str | os.PathLike | None = None, *, dpi: int = 1
     fig, axes = new_figure(len(panels), 1, figsize=(6.4, 3.9 * len(panels)))
     for ax, (what, vals) in zip(axes[:, 0], panels):
         vals = np.asarray(vals, float) * (100.0 if relative else 1.0)
-        finite = vals[np.isfinite(vals)]
-        vmax = max(float(finite.max()) if finite.size else 0.0, 1e-12)
         if what == "k":
-            lab = "capacity lost, drop of min($k_l$, $k_r$)"
-            title = (f"{dmap.arch.name}:\n{dmap.to_dict()['description']}\n"
-                     f"undamaged min($k_l$, $k_r$) = {dmap.k0:.4f} g; worst: {dmap.target}"
-                     f"{'s' if len(dmap.worst_all) > 1 else ''} "
-                     f"{', '.join(map(str, dmap.worst_all))}, "
-                     f"-{dmap.loss.max():.4f} g ({dmap.relative_loss.max():.1%})")
+            lab = "capacity lost"
+            head = f"{dmap.arch.name}:\n{dmap.to_dict()['description']}\n"
+            base = f"undamaged min($k_l$, $k_r$) = {dmap.k0:.4f} g"
+            if dmap.on_piers and dmap.worst_in("arch") and dmap.worst_pier_all:
+                kind = "voussoir" if dmap.target == "voussoir" else "arch joint"
+                title = (head + f"{base}; worst {kind}: {_worst_text(dmap, dmap.worst_all)}\n"
+                         f"worst pier defect: {_worst_text(dmap, dmap.worst_pier_all)}")
+            else:
+                title = head + f"{base}; worst: {_worst_text(dmap, dmap.worst_all)}"
         else:
             p = dmap.pulse
-            lab = "drop of the first collapse amplitude"
+            lab = "first collapse amplitude lost"
             sgn = "both signs (the smaller)" if p["sign"] == 0 else f"sign {p['sign']:+d}"
             title = (f"{p['kind']} pulse, $t_p$ = {p['duration']:g} s, {sgn}: "
-                     f"undamaged first collapse at {dmap.amplitude0:.3f} g"
-                     + ("\n(negative: the damaged arch needs a stronger pulse)"
-                        if finite.size and finite.min() < 0 else ""))
-        lab += " [%]" if relative else " [g]"
-        lab = ("gain < 0 < " if finite.size and finite.min() < 0 else "") + lab
-        _defect_panel(ax, dmap, vals, lab, "{:.1f}%" if relative else "{:.3f}", cmap, vmax)
+                     f"undamaged first collapse at {dmap.amplitude0:.3f} g")
+        if relative:
+            lab += " [% of undamaged k]" if what == "k" else " [% of undamaged]"
+        else:
+            lab += " [g]"
+        lab += "\nred: lost, blue: gained"
+        _defect_panel(ax, dmap, vals, lab, "{:.1f}%" if relative else "{:.3f}")
         ax.set_title(title, fontsize=8.5)
     if path is not None:
         save_figure(fig, path, dpi=dpi)

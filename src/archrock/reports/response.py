@@ -35,7 +35,7 @@ def format_engine_outcome(res, arch, motion, choice, friction_line: str) -> str:
     """The contact engine's response (:class:`archrock.contact.motion.ContactResponse`) of
     ``arch`` to ``motion`` as the governing answer: outcome, peak, sliding, and why the engine
     ran (``choice``, a DynamicsChoice); no four-link number."""
-    from .contact import block_counts
+    from .contact import blocks_words
 
     s = res.settings
     outcome = (f"COLLAPSED at t = {res.t_collapse:.3f} s (a block's mass centre dropped by "
@@ -45,7 +45,7 @@ def format_engine_outcome(res, arch, motion, choice, friction_line: str) -> str:
     ms = res.max_sliding
     j = int(ms.argmax())
     return "\n".join([
-        f"arch: {arch.name} ({block_counts(arch)})",
+        f"arch: {arch.name} ({blocks_words(arch)})",
         f"dynamics: contact engine ({choice.reason})",
         friction_line + f"; restitution {s.restitution:g}",
         f"ground motion: {motion.name} (duration {motion.duration:g} s, PGA {motion.pga_g:.3f} g)",

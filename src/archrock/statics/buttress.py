@@ -32,7 +32,7 @@ from .limit import limit_analysis
 from .lp import ThrustLine, _stands, _statics, _thrust_from_x
 
 __all__ = ["MinimumPierWidth", "minimum_pier_width", "PierHeightTable",
-           "k_against_pier_height", "MAX_WIDTH_FACTOR", "MAX_HEIGHTS"]
+           "k_against_pier_height", "MAX_WIDTH_FACTOR", "MAX_HEIGHTS", "piers_cannot_stand"]
 
 #: Default bound of the width search, in units of the arch's extent (its span): a pier wider
 #: than 20 spans is no pier.  The caller may raise it to 100 spans (with_piers' own bound).
@@ -266,3 +266,82 @@ def k_against_pier_height(arch: VoussoirArch, width: float, heights, *, courses:
     return PierHeightTable(hs, np.array(out["k_l"]), np.array(out["k_r"]), tuple(out["ll"]),
                            tuple(out["lr"]), tuple(out["pl"]), tuple(out["pr"]), float(width),
                            int(courses), float(batter), span, arch.name)
+
+
+# ---------------------------------------------------------------------------- piers that cannot stand
+#: Relative tolerance of the least pier width a "cannot stand on its piers" message gives (the
+#: width is rounded up to the millimetre there; 1e-5 takes ~18 linear programs).
+MESSAGE_TOL = 1e-5
+#: Largest structure (blocks) whose message searches the least pier width (each step one LP).
+MESSAGE_MAX_BLOCKS = 400
+
+
+def _equal_piers(arch, sizes) -> dict | None:
+    """{height, width, courses, batter} of the two equal plumb piers of ``arch`` as
+    :func:`~archrock.geometry.with_piers` builds them (rebuilt and compared joint for joint),
+    or None (unequal, stepped, leaning or reshaped piers: no one width to give)."""
+    from ..geometry.piers import arch_without_piers
+
+    left, right = sizes.get("left"), sizes.get("right")
+    if not left or not right or left["kind"] != right["kind"] or \
+            left["blocks"] != right["blocks"] or left["lean_deg"] or right["lean_deg"]:
+        return None
+    h, w, foot = left["height"], left["width_top"], left["width_foot"]
+    if not all(map(math.isfinite, (h, w, foot))) or h <= 0:
+        return None
+    batter = max(foot - w, 0.0) / h
+    try:
+        rebuilt = with_piers(arch_without_piers(arch), h, w, courses=left["blocks"],
+                             batter=batter)
+    except Exception:  # noqa: BLE001 - piers with_piers cannot build: no width to give
+        return None
+    if rebuilt.n != arch.n or not np.allclose(rebuilt.joint_points, arch.joint_points,
+                                              rtol=0, atol=1e-7 * arch.size):
+        return None
+    return {"height": h, "width": w, "courses": left["blocks"], "batter": batter,
+            "kind": left["kind"]}
+
+
+def piers_cannot_stand(arch, detail: str = "") -> str | None:
+    """The one-line reason an arch on piers cannot stand under its own weight where its
+    voussoirs alone stand on rigid supports: the piers are to blame, and (two equal piers built
+    as :func:`~archrock.geometry.with_piers` builds them) the least width that carries it,
+    :func:`minimum_pier_width` to :data:`MESSAGE_TOL`.  None where it does not apply (no piers,
+    the voussoirs fall on rigid supports too, more than :data:`MESSAGE_MAX_BLOCKS` blocks).
+    ``detail``: e.g. the multipliers, "(k_l = -0.02593, k_r = -0.02593)"."""
+    from ..geometry.piers import arch_without_piers, pier_sizes
+
+    if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks or \
+            arch.n > MESSAGE_MAX_BLOCKS:
+        return None
+    bare = arch_without_piers(arch)
+    if not _stands(bare):
+        return None  # it falls on rigid supports too: not the piers' fault
+    sizes = pier_sizes(arch)
+    eq = _equal_piers(arch, sizes)
+    kind = (eq or next(iter(sizes.values()), {"kind": "pier"}))["kind"]
+    kinds = "buttresses" if kind == "buttress" else "piers"
+    detail = f" {detail}" if detail else ""
+    if eq is None:
+        desc = "; ".join(f"{side}: {s['width_top']:.4g} m wide, {s['height']:.4g} m high"
+                         for side, s in sizes.items())
+        return (f"arch: it cannot stand on its {kinds} ({desc}) under its own weight{detail}; "
+                f"on rigid supports it stands: its {kinds} cannot carry its thrust (archrock "
+                f"limit --min-pier-width H gives the least width of two equal piers H m high; "
+                f"docs/piers.md)")
+    h, w = eq["height"], eq["width"]
+    each = f"of {eq['courses']} courses, " if eq["courses"] > 1 else ""
+    batter = f", batter {eq['batter']:.4g}" if eq["batter"] > 0 else ""
+    head = (f"arch: it cannot stand on its {kinds} (two {kinds} {each}{w:.4g} m wide, "
+            f"{h:.4g} m high{batter}) under its own weight{detail}; on rigid supports it stands")
+    try:
+        mpw = minimum_pier_width(bare, h, courses=eq["courses"], batter=eq["batter"],
+                                 tol=MESSAGE_TOL)
+    except CannotStandError:
+        return (f"{head}, and no {kind} {h:.4g} m high up to "
+                f"{MAX_WIDTH_FACTOR:g} times its span wide carries it: lower the {kinds} "
+                f"(docs/piers.md)")
+    need = math.ceil(mpw.width * 1000) / 1000  # a width one can type that stands
+    return (f"{head}, and {kinds} {h:.4g} m high carry it from {mpw.width:.4f} m wide: give the "
+            f"{kinds} a width of {need:g} m or more (the least pier width, "
+            f"archrock.statics.buttress.minimum_pier_width; docs/piers.md)")

@@ -65,6 +65,12 @@ def cannot_stand_message(arch, detail: str) -> str:
     """The one-line reason an arch cannot stand, ``detail`` (e.g. the multipliers) included:
     the load it cannot carry and what would carry it, where the arch without its loads stands;
     otherwise its self-weight, with the advice to thicken it."""
+    # on piers that cannot carry the arch's thrust the piers are to blame, not the thickness
+    from .buttress import piers_cannot_stand
+
+    piers = piers_cannot_stand(arch, detail)
+    if piers is not None:
+        return piers
     own = (f"arch: it cannot stand under its own weight {detail}; increase the thickness")
     loads = tuple(getattr(arch, "loads", ()) or ())
     if not loads or arch.n > _MAX_VOUSSOIRS:

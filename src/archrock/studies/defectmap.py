@@ -9,6 +9,13 @@ min(k_l, k_r), or of the first collapse amplitude, from the undamaged arch's.
 
 An arch that can no longer stand under its own weight has lost all its capacity: its k_l and
 k_r are recorded as NaN (null in JSON), ``stands`` False, and its loss is the whole nominal k.
+
+On an arch on piers the indices are the chain's (block 0 the left pier's foot course), and each
+damaged block or joint is named and grouped by kind (:attr:`DefectMap.places`,
+:attr:`DefectMap.groups`): the arch's own voussoirs and joints ("voussoir 3", numbered from the
+arch's left springing; "arch joint 2") apart from the piers' courses and bed joints ("left pier
+course 1", "right pier foot").  A thinned pier course is a pier defect: the worst of each group
+is reported apart (:attr:`DefectMap.worst_all`, :attr:`DefectMap.worst_pier_all`).
 """
 
 from __future__ import annotations
@@ -22,11 +29,62 @@ import numpy as np
 from .._records import readonly_arrays
 from ..errors import UNUSABLE_ARCH, ArchInputError, CannotStandError, GeometryOutcome
 from ..geometry import Defect, VoussoirArch, apply_defect
+from ..geometry.blocks import block_counts, block_name
 from ..geometry.defect import defect_base
+from ..geometry.piers import _pier_runs, joint_place
 from ..statics.kinematic import kinematic_mechanisms
 from .runner import UNSET, resolve_settings
 
-__all__ = ["DefectMap", "defect_map"]
+__all__ = ["DefectMap", "defect_map", "defect_places", "names_text", "worst_summary"]
+
+#: The groups of a defect map's rows: the arch's own voussoirs and joints, and the piers'
+#: courses and bed joints (foundations included).
+GROUPS = ("arch", "piers")
+
+
+def names_text(places, sep: str = ", ", tied: str = " (tied)") -> str:
+    """'voussoir 2', 'voussoirs 2, 6 (tied)', 'left pier, right pier (tied)': damaged places
+    in words (``sep`` between several names, ``tied`` after them)."""
+    places = list(places)
+    if len(places) == 1:
+        return places[0]
+    for word in ("voussoir", "arch joint", "joint"):
+        if all(p.startswith(word + " ") for p in places):
+            return f"{word}s {sep.join(p[len(word) + 1:] for p in places)}{tied}"
+    return sep.join(places) + tied
+
+
+def worst_summary(dmap, sep: str = " and ", tied: str = "") -> dict:
+    """The worst defects of ``dmap`` in words, the arch's and (on piers) the piers' apart:
+    {"arch": {"where", "k", "relative_loss"}, "piers": the same or None, "label": "worst
+    defect" or "worst voussoir defect"} (the assessment report's summary rows)."""
+    def one(ties):
+        m = int(np.flatnonzero(dmap.indices == ties[0])[0])
+        return {"where": names_text([dmap.place(t) for t in ties], sep, tied),
+                "k": float(dmap.k[m]), "relative_loss": float(dmap.relative_loss[m])}
+    apart = bool(dmap.worst_in("arch") and dmap.worst_pier_all)
+    what = "voussoir" if dmap.target == "voussoir" else "arch joint"
+    return {"arch": one(dmap.worst_all), "piers": one(dmap.worst_pier_all) if apart else None,
+            "label": f"worst {what} defect" if apart else "worst defect"}
+
+
+def defect_places(arch, target: str, indices) -> tuple[tuple, tuple]:
+    """(places, groups) of the damaged ``indices`` (chain order) of ``arch``: each block's
+    :func:`~archrock.geometry.blocks.block_name` or each joint's
+    :func:`~archrock.geometry.piers.joint_place`, and "arch" or "piers" for each (a springing
+    joint, between a pier top and the arch, is the arch's)."""
+    kinds = tuple(getattr(arch, "block_kinds", ()) or ())
+    left, right = _pier_runs(kinds) if kinds else ((), ())
+    cl, cr, n = len(left), len(right), arch.n
+    places, groups = [], []
+    for i in (int(i) for i in indices):
+        if target == "voussoir":
+            places.append(block_name(arch, i))
+            groups.append("piers" if kinds and kinds[i] != "voussoir" else "arch")
+        else:
+            places.append(joint_place(arch, i) if kinds else f"joint {i}")
+            groups.append("piers" if i < cl or i > n - cr else "arch")
+    return tuple(places), tuple(groups)
 
 
 @dataclass(frozen=True)
@@ -57,8 +115,14 @@ class DefectMap:
     amplitude0: float | None = None
     amplitudes: np.ndarray | None = None
     method: str = "kinematic enumeration of each damaged arch (archrock.statics.limit)"
+    places: tuple = ()
+    groups: tuple = ()
 
     def __post_init__(self):
+        if not self.places or not self.groups:
+            places, groups = defect_places(self.arch, self.defect.target, self.indices)
+            object.__setattr__(self, "places", places)
+            object.__setattr__(self, "groups", groups)
         readonly_arrays(self)
 
     # ------------------------------------------------------------------ derived
@@ -106,6 +170,23 @@ class DefectMap:
         return self.amplitude0 - a
 
     @property
+    def on_piers(self) -> bool:
+        """Whether some damaged block or joint is a pier's (reported apart)."""
+        return "piers" in self.groups
+
+    def worst_in(self, group: str) -> tuple:
+        """Every index of ``group`` ("arch" or "piers") whose loss is within 1e-9 k0 of that
+        group's largest (mirror images on a symmetric arch tie); () where it has none."""
+        if group not in GROUPS:
+            raise ArchInputError(f"group: {group!r}; allowed {', '.join(GROUPS)}")
+        rows = np.flatnonzero(np.array(self.groups) == group)
+        if rows.size == 0:
+            return ()
+        loss = self.loss[rows]
+        top = rows[loss >= loss.max() - 1e-9 * self.k0]
+        return tuple(int(self.indices[t]) for t in top)
+
+    @property
     def worst(self) -> int:
         """The voussoir (or joint) whose damage lowers min(k_l, k_r) most (the first of
         :attr:`worst_all`)."""
@@ -113,11 +194,25 @@ class DefectMap:
 
     @property
     def worst_all(self) -> tuple:
-        """Every voussoir (or joint) whose loss is within 1e-9 k0 of the largest: mirror images
-        on a symmetric arch tie."""
-        loss = self.loss
-        top = np.flatnonzero(loss >= loss.max() - 1e-9 * self.k0)
-        return tuple(int(self.indices[t]) for t in top)
+        """Every voussoir (or joint) of the arch itself whose loss is within 1e-9 k0 of the
+        largest: mirror images on a symmetric arch tie.  On piers the piers' courses and joints
+        are apart (:attr:`worst_pier_all`); where only they were damaged, theirs."""
+        return self.worst_in("arch") or self.worst_in("piers")
+
+    @property
+    def worst_pier_all(self) -> tuple:
+        """The worst pier courses (or pier joints), as :attr:`worst_all`; () without piers."""
+        return self.worst_in("piers")
+
+    def place(self, index: int) -> str:
+        """The name of damaged index ``index`` ("voussoir 3", "left pier course 1")."""
+        return self.places[int(np.flatnonzero(self.indices == int(index))[0])]
+
+    def _worst_dict(self, ties: tuple) -> dict:
+        m = int(np.flatnonzero(self.indices == ties[0])[0])
+        return {self.target: ties[0], "ties": list(ties), "places": [self.place(t) for t in ties],
+                "k": float(self.k[m]), "loss": float(self.loss[m]),
+                "relative_loss": float(self.relative_loss[m])}
 
     @property
     def hinges_changed(self) -> np.ndarray:
@@ -129,7 +224,8 @@ class DefectMap:
         rows = []
         amp_loss = self.amplitude_loss
         for m, i in enumerate(self.indices):
-            row = {self.target: int(i), "k_l": float(self.k_l[m]), "k_r": float(self.k_r[m]),
+            row = {self.target: int(i), "place": self.places[m], "group": self.groups[m],
+                   "k_l": float(self.k_l[m]), "k_r": float(self.k_r[m]),
                    "k": float(self.k[m]), "loss": float(self.loss[m]),
                    "relative_loss": float(self.relative_loss[m]),
                    "hinges_l": self.hinges_l[m], "hinges_r": self.hinges_r[m],
@@ -141,19 +237,23 @@ class DefectMap:
             if self.notes[m]:
                 row["note"] = self.notes[m]
             rows.append(row)
-        worst = int(np.flatnonzero(self.indices == self.worst)[0])
+        each = f"each {self.target}" + (" and pier course" if self.target == "voussoir"
+                                        and self.on_piers else "")
         return {
             "arch": self.arch.name, "defect": {**self.defect.to_dict(), "index": None,
                                                "spec": self.defect.spec().split(":", 1)[1]},
             "description": self.defect.describe().replace(f"{self.target} {self.defect.index}",
-                                                          f"each {self.target} in turn"),
-            "target": self.target,
+                                                          f"{each} in turn"),
+            "target": self.target, "blocks": block_counts(self.arch),
+            "numbering": ("indices in chain order (0: the left pier's foot course); 'place' "
+                          "names each, voussoirs numbered from the arch's left springing")
+            if self.on_piers else "from the left springing",
             "nominal": {"k_l": self.k_l0, "k_r": self.k_r0, "k": self.k0,
                         "hinges_l": self.hinges_l0, "hinges_r": self.hinges_r0,
                         **({"amplitude_g": self.amplitude0} if self.pulse else {})},
-            "worst": {self.target: self.worst, "ties": list(self.worst_all), "k": float(self.k[worst]),
-                      "loss": float(self.loss[worst]),
-                      "relative_loss": float(self.relative_loss[worst])},
+            "worst": self._worst_dict(self.worst_all),
+            **({"worst_pier": self._worst_dict(self.worst_pier_all)}
+               if self.worst_pier_all and self.worst_in("arch") else {}),
             "pulse": self.pulse,
             "rows": rows,
             "method": self.method,
@@ -244,6 +344,7 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     if pulse:
         amp0 = _amplitude(base, base, impact, pulse, a_max, n_scan, tol)
     k_l, k_r, amps, h_l, h_r, notes = [], [], [], [], [], []
+    places, groups = defect_places(arch, template.target, idx)
     for m, i in enumerate(idx):
         d = template.at_index(int(i))
         note = ""
@@ -269,7 +370,7 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
             amps.append(a)
         notes.append(note)
         if progress is not None:
-            progress(f"  {template.target} {int(i)} ({m + 1}/{len(idx)}): k_l = {kl:.4f}, "
+            progress(f"  {places[m]} ({m + 1}/{len(idx)}): k_l = {kl:.4f}, "
                      f"k_r = {kr:.4f}" + (f", amplitude {amps[-1]:.4f} g" if pulse else "")
                      + f"  [{time.monotonic() - t0:.1f} s]")
     how = "kinematic enumeration of each damaged arch (archrock.statics.limit)"
@@ -280,4 +381,4 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     return DefectMap(arch, template.at_index(int(idx[0])), idx.astype(int), float(k_l0),
                      float(k_r0), h_l0, h_r0, np.array(k_l, float), np.array(k_r, float),
                      tuple(h_l), tuple(h_r), tuple(notes), pulse, amp0,
-                     np.array(amps, float) if pulse else None, how)
+                     np.array(amps, float) if pulse else None, how, places, groups)

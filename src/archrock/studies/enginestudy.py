@@ -523,8 +523,13 @@ def engine_curves_section(ctx, choice: DynamicsChoice):
     arches (an engine run takes seconds)."""
     from .assessment import Figure, Paragraph, Section, Table
 
+    from ..contact.settings import EngineSettings
+
     cfg = ctx.config
-    curve = engine_collapse_curve(ctx.arch, cfg.durations, "oppenheim", -1,
+    # the report's one friction (the choice carries it; None: sliding excluded, the default)
+    run = EngineRun(settings=EngineSettings(friction=choice.friction or cfg.friction
+                                            or EngineSettings().friction))
+    curve = engine_collapse_curve(ctx.arch, cfg.durations, "oppenheim", -1, run=run,
                                   progress=ctx.progress)
     rows = tuple((f"{d:g}", "no collapse up to 3 g" if not math.isfinite(a) else f"{a:.3f}",
                   "contact engine") for d, a in zip(curve.durations, curve.amplitudes))

@@ -119,6 +119,12 @@ class FragilityFit:
         resampled data could not identify a fit (None without bootstrap).
     ci_note: why an interval asked for is None (it cannot be estimated: the resamples cannot
         vary), or what it covers; None otherwise.
+    p_max: upper asymptote of the curve, P = p_max * Phi(ln(x/theta)/beta): 1 for the plain
+        lognormal; below 1 where the data level off (some records never collapse the arch
+        whatever the scale tried) and a likelihood ratio test prefers the plateau
+        (:func:`level_off`).  theta, beta are then those of the records that do collapse.
+    level_off: the test that chose between the two (a dict: statistic, p-value, the plain
+        lognormal's theta, beta and log-likelihood, and a sentence), None where not tested.
     """
 
     theta: float
@@ -132,8 +138,12 @@ class FragilityFit:
     n_boot: int | None = None
     n_boot_failed: int | None = None
     ci_note: str | None = None
+    p_max: float = 1.0
+    level_off: dict | None = None
 
     def __post_init__(self):
+        if not (0.0 < self.p_max <= 1.0):
+            raise ArchInputError(f"p_max: must be in (0, 1], got {self.p_max!r}")
         if not (math.isfinite(self.theta) and self.theta > 0):
             raise ArchInputError(f"theta: must be > 0 and finite, got {self.theta!r}")
         if not (math.isfinite(self.beta) and self.beta > 0):
@@ -147,14 +157,15 @@ class FragilityFit:
         if np.any(np.isnan(arr)) or np.any(arr < 0):
             raise ArchInputError("x: intensities must be >= 0 (not NaN)")
         with np.errstate(divide="ignore"):  # ln 0 = -inf -> Phi(-inf) = 0, which is right
-            return ndtr(np.log(arr / self.theta) / self.beta)
+            return self.p_max * ndtr(np.log(arr / self.theta) / self.beta)
 
     def quantile(self, p) -> np.ndarray:
-        """Intensity at which the collapse probability is p (0 <= p <= 1): theta*exp(beta*Phi^-1(p))."""
+        """Intensity at which the collapse probability is p (0 <= p <= 1):
+        theta*exp(beta*Phi^-1(p / p_max)); inf for p >= p_max < 1 (never reached)."""
         arr = np.asarray(p, dtype=float)
         if np.any(np.isnan(arr)) or np.any((arr < 0) | (arr > 1)):
             raise ArchInputError("p: probabilities must be between 0 and 1")
-        return self.theta * np.exp(self.beta * ndtri(arr))
+        return self.theta * np.exp(self.beta * ndtri(np.minimum(arr / self.p_max, 1.0)))
 
     def to_dict(self) -> dict:
         """Plain-Python dict (JSON-serialisable: tuples become lists under json.dumps)."""
@@ -172,6 +183,8 @@ class FragilityFit:
             "n_boot": opt(self.n_boot, int),
             "n_boot_failed": opt(self.n_boot_failed, int),
             "ci_note": self.ci_note,
+            "p_max": float(self.p_max),
+            "level_off": self.level_off,
         }
 
 
@@ -231,10 +244,133 @@ def _censored_negll(params, lnx, lnm, scale):
     return -ll / scale, -np.array([g_lt, g_lb]) / scale
 
 
+# --------------------------------------------------------------------------- plateau
+
+#: level of the likelihood ratio test that decides whether the data level off (:func:`_level_off`)
+LEVEL_OFF_ALPHA = 0.05
+#: bounds of the plateau fit: theta within e^3 (x20) of the intensities analysed, beta, p_max
+_LT_MARGIN, _LB_BOUNDS, _P_BOUNDS = 3.0, (math.log(1e-3), math.log(10.0)), (1e-6, 1.0)
+
+
+def _log1m_pphi(lp, l1p, ls):
+    """ln(1 - p Phi(u)) = ln((1 - p) + p (1 - Phi(u))), from ln p, ln(1 - p) and ln(1 - Phi(u)):
+    no cancellation where p = 1 and Phi(u) is near 1."""
+    return np.logaddexp(l1p, lp + ls)
+
+
+def _p_logs(p):
+    return math.log(p), (math.log1p(-p) if p < 1.0 else -math.inf)
+
+
+def _ida_plateau_negll(params, lnx, lnm, scale):
+    """-log-likelihood / scale of collapses lnx (density p phi) and survivors censored at lnm
+    (1 - p Phi), under P(x) = p Phi(ln(x/theta)/beta): a fraction 1 - p never collapses."""
+    lt, lb, p = params
+    b = math.exp(lb)
+    lp, l1p = _p_logs(p)
+    u = (lnx - lt) / b
+    ll = np.sum(lp - lb - _LOG_SQRT_2PI - 0.5 * u * u)
+    if lnm.size:
+        ll += np.sum(_log1m_pphi(lp, l1p, log_ndtr(-(lnm - lt) / b)))
+    return -ll / scale
+
+
+def _stripes_plateau_negll(params, lnx, n, z, scale):
+    """-binomial log-likelihood / scale (without the constant) of P(x) = p Phi(ln(x/theta)/beta)."""
+    lt, lb, p = params
+    u = (lnx - lt) / math.exp(lb)
+    lp, l1p = _p_logs(p)
+    ll = np.sum(z * (lp + log_ndtr(u)) + (n - z) * _log1m_pphi(lp, l1p, log_ndtr(-u)))
+    return -ll / scale
+
+
+def _fit_plateau(negll, starts, args, lnx_all, scale) -> tuple[np.ndarray, float]:
+    """(ln theta, ln beta, p_max) maximising the plateau likelihood, and that log-likelihood
+    (the objective is divided by ``scale``, the number of observations); L-BFGS-B inside bounds relative to the intensities analysed
+    (theta within x20 of them, 1e-3 <= beta <= 10, 1e-6 <= p_max <= 1), from each start."""
+    bounds = [(float(lnx_all.min()) - _LT_MARGIN, float(lnx_all.max()) + _LT_MARGIN),
+              _LB_BOUNDS, _P_BOUNDS]
+    best = None
+    for x0 in starts:
+        x0 = np.clip(np.asarray(x0, float), [b[0] for b in bounds], [b[1] for b in bounds])
+        res = minimize(negll, x0, args=(*args, scale), method="L-BFGS-B", bounds=bounds,
+                       options={"maxiter": _BFGS_MAXITER, "ftol": 1e-13, "gtol": 1e-9})
+        if np.all(np.isfinite(res.x)) and np.isfinite(res.fun) and (best is None or res.fun < best.fun):
+            best = res
+    if best is None:
+        raise FitError("data: the plateau likelihood could not be maximised; no fit")
+    return best.x, -float(best.fun) * scale
+
+
+def _level_off(fit0: FragilityFit, params, ll1: float) -> FragilityFit:
+    """Choose between the plain lognormal ``fit0`` and the plateau fit (``params``, its
+    log-likelihood ``ll1``): likelihood ratio D = 2 (ll1 - ll0); p_max = 1 lies on
+    the boundary, so D follows 1/2 chi2_0 + 1/2 chi2_1 under the plain model (Self & Liang 1987):
+    p-value = chi2.sf(D, 1) / 2.  The plateau governs where p < LEVEL_OFF_ALPHA."""
+    from scipy.stats import chi2
+
+    lt, lb, p = (float(v) for v in params)
+    ll0 = float(fit0.log_likelihood)
+    ll1 = max(ll1, ll0)  # the plateau model contains the plain one (p_max = 1)
+    d = 2.0 * (ll1 - ll0)
+    pval = 0.5 * float(chi2.sf(d, 1)) if d > 0 else 1.0
+    levels = bool(pval < LEVEL_OFF_ALPHA and p < 1.0)
+    if levels:
+        note = (f"the data level off below P = 1: fitted with an upper asymptote p_max = {p:.3f} "
+                f"(likelihood ratio {d:.1f}, p = {pval:.2g}); the plain lognormal (theta "
+                f"{fit0.theta:.4g}, beta {fit0.beta:.3f}) would run to P = 1 where the data do not")
+    else:
+        note = (f"no levelling off below P = 1 detected (likelihood ratio {d:.2f}, p = "
+                f"{pval:.2g}): the plain lognormal")
+    info = {"test": "likelihood ratio, p_max < 1 against p_max = 1 (1/2 chi2_0 + 1/2 chi2_1)",
+            "statistic": d, "p_value": pval, "alpha": LEVEL_OFF_ALPHA, "levels_off": levels,
+            "p_max": p if levels else 1.0,
+            "lognormal": {"theta": fit0.theta, "beta": fit0.beta, "log_likelihood": ll0},
+            "note": note}
+    if not levels:
+        return replace(fit0, level_off=info)
+    return replace(fit0, theta=math.exp(lt), beta=math.exp(lb), p_max=p,
+                   log_likelihood=ll1, level_off=info)
+
+
+def _check_plateau(plateau):
+    if plateau not in (False, True, "auto"):
+        raise ArchInputError(f"plateau: {plateau!r}; allowed False (plain lognormal), True (fit "
+                             f"an upper asymptote p_max) or 'auto' (where a test says the data "
+                             f"level off)")
+    return plateau
+
+
+def _with_plateau(fit0, plateau, negll, args, lnx_all, scale, p0, lnc, weights=None):
+    """fit0 as it is (plateau False), the plateau fit (True), or the one the test chooses
+    ('auto').  Starts: the plain fit with p_max = 1 and p0 (the fraction that collapsed at the
+    top of the range), and the collapses' own log mean and spread (``lnc``, ``weights``)."""
+    if plateau is False:
+        return fit0
+    lt0, lb0 = math.log(fit0.theta), math.log(fit0.beta)
+    mc = float(np.average(lnc, weights=weights))
+    sc = math.sqrt(max(float(np.average((lnc - mc) ** 2, weights=weights)), 1e-6))
+    p0 = min(max(p0, 0.05), 1.0)
+    try:
+        params, ll1 = _fit_plateau(negll, [(lt0, lb0, 1.0), (lt0, lb0, p0),
+                                           (mc, math.log(sc), p0)], args, lnx_all, scale)
+    except FitError as exc:
+        if plateau is True:
+            raise
+        # the plain fit stands; say the alternative could not be tried
+        return replace(fit0, level_off={"levels_off": False, "p_max": 1.0,
+                                        "note": f"plateau not tested: {exc}"})
+    if plateau is True:
+        lt, lb, p = (float(v) for v in params)
+        return replace(fit0, theta=math.exp(lt), beta=math.exp(lb), p_max=p,
+                       log_likelihood=ll1, level_off=None)
+    return _level_off(fit0, params, ll1)
+
+
 # --------------------------------------------------------------------------- IDA
 
 def fit_ida_moments(collapse_intensities, *, censored: str = "error",
-                    max_intensity=None) -> FragilityFit:
+                    max_intensity=None, plateau=False) -> FragilityFit:
     """Fragility from IDA first-collapse intensities (one per record, > 0, units of the IM).
 
     censored="error" (default): method of moments, ln theta = mean(ln x), beta = std(ln x, ddof=1)
@@ -245,7 +381,13 @@ def fit_ida_moments(collapse_intensities, *, censored: str = "error",
     its highest analysed intensity m contributes 1 - Phi(ln(m/theta)/beta).  ``max_intensity``
     (scalar, or one value per record, ignored for records that collapsed) gives m and is required
     when any record survived.  This is an MLE, so with no survivors beta = std(ln x, ddof=0).
+
+    plateau (censored="mle" with survivors): False (default) the plain lognormal; True the
+    curve P = p_max Phi(ln(x/theta)/beta) whose 1 - p_max never collapse; "auto" the plateau
+    where a likelihood ratio test says the data level off below P = 1 (``level_off`` of the
+    result records the test and the plain fit beside it).
     """
+    _check_plateau(plateau)
     if censored not in ("error", "mle"):
         raise ArchInputError(f"censored: must be 'error' or 'mle', got {censored!r}")
     x = _array1d("collapse_intensities", collapse_intensities)
@@ -292,8 +434,12 @@ def fit_ida_moments(collapse_intensities, *, censored: str = "error",
     x0 = np.array([np.mean(lnx), math.log(max(np.std(lnx, ddof=1), 1e-3))])
     lt, lb = _minimise(_censored_negll, x0, (lnx, lnm, float(n)))
     ll = -_censored_negll(np.array([lt, lb]), lnx, lnm, 1.0)[0]
-    return FragilityFit(theta=math.exp(lt), beta=math.exp(lb), method="censored_mle",
-                        n_records=n, log_likelihood=float(ll))
+    fit = FragilityFit(theta=math.exp(lt), beta=math.exp(lb), method="censored_mle",
+                       n_records=n, log_likelihood=float(ll))
+    if lnm.size == 0:  # every record collapsed: nothing levels off
+        return fit
+    return _with_plateau(fit, plateau, _ida_plateau_negll, (lnx, lnm), np.r_[lnx, lnm],
+                         float(n), lnx.size / n, lnx)
 
 
 # --------------------------------------------------------------------------- multiple stripes
@@ -341,7 +487,7 @@ def _check_identifiable(x, n, z) -> None:
                              "a lognormal fragility cannot be fitted")
 
 
-def fit_stripes_mle(intensities, trials, collapses) -> FragilityFit:
+def fit_stripes_mle(intensities, trials, collapses, *, plateau=False) -> FragilityFit:
     """Multiple-stripe maximum likelihood fit (Baker 2015 eq. 11).
 
     intensities: IM level of each stripe (> 0, any units; theta comes out in the same units).
@@ -349,7 +495,9 @@ def fit_stripes_mle(intensities, trials, collapses) -> FragilityFit:
     Stripes with 0 or all collapses are used as they are (they carry information through
     ln(1 - Phi) and ln Phi).  Raises ArchInputError when the data cannot identify a fit: no
     collapse, no survival, a single level, separated stripes (beta -> 0) or a decreasing trend.
+    plateau: as :func:`fit_ida_moments` (False, True or "auto": the stripes level off below 1).
     """
+    _check_plateau(plateau)
     x, n, z = _stripes_data(intensities, trials, collapses)
     _check_identifiable(x, n, z)
     lnx = np.log(x)
@@ -369,8 +517,16 @@ def fit_stripes_mle(intensities, trials, collapses) -> FragilityFit:
     lt, lb = _minimise(_stripes_negll, x0, (lnx, nf, zf, float(n.sum())))
     const = np.sum(gammaln(nf + 1) - gammaln(zf + 1) - gammaln(nf - zf + 1))
     ll = -_stripes_negll(np.array([lt, lb]), lnx, nf, zf, 1.0)[0] + const
-    return FragilityFit(theta=math.exp(lt), beta=math.exp(lb), method="mle",
-                        n_records=int(n.sum()), log_likelihood=float(ll))
+    fit = FragilityFit(theta=math.exp(lt), beta=math.exp(lb), method="mle",
+                       n_records=int(n.sum()), log_likelihood=float(ll))
+    top = int(np.argmax(x))
+    # the constant is added back so both log-likelihoods compare (it cancels in the test)
+    fit = replace(fit, log_likelihood=float(ll - const))
+    fit = _with_plateau(fit, plateau, _stripes_plateau_negll, (lnx, nf, zf), lnx,
+                        float(n.sum()), zf[top] / nf[top], lnx, weights=zf + 1e-12)
+    if fit.level_off is not None:  # the plain fit's log-likelihood with its constant too
+        fit.level_off["lognormal"]["log_likelihood"] += float(const)
+    return replace(fit, log_likelihood=float(fit.log_likelihood + const))
 
 
 # --------------------------------------------------------------------------- bootstrap
@@ -405,15 +561,19 @@ def bootstrap_fit(fit_function, *data, n_boot: int = 200, confidence: float = 0.
         if m is not None:
             m = np.asarray(m, dtype=float)
         base = fit_ida_moments(x, max_intensity=m, **fit_kwargs)
+        # the resamples fit the model the data chose (a test per resample would mix models)
+        kw = {**fit_kwargs, **({"plateau": base.p_max < 1.0} if "plateau" in fit_kwargs else {})}
 
         def resample(rng):
             idx = rng.integers(0, x.size, x.size)
-            return fit_ida_moments(x[idx], max_intensity=None if m is None else m[idx], **fit_kwargs)
+            return fit_ida_moments(x[idx], max_intensity=None if m is None else m[idx], **kw)
     elif fit_function is fit_stripes_mle:
-        if len(data) != 3 or fit_kwargs:
-            raise ArchInputError("data: fit_stripes_mle takes (intensities, trials, collapses) and no options")
+        if len(data) != 3 or set(fit_kwargs) - {"plateau"}:
+            raise ArchInputError("data: fit_stripes_mle takes (intensities, trials, collapses) "
+                                 "and the option plateau only")
         x, n, z = _stripes_data(*data)
-        base = fit_stripes_mle(x, n, z)
+        base = fit_stripes_mle(x, n, z, **fit_kwargs)
+        plat = base.p_max < 1.0 if fit_kwargs else False
         if np.all((z == 0) | (z == n)):  # Binomial(n, 0 or 1) resamples are the data itself
             why = ("one analysis per stripe (one record on one arch)" if np.all(n == 1)
                    else "every stripe is all-collapse or all-survive")
@@ -422,7 +582,7 @@ def bootstrap_fit(fit_function, *data, n_boot: int = 200, confidence: float = 0.
                                    f"cannot vary")
 
         def resample(rng):
-            return fit_stripes_mle(x, n, rng.binomial(n, z / n))
+            return fit_stripes_mle(x, n, rng.binomial(n, z / n), plateau=plat)
     else:
         raise ArchInputError("fit_function: must be fit_ida_moments or fit_stripes_mle")
 

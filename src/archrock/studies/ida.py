@@ -371,11 +371,23 @@ class IDAResult:
     def n_censored(self) -> int:
         return sum(c.first_im is None for c in self.curves)
 
+    def range_tried(self) -> dict:
+        """The top of the range analysed (max_im, the IM's units), the curves that never
+        collapsed up to it, and, where none collapsed, the one-sided 95% upper bound on
+        P(collapse) there (Clopper-Pearson: 1 - 0.05^(1/n)): all the data can say."""
+        from .fragility import collapse_probability
+
+        n, never = len(self.curves), self.n_censored
+        top = max(c.max_im for c in self.curves)
+        upper = collapse_probability(0, n, 0.9, "clopper-pearson")[2] if never == n else None
+        return {"max_im": float(top), "n_never": never, "n_curves": n, "p_upper_95": upper}
+
     def to_dict(self) -> dict:
         return {"method": "ida", "im": self.im,
                 "im_units": _units_text(self.im),
                 "fit": None if self.fit is None else self.fit.to_dict(), "fit_error": self.fit_error,
                 "n_curves": len(self.curves), "n_censored": self.n_censored,
+                "range_tried": self.range_tried(),
                 "n_arches": len({c.arch for c in self.curves}),
                 "n_records": len({c.record for c in self.curves}),
                 "failed": [list(x) for x in self.failed],
@@ -494,6 +506,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
         try:
             curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, settings, bar,
                                 early_stop, factors)
+            bar.finish()  # the total counted every bisection step; most curves need fewer
         finally:
             bar.close()
     else:
@@ -505,13 +518,14 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
                     curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
                                             t_free=t_free, factor=f))
                     bar.update(1)
+            bar.finish()
         finally:
             bar.close()
     curves = tuple(curves)
     x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
     if np.any(np.isinf(x)):
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
-                        n_records=len(recs), censored="mle",
+                        n_records=len(recs), censored="mle", plateau="auto",
                         max_intensity=np.array([c.max_im for c in curves]))
     else:
         fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
@@ -597,12 +611,13 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
                     for k, r in enumerate(recs):
                         outcomes[i, j, k] = _collapsed(m, r, float(scale[i, k]), dt, t_free)
                         bar.update(1)
+        bar.finish()
     finally:
         bar.close()
     trials = np.full(lv.size, len(ms) * len(recs))
     coll = outcomes.reshape(lv.size, -1).sum(axis=1)
     fit, err = _fit(fit_stripes_mle, lv, trials, coll, n_boot=n_boot, seed=seed,
-                    confidence=confidence, n_records=len(recs))
+                    confidence=confidence, n_records=len(recs), plateau="auto")
     return StripeResult(lv, trials, coll, outcomes, im, fit, err, tuple(r.name for r in recs),
                         tuple(ids), failed)
 

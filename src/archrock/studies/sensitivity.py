@@ -414,7 +414,10 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
             continue  # nothing to decompose: indices undefined (NaN)
         with np.errstate(divide="ignore", invalid="ignore"):
             si = analyze.analyze(problem, y, calc_second_order=False, conf_level=conf_level,
-                                 num_resamples=int(num_resamples), seed=int(seed))
+                                 num_resamples=int(num_resamples),
+                                 # a Generator, not the int: SALib's `if seed:` drops seed 0 and
+                                 # the bootstrap intervals then differ from run to run
+                                 seed=np.random.default_rng(int(seed)))
         s1[o], s1c[o], st[o], stc[o] = si["S1"], si["S1_conf"], si["ST"], si["ST_conf"]
     t_analyse = time.perf_counter() - t_an
     how = (f"Saltelli scheme on a scrambled Sobol sequence (SALib.sample.sobol, "
