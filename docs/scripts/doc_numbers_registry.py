@@ -415,8 +415,8 @@ A = "docs/assess.md"
 ENTRIES += [
     Entry(A, "(`archrock.statics.friction.friction_needed`, docs/friction.md): {} on Oppenheim's "
              "arch", ("limit", "--friction", "0.4"), r"on its thrust line\): M_l (\S+),"),
-    Entry(A, "the multipliers with masonry's friction mu = 0.4 (`friction_analysis`): {} on "
-             "Oppenheim's arch", ("limit", "--friction", "0.4"), r"k with friction = (\S+)"),
+    Entry(A, "the multipliers at the report's mu (`friction_analysis`): {} on Oppenheim's arch "
+             "at mu = 0.4", ("limit", "--friction", "0.4"), r"k with friction = (\S+)"),
 ]
 
 P = "docs/piers.md"
@@ -432,12 +432,13 @@ ENTRIES += [
           ("limit", "--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs", "9",
            "--min-pier-width", "4"),
           r"piers 4 m high: (\S+) m \(the thrust \(H = (\S+) kN/m, V = (\S+) kN/m"),
-    Entry(P, "under its own weight (k_l = {}, k_r = {}); on rigid supports it stands, and "
-             "piers 8 m "
-             "high carry it from {} m wide: give --pier-width {} or more",
-          ("limit", "--pier-height", "8", "--pier-width", "1.6"),
-          r"k_l = (\S+), k_r = (\S+)\); on rigid supports it stands, and piers 8 m high carry it "
-          r"from (\S+) m wide: give --pier-width (\S+) or more", status=3),
+    Entry(P, "wide, 15 m high) under its own weight (k_l = {}, k_r = {}); on rigid supports it "
+             "stands, and piers 15 m high carry it from {} m wide: give the piers a width of "
+             "{} m or",
+          ("limit", "--radius", "5", "--embrace", "180", "--thickness", "0.8", "--voussoirs", "9",
+           "--pier-height", "15", "--pier-width", "1.5"),
+          r"k_l = (\S+), k_r = (\S+)\); on rigid supports it stands, and piers 15 m high carry "
+          r"it from (\S+) m wide: give the piers a width of (\S+) m or more", status=3),
     Entry(P, "M_l  {}  {}  ...  D = 13e (right pier foot, outer face)",
           ("limit", *PIERS_4x2, "--pier-courses", "2", "--defect", "pier-tilt=2,side=right"),
           r"M_l\s+(\S+)\s+(\S+)"),

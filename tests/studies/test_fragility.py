@@ -615,6 +615,19 @@ def test_stripes_that_level_off_get_a_plateau_through_the_stripes():
     assert g.p_max == 1.0 and not g.level_off["levels_off"]
 
 
+def test_a_plateau_within_the_minimum_gap_of_one_keeps_the_plain_fit():
+    """Stripes of 2,000 runs that level off at 0.98: the likelihood ratio prefers the plateau,
+    but a ceiling within LEVEL_OFF_MIN_GAP of 1 changes no decision and the plain curve governs
+    (the note says why)."""
+    lv = np.geomspace(0.1, 1.0, 8)
+    n = np.full(8, 2000)
+    z = np.round(n * 0.98 * norm.cdf(np.log(lv / 0.3) / 0.3)).astype(int)
+    f = fit_stripes_mle(lv, n, z, plateau="auto")
+    assert f.level_off["p_value"] < 0.05
+    assert not f.level_off["levels_off"] and f.p_max == 1.0
+    assert "within 0.05 of P = 1" in f.level_off["note"]
+
+
 def test_bootstrap_keeps_the_plateau_the_data_chose():
     x = plateau_ida(n=300)
     f = bootstrap_fit(fit_ida_moments, x, censored="mle", max_intensity=1.0, plateau="auto",
