@@ -218,7 +218,9 @@ def run_dem(args) -> int:
     if plot:
         from ..reports.contactplots import save_engine_figure
 
-        plot = save_engine_figure(res, fl, plot,
+        from ..reports.contact import blocks_names
+
+        plot = save_engine_figure(res, fl, plot, names=blocks_names(arch),
                                   four_link_label=four_link_label(choice, short=True))
         if progress:
             progress(f"figure: wrote {plot} (100%)")

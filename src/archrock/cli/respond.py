@@ -122,7 +122,8 @@ def _run_fourlink(args, arch, motion, choice, plot, animation) -> int:
     else:
         # issue 30: a model the same output calls invalid gives no bare answer line
         print(f"four-link model: not valid here ({why_not})")
-        head[0] = f"dynamics: four-link model, asked for by name (--dynamics {choice.requested})"
+        if choice.requested == "fourlink":  # its reason repeats the heading's
+            head[0] = "dynamics: four-link model, asked for by name (--dynamics fourlink)"
         body = [("four-link outcome (not valid here):" + line[len("outcome:"):])
                 if line.startswith("outcome:") else line for line in text.splitlines()]
         print("\n".join("  " + line for line in head + body))
@@ -180,7 +181,9 @@ def _run_engine(args, arch, motion, choice, plot, animation) -> int:
     if plot:
         from ..reports.contactplots import save_engine_figure
 
-        plot = save_engine_figure(res, None, plot)
+        from ..reports.contact import blocks_names
+
+        plot = save_engine_figure(res, None, plot, names=blocks_names(arch))
     if animation:
         from ..reports.contactplots import animate_engine
 

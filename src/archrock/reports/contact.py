@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.blocks import block_counts, describe_blocks
+from ..geometry.blocks import block_counts, block_names, describe_blocks
 
 __all__ = ["ramp_dict", "format_ramp", "engine_response_dict", "format_engine_response",
-           "blocks_words", "blocks_count", "four_link_label"]
+           "blocks_words", "blocks_count", "blocks_names", "four_link_label"]
 
 
 def _found_piers(arch) -> tuple:
@@ -31,6 +31,22 @@ def blocks_words(arch) -> str:
     nv = arch.n - len(piers)
     two = "two piers" if len(piers) == 2 else "a pier"
     return f"{nv} voussoir{'s' if nv != 1 else ''} on {two} (found by their geometry)"
+
+
+def blocks_names(arch) -> tuple:
+    """Every block's name (:func:`archrock.geometry.blocks.block_names`), the found piers of a
+    file without kinds named "left pier" / "right pier" and the voussoirs counted from 0."""
+    piers = _found_piers(arch)
+    if not piers:
+        return block_names(arch)
+    names, v = [], 0
+    for i in range(arch.n):
+        if i in piers:
+            names.append("left pier" if i == 0 else "right pier")
+        else:
+            names.append(f"voussoir {v}")
+            v += 1
+    return tuple(names)
 
 
 def blocks_count(arch) -> dict:

@@ -26,10 +26,12 @@ def engine_outlines(arch, positions: np.ndarray, rotations: np.ndarray) -> list[
     return out
 
 
-def save_engine_figure(res, four_link, path, dpi: int = 150, four_link_label=None) -> Path:
+def save_engine_figure(res, four_link, path, dpi: int = 150, four_link_label=None,
+                       names=None) -> Path:
     """Three panels: the engine's equivalent rotation over the four-link phi(t); every
-    voussoir's rotation; the largest sliding at each joint.  four_link_label: how the
-    four-link curve is named (e.g. "four-link (not valid here)"; default "four-link")."""
+    block's rotation; the largest sliding at each joint.  four_link_label: how the
+    four-link curve is named (e.g. "four-link (not valid here)"; default "four-link");
+    names: each block's name (default "voussoir i"; piers by kind where given)."""
     from .plots import new_figure, save_figure
 
     fig, axes = new_figure(3, 1, figsize=(7.0, 8.0), height_ratios=(1.3, 1.0, 0.8))
@@ -45,14 +47,17 @@ def save_engine_figure(res, four_link, path, dpi: int = 150, four_link_label=Non
                    label=r"unstable positions $\pm\phi_u$")
     ax.axhline(0.0, color="#cccccc", lw=0.6)
     ax.set_ylabel(r"signed rotation $\phi$ [rad]")
-    ax.set_title(f"engine: {res.status}; {four_link_label or 'four-link'}: "
-                 f"{four_link.status if four_link is not None else 'not run'}", fontsize=9)
+    ax.set_title(f"contact engine: {res.status}" if four_link is None else
+                 f"engine: {res.status}; {four_link_label or 'four-link'}: {four_link.status}",
+                 fontsize=9)
     # legends outside the axes, on the right: inside they hid curves (voussoir 3's trough)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     nv = res.rotations.shape[1]
     for i in range(nv):
-        ax_v.plot(res.time, res.rotations[:, i], lw=0.9, label=f"voussoir {i}")
-    ax_v.set_ylabel("voussoir rotation [rad]")
+        ax_v.plot(res.time, res.rotations[:, i], lw=0.9,
+                  label=f"voussoir {i}" if names is None else names[i])
+    voussoirs_only = names is None or all(n.startswith("voussoir") for n in names)
+    ax_v.set_ylabel("voussoir rotation [rad]" if voussoirs_only else "block rotation [rad]")
     ax_v.set_xlabel("$t$ [s]")
     ax_v.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False,
                 ncol=1 + (nv - 1) // 14)
