@@ -50,6 +50,8 @@ def resolution_line(curve) -> str:
     """The resolution a curve's survival windows were searched at (the grid's step in g at each
     first collapse: a narrower window can lie between two grid points unseen)."""
     res = [p.resolution for p in curve.points]
+    if not res or any(r.get("step_relative") is None for r in res):
+        return res[0]["note"] if res else "no survival windows searched"  # the engine's curve
     steps = [r["step_g"] for r in res]
     lo, hi = min(steps), max(steps)
     span = f"{lo:.4f} g" if hi - lo < 5e-5 else f"{lo:.4f}-{hi:.4f} g"
