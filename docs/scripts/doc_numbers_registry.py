@@ -417,6 +417,12 @@ ENTRIES += [
              "arch", ("limit", "--friction", "0.4"), r"on its thrust line\): M_l (\S+),"),
     Entry(A, "the multipliers at the report's mu (`friction_analysis`): {} on Oppenheim's arch "
              "at mu = 0.4", ("limit", "--friction", "0.4"), r"k with friction = (\S+)"),
+    Entry(A, "on Oppenheim's arch at t_p = 1 s a grid of 30 points steps {}%",
+          ("curves", "--durations", "1", "--n-scan", "30", "--no-progress"),
+          r"grid of 30 points stepping (\S+)% of"),
+    Entry(A, "and finds the window {}-{} g)",
+          ("curves", "--durations", "1", "--n-scan", "30", "--no-progress", "--json"),
+          r'"survival_windows_g": \[\s*\[\s*\[\s*(\S+),\s*(\S+)\s*\]'),
 ]
 
 P = "docs/piers.md"

@@ -18,6 +18,7 @@ pytest.importorskip("pandas")
 
 import archrock  # noqa: E402
 from archrock.app import api, uploads  # noqa: E402
+from archrock.statics.friction import DEFAULT_FRICTION  # noqa: E402
 from archrock.units import G  # noqa: E402
 
 OPPENHEIM = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7}
@@ -228,3 +229,38 @@ def test_the_report_is_cancelled_between_sections(client, wait_job):
     assert client.get(f"/api/jobs/{job['id']}/download").status_code == 400
     nxt = client.post("/api/ensemble", json={"arch": OPPENHEIM, "samples": 10})
     assert nxt.status_code == 200 and wait_job(client, nxt.json()["id"])["state"] == "done"
+
+
+def test_the_report_runs_at_the_pages_friction(client, wait_job):
+    """The report button sends the page's friction (as the limit and respond requests do): at
+    mu = 0.4 the report's one friction is 0.4, and the joints of Oppenheim's arch slide first,
+    at 0.2638 g (the friction analysis; the no-sliding collapse needs mu >= 0.495)."""
+    pytest.importorskip("matplotlib")
+    r = client.post("/api/report", json={"arch": OPPENHEIM, "samples": 0, "contact": False,
+                                         "friction": 0.4})
+    assert r.status_code == 200, r.text
+    s = wait_job(client, r.json()["id"])
+    assert s["state"] == "done", s
+    assert s["result"]["friction"] == pytest.approx(0.4, abs=1e-12)
+    html = client.get(f"/api/jobs/{s['id']}/download").text
+    assert "Coulomb mu = 0.4 at every joint" in html and "0.2638" in html
+
+
+@pytest.mark.parametrize("value,friction", [(None, DEFAULT_FRICTION), ("none", None), ("0.6", 0.6),
+                                            (2, 2.0)])
+def test_the_report_request_takes_the_friction_field(value, friction):
+    """Absent: the package's default (0.8); "none": sliding excluded by the user (Heyman's
+    hypothesis); a number: that friction, in the report's AssessConfig."""
+    params = {"arch": OPPENHEIM, "samples": 0}
+    if value is not None:
+        params["friction"] = value
+    cfg = api.report_request(params)["config"]
+    assert (cfg.friction is None) if friction is None else \
+        cfg.friction == pytest.approx(friction, abs=1e-12)
+
+
+@pytest.mark.parametrize("value", [-1, 0, "abc", "inf"])
+def test_a_bad_report_friction_is_refused_naming_the_field(client, value):
+    r = client.post("/api/report", json={"arch": OPPENHEIM, "samples": 0, "friction": value})
+    assert r.status_code == 400 and r.json()["error"].startswith("friction: "), r.text
+    assert "\n" not in r.json()["error"]

@@ -49,7 +49,7 @@ SPREAD_FIELDS = ("span", "thickness", "radius", "tilt")
 LIMIT_FIELDS = ("arch", "friction", "thrust_range")
 ENSEMBLE_FIELDS = ("arch", "samples", "seed", "spreads", "pulse", "friction")
 CURVE_FIELDS = ("arch", "samples", "seed", "spreads", "durations", "kind", "friction")
-REPORT_FIELDS = ("arch", "samples", "seed", "spreads", "contact")
+REPORT_FIELDS = ("arch", "samples", "seed", "spreads", "contact", "friction")
 
 
 # ---------------------------------------------------------------------------- field checks
@@ -589,9 +589,13 @@ CONTACT_CHECK_S = 6.0
 def report_request(params: dict) -> dict:
     """The checked arguments of :func:`run_report_job`: the ``arch``, ``samples`` (0 to
     :data:`MAX_REPORT_SAMPLES`, default 12 as ``archrock assess``), ``seed`` and ``spreads``
-    as the ensemble's, ``contact`` (the contact-engine check, default true).  The rest is
+    as the ensemble's, ``contact`` (the contact-engine check, default true), ``friction``:
+    the page's, as the limit and respond requests send it (default
+    :data:`~archrock.statics.friction.DEFAULT_FRICTION`, "none": sliding excluded), the
+    report's one friction (``archrock assess --friction``).  The rest is
     ``archrock assess``'s defaults (the paper's pulse, durations 0.1 to 1 s, 60 amplitudes,
     no records: no fragility section, no site spectrum: no verdict)."""
+    from ..statics.friction import DEFAULT_FRICTION
     from ..studies.assessment import AssessConfig
     from ..studies.work import format_duration, response_cost_s
     from .._jit import HAVE_NUMBA
@@ -602,7 +606,8 @@ def report_request(params: dict) -> dict:
                                             "random arches for the report in the app "
                                             "(archrock assess for more)")
     contact = bool(params.get("contact", True))
-    cfg = AssessConfig(samples=samples, seed=seed, spreads=spreads)
+    mu = friction_field(params, DEFAULT_FRICTION)
+    cfg = AssessConfig(samples=samples, seed=seed, spreads=spreads, friction=mu)
     responses = (samples + 1) * len(cfg.durations) * cfg.n_scan
     est = responses * response_cost_s() * (1 if HAVE_NUMBA else 50)
     if est > MAX_REPORT_WORK_S:
@@ -678,6 +683,6 @@ def run_report_job(req: dict, progress, cancelled) -> dict | None:
     k = result.section("limit").data
     return {"name": result.arch.name, "sections": [s.title for s in result.sections],
             "headline": [list(h) for h in result.headline], "verdict": result.verdict,
-            "k": k.get("k") if isinstance(k, dict) else None,
+            "k": k.get("k") if isinstance(k, dict) else None, "friction": req["config"].friction,
             "seconds": time.perf_counter() - t0, "bytes": len(html.encode("utf-8")),
             "_download": (f"assessment-{safe}.html", "text/html; charset=utf-8", html)}

@@ -18,7 +18,7 @@ Routes (JSON bodies; lengths m, accelerations g, times s):
   stands for the pulse in ``/api/respond`` {arch, record: {id}, t_end?} (:func:`.uploads.load_record_upload`);
 * ``POST /api/dxf?name=&layer=&units=&density=`` the bytes of a DXF survey: its polygon arch's
   geometry file JSON (:func:`.uploads.load_dxf_upload`);
-* ``POST /api/report`` {arch, samples, seed, spreads, contact}: ``archrock assess`` as a job;
+* ``POST /api/report`` {arch, samples, seed, spreads, contact, friction?}: ``archrock assess`` as a job;
   ``GET /api/jobs/{id}/download`` its HTML file.
 
 A bad value answers 400 with ``{"error": message}`` (the CLI's one-line message, naming the

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from ..studies.wording import resolution_line
 from ._common import format_failed, format_left_out, impact_summary
 
 __all__ = ["curves_summary", "format_curves", "format_resolution"]
@@ -28,17 +29,9 @@ def _fmt_windows(ws) -> str:
 
 
 def format_resolution(curve) -> str:
-    """The line that says at which resolution the windows were searched (the grid's step in g at
-    each first collapse: a narrower window can lie between two grid points unseen)."""
-    res = [p.resolution for p in curve.points]
-    steps = [r["step_g"] for r in res]
-    lo, hi = min(steps), max(steps)
-    span = f"{lo:.4f} g" if hi - lo < 5e-5 else f"{lo:.4f}-{hi:.4f} g"
-    r = res[0]
-    return (f"survival windows searched on a geometric grid of {r['n_scan']} points stepping "
-            f"{100 * r['step_relative']:.2g}% of |a|: windows narrower than {span} (the step at "
-            f"the first collapse; {max(x['step_g_at_a_max'] for x in res):.3g} g at a_max) may "
-            f"be missed; edges of those found bisected to {r['edge_tol_g']} g")
+    """The line that says at which resolution the windows were searched (worded once, in
+    :func:`archrock.studies.wording.resolution_line`, for this and the assess report)."""
+    return resolution_line(curve)
 
 
 def format_curves(curve, band=None, *, arch_name: str, pulse: str, sign: int, impact,

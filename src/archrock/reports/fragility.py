@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ..groundmotion.intensity import im_label, im_units
+from ..studies.wording import fit_line, level_off_note, range_tried_line
 from ._common import format_ci, format_failed, format_left_out, impact_summary
 
 __all__ = ["fragility_summary", "format_fragility"]
@@ -41,23 +42,17 @@ def format_fragility(ida_result, stripes, *, arch_name: str, n_records: int, n_a
         if c.note:
             lines.append(f"    ({c.note})")
     lines.append(format_left_out(ida_result.to_dict()["left_out"], "IDA, stripes and fits"))
-    rng = ida_result.range_tried()
-    if rng["p_upper_95"] is not None:
-        lines.append(f"IDA: no collapse up to {rng['max_im']:.4f}{u} in {rng['n_curves']} "
-                     f"curve(s): P(collapse) <= {rng['p_upper_95']:.3f} over the range tried "
-                     f"(one-sided 95%, Clopper-Pearson)")
-    elif rng["n_never"]:
-        lines.append(f"IDA: {rng['n_never']} of {rng['n_curves']} curves never collapse up to "
-                     f"{rng['max_im']:.4f}{u} (censored observations in the fit)")
+    rng = range_tried_line(ida_result)
+    if rng is not None:
+        lines.append(f"IDA: {rng}")
     for name, r in (("IDA", ida_result), ("stripes", stripes)):
         if r.fit is None:
             lines.append(f"{name}: no fit ({r.fit_error})")
             continue
-        plateau = f", p_max = {r.fit.p_max:.3f}" if r.fit.p_max < 1.0 else ""
-        lines.append(f"{name}: {r.fit.method} theta = {r.fit.theta:.4f}{u}, "
-                     f"beta = {r.fit.beta:.3f}{plateau} (n = {r.fit.n_records}){format_ci(r.fit)}")
-        if r.fit.level_off is not None and r.fit.level_off["levels_off"]:
-            lines.append(f"  {r.fit.level_off['note']}")
+        lines.append(f"{name}: {fit_line(r.fit, im)}{format_ci(r.fit)}")
+        note = level_off_note(r.fit)
+        if note:
+            lines.append(f"  {note}")
     lines.append("stripes: " + ", ".join(f"{x:.3f}{u} {z}/{n}" for x, z, n in
                                          zip(stripes.levels, stripes.collapses, stripes.trials)))
     return "\n".join(lines)

@@ -187,7 +187,31 @@ def _cell(v) -> str:
     return html.escape(str(v))
 
 
-def _block_html(block, figures: dict, key: str) -> str:
+def _figure_html(block, figures: dict, key: str, progress=None, not_drawn=None) -> str:
+    """A Figure block as an embedded PNG; a drawing that raises is replaced by the line 'figure
+    not drawn: <reason>' (a warning in ``progress``, the pair appended to ``not_drawn``): a
+    figure is an illustration of numbers already in the text and the JSON, so it never ends
+    the report."""
+    draw = figures.get(block.kind)
+    try:
+        fig = None if draw is None else draw(block.payload)
+        uri = None if fig is None else _png_data_uri(fig)
+    except Exception as exc:  # noqa: BLE001 -- any failure of a drawing is reported, by design
+        why = f"{type(exc).__name__}: {' '.join(str(exc).split()) or 'no message'}"
+        if progress:
+            progress(f"  warning: figure {key}/{block.kind} not drawn ({why})")
+        if not_drawn is not None:
+            not_drawn.append({"section": key, "figure": block.kind, "reason": why})
+        return f'<p class="note">figure not drawn: {html.escape(why)}</p>'
+    if uri is None:
+        return (f'<p class="note">Figure "{html.escape(block.kind)}": no drawing function in '
+                f'this installation.</p>')
+    alt = html.escape(block.caption, quote=True)
+    return (f'<figure id="fig-{html.escape(key)}-{html.escape(block.kind)}"><img alt="{alt}" '
+            f'src="{uri}"><figcaption>{html.escape(block.caption)}</figcaption></figure>')
+
+
+def _block_html(block, figures: dict, key: str, progress=None, not_drawn=None) -> str:
     if isinstance(block, Paragraph):
         return f"<p>{html.escape(block.text)}</p>"
     if isinstance(block, Table):
@@ -197,20 +221,14 @@ def _block_html(block, figures: dict, key: str) -> str:
         cap = f"<caption>{html.escape(block.caption)}</caption>" if block.caption else ""
         return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
     if isinstance(block, Figure):
-        draw = figures.get(block.kind)
-        fig = None if draw is None else draw(block.payload)
-        if fig is None:
-            return (f'<p class="note">Figure "{html.escape(block.kind)}": no drawing function in '
-                    f'this installation.</p>')
-        uri = _png_data_uri(fig)
-        alt = html.escape(block.caption, quote=True)
-        return (f'<figure id="fig-{html.escape(key)}-{html.escape(block.kind)}"><img alt="{alt}" '
-                f'src="{uri}"><figcaption>{html.escape(block.caption)}</figcaption></figure>')
+        return _figure_html(block, figures, key, progress, not_drawn)
     raise ArchInputError(f"report block: {type(block).__name__}; allowed Paragraph, Table, Figure")
 
 
-def render_html(assessment, figures: dict | None = None, progress=None) -> str:
-    """The report as one HTML document (str)."""
+def render_html(assessment, figures: dict | None = None, progress=None,
+                not_drawn: list | None = None) -> str:
+    """The report as one HTML document (str); the figures that could not be drawn are said in
+    their place and appended to ``not_drawn`` (section, figure, reason)."""
     figs = FIGURES if figures is None else figures
     arch = assessment.arch
     when = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
@@ -236,7 +254,7 @@ def render_html(assessment, figures: dict | None = None, progress=None) -> str:
     for s in assessment.sections:
         if progress:
             progress(f"  drawing {s.key}")
-        blocks = [_block_html(b, figs, s.key) for b in s.blocks]
+        blocks = [_block_html(b, figs, s.key, progress, not_drawn) for b in s.blocks]
         # the heading and the section's first block in one unbreakable box: Chromium's printing
         # does not honour break-after: avoid on its own, and left headings alone at page bottoms
         head = (f'<div class="keep"><h2>{html.escape(s.title)}</h2>'
@@ -265,8 +283,11 @@ def write_report(assessment, html_path, json_path=None, progress=None) -> tuple[
     if hp.suffix.lower() not in (".html", ".htm"):
         raise ArchInputError(f"report: {str(html_path)!r}; allowed a file name ending in .html")
     jp = hp.with_suffix(".json") if json_path is None else Path(json_path)
-    text = render_html(assessment, progress=progress)
+    not_drawn: list = []
+    text = render_html(assessment, progress=progress, not_drawn=not_drawn)
     data = _json_safe(assessment.to_dict())
+    if not_drawn:  # the JSON says which figures the HTML lacks, and why
+        data["figures_not_drawn"] = not_drawn
     try:
         hp.parent.mkdir(parents=True, exist_ok=True)
         hp.write_text(text, encoding="utf-8")

@@ -767,7 +767,8 @@ def plot_collapse_curve(curve, path: str | os.PathLike | None = None, band=None,
             ax.plot([tp, tp], [lo, hi], color="#27ae60", lw=3.0, alpha=0.8, zorder=2,
                     label=f"{name}: survival above first collapse" if first else None)
             first = False
-    res = [p.resolution for p in curve.points if hasattr(p, "resolution")]
+    res = [r for r in (getattr(p, "resolution", None) for p in curve.points)
+           if r and r.get("step_relative") is not None]  # the engine searches no windows
     if res:  # a list of windows says the step it was searched at (issue 30)
         rel = max(r["step_relative"] for r in res)
         ax.plot([], [], " ", label=f"windows searched at {100 * rel:.2g}% steps of $|a|$: "

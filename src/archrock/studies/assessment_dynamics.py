@@ -163,6 +163,7 @@ def _engine_response(ctx, choice, motion) -> Section:
 def section_curves(ctx: Context) -> Section:
     from .curves import collapse_curve, ensemble_curve
     from .enginestudy import engine_curves_section
+    from .wording import resolution_line
 
     choice = ctx.dynamics  # at the report's friction: where one degree of freedom cannot follow
     if choice.engine:
@@ -177,8 +178,8 @@ def section_curves(ctx: Context) -> Section:
         except ArchInputError as exc:  # an arch that cannot be perturbed: nominal curve only
             ctx.progress(f"  band over irregular arches left out: {exc}")
     curve = band.nominal if band is not None else collapse_curve(ctx.model, cfg.durations, **kw)
-    rows = tuple((f"{d:g}", _f(float(a), ".4f"), m or "-")
-                 for d, a, m in zip(curve.durations, curve.amplitudes, curve.modes))
+    rows = tuple((f"{p.duration:g}", _f(float(a), ".4f"), p.mode or "-", _windows(p.windows))
+                 for p, a in zip(curve.points, curve.amplitudes))
     s = cfg.spreads
     band_txt = (f"The band spans the quantiles of {band.n_samples} irregular arches (seed "
                 f"{cfg.seed}; spreads: span {s.span:g}, thickness {s.thickness:g}, radius "
@@ -186,15 +187,23 @@ def section_curves(ctx: Context) -> Section:
                 + ")." if band is not None else "No band: no random arches were asked for.")
     blocks = (Paragraph("For each pulse duration, the smallest amplitude of Oppenheim's pulse "
                         "(first push toward -x) that collapses the arch; collapse is not "
-                        "monotonic in the amplitude, so survival windows above it are drawn. "
-                        + band_txt),
+                        "monotonic in the amplitude, so survival windows above it are drawn "
+                        "and listed, their edges refined by bisection; "
+                        + resolution_line(curve) + ". " + band_txt),
               Figure("curves", "Collapse-acceleration curve.", (curve, band)),
-              Table(("t_p [s]", "first collapse |a| [g]", "collapse mode"), rows))
+              Table(("t_p [s]", "first collapse |a| [g]", "collapse mode",
+                     "survival windows above it [g]"), rows))
     data = {"nominal": curve.to_dict(), "dynamics": choice.to_dict()}
     if band is not None:
         data["band"] = band.to_dict()
     return Section("curves", "Collapse-acceleration curve and its band over irregular arches",
                    blocks, data)
+
+
+def _windows(windows) -> str:
+    """Survival windows as 'lo-hi' [g], to 5 decimals: their edges are bisected to
+    min(tol, 1e-4 |a|), and a window can be 0.15% wide (docs/curves.md)."""
+    return ", ".join(f"{lo:.5f}-{hi:.5f}" for lo, hi in windows) or "-"
 
 
 @titled('defects', 'Defect map: which voussoir, if damaged, costs the most capacity')
@@ -255,16 +264,46 @@ def section_fragility(ctx: Context) -> Section:
     levels = default_stripe_levels(res_ida, np.array(cfg.scales), records)
     res_msa = msa(records, models, levels, n_boot=cfg.bootstrap, seed=cfg.seed)
     fit = res_msa.fit if res_msa.fit is not None else res_ida.fit
-    txt = (f"median collapse PGA theta = {fit.theta:.3f} g, dispersion beta = {fit.beta:.2f} "
-           f"({fit.method})" if fit is not None else "no fit could be identified")
+    txt, head = _fragility_words(res_ida, res_msa, fit)
     blocks = (Paragraph(f"{len(records)} record(s) x {len(models)} arch(es): incremental dynamic "
                         f"analysis (first collapse per record and arch) and multiple stripes "
-                        f"(binomial likelihood, Baker 2015); IM = PGA of the scaled record. {txt}."),
+                        f"(binomial likelihood, Baker 2015); IM = PGA of the scaled record. {txt}"),
               Figure("fragility", "Fragility curves.", (fit, res_msa, res_ida)))
     data = {"ida": res_ida.to_dict(), "msa": res_msa.to_dict(),
             "records": [str(r) for r in cfg.records], "dynamics": choice.to_dict()}
-    head = (("fragility median PGA [g]", f"{fit.theta:.3f}"),) if fit is not None else ()
     return Section("fragility", "Fragility curves", blocks, data, head)
+
+
+def _fragility_words(res_ida, res_msa, fit) -> tuple[str, tuple]:
+    """The fragility paragraph's result and its headline row, in the words of ``archrock
+    fragility`` (archrock.studies.wording): where no record collapses the arch, the bound over
+    the range tried and no fit (no median claimed); where the fit levels off, p_max and the
+    test's note (theta is then the median of the records that collapse)."""
+    from .wording import fit_line, level_off_note, range_tried_line
+
+    rng = res_ida.range_tried()
+    said = range_tried_line(res_ida)
+    if rng["p_upper_95"] is not None:  # nothing collapsed: the bound is all the data say
+        return (f"IDA: {said}; no fragility curve is fitted.",
+                (("fragility", f"no collapse up to {rng['max_im']:.3f} g: P(collapse) <= "
+                               f"{rng['p_upper_95']:.3f}"),))
+    parts = [f"IDA: {said}."] if said else []
+    if fit is None:
+        why = res_msa.fit_error or res_ida.fit_error
+        parts.append(f"No fit could be identified ({why}).")
+        return " ".join(parts), ()
+    which = "stripes" if fit is res_msa.fit else "IDA"
+    parts.append(f"Fit ({which}): {fit_line(fit, res_ida.im)}.")
+    note = level_off_note(fit)
+    if fit.p_max < 1.0:
+        parts.append(f"The curve levels off at P = {fit.p_max:.3f}: "
+                     f"{note or 'an upper asymptote below 1 was asked for'}; theta is the "
+                     f"median of the records that collapse, and P = 0.5 is "
+                     + ("never reached." if fit.p_max <= 0.5 else
+                        f"reached at {float(fit.quantile(0.5)):.3f} g."))
+        return " ".join(parts), (("fragility theta [g]", f"{fit.theta:.3f}, levelling off at "
+                                                          f"P = {fit.p_max:.3f}"),)
+    return " ".join(parts), (("fragility median PGA [g]", f"{fit.theta:.3f}"),)
 
 
 @titled('contact', 'Contact-engine check')

@@ -418,6 +418,16 @@ class EngineFirstCollapse:
     windows = ()
     t_collapse = None
 
+    @property
+    def resolution(self) -> dict:
+        """What was searched, in the shape of a four-link point's: no survival windows (the
+        engine finds the first boundary only, to rtol), said as such."""
+        return {"grid": None, "n_scan": len(self.scan_amplitudes), "step_relative": None,
+                "step_g": None, "edge_tol_g": f"{self.rtol:g} |a|",
+                "note": (f"the contact engine's first collapse only, bisected to "
+                         f"{100 * self.rtol:g}% of |a|: survival windows above it were not "
+                         f"searched")}
+
     def to_dict(self) -> dict:
         return {"duration_s": self.duration, "kind": self.kind, "sign": self.sign,
                 "amplitude_g": self.amplitude,

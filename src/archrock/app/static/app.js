@@ -133,7 +133,8 @@ function inputsOf(name) {
                                    friction: $("with-pulse").checked ? friction() : null};
   if (name === "curve") return {...common, samples: $("curve-samples").value.trim(), friction: friction(),
                                 durations: $("curve-durations").value.trim(), kind: $("pulse-kind").value};
-  return {...common, samples: $("report-samples").value.trim(), contact: $("report-contact").checked};
+  return {...common, samples: $("report-samples").value.trim(), contact: $("report-contact").checked,
+          friction: friction()};
 }
 const RESULTS = {response: ["anim-title", "anim-svg", "history-svg", "dynamics-label", "outcome"],
                  ensemble: ["hist-svg", "ensemble-result"], curve: ["curve-svg", "curve-result"],

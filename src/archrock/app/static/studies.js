@@ -61,7 +61,7 @@ const JOB_CONTROLS = {
                  button: "run-curve"},
   "/api/report": {samples: "report-samples", seed: "seed", span: "spread-span",
                   thickness: "spread-thickness", radius: "spread-radius", spreads: "spread-span",
-                  button: "run-report"}};
+                  friction: "friction-mu", button: "run-report"}};
 
 // a refused job request: its message beside the control of the field it names
 function refuseJob(url, e) {
@@ -112,6 +112,7 @@ async function runReport() {
   const body = {arch: archParams(), samples: $("report-samples").value.trim(),
                 seed: $("seed").value.trim(), spreads: spreadsParams(),
                 contact: $("report-contact").checked};
+  if (friction() !== "") body.friction = friction();  // the report's one friction: the page's
   const t0 = performance.now();
   const inputs = inputsOf("report");
   let job;
