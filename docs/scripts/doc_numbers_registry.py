@@ -494,6 +494,19 @@ ENTRIES += [
     Entry(R, "not the four-link model's {} g", HEAVY_FOURLINK, FIRST_02, slow=True),
 ]
 
+HEAVY_RESPOND = ("respond", "--geometry", "tests/data/heavy_piers.json", "--pulse", "oppenheim",
+                 "--amplitude", "-0.95", "--pulse-duration", "0.2", "--no-progress")
+ENTRIES += [  # respond gives the governing answer (issue 30): the engine's, by default
+    Entry(PD, "outcome (contact engine): COLLAPSED at t = {} s", HEAVY_RESPOND,
+          r"COLLAPSED at t = (\S+) s", slow=True),
+    Entry(PD, "(-0.95 g: collapsed at t = {} s)", HEAVY_RESPOND, r"COLLAPSED at t = (\S+) s",
+          slow=True),
+    Entry(PD, "at rest; peak rotation {} rad; ...`", HEAVY_RESPOND + ("--dynamics", "fourlink"),
+          r"four-link outcome \(not valid here\): at rest; peak rotation (\S+) rad"),
+    Entry(PD, "Oppenheim's collapse needs mu >= {}, so", ("limit", "--friction", "0.4"),
+          r"on its thrust line\): M_l (\S+),"),
+]
+
 UNCHECKED: list[Unchecked] = [
     Unchecked(PD, "4 random arches around heavy_piers (seed 0, spreads 0/0.1/0.05)",
               "the inputs, echoed"),

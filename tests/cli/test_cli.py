@@ -15,6 +15,7 @@ from archrock.cli import SUBCOMMANDS, add_geometry_options, arch_from_args, main
 from archrock.geometry.files import read_arch
 from archrock.geometry import random_arch
 from archrock.statics.limit import limit_analysis, minimum_thickness
+from archrock.studies.enginestudy import choose_dynamics
 
 OPPENHEIM_FLAGS = ["--radius", "10", "--embrace", "157.5", "--thickness", "1.5", "--voussoirs", "7"]
 # Fig. 3 of the paper / docs/method.md, Limit analysis: hinges ordered from the left springing.
@@ -328,7 +329,10 @@ def test_respond_report_is_what_the_command_prints(capsys):
     res = respond(model, motion, t_end=3.0, dt_out=0.005)
     code, out, _ = run(capsys, "respond", "--pulse", "oppenheim", "--amplitude", "-1",
                        "--pulse-duration", "0.2")
-    assert code == 0 and out == format_response(res, model, motion) + "\n"
+    # issue 30: then the model that gave it and the friction, stated once
+    assert code == 0 and out == format_response(res, model, motion) + (
+        "\ndynamics: four-link model (no piers: one degree of freedom (the four-link model) "
+        "follows the arch)\nfriction: mu = 0.8 (the default; --friction MU|none)\n")
     assert out.startswith("arch: Oppenheim; k_l = 0.3700") and "outcome: " in out
 
 
@@ -343,7 +347,7 @@ def test_respond_figures_run_to_the_collapse_past_t_end(capsys, tmp_path, monkey
     monkeypatch.setattr(archrock.reports.plots, "save_response_figure",
                         lambda rs, path, labels=None: seen.setdefault("plot", rs[0]))
     monkeypatch.setattr(archrock.reports.animate, "animate_response",
-                        lambda r, path: seen.setdefault("animate", r))
+                        lambda r, path, **kw: seen.setdefault("animate", r))
     d = run_json(capsys, "respond", "--pulse", "oppenheim", "--amplitude", "-2",
                  "--pulse-duration", "0.3", "--t-end", "0.3", "--json",
                  "--plot", str(tmp_path / "r.png"), "--animate", str(tmp_path / "r.gif"))
@@ -389,9 +393,13 @@ def test_curves_reports_are_what_the_command_prints(capsys, samples):
     about = dict(arch_name="Oppenheim", pulse="oppenheim", sign=-1, impact=PAPER_PRACTICE, cv=cv)
     argv = ["curves", "--durations", "0.2,0.5", "--n-scan", "12", "--samples", str(samples)]
     code, out, _ = run(capsys, *argv)
-    assert code == 0 and out == format_curves(curve, band, **about) + "\n"
-    assert run_json(capsys, *argv, "--json") == json.loads(json.dumps(curves_summary(curve, band,
-                                                                                     **about)))
+    # issue 30: then the routing of the dynamics at the command's friction, stated once
+    choice = choose_dynamics(nominal, "auto", friction=0.8)
+    assert code == 0 and out == format_curves(curve, band, **about) + (
+        f"\ndynamics: four-link model ({choice.reason}); friction: mu = 0.8 (the default; "
+        f"--friction MU|none)\n")
+    assert run_json(capsys, *argv, "--json") == json.loads(json.dumps(
+        {**curves_summary(curve, band, **about), "dynamics": choice.to_dict()}))
 
 
 def _record_file(tmp_path, name, freq):
@@ -458,8 +466,11 @@ def test_ensemble_report_is_what_the_command_prints(capsys):
     summary = run_json(capsys, *argv, "--json")
     code, out, _ = run(capsys, *argv)
     assert code == 0
-    # the last line is the wall time, which differs run to run
-    assert out.splitlines()[:-1] == format_ensemble(summary, "Oppenheim").splitlines()[:-1]
+    # the first line the routing at the command's friction (issue 30); the last the wall time,
+    # which differs run to run
+    assert out.splitlines()[0] == (f"dynamics: four-link model: {summary['dynamics']['reason']}; "
+                                   f"friction: mu = 0.8 (the default; --friction MU|none)")
+    assert out.splitlines()[1:-1] == format_ensemble(summary, "Oppenheim").splitlines()[:-1]
     assert out.splitlines()[-1].startswith("time: ")
 
 

@@ -656,8 +656,9 @@ def test_cli_respond_default_falls_back_where_paper_creates_energy(capsys):
             "--pulse-duration", "0.2", "--t-end", "1", "--dt-out", "0.05"]
     assert main(argv) == 0
     out = capsys.readouterr().out
-    assert "impact: momentum;" in out
-    assert "impact law fallback: " in out and "kinetic energy ratio 1.3035" in out
+    # the law named is the law that ran, with why the paper's could not (issue 30)
+    assert "impact law: momentum (the paper's law cannot be used on this arch: " in out
+    assert "kinetic energy ratio 1.3035" in out and "momentum law used" not in out
     assert main(argv + ["--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["restitution"]["model"] == "momentum"

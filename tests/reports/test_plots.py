@@ -63,7 +63,7 @@ def test_animation_ground_at_the_springings_and_axes_in_metres(tmp_path, monkeyp
 
     seen = {}
 
-    def capture(anim, path, fps, dpi):
+    def capture(anim, path, fps, dpi, progress=None):
         ax = anim._fig.axes[0]
         seen["xlabel"], seen["ylabel"] = ax.get_xlabel(), ax.get_ylabel()
         seen["ground"] = [ln.get_ydata()[0] for ln in ax.get_lines()

@@ -7,8 +7,10 @@ import sys
 from ..errors import ArchInputError
 from ._parser import _int, emit_json, interrupted_study, positive_float
 from .runsettings import run_settings
-from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads_for)
+from ._friction import add_friction_option
+from .options import (add_geometry_options, add_impact_options,
+                      add_random_arches_options, arch_from_args, figure_arg, folder_arg,
+                      friction_mu, friction_words, impact_spec_from_args, spreads_for)
 
 
 def add_curves_parser(subparsers):
@@ -49,7 +51,10 @@ def add_curves_parser(subparsers):
     p.add_argument("--dynamics", choices=("auto", "fourlink", "engine"), default="auto",
                    help="auto (default): the four-link model where one degree of freedom "
                         "follows the arch, the contact engine where its piers rock with it "
-                        "(docs/piers-dynamics.md); fourlink or engine as asked")
+                        "(docs/piers-dynamics.md) or where the joints slide at --friction; "
+                        "fourlink or engine as asked")
+    add_friction_option(p, "the routing of the dynamics and, where it runs, the contact "
+                           "engine")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress on stderr (shown for runs estimated above a few seconds)")
@@ -71,7 +76,8 @@ def run_curves(args) -> int:
     impact = impact_spec_from_args(args)
     from ..studies.enginestudy import choose_dynamics
 
-    choice = choose_dynamics(nominal, args.dynamics)
+    # the routing of respond, ensemble and assess at the command's one friction
+    choice = choose_dynamics(nominal, args.dynamics, friction=friction_mu(args))
     if choice.engine:  # issue 19: one degree of freedom cannot follow this arch
         from .enginecurves import run_engine_curves
 
@@ -109,9 +115,10 @@ def run_curves(args) -> int:
     about = dict(arch_name=nominal.name, pulse=args.pulse, sign=args.sign,
                  impact=impact, cv=applied.cv, note=applied.note)
     if args.json:
-        emit_json(curves_summary(curve, band, **about))
+        emit_json({**curves_summary(curve, band, **about), "dynamics": choice.to_dict()})
         return 0
     print(format_curves(curve, band, **about))
+    print(f"dynamics: four-link model ({choice.reason}); {friction_words(args)}")
     if plot:
         print(f"wrote {plot}", file=sys.stderr)
     return 0

@@ -87,6 +87,8 @@ def add_dem_parser(subparsers):
     p.add_argument("--dt-out", type=positive_float, default=0.005, metavar="S",
                    help="output sampling [s] (default 0.005)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress on stderr (the engine's run, the animation's frames)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="figure: the engine's equivalent rotation over the four-link phi(t), "
                         "every voussoir's rotation and the sliding at each joint")
@@ -141,7 +143,7 @@ def _run_push(args) -> int:
     import_pymunk()
     res = push_support(arch, args.push, args.push_side, settings, rate=args.push_rate,
                        max_displacement=args.push_max,
-                       progress=None if args.json else _progress,
+                       progress=None if args.json or args.no_progress else _progress,
                        pivot_depth=getattr(args, "pivot_depth", None) or 0.0)
     if args.json:
         emit_json(res.to_dict())
@@ -171,7 +173,7 @@ def run_dem(args) -> int:
     settings = engine_settings_from_args(args)
     arch = arch_from_args(args)
     import_pymunk()
-    quiet = args.json
+    quiet = args.json or args.no_progress
     progress = None if quiet else _progress
     if args.ramp:
         from ..contact import ramp
@@ -187,8 +189,13 @@ def run_dem(args) -> int:
             print(format_ramp(res, limit, arch))
         return 0
     from ..contact import engine_respond
-    from ..reports.contact import engine_response_dict, format_engine_response
+    from ..reports.contact import engine_response_dict, format_engine_response, four_link_label
     from ..dynamics.response import prepare, respond
+    from ..studies.enginestudy import choose_dynamics
+
+    # the routing respond and the studies apply at this friction: where it sends the arch to
+    # the engine, the four-link run beside it is labelled not valid here
+    choice = choose_dynamics(arch, "auto", friction=settings.friction)
 
     motion = spec.build()
     # the engine uses no impact law; the four-link run beside it does: the impact options are
@@ -211,18 +218,24 @@ def run_dem(args) -> int:
     if plot:
         from ..reports.contactplots import save_engine_figure
 
-        plot = save_engine_figure(res, fl, plot)
+        from ..reports.contact import blocks_names
+
+        plot = save_engine_figure(res, fl, plot, names=blocks_names(arch),
+                                  four_link_label=four_link_label(choice, short=True))
+        if progress:
+            progress(f"figure: wrote {plot} (100%)")
     if animation:
         from ..reports.contactplots import animate_engine
 
-        animation = animate_engine(res, fl, arch, animation)
+        animation = animate_engine(res, fl, arch, animation, progress=progress,
+                                   four_link_label=four_link_label(choice, short=True))
     if args.json:
-        d = engine_response_dict(res, fl)
+        d = engine_response_dict(res, fl, choice)
         if fl_note:
             d["four_link_note"] = fl_note
         emit_json(d)
         return 0
-    print(format_engine_response(res, fl, arch, motion))
+    print(format_engine_response(res, fl, arch, motion, choice))
     if fl_note:
         print(f"  {fl_note}")
     for f in (plot, animation):

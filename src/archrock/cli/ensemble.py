@@ -7,9 +7,10 @@ from pathlib import Path
 
 from ._parser import EXIT_INTERRUPTED, PROG, CLIError, _int, emit_json
 from .runsettings import run_settings
+from ._friction import add_friction_option
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      add_spread_options, arch_from_args, figure_arg, folder_arg,
-                      impact_spec_from_args, motion_spec_from_args, spreads_for)
+                      add_spread_options, arch_from_args, figure_arg, folder_arg, friction_mu,
+                      friction_words, impact_spec_from_args, motion_spec_from_args, spreads_for)
 
 
 def add_ensemble_parser(subparsers):
@@ -53,7 +54,10 @@ def add_ensemble_parser(subparsers):
     p.add_argument("--dynamics", choices=("auto", "fourlink", "engine"), default="auto",
                    help="under a motion: auto (default) the four-link model where one degree of "
                         "freedom follows the arch, the contact engine where its piers rock with "
-                        "it (docs/piers-dynamics.md); fourlink or engine as asked")
+                        "it (docs/piers-dynamics.md) or where its joints slide at --friction; "
+                        "fourlink or engine as asked")
+    add_friction_option(p, "the routing of the dynamics and, where it runs, the contact "
+                           "engine")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="histograms of k_l and k_r")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
@@ -67,6 +71,31 @@ def _kept(out, n_batches: int) -> str:
         return "nothing was kept (give --out DIR to keep finished batches and resume)"
     kept = len(list((Path(out) / "batches").glob("*.parquet")))
     return (f"{kept} of {n_batches} batches kept in {out}; the same command resumes from them")
+
+
+def _engine_run(args, motion, choice):
+    """The engine's run at the command's one friction where the routing (``choice``) sends the
+    arches to the engine; None elsewhere.  --friction none (sliding excluded) is refused there:
+    the engine cannot exclude sliding."""
+    if motion is None or not choice.engine:
+        return None
+    if friction_mu(args) is None:
+        raise CLIError(f"--friction: none (sliding excluded) cannot be modelled by the contact "
+                       f"engine, which this arch needs ({choice.reason}); give a finite MU > 0 "
+                       f"(a large one, e.g. 10, for joints that hardly slide) or --dynamics "
+                       f"fourlink")
+    from ..contact.settings import EngineSettings
+    from ..studies.enginestudy import EngineRun
+
+    return EngineRun(settings=EngineSettings(friction=friction_mu(args)))
+
+
+def _choice(config, args):
+    """The routing (choose_dynamics) of the nominal arch at --friction, as run_ensemble makes
+    it: said in the text and JSON."""
+    from ..studies.enginestudy import choose_dynamics
+
+    return choose_dynamics(config.analysed_nominal, args.dynamics, friction=friction_mu(args))
 
 
 def run_ensemble_cmd(args) -> int:
@@ -103,13 +132,17 @@ def run_ensemble_cmd(args) -> int:
                                       impact=impact_spec_from_args(args),
                                       early_stop=bool(args.early_stop), support=support,
                                       support_draw=args.support_draw)
+    choice = _choice(config, args) if motion is not None else None
+    engine = _engine_run(args, motion, choice)
     try:
         result = run_ensemble(config, keep_frame=not args.low_memory, settings=settings,
-                              dynamics=args.dynamics)
+                              dynamics=args.dynamics, engine=engine, friction=friction_mu(args))
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; " + _kept(out, config.n_batches), file=sys.stderr)
         return EXIT_INTERRUPTED
     summary = result.summary()
+    if motion is not None:  # the routing of the dynamics that ran, at the command's friction
+        summary["dynamics"] = choice.to_dict()
     if summary.get("how") == "contact engine":  # the engine's result (studies/enginestudy.py)
         if args.json:
             emit_json(summary)
@@ -130,8 +163,9 @@ def run_ensemble_cmd(args) -> int:
     if args.json:
         emit_json(summary)
         return 0
-    if motion is not None and "dynamics" in summary["nominal"]:
-        print(f"dynamics: four-link model: {summary['nominal']['dynamics']['reason']}")
+    if motion is not None:
+        print(f"dynamics: four-link model: {summary['dynamics']['reason']}; "
+              f"{friction_words(args)}")
     print(format_ensemble(summary, nominal.name))
     if out:
         print(f"results in {out}")

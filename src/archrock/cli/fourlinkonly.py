@@ -11,19 +11,29 @@ from ..errors import ArchInputError
 
 
 def add_fourlink_dynamics_option(p) -> None:
+    """--dynamics auto|fourlink and --friction (the routing's friction, as in respond, curves
+    and ensemble: the same arch gets the same routing everywhere)."""
+    from ._friction import add_friction_option
+
     p.add_argument("--dynamics", choices=("auto", "fourlink"), default="auto",
                    help="auto (default): the four-link model, refused on an arch whose piers "
-                        "rock with it (one degree of freedom cannot follow it: "
-                        "docs/piers-dynamics.md; ensemble and curves run the contact engine "
-                        "there); fourlink: the four-link model anyway, with a warning")
+                        "rock with it or whose joints slide at --friction (one degree of "
+                        "freedom cannot follow it: docs/piers-dynamics.md; ensemble and curves "
+                        "run the contact engine there); fourlink: the four-link model anyway, "
+                        "with a warning")
+    add_friction_option(p, "the routing of the dynamics (the joints slide where the four-link "
+                           "collapse needs more)")
 
 
-def check_fourlink(nominal, args, command: str) -> None:
+def check_fourlink(nominal, args, command: str):
     """Refuse ``nominal`` where one degree of freedom cannot follow it (``--dynamics auto``);
-    with ``--dynamics fourlink`` say so on stderr and go on."""
+    with ``--dynamics fourlink`` say so on stderr and go on.  Returns the DynamicsChoice (its
+    ``to_dict()`` for the command's JSON, under "dynamics")."""
     from ..studies.enginestudy import choose_dynamics
+    from .options import friction_mu
 
-    choice = choose_dynamics(nominal, getattr(args, "dynamics", "auto"))
+    choice = choose_dynamics(nominal, getattr(args, "dynamics", "auto"),
+                             friction=friction_mu(args))
     if choice.engine:
         raise ArchInputError(
             f"--dynamics: {command} runs the four-link model only, and on this arch "
@@ -34,3 +44,4 @@ def check_fourlink(nominal, args, command: str) -> None:
             f"anyway")
     if "WARNING" in choice.reason:
         print(f"archrock {command}: {choice.reason}", file=sys.stderr)
+    return choice

@@ -207,6 +207,34 @@ def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) 
     return parser
 
 
+# ---------------------------------------------------------------------------- dynamics
+def friction_mu(args):
+    """The command's one friction coefficient from ``--friction MU|none``
+    (:mod:`archrock.cli._friction`): MU, None (sliding excluded) or the package's default."""
+    from ._friction import NOT_GIVEN, resolve_friction
+
+    return resolve_friction(getattr(args, "friction", NOT_GIVEN))[0]
+
+
+def add_dynamics_option(parser, what: str = "the response"):
+    """--dynamics auto|fourlink|engine, as the studies route it (docs/piers-dynamics.md)."""
+    from ..studies.enginestudy import DYNAMICS
+
+    parser.add_argument(
+        "--dynamics", choices=DYNAMICS, default="auto",
+        help=f"auto (default): {what} by the four-link model where one degree of freedom "
+             f"follows the arch (no piers or still piers, and the joints' friction carries the "
+             f"collapse without sliding), else by the contact engine (docs/piers-dynamics.md); "
+             f"fourlink or engine as asked (fourlink where it is not valid: labelled so)")
+
+
+def friction_words(args) -> str:
+    """The friction a command ran with, in words, stated once in its output."""
+    from ._friction import NOT_GIVEN, resolve_friction
+
+    return "friction: " + resolve_friction(getattr(args, "friction", NOT_GIVEN))[1]
+
+
 # ---------------------------------------------------------------------------- impact
 def add_impact_options(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     """Add the impact group, with one meaning in every command (archrock.dynamics.impact.ImpactSpec):

@@ -1,20 +1,36 @@
-"""``archrock respond``: the rocking response of one arch to one ground motion."""
+"""``archrock respond``: the response of one arch to one ground motion, by the model that
+holds for it (issue 30): the four-link model where one degree of freedom follows the arch, the
+contact engine otherwise (:func:`archrock.studies.enginestudy.choose_dynamics`)."""
 
 from __future__ import annotations
 
+import sys
+
+from ..errors import ArchInputError, GeometryOutcome
 from ._parser import emit_json, finite_float, positive_float
-from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      animation_arg, figure_arg, model_from_args, motion_from_args)
+from ._friction import add_friction_option
+from .options import (add_dynamics_option, add_geometry_options,
+                      add_impact_options, add_motion_options, animation_arg, arch_from_args,
+                      figure_arg, friction_mu, friction_words, model_from_args, motion_from_args)
 
 
 def add_respond_parser(subparsers):
     p = subparsers.add_parser(
-        "respond", help="rocking response of an arch to a ground motion (four-link mechanism)",
-        description="Activation by the paper's eq. (1), motion in M_l / M_r, impacts, rest or "
-                    "collapse; signed response +phi in M_l, -phi in M_r.")
+        "respond", help="response of an arch to a ground motion (four-link mechanism, or the "
+                        "contact engine where one degree of freedom cannot follow the arch)",
+        description="Four-link model: activation by the paper's eq. (1), motion in M_l / M_r, "
+                    "impacts, rest or collapse; signed response +phi in M_l, -phi in M_r. "
+                    "Where it does not hold (piers that rock with the arch, joints that slide "
+                    "at --friction) the contact engine answers (--dynamics; needs pymunk: "
+                    "pip install 'archrock[dem]').")
     add_geometry_options(p)
     add_motion_options(p, required=True)
     add_impact_options(p)
+    add_dynamics_option(p)
+    add_friction_option(p, "the routing of the dynamics (the joints slide where the four-link "
+                           "collapse needs more) and the contact engine")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress on stderr (the engine's run, the animation's frames)")
     p.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
                    help="end of the output window [s] (default 3); the outcome covers the whole "
                         "ground motion and the free motion after it")
@@ -38,16 +54,38 @@ def add_respond_parser(subparsers):
     return p
 
 
+def _progress(args):
+    """The progress sink of the command: lines on stderr, or None (--no-progress, --json)."""
+    if args.no_progress or args.json:
+        return None
+    return lambda line: print(line, file=sys.stderr, flush=True)
+
+
 def run_respond(args) -> int:
-    from ..reports.response import format_response
-    from ..dynamics.response import prepare, respond
+    from ..studies.enginestudy import choose_dynamics
 
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     motion = motion_from_args(args)
-    model = model_from_args(args)
+    arch = arch_from_args(args)
+    choice = choose_dynamics(arch, args.dynamics, friction=friction_mu(args))
+    if choice.engine:
+        return _run_engine(args, arch, motion, choice, plot, animation)
+    return _run_fourlink(args, arch, motion, choice, plot, animation)
+
+
+def _run_fourlink(args, arch, motion, choice, plot, animation) -> int:
+    """The four-link model's answer; where it does not hold (asked for by name) under the
+    heading "four-link model: not valid here (...)", never as an outcome line alone."""
+    from ..reports.response import format_response, not_valid_reason
+    from ..dynamics.response import prepare, respond
+
+    model = model_from_args(args, arch)
     if args.limit_factor is not None:
         model = prepare(model.arch, model.impact, limit_factor=args.limit_factor, limit=model.limit)
     res = respond(model, motion, t_end=args.t_end, dt_out=args.dt_out, integrator=args.integrator)
+    why_not = not_valid_reason(choice)
+    if why_not is None and not res.single_dof_valid:  # the model's own check, as before
+        why_not = f"single degree of freedom not valid: {res.single_dof.reason}"
     shown = res
     if plot or animation:
         from ..reports.plots import figure_t_end
@@ -58,21 +96,109 @@ def run_respond(args) -> int:
         if t_fig > res.time[-1]:
             shown = respond(model, motion, t_end=t_fig, dt_out=args.dt_out,
                             integrator=args.integrator)
+    label = model.arch.name + ("" if why_not is None else " (four-link: not valid here)")
     if plot:
         from ..reports.plots import save_response_figure
 
-        plot = save_response_figure([shown], plot, labels=[model.arch.name])
+        plot = save_response_figure([shown], plot, labels=[label])
     if animation:
         from ..reports.animate import animate_response
 
-        animation = animate_response(shown, animation)
+        animation = animate_response(shown, animation, progress=_progress(args))
     if args.json:
-        emit_json(res.to_dict())
+        from ..reports.contact import blocks_count
+
+        d = {"model": "fourlink", "dynamics": choice.to_dict(),
+             "blocks": blocks_count(arch), **res.to_dict()}
+        d["valid_here"] = why_not is None
+        d["not_valid_reason"] = why_not
+        emit_json(d)
         return 0
-    print(format_response(res, model, motion))
-    if not res.single_dof_valid:
-        # issue 19: the number above is the four-link model's, which cannot follow this arch
-        print(f"WARNING single degree of freedom not valid: {res.single_dof.reason}")
+    text = format_response(res, model, motion)
+    head = [f"dynamics: four-link model ({choice.reason})", friction_words(args)]
+    if why_not is None:
+        # the report as before, then the model that gave it and the friction it assumed
+        print("\n".join([text] + head))
+    else:
+        # issue 30: a model the same output calls invalid gives no bare answer line
+        print(f"four-link model: not valid here ({why_not})")
+        if choice.requested == "fourlink":  # its reason repeats the heading's
+            head[0] = "dynamics: four-link model, asked for by name (--dynamics fourlink)"
+        body = [("four-link outcome (not valid here):" + line[len("outcome:"):])
+                if line.startswith("outcome:") else line for line in text.splitlines()]
+        print("\n".join("  " + line for line in head + body))
+        print("  (the governing answer on this arch is the contact engine's: --dynamics auto)")
+    for f in (plot, animation):
+        if f:
+            print(f"wrote {f}")
+    return 0
+
+
+def _four_link_options(args) -> list:
+    """The four-link model's options given on a run the engine answers (said, not silently
+    dropped)."""
+    given = [("--impact", args.impact), ("--impact-on", args.impact_on), ("--cv", args.cv),
+             ("--literal-cv", args.literal_cv or None), ("--limit-factor", args.limit_factor),
+             ("--integrator", None if args.integrator == "fast" else args.integrator)]
+    return [flag for flag, v in given if v is not None]
+
+
+def _engine_settings(args, choice):
+    """The engine's settings at the command's one friction; --friction none cannot be run."""
+    from ..contact import EngineSettings
+
+    if friction_mu(args) is None:
+        raise ArchInputError(
+            f"friction: none (sliding excluded) cannot be modelled by the contact engine, which "
+            f"this arch needs ({choice.reason}); allowed a finite number > 0 (a large one, e.g. "
+            f"--friction 10, for joints that hardly slide), or --dynamics fourlink for the "
+            f"four-link answer, labelled not valid here")
+    return EngineSettings(friction=friction_mu(args))
+
+
+def _run_engine(args, arch, motion, choice, plot, animation) -> int:
+    """The contact engine's answer (the model that holds where one degree of freedom cannot
+    follow the arch, or asked for by name); no four-link number beside it."""
+    from ..contact import import_pymunk
+    from ..contact.motion import engine_respond
+    from ..dynamics.response import prepare
+    from ..reports.response import format_engine_outcome
+    from ..studies.enginestudy import EngineRun
+
+    settings = _engine_settings(args, choice)
+    try:
+        import_pymunk()
+    except ImportError:
+        raise GeometryOutcome(
+            f"respond: this arch needs the contact engine ({choice.reason}), which needs "
+            f"pymunk: pip install 'archrock[dem]'; or give --dynamics fourlink for the "
+            f"four-link answer, labelled not valid here") from None
+    run = EngineRun(settings=settings)  # the studies' free motion and collapse criterion
+    model = prepare(arch, "momentum")  # its limit mechanisms give the equivalent rotation
+    res = engine_respond(arch, motion, settings, model=model, t_end=args.t_end,
+                         dt_out=args.dt_out, t_free=run.t_free,
+                         collapse_drop=run.collapse_drop, progress=_progress(args))
+    if plot:
+        from ..reports.contactplots import save_engine_figure
+
+        from ..reports.contact import blocks_names
+
+        plot = save_engine_figure(res, None, plot, names=blocks_names(arch))
+    if animation:
+        from ..reports.contactplots import animate_engine
+
+        animation = animate_engine(res, None, arch, animation, progress=_progress(args))
+    unused = _four_link_options(args)
+    if args.json:
+        from ..reports.contact import blocks_count
+
+        emit_json({"model": "engine", "dynamics": choice.to_dict(), "arch": arch.name,
+                   "blocks": blocks_count(arch), "engine_run": run.to_dict(),
+                   "unused_options": unused, **res.to_dict()})
+        return 0
+    print(format_engine_outcome(res, arch, motion, choice, friction_words(args)))
+    if unused:
+        print(f"not used by the contact engine (four-link options): {', '.join(unused)}")
     for f in (plot, animation):
         if f:
             print(f"wrote {f}")

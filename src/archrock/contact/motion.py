@@ -18,6 +18,7 @@ pulses often put hinge B elsewhere), it is still the rotation about the springin
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -141,6 +142,9 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     k = 0
     quiet = 0
     quiet_needed = int(0.5 * settings.steps_per_T)
+    t_most = max(t_stop, (n_out - 1) * dt_s)  # the run's longest: free motion or the window
+    next_line = 0.1
+    last_line = time.monotonic()
     while True:
         t = ca.time
         pos, ang, vel, rate = ca.state()
@@ -167,10 +171,18 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
         if t >= t_stop and k >= n_out:
             break
         ca.step(float(motion(t + 0.5 * dt)), 1)
-        if progress and ca.steps % int(10 * settings.steps_per_T) == 0:
-            progress(f"engine t = {ca.time:.1f} s")
+        if progress and (ca.time >= next_line * t_most
+                         or (ca.steps % 64 == 0 and time.monotonic() - last_line > 5.0)):
+            # a line per 10% of the longest the run can take, and every 5 s of wall time:
+            # collapse or rest often end the run long before its first 10%
+            progress(f"engine: t = {ca.time:.2f} s of at most {t_most:.2f} s "
+                     f"({100 * ca.time / t_most:.0f}%)")
+            next_line = math.floor(10 * ca.time / t_most + 1e-9) / 10 + 0.1
+            last_line = time.monotonic()
     if status == "rest" and quiet < quiet_needed:
         status = "moving"
+    if progress:
+        progress(f"engine: 100% ({status} at t = {ca.time:.2f} s)")
     phi = equivalent_rotation(model, np.nan_to_num(rots))
     phi[np.isnan(rots[:, 0])] = np.nan
     # peak |phi| over the whole run from the samples (and the last state)

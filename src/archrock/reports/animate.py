@@ -38,11 +38,13 @@ def animation_path(path: str | os.PathLike) -> Path:
 
 
 def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: float = 1.0,
-                     exaggerate: float = 1.0, dpi: int = 90, max_frames: int = 400) -> Path:
+                     exaggerate: float = 1.0, dpi: int = 90, max_frames: int = 400,
+                     progress=None) -> Path:
     """Write an animation of ``response`` to ``path`` (.gif with Pillow, .mp4 with ffmpeg).
 
     fps: frames per second; speed: simulated seconds per real second; exaggerate: factor on
-    the drawn rotations (1 = to scale); max_frames caps the file size.
+    the drawn rotations (1 = to scale); max_frames caps the file size; progress: None or a
+    callable given a line per ~10% of the frames drawn (:func:`save_animation`).
     """
     from .plots import (STYLE, displaced_hinges, displaced_outlines, draw_displaced, new_figure,
                         plot_ground_motion, springing_level, voussoir_bounds)
@@ -123,18 +125,37 @@ def animate_response(response, path: str | os.PathLike, fps: int = 25, speed: fl
         marker.set_data([tk], [val])
         return [*patches, hinge_marks, title, marker]
 
-    return save_animation(FuncAnimation(fig, draw, frames=n_frames, blit=False), path, fps, dpi)
+    return save_animation(FuncAnimation(fig, draw, frames=n_frames, blit=False), path, fps, dpi,
+                          progress=progress)
 
 
-def save_animation(anim, path: Path, fps: int, dpi: int) -> Path:
+def frame_progress(progress, name: str):
+    """matplotlib's ``progress_callback(i, n)`` as a line to ``progress`` per ~10% of the
+    ``n`` frames, the last at 100% (None: no callback)."""
+    if progress is None:
+        return None
+    shown = [-1]
+
+    def callback(i, n):
+        tenth = 10 * (i + 1) // max(n, 1)  # drawing a long animation takes tens of seconds
+        if tenth > shown[0]:
+            shown[0] = tenth
+            progress(f"{name}: frame {i + 1}/{n} ({100 * (i + 1) // max(n, 1)}%)")
+
+    return callback
+
+
+def save_animation(anim, path: Path, fps: int, dpi: int, progress=None) -> Path:
     """Write a matplotlib animation to ``path`` (.gif with Pillow, .mp4 with ffmpeg); a file
-    that cannot be written is an ArchInputError naming it."""
+    that cannot be written is an ArchInputError naming it.  progress: None or a callable given
+    a line per ~10% of the frames (:func:`frame_progress`)."""
     from matplotlib.animation import FFMpegWriter, PillowWriter
 
     path.parent.mkdir(parents=True, exist_ok=True)
     writer = PillowWriter(fps=fps) if path.suffix.lower() == ".gif" else FFMpegWriter(fps=fps)
     try:
-        anim.save(str(path), writer=writer, dpi=dpi)
+        anim.save(str(path), writer=writer, dpi=dpi,
+                  progress_callback=frame_progress(progress, f"animation {path.name}"))
     except (OSError, RuntimeError, ValueError) as exc:
         # OSError: an unwritable place (PIL/ffmpeg); RuntimeError/FileNotFoundError: no ffmpeg
         hint = "; use .gif if ffmpeg is not installed" if path.suffix.lower() == ".mp4" else ""

@@ -4,9 +4,59 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.blocks import describe_blocks
+from ..geometry.blocks import block_counts, block_names, describe_blocks
 
-__all__ = ["ramp_dict", "format_ramp", "engine_response_dict", "format_engine_response"]
+__all__ = ["ramp_dict", "format_ramp", "engine_response_dict", "format_engine_response",
+           "blocks_words", "blocks_count", "blocks_names", "four_link_label"]
+
+
+def _found_piers(arch) -> tuple:
+    """The pier blocks of an arch that does not name its kinds (a geometry file such as
+    tests/data/heavy_piers.json): its heavy end blocks on level foundations
+    (:func:`archrock.dynamics.piers.pier_blocks`); () where the arch names them or has none."""
+    if getattr(arch, "block_kinds", None):
+        return ()
+    from ..dynamics.piers import pier_blocks
+
+    return tuple(pier_blocks(arch)[0])
+
+
+def blocks_words(arch) -> str:
+    """The blocks of ``arch`` by kind (:func:`archrock.geometry.blocks.describe_blocks`); on a
+    file without kinds whose end blocks are piers, "12 voussoirs on two piers (found by their
+    geometry)": an arch of 12 voussoirs on two piers is not an arch of 14 voussoirs."""
+    piers = _found_piers(arch)
+    if not piers:
+        return describe_blocks(arch)
+    nv = arch.n - len(piers)
+    two = "two piers" if len(piers) == 2 else "a pier"
+    return f"{nv} voussoir{'s' if nv != 1 else ''} on {two} (found by their geometry)"
+
+
+def blocks_names(arch) -> tuple:
+    """Every block's name (:func:`archrock.geometry.blocks.block_names`), the found piers of a
+    file without kinds named "left pier" / "right pier" and the voussoirs counted from 0."""
+    piers = _found_piers(arch)
+    if not piers:
+        return block_names(arch)
+    names, v = [], 0
+    for i in range(arch.n):
+        if i in piers:
+            names.append("left pier" if i == 0 else "right pier")
+        else:
+            names.append(f"voussoir {v}")
+            v += 1
+    return tuple(names)
+
+
+def blocks_count(arch) -> dict:
+    """:func:`archrock.geometry.blocks.block_counts`, the piers of a file without kinds
+    counted as piers (:func:`blocks_words`)."""
+    counts = block_counts(arch)
+    piers = _found_piers(arch)
+    if piers:
+        counts.update(voussoirs=arch.n - len(piers), pier_blocks=len(piers), piers=len(piers))
+    return counts
 
 
 def _limit_hinges(limit, d):
@@ -54,26 +104,60 @@ def format_ramp(result, limit, arch) -> str:
     return "\n".join(lines)
 
 
-def engine_response_dict(res, four_link=None) -> dict:
+def engine_response_dict(res, four_link=None, choice=None) -> dict:
+    """``archrock dem --json`` of a response: the engine's run, the four-link run beside it
+    and, with ``choice``, the routing ("dynamics") and whether the four-link model holds."""
     d = res.to_dict()
     if four_link is not None:
         d["four_link"] = four_link.to_dict(samples=False)
+    if choice is not None:
+        d["dynamics"] = choice.to_dict()
+        if four_link is not None:
+            d["four_link"]["valid_here"] = not choice.engine
+            d["four_link"]["label"] = four_link_label(choice)
     return d
 
 
-def format_engine_response(res, four_link, arch, motion) -> str:
+def four_link_label(choice, short: bool = False) -> str:
+    """The four-link column beside the engine: "four-link", or "four-link (not valid here:
+    <why>)" where the routing (``choice``, a DynamicsChoice of "auto") sends this arch to the
+    engine; ``short``: without the why (a figure's legend)."""
+    if choice is None or not choice.engine:
+        return "four-link"
+    if short:
+        return "four-link (not valid here)"
+    why = choice.reason.split(": ", 1)[-1] if choice.reason.startswith("one degree") else \
+        choice.reason
+    return f"four-link (not valid here: {why})"
+
+
+def format_engine_response(res, four_link, arch, motion, choice=None) -> str:
+    """``archrock dem``'s text: the engine's run, the four-link run beside it (labelled not
+    valid here where ``choice``, the routing of "auto", says so) and the sliding."""
     s = res.settings
-    lines = [f"Contact engine: {arch.name}, {describe_blocks(arch)}, {motion.name}, friction MU = "
-             f"{s.friction:g}, restitution {s.restitution:g}",
-             f"  engine   : {res.status}"
-             + (f" at t = {res.t_collapse:.3f} s (a voussoir dropped by "
+    lines = [f"Contact engine: {arch.name}, {blocks_words(arch)}, {motion.name}, friction MU = "
+             f"{s.friction:g}, restitution {s.restitution:g}"]
+    if choice is not None:
+        lines.append(f"  governing model (--dynamics auto of respond and the studies): "
+                     f"{'contact engine' if choice.engine else 'four-link model'} "
+                     f"({choice.reason})")
+    lines += [f"  engine   : {res.status}"
+             + (f" at t = {res.t_collapse:.3f} s (a block dropped by "
                 f"{res.run['collapse_drop']:g} x size)" if res.collapsed else "")
              + f", peak equivalent phi {res.peak:.4f} rad, run to {res.t_final:.2f} s"]
     if four_link is not None:
-        lines.append(f"  four-link: {four_link.status}"
+        label = four_link_label(choice)
+        if label != "four-link":  # a model the output calls invalid: its numbers under the label
+            lines.append(f"  {label}:")
+            label = "  four-link outcome (not valid here)"
+        lines.append(f"  {label}: {four_link.status}"
                      + (f" at t = {four_link.t_collapse:.3f} s" if four_link.collapsed else "")
                      + f", peak phi {four_link.peak:.4f} rad, impacts "
                      + ", ".join(f"{t:.3f}" for t in four_link.impacts[:6]))
+        if four_link.model.impact.fallback:  # the law named is the law that ran
+            from .response import impact_law_line
+
+            lines.append(f"    four-link {impact_law_line(four_link.model.impact)}")
     ms = res.max_sliding
     j = int(np.argmax(ms))
     lines.append(f"  max sliding: {ms.max() * 1e3:.2f} mm at joint {j} (per joint, mm: "

@@ -26,9 +26,12 @@ def engine_outlines(arch, positions: np.ndarray, rotations: np.ndarray) -> list[
     return out
 
 
-def save_engine_figure(res, four_link, path, dpi: int = 150) -> Path:
+def save_engine_figure(res, four_link, path, dpi: int = 150, four_link_label=None,
+                       names=None) -> Path:
     """Three panels: the engine's equivalent rotation over the four-link phi(t); every
-    voussoir's rotation; the largest sliding at each joint."""
+    block's rotation; the largest sliding at each joint.  four_link_label: how the
+    four-link curve is named (e.g. "four-link (not valid here)"; default "four-link");
+    names: each block's name (default "voussoir i"; piers by kind where given)."""
     from .plots import new_figure, save_figure
 
     fig, axes = new_figure(3, 1, figsize=(7.0, 8.0), height_ratios=(1.3, 1.0, 0.8))
@@ -37,20 +40,24 @@ def save_engine_figure(res, four_link, path, dpi: int = 150) -> Path:
             label="contact engine: equivalent $\\phi$")
     if four_link is not None:
         ax.plot(four_link.time, four_link.response, color=_COLORS["paper"], lw=1.2,
-                label=f"four-link ({four_link.model.impact.model} impacts): $\\phi$")
+                label=f"{four_link_label or 'four-link'} ({four_link.model.impact.model} "
+                      f"impacts): $\\phi$")
         ax.axhline(four_link.model.phi_unstable_l, color="#999999", lw=0.7, ls="--")
         ax.axhline(-four_link.model.phi_unstable_r, color="#999999", lw=0.7, ls="--",
                    label=r"unstable positions $\pm\phi_u$")
     ax.axhline(0.0, color="#cccccc", lw=0.6)
     ax.set_ylabel(r"signed rotation $\phi$ [rad]")
-    ax.set_title(f"engine: {res.status}; four-link: "
-                 f"{four_link.status if four_link is not None else '-'}", fontsize=9)
+    ax.set_title(f"contact engine: {res.status}" if four_link is None else
+                 f"engine: {res.status}; {four_link_label or 'four-link'}: {four_link.status}",
+                 fontsize=9)
     # legends outside the axes, on the right: inside they hid curves (voussoir 3's trough)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     nv = res.rotations.shape[1]
     for i in range(nv):
-        ax_v.plot(res.time, res.rotations[:, i], lw=0.9, label=f"voussoir {i}")
-    ax_v.set_ylabel("voussoir rotation [rad]")
+        ax_v.plot(res.time, res.rotations[:, i], lw=0.9,
+                  label=f"voussoir {i}" if names is None else names[i])
+    voussoirs_only = names is None or all(n.startswith("voussoir") for n in names)
+    ax_v.set_ylabel("voussoir rotation [rad]" if voussoirs_only else "block rotation [rad]")
     ax_v.set_xlabel("$t$ [s]")
     ax_v.legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False,
                 ncol=1 + (nv - 1) // 14)
@@ -94,9 +101,12 @@ def save_verify_figure(res, path, dpi: int = 150, ax=None) -> Path | None:
 
 
 def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
-                   speed: float = 1.0, dpi: int = 80, max_frames: int = 300) -> Path:
+                   speed: float = 1.0, dpi: int = 80, max_frames: int = 300,
+                   progress=None, four_link_label=None) -> Path:
     """Animation: the engine's voussoirs (left) beside the four-link mechanism (right), to
-    scale, with both rotations against time below."""
+    scale, with both rotations against time below; four_link_label names the four-link
+    panel and curve (default "four-link"; "not run" where ``four_link`` is None)."""
+    fl_name = (four_link_label or "four-link") + ("" if four_link is not None else ": not run")
     from .animate import animation_path, save_animation
     from .plots import STYLE, displaced_outlines, new_figure, springing_level, voussoir_bounds
 
@@ -114,7 +124,7 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
     pad = 0.15 * np.ptp(pts[:, 0])
     patches = {}
     ground = springing_level(arch)  # the ground the springings stand on
-    for k, name in ((0, "engine"), (1, "four-link")):
+    for k, name in ((0, "engine"), (1, "four-link")):  # patches' keys; the titles say more
         ax = axes[0][k]
         ax.set_aspect("equal")
         ax.set_xlim(pts[:, 0].min() - pad, pts[:, 0].max() + pad)
@@ -122,7 +132,7 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
         ax.axhline(ground, color=STYLE["ground"], lw=1.0)
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-        ax.set_title(name, fontsize=9)
+        ax.set_title("contact engine" if k == 0 else fl_name, fontsize=9)
         patches[name] = []
         for i in range(arch.n):
             p = Polygon(np.zeros((3, 2)), closed=True, facecolor=STYLE["voussoir_face"],
@@ -136,7 +146,7 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
     ax_t.plot(t, res.phi, color=_COLORS["engine"], lw=1.2, label="engine (equivalent)")
     if four_link is not None:
         ax_t.plot(four_link.time, four_link.response, color=_COLORS["paper"], lw=1.2,
-                  label="four-link")
+                  label=fl_name)
     ax_t.set_xlim(0, t[last])
     ax_t.set_xlabel("$t$ [s]")
     ax_t.set_ylabel(r"$\phi$ [rad]")
@@ -165,4 +175,5 @@ def animate_engine(res, four_link, arch, path: str | os.PathLike, fps: int = 25,
         title.set_text(f"t = {tk:5.2f} s")
         return [*patches["engine"], *patches["four-link"], marker, title]
 
-    return save_animation(FuncAnimation(fig, draw, frames=n_frames, blit=False), path, fps, dpi)
+    return save_animation(FuncAnimation(fig, draw, frames=n_frames, blit=False), path, fps, dpi,
+                          progress=progress)

@@ -2,7 +2,58 @@
 
 from __future__ import annotations
 
-__all__ = ["format_response"]
+__all__ = ["format_response", "impact_law_line", "format_engine_outcome", "not_valid_reason"]
+
+
+def impact_law_line(law) -> str:
+    """The impact law that ran, in words: where the paper's law could not be used on this arch
+    (``law.fallback``) the law used instead and why, never the law asked for."""
+    rates = (f"rate ratio l->r {law.l_to_r:.4f}, r->l {law.r_to_l:.4f} "
+             f"(energy ratio {law.energy_l_to_r:.4f}, {law.energy_r_to_l:.4f})")
+    if not law.fallback:
+        return f"impact: {law.model}; {rates}"
+    why = law.fallback
+    tail = f"; {law.model} law used"
+    if why.endswith(tail):  # the note ends by naming the law, which this line names first
+        why = why[:-len(tail)]
+    return (f"impact law: {law.model} (the paper's law cannot be used on this arch: {why}); "
+            f"{rates}")
+
+
+def not_valid_reason(choice) -> str | None:
+    """Why the four-link model asked for by name does not hold here (the WARNING parts of
+    ``choice.reason``, :func:`archrock.studies.enginestudy.choose_dynamics`), or None where it
+    holds."""
+    parts = choice.reason.split("; WARNING ")[1:]
+    if not parts:
+        return None
+    return "; ".join(p[len("not valid here: "):] if p.startswith("not valid here: ") else p
+                     for p in parts)
+
+
+def format_engine_outcome(res, arch, motion, choice, friction_line: str) -> str:
+    """The contact engine's response (:class:`archrock.contact.motion.ContactResponse`) of
+    ``arch`` to ``motion`` as the governing answer: outcome, peak, sliding, and why the engine
+    ran (``choice``, a DynamicsChoice); no four-link number."""
+    from .contact import blocks_words
+
+    s = res.settings
+    outcome = (f"COLLAPSED at t = {res.t_collapse:.3f} s (a block's mass centre dropped by "
+               f"{res.run['collapse_drop']:g} x size)" if res.collapsed else
+               {"rest": "at rest", "moving": "still moving when the free motion ran out "
+                "(counted as not collapsed)"}.get(res.status, res.status))
+    ms = res.max_sliding
+    j = int(ms.argmax())
+    return "\n".join([
+        f"arch: {arch.name} ({blocks_words(arch)})",
+        f"dynamics: contact engine ({choice.reason})",
+        friction_line + f"; restitution {s.restitution:g}",
+        f"ground motion: {motion.name} (duration {motion.duration:g} s, PGA {motion.pga_g:.3f} g)",
+        "impact: none (the engine's contacts resolve each impact; no impact law)",
+        f"outcome (contact engine): {outcome}; peak equivalent rotation {res.peak:.4f} rad; run "
+        f"to {res.t_final:.2f} s",
+        f"max sliding: {ms.max() * 1e3:.2f} mm at joint {j}",
+    ])
 
 
 def format_response(result, model, motion) -> str:
@@ -17,9 +68,7 @@ def format_response(result, model, motion) -> str:
     lines = [
         f"arch: {model.arch.name}; k_l = {model.k_l:.4f}, k_r = {model.k_r:.4f}",
         f"ground motion: {motion.name} (duration {motion.duration:g} s, PGA {motion.pga_g:.3f} g)",
-        f"impact: {law.model}; rate ratio l->r {law.l_to_r:.4f}, r->l {law.r_to_l:.4f} "
-        f"(energy ratio {law.energy_l_to_r:.4f}, {law.energy_r_to_l:.4f})",
-        *([f"impact law fallback: {law.fallback}"] if law.fallback else []),
+        impact_law_line(law),
         f"outcome: {outcome}; peak rotation {result.peak:.4f} rad; {len(imp)} impacts"
         + (f" (first at {imp[0]:.3f} s)" if imp else "")
         + (f"; first passed the unstable position at {result.t_unstable:.3f} s"

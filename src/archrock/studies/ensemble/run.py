@@ -11,6 +11,7 @@ from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, c
 from .config import EnsembleConfig
 from .executors import execute
 from ..._progress import Progress
+from ..enginestudy import UNSET_FRICTION
 from ..runner import UNSET, resolve_settings
 from .compute import run_batches
 from ..store import (OTHER_CODE, Manifest, batch_path, code_digest, is_damage, read_batch,
@@ -87,7 +88,8 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
 
 def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNSET,
                  progress=UNSET, keep_frame: bool = True, *, out_dir=UNSET,
-                 settings=None, dynamics: str = "auto", engine=None) -> EnsembleResult:
+                 settings=None, dynamics: str = "auto", engine=None,
+                 friction=UNSET_FRICTION) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
     settings: how it runs (:class:`~archrock.studies.runner.RunSettings`, default in-process,
@@ -107,7 +109,9 @@ def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNS
     and an :class:`~archrock.studies.enginestudy.EngineEnsembleResult` is returned (nothing
     stored; ``engine``: its :class:`~archrock.studies.enginestudy.EngineRun`); on rigid ground
     "auto" is the four-link ensemble, unchanged.  The choice is in the summary's nominal
-    ("dynamics") where the arch has piers or another dynamics was asked for.
+    ("dynamics") where the arch has piers or another dynamics was asked for.  friction: the
+    Coulomb coefficient the routing checks the joints against (default the package's; None:
+    sliding excluded), the command's one friction, which ``engine`` should use too.
     """
     import pandas as pd
 
@@ -124,7 +128,8 @@ def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNS
                              "the stored batches)")
     from ..enginestudy import choose_dynamics
 
-    choice = choose_dynamics(config.analysed_nominal, dynamics)  # checks the value first
+    choice = choose_dynamics(config.analysed_nominal, dynamics,
+                             friction=friction)  # checks the values first
     if choice.engine and config.motion is not None:  # docs/piers-dynamics.md
         from ..enginestudy import engine_ensemble
 
