@@ -129,3 +129,29 @@ def oppenheim():
     lim = limit_analysis(arch, verify=True)
     return SimpleNamespace(arch=arch, limit=lim, left=four_link(arch, lim.mechanism_l),
                            right=four_link(arch, lim.mechanism_r))
+
+
+@pytest.fixture(scope="session")
+def levelling_ida():
+    """A synthetic IDA of 300 single-record curves whose capacities are lognormal (theta 0.3 g,
+    beta 0.3) and 45% of which never collapse up to 1 g (censored there): (capacities [g],
+    inf where censored; the IDAResult with its censored plateau fit)."""
+    import math
+
+    import numpy as np
+
+    from archrock.studies.fragility import fit_ida_moments
+    from archrock.studies.ida import IDACurve, IDAResult
+
+    rng = np.random.default_rng(5)
+    n = 300
+    x = np.exp(rng.normal(math.log(0.3), 0.3, n))
+    x[rng.random(n) < 0.45] = np.inf
+    x[x > 1.0] = np.inf
+    one = np.array([1.0])
+    curves = tuple(IDACurve(f"r{i}", 0, 1.0, one, np.array([np.isfinite(v)]),
+                            float(v) if np.isfinite(v) else None, None,
+                            float(v) if np.isfinite(v) else None, (), 0, 1.0)
+                   for i, v in enumerate(x))
+    return x, IDAResult(curves, "pga", fit_ida_moments(x, censored="mle", max_intensity=1.0,
+                                                       plateau="auto"))

@@ -73,26 +73,15 @@ def test_a_failing_figure_is_a_warning_and_the_results_stay(capsys, tmp_path, we
     assert not (tmp_path / "g.png").exists()
 
 
-def test_report_states_the_plateau_and_the_json_carries_it():
+def test_report_states_the_plateau_and_the_json_carries_it(levelling_ida):
     """Where the data level off, the text gives p_max and the sentence of the test, the JSON
     the fit's p_max and level_off (synthetic IDA: 45% of 300 records never collapse)."""
-    import math
-
     from archrock.reports.fragility import format_fragility
-    from archrock.studies.fragility import fit_ida_moments, fit_stripes_mle
-    from archrock.studies.ida import IDACurve, IDAResult, StripeResult
+    from archrock.studies.fragility import fit_stripes_mle
+    from archrock.studies.ida import StripeResult
 
-    rng = np.random.default_rng(5)
-    x = np.exp(rng.normal(math.log(0.3), 0.3, 300))
-    x[rng.random(300) < 0.45] = np.inf
-    x[x > 1.0] = np.inf
-    one = np.array([1.0])
-    curves = tuple(IDACurve(f"r{i}", 0, 1.0, one, np.array([np.isfinite(v)]),
-                            float(v) if np.isfinite(v) else None, None,
-                            float(v) if np.isfinite(v) else None, (), 0, 1.0)
-                   for i, v in enumerate(x))
-    res = IDAResult(curves, "pga", fit_ida_moments(x, censored="mle", max_intensity=1.0,
-                                                   plateau="auto"))
+    x, res = levelling_ida
+    curves = res.curves
     lv = np.array([0.2, 0.4, 0.8])
     z = np.array([int(np.sum(x <= v)) for v in lv])
     st = StripeResult(lv, np.full(3, 300), z, np.zeros((3, 1, 300), bool), "pga",

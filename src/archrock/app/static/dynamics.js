@@ -110,9 +110,16 @@ function drawFrame(res, polys, hingeMarks, k) {
   const name = row >= 0 ? `${res.chain_links[row].label} open` : "at rest";
   $("anim-title").textContent = `t = ${t.toFixed(2)} s, phi = ${phi >= 0 ? "+" : ""}${phi.toFixed(4)} rad, ` +
       (collapsed ? "COLLAPSED" : name) + (res.exaggerate !== 1 ? ` (rotations drawn x ${res.exaggerate})` : "");
-  const m = $("history-marker");
-  m.setAttribute("cx", app.hx(t));
-  m.setAttribute("cy", app.hy(phi));
+  markFrame(k, t, phi);
+}
+
+// the history's marker at (t, phi) (none where phi is unknown) and the frame counters
+function markFrame(k, t, phi) {
+  if (phi !== null) {
+    const m = $("history-marker");
+    m.setAttribute("cx", app.hx(t));
+    m.setAttribute("cy", app.hy(phi));
+  }
   app.frame = k;
   app.frames += 1;
   $("anim-svg").setAttribute("data-frame", k);
@@ -162,14 +169,7 @@ function drawEngineFrame(res, polys, k) {
   const collapsed = res.collapsed && res.t_collapse !== null && t >= res.t_collapse;
   $("anim-title").textContent = `contact engine: t = ${t.toFixed(2)} s` +
       (phi === null ? "" : `, phi = ${phi >= 0 ? "+" : ""}${phi.toFixed(4)} rad`) + (collapsed ? ", COLLAPSED" : "");
-  if (phi !== null) {
-    const m = $("history-marker");
-    m.setAttribute("cx", app.hx(t));
-    m.setAttribute("cy", app.hy(phi));
-  }
-  app.frame = k;
-  app.frames += 1;
-  $("anim-svg").setAttribute("data-frame", k);
+  markFrame(k, t, phi);
 }
 
 // what the page says of a response: the model that answered and why, then its outcome
