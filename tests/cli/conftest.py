@@ -7,11 +7,18 @@ import pytest
 
 
 @pytest.fixture
-def fake_engine():
-    """A factory of stand-ins for ``contact.motion.engine_respond`` (the engine takes tens of
-    seconds on the heavy piers): each collapses at 2.5 s and records its arguments in the list
-    it is given."""
-    return _fake_engine
+def engine_calls(monkeypatch):
+    """The contact engine replaced by a stand-in (it takes tens of seconds on the heavy piers)
+    wherever the commands import it (``archrock.contact`` for dem, ``contact.motion`` for
+    respond): each run collapses at 2.5 s and appends its arguments to the list returned."""
+    import archrock.contact as contact
+    from archrock.contact import motion
+
+    calls = []
+    fake = _fake_engine(calls)
+    monkeypatch.setattr(contact, "engine_respond", fake)
+    monkeypatch.setattr(motion, "engine_respond", fake)
+    return calls
 
 
 def _fake_engine(calls):

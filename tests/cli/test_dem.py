@@ -13,15 +13,6 @@ from archrock.cli import main
 PULSE = ["--pulse", "oppenheim", "--pulse-duration", "0.2"]
 
 
-@pytest.fixture
-def engine_calls(monkeypatch, fake_engine):
-    import archrock.contact as contact
-
-    calls = []
-    monkeypatch.setattr(contact, "engine_respond", fake_engine(calls))
-    return calls
-
-
 def test_dem_labels_the_four_link_run_not_valid_on_heavy_piers(heavy_piers_file, engine_calls,
                                                                capsys):
     argv = ["dem", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",

@@ -15,15 +15,6 @@ from archrock.groundmotion import oppenheim_pulse
 PULSE = ["--pulse", "oppenheim", "--pulse-duration", "0.2"]
 
 
-@pytest.fixture
-def engine_calls(monkeypatch, fake_engine):
-    from archrock.contact import motion
-
-    calls = []
-    monkeypatch.setattr(motion, "engine_respond", fake_engine(calls))
-    return calls
-
-
 def test_heavy_piers_route_to_the_engine(heavy_piers_file, engine_calls, capsys):
     """By default the heavy piers get the engine's outcome, labelled, with the reason and the
     one friction; no four-link number (k, impacts) in the output."""

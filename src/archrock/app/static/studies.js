@@ -9,17 +9,24 @@ function spreadsParams() {
           radius: $("spread-radius").value.trim()};
 }
 
+// a study about to run: its figure and text cleared, its old inputs forgotten; the inputs it
+// is computed from, for greying it when they change
+function clearResult(key, svg, out) {
+  const inputs = inputsOf(key);
+  $(svg).replaceChildren();
+  $(out).textContent = "";
+  delete shown[key];
+  markStale();
+  return inputs;
+}
+
 async function runEnsemble() {
   const t0 = performance.now();
   const body = {arch: archParams(), samples: $("samples").value.trim(), seed: $("seed").value.trim(),
                 spreads: spreadsParams()};
   if ($("with-pulse").checked) body.pulse = pulseParams();
   if (body.pulse && friction() !== "") body.friction = friction();
-  const inputs = inputsOf("ensemble");
-  $("hist-svg").replaceChildren();
-  $("ensemble-result").textContent = "";
-  delete shown.ensemble;
-  markStale();
+  const inputs = clearResult("ensemble", "hist-svg", "ensemble-result");
   runJob("/api/ensemble", body, "arches", $("ensemble-result"), (s) => {
     drawHistogram(s.result);
     resultShown("ensemble", inputs);
@@ -32,11 +39,7 @@ async function runCurve() {
                 spreads: spreadsParams(), durations: $("curve-durations").value.trim(),
                 kind: $("pulse-kind").value};
   if (friction() !== "") body.friction = friction();
-  const inputs = inputsOf("curve");
-  $("curve-svg").replaceChildren();
-  $("curve-result").textContent = "";
-  delete shown.curve;
-  markStale();
+  const inputs = clearResult("curve", "curve-svg", "curve-result");
   runJob("/api/curve", body, "arch-durations", $("curve-result"), (s) => {
     drawCurve(s.result);
     resultShown("curve", inputs);
