@@ -358,3 +358,16 @@ def test_choose_dynamics_routes_sliding_joints_to_the_engine(oppenheim):
     assert asked.used == "fourlink" and "not valid here" in asked.reason
     with pytest.raises(ArchInputError, match="friction"):
         choose_dynamics(oppenheim.arch, friction=-1.0)
+
+
+def test_the_engine_scan_starts_where_its_joints_move(oppenheim):
+    """The first-collapse scan starts at the activation of the engine's friction: at mu = 0.8
+    the four-link multipliers themselves, at mu = 0.4 the friction analysis's 0.2638 (the
+    joints slide before the hinges open at 0.3700)."""
+    from archrock.dynamics.response import prepare
+
+    model = prepare(oppenheim.arch, "momentum")
+    high = es.activation(oppenheim.arch, model, 0.8)
+    assert high == {"l": float(model.k_l), "r": float(model.k_r)}
+    low = es.activation(oppenheim.arch, model, 0.4)
+    assert low["l"] == pytest.approx(0.26376, abs=1e-4) and low["r"] == pytest.approx(low["l"], rel=1e-9)

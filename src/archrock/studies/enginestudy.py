@@ -33,7 +33,7 @@ from .work import check_work
 __all__ = ["DYNAMICS", "check_dynamics", "DynamicsChoice", "choose_dynamics", "EngineRun",
            "engine_run_cost_s", "EngineEnsembleResult", "engine_ensemble",
            "EngineFirstCollapse", "engine_first_collapse", "engine_collapse_curve",
-           "ENGINE_STEP_S", "engine_curves_section", "ENGINE_COLUMNS"]
+           "ENGINE_STEP_S", "engine_curves_section", "ENGINE_COLUMNS", "activation"]
 
 #: The dynamics a study may use: "auto" (the four-link model where one degree of freedom is
 #: valid, the contact engine otherwise), "fourlink", "engine".
@@ -393,7 +393,8 @@ class EngineFirstCollapse:
     duration [s], kind, sign (of the amplitude: -1 pushes toward -x first); amplitude [g]
     (|a|, the smallest collapsing amplitude found: the bracket's top; None where nothing
     collapsed up to a_max); bracket (last survival, first collapse) [g], hi - lo <= rtol * hi;
-    threshold: the activation multiplier (limit analysis) the scan starts from [g];
+    threshold: the activation multiplier at the run's friction (:func:`activation`), where
+    the scan starts [g];
     scan_amplitudes / scan_collapsed: the scan; n_responses: engine runs made; seconds;
     run: the :class:`EngineRun`; how: "contact engine".  Collapse is not monotonic in the
     amplitude: this is the first boundary above the threshold on the scan's grid."""
@@ -438,13 +439,32 @@ class EngineFirstCollapse:
                 "seconds": self.seconds, "engine": self.run.to_dict(), "how": self.how}
 
 
+def activation(arch, model, friction: float) -> dict:
+    """{"l": k_l, "r": k_r} [g]: where the engine's joints (Coulomb ``friction``) start to move,
+    the scan's threshold: the four-link model's multipliers where the joints carry them without
+    sliding, the friction analysis's where they slide first (Oppenheim's arch at mu = 0.4:
+    0.2638, not 0.3700); the four-link ones where the friction analysis has no answer."""
+    from ..statics.friction import friction_analysis
+
+    k = {"l": float(model.k_l), "r": float(model.k_r)}
+    try:
+        fa = friction_analysis(arch, friction)
+    except ArchrockError:
+        return k
+    for d in k:
+        fd = fa.direction(d)
+        if fd.sliding_governs:
+            k[d] = min(k[d], float(fd.multiplier))
+    return k
+
+
 def engine_first_collapse(arch, duration: float, kind: str = "oppenheim", sign: int = -1, *,
                           a_max: float = 3.0, n_scan: int = 8, rtol: float = 0.01,
                           run: EngineRun | None = None, model=None,
                           progress=None) -> EngineFirstCollapse:
     """The smallest amplitude |a| [g] of a ``kind`` pulse of ``duration`` [s] (amplitude sign
     ``sign``) that collapses ``arch`` in the contact engine: a geometric scan of ``n_scan``
-    amplitudes from the activation multiplier (limit analysis; nothing moves below it) to
+    amplitudes from the activation multiplier at the run's friction (:func:`activation`) to
     ``a_max``, then a bisection of the first collapsing interval until hi - lo <= rtol * hi
     (:func:`archrock.studies.curves.bisect_boundary`).  Bounded: n_scan + log2(1 / rtol) + 1
     runs at most, each estimated first (:func:`engine_run_cost_s`)."""
@@ -462,7 +482,7 @@ def engine_first_collapse(arch, duration: float, kind: str = "oppenheim", sign: 
     run = EngineRun() if run is None else run
     if model is None:
         model = prepare(arch, "momentum")
-    thr = float(model.k_l if sign < 0 else model.k_r)
+    thr = activation(arch, model, run.settings.friction)["l" if sign < 0 else "r"]
     a_max = _check_real("a_max", a_max, None, "a finite number")
     if not thr * (1 + 1e-6) < a_max <= 100.0:
         raise ArchInputError(f"a_max: {a_max!r}; allowed above the activation threshold "
@@ -521,8 +541,9 @@ def engine_collapse_curve(arch, durations, kind: str = "oppenheim", sign: int = 
                                       rtol=rtol, run=run, model=model, progress=progress)
                 for tp in d)
     amps = np.array([np.nan if p.amplitude is None else p.amplitude for p in pts])
+    k = activation(arch, model, (EngineRun() if run is None else run).settings.friction)
     return CollapseCurve(d, amps, tuple(None for _ in pts), tuple(() for _ in pts), pts,
-                         float(model.k_l), float(model.k_r), None)
+                         k["l"], k["r"], None)
 
 
 def engine_curves_section(ctx, choice: DynamicsChoice):
