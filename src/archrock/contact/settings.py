@@ -21,6 +21,10 @@ from ..statics.friction import DEFAULT_FRICTION  # noqa: E402
 #: size (0: the fine cut, every outline vertex kept).
 DEFAULT_OUTLINE_TOL = 2e-3
 
+#: The engines: archrock's own nonsmooth contact dynamics (:mod:`archrock.contact.nscd`), and
+#: pymunk (soft contacts), kept as a cross-check (``pip install "archrock[dem]"``).
+ENGINES = ("archrock", "pymunk")
+
 
 def _num(name, value, lo, hi, allowed, integer=False):
     if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -62,8 +66,17 @@ class EngineSettings:
     friction: float = DEFAULT_FRICTION
     restitution: float = 0.0
     outline_tol: float = DEFAULT_OUTLINE_TOL
+    engine: str = "archrock"
+    tolerance: float = 1e-6
+    max_sweeps: int = 2000
 
     def __post_init__(self):
+        if self.engine not in ENGINES:
+            raise ArchInputError(f"engine: {self.engine!r}; allowed one of {', '.join(ENGINES)}")
+        object.__setattr__(self, "tolerance", _num("tolerance", self.tolerance, 1e-12, 1e-2,
+                                                   "1e-12 <= tolerance <= 1e-2"))
+        object.__setattr__(self, "max_sweeps", _num("max_sweeps", self.max_sweeps, 1, 1e6,
+                                                    "an integer 1..1e6", integer=True))
         object.__setattr__(self, "steps_per_T", _num("steps_per_T", self.steps_per_T, 10, 1e6,
                                                      "10 <= steps_per_T <= 1e6"))
         object.__setattr__(self, "iterations", _num("iterations", self.iterations, 1, 10000,

@@ -1,0 +1,434 @@
+"""Nonsmooth contact dynamics of rigid blocks: Moreau-Jean time stepping with a nonsmooth
+Gauss-Seidel contact solver (Moreau 1988; Jean 1999, "The non-smooth contact dynamics method",
+CMAME 177; Acary & Brogliato 2008, "Numerical Methods for Nonsmooth Dynamical Systems", ch. 10
+and 12).
+
+State: for each body (x, y, theta) -- mass centre [m] and rotation from rest [rad,
+counter-clockwise] -- and its velocities (vx, vy, omega).  One step of length h:
+
+1. free velocity v_f = v_k + h (-xg''(t), -g) (the ground frame's body force and gravity act at
+   the mass centre: no moment in 2-D);
+2. at each corner contact (:mod:`.blocksystem`) the gap g and the face's normal n and tangent
+   t from the current positions -- exact rotations, no linearisation; a corner farther than
+   the face's ends (by ``margin`` of its length) or than ``reach`` from the face is not a contact;
+3. the impulses P = (P_n, P_t) of the contacts solve, with u = H v_{k+1} the relative velocity
+   of the corner and v_{k+1} = v_f + M^-1 H^T P:
+   - Signorini-Newton at velocity level: 0 <= P_n  _|_  u_n - b >= 0, with b = -e u_n,k on a
+     closed contact (g <= 0; Newton's impact law, restitution e, 0 by default) and b = -g/h on
+     an open one that would close within the step (the contact then closes exactly, its impact
+     taken at the next step);
+   - Coulomb: |P_t| <= mu P_n, and u_t = 0 where |P_t| < mu P_n, u_t P_t <= 0 otherwise;
+   solved by Gauss-Seidel sweeps over the contacts, each contact's 2 x 2 problem solved exactly
+   (open, stick, slide either way), the sweeps alternating in direction so that a mirror-
+   symmetric structure is treated symmetrically, warm-started from the previous step's
+   impulses, until no sweep changes a contact's velocity by more than ``tol`` x g h;
+4. positions with the new velocities: q_{k+1} = q_k + h v_{k+1} (theta = 1; the rotation exact).
+
+A corner closed with g < 0 (the O(h^2) drift of a rotation integrated in a straight line) is
+pushed back by ``b += -beta g / h``.  Everything is a pure function of arrays, compiled when
+numba is present (:func:`archrock._jit.maybe_njit`) and the same code in Python otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import maybe_njit
+
+__all__ = ["advance", "contact_frames", "SOLVER_FIELDS"]
+
+#: the per-run counters returned by :func:`advance` (stats[0..3])
+SOLVER_FIELDS = ("steps", "sweeps", "unconverged_steps", "largest_sweeps")
+
+
+@maybe_njit
+def _frame(q, k, owner, face, corner, face_start, tangent, normal, x0):
+    """(corner P, face origin F, tangent t, normal n) of corner contact k at positions q."""
+    p = owner[k]
+    f = face[k]
+    if p >= 0:
+        c, s = math.cos(q[p, 2]), math.sin(q[p, 2])
+        rx = corner[k, 0] - x0[p, 0]
+        ry = corner[k, 1] - x0[p, 1]
+        px = q[p, 0] + c * rx - s * ry
+        py = q[p, 1] + s * rx + c * ry
+    else:
+        px = corner[k, 0]
+        py = corner[k, 1]
+    if f >= 0:
+        c, s = math.cos(q[f, 2]), math.sin(q[f, 2])
+        rx = face_start[k, 0] - x0[f, 0]
+        ry = face_start[k, 1] - x0[f, 1]
+        fx = q[f, 0] + c * rx - s * ry
+        fy = q[f, 1] + s * rx + c * ry
+        tx = c * tangent[k, 0] - s * tangent[k, 1]
+        ty = s * tangent[k, 0] + c * tangent[k, 1]
+        nx = c * normal[k, 0] - s * normal[k, 1]
+        ny = s * normal[k, 0] + c * normal[k, 1]
+    else:
+        fx, fy = face_start[k, 0], face_start[k, 1]
+        tx, ty = tangent[k, 0], tangent[k, 1]
+        nx, ny = normal[k, 0], normal[k, 1]
+    return px, py, fx, fy, tx, ty, nx, ny
+
+
+@maybe_njit
+def contact_frames(q, owner, face, corner, face_start, tangent, normal, length, x0):
+    """(gaps (nc,) [m], slips (nc,) [m]: the corner's position along the face from its start,
+    minus where it was at rest) at positions q."""
+    nc = owner.size
+    gaps = np.empty(nc)
+    along = np.empty(nc)
+    for k in range(nc):
+        px, py, fx, fy, tx, ty, nx, ny = _frame(q, k, owner, face, corner, face_start,
+                                                tangent, normal, x0)
+        gaps[k] = (px - fx) * nx + (py - fy) * ny
+        along[k] = (px - fx) * tx + (py - fy) * ty
+    return gaps, along
+
+
+@maybe_njit
+def advance(q, v, impulse, accel, h, g, mu, e, tol, max_sweeps, beta, margin, reach, lref,
+            masses, inertias, x0, owner, face, corner, face_start, tangent, normal, length,
+            stats):
+    """Advance ``len(accel)`` steps of length ``h`` [s] in place: q (nb, 3), v (nb, 3) and the
+    contacts' ``impulse`` (nc, 2) (the warm start, and on return the last step's impulses
+    [N s/m]); ``accel`` [m/s^2] the ground's acceleration during each step; g [m/s^2]; mu, e:
+    friction and restitution; tol, max_sweeps: the solver's convergence criterion (no body's
+    velocity, nor its rate times ``lref`` [m], changed by more than tol g h in a sweep) and bound; beta: the fraction of a penetration removed per step; margin:
+    how far past a face's ends (fraction of its length) a corner still bears on it; reach [m]:
+    the largest gap at which a corner contact is kept.  ``stats`` (4,) int64 accumulates
+    (steps, sweeps, steps stopped by max_sweeps unconverged, largest sweeps in a step)."""
+    nb = masses.size
+    nc = owner.size
+    inv_m = 1.0 / masses
+    inv_i = 1.0 / inertias
+    active = np.zeros(nc, np.bool_)
+    jn = np.zeros((nc, 6))  # (n_x, n_y, r_p x n, r_f x n) -> owner's and face's rows
+    jt = np.zeros((nc, 6))
+    act = np.zeros(nc, np.int64)
+    bn = np.zeros(nc)
+    gaps = np.zeros(nc)
+    along = np.zeros(nc)
+    vtol = tol * g * h
+    for step in range(accel.size):
+        # 1. free velocities
+        for i in range(nb):
+            v[i, 0] -= h * accel[step]
+            v[i, 1] -= h * g
+        # 2. contact frames at q_k; of each end's two corner contacts (b's corner on a's face,
+        # a's on b's) only the one with the smaller gap bears: where the end is closed they are
+        # the same contact, and two copies of it would only slow the solver
+        for k in range(nc):
+            px, py, fx, fy, tx, ty, nx, ny = _frame(q, k, owner, face, corner, face_start,
+                                                    tangent, normal, x0)
+            gaps[k] = (px - fx) * nx + (py - fy) * ny
+            along[k] = (px - fx) * tx + (py - fy) * ty
+        for k in range(nc):
+            p = owner[k]
+            f = face[k]
+            px, py, fx, fy, tx, ty, nx, ny = _frame(q, k, owner, face, corner, face_start,
+                                                    tangent, normal, x0)
+            gap = gaps[k]
+            s = along[k]
+            lk = length[k]
+            other = k + 2 if k % 4 < 2 else k - 2
+            beaten = gaps[other] < gap or (gaps[other] == gap and other < k)
+            if (beaten or gap > reach or s < -margin * lk - 1e-12
+                    or s > (1.0 + margin) * lk + 1e-12):
+                if beaten and impulse[other, 0] == 0.0 and impulse[k, 0] != 0.0:
+                    impulse[other, 0] = impulse[k, 0]  # the warm start moves to the other
+                    impulse[other, 1] = impulse[k, 1]
+                active[k] = False
+                impulse[k, 0] = 0.0
+                impulse[k, 1] = 0.0
+                continue
+            rpn = rpt = rfn = rft = 0.0
+            un = 0.0
+            if p >= 0:
+                rx, ry = px - q[p, 0], py - q[p, 1]
+                rpn = rx * ny - ry * nx
+                rpt = rx * ty - ry * tx
+                un += v[p, 0] * nx + v[p, 1] * ny + v[p, 2] * rpn
+            if f >= 0:
+                rx, ry = px - q[f, 0], py - q[f, 1]
+                rfn = rx * ny - ry * nx
+                rft = rx * ty - ry * tx
+                un -= v[f, 0] * nx + v[f, 1] * ny + v[f, 2] * rfn
+            # the normal velocity before this step's forces: Newton's law takes u_n,k
+            unk = un + (h * accel[step] * nx + h * g * ny) * ((1.0 if p >= 0 else 0.0)
+                                                              - (1.0 if f >= 0 else 0.0))
+            if gap > 0.0 and gap + h * min(un, unk) > 0.0:
+                active[k] = False  # stays open through the step
+                impulse[k, 0] = 0.0
+                impulse[k, 1] = 0.0
+                continue
+            active[k] = True
+            jn[k, 0], jn[k, 1], jn[k, 2], jn[k, 3] = nx, ny, rpn, rfn
+            jt[k, 0], jt[k, 1], jt[k, 2], jt[k, 3] = tx, ty, rpt, rft
+            if gap > 0.0:
+                bn[k] = -gap / h
+            else:
+                bn[k] = -e * min(unk, 0.0) - beta * gap / h
+        # 3. the contact problem, solved exactly (:func:`_contact_impulses`)
+        na = 0
+        for k in range(nc):
+            if active[k]:
+                act[na] = k
+                na += 1
+        its, ok = _contact_impulses(v, impulse, act[:na], jn, jt, bn, owner, face, inv_m,
+                                    inv_i, mu, vtol, max_sweeps)
+        stats[0] += 1
+        stats[1] += its
+        if not ok:
+            stats[2] += 1
+        if its > stats[3]:
+            stats[3] = its
+        # 4. positions
+        for i in range(nb):
+            q[i, 0] += h * v[i, 0]
+            q[i, 1] += h * v[i, 1]
+            q[i, 2] += h * v[i, 2]
+
+
+@maybe_njit
+def _row_dot(v, k, sign, mu, jn, jt, owner, face):
+    """(H_n + sign mu H_t) v at contact k: the relaxed cone's row (sign = +1 or -1)."""
+    p = owner[k]
+    f = face[k]
+    out = 0.0
+    if p >= 0:
+        out += (v[p, 0] * (jn[k, 0] + sign * mu * jt[k, 0])
+                + v[p, 1] * (jn[k, 1] + sign * mu * jt[k, 1])
+                + v[p, 2] * (jn[k, 2] + sign * mu * jt[k, 2]))
+    if f >= 0:
+        out -= (v[f, 0] * (jn[k, 0] + sign * mu * jt[k, 0])
+                + v[f, 1] * (jn[k, 1] + sign * mu * jt[k, 1])
+                + v[f, 2] * (jn[k, 3] + sign * mu * jt[k, 3]))
+    return out
+
+
+@maybe_njit
+def _row_product(k, sk, l, sl, mu, jn, jt, owner, face, inv_m, inv_i):
+    """Entry of A M^-1 A^T between row (k, sk) and row (l, sl) of the relaxed cones."""
+    out = 0.0
+    for bk_side in range(2):
+        bk = owner[k] if bk_side == 0 else face[k]
+        if bk < 0:
+            continue
+        ck = 1.0 if bk_side == 0 else -1.0
+        for bl_side in range(2):
+            bl = owner[l] if bl_side == 0 else face[l]
+            if bl != bk:
+                continue
+            cl = 1.0 if bl_side == 0 else -1.0
+            ax = jn[k, 0] + sk * mu * jt[k, 0]
+            ay = jn[k, 1] + sk * mu * jt[k, 1]
+            ar = jn[k, 2 + bk_side] + sk * mu * jt[k, 2 + bk_side]
+            bx = jn[l, 0] + sl * mu * jt[l, 0]
+            by = jn[l, 1] + sl * mu * jt[l, 1]
+            br = jn[l, 2 + bl_side] + sl * mu * jt[l, 2 + bl_side]
+            out += ck * cl * (inv_m[bk] * (ax * bx + ay * by) + inv_i[bk] * ar * br)
+    return out
+
+
+@maybe_njit
+def _bound_qp(Q, c, x, tolg, max_iter):
+    """min 1/2 x^T Q x - c^T x subject to x >= 0, Q symmetric positive definite: the primal
+    active-set method (Nocedal & Wright 2006, sec. 16.5), started from the feasible ``x`` (the
+    warm start) and finite because the objective falls at every step.  Stops when the gradient
+    Q x - c is >= -tolg on the bound variables (and zero on the free ones, to rounding).
+    Returns (iterations, converged); x is the solution, in place."""
+    m = c.size
+    free = x > 0.0
+    z = np.zeros(m)
+    it = 0
+    while it < max_iter:
+        it += 1
+        # the unconstrained minimum over the free variables: Q_FF z_F = c_F
+        idx = np.flatnonzero(free)
+        nf = idx.size
+        z[:] = 0.0
+        if nf:
+            sub = np.empty((nf, nf))
+            rhs = np.empty(nf)
+            for i in range(nf):
+                rhs[i] = c[idx[i]]
+                for j in range(nf):
+                    sub[i, j] = Q[idx[i], idx[j]]
+            sol = _chol_solve(sub, rhs)
+            for i in range(nf):
+                z[idx[i]] = sol[i]
+        blocked = False
+        alpha = 1.0
+        for i in range(nf):
+            zi = z[idx[i]]
+            if zi < 0.0:
+                xi = x[idx[i]]
+                a = xi / (xi - zi) if xi > 0.0 else 0.0
+                if a < alpha:
+                    alpha = a
+                blocked = True
+        if blocked:
+            for i in range(nf):
+                j = idx[i]
+                x[j] = x[j] + alpha * (z[j] - x[j])
+                if x[j] <= 0.0 or (z[j] < 0.0 and x[j] <= 1e-300):
+                    x[j] = 0.0
+                    free[j] = False
+            continue
+        for i in range(m):
+            x[i] = z[i]
+        # the most negative gradient on a bound variable joins the free set
+        worst = -tolg
+        add = -1
+        for i in range(m):
+            if not free[i]:
+                gi = -c[i]
+                for j in range(nf):
+                    gi += Q[i, idx[j]] * x[idx[j]]
+                if gi < worst:
+                    worst = gi
+                    add = i
+        if add < 0:
+            return it, True
+        free[add] = True
+    return it, False
+
+
+@maybe_njit
+def _chol_solve(a, b):
+    """Solve a x = b for a symmetric positive definite (Cholesky, in place on a copy)."""
+    n = b.size
+    low = np.zeros((n, n))
+    for j in range(n):
+        d = a[j, j]
+        for k in range(j):
+            d -= low[j, k] * low[j, k]
+        if d <= 1e-300:
+            d = 1e-300
+        low[j, j] = math.sqrt(d)
+        for i in range(j + 1, n):
+            s = a[i, j]
+            for k in range(j):
+                s -= low[i, k] * low[j, k]
+            low[i, j] = s / low[j, j]
+    y = np.empty(n)
+    for i in range(n):
+        s = b[i]
+        for k in range(i):
+            s -= low[i, k] * y[k]
+        y[i] = s / low[i, i]
+    x = np.empty(n)
+    for i in range(n - 1, -1, -1):
+        s = y[i]
+        for k in range(i + 1, n):
+            s -= low[k, i] * x[k]
+        x[i] = s / low[i, i]
+    return x
+
+
+@maybe_njit
+def _contact_impulses(v, impulse, act, jn, jt, bn, owner, face, inv_m, inv_i, mu, vtol,
+                      max_rounds):
+    """The step's contact impulses, exactly: v (the free velocities) becomes v_{k+1}.
+
+    Each active contact's Coulomb cone is written as the relaxed cone u_n + mu |u_t| >= b + s
+    (two linear rows, Anitescu 2006, Math. Program. 105), whose impulses are the friction cone
+    itself; the velocities then minimise the kinetic metric's distance to the free velocities
+    under those rows, a strictly convex problem solved exactly in its dual (:func:`_bound_qp`).
+    De Saxce's shift s = mu |u_t| of the previous round makes the fixed point Coulomb's law
+    (u_n >= b where a contact slides, no dilatancy); the rounds stop when no shift moves by
+    more than ``vtol`` (a sticking or rocking contact has u_t = 0, s = 0: one round).
+    Returns (QP iterations in all, converged)."""
+    na = act.size
+    m = 2 * na
+    if na == 0:
+        return 0, True
+    eps = 0.0
+    Q = np.empty((m, m))
+    for i in range(na):
+        for si in range(2):
+            sgn_i = 1.0 if si == 0 else -1.0
+            for j in range(i, na):
+                for sj in range(2):
+                    sgn_j = 1.0 if sj == 0 else -1.0
+                    val = _row_product(act[i], sgn_i, act[j], sgn_j, mu, jn, jt, owner, face,
+                                       inv_m, inv_i)
+                    Q[2 * i + si, 2 * j + sj] = val
+                    Q[2 * j + sj, 2 * i + si] = val
+    for i in range(m):
+        if Q[i, i] > eps:
+            eps = Q[i, i]
+    # a compliance of 1e-10 of the largest diagonal: redundant contacts (a statically
+    # indeterminate share) get the least-norm share instead of a singular system
+    for i in range(m):
+        Q[i, i] += 1e-10 * eps
+    vf = v.copy()
+    af = np.empty(m)
+    for i in range(na):
+        af[2 * i] = _row_dot(vf, act[i], 1.0, mu, jn, jt, owner, face)
+        af[2 * i + 1] = _row_dot(vf, act[i], -1.0, mu, jn, jt, owner, face)
+    x = np.empty(m)
+    for i in range(na):  # warm start: impulse (P_n, P_t) = (x+ + x-, mu (x+ - x-))
+        k = act[i]
+        pn, pt = impulse[k, 0], impulse[k, 1]
+        tp = pt / mu if mu > 0.0 else 0.0
+        x[2 * i] = max(0.0, 0.5 * (pn + tp))
+        x[2 * i + 1] = max(0.0, 0.5 * (pn - tp))
+    shift = np.zeros(na)
+    c = np.empty(m)
+    total = 0
+    ok = False
+    for rnd in range(max_rounds):
+        for i in range(na):
+            c[2 * i] = bn[act[i]] + shift[i] - af[2 * i]
+            c[2 * i + 1] = bn[act[i]] + shift[i] - af[2 * i + 1]
+        its, conv = _bound_qp(Q, c, x, vtol, 5 * m + 20)
+        total += its
+        # velocities and the new shifts
+        for i in range(v.shape[0]):
+            v[i, 0], v[i, 1], v[i, 2] = vf[i, 0], vf[i, 1], vf[i, 2]
+        for i in range(na):
+            k = act[i]
+            pn = x[2 * i] + x[2 * i + 1]
+            pt = mu * (x[2 * i] - x[2 * i + 1])
+            if pn != 0.0 or pt != 0.0:
+                _apply(v, k, pn, pt, owner, face, jn, jt, inv_m, inv_i)
+        moved = 0.0
+        for i in range(na):
+            k = act[i]
+            up = _row_dot(v, k, 1.0, mu, jn, jt, owner, face)
+            um = _row_dot(v, k, -1.0, mu, jn, jt, owner, face)
+            ut = (up - um) / (2.0 * mu) if mu > 0.0 else 0.0
+            s_new = mu * abs(ut)
+            if abs(s_new - shift[i]) > moved:
+                moved = abs(s_new - shift[i])
+            shift[i] = s_new
+        if conv and moved <= vtol:
+            ok = True
+            break
+    for i in range(na):
+        k = act[i]
+        impulse[k, 0] = x[2 * i] + x[2 * i + 1]
+        impulse[k, 1] = mu * (x[2 * i] - x[2 * i + 1])
+    return total, ok
+
+
+@maybe_njit
+def _apply(v, k, dn, dt, owner, face, jn, jt, inv_m, inv_i):
+    """Add the velocity change of impulse (dn, dt) at contact k to its two bodies."""
+    p = owner[k]
+    f = face[k]
+    fx = dn * jn[k, 0] + dt * jt[k, 0]
+    fy = dn * jn[k, 1] + dt * jt[k, 1]
+    if p >= 0:
+        v[p, 0] += inv_m[p] * fx
+        v[p, 1] += inv_m[p] * fy
+        v[p, 2] += inv_i[p] * (dn * jn[k, 2] + dt * jt[k, 2])
+    if f >= 0:
+        v[f, 0] -= inv_m[f] * fx
+        v[f, 1] -= inv_m[f] * fy
+        v[f, 2] -= inv_i[f] * (dn * jn[k, 3] + dt * jt[k, 3])

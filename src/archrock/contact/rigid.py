@@ -1,0 +1,266 @@
+"""archrock's rigid-block engine as an object: a :class:`~.blocksystem.BlockSystem` and its
+state, stepped by :func:`~.nscd.advance` (Moreau-Jean, nonsmooth Gauss-Seidel).
+
+:class:`RigidBlocks` holds the state and steps it; :class:`RigidArch` and :class:`RigidArcade`
+read it as the engine's studies read a structure (joint rotations, sliding, gaps, drops), with
+the same methods as the pymunk engine (:class:`~.engine.ContactArch`,
+:class:`~.arcade.ContactArcade`) so that the ramp, the response and the arcade's studies run on
+either."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..units import G
+from .blocksystem import BlockSystem, blocks_of_arcade, blocks_of_arch
+from .nscd import SOLVER_FIELDS, advance, contact_frames
+from .settings import EngineSettings, engine_scales
+
+__all__ = ["RigidBlocks", "RigidArch", "RigidArcade"]
+
+#: a corner bears on its face up to this fraction of the face's length past its ends
+MARGIN = 0.05
+#: a corner contact is kept while its gap is below this fraction of its face's length
+REACH = 0.25
+#: the fraction of a penetration removed per step
+BETA = 0.2
+
+
+class _Body:
+    """The pymunk-like view of one body that the studies read (position, angle, velocities)."""
+
+    __slots__ = ("_owner", "_i")
+
+    def __init__(self, owner, i):
+        self._owner, self._i = owner, i
+
+    @property
+    def position(self):
+        return tuple(self._owner.q[self._i, :2])
+
+    @property
+    def angle(self):
+        return float(self._owner.q[self._i, 2])
+
+    @property
+    def velocity(self):
+        return tuple(self._owner.v[self._i, :2])
+
+    @velocity.setter
+    def velocity(self, value):
+        self._owner.v[self._i, :2] = value
+
+    @property
+    def angular_velocity(self):
+        return float(self._owner.v[self._i, 2])
+
+    @angular_velocity.setter
+    def angular_velocity(self, value):
+        self._owner.v[self._i, 2] = value
+
+
+class RigidBlocks:
+    """A block system at rest, stepped by the Moreau-Jean scheme.
+
+    ``time_scale`` T = sqrt(size/g) [s]; ``dt`` = T / steps_per_T [s]; positions are the mass
+    centres [m] and the rotations from rest [rad]."""
+
+    def __init__(self, system: BlockSystem, settings: EngineSettings | None = None):
+        self.system = s = system
+        self.settings = settings = settings or EngineSettings()
+        self.scales = sc = engine_scales(s, settings)
+        self.size, self.time_scale, self.dt = sc.size, sc.time_scale, sc.dt
+        self.masses = s.masses
+        self.inertias = s.inertias
+        self.centroids0 = s.centroids
+        nb = s.n_bodies
+        self.q = np.zeros((nb, 3))
+        self.q[:, :2] = s.centroids
+        self.v = np.zeros((nb, 3))
+        self.impulse = np.zeros((s.n_contacts, 2))
+        self.stats = np.zeros(4, np.int64)
+        self.time = 0.0
+        self.steps = 0
+        self.bodies = [_Body(self, i) for i in range(nb)]
+        # joint lengths per corner contact: the reach and margin are fractions of them
+        self._reach = REACH * float(np.max(s.length)) if s.n_contacts else 0.0
+        self.ref_pos = self.q[:, :2].copy()
+        self.ref_ang = np.zeros(nb)
+
+    # ------------------------------------------------------------------ stepping
+    def advance(self, accel) -> None:
+        """One step per entry of ``accel`` [m/s^2], the ground's horizontal acceleration."""
+        a = np.ascontiguousarray(accel, float).reshape(-1)
+        if not a.size:
+            return
+        s, st = self.system, self.settings
+        advance(self.q, self.v, self.impulse, a, self.dt, G, st.friction, st.restitution,
+                st.tolerance, st.max_sweeps, BETA, MARGIN, self._reach, self.size, s.masses, s.inertias,
+                s.centroids, s.owner, s.face, s.corner, s.face_start, s.tangent, s.normal,
+                s.length, self.stats)
+        self.steps += a.size
+        self.time = self.steps * self.dt
+
+    def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
+        """Advance ``steps`` time steps under the constant ground acceleration [m/s^2]."""
+        self.advance(np.full(int(steps), float(ground_accel)))
+
+    def settle(self, duration: float = 0.0) -> None:
+        """The exact contacts need no settling: the rest state is the reference (kept for the
+        studies written for the pymunk engine)."""
+        self.ref_pos = self.q[:, :2].copy()
+        self.ref_ang = self.q[:, 2].copy()
+
+    def solver_stats(self) -> dict:
+        d = dict(zip(SOLVER_FIELDS, (int(x) for x in self.stats)))
+        d["mean_sweeps"] = d["sweeps"] / d["steps"] if d["steps"] else 0.0
+        return d
+
+    # ------------------------------------------------------------------ state
+    def state(self):
+        """(centroids (nb, 2) [m], rotations (nb,) [rad], velocities (nb, 2) [m/s],
+        rates (nb,) [rad/s])."""
+        return (self.q[:, :2].copy(), self.q[:, 2].copy(), self.v[:, :2].copy(),
+                self.v[:, 2].copy())
+
+    def gaps(self):
+        """(gaps (nc,) [m], positions along the faces (nc,) [m]) of the corner contacts."""
+        s = self.system
+        return contact_frames(self.q, s.owner, s.face, s.corner, s.face_start, s.tangent,
+                              s.normal, s.length, s.centroids)
+
+    def kinetic_energy(self, vel, rate) -> float:
+        """Kinetic energy relative to the ground [J per m of depth]."""
+        return float(0.5 * (self.masses * (np.asarray(vel) ** 2).sum(axis=1)).sum()
+                     + 0.5 * (self.inertias * np.asarray(rate) ** 2).sum())
+
+    def drops(self, pos) -> np.ndarray:
+        """How far each block's mass centre has dropped below its initial height [m]."""
+        return self.centroids0[:, 1] - np.asarray(pos)[:, 1]
+
+    def _q_of(self, pos, angles):
+        q = np.empty((self.system.n_bodies, 3))
+        q[:, :2] = pos
+        q[:, 2] = angles
+        return q
+
+    def _end_offsets(self, pos, angles) -> np.ndarray:
+        """(joints, 2, 2): the b side's copy minus the a side's copy of each joint's end 0 and
+        end 1 [m], from the corner contacts (b's corner against a's face is the first of each
+        joint's pair)."""
+        s = self.system
+        q = self._q_of(pos, angles)
+        out = np.zeros((s.joints, 2, 2))
+        for k in range(s.n_contacts):
+            j, e = int(s.joint[k]), int(s.end[k])
+            p = int(s.owner[k])
+            sign = 1.0 if self._is_b(k) else -1.0
+            out[j, e] += sign * self._corner(q, k, p)
+        return out
+
+    def _is_b(self, k) -> bool:
+        # rows come per joint as (b's corners e=0,1), then (a's corners e=0,1)
+        return (k % 4) < 2
+
+    def _corner(self, q, k, p):
+        c = self.system.corner[k]
+        if p < 0:
+            return c.copy()
+        r = c - self.centroids0[p]
+        ca, sa = math.cos(q[p, 2]), math.sin(q[p, 2])
+        return q[p, :2] + np.array([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1]])
+
+    def _sides(self):
+        s = self.system
+        a = np.full(s.joints, -1, np.int64)
+        b = np.full(s.joints, -1, np.int64)
+        for k in range(0, s.n_contacts, 4):
+            j = int(s.joint[k])
+            b[j], a[j] = s.owner[k], s.face[k]
+        return a, b
+
+    def _rel_rotations(self, angles) -> np.ndarray:
+        a, b = self._sides()
+        th = np.asarray(angles, float)
+        ta = np.where(a >= 0, th[np.maximum(a, 0)], 0.0)
+        tb = np.where(b >= 0, th[np.maximum(b, 0)], 0.0)
+        return tb - ta
+
+    def end_gaps(self, pos, angles) -> np.ndarray:
+        """(joints, 2) distance [m] between the two sides' copies of each joint's ends."""
+        d = self._end_offsets(pos, angles)
+        return np.hypot(d[:, :, 0], d[:, :, 1])
+
+    def _sliding(self, pos, angles) -> np.ndarray:
+        """Slip [m] at each joint: the relative displacement (b side minus a side) of the end
+        closer to closed, along the joint as turned by the mean rotation of its sides."""
+        s = self.system
+        d = self._end_offsets(pos, angles)
+        a, b = self._sides()
+        th = np.asarray(angles, float)
+        ta = np.where(a >= 0, th[np.maximum(a, 0)], 0.0)
+        tb = np.where(b >= 0, th[np.maximum(b, 0)], 0.0)
+        mean = 0.5 * (ta + tb)
+        t0 = np.array([s.tangent[k] for k in range(0, s.n_contacts, 4)]).reshape(-1, 2)
+        # the tangent of a's face, oriented from end 0 to end 1 of the joint
+        tx = np.cos(mean) * t0[:, 0] - np.sin(mean) * t0[:, 1]
+        ty = np.sin(mean) * t0[:, 0] + np.cos(mean) * t0[:, 1]
+        gap = np.hypot(d[:, :, 0], d[:, :, 1])
+        end = np.argmin(gap, axis=1)
+        dd = d[np.arange(s.joints), end]
+        return dd[:, 0] * tx + dd[:, 1] * ty
+
+
+class RigidArch(RigidBlocks):
+    """An arch (any :class:`~archrock.geometry.VoussoirArch`) in archrock's engine, read as
+    :class:`~.engine.ContactArch` reads one: joint j between voussoirs j-1 and j."""
+
+    def __init__(self, arch, settings: EngineSettings | None = None):
+        super().__init__(blocks_of_arch(arch), settings)
+        self.arch = arch
+        pts = np.asarray(arch.joint_points, float)
+        self.joint_points = pts
+        tan = pts[:, 1] - pts[:, 0]
+        ln = np.hypot(tan[:, 0], tan[:, 1])
+        self.joint_lengths = ln
+        self.ref_slide = np.zeros(arch.n + 1)
+
+    def settle(self, duration: float = 0.0) -> None:
+        super().settle(duration)
+        pos, ang, _, _ = self.state()
+        self.ref_slide = self.joint_sliding(pos, ang)
+        self.steps, self.time = 0, 0.0
+
+    def joint_rotations(self, angles) -> np.ndarray:
+        """Relative rotation theta_j - theta_{j-1} at each joint 0..n [rad]."""
+        return self._rel_rotations(angles)
+
+    def joint_sliding(self, pos, angles) -> np.ndarray:
+        return self._sliding(pos, angles)
+
+
+class RigidArcade(RigidBlocks):
+    """An :class:`~archrock.geometry.arcade.Arcade` in archrock's engine, read as
+    :class:`~.arcade.ContactArcade` reads one."""
+
+    def __init__(self, arc, settings: EngineSettings | None = None):
+        super().__init__(blocks_of_arcade(arc), settings)
+        self.arcade = arc
+        pts = np.array([np.asarray(ct.points, float) for ct in arc.contacts])
+        self.contact_points = pts
+        self.contact_lengths = np.hypot(*(pts[:, 1] - pts[:, 0]).T)
+        self.ref_slide = np.zeros(len(arc.contacts))
+
+    def settle(self, duration: float = 0.0) -> None:
+        super().settle(duration)
+        pos, ang, _, _ = self.state()
+        self.ref_slide = self.contact_sliding(pos, ang)
+        self.steps, self.time = 0, 0.0
+
+    def contact_rotations(self, angles) -> np.ndarray:
+        return self._rel_rotations(angles)
+
+    def contact_sliding(self, pos, angles) -> np.ndarray:
+        return self._sliding(pos, angles)
