@@ -31,6 +31,7 @@ from ..groundmotion import GroundMotion
 from ..units import G
 from .engine import add_block, import_pymunk, settle_blocks
 from .ramp import ramp_range, ramp_until_moving
+from .rigid import engine_arcade
 from .settings import EngineSettings, engine_scales
 
 __all__ = ["ContactArcade", "ArcadeRampDirection", "ArcadeRamp", "arcade_ramp",
@@ -223,7 +224,7 @@ def _moves(arc, settings, sign, lam, hold, thr_rot, thr_slide, check):
     gaps) once the motion has grown past four times the thresholds, else None: a start that
     stops again (the load applied at once rocks the blocks a little and they settle back) shows
     no mechanism to read."""
-    ca = ContactArcade(arc, settings)
+    ca = engine_arcade(arc, settings)
     ca.settle()
     steps = int(math.ceil(hold * settings.steps_per_T))
     done, moved = 0, False
@@ -271,7 +272,7 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
                              f"lambda_max = {lambda_max:g}")
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
-    ca = ContactArcade(arc, settings)
+    ca = engine_arcade(arc, settings)
     ca.settle()
     thr_slide = slide_threshold * float(np.mean(ca.contact_lengths))
     check = max(1, int(settings.steps_per_T // 100))
@@ -391,7 +392,7 @@ def arcade_respond(arc: Arcade, motion: GroundMotion, settings: EngineSettings |
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
             raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
     settings = settings or EngineSettings()
-    ca = ContactArcade(arc, settings)
+    ca = engine_arcade(arc, settings)
     ca.settle()
     dt = ca.dt
     every = max(1, int(round(dt_out / dt)))

@@ -29,6 +29,7 @@ from ..geometry import VoussoirArch
 from ..groundmotion import GroundMotion
 from ..units import G
 from .engine import ContactArch
+from .rigid import engine_arch
 from .settings import EngineSettings
 
 __all__ = ["ContactResponse", "engine_respond", "equivalent_rotation"]
@@ -122,7 +123,7 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
 
         model = prepare(arch, "momentum")
     settings = settings or EngineSettings()
-    ca = ContactArch(arch, settings)
+    ca = engine_arch(arch, settings)
     ca.settle()
     dt = ca.dt
     every = max(1, int(round(dt_out / dt)))

@@ -30,6 +30,7 @@ from ..errors import ArchInputError, LimitExceededError
 from ..geometry import VoussoirArch
 from ..units import G
 from .engine import ContactArch
+from .rigid import engine_arch
 from .settings import EngineSettings
 
 __all__ = ["RampDirection", "RampResult", "ramp", "ramp_direction", "ramp_range",
@@ -129,9 +130,14 @@ def ramp_until_moving(blocks, motion, sign: float, lam: float, dlam: float, chec
     LimitExceededError(``refusal``) past ``lambda_max`` (bounded)."""
     lam_seen = None
     while True:
-        for _ in range(check):
-            lam += dlam
-            blocks.step(-sign * lam * G, 1)
+        if hasattr(blocks, "advance"):  # archrock's engine: the check's steps in one call
+            lams = lam + dlam * np.arange(1, check + 1)
+            blocks.advance(-sign * lams * G)
+            lam = float(lams[-1])
+        else:
+            for _ in range(check):
+                lam += dlam
+                blocks.step(-sign * lam * G, 1)
         reading = motion(blocks)
         if lam_seen is None and reading[2] > 1.0:
             lam_seen = lam
@@ -142,7 +148,7 @@ def ramp_until_moving(blocks, motion, sign: float, lam: float, dlam: float, chec
 
 
 def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> bool:
-    ca = ContactArch(arch, settings)
+    ca = engine_arch(arch, settings)
     ca.settle()
     a = -sign * lam * G
     steps = int(math.ceil(hold * settings.steps_per_T))
@@ -184,7 +190,7 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
                              f"lambda_max = {lambda_max:g}")
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
-    ca = ContactArch(arch, settings)
+    ca = engine_arch(arch, settings)
     ca.settle()
     thr_slide = slide_threshold * float(np.mean(ca.joint_lengths))
     check = max(1, int(settings.steps_per_T // 100))

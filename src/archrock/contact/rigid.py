@@ -18,7 +18,7 @@ from .blocksystem import BlockSystem, blocks_of_arcade, blocks_of_arch
 from .nscd import SOLVER_FIELDS, advance, contact_frames
 from .settings import EngineSettings, engine_scales
 
-__all__ = ["RigidBlocks", "RigidArch", "RigidArcade"]
+__all__ = ["RigidBlocks", "RigidArch", "RigidArcade", "engine_arch", "engine_arcade"]
 
 #: a corner bears on its face up to this fraction of the face's length past its ends
 MARGIN = 0.05
@@ -264,3 +264,29 @@ class RigidArcade(RigidBlocks):
 
     def contact_sliding(self, pos, angles) -> np.ndarray:
         return self._sliding(pos, angles)
+
+
+def engine_arch(arch, settings: EngineSettings | None = None):
+    """The arch in the engine that ``settings.engine`` names: archrock's own
+    (:class:`RigidArch`, the default) or pymunk's (:class:`~.engine.ContactArch`)."""
+    settings = settings or EngineSettings()
+    if settings.engine == "pymunk":
+        from .engine import ContactArch
+
+        return ContactArch(arch, settings)
+    return RigidArch(arch, settings)
+
+
+def engine_arcade(arc, settings: EngineSettings | None = None):
+    """The arcade in the engine that ``settings.engine`` names (:func:`engine_arch`)."""
+    settings = settings or EngineSettings()
+    if settings.engine == "pymunk":
+        from .arcade import ContactArcade
+
+        return ContactArcade(arc, settings)
+    from ..errors import ArchInputError
+    from ..geometry.arcade import Arcade
+
+    if not isinstance(arc, Arcade):
+        raise ArchInputError(f"arcade: expected an Arcade, got {type(arc).__name__}")
+    return RigidArcade(arc, settings)
