@@ -143,6 +143,9 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     k = 0
     quiet = 0
     quiet_needed = int(0.5 * settings.steps_per_T)
+    # archrock's engine advances from one output sample to the next in one call (collapse and
+    # rest are then read at the samples, every dt_out); pymunk's steps one at a time
+    chunked = hasattr(ca, "advance")
     t_most = max(t_stop, (n_out - 1) * dt_s)  # the run's longest: free motion or the window
     next_line = 0.1
     last_line = time.monotonic()
@@ -171,7 +174,13 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
                 status = "rest"  # keeps sampling the arch at rest to t_end
         if t >= t_stop and k >= n_out:
             break
-        ca.step(float(motion(t + 0.5 * dt)), 1)
+        if chunked:  # archrock's engine: to the next sample (or a check) in one call
+            steps = every - ca.steps % every if k < n_out else every
+            ca.advance(motion(t + (np.arange(steps) + 0.5) * dt))
+            if t > motion.times[-1]:
+                quiet += steps - 1 if ca.kinetic_energy(*ca.state()[2:]) < ke_rest else 0
+        else:
+            ca.step(float(motion(t + 0.5 * dt)), 1)
         if progress and (ca.time >= next_line * t_most
                          or (ca.steps % 64 == 0 and time.monotonic() - last_line > 5.0)):
             # a line per 10% of the longest the run can take, and every 5 s of wall time:
