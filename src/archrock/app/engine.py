@@ -64,10 +64,10 @@ def choose(arch, params: dict, mu):
     with COMPUTE_LOCK:
         chosen = choose_dynamics(arch, dynamics, friction=mu)
     if chosen.engine:
-        from ..contact import import_pymunk
+        from ..contact import require_engine
 
         try:
-            import_pymunk()
+            require_engine()
         except ImportError:
             raise EngineMissing(f"dynamics: the contact engine answers this arch ({chosen.reason}); "
                                 f"it needs pymunk: pip install 'archrock[dem]'") from None

@@ -359,10 +359,9 @@ def run_arcade(args) -> int:
     ramp = response = None
     progress = None if args.json else _progress
     if args.ramp or spec is not None:
-        from ..contact import EngineSettings, import_pymunk
+        from ..contact import EngineSettings
         from ..contact.settings import DEFAULT_FRICTION
 
-        import_pymunk()
         settings = EngineSettings(friction=args.friction or DEFAULT_FRICTION)
         motion = None if spec is None else spec.build()
         _check_engine_work(args, arc, settings, results, motion)

@@ -22,12 +22,17 @@ def add_engine_options(p):
                         f"> 0, as limit --friction; default {DEFAULT_FRICTION:g})")
     g.add_argument("--restitution", type=finite_float, default=0.0, metavar="E",
                    help="coefficient of restitution of every contact, 0..1 (default 0)")
+    g.add_argument("--engine", choices=("archrock", "pymunk"), default="archrock",
+                   help="archrock: archrock's own nonsmooth contact dynamics (default); pymunk: "
+                        "the soft-contact game engine, kept as a cross-check (pip install "
+                        "'archrock[dem]')")
     g.add_argument("--steps-per-T", type=positive_float, default=None, metavar="N",
                    help="time steps per T = sqrt(size/g) (default 400)")
     g.add_argument("--iterations", type=int, default=None, metavar="N",
-                   help="impulse-solver iterations per step (default 40)")
+                   help="--engine pymunk: impulse-solver iterations per step (default 40)")
     g.add_argument("--outline-tol", type=finite_float, default=None, metavar="F",
-                   help="largest deviation of the contact shapes from a voussoir's outline, as a "
+                   help="--engine pymunk: largest deviation of the contact shapes from a "
+                        "voussoir's outline, as a "
                         "fraction of the size, 0..0.01 (default 2e-3; 0: the fine cut)")
     return p
 
@@ -35,7 +40,8 @@ def add_engine_options(p):
 def engine_settings_from_args(args):
     from ..contact import EngineSettings
 
-    kw = {"friction": args.friction, "restitution": args.restitution}
+    kw = {"friction": args.friction, "restitution": args.restitution,
+          "engine": getattr(args, "engine", None) or "archrock"}
     if args.steps_per_T is not None:
         kw["steps_per_T"] = args.steps_per_T
     if args.iterations is not None:
@@ -136,11 +142,13 @@ def format_push(res, arch) -> str:
 
 
 def _run_push(args) -> int:
-    from ..contact import import_pymunk, push_support
+    from ..contact import push_support, require_engine
 
     settings = engine_settings_from_args(args)
     arch = arch_from_args(args)
-    import_pymunk()
+    # a moved support runs on pymunk's kinematic bodies (archrock's engine has fixed supports)
+    settings = settings.replace(engine="pymunk")
+    require_engine(settings)
     res = push_support(arch, args.push, args.push_side, settings, rate=args.push_rate,
                        max_displacement=args.push_max,
                        progress=None if args.json or args.no_progress else _progress,
@@ -153,7 +161,7 @@ def _run_push(args) -> int:
 
 
 def run_dem(args) -> int:
-    from ..contact import import_pymunk
+    from ..contact import require_engine
     from ..errors import ImpactModelError
 
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
@@ -172,7 +180,7 @@ def run_dem(args) -> int:
         raise CLIError("--plot/--animate: apply to a ground motion, not to --ramp")
     settings = engine_settings_from_args(args)
     arch = arch_from_args(args)
-    import_pymunk()
+    require_engine(settings)
     quiet = args.json or args.no_progress
     progress = None if quiet else _progress
     if args.ramp:

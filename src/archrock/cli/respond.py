@@ -159,7 +159,7 @@ def _engine_settings(args, choice):
 def _run_engine(args, arch, motion, choice, plot, animation) -> int:
     """The contact engine's answer (the model that holds where one degree of freedom cannot
     follow the arch, or asked for by name); no four-link number beside it."""
-    from ..contact import import_pymunk
+    from ..contact import require_engine
     from ..contact.motion import engine_respond
     from ..dynamics.response import prepare
     from ..reports.response import format_engine_outcome
@@ -167,7 +167,7 @@ def _run_engine(args, arch, motion, choice, plot, animation) -> int:
 
     settings = _engine_settings(args, choice)
     try:
-        import_pymunk()
+        require_engine(settings)
     except ImportError:
         raise GeometryOutcome(
             f"respond: this arch needs the contact engine ({choice.reason}), which needs "

@@ -68,7 +68,7 @@ def add_verify_parser(subparsers):
 
 
 def _run_ensemble(args) -> int:
-    from ..contact import import_pymunk
+    from ..contact import require_engine
     from ..geometry.sampling import ArchSampler
     from ..reports.verification import format_verify_ensemble
     from ..studies.verification import DEFAULT_K_TOL, verify_ensemble
@@ -83,7 +83,7 @@ def _run_ensemble(args) -> int:
                            f"checked by the engine's ramp)")
     nominal = arch_from_args(args)
     sampler = ArchSampler(nominal, spreads_for(args, nominal), args.seed)
-    import_pymunk()
+    require_engine(engine_settings_from_args(args))
     # progress goes to stderr even with --json (stdout holds only the JSON), as in ensemble
     opts = {} if args.ramp_tol is None else {"tol": args.ramp_tol}
     res = verify_ensemble(sampler, args.samples, settings=engine_settings_from_args(args),
@@ -97,7 +97,7 @@ def _run_ensemble(args) -> int:
 
 
 def run_verify(args) -> int:
-    from ..contact import import_pymunk
+    from ..contact import require_engine
     from ..reports.verification import format_verify
     from ..studies.verification import verify
 
@@ -113,7 +113,7 @@ def run_verify(args) -> int:
     if any(d <= 0 for d in args.durations):
         raise CLIError("--durations: allowed durations > 0 s")
     arch = arch_from_args(args)
-    import_pymunk()
+    require_engine(engine_settings_from_args(args))
     # progress goes to stderr even with --json (stdout holds only the JSON), as in ensemble
     res = verify(arch, args.amplitudes, args.durations, pulse=args.pulse,
                  settings=engine_settings_from_args(args),

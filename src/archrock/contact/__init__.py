@@ -23,9 +23,14 @@ from .ramp import RampDirection, RampResult, ramp, ramp_direction, ramp_range
 from .settings import (DEFAULT_FRICTION, DEFAULT_OUTLINE_TOL, FINE_CUT, EngineScales,
                        EngineSettings, engine_scales)
 from .engine import ContactArch, import_pymunk
+from .blocksystem import BlockSystem, block_on_ground, blocks_of_arcade, blocks_of_arch
+from .rigid import (RigidArcade, RigidArch, RigidBlocks, engine_arcade, engine_arch,
+                    require_engine)
 
 __all__ = ["ContactArch", "EngineSettings", "DEFAULT_FRICTION", "RampDirection", "RampResult",
            "ramp", "ramp_direction", "ramp_range", "ContactResponse", "engine_respond", "equivalent_rotation",
            "convex_pieces", "simplify_outline", "outline_deviation", "import_pymunk",
            "DEFAULT_OUTLINE_TOL", "FINE_CUT", "EngineScales", "engine_scales", "PushResult",
-           "push_support"]
+           "push_support", "BlockSystem", "block_on_ground", "blocks_of_arch",
+           "blocks_of_arcade", "RigidBlocks", "RigidArch", "RigidArcade", "engine_arch",
+           "engine_arcade", "require_engine"]

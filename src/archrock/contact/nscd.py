@@ -37,7 +37,7 @@ import numpy as np
 
 from .._jit import maybe_njit
 
-__all__ = ["advance", "contact_frames", "SOLVER_FIELDS"]
+__all__ = ["advance", "contact_frames", "end_offsets", "SOLVER_FIELDS"]
 
 #: the per-run counters returned by :func:`advance` (stats[0..3])
 SOLVER_FIELDS = ("steps", "sweeps", "unconverged_steps", "largest_sweeps")
@@ -87,6 +87,27 @@ def contact_frames(q, owner, face, corner, face_start, tangent, normal, length, 
         gaps[k] = (px - fx) * nx + (py - fy) * ny
         along[k] = (px - fx) * tx + (py - fy) * ty
     return gaps, along
+
+
+@maybe_njit
+def end_offsets(q, owner, corner, joint, end, joints, x0):
+    """(joints, 2, 2): the b side's copy minus the a side's copy of each joint's end 0 and
+    end 1 [m] at positions q (each joint's rows: b's two corners, then a's two)."""
+    out = np.zeros((joints, 2, 2))
+    for k in range(owner.size):
+        p = owner[k]
+        sign = 1.0 if k % 4 < 2 else -1.0
+        if p >= 0:
+            c, s = math.cos(q[p, 2]), math.sin(q[p, 2])
+            rx = corner[k, 0] - x0[p, 0]
+            ry = corner[k, 1] - x0[p, 1]
+            px = q[p, 0] + c * rx - s * ry
+            py = q[p, 1] + s * rx + c * ry
+        else:
+            px, py = corner[k, 0], corner[k, 1]
+        out[joint[k], end[k], 0] += sign * px
+        out[joint[k], end[k], 1] += sign * py
+    return out
 
 
 @maybe_njit

@@ -15,10 +15,11 @@ import numpy as np
 
 from ..units import G
 from .blocksystem import BlockSystem, blocks_of_arcade, blocks_of_arch
-from .nscd import SOLVER_FIELDS, advance, contact_frames
+from .nscd import SOLVER_FIELDS, advance, contact_frames, end_offsets
 from .settings import EngineSettings, engine_scales
 
-__all__ = ["RigidBlocks", "RigidArch", "RigidArcade", "engine_arch", "engine_arcade"]
+__all__ = ["RigidBlocks", "RigidArch", "RigidArcade", "engine_arch", "engine_arcade",
+           "require_engine"]
 
 #: a corner bears on its face up to this fraction of the face's length past its ends
 MARGIN = 0.05
@@ -148,37 +149,21 @@ class RigidBlocks:
 
     def _end_offsets(self, pos, angles) -> np.ndarray:
         """(joints, 2, 2): the b side's copy minus the a side's copy of each joint's end 0 and
-        end 1 [m], from the corner contacts (b's corner against a's face is the first of each
-        joint's pair)."""
+        end 1 [m]."""
         s = self.system
-        q = self._q_of(pos, angles)
-        out = np.zeros((s.joints, 2, 2))
-        for k in range(s.n_contacts):
-            j, e = int(s.joint[k]), int(s.end[k])
-            p = int(s.owner[k])
-            sign = 1.0 if self._is_b(k) else -1.0
-            out[j, e] += sign * self._corner(q, k, p)
-        return out
-
-    def _is_b(self, k) -> bool:
-        # rows come per joint as (b's corners e=0,1), then (a's corners e=0,1)
-        return (k % 4) < 2
-
-    def _corner(self, q, k, p):
-        c = self.system.corner[k]
-        if p < 0:
-            return c.copy()
-        r = c - self.centroids0[p]
-        ca, sa = math.cos(q[p, 2]), math.sin(q[p, 2])
-        return q[p, :2] + np.array([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1]])
+        return end_offsets(self._q_of(pos, angles), s.owner, s.corner, s.joint, s.end,
+                           s.joints, s.centroids)
 
     def _sides(self):
+        if getattr(self, "_sides_cache", None) is not None:
+            return self._sides_cache
         s = self.system
         a = np.full(s.joints, -1, np.int64)
         b = np.full(s.joints, -1, np.int64)
         for k in range(0, s.n_contacts, 4):
             j = int(s.joint[k])
             b[j], a[j] = s.owner[k], s.face[k]
+        self._sides_cache = (a, b)
         return a, b
 
     def _rel_rotations(self, angles) -> np.ndarray:
@@ -290,3 +275,12 @@ def engine_arcade(arc, settings: EngineSettings | None = None):
     if not isinstance(arc, Arcade):
         raise ArchInputError(f"arcade: expected an Arcade, got {type(arc).__name__}")
     return RigidArcade(arc, settings)
+
+
+def require_engine(settings: EngineSettings | None = None) -> None:
+    """Raise ImportError (naming the extra) where ``settings`` name the pymunk engine and pymunk
+    is not installed; archrock's own engine needs nothing beyond numpy."""
+    if (settings or EngineSettings()).engine == "pymunk":
+        from .engine import import_pymunk
+
+        import_pymunk()

@@ -130,9 +130,9 @@ def _engine_response(ctx, choice, motion) -> Section:
     why = (f"The four-link model is not valid here ({choice.reason}): the contact engine "
            f"(rigid blocks, contact and Coulomb friction, archrock.contact) gives the response.")
     try:
-        from ..contact import EngineSettings, import_pymunk
+        from ..contact import EngineSettings, require_engine
 
-        import_pymunk()
+        require_engine()
     except ImportError:
         return Section("response", title, (Paragraph(
             why + " The engine is needed and is not installed: pip install 'archrock[dem]'. "
@@ -315,9 +315,9 @@ def section_contact(ctx: Context) -> Section:
 
     title = "Contact-engine check"
     try:
-        from ..contact import import_pymunk
+        from ..contact import require_engine
 
-        import_pymunk()  # the package imports without pymunk; the engine needs it
+        require_engine()  # archrock's engine: nothing to install
         gov = ctx.governing
     except ImportError:
         return _optional_missing("contact", title, "contact", "The contact-engine (pymunk) check")

@@ -385,9 +385,9 @@ def governing_capacity(arch, friction=DEFAULT_FRICTION, *, engine: bool = False,
         left_out.append((ENGINE, engine_left_out))
     else:
         try:
-            from ..contact import import_pymunk
+            from ..contact import require_engine
 
-            import_pymunk()
+            require_engine()
         except ImportError:
             left_out.append((ENGINE, "pymunk is not installed: pip install 'archrock[dem]'"))
         else:
