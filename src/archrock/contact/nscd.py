@@ -372,14 +372,19 @@ def _contact_impulses(v, impulse, act, jn, jt, bn, owner, face, inv_m, inv_i, mu
     if na == 0:
         return 0, True
     eps = 0.0
-    Q = np.empty((m, m))
+    Q = np.zeros((m, m))
     for i in range(na):
-        for si in range(2):
-            sgn_i = 1.0 if si == 0 else -1.0
-            for j in range(i, na):
+        ki = act[i]
+        for j in range(i, na):
+            kj = act[j]
+            if not (owner[ki] >= 0 and (owner[ki] == owner[kj] or owner[ki] == face[kj])
+                    or face[ki] >= 0 and (face[ki] == owner[kj] or face[ki] == face[kj])):
+                continue  # no body in common: the rows do not couple
+            for si in range(2):
+                sgn_i = 1.0 if si == 0 else -1.0
                 for sj in range(2):
                     sgn_j = 1.0 if sj == 0 else -1.0
-                    val = _row_product(act[i], sgn_i, act[j], sgn_j, mu, jn, jt, owner, face,
+                    val = _row_product(ki, sgn_i, kj, sgn_j, mu, jn, jt, owner, face,
                                        inv_m, inv_i)
                     Q[2 * i + si, 2 * j + sj] = val
                     Q[2 * j + sj, 2 * i + si] = val
