@@ -80,21 +80,20 @@ def test_the_engine_job_is_cancelled_at_once(client, wait_job):
     assert wait_job(client, job["id"], timeout=10)["state"] == "cancelled"
 
 
-def test_the_engine_without_pymunk_is_refused_naming_the_extra(client, monkeypatch):
-    import archrock.contact
+def test_the_engine_needs_pymunk_only_where_pymunk_is_named(monkeypatch):
+    """archrock's own engine runs without pymunk; the soft-contact cross-check names its extra."""
+    import archrock.contact.engine
+    from archrock.contact import EngineSettings, require_engine
 
     def missing():
-        raise ImportError("no pymunk here")
+        raise ImportError("the contact engine (archrock dem / verify) needs pymunk: "
+                          "pip install \"archrock[dem]\"")
 
-    monkeypatch.setattr(archrock.contact, "import_pymunk", missing)
-    r = client.post("/api/respond", json=SLIDING)
-    assert r.status_code == 422 and r.json()["kind"] == "needs-engine"
-    msg = r.json()["error"]
-    assert msg.startswith("dynamics: the contact engine answers this arch (")
-    assert msg.endswith("pip install 'archrock[dem]'")
-    # never a four-link answer instead; asked for by name it still runs, labelled
-    named = client.post("/api/respond", json={**SLIDING, "dynamics": "fourlink"}).json()
-    assert named["valid"] is False
+    monkeypatch.setattr(archrock.contact.engine, "import_pymunk", missing)
+    require_engine()  # archrock's engine: nothing to import
+    require_engine(EngineSettings(engine="archrock"))
+    with pytest.raises(ImportError, match=r"archrock\[dem\]"):
+        require_engine(EngineSettings(engine="pymunk"))
 
 
 def test_friction_none_excludes_sliding_and_a_bad_friction_is_400(client):

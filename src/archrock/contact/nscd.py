@@ -235,30 +235,6 @@ def _row_dot(v, k, sign, mu, jn, jt, owner, face):
 
 
 @maybe_njit
-def _row_product(k, sk, l, sl, mu, jn, jt, owner, face, inv_m, inv_i):
-    """Entry of A M^-1 A^T between row (k, sk) and row (l, sl) of the relaxed cones."""
-    out = 0.0
-    for bk_side in range(2):
-        bk = owner[k] if bk_side == 0 else face[k]
-        if bk < 0:
-            continue
-        ck = 1.0 if bk_side == 0 else -1.0
-        for bl_side in range(2):
-            bl = owner[l] if bl_side == 0 else face[l]
-            if bl != bk:
-                continue
-            cl = 1.0 if bl_side == 0 else -1.0
-            ax = jn[k, 0] + sk * mu * jt[k, 0]
-            ay = jn[k, 1] + sk * mu * jt[k, 1]
-            ar = jn[k, 2 + bk_side] + sk * mu * jt[k, 2 + bk_side]
-            bx = jn[l, 0] + sl * mu * jt[l, 0]
-            by = jn[l, 1] + sl * mu * jt[l, 1]
-            br = jn[l, 2 + bl_side] + sl * mu * jt[l, 2 + bl_side]
-            out += ck * cl * (inv_m[bk] * (ax * bx + ay * by) + inv_i[bk] * ar * br)
-    return out
-
-
-@maybe_njit
 def _bound_qp(Q, c, x, tolg, max_iter):
     """min 1/2 x^T Q x - c^T x subject to x >= 0, Q symmetric positive definite: the primal
     active-set method (Nocedal & Wright 2006, sec. 16.5), started from the feasible ``x`` (the
@@ -372,22 +348,47 @@ def _contact_impulses(v, impulse, act, jn, jt, bn, owner, face, inv_m, inv_i, mu
     if na == 0:
         return 0, True
     eps = 0.0
+    # the rows of the relaxed cones, each body's part with its sign: (x, y, r) of the owner,
+    # then of the face's body
+    rows = np.empty((m, 6))
+    for i in range(na):
+        k = act[i]
+        for si in range(2):
+            sg = mu if si == 0 else -mu
+            r = 2 * i + si
+            rows[r, 0] = jn[k, 0] + sg * jt[k, 0]
+            rows[r, 1] = jn[k, 1] + sg * jt[k, 1]
+            rows[r, 2] = jn[k, 2] + sg * jt[k, 2]
+            rows[r, 3] = -rows[r, 0]
+            rows[r, 4] = -rows[r, 1]
+            rows[r, 5] = -(jn[k, 3] + sg * jt[k, 3])
     Q = np.zeros((m, m))
     for i in range(na):
         ki = act[i]
         for j in range(i, na):
             kj = act[j]
-            if not (owner[ki] >= 0 and (owner[ki] == owner[kj] or owner[ki] == face[kj])
-                    or face[ki] >= 0 and (face[ki] == owner[kj] or face[ki] == face[kj])):
-                continue  # no body in common: the rows do not couple
-            for si in range(2):
-                sgn_i = 1.0 if si == 0 else -1.0
-                for sj in range(2):
-                    sgn_j = 1.0 if sj == 0 else -1.0
-                    val = _row_product(ki, sgn_i, kj, sgn_j, mu, jn, jt, owner, face,
-                                       inv_m, inv_i)
-                    Q[2 * i + si, 2 * j + sj] = val
-                    Q[2 * j + sj, 2 * i + si] = val
+            for side_i in range(2):
+                bi = owner[ki] if side_i == 0 else face[ki]
+                if bi < 0:
+                    continue
+                for side_j in range(2):
+                    bj = owner[kj] if side_j == 0 else face[kj]
+                    if bj != bi:
+                        continue
+                    wm = inv_m[bi]
+                    wi = inv_i[bi]
+                    oi = 3 * side_i
+                    oj = 3 * side_j
+                    for si in range(2):
+                        ri = 2 * i + si
+                        for sj in range(2):
+                            rj = 2 * j + sj
+                            val = (wm * (rows[ri, oi] * rows[rj, oj]
+                                         + rows[ri, oi + 1] * rows[rj, oj + 1])
+                                   + wi * rows[ri, oi + 2] * rows[rj, oj + 2])
+                            Q[ri, rj] += val
+                            if j != i:
+                                Q[rj, ri] += val
     for i in range(m):
         if Q[i, i] > eps:
             eps = Q[i, i]
