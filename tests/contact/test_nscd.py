@@ -305,3 +305,21 @@ def test_pure_python_path_rocks_the_block_as_the_compiled_one(without_numba):
     assert engine.q[0, 2] > 1e-3  # it rocks
     np.testing.assert_allclose(pure["q"], engine.q[0], rtol=1e-9, atol=1e-15)
     np.testing.assert_allclose(pure["v"], engine.v[0], rtol=1e-9, atol=1e-15)
+
+
+# ----------------------------------------------------------------------------- found: mu >= 1.5
+@pytest.mark.xfail(strict=True, reason="engine (issue 31): a block toppling about its corner "
+                   "with mu = 2 leaves 17 steps unconverged near theta = 1.09-1.12 rad (the De "
+                   "Saxce rounds cycle: 10x max_sweeps or 100x the tolerance do not help); "
+                   "mu <= 1.2 converges")
+def test_toppling_block_with_high_friction_converges():
+    """The 1 x 4 m block released from alpha + 0.01 topples under gravity alone; with mu = 2
+    (no sliding needed) every step's contact problem converges until |theta| = 1.2 rad."""
+    engine, _ = _block(1.0, 4.0, friction=2.0)
+    _tilt(engine, 1.0, 4.0, math.atan2(1.0, 4.0) + 0.01)
+    for _ in range(_steps(engine, 8.0)):
+        engine.step(0.0, 1)
+        if abs(engine.q[0, 2]) > 1.2:
+            break
+    assert abs(engine.q[0, 2]) > 1.2  # it toppled
+    assert engine.solver_stats()["unconverged_steps"] == 0
