@@ -271,7 +271,7 @@ def test_oppenheim_arch_moves_in_mirror_under_opposite_accelerations(oppenheim):
 # ----------------------------------------------------------------------------- 6. input errors
 @pytest.mark.parametrize("make,field", [
     (lambda: EngineSettings(tolerance=0), "tolerance"),
-    (lambda: EngineSettings(max_sweeps=0), "max_sweeps"),
+    (lambda: EngineSettings(max_rounds=0), "max_rounds"),
     (lambda: EngineSettings(engine="box2d"), "engine"),
     (lambda: block_on_ground(0, 1), "width"),
     (lambda: block_on_ground(1, -2), "height"),
@@ -310,7 +310,7 @@ def test_pure_python_path_rocks_the_block_as_the_compiled_one(without_numba):
 # ----------------------------------------------------------------------------- found: mu >= 1.5
 @pytest.mark.xfail(strict=True, reason="engine (issue 31): a block toppling about its corner "
                    "with mu = 2 leaves 17 steps unconverged near theta = 1.09-1.12 rad (the De "
-                   "Saxce rounds cycle: 10x max_sweeps or 100x the tolerance do not help); "
+                   "Saxce rounds cycle: 10x max_rounds or 100x the tolerance do not help); "
                    "mu <= 1.2 converges")
 def test_toppling_block_with_high_friction_converges():
     """The 1 x 4 m block released from alpha + 0.01 topples under gravity alone; with mu = 2

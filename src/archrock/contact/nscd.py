@@ -1,30 +1,35 @@
-"""Nonsmooth contact dynamics of rigid blocks: Moreau-Jean time stepping with a nonsmooth
-Gauss-Seidel contact solver (Moreau 1988; Jean 1999, "The non-smooth contact dynamics method",
-CMAME 177; Acary & Brogliato 2008, "Numerical Methods for Nonsmooth Dynamical Systems", ch. 10
-and 12).
+"""Nonsmooth contact dynamics of rigid blocks: Moreau-Jean time stepping with each step's
+contact problem solved exactly (Moreau 1988, "Unilateral contact and dry friction in finite
+freedom dynamics"; Jean 1999, "The non-smooth contact dynamics method", CMAME 177; Acary &
+Brogliato 2008, "Numerical Methods for Nonsmooth Dynamical Systems", ch. 10 and 13).
 
 State: for each body (x, y, theta) -- mass centre [m] and rotation from rest [rad,
 counter-clockwise] -- and its velocities (vx, vy, omega).  One step of length h:
 
 1. free velocity v_f = v_k + h (-xg''(t), -g) (the ground frame's body force and gravity act at
    the mass centre: no moment in 2-D);
-2. at each corner contact (:mod:`.blocksystem`) the gap g and the face's normal n and tangent
-   t from the current positions -- exact rotations, no linearisation; a corner farther than
-   the face's ends (by ``margin`` of its length) or than ``reach`` from the face is not a contact;
-3. the impulses P = (P_n, P_t) of the contacts solve, with u = H v_{k+1} the relative velocity
-   of the corner and v_{k+1} = v_f + M^-1 H^T P:
+2. at each corner contact (:mod:`.blocksystem`) the gap g, the face's normal n and tangent t from
+   the current positions -- exact rotations, no linearisation.  Of the two corner contacts at a
+   joint's end (b's corner on a's face, a's corner on b's) the one with the smaller gap bears: the
+   same contact where the end is closed, the penetrating one where the faces turn apart.  A
+   corner past its face's ends (by ``margin`` of its length), farther than ``reach``, or open and
+   not closing within the step is not in the step's problem;
+3. the impulses P = (P_n, P_t) and v_{k+1} = v_f + M^-1 H^T P, with u = H v_{k+1} the corners'
+   relative velocities, satisfy
    - Signorini-Newton at velocity level: 0 <= P_n  _|_  u_n - b >= 0, with b = -e u_n,k on a
-     closed contact (g <= 0; Newton's impact law, restitution e, 0 by default) and b = -g/h on
-     an open one that would close within the step (the contact then closes exactly, its impact
-     taken at the next step);
-   - Coulomb: |P_t| <= mu P_n, and u_t = 0 where |P_t| < mu P_n, u_t P_t <= 0 otherwise;
-   solved by Gauss-Seidel sweeps over the contacts, each contact's 2 x 2 problem solved exactly
-   (open, stick, slide either way), the sweeps alternating in direction so that a mirror-
-   symmetric structure is treated symmetrically, warm-started from the previous step's
-   impulses, until no sweep changes a contact's velocity by more than ``tol`` x g h;
+     closed contact (Newton's impact law, restitution e, 0 by default) and b = -g/h on an open
+     one that would close within the step (it then closes exactly, its impact at the next step);
+   - Coulomb: |P_t| <= mu P_n, u_t = 0 where |P_t| < mu P_n, u_t P_t <= 0 otherwise.
+   :func:`_contact_impulses` solves this exactly: the relaxed cone u_n + mu |u_t| >= b + s makes
+   the step a strictly convex problem (Anitescu 2006) solved in its dual by a finite active-set
+   method (:func:`_bound_qp`), warm-started from the previous step, and De Saxce's shift
+   s = mu |u_t| of the previous round turns its fixed point into Coulomb's law.  The solution's
+   velocities are unique, so a mirror-symmetric structure stays symmetric whatever the order of
+   its contacts.  Converged when the optimality residual and the shifts' change are below
+   ``tol`` x g h (a velocity);
 4. positions with the new velocities: q_{k+1} = q_k + h v_{k+1} (theta = 1; the rotation exact).
 
-A corner closed with g < 0 (the O(h^2) drift of a rotation integrated in a straight line) is
+A closed corner with g < 0 (the O(h^2) drift of a rotation integrated along its tangent) is
 pushed back by ``b += -beta g / h``.  Everything is a pure function of arrays, compiled when
 numba is present (:func:`archrock._jit.maybe_njit`) and the same code in Python otherwise.
 """
@@ -40,7 +45,7 @@ from .._jit import maybe_njit
 __all__ = ["advance", "contact_frames", "end_offsets", "SOLVER_FIELDS"]
 
 #: the per-run counters returned by :func:`advance` (stats[0..3])
-SOLVER_FIELDS = ("steps", "sweeps", "unconverged_steps", "largest_sweeps")
+SOLVER_FIELDS = ("steps", "qp_iterations", "unconverged_steps", "largest_iterations")
 
 
 @maybe_njit
@@ -111,23 +116,24 @@ def end_offsets(q, owner, corner, joint, end, joints, x0):
 
 
 @maybe_njit
-def advance(q, v, impulse, accel, h, g, mu, e, tol, max_sweeps, beta, margin, reach, lref,
+def advance(q, v, impulse, accel, h, g, mu, e, tol, max_rounds, beta, margin, reach,
             masses, inertias, x0, owner, face, corner, face_start, tangent, normal, length,
             stats):
     """Advance ``len(accel)`` steps of length ``h`` [s] in place: q (nb, 3), v (nb, 3) and the
     contacts' ``impulse`` (nc, 2) (the warm start, and on return the last step's impulses
     [N s/m]); ``accel`` [m/s^2] the ground's acceleration during each step; g [m/s^2]; mu, e:
-    friction and restitution; tol, max_sweeps: the solver's convergence criterion (no body's
-    velocity, nor its rate times ``lref`` [m], changed by more than tol g h in a sweep) and bound; beta: the fraction of a penetration removed per step; margin:
+    friction and restitution; tol: the solver's tolerance, as a fraction of g h [m/s];
+    max_rounds: the most rounds of De Saxce's shift per step; beta: the fraction of a
+    penetration removed per step; margin:
     how far past a face's ends (fraction of its length) a corner still bears on it; reach [m]:
     the largest gap at which a corner contact is kept.  ``stats`` (4,) int64 accumulates
-    (steps, sweeps, steps stopped by max_sweeps unconverged, largest sweeps in a step)."""
+    (steps, QP iterations, steps left unconverged at max_rounds, most QP iterations in a step)."""
     nb = masses.size
     nc = owner.size
     inv_m = 1.0 / masses
     inv_i = 1.0 / inertias
     active = np.zeros(nc, np.bool_)
-    jn = np.zeros((nc, 6))  # (n_x, n_y, r_p x n, r_f x n) -> owner's and face's rows
+    jn = np.zeros((nc, 6))  # (n_x, n_y, r_p x n, r_f x n): the owner's and the face's rows
     jt = np.zeros((nc, 6))
     act = np.zeros(nc, np.int64)
     bn = np.zeros(nc)
@@ -203,7 +209,7 @@ def advance(q, v, impulse, accel, h, g, mu, e, tol, max_sweeps, beta, margin, re
                 act[na] = k
                 na += 1
         its, ok = _contact_impulses(v, impulse, act[:na], jn, jt, bn, owner, face, inv_m,
-                                    inv_i, mu, vtol, max_sweeps)
+                                    inv_i, mu, vtol, max_rounds)
         stats[0] += 1
         stats[1] += its
         if not ok:

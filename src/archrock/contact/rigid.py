@@ -98,7 +98,7 @@ class RigidBlocks:
             return
         s, st = self.system, self.settings
         advance(self.q, self.v, self.impulse, a, self.dt, G, st.friction, st.restitution,
-                st.tolerance, st.max_sweeps, BETA, MARGIN, self._reach, self.size, s.masses, s.inertias,
+                st.tolerance, st.max_rounds, BETA, MARGIN, self._reach, s.masses, s.inertias,
                 s.centroids, s.owner, s.face, s.corner, s.face_start, s.tangent, s.normal,
                 s.length, self.stats)
         self.steps += a.size
@@ -116,7 +116,7 @@ class RigidBlocks:
 
     def solver_stats(self) -> dict:
         d = dict(zip(SOLVER_FIELDS, (int(x) for x in self.stats)))
-        d["mean_sweeps"] = d["sweeps"] / d["steps"] if d["steps"] else 0.0
+        d["mean_iterations"] = d["qp_iterations"] / d["steps"] if d["steps"] else 0.0
         return d
 
     # ------------------------------------------------------------------ state

@@ -37,24 +37,26 @@ def _num(name, value, lo, hi, allowed, integer=False):
 
 @dataclass(frozen=True)
 class EngineSettings:
-    """Settings of the rigid-body contact engine (pymunk / Chipmunk2D), all scale-free so that an
-    arch a hundred times larger runs the same numbers of steps:
+    """Settings of the rigid-block contact engine, all scale-free so that an arch a hundred
+    times larger runs the same numbers of steps:
 
+    engine: "archrock" (default), archrock's own nonsmooth contact dynamics
+    (:mod:`archrock.contact.nscd`: exact unilateral contacts and Coulomb friction at the joints'
+    ends, Moreau-Jean steps), or "pymunk", the soft-contact game engine kept as a cross-check;
     steps_per_T: time steps per T = sqrt(size / g) (the arch's time scale; 1 s for R = 9.8 m);
-    iterations: impulse-solver iterations per step;
-    slop: contact overlap allowed without correction, as a fraction of the arch's size;
-    bias: fraction of the remaining overlap corrected per step (Chipmunk's collision_bias is set
-    to (1 - bias)^(1/dt));
-    rounding: corner radius of the contact shapes, as a fraction of the size (their cores are
-    inset by it, so that flush joints are not degenerate for the contact search);
     friction: Coulomb coefficient of every contact (voussoir-voussoir and voussoir-abutment),
     finite and > 0 as in the limit analysis (:func:`archrock.statics.friction.check_friction`);
-    restitution: coefficient of restitution of every contact (0: no bounce);
-    outline_tol: the contact shapes' outline may deviate from the voussoir's by this fraction of
-    the size (:func:`~archrock.contact.convex.simplify_outline`; the joints' ends stay exact):
-    the default 2e-3 (2 cm on a 10 m arch) cuts a voussoir into 2 to 4 convex pieces instead of
-    20 to 60; 0 is the fine cut, every vertex of the outline (as sampled by ``arch.outline``).
-    Defaults are those of the convergence study in docs/verification.md; how they become
+    restitution: Newton's coefficient of every contact (0: no bounce);
+    tolerance: archrock's solver stops when its residuals are below tolerance x g x dt [m/s];
+    max_rounds: archrock's solver's most rounds of De Saxce's friction shift in one step (a step
+    left unconverged is counted, :meth:`~archrock.contact.rigid.RigidBlocks.solver_stats`);
+    pymunk only -- iterations: impulse-solver iterations per step; slop: contact overlap allowed
+    without correction, as a fraction of the arch's size; bias: fraction of the remaining overlap
+    corrected per step (Chipmunk's collision_bias is set to (1 - bias)^(1/dt)); rounding: corner
+    radius of the contact shapes, as a fraction of the size; outline_tol: the contact shapes'
+    outline may deviate from the voussoir's by this fraction of the size
+    (:func:`~archrock.contact.convex.simplify_outline`; 0: the fine cut).
+    Defaults are those of the convergence studies in docs/verification.md; how they become
     seconds and metres on a given arch is :func:`engine_scales`.
     """
 
@@ -68,15 +70,15 @@ class EngineSettings:
     outline_tol: float = DEFAULT_OUTLINE_TOL
     engine: str = "archrock"
     tolerance: float = 1e-6
-    max_sweeps: int = 2000
+    max_rounds: int = 200
 
     def __post_init__(self):
         if self.engine not in ENGINES:
             raise ArchInputError(f"engine: {self.engine!r}; allowed one of {', '.join(ENGINES)}")
         object.__setattr__(self, "tolerance", _num("tolerance", self.tolerance, 1e-12, 1e-2,
                                                    "1e-12 <= tolerance <= 1e-2"))
-        object.__setattr__(self, "max_sweeps", _num("max_sweeps", self.max_sweeps, 1, 1e6,
-                                                    "an integer 1..1e6", integer=True))
+        object.__setattr__(self, "max_rounds", _num("max_rounds", self.max_rounds, 1, 10000,
+                                                    "an integer 1..10000", integer=True))
         object.__setattr__(self, "steps_per_T", _num("steps_per_T", self.steps_per_T, 10, 1e6,
                                                      "10 <= steps_per_T <= 1e6"))
         object.__setattr__(self, "iterations", _num("iterations", self.iterations, 1, 10000,
