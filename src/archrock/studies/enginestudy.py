@@ -33,7 +33,7 @@ from .work import check_work
 __all__ = ["DYNAMICS", "check_dynamics", "DynamicsChoice", "choose_dynamics", "EngineRun",
            "engine_run_cost_s", "EngineEnsembleResult", "engine_ensemble",
            "EngineFirstCollapse", "engine_first_collapse", "engine_collapse_curve",
-           "ENGINE_STEP_S", "engine_curves_section", "ENGINE_COLUMNS", "activation"]
+           "ENGINE_STEP_S", "ARCHROCK_STEP_S", "engine_curves_section", "ENGINE_COLUMNS", "activation"]
 
 #: The dynamics a study may use: "auto" (the four-link model where one degree of freedom is
 #: valid, the contact engine otherwise), "fourlink", "engine".
@@ -45,6 +45,12 @@ DYNAMICS = ("auto", "fourlink", "engine")
 #: (heavy piers at 0.7 g: 4.4 s an arch against 8 s estimated), a loaded machine runs slower
 #: (0.5 g: 10 s an arch at a load of 6-8 on 2 cores).
 ENGINE_STEP_S = 1.5e-5
+
+#: archrock's engine: seconds of one step, a + b m^2 with m = 4 (joints) the rows of its contact
+#: problem (two bearing corners per joint, two rows each), measured on the development machine
+#: under load (Housner's block 4.5 us, Oppenheim's arch at rest 25 us a step; the dense
+#: factorisation grows as m^3 but the rows' matrix dominates up to a few dozen joints).
+ARCHROCK_STEP_S = (3e-6, 2.5e-8)
 
 #: choose_dynamics's friction when none is passed: the package's default coefficient (None is a
 #: value: sliding excluded by the user).
@@ -222,12 +228,16 @@ class EngineRun:
 
 def engine_run_cost_s(arch, duration: float, run: EngineRun) -> float:
     """Upper estimate [s] of one engine response of ``arch`` to a motion of ``duration`` [s]:
-    the steps to the end of the free motion times :data:`ENGINE_STEP_S` per contact piece
-    (about 3 per voussoir at the default outline tolerance)."""
+    the steps to the end of the free motion times the cost of a step: archrock's engine
+    :data:`ARCHROCK_STEP_S` (a + b m^2, m = 4 (n + 1) rows), pymunk's :data:`ENGINE_STEP_S` per
+    contact piece (about 3 per voussoir at the default outline tolerance)."""
     from ..contact.settings import engine_scales
 
     sc = engine_scales(arch, run.settings)
     steps = (float(duration) + run.t_free * sc.time_scale) / sc.dt
+    if run.settings.engine == "archrock":
+        m = 4 * (int(arch.n) + 1)
+        return steps * (ARCHROCK_STEP_S[0] + ARCHROCK_STEP_S[1] * m * m)
     pieces = 3 * int(arch.n) + 2
     return steps * pieces * ENGINE_STEP_S * run.settings.iterations / 40.0
 
