@@ -47,7 +47,8 @@ class EngineIDAResult:
     records: the records' names; scales: the grid (scale factors); collapsed[i, j]: record i at
     scales[j] collapsed the arch; status[i][j]: 'rest', 'collapsed', 'moving' (still moving when
     the free motion ran out: not a collapse) or 'failed' (errors[i][j] says why: not a
-    collapse); factors[i]: record i's IM per unit scale; first_scales[i]: its IDA capacity, the
+    collapse); factors[i]: record i's IM per unit scale; pga_g[i]: its PGA [g] at scale 1;
+    first_scales[i]: its IDA capacity, the
     smallest collapsing scale of the grid (None: none collapsed); im: the IM ('pga' [g], ...);
     fit: the lognormal fragility on the first-collapse IMs (None where it cannot be identified,
     fit_error says why); run: the :class:`EngineRun`; dynamics: the DynamicsChoice's dict that
@@ -59,6 +60,7 @@ class EngineIDAResult:
     status: tuple
     errors: tuple
     factors: np.ndarray
+    pga_g: np.ndarray
     first_scales: tuple
     im: str
     fit: object
@@ -85,13 +87,34 @@ class EngineIDAResult:
     def n_censored(self) -> int:
         return sum(s is None for s in self.first_scales)
 
+    def as_ida(self):
+        """The same data as an :class:`~archrock.studies.ida.IDAResult` (one curve per record,
+        arch 0; bracket: the grid's last survival below the first collapse, None where the
+        lowest scale already collapsed), for the IDA's report lines and figure."""
+        from .ida import IDACurve, IDAResult
+
+        curves = []
+        fi, mi = self.first_ims, self.max_ims
+        for i, name in enumerate(self.records):
+            fc = first_collapse(self.scales, self.collapsed[i])
+            first = self.first_scales[i]
+            j = None if first is None else int(np.flatnonzero(self.collapsed[i])[0])
+            bracket = (None if not j else (float(self.scales[j - 1]), float(first)))
+            curves.append(IDACurve(name, 0, float(self.pga_g[i]), self.scales,
+                                   self.collapsed[i], first, bracket,
+                                   None if first is None else float(fi[i]),
+                                   tuple(fc["survivals_above"]), fc["resurrections"],
+                                   float(mi[i]), below_grid=j == 0))
+        return IDAResult(tuple(curves), self.im, self.fit, self.fit_error)
+
     def to_dict(self) -> dict:
         """JSON-ready: the grid, the matrix, each record's capacity, the fit and how."""
         fi = self.first_ims
         recs = []
         for i, name in enumerate(self.records):
             fc = first_collapse(self.scales, self.collapsed[i])
-            recs.append({"name": name, "im_per_unit_scale": float(self.factors[i]),
+            recs.append({"name": name, "pga_g": float(self.pga_g[i]),
+                         "im_per_unit_scale": float(self.factors[i]),
                          "first_scale": self.first_scales[i],
                          "first_im": None if math.isinf(fi[i]) else float(fi[i]),
                          "max_im": float(self.max_ims[i]),
@@ -153,13 +176,13 @@ def _check_inputs(records, scales, im, run, workers, progress, n_boot, dynamics)
 
 
 def engine_ida(arch, records, scales, *, im: str = "pga", run: EngineRun | None = None,
-               workers: int = 1, progress=None, n_boot: int = 0, seed=0,
+               workers: int = 1, scheduler=None, progress=None, n_boot: int = 0, seed=0,
                confidence: float = 0.9, dynamics=None) -> EngineIDAResult:
     """IDA of ``arch`` by the contact engine: every record of ``records`` (GroundMotions) scaled
     by every factor of ``scales`` (strictly increasing, > 0), one engine run each (``run``: an
     :class:`EngineRun`, default settings).  im: the IM of the capacities and the fit (as
     :func:`archrock.studies.ida.ida`); workers: 1 in this process, N > 1 a process pool over
-    the records; progress: a callable given one line per finished record; n_boot, seed,
+    the records; scheduler: a Dask cluster instead (its address or a ``distributed.Client``); progress: a callable given one line per finished record; n_boot, seed,
     confidence: the fit's bootstrap band (0: none); dynamics: the DynamicsChoice (or its dict)
     that sent the arch here, kept in the result.  Refused beyond the work bound (estimated
     from :func:`engine_run_cost_s` of the longest record)."""
@@ -182,7 +205,7 @@ def engine_ida(arch, records, scales, *, im: str = "pga", run: EngineRun | None 
     t0 = time.perf_counter()
     rows: list = [None] * len(recs)
     shared = (arch, tuple(recs), tuple(float(x) for x in s), run)
-    with Executor(RunSettings(workers=int(workers)), shared=shared) as ex:
+    with Executor(RunSettings(workers=int(workers), scheduler=scheduler), shared=shared) as ex:
         for done, (i, row) in enumerate(ex.map_unordered(_record_row,
                                                          [(i,) for i in range(len(recs))]), 1):
             rows[i] = row
@@ -204,7 +227,7 @@ def engine_ida(arch, records, scales, *, im: str = "pga", run: EngineRun | None 
     dyn = dynamics.to_dict() if isinstance(dynamics, DynamicsChoice) else dynamics
     return EngineIDAResult(tuple(r.name for r in recs), s, collapsed,
                            tuple(r[0] for r in rows), tuple(r[1] for r in rows), factors,
-                           firsts, im, fit, err, run, dyn,
+                           np.array([r.pga_g for r in recs]), firsts, im, fit, err, run, dyn,
                            {"wall_s": wall, "estimate_s": est, "runs": n_runs,
                             "workers": ex.name, "runs_per_s": n_runs / wall if wall > 0
                             else None})
