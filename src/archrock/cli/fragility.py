@@ -58,7 +58,12 @@ def add_fragility_parser(subparsers):
     p.add_argument("--no-progress", action="store_true",
                    help="no progress on stderr (shown for runs estimated above a few seconds)")
     p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
-    add_fourlink_dynamics_option(p)
+    add_fourlink_dynamics_option(
+        p, help="auto (default): the four-link model where one degree of freedom follows the "
+                "arch; the contact engine's IDA (no stripes, the nominal arch only) where it "
+                "does not: piers that rock with the arch, joints that slide at --friction "
+                "(docs/piers-dynamics.md); fourlink: the four-link model anyway, with a "
+                "warning")
     p.set_defaults(func=run_fragility)
     return p
 
@@ -75,7 +80,11 @@ def run_fragility(args) -> int:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
-    check_fourlink(nominal, args, "fragility")
+    choice = check_fourlink(nominal, args, "fragility", engine_runs=True)
+    if choice.engine:  # one degree of freedom cannot follow it: the IDA by the contact engine
+        from .enginefragility import run_engine_fragility
+
+        return run_engine_fragility(args, nominal, choice, plot)
     if args.workers < 1:  # before any records are read
         raise ArchInputError(f"workers: {args.workers}; allowed an integer >= 1")
     if args.engine == "respond" and (args.workers > 1 or args.scheduler):
@@ -125,8 +134,8 @@ def _figure(res_ida, res_msa, plot) -> bool:
     from ..reports.plots import plot_fragility
 
     try:
-        plot_fragility(res_msa.fit if res_msa.fit is not None else res_ida.fit, res_msa, plot,
-                       ida=res_ida)
+        fit = res_msa.fit if res_msa is not None and res_msa.fit is not None else res_ida.fit
+        plot_fragility(fit, res_msa, plot, ida=res_ida)
     except Exception as exc:  # noqa: BLE001 -- any failure of a figure is a warning, by design
         why = " ".join(str(exc).split()) or type(exc).__name__
         print(f"archrock: warning: figure {plot} not written ({type(exc).__name__}: {why}); "
