@@ -235,7 +235,7 @@ def _check_engine_work(args, arc, settings, results, motion) -> float:
     import math
 
     from ..contact.ramp import ramp_range
-    from ..studies.enginestudy import ENGINE_STEP_S
+    from ..studies.enginestudy import ARCHROCK_STEP_S, ENGINE_STEP_S
     from ..units import G
     from ..studies.work import check_work
 
@@ -247,7 +247,11 @@ def _check_engine_work(args, arc, settings, results, motion) -> float:
     else:  # the motion, then up to 20 T of free motion
         t_scale = math.sqrt(arc.size / G)
         steps = (float(motion.times[-1]) / t_scale + 20.0) * spt
-    each = (3 * arc.n_blocks + 2) * ENGINE_STEP_S * settings.iterations / 40.0
+    if settings.engine == "archrock":  # a + b m^2, m = 4 (contacts): studies.enginestudy
+        m = 4 * len(arc.contacts)
+        each = ARCHROCK_STEP_S[0] + ARCHROCK_STEP_S[1] * m * m
+    else:
+        each = (3 * arc.n_blocks + 2) * ENGINE_STEP_S * settings.iterations / 40.0
     return check_work("arcade engine", steps, "engine steps", each,
                       "leave out --ramp / the motion (the static program's k and mechanism "
                       "need no engine), or use fewer blocks", kernel=False)

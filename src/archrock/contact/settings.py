@@ -100,6 +100,16 @@ class EngineSettings:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def describe(self) -> str:
+        """The settings that make this engine's answer, in one line (without the friction and
+        restitution, which the reports state once)."""
+        if self.engine == "archrock":
+            return (f"archrock's nonsmooth contact dynamics, {self.steps_per_T:g} steps per T, "
+                    f"solver tolerance {self.tolerance:g} x g dt")
+        return (f"pymunk (soft contacts), {self.steps_per_T:g} steps per T, {self.iterations} "
+                f"iterations, slop {self.slop:g}, rounding {self.rounding:g}, outline_tol "
+                f"{self.outline_tol:g} (x size)")
+
     @classmethod
     def from_dict(cls, data) -> "EngineSettings":
         names = {f.name for f in fields(cls)}

@@ -88,8 +88,7 @@ def _range_line(opts: dict) -> list[str]:
 def format_ramp(result, limit, arch) -> str:
     s = result.settings
     lines = [f"Contact engine ramp: {arch.name}, {describe_blocks(arch)}, friction MU = {s.friction:g}",
-             f"  engine: {s.steps_per_T:g} steps per T, {s.iterations} iterations, "
-             f"slop {s.slop:g}, rounding {s.rounding:g} (x size)",
+             f"  engine: {s.describe()}",
              *_range_line(result.ramp),
              f"  {'':3} {'engine':>9} {'bracket':>19} {'limit k':>9} {'error':>8}  "
              f"{'engine hinges':<22} limit hinges"]

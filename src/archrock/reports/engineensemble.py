@@ -32,7 +32,9 @@ def format_engine_ensemble(summary: dict, arch_name: str) -> str:
                      f"{pc['confidence']:.0%} Wilson)")
     e = summary["engine"]
     s = e["settings"]
-    lines.append(f"engine: {s['steps_per_T']:g} steps/T, {s['iterations']} iterations, "
+    from ..contact.settings import EngineSettings
+
+    lines.append(f"engine: {EngineSettings.from_dict(s).describe()}, "
                  f"friction {s['friction']:g}, restitution {s['restitution']:g}, free motion "
                  f"{e['t_free']:g} T, collapse at a drop of {e['collapse_drop']:g} x size")
     t = summary["timing"]

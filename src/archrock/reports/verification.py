@@ -50,8 +50,7 @@ def format_verify_ensemble(res) -> str:
     differs; then the disagreement rate and where."""
     s = res.settings
     lines = [f"Verification over {res.n} arches: engine (MU = {s.friction:g}, "
-             f"{s.steps_per_T:g} steps per T, {s.iterations} iterations, outline_tol "
-             f"{s.outline_tol:g}) against the four-link model's mechanism (limit analysis); "
+             f"{s.describe()}) against the four-link model's mechanism (limit analysis); "
              f"k within {100 * res.k_tol:g}%",
              f"  {'arch':>4} {'dir':>3} | {'k 4-link':>8} {'k engine':>8} {'error':>7} | "
              f"{'4-link hinges':<14} {'engine hinges':<14} | differs"]
