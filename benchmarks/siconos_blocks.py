@@ -11,7 +11,8 @@ IN.json (SI units; the arrays are those of archrock's ``BlockSystem``):
   bodies: masses (nb,) [kg/m], centroids (nb, 2) [m] at rest, inertias (nb,) [kg m];
   contacts: owner, face (nc,) (-1: the ground), corner, face_start, tangent, normal (nc, 2) at
   rest (the normal toward the owner), length (nc,) [m];
-  g [m/s^2], h [s], theta (Moreau-Jean's), mu, e, margin (a corner bears on its face up to this
+  g [m/s^2], h [s], theta (Moreau-Jean's), mu, e, activation [m] (a contact whose gap predicted
+  at mid-step is below it enters the step's problem; default 1e-9), margin (a corner bears on its face up to this
   fraction of the face's length past its ends);
   cases: a list of {accel: the ground's acceleration per step [m/s^2] (a list, or a number with
   ``steps``), q0, v0 (nb, 3) optional (x, y, rotation from rest; vx, vy, omega), every: keep one
@@ -101,9 +102,12 @@ class Blocks:
             self.rel.append(rel)
             self.inter.append(inter)
         self.osi = sk.MoreauJeanOSI(float(data.get("theta", 1.0)))
+        # a contact enters the step's problem when its gap predicted at mid-step is below this
+        # [m] rather than below 0: a closed contact left open by rounding (1e-15 m) must stay
+        self.osi.setConstraintActivationThreshold(float(data.get("activation", 1e-9)))
         self.osnspb = sk.FrictionContact(2)
         opts = self.osnspb.numericsSolverOptions()
-        opts.dparam[0] = float(data.get("tolerance", 1e-10))  # SICONOS_DPARAM_TOL
+        opts.dparam[0] = float(data.get("tolerance", 1e-8))  # SICONOS_DPARAM_TOL
         opts.iparam[0] = int(data.get("max_iterations", 10000))  # SICONOS_IPARAM_MAX_ITER
         td = sk.TimeDiscretisation(0.0, self.h)
         self.sim = sk.TimeStepping(self.nsds, td, self.osi, self.osnspb)
