@@ -11,7 +11,8 @@ IN.json (SI units; the arrays are those of archrock's ``BlockSystem``):
   bodies: masses (nb,) [kg/m], centroids (nb, 2) [m] at rest, inertias (nb,) [kg m];
   contacts: owner, face (nc,) (-1: the ground), corner, face_start, tangent, normal (nc, 2) at
   rest (the normal toward the owner), length (nc,) [m];
-  g [m/s^2], h [s], theta (Moreau-Jean's), mu, e, activation [m] (a contact whose gap predicted
+  g [m/s^2], h [s], theta (Moreau-Jean's), mu, e, solver ("nsgs", the default, or "lemke"),
+  tolerance (NSGS's, default 1e-8), activation [m] (a contact whose gap predicted
   at mid-step is below it enters the step's problem; default 1e-9), margin (a corner bears on its face up to this
   fraction of the face's length past its ends);
   cases: a list of {accel: the ground's acceleration per step [m/s^2] (a list, or a number with
@@ -45,6 +46,11 @@ import time
 
 import numpy as np
 import siconos.kernel as sk
+import siconos.numerics as sn
+
+#: the 2-D friction solvers offered (Siconos' numerics): nonsmooth Gauss-Seidel, or Lemke's
+#: pivoting on the LCP form of the 2-D Coulomb problem
+SOLVERS = {"nsgs": sn.SICONOS_FRICTION_2D_NSGS, "lemke": sn.SICONOS_FRICTION_2D_LEMKE}
 
 #: a corner off its face (past the ends by more than the margin) gets this gap [m]: never active
 FAR = 1.0e3
@@ -105,7 +111,8 @@ class Blocks:
         # a contact enters the step's problem when its gap predicted at mid-step is below this
         # [m] rather than below 0: a closed contact left open by rounding (1e-15 m) must stay
         self.osi.setConstraintActivationThreshold(float(data.get("activation", 1e-9)))
-        self.osnspb = sk.FrictionContact(2)
+        solver = data.get("solver", "nsgs")
+        self.osnspb = sk.FrictionContact(2, SOLVERS[solver])
         opts = self.osnspb.numericsSolverOptions()
         opts.dparam[0] = float(data.get("tolerance", 1e-8))  # SICONOS_DPARAM_TOL
         opts.iparam[0] = int(data.get("max_iterations", 10000))  # SICONOS_IPARAM_MAX_ITER
