@@ -11,10 +11,10 @@ IN.json (SI units; the arrays are those of archrock's ``BlockSystem``):
   bodies: masses (nb,) [kg/m], centroids (nb, 2) [m] at rest, inertias (nb,) [kg m];
   contacts: owner, face (nc,) (-1: the ground), corner, face_start, tangent, normal (nc, 2) at
   rest (the normal toward the owner), length (nc,) [m];
-  g [m/s^2], h [s], theta (Moreau-Jean's), mu, e, solver ("nsgs", the default, or "lemke"),
-  tolerance (NSGS's, default 1e-8), activation [m] (a contact whose gap predicted
-  at mid-step is below it enters the step's problem; default 1e-9), margin (a corner bears on its face up to this
-  fraction of the face's length past its ends);
+  g [m/s^2], h [s], theta (Moreau-Jean's), mu, e; optional: solver ("nsgs", the default, or
+  "lemke"), tolerance (the solver's, default 1e-8), activation [m] (a contact whose gap
+  predicted at mid-step is below it enters the step's problem; default 1e-9), margin (a corner
+  bears on its face up to this fraction of the face's length past its ends; default 0.05);
   cases: a list of {accel: the ground's acceleration per step [m/s^2] (a list, or a number with
   ``steps``), q0, v0 (nb, 3) optional (x, y, rotation from rest; vx, vy, omega), every: keep one
   step in ``every``, stop_rotation [rad]: stop once a body has turned by more than it}.
@@ -65,6 +65,24 @@ class Blocks:
     """The Siconos model of one structure and one case."""
 
     def __init__(self, data, case):
+        self._read_structure(data)
+        nb = self.m.size
+        q0 = np.zeros((nb, 3))
+        q0[:, :2] = self.x0
+        if case.get("q0") is not None:
+            q0 = np.asarray(case["q0"], float).reshape(nb, 3)
+        v0 = np.zeros((nb, 3)) if case.get("v0") is None else np.asarray(case["v0"], float)
+        accel = case["accel"]
+        if np.isscalar(accel):
+            accel = np.full(int(case["steps"]), float(accel))
+        self.accel = np.asarray(accel, float)
+        self.nsds = sk.NonSmoothDynamicalSystem(0.0, (self.accel.size + 1) * self.h)
+        self._add_bodies(q0, v0.reshape(nb, 3))
+        self._add_contacts(float(data["e"]), float(data["mu"]))
+        self._add_simulation(data)
+        self._relink(q0)
+
+    def _read_structure(self, data):
         b, c = data["bodies"], data["contacts"]
         self.m = np.asarray(b["masses"], float)
         self.x0 = np.asarray(b["centroids"], float).reshape(-1, 2)
@@ -78,28 +96,22 @@ class Blocks:
         self.length = np.asarray(c["length"], float)
         self.g, self.h = float(data["g"]), float(data["h"])
         self.margin = float(data.get("margin", 0.05))
-        nb = self.m.size
-        q0 = np.zeros((nb, 3))
-        q0[:, :2] = self.x0
-        if case.get("q0") is not None:
-            q0 = np.asarray(case["q0"], float).reshape(nb, 3)
-        v0 = np.zeros((nb, 3)) if case.get("v0") is None else np.asarray(case["v0"], float)
-        v0 = v0.reshape(nb, 3)
-        accel = case["accel"]
-        if np.isscalar(accel):
-            accel = np.full(int(case["steps"]), float(accel))
-        self.accel = np.asarray(accel, float)
-        t_end = (self.accel.size + 1) * self.h
-        self.nsds = sk.NonSmoothDynamicalSystem(0.0, t_end)
+
+    def _add_bodies(self, q0, v0):
+        """One LagrangianDS a block, q = (x, y, rotation), M = diag(m, m, I)."""
         self.ds = []
-        for i in range(nb):
+        for i in range(self.m.size):
             mass = np.diag([self.m[i], self.m[i], self.inertia[i]])
             ds = sk.LagrangianDS(q0[i].copy(), v0[i].copy(), mass)
             ds.setFExtPtr(np.array([0.0, -self.m[i] * self.g, 0.0]))
             self.nsds.insertDynamicalSystem(ds)
             self.ds.append(ds)
+
+    def _add_contacts(self, e, mu):
+        """One Interaction a corner contact, between the corner's and the face's bodies (the
+        relations and interactions are kept here: Siconos holds no Python reference)."""
         self.rel, self.inter = [], []
-        law = sk.NewtonImpactFrictionNSL(float(data["e"]), 0.0, float(data["mu"]), 2)
+        law = sk.NewtonImpactFrictionNSL(e, 0.0, mu, 2)
         for k in range(self.owner.size):
             bodies = self._bodies(k)
             rel = sk.LagrangianLinearTIR(np.zeros((2, 3 * len(bodies))), np.array([FAR, 0.0]))
@@ -107,18 +119,21 @@ class Blocks:
             self.nsds.link(inter, *[self.ds[i] for i in bodies])
             self.rel.append(rel)
             self.inter.append(inter)
+
+    def _add_simulation(self, data):
         self.osi = sk.MoreauJeanOSI(float(data.get("theta", 1.0)))
         # a contact enters the step's problem when its gap predicted at mid-step is below this
         # [m] rather than below 0: a closed contact left open by rounding (1e-15 m) must stay
         self.osi.setConstraintActivationThreshold(float(data.get("activation", 1e-9)))
         solver = data.get("solver", "nsgs")
+        if solver not in SOLVERS:
+            raise ValueError(f"solver: {solver!r}; allowed one of {', '.join(SOLVERS)}")
         self.osnspb = sk.FrictionContact(2, SOLVERS[solver])
         opts = self.osnspb.numericsSolverOptions()
         opts.dparam[0] = float(data.get("tolerance", 1e-8))  # SICONOS_DPARAM_TOL
         opts.iparam[0] = int(data.get("max_iterations", 10000))  # SICONOS_IPARAM_MAX_ITER
         td = sk.TimeDiscretisation(0.0, self.h)
         self.sim = sk.TimeStepping(self.nsds, td, self.osi, self.osnspb)
-        self._relink(q0)
 
     def _bodies(self, k):
         return [i for i in (int(self.owner[k]), int(self.face[k])) if i >= 0]
@@ -168,6 +183,7 @@ class Blocks:
             self.rel[k].setEPtr(offset)
 
     def run(self, every=1, stop_rotation=None):
+        """Step through the case's samples; the records (module docstring)."""
         every = max(1, int(every))
         ts, qs, vs = [0.0], [self.q()], [self.v()]
         stopped, done_steps = False, 0
@@ -206,9 +222,16 @@ def main(argv):
     with open(argv[1]) as fh:
         data = json.load(fh)
     out = {"siconos": getattr(sk, "__version__", None) or _version(), "cases": []}
-    for case in data["cases"]:
-        model = Blocks(data, case)
-        out["cases"].append(model.run(case.get("every", 1), case.get("stop_rotation")))
+    try:
+        for case in data["cases"]:
+            model = Blocks(data, case)
+            out["cases"].append(model.run(case.get("every", 1), case.get("stop_rotation")))
+    except KeyError as exc:
+        print(f"siconos_blocks: error: {argv[1]}: missing field {exc}", file=sys.stderr)
+        return 2
+    except ValueError as exc:
+        print(f"siconos_blocks: error: {argv[1]}: {exc}", file=sys.stderr)
+        return 2
     with open(argv[2], "w") as fh:
         json.dump(out, fh)
     return 0

@@ -125,7 +125,8 @@ def test_rocking_activation_multiplier_agrees(housner, tmp_path):
     steps = int(round(HOLD / dt))
 
     def rocks_archrock(lam):
-        return abs(run_archrock(system, np.full(steps, lam * G), every=steps)["q"][-1, 0, 2]) > ROCKED
+        rec = run_archrock(system, np.full(steps, lam * G), every=steps)
+        return abs(rec["q"][-1, 0, 2]) > ROCKED
 
     def rocks_siconos(lam):
         rec = run_siconos(system, dt, [{"accel": lam * G, "steps": steps, "every": steps}],
