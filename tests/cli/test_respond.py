@@ -81,23 +81,20 @@ def test_fourlink_by_name_is_labelled_not_valid(heavy_piers_file, capsys):
     assert d["dynamics"]["requested"] == "fourlink" and "WARNING" in d["dynamics"]["reason"]
 
 
-def test_pymunk_missing_is_an_outcome(heavy_piers_file, monkeypatch, capsys):
-    """Without pymunk the engine's arch gets exit 3 naming the extra and --dynamics fourlink,
-    never a four-link answer."""
-    from archrock import contact
+def test_the_engine_answers_without_pymunk(heavy_piers_file, monkeypatch, capsys):
+    """archrock's own engine needs no pymunk: with pymunk missing the heavy-pier arch is answered
+    by the contact engine (its collapse under -0.95 g), never by the four-link model."""
+    from archrock.contact import engine
 
     def no_pymunk():
         raise ImportError("no pymunk")
 
-    monkeypatch.setattr(contact, "import_pymunk", no_pymunk)
-    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95"]
-    assert main(argv) == 3
-    cap = capsys.readouterr()
-    assert cap.out == ""
-    err = cap.err.strip()
-    assert err.startswith("archrock: outcome: respond: this arch needs the contact engine")
-    assert "pip install 'archrock[dem]'" in err and "--dynamics fourlink" in err
-    assert len(err.splitlines()) == 1
+    monkeypatch.setattr(engine, "import_pymunk", no_pymunk)
+    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
+            "--json"]
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["model"] == "engine" and d["collapsed"] is True
 
 
 def test_friction_none_cannot_run_the_engine(heavy_piers_file, capsys):

@@ -36,10 +36,11 @@ def test_verify_ensemble_two_arches_matches_limit_analysis():
             # the four-link side is the limit analysis, exactly
             assert c.k_four_link == getattr(lim, f"k_{d}")
             assert c.hinges_four_link == tuple(sorted(h.joint for h in lim.mechanism(d).hinges))
-            # the engine: rocking in the same mechanism, below k by its compliance
+            # the engine: rocking in the same mechanism, at k within the quick ramp's bracket
+            # (5% wide: its middle is within 2.5% plus the hold's resolution)
             assert c.mode == "rocking" and c.agree and c.differences == ()
             assert c.hinges_engine == c.hinges_four_link
-            assert -0.08 < c.k_error < 0.01
+            assert abs(c.k_error) < 0.03
             assert c.k_error == pytest.approx(c.k_engine / c.k_four_link - 1, abs=1e-15)
     assert res.disagreement_rate == 0.0 and res.disagreements == () and res.where == {}
     d = json.loads(json.dumps(res.to_dict()))

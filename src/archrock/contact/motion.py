@@ -28,7 +28,6 @@ from ..errors import ArchInputError
 from ..geometry import VoussoirArch
 from ..groundmotion import GroundMotion
 from ..units import G
-from .engine import ContactArch
 from .rigid import engine_arch
 from .settings import EngineSettings
 

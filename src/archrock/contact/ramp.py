@@ -29,7 +29,6 @@ import numpy as np
 from ..errors import ArchInputError, LimitExceededError
 from ..geometry import VoussoirArch
 from ..units import G
-from .engine import ContactArch
 from .rigid import engine_arch
 from .settings import EngineSettings
 
@@ -112,7 +111,7 @@ class RampResult:
                 "engine": self.settings.to_dict(), "ramp": dict(self.ramp)}
 
 
-def _motion(ca: ContactArch, thr_rot: float, thr_slide: float):
+def _motion(ca, thr_rot: float, thr_slide: float):
     """(relative joint rotations (n+1,), sliding (n+1,), normalised measure) since settling."""
     pos, ang, _, _ = ca.state()
     rot = ca.joint_rotations(ang) - ca.joint_rotations(ca.ref_ang)
@@ -124,7 +123,7 @@ def _motion(ca: ContactArch, thr_rot: float, thr_slide: float):
 def ramp_until_moving(blocks, motion, sign: float, lam: float, dlam: float, check: int,
                       lambda_max: float, refusal: str):
     """Stage 1 of a ramp: raise |xg''|/g from ``lam`` by ``dlam`` per engine step on ``blocks``
-    (a settled ContactArch or ContactArcade), reading ``motion(blocks)`` -> (rotations, slips,
+    (a settled engine arch or arcade: RigidArch, ContactArch, ...), reading ``motion(blocks)`` -> (rotations, slips,
     measure, pos, angles) every ``check`` steps, until the measure passes 4 (four times the
     thresholds).  Returns (the first lambda whose measure passed 1, that last reading); raises
     LimitExceededError(``refusal``) past ``lambda_max`` (bounded)."""

@@ -9,7 +9,6 @@ either."""
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 

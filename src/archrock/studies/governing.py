@@ -8,7 +8,7 @@ which hypotheses, and whether they hold in each direction):
   (statics.friction.friction_analysis): left out, with the reason, where the user excluded
   sliding (friction None);
 * "contact engine ramp at mu" -- rigid blocks with non-associative Coulomb contacts
-  (contact.ramp): only with ``engine=True`` and pymunk installed.
+  (contact.ramp, archrock's own engine): only with ``engine=True``.
 
 The decision, one place for every command and report:
 
@@ -17,8 +17,8 @@ The decision, one place for every command and report:
   analysis gives that direction;
 * an engine value within :data:`AGREEMENT` (2%) of the limit analysis at the same friction is
   the same answer within the engine's discretisation: the exact limit value is quoted;
-* a larger disagreement is a *finding*: that direction's ramp is run again refined (fine
-  contact outline, twice the steps); if the engine moves by more than 2% it is not converged
+* a larger disagreement is a *finding*: that direction's ramp is run again refined (twice the
+  steps and a tighter solver; pymunk's: the fine contact outline and twice the steps); if the engine moves by more than 2% it is not converged
   on this arch and the limit analysis governs (exact within its hypotheses); if it stays, the
   engine holds and governs where lower (with non-associative friction the associative limit
   analysis is not a lower bound: Drucker 1954, Radenkovic 1961);
@@ -229,11 +229,22 @@ def _ramp_label(rd) -> str:
     return "hinges at joint(s) " + " ".join(map(str, rd.hinges))
 
 
+def _refinement(fine) -> str:
+    if fine.engine == "archrock":
+        return f"{fine.steps_per_T:g} steps per T, solver tolerance {fine.tolerance:g}"
+    return f"fine contact outline, {fine.steps_per_T:g} steps per T"
+
+
 def _refine(arch, d, settings, k_ref, progress):
-    """That direction's ramp again with the fine contact outline and twice the steps."""
+    """That direction's ramp again refined: twice the steps and a ten times tighter solver
+    (archrock's engine), or the fine contact outline and twice the steps (pymunk's)."""
     from ..contact import ramp_direction, ramp_range
 
-    fine = settings.replace(outline_tol=0.0, steps_per_T=2 * settings.steps_per_T)
+    if settings.engine == "archrock":
+        fine = settings.replace(steps_per_T=2 * settings.steps_per_T,
+                                tolerance=max(1e-12, 0.1 * settings.tolerance))
+    else:
+        fine = settings.replace(outline_tol=0.0, steps_per_T=2 * settings.steps_per_T)
     start, lam_max = ramp_range(k_ref)
     return ramp_direction(arch, d, fine, lambda_start=start, lambda_max=lam_max,
                           progress=progress), fine
@@ -270,11 +281,11 @@ def _engine(arch, lim, mu, needed, ref, progress):
                 f"analysis {k_ref:.4f} ({100 * diff:+.1f}%, more than {100 * AGREEMENT:g}%)")
         if abs(moved) > AGREEMENT:
             holds[d] = False
-            why[d] = (f"not converged on this arch: refined (fine contact outline, "
-                      f"{fine.steps_per_T:g} steps per T) it moves from {k_eng:.4f} to "
+            why[d] = (f"not converged on this arch: refined ({_refinement(fine)}) it moves "
+                      f"from {k_eng:.4f} to "
                       f"{k_fine:.4f} ({100 * moved:+.1f}%)")
             findings.append(
-                f"{head}; run again refined (fine contact outline, twice the steps) the engine "
+                f"{head}; run again refined ({_refinement(fine)}) the engine "
                 f"gives {k_fine:.4f} ({100 * moved:+.1f}%): its value moves with its own "
                 f"discretisation, so it is not converged on this arch, and the limit analysis "
                 f"{k_ref:.4f} governs (exact within its hypotheses: kinematic = static LP).")
@@ -294,8 +305,7 @@ def _engine(arch, lim, mu, needed, ref, progress):
             f"(M_l) and {eng['r'].multiplier:.4f} (M_r): evidence that it is not converged on "
             f"this arch.")
     hyp = ("rigid blocks", f"non-associative Coulomb friction mu = {run_mu:g}",
-           f"contact outline tolerance {settings.outline_tol:g}, {settings.steps_per_T:g} "
-           f"steps per T")
+           settings.describe())
     details = {"ramp": {d: eng[d].to_dict() for d in DIRS}, "settings": settings.to_dict(),
                "refined": refined, "friction_note": note or None,
                "compared_with": dict(ref)}
