@@ -98,6 +98,104 @@ def equivalent_rotation(model, rotations: np.ndarray) -> np.ndarray:
     return out
 
 
+def _progress_line(progress, ca, t_most):
+    progress(f"engine: t = {ca.time:.2f} s of at most {t_most:.2f} s "
+             f"({100 * ca.time / t_most:.0f}%)")
+
+
+def _run_compiled(ca, motion, every, n_out, t_stop, t_most, drop_limit, ke_rest, quiet_needed,
+                  progress):
+    """archrock's engine: the whole run in compiled chunks of a tenth of its longest span (a
+    progress line after each), every step checked for collapse and rest; the samples are read
+    afterwards.  Returns (status, t_collapse, rotations, joint rotations, sliding, positions,
+    largest sliding over the samples)."""
+    dt = ca.dt
+    n_total = int(math.ceil(t_most / dt)) + 1
+    accel = np.ascontiguousarray(motion((np.arange(n_total) + 0.5) * dt), float)
+    nb = ca.masses.size
+    samples = np.full((n_out, nb, 3), np.nan)
+    carry = np.zeros(3, np.int64)
+    chunk = max(1, n_total // 10)
+    while True:
+        code = ca.run_response(accel, ca.steps + chunk, float(motion.times[-1]), every, samples,
+                               carry, drop_limit, ke_rest, quiet_needed)
+        if code != 0:
+            break
+        if progress:
+            _progress_line(progress, ca, t_most)
+    t_col = None
+    if code == 2:
+        status, t_col = "collapsed", ca.time
+    elif carry[2] and carry[1] >= quiet_needed:
+        status = "rest"
+    else:
+        status = "moving"
+    n = nb
+    rots = samples[:, :, 2] - ca.ref_ang
+    posn = samples[:, :, :2].copy()
+    jrot = np.full((n_out, n + 1), np.nan)
+    slide = np.full((n_out, n + 1), np.nan)
+    for k in range(int(carry[0])):
+        jrot[k] = ca.joint_rotations(rots[k])
+        slide[k] = ca.joint_sliding(posn[k], samples[k, :, 2]) - ca.ref_slide
+    max_sl = np.nanmax(np.abs(slide[:int(carry[0])]), axis=0) if carry[0] else np.zeros(n + 1)
+    return status, t_col, rots, jrot, slide, posn, max_sl
+
+
+def _run_stepwise(ca, motion, every, n_out, t_stop, t_most, drop_limit, ke_rest, quiet_needed,
+                  progress):
+    """pymunk's engine: one step at a time from Python, read at every step (the same returns
+    as :func:`_run_compiled`)."""
+    n = ca.arch.n
+    dt = ca.dt
+    rots = np.full((n_out, n), np.nan)
+    jrot = np.full((n_out, n + 1), np.nan)
+    slide = np.full((n_out, n + 1), np.nan)
+    posn = np.full((n_out, n, 2), np.nan)
+    max_sl = np.zeros(n + 1)
+    status, t_col = "moving", None
+    k = 0
+    quiet = 0
+    next_line = 0.1
+    last_line = time.monotonic()
+    while True:
+        t = ca.time
+        pos, ang, vel, rate = ca.state()
+        rel = ang - ca.ref_ang
+        sl = ca.joint_sliding(pos, ang) - ca.ref_slide
+        np.maximum(max_sl, np.abs(sl), out=max_sl)
+        if k < n_out and ca.steps == k * every:
+            rots[k] = rel
+            jrot[k] = ca.joint_rotations(rel)
+            slide[k] = sl
+            posn[k] = pos
+            k += 1
+        if ca.drops(pos).max() > drop_limit:
+            status, t_col = "collapsed", t
+            break
+        if t > motion.times[-1]:
+            ke = ca.kinetic_energy(vel, rate)
+            quiet = quiet + 1 if ke < ke_rest else 0
+            if quiet >= quiet_needed and k >= n_out:
+                status = "rest"
+                break
+            if quiet >= quiet_needed and status != "rest":
+                status = "rest"  # keeps sampling the arch at rest to t_end
+        if t >= t_stop and k >= n_out:
+            break
+        ca.step(float(motion(t + 0.5 * dt)), 1)
+        if progress and (ca.time >= next_line * t_most
+                         or (ca.steps % 64 == 0 and time.monotonic() - last_line > 5.0)):
+            # a line per 10% of the longest the run can take, and every 5 s of wall time:
+            # collapse or rest often end the run long before its first 10%
+            _progress_line(progress, ca, t_most)
+            next_line = math.floor(10 * ca.time / t_most + 1e-9) / 10 + 0.1
+            last_line = time.monotonic()
+    if status == "rest" and quiet < quiet_needed:
+        status = "moving"
+    return status, t_col, rots, jrot, slide, posn, max_sl
+
+
 def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSettings | None = None,
                    *, model=None, t_end: float = 3.0, dt_out: float = 0.005,
                    t_free: float = 20.0, collapse_drop: float = 0.2,
@@ -132,64 +230,13 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     drop_limit = collapse_drop * ca.size
     m_tot = float(ca.masses.sum())
     ke_rest = 1e-9 * m_tot * G * ca.size
-    n = arch.n
-    rots = np.full((n_out, n), np.nan)
-    jrot = np.full((n_out, n + 1), np.nan)
-    slide = np.full((n_out, n + 1), np.nan)
-    posn = np.full((n_out, n, 2), np.nan)
-    max_sl = np.zeros(n + 1)
-    status, t_col = "moving", None
-    k = 0
-    quiet = 0
     quiet_needed = int(0.5 * settings.steps_per_T)
-    # archrock's engine advances from one output sample to the next in one call (collapse and
-    # rest are then read at the samples, every dt_out); pymunk's steps one at a time
-    chunked = hasattr(ca, "advance")
     t_most = max(t_stop, (n_out - 1) * dt_s)  # the run's longest: free motion or the window
-    next_line = 0.1
-    last_line = time.monotonic()
-    while True:
-        t = ca.time
-        pos, ang, vel, rate = ca.state()
-        rel = ang - ca.ref_ang
-        sl = ca.joint_sliding(pos, ang) - ca.ref_slide
-        np.maximum(max_sl, np.abs(sl), out=max_sl)
-        if k < n_out and ca.steps == k * every:
-            rots[k] = rel
-            jrot[k] = ca.joint_rotations(rel)
-            slide[k] = sl
-            posn[k] = pos
-            k += 1
-        if ca.drops(pos).max() > drop_limit:
-            status, t_col = "collapsed", t
-            break
-        if t > motion.times[-1]:
-            ke = ca.kinetic_energy(vel, rate)
-            quiet = quiet + 1 if ke < ke_rest else 0
-            if quiet >= quiet_needed and k >= n_out:
-                status = "rest"
-                break
-            if quiet >= quiet_needed and status != "rest":
-                status = "rest"  # keeps sampling the arch at rest to t_end
-        if t >= t_stop and k >= n_out:
-            break
-        if chunked:  # archrock's engine: to the next sample (or a check) in one call
-            steps = every - ca.steps % every if k < n_out else every
-            ca.advance(motion(t + (np.arange(steps) + 0.5) * dt))
-            if t > motion.times[-1]:
-                quiet += steps - 1 if ca.kinetic_energy(*ca.state()[2:]) < ke_rest else 0
-        else:
-            ca.step(float(motion(t + 0.5 * dt)), 1)
-        if progress and (ca.time >= next_line * t_most
-                         or (ca.steps % 64 == 0 and time.monotonic() - last_line > 5.0)):
-            # a line per 10% of the longest the run can take, and every 5 s of wall time:
-            # collapse or rest often end the run long before its first 10%
-            progress(f"engine: t = {ca.time:.2f} s of at most {t_most:.2f} s "
-                     f"({100 * ca.time / t_most:.0f}%)")
-            next_line = math.floor(10 * ca.time / t_most + 1e-9) / 10 + 0.1
-            last_line = time.monotonic()
-    if status == "rest" and quiet < quiet_needed:
-        status = "moving"
+    args = (ca, motion, every, n_out, t_stop, t_most, drop_limit, ke_rest, quiet_needed, progress)
+    if hasattr(ca, "run_response"):  # archrock's engine: compiled, checked at every step
+        status, t_col, rots, jrot, slide, posn, max_sl = _run_compiled(*args)
+    else:
+        status, t_col, rots, jrot, slide, posn, max_sl = _run_stepwise(*args)
     if progress:
         progress(f"engine: 100% ({status} at t = {ca.time:.2f} s)")
     phi = equivalent_rotation(model, np.nan_to_num(rots))

@@ -42,7 +42,7 @@ import numpy as np
 
 from .._jit import maybe_njit
 
-__all__ = ["advance", "contact_frames", "end_offsets", "SOLVER_FIELDS"]
+__all__ = ["advance", "run_response", "contact_frames", "end_offsets", "SOLVER_FIELDS"]
 
 #: the per-run counters returned by :func:`advance` (stats[0..3])
 SOLVER_FIELDS = ("steps", "qp_iterations", "unconverged_steps", "largest_iterations")
@@ -138,6 +138,7 @@ def advance(q, v, impulse, accel, h, g, mu, e, tol, max_rounds, beta, margin, re
     act = np.zeros(nc, np.int64)
     bn = np.zeros(nc)
     gaps = np.zeros(nc)
+    frames = np.zeros((nc, 6))  # corner (x, y), tangent, normal at q_k
     along = np.zeros(nc)
     vtol = tol * g * h
     for step in range(accel.size):
@@ -151,13 +152,15 @@ def advance(q, v, impulse, accel, h, g, mu, e, tol, max_rounds, beta, margin, re
         for k in range(nc):
             px, py, fx, fy, tx, ty, nx, ny = _frame(q, k, owner, face, corner, face_start,
                                                     tangent, normal, x0)
+            frames[k, 0], frames[k, 1], frames[k, 2], frames[k, 3] = px, py, tx, ty
+            frames[k, 4], frames[k, 5] = nx, ny
             gaps[k] = (px - fx) * nx + (py - fy) * ny
             along[k] = (px - fx) * tx + (py - fy) * ty
         for k in range(nc):
             p = owner[k]
             f = face[k]
-            px, py, fx, fy, tx, ty, nx, ny = _frame(q, k, owner, face, corner, face_start,
-                                                    tangent, normal, x0)
+            px, py, tx, ty = frames[k, 0], frames[k, 1], frames[k, 2], frames[k, 3]
+            nx, ny = frames[k, 4], frames[k, 5]
             gap = gaps[k]
             s = along[k]
             lk = length[k]
@@ -306,32 +309,47 @@ def _bound_qp(Q, c, x, tolg, max_iter):
 
 @maybe_njit
 def _chol_solve(a, b):
-    """Solve a x = b for a symmetric positive definite (Cholesky, in place on a copy)."""
+    """Solve a x = b for a symmetric positive definite, by Cholesky within a's envelope: row i
+    of the factor is zero left of a's first non-zero in row i (fill-in stays inside it), so a
+    chain of blocks, whose contacts couple only their neighbours' when listed in order, costs
+    O(n w^2) for a band of width w instead of O(n^3)."""
     n = b.size
+    first = np.empty(n, np.int64)
+    for i in range(n):
+        f = i
+        for j in range(i):
+            if a[i, j] != 0.0:
+                f = j
+                break
+        first[i] = f
     low = np.zeros((n, n))
     for j in range(n):
         d = a[j, j]
-        for k in range(j):
+        for k in range(first[j], j):
             d -= low[j, k] * low[j, k]
         if d <= 1e-300:
             d = 1e-300
-        low[j, j] = math.sqrt(d)
+        ljj = math.sqrt(d)
+        low[j, j] = ljj
         for i in range(j + 1, n):
+            if first[i] > j:
+                continue
             s = a[i, j]
-            for k in range(j):
+            for k in range(max(first[i], first[j]), j):
                 s -= low[i, k] * low[j, k]
-            low[i, j] = s / low[j, j]
+            low[i, j] = s / ljj
     y = np.empty(n)
     for i in range(n):
         s = b[i]
-        for k in range(i):
+        for k in range(first[i], i):
             s -= low[i, k] * y[k]
         y[i] = s / low[i, i]
     x = np.empty(n)
     for i in range(n - 1, -1, -1):
         s = y[i]
         for k in range(i + 1, n):
-            s -= low[k, i] * x[k]
+            if first[k] <= i:
+                s -= low[k, i] * x[k]
         x[i] = s / low[i, i]
     return x
 
@@ -440,7 +458,10 @@ def _contact_impulses(v, impulse, act, jn, jt, bn, owner, face, inv_m, inv_i, mu
             um = _row_dot(v, k, -1.0, mu, jn, jt, owner, face)
             ut = (up - um) / (2.0 * mu) if mu > 0.0 else 0.0
             s_new = mu * abs(ut)
-            if abs(s_new - shift[i]) > moved:
+            # a contact that carries nothing and keeps u_n >= b is inactive with either shift:
+            # its change cannot move the next round
+            idle = x[2 * i] + x[2 * i + 1] == 0.0 and 0.5 * (up + um) >= bn[k] - vtol
+            if not idle and abs(s_new - shift[i]) > moved:
                 moved = abs(s_new - shift[i])
             shift[i] = s_new
         if conv and moved <= vtol:
@@ -468,3 +489,50 @@ def _apply(v, k, dn, dt, owner, face, jn, jt, inv_m, inv_i):
         v[f, 0] -= inv_m[f] * fx
         v[f, 1] -= inv_m[f] * fy
         v[f, 2] -= inv_i[f] * (dn * jn[k, 3] + dt * jt[k, 3])
+
+
+@maybe_njit
+def run_response(q, v, impulse, accel, start, stop, t_motion_end, every, samples, carry,
+                 drop_limit, ke_rest, quiet_needed, h, g, mu, e, tol, max_rounds, beta, margin,
+                 reach, masses, inertias, x0, owner, face, corner, face_start, tangent, normal,
+                 length, stats):
+    """A response from step ``start`` to at most ``stop`` in place, with the checks of every
+    step: before each step the state is sampled into ``samples`` every ``every`` steps (while
+    room is left), a mass centre dropped below its rest height by more than ``drop_limit`` [m]
+    is a collapse, and after ``t_motion_end`` [s] a kinetic energy below ``ke_rest`` [J/m] for
+    ``quiet_needed`` steps in a row is rest.  ``accel`` [m/s^2] holds every step's ground
+    acceleration (the run ends at its length).  ``carry`` (int64: samples taken, quiet steps,
+    rest seen) goes on from one call to the next.  Returns (status: 0 going on, 1 at rest,
+    2 collapsed, 3 the end of ``accel`` reached; the step reached)."""
+    n_out = samples.shape[0]
+    nb = masses.size
+    s = start
+    while s < stop:
+        t = s * h
+        k = carry[0]
+        if k < n_out and s == k * every:
+            for i in range(nb):
+                samples[k, i, 0] = q[i, 0]
+                samples[k, i, 1] = q[i, 1]
+                samples[k, i, 2] = q[i, 2]
+            carry[0] = k + 1
+        for i in range(nb):
+            if x0[i, 1] - q[i, 1] > drop_limit:
+                return 2, s
+        if t > t_motion_end:
+            ke = 0.0
+            for i in range(nb):
+                ke += 0.5 * (masses[i] * (v[i, 0] * v[i, 0] + v[i, 1] * v[i, 1])
+                             + inertias[i] * v[i, 2] * v[i, 2])
+            carry[1] = carry[1] + 1 if ke < ke_rest else 0
+            if carry[1] >= quiet_needed:
+                carry[2] = 1
+                if carry[0] >= n_out:
+                    return 1, s
+        if s >= accel.size:
+            return 3, s
+        advance(q, v, impulse, accel[s:s + 1], h, g, mu, e, tol, max_rounds, beta, margin,
+                reach, masses, inertias, x0, owner, face, corner, face_start, tangent, normal,
+                length, stats)
+        s += 1
+    return 0, s

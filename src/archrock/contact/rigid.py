@@ -14,7 +14,7 @@ import numpy as np
 
 from ..units import G
 from .blocksystem import BlockSystem, blocks_of_arcade, blocks_of_arch
-from .nscd import SOLVER_FIELDS, advance, contact_frames, end_offsets
+from .nscd import SOLVER_FIELDS, advance, contact_frames, end_offsets, run_response
 from .settings import EngineSettings, engine_scales
 
 __all__ = ["RigidBlocks", "RigidArch", "RigidArcade", "engine_arch", "engine_arcade",
@@ -102,6 +102,22 @@ class RigidBlocks:
                 s.length, self.stats)
         self.steps += a.size
         self.time = self.steps * self.dt
+
+    def run_response(self, accel, stop, t_motion_end, every, samples, carry, drop_limit,
+                     ke_rest, quiet_needed) -> int:
+        """:func:`~.nscd.run_response` from the current step to ``stop`` (compiled: the
+        checks of collapse and rest at every step, the samples every ``every`` steps).
+        Returns its status (0 going on, 1 rest, 2 collapsed, 3 end of ``accel``)."""
+        s, st = self.system, self.settings
+        status, step = run_response(
+            self.q, self.v, self.impulse, accel, self.steps, int(stop), float(t_motion_end),
+            int(every), samples, carry, float(drop_limit), float(ke_rest), int(quiet_needed),
+            self.dt, G, st.friction, st.restitution, st.tolerance, st.max_rounds, BETA, MARGIN,
+            self._reach, s.masses, s.inertias, s.centroids, s.owner, s.face, s.corner,
+            s.face_start, s.tangent, s.normal, s.length, self.stats)
+        self.steps = int(step)
+        self.time = self.steps * self.dt
+        return int(status)
 
     def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
         """Advance ``steps`` time steps under the constant ground acceleration [m/s^2]."""
