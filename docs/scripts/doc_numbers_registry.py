@@ -513,8 +513,8 @@ UNCHECKED: list[Unchecked] = [
     Unchecked(PD, "moves a pier ({}% of its kinetic energy), M_r 0e-2i-8e-13i moves a pier ({}% of "
                   "its kinetic energy)", "the check's reason, shortened in the doc (printed by "
                                          "respond; the routing is docs/piers-dynamics.md's)"),
-    Unchecked(PD, "engine: 400 steps/T, 40 iterations, friction 0.8, restitution 0, free motion "
-                  "30 T, "
+    Unchecked(PD, "engine: archrock's nonsmooth contact dynamics, 400 steps per T, solver "
+                  "tolerance 1e-06 x g dt, friction 0.8, restitution 0, free motion 30 T, "
                   "collapse at a drop of 0.2 x size", "the engine's settings, echoed"),
     Unchecked(PD, "time: {} s ({} s an arch; estimated beforehand {} s)", "wall times"),
     Unchecked(PD, "(sign -1) by the contact engine, bisected to 0.01 of the amplitude",

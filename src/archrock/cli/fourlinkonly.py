@@ -44,7 +44,7 @@ def check_fourlink(nominal, args, command: str, engine_runs: bool = False):
         raise ArchInputError(
             f"--dynamics: {command} runs the four-link model only, and on this arch "
             f"{choice.reason}; its figures would be unconservative (docs/piers-dynamics.md: on "
-            f"heavy piers the first collapse is 3.02 g by the four-link model, 0.70 g by the "
+            f"heavy piers the first collapse is 3.02 g by the four-link model, 0.71 g by the "
             f"contact engine). Use `archrock ensemble` or `archrock curves`, which run the "
             f"contact engine on this arch, or --dynamics fourlink for the four-link figures "
             f"anyway")

@@ -7,7 +7,7 @@ its momentum through its own impacts (Housner's c = 1 - 1.5 sin^2(alpha), 0.96 f
 piers of ``tests/data/heavy_piers.json``) while the arch above it moves in another mechanism,
 so the motion has two or more degrees of freedom.  Measured (docs/piers-dynamics.md): where a
 limit mechanism moves a pier, the four-link model's first collapse under Oppenheim's pulse is
-2-4x the engine's (heavy piers: 3.02 g against 0.70 g).
+2-4x the engine's (heavy piers: 3.02 g against 0.71 g).
 
 :func:`single_dof_check` says so for a prepared model.  It changes no number of the four-link
 model: the response is computed as before, and its record carries the verdict
@@ -114,7 +114,7 @@ def single_dof_check(model) -> SingleDofCheck:
     reason = (f"the piers rock with the arch ({which}): a pier keeps rocking on its own "
               f"foundation after an impact while the arch moves in another mechanism, two "
               f"degrees of freedom or more; the four-link model (one) is unconservative here "
-              f"(heavy piers: first collapse 3.02 g against the contact engine's 0.70 g); use "
+              f"(heavy piers: first collapse 3.02 g against the contact engine's 0.71 g); use "
               f"the contact engine (archrock dem; studies and the report do so by default)")
     return SingleDofCheck(False, reason, piers, how, share)
 

@@ -2,7 +2,7 @@
 
 Where :func:`~archrock.studies.enginestudy.choose_dynamics` sends an arch to the contact engine
 (piers that rock with it, joints that slide), the four-link IDA of :mod:`archrock.studies.ida`
-would be unconservative (heavy piers: 3.02 g by the four-link model, 0.70 g by the engine).
+would be unconservative (heavy piers: 3.02 g by the four-link model, 0.71 g by the engine).
 :func:`engine_ida` runs every (record, scale) of a grid in the engine instead:
 
 * each cell is one :meth:`~archrock.studies.enginestudy.EngineRun.respond` of the arch to the

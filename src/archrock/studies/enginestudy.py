@@ -2,7 +2,7 @@
 
 On an arch whose limit mechanism moves a pier (:func:`archrock.dynamics.piers.single_dof_check`
 not valid), the four-link model's first collapse is 2-4x the contact engine's
-(docs/piers-dynamics.md: heavy piers 3.02 g against 0.70 g).  This module runs the studies on
+(docs/piers-dynamics.md: heavy piers 3.02 g against 0.71 g).  This module runs the studies on
 such arches with the engine instead:
 
 * :func:`choose_dynamics` -- the routing: ``dynamics`` "auto" (the four-link model where the
