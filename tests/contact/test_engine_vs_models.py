@@ -9,7 +9,7 @@ import pytest
 
 from archrock.contact import EngineSettings, RigidArch, engine_respond, ramp
 from archrock.dynamics.response import prepare, respond
-from archrock.geometry import PolygonArch, family_arch, oppenheim_arch
+from archrock.geometry import PolygonArch, family_arch
 from archrock.geometry.piers import _polygon_of
 from archrock.groundmotion import oppenheim_pulse
 from archrock.statics.friction import friction_analysis
@@ -158,3 +158,24 @@ def test_heavy_pier_arch_first_collapse_between_the_peers(heavy_piers_file):
 
     r = engine_first_collapse(read_arch(heavy_piers_file), 0.2, rtol=0.01)
     assert r.amplitude is not None and 0.55 <= r.amplitude <= 0.75
+
+
+def test_lift_off_arch_has_an_engine_answer(tmp_path, capsys):
+    """The README's squat three-voussoir arch, where a mechanism with lift-off governs and no
+    four-link model exists: `respond` answers with the engine (its largest voussoir rotation
+    standing for phi) instead of stopping, and `dem` runs it with the four-link run left out."""
+    import json
+
+    from archrock.cli import main
+
+    geo = tmp_path / "three.json"
+    geo.write_text(json.dumps({"voussoirs": [{"span_deg": 22.5, "radius": 10.0,
+                                              "thickness": 1.5}] * 3}))
+    pulse = ["--geometry", str(geo), "--pulse", "oppenheim", "--amplitude", "-12",
+             "--pulse-duration", "0.2", "--t-end", "1", "--no-progress", "--json"]
+    assert main(["respond", *pulse]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["model"] == "engine" and d["status"] == "rest" and 0.01 < d["peak"] < 0.2
+    assert main(["dem", *pulse, "--friction", "50"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert "lift-off" in d["four_link_note"] and 0.005 < d["peak"] < 0.2

@@ -162,7 +162,7 @@ def _run_push(args) -> int:
 
 def run_dem(args) -> int:
     from ..contact import require_engine
-    from ..errors import ImpactModelError
+    from ..errors import ImpactModelError, NotFourHingeError
 
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     spec = motion_spec_from_args(args)
@@ -212,6 +212,9 @@ def run_dem(args) -> int:
     fl, fl_note = None, None
     try:
         model = prepare(arch, impact_spec_from_args(args))
+    except NotFourHingeError as exc:  # lift-off governs: the engine alone follows the arch
+        model = None
+        fl_note = f"four-link model not run: {' '.join(str(exc).split())}"
     except ImpactModelError as exc:
         why = " ".join(str(exc).split())
         model = prepare(arch, "momentum")  # its mechanisms give the equivalent rotation

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import sys
 
-from ..errors import ArchInputError, GeometryOutcome
+from ..errors import ArchInputError, GeometryOutcome, NotFourHingeError
 from ._parser import emit_json, finite_float, positive_float
 from ._friction import add_friction_option
 from .options import (add_dynamics_option, add_geometry_options,
@@ -174,7 +174,10 @@ def _run_engine(args, arch, motion, choice, plot, animation) -> int:
             f"pymunk: pip install 'archrock[dem]'; or give --dynamics fourlink for the "
             f"four-link answer, labelled not valid here") from None
     run = EngineRun(settings=settings)  # the studies' free motion and collapse criterion
-    model = prepare(arch, "momentum")  # its limit mechanisms give the equivalent rotation
+    try:
+        model = prepare(arch, "momentum")  # its limit mechanisms give the equivalent rotation
+    except NotFourHingeError:  # lift-off governs: the engine reports its largest rotation
+        model = None
     res = engine_respond(arch, motion, settings, model=model, t_end=args.t_end,
                          dt_out=args.dt_out, t_free=run.t_free,
                          collapse_drop=run.collapse_drop, progress=_progress(args))

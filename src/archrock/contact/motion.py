@@ -85,6 +85,13 @@ def _link1(model, direction):
     return np.array([min(idx) if direction == "l" else max(idx)], dtype=int), float(fl.sign)
 
 
+def largest_rotation(model, rotations: np.ndarray) -> np.ndarray:
+    """Where no four-hinge mechanism governs (lift-off: no four-link phi), each sample's
+    voussoir rotation of largest magnitude, with its sign [rad] (``model`` unused)."""
+    rot = np.atleast_2d(np.asarray(rotations, float))
+    return rot[np.arange(rot.shape[0]), np.argmax(np.abs(rot), axis=1)]
+
+
 def equivalent_rotation(model, rotations: np.ndarray) -> np.ndarray:
     """Signed four-link rotation (module docstring) of voussoir rotations (k, n) [rad], for a
     prepared :class:`~archrock.dynamics.response.DynamicModel` of the same arch."""
@@ -203,8 +210,8 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     """The engine's response of ``arch`` to ``motion``.
 
     model: a prepared :class:`~archrock.dynamics.response.DynamicModel`, for the equivalent rotation (only
-    its mechanisms are used: the engine has no impact law; default ``prepare(arch, "momentum")``,
-    which any arch with a mechanism admits); t_end, dt_out [s]: output window and sampling; t_free [T]: free
+    its mechanisms are used: the engine has no impact law; default ``prepare(arch, "momentum")``;
+    where lift-off governs and no four-link model exists, phi is :func:`largest_rotation`); t_end, dt_out [s]: output window and sampling; t_free [T]: free
     motion after the ground motion at most; collapse_drop: drop of a mass centre, as a fraction
     of the size, that counts as collapse."""
     if not isinstance(motion, GroundMotion):
@@ -217,8 +224,12 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
         raise ArchInputError(f"dt_out: {dt_out} s; allowed <= t_end = {t_end} s")
     if model is None:
         from ..dynamics.response import prepare
+        from ..errors import NotFourHingeError
 
-        model = prepare(arch, "momentum")
+        try:
+            model = prepare(arch, "momentum")
+        except NotFourHingeError:  # lift-off governs: no four-link phi, the largest rotation
+            model = None
     settings = settings or EngineSettings()
     ca = engine_arch(arch, settings)
     ca.settle()
@@ -239,10 +250,11 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
         status, t_col, rots, jrot, slide, posn, max_sl = _run_stepwise(*args)
     if progress:
         progress(f"engine: 100% ({status} at t = {ca.time:.2f} s)")
-    phi = equivalent_rotation(model, np.nan_to_num(rots))
+    rotation = equivalent_rotation if model is not None else largest_rotation
+    phi = rotation(model, np.nan_to_num(rots))
     phi[np.isnan(rots[:, 0])] = np.nan
     # peak |phi| over the whole run from the samples (and the last state)
-    full = equivalent_rotation(model, (ca.state()[1] - ca.ref_ang)[None, :])
+    full = rotation(model, (ca.state()[1] - ca.ref_ang)[None, :])
     peak = float(np.nanmax(np.abs(np.concatenate([phi, full])))) if n_out else 0.0
     run = {"t_end": t_end, "dt_out": dt_s, "t_free": t_free, "collapse_drop": collapse_drop,
            "dt": dt, "motion": motion.name}
