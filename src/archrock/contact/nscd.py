@@ -49,31 +49,30 @@ SOLVER_FIELDS = ("steps", "qp_iterations", "unconverged_steps", "largest_iterati
 
 
 @maybe_njit
+def _moved(q, body, x, y, x0):
+    """Where the point (x, y) [m] of ``body`` at rest is at positions q (the ground, -1, does
+    not move)."""
+    if body < 0:
+        return x, y
+    c, s = math.cos(q[body, 2]), math.sin(q[body, 2])
+    rx = x - x0[body, 0]
+    ry = y - x0[body, 1]
+    return q[body, 0] + c * rx - s * ry, q[body, 1] + s * rx + c * ry
+
+
+@maybe_njit
 def _frame(q, k, owner, face, corner, face_start, tangent, normal, x0):
     """(corner P, face origin F, tangent t, normal n) of corner contact k at positions q."""
-    p = owner[k]
     f = face[k]
-    if p >= 0:
-        c, s = math.cos(q[p, 2]), math.sin(q[p, 2])
-        rx = corner[k, 0] - x0[p, 0]
-        ry = corner[k, 1] - x0[p, 1]
-        px = q[p, 0] + c * rx - s * ry
-        py = q[p, 1] + s * rx + c * ry
-    else:
-        px = corner[k, 0]
-        py = corner[k, 1]
+    px, py = _moved(q, owner[k], corner[k, 0], corner[k, 1], x0)
+    fx, fy = _moved(q, f, face_start[k, 0], face_start[k, 1], x0)
     if f >= 0:
         c, s = math.cos(q[f, 2]), math.sin(q[f, 2])
-        rx = face_start[k, 0] - x0[f, 0]
-        ry = face_start[k, 1] - x0[f, 1]
-        fx = q[f, 0] + c * rx - s * ry
-        fy = q[f, 1] + s * rx + c * ry
         tx = c * tangent[k, 0] - s * tangent[k, 1]
         ty = s * tangent[k, 0] + c * tangent[k, 1]
         nx = c * normal[k, 0] - s * normal[k, 1]
         ny = s * normal[k, 0] + c * normal[k, 1]
     else:
-        fx, fy = face_start[k, 0], face_start[k, 1]
         tx, ty = tangent[k, 0], tangent[k, 1]
         nx, ny = normal[k, 0], normal[k, 1]
     return px, py, fx, fy, tx, ty, nx, ny
@@ -81,8 +80,8 @@ def _frame(q, k, owner, face, corner, face_start, tangent, normal, x0):
 
 @maybe_njit
 def contact_frames(q, owner, face, corner, face_start, tangent, normal, length, x0):
-    """(gaps (nc,) [m], slips (nc,) [m]: the corner's position along the face from its start,
-    minus where it was at rest) at positions q."""
+    """(gaps (nc,) [m], positions along the faces (nc,) [m]: each corner's distance along its
+    face from the face's start) at positions q."""
     nc = owner.size
     gaps = np.empty(nc)
     along = np.empty(nc)
@@ -100,16 +99,8 @@ def end_offsets(q, owner, corner, joint, end, joints, x0):
     end 1 [m] at positions q (each joint's rows: b's two corners, then a's two)."""
     out = np.zeros((joints, 2, 2))
     for k in range(owner.size):
-        p = owner[k]
         sign = 1.0 if k % 4 < 2 else -1.0
-        if p >= 0:
-            c, s = math.cos(q[p, 2]), math.sin(q[p, 2])
-            rx = corner[k, 0] - x0[p, 0]
-            ry = corner[k, 1] - x0[p, 1]
-            px = q[p, 0] + c * rx - s * ry
-            py = q[p, 1] + s * rx + c * ry
-        else:
-            px, py = corner[k, 0], corner[k, 1]
+        px, py = _moved(q, owner[k], corner[k, 0], corner[k, 1], x0)
         out[joint[k], end[k], 0] += sign * px
         out[joint[k], end[k], 1] += sign * py
     return out
