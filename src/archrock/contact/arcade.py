@@ -238,6 +238,8 @@ def _moves(arc, settings, sign, lam, hold, thr_rot, thr_slide, check):
         if moved and measure < 0.5:  # it started, and settled back
             return True, None
         moved = moved or measure > 1.0
+        if not moved and getattr(ca, "at_rest", None) is not None and ca.at_rest():
+            return False, None  # archrock's engine, still under a constant load: for good
     return moved, None
 
 

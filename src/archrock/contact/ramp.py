@@ -158,6 +158,8 @@ def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> 
         done += k
         if _motion(ca, thr_rot, thr_slide)[2] > 1.0:
             return True
+        if getattr(ca, "at_rest", None) is not None and ca.at_rest():
+            return False  # archrock's engine, still under a constant load: still for good
     return False
 
 

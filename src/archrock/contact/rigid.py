@@ -129,6 +129,15 @@ class RigidBlocks:
         self.ref_pos = self.q[:, :2].copy()
         self.ref_ang = self.q[:, 2].copy()
 
+    def at_rest(self) -> bool:
+        """Whether every block is still to 1e-9 g dt [m/s] (and its rate times the size): under
+        a constant load the exact contacts then keep it still for good -- the next step is the
+        same problem with the same answer -- so a hold from rest can stop there.  Above the
+        activation the first steps already move it by about (excess) g dt."""
+        lim = 1e-9 * G * self.dt
+        return bool(np.abs(self.v[:, :2]).max() <= lim
+                    and np.abs(self.v[:, 2]).max() * self.size <= lim)
+
     def solver_stats(self) -> dict:
         d = dict(zip(SOLVER_FIELDS, (int(x) for x in self.stats)))
         d["mean_iterations"] = d["qp_iterations"] / d["steps"] if d["steps"] else 0.0
