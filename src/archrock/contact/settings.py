@@ -157,5 +157,6 @@ def engine_scales(arch, settings: EngineSettings | None = None) -> EngineScales:
                         settings.rounding * size, settings.outline_tol * size)
 
 
-#: The fine cut: every vertex of each voussoir's outline kept (the engine before issue 21).
-FINE_CUT = EngineSettings(outline_tol=0.0)
+#: The fine cut of pymunk's engine: every vertex of each voussoir's outline kept (pymunk before
+#: issue 21).
+FINE_CUT = EngineSettings(outline_tol=0.0, engine="pymunk")
