@@ -379,6 +379,35 @@ class ArcadeResponse:
         return d
 
 
+def _respond_compiled(ca, motion, every, n_out, t_stop, drop_limit, ke_rest, quiet_needed):
+    """archrock's engine: the arcade's response compiled whole (:meth:`RigidBlocks.run_response`,
+    collapse and rest checked at every step), read at its samples: (status, t_collapse,
+    rotations, drops, each block's peak |rotation| over the samples and the last state)."""
+    dt = ca.dt
+    t_most = max(t_stop, (n_out - 1) * every * dt)
+    n_total = int(math.ceil(t_most / dt)) + 1
+    accel = np.ascontiguousarray(motion((np.arange(n_total) + 0.5) * dt), float)
+    nb = ca.masses.size
+    samples = np.full((n_out, nb, 3), np.nan)
+    carry = np.zeros(3, np.int64)
+    while True:
+        code = ca.run_response(accel, ca.steps + max(1, n_total // 10), float(motion.times[-1]),
+                               every, samples, carry, drop_limit, ke_rest, quiet_needed)
+        if code != 0:
+            break
+    t_col = None
+    if code == 2:
+        status, t_col = "collapsed", ca.time
+    else:
+        status = "rest" if carry[2] and carry[1] >= quiet_needed else "moving"
+    rots = samples[:, :, 2] - ca.ref_ang
+    drops = np.max(ca.ref_pos[:, 1] - samples[:, :, 1], axis=1)
+    k = int(carry[0])
+    last = np.abs(ca.q[:, 2] - ca.ref_ang)
+    peak = np.maximum(np.nanmax(np.abs(rots[:k]), axis=0), last) if k else last
+    return status, t_col, rots, drops, peak
+
+
 def arcade_respond(arc: Arcade, motion: GroundMotion, settings: EngineSettings | None = None,
                    *, t_end: float = 3.0, dt_out: float = 0.01, t_free: float = 20.0,
                    collapse_drop: float = 0.2) -> ArcadeResponse:
@@ -408,7 +437,11 @@ def arcade_respond(arc: Arcade, motion: GroundMotion, settings: EngineSettings |
     peak = np.zeros(nb)
     status, t_col, quiet, k = "moving", None, 0, 0
     quiet_needed = int(0.5 * settings.steps_per_T)
-    while True:
+    compiled = hasattr(ca, "run_response")
+    if compiled:  # archrock's engine: compiled, checked at every step
+        status, t_col, rots, drops, peak = _respond_compiled(
+            ca, motion, every, n_out, t_stop, drop_limit, ke_rest, quiet_needed)
+    while not compiled:  # pymunk's: one step at a time from Python
         t = ca.time
         pos, ang, vel, rate = ca.state()
         rel = ang - ca.ref_ang
@@ -429,7 +462,7 @@ def arcade_respond(arc: Arcade, motion: GroundMotion, settings: EngineSettings |
         if t >= t_stop and k >= n_out:
             break
         ca.step(float(motion(t + 0.5 * dt)), 1)
-    if status == "rest" and quiet < quiet_needed:
+    if status == "rest" and quiet < quiet_needed and not compiled:
         status = "moving"
     run = {"t_end": t_end, "dt_out": every * dt, "t_free": t_free,
            "collapse_drop": collapse_drop, "dt": dt, "motion": motion.name}

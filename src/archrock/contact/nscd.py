@@ -42,7 +42,7 @@ import numpy as np
 
 from .._jit import maybe_njit
 
-__all__ = ["advance", "run_response", "contact_frames", "end_offsets", "SOLVER_FIELDS"]
+__all__ = ["advance", "run_response", "end_offsets", "SOLVER_FIELDS"]
 
 #: the per-run counters returned by :func:`advance` (stats[0..3])
 SOLVER_FIELDS = ("steps", "qp_iterations", "unconverged_steps", "largest_iterations")
@@ -76,21 +76,6 @@ def _frame(q, k, owner, face, corner, face_start, tangent, normal, x0):
         tx, ty = tangent[k, 0], tangent[k, 1]
         nx, ny = normal[k, 0], normal[k, 1]
     return px, py, fx, fy, tx, ty, nx, ny
-
-
-@maybe_njit
-def contact_frames(q, owner, face, corner, face_start, tangent, normal, length, x0):
-    """(gaps (nc,) [m], positions along the faces (nc,) [m]: each corner's distance along its
-    face from the face's start) at positions q."""
-    nc = owner.size
-    gaps = np.empty(nc)
-    along = np.empty(nc)
-    for k in range(nc):
-        px, py, fx, fy, tx, ty, nx, ny = _frame(q, k, owner, face, corner, face_start,
-                                                tangent, normal, x0)
-        gaps[k] = (px - fx) * nx + (py - fy) * ny
-        along[k] = (px - fx) * tx + (py - fy) * ty
-    return gaps, along
 
 
 @maybe_njit

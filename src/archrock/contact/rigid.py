@@ -1,9 +1,10 @@
 """archrock's rigid-block engine as an object: a :class:`~.blocksystem.BlockSystem` and its
 state, stepped by :func:`~.nscd.advance` (Moreau-Jean, nonsmooth Gauss-Seidel).
 
-:class:`RigidBlocks` holds the state and steps it; :class:`RigidArch` and :class:`RigidArcade`
-read it as the engine's studies read a structure (joint rotations, sliding, gaps, drops), with
-the same methods as the pymunk engine (:class:`~.engine.ContactArch`,
+:class:`RigidBlocks` holds the state and steps it (a response compiled whole,
+:meth:`RigidBlocks.run_response`); :class:`RigidArch` and :class:`RigidArcade` read it as the
+engine's studies read a structure (joint rotations, sliding, the ends' gaps), with the same
+methods as the pymunk engine (:class:`~.engine.ContactArch`,
 :class:`~.arcade.ContactArcade`) so that the ramp, the response and the arcade's studies run on
 either."""
 
@@ -14,7 +15,7 @@ import numpy as np
 
 from ..units import G
 from .blocksystem import BlockSystem, blocks_of_arcade, blocks_of_arch
-from .nscd import SOLVER_FIELDS, advance, contact_frames, end_offsets, run_response
+from .nscd import SOLVER_FIELDS, advance, end_offsets, run_response
 from .settings import EngineSettings, engine_scales
 
 __all__ = ["RigidBlocks", "RigidArch", "RigidArcade", "engine_arch", "engine_arcade",
@@ -26,39 +27,6 @@ MARGIN = 0.05
 REACH = 0.25
 #: the fraction of a penetration removed per step
 BETA = 0.2
-
-
-class _Body:
-    """The pymunk-like view of one body that the studies read (position, angle, velocities)."""
-
-    __slots__ = ("_owner", "_i")
-
-    def __init__(self, owner, i):
-        self._owner, self._i = owner, i
-
-    @property
-    def position(self):
-        return tuple(self._owner.q[self._i, :2])
-
-    @property
-    def angle(self):
-        return float(self._owner.q[self._i, 2])
-
-    @property
-    def velocity(self):
-        return tuple(self._owner.v[self._i, :2])
-
-    @velocity.setter
-    def velocity(self, value):
-        self._owner.v[self._i, :2] = value
-
-    @property
-    def angular_velocity(self):
-        return float(self._owner.v[self._i, 2])
-
-    @angular_velocity.setter
-    def angular_velocity(self, value):
-        self._owner.v[self._i, 2] = value
 
 
 class RigidBlocks:
@@ -83,7 +51,6 @@ class RigidBlocks:
         self.stats = np.zeros(4, np.int64)
         self.time = 0.0
         self.steps = 0
-        self.bodies = [_Body(self, i) for i in range(nb)]
         # joint lengths per corner contact: the reach and margin are fractions of them
         self._reach = REACH * float(np.max(s.length)) if s.n_contacts else 0.0
         self.ref_pos = self.q[:, :2].copy()
@@ -149,21 +116,6 @@ class RigidBlocks:
         rates (nb,) [rad/s])."""
         return (self.q[:, :2].copy(), self.q[:, 2].copy(), self.v[:, :2].copy(),
                 self.v[:, 2].copy())
-
-    def gaps(self):
-        """(gaps (nc,) [m], positions along the faces (nc,) [m]) of the corner contacts."""
-        s = self.system
-        return contact_frames(self.q, s.owner, s.face, s.corner, s.face_start, s.tangent,
-                              s.normal, s.length, s.centroids)
-
-    def kinetic_energy(self, vel, rate) -> float:
-        """Kinetic energy relative to the ground [J per m of depth]."""
-        return float(0.5 * (self.masses * (np.asarray(vel) ** 2).sum(axis=1)).sum()
-                     + 0.5 * (self.inertias * np.asarray(rate) ** 2).sum())
-
-    def drops(self, pos) -> np.ndarray:
-        """How far each block's mass centre has dropped below its initial height [m]."""
-        return self.centroids0[:, 1] - np.asarray(pos)[:, 1]
 
     def _q_of(self, pos, angles):
         q = np.empty((self.system.n_bodies, 3))
