@@ -162,7 +162,7 @@ def _run_push(args) -> int:
 
 def run_dem(args) -> int:
     from ..contact import require_engine
-    from ..errors import ImpactModelError, NotFourHingeError
+    from ..errors import ArchrockError, ImpactModelError, NotFourHingeError
 
     plot, animation = figure_arg(args.plot), animation_arg(args.animate)
     spec = motion_spec_from_args(args)
@@ -188,13 +188,19 @@ def run_dem(args) -> int:
         from ..statics.limit import limit_analysis
         from ..reports.contact import format_ramp, ramp_dict
 
+        from ..statics.friction import friction_analysis
+
         limit = limit_analysis(arch)
         res = ramp(arch, settings, progress=progress, limit=limit, lambda_max=args.ramp_max,
                    tol=args.ramp_tol, hold=args.ramp_hold)
+        try:  # the reference where the joints slide first; the table states which it is
+            friction = friction_analysis(arch, settings.friction)
+        except ArchrockError:
+            friction = None
         if args.json:
-            emit_json(ramp_dict(res, limit))
+            emit_json(ramp_dict(res, limit, friction))
         else:
-            print(format_ramp(res, limit, arch))
+            print(format_ramp(res, limit, arch, friction))
         return 0
     from ..contact import engine_respond
     from ..reports.contact import engine_response_dict, format_engine_response, four_link_label

@@ -63,15 +63,33 @@ def _limit_hinges(limit, d):
     return [h.joint for h in sorted(limit.mechanism(d).hinges, key=lambda h: h.joint)]
 
 
-def ramp_dict(result, limit) -> dict:
+def _reference(limit, friction, d):
+    """(k, what) the engine's ramp is compared with in direction ``d``: the limit analysis at
+    the engine's friction -- the friction analysis's multiplier where sliding governs (it is
+    then below the no-sliding k), else the no-sliding k."""
+    k = getattr(limit, f"k_{d}")
+    if friction is not None:
+        fd = friction.direction(d)
+        if fd.sliding_governs and fd.multiplier < k:
+            return fd.multiplier, "friction LP"
+    return k, "no sliding"
+
+
+def ramp_dict(result, limit, friction=None) -> dict:
     """--json of ``archrock dem --ramp``: the engine's k_l, k_r, hinges_l, hinges_r (joints from
-    the left springing) beside archrock's limit analysis."""
+    the left springing) beside archrock's limit analysis; ``relative_error`` against the limit
+    analysis at the engine's friction (``friction``: its friction analysis; where sliding
+    governs, its multiplier), named in ``compared_with``."""
     d = result.to_dict()
     d["limit"] = {"k_l": limit.k_l, "k_r": limit.k_r, "hinges_l": _limit_hinges(limit, "l"),
                   "hinges_r": _limit_hinges(limit, "r"),
                   "mechanism_l": limit.mechanism("l").label,
                   "mechanism_r": limit.mechanism("r").label}
-    d["relative_error"] = {"k_l": result.k_l / limit.k_l - 1.0, "k_r": result.k_r / limit.k_r - 1.0}
+    refs = {dd: _reference(limit, friction, dd) for dd in ("l", "r")}
+    d["relative_error"] = {f"k_{dd}": getattr(result, f"k_{dd}") / refs[dd][0] - 1.0
+                           for dd in ("l", "r")}
+    d["compared_with"] = {f"k_{dd}": {"k": refs[dd][0], "analysis": refs[dd][1]}
+                          for dd in ("l", "r")}
     return d
 
 
@@ -85,22 +103,30 @@ def _range_line(opts: dict) -> list[str]:
         + " (default max(2, 1.5 k); --ramp-max)"]
 
 
-def format_ramp(result, limit, arch) -> str:
+def format_ramp(result, limit, arch, friction=None) -> str:
+    """``archrock dem --ramp``'s table: each direction's engine multiplier and bracket beside the
+    limit analysis at the engine's friction (``friction``: its friction analysis, whose
+    multiplier is the reference where sliding governs) and the limit mechanism."""
     s = result.settings
     lines = [f"Contact engine ramp: {arch.name}, {describe_blocks(arch)}, friction MU = {s.friction:g}",
              f"  engine: {s.describe()}",
              *_range_line(result.ramp),
              f"  {'':3} {'engine':>9} {'bracket':>19} {'limit k':>9} {'error':>8}  "
              f"{'engine hinges':<22} limit hinges"]
+    notes = []
     for d in ("l", "r"):
         r = getattr(result, d)
-        k = getattr(limit, f"k_{d}")
+        k, what = _reference(limit, friction, d)
+        if what != "no sliding":
+            notes.append(f"  M_{d}: the joints slide first at mu = {s.friction:g}: the limit k "
+                         f"is the friction analysis's, {k:.4f} (no sliding: "
+                         f"{getattr(limit, f'k_{d}'):.4f})")
         hinges = ("-".join(f"{j}{e[0]}" for j, e in zip(r.hinges, r.edges))
                   if r.mode == "rocking" else "sliding at " + ",".join(map(str, r.sliding_joints)))
         lines.append(f"  M_{d} {r.multiplier:9.4f} [{r.lower:.4f}, {r.upper:.4f}] {k:9.4f} "
                      f"{100 * (r.multiplier / k - 1):+7.2f}%  {hinges:<22} "
                      f"{limit.mechanism(d).label}")
-    return "\n".join(lines)
+    return "\n".join(lines + notes)
 
 
 def engine_response_dict(res, four_link=None, choice=None) -> dict:
