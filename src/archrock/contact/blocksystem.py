@@ -69,7 +69,7 @@ class BlockSystem:
         return int(self.owner.size)
 
 
-def _corner_contacts(faces, sides, centroids, joint_lengths):
+def _corner_contacts(faces, sides, centroids):
     """The corner contacts of joints given as (a, b, face_a (2, 2), face_b (2, 2)) [m]: the face
     of a's side and of b's side (the same segment where the joint is closed)."""
     rows = []
@@ -77,18 +77,10 @@ def _corner_contacts(faces, sides, centroids, joint_lengths):
         for owner, other, fown, foth in ((b, a, fb, fa), (a, b, fa, fb)):
             t = foth[1] - foth[0]
             length = float(np.hypot(*t))
-            if length <= 0.0:
-                # a point joint: its face is the other side's face, reduced to a point; the
-                # corner contact then takes the owner's face direction
-                t = fown[1] - fown[0]
-                length = float(np.hypot(*t))
-                if length <= 0.0:
-                    raise ArchInputError(f"joint {j}: both faces have zero length")
-                start = foth[0] - 0.0 * t
-                tu = t / length
-                length = 0.0
-            else:
-                start, tu = foth[0], t / length
+            if not length > 0.0:
+                raise ArchInputError(f"joint {j}: a face of zero length; allowed faces with "
+                                     f"two distinct ends")
+            start, tu = foth[0], t / length
             nrm = np.array([-tu[1], tu[0]])
             mid = start + 0.5 * length * tu
             if other >= 0:
@@ -98,8 +90,7 @@ def _corner_contacts(faces, sides, centroids, joint_lengths):
             if not away:
                 nrm = -nrm
             for e in (0, 1):
-                rows.append((owner, other, fown[e], start, tu, nrm, length, j, e,
-                             joint_lengths[j]))
+                rows.append((owner, other, fown[e], start, tu, nrm, length, j, e))
     return rows
 
 
@@ -137,8 +128,7 @@ def blocks_of_arch(arch) -> BlockSystem:
             fb = move(b, orig) if b >= 0 else np.asarray(abut, float)[1]
         sides.append((a, b))
         faces.append((np.asarray(fa, float), np.asarray(fb, float)))
-    lengths = [float(np.hypot(*(f[0][1] - f[0][0]))) for f in faces]
-    rows = _corner_contacts(faces, sides, centroids, lengths)
+    rows = _corner_contacts(faces, sides, centroids)
     return _pack(arch.masses, centroids, arch.inertias, rows, n + 1, arch.size,
                  getattr(arch, "name", ""))
 
@@ -149,8 +139,7 @@ def blocks_of_arcade(arc) -> BlockSystem:
     centroids = np.asarray(arc.centroids, float)
     sides = [(int(ct.a), int(ct.b)) for ct in arc.contacts]
     faces = [(np.asarray(ct.points, float),) * 2 for ct in arc.contacts]
-    lengths = [float(np.hypot(*(f[0][1] - f[0][0]))) for f in faces]
-    rows = _corner_contacts(faces, sides, centroids, lengths)
+    rows = _corner_contacts(faces, sides, centroids)
     return _pack(arc.masses, centroids, arc.inertias, rows, len(sides), arc.size,
                  getattr(arc, "name", ""))
 
@@ -165,6 +154,6 @@ def block_on_ground(width: float, height: float, density: float = 2000.0) -> Blo
     inertia = m * (width ** 2 + height ** 2) / 12.0
     c = np.array([[0.0, 0.5 * height]])
     face = np.array([[-0.5 * width, 0.0], [0.5 * width, 0.0]])
-    rows = _corner_contacts([(face, face)], [(GROUND, 0)], c, [width])
+    rows = _corner_contacts([(face, face)], [(GROUND, 0)], c)
     return _pack([m], c, [inertia], rows, 1, 0.5 * float(np.hypot(width, height)),
                  f"block {width:g} x {height:g} m")
