@@ -1,5 +1,6 @@
 """archrock's rigid-block engine as an object: a :class:`~.blocksystem.BlockSystem` and its
-state, stepped by :func:`~.nscd.advance` (Moreau-Jean, nonsmooth Gauss-Seidel).
+state, stepped by :func:`~.nscd.advance` (Moreau-Jean, each step's contact problem solved
+exactly).
 
 :class:`RigidBlocks` holds the state and steps it (a response compiled whole,
 :meth:`RigidBlocks.run_response`); :class:`RigidArch` and :class:`RigidArcade` read it as the
@@ -9,7 +10,6 @@ methods as the pymunk engine (:class:`~.engine.ContactArch`,
 either."""
 
 from __future__ import annotations
-
 
 import numpy as np
 
@@ -51,7 +51,7 @@ class RigidBlocks:
         self.stats = np.zeros(4, np.int64)
         self.time = 0.0
         self.steps = 0
-        # joint lengths per corner contact: the reach and margin are fractions of them
+        # the reach is a fraction of the longest face (the margin, of each face's own length)
         self._reach = REACH * float(np.max(s.length)) if s.n_contacts else 0.0
         self.ref_pos = self.q[:, :2].copy()
         self.ref_ang = np.zeros(nb)
@@ -106,6 +106,8 @@ class RigidBlocks:
                     and np.abs(self.v[:, 2]).max() * self.size <= lim)
 
     def solver_stats(self) -> dict:
+        """The solver's counters since the engine was built: steps, QP iterations, steps left
+        unconverged at max_rounds, the most iterations in one step, and their mean."""
         d = dict(zip(SOLVER_FIELDS, (int(x) for x in self.stats)))
         d["mean_iterations"] = d["qp_iterations"] / d["steps"] if d["steps"] else 0.0
         return d
