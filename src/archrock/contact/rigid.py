@@ -23,7 +23,7 @@ __all__ = ["RigidBlocks", "RigidArch", "RigidArcade", "engine_arch", "engine_arc
 
 #: a corner bears on its face up to this fraction of the face's length past its ends
 MARGIN = 0.05
-#: a corner contact is kept while its gap is below this fraction of its face's length
+#: a corner contact is kept while its gap is below this fraction of the longest face's length
 REACH = 0.25
 #: the fraction of a penetration removed per step
 BETA = 0.2
