@@ -380,29 +380,15 @@ class ArcadeResponse:
 
 
 def _respond_compiled(ca, motion, every, n_out, t_stop, drop_limit, ke_rest, quiet_needed):
-    """archrock's engine: the arcade's response compiled whole (:meth:`RigidBlocks.run_response`,
-    collapse and rest checked at every step), read at its samples: (status, t_collapse,
-    rotations, drops, each block's peak |rotation| over the samples and the last state)."""
-    dt = ca.dt
-    t_most = max(t_stop, (n_out - 1) * every * dt)
-    n_total = int(math.ceil(t_most / dt)) + 1
-    accel = np.ascontiguousarray(motion((np.arange(n_total) + 0.5) * dt), float)
-    nb = ca.masses.size
-    samples = np.full((n_out, nb, 3), np.nan)
-    carry = np.zeros(3, np.int64)
-    while True:
-        code = ca.run_response(accel, ca.steps + max(1, n_total // 10), float(motion.times[-1]),
-                               every, samples, carry, drop_limit, ke_rest, quiet_needed)
-        if code != 0:
-            break
-    t_col = None
-    if code == 2:
-        status, t_col = "collapsed", ca.time
-    else:
-        status = "rest" if carry[2] and carry[1] >= quiet_needed else "moving"
+    """archrock's engine: the arcade's response compiled whole
+    (:meth:`~archrock.contact.rigid.RigidBlocks.respond_samples`, collapse and rest checked at
+    every step), read at its samples: (status, t_collapse, rotations, drops, each block's peak
+    |rotation| over the samples and the last state)."""
+    t_most = max(t_stop, (n_out - 1) * every * ca.dt)
+    status, t_col, samples, k = ca.respond_samples(motion, every, n_out, t_most, drop_limit,
+                                                   ke_rest, quiet_needed)
     rots = samples[:, :, 2] - ca.ref_ang
     drops = np.max(ca.ref_pos[:, 1] - samples[:, :, 1], axis=1)
-    k = int(carry[0])
     last = np.abs(ca.q[:, 2] - ca.ref_ang)
     peak = np.maximum(np.nanmax(np.abs(rots[:k]), axis=0), last) if k else last
     return status, t_col, rots, drops, peak
@@ -437,7 +423,7 @@ def arcade_respond(arc: Arcade, motion: GroundMotion, settings: EngineSettings |
     peak = np.zeros(nb)
     status, t_col, quiet, k = "moving", None, 0, 0
     quiet_needed = int(0.5 * settings.steps_per_T)
-    compiled = hasattr(ca, "run_response")
+    compiled = hasattr(ca, "respond_samples")
     if compiled:  # archrock's engine: compiled, checked at every step
         status, t_col, rots, drops, peak = _respond_compiled(
             ca, motion, every, n_out, t_stop, drop_limit, ke_rest, quiet_needed)

@@ -116,36 +116,18 @@ def _run_compiled(ca, motion, every, n_out, t_stop, t_most, drop_limit, ke_rest,
     progress line after each), every step checked for collapse and rest; the samples are read
     afterwards.  Returns (status, t_collapse, rotations, joint rotations, sliding, positions,
     largest sliding over the samples)."""
-    dt = ca.dt
-    n_total = int(math.ceil(t_most / dt)) + 1
-    accel = np.ascontiguousarray(motion((np.arange(n_total) + 0.5) * dt), float)
-    nb = ca.masses.size
-    samples = np.full((n_out, nb, 3), np.nan)
-    carry = np.zeros(3, np.int64)
-    chunk = max(1, n_total // 10)
-    while True:
-        code = ca.run_response(accel, ca.steps + chunk, float(motion.times[-1]), every, samples,
-                               carry, drop_limit, ke_rest, quiet_needed)
-        if code != 0:
-            break
-        if progress:
-            _progress_line(progress, ca, t_most)
-    t_col = None
-    if code == 2:
-        status, t_col = "collapsed", ca.time
-    elif carry[2] and carry[1] >= quiet_needed:
-        status = "rest"
-    else:
-        status = "moving"
-    n = nb
+    status, t_col, samples, taken = ca.respond_samples(
+        motion, every, n_out, t_most, drop_limit, ke_rest, quiet_needed,
+        None if not progress else lambda eng: _progress_line(progress, eng, t_most))
+    n = ca.masses.size
     rots = samples[:, :, 2] - ca.ref_ang
     posn = samples[:, :, :2].copy()
     jrot = np.full((n_out, n + 1), np.nan)
     slide = np.full((n_out, n + 1), np.nan)
-    for k in range(int(carry[0])):
+    for k in range(taken):
         jrot[k] = ca.joint_rotations(rots[k])
         slide[k] = ca.joint_sliding(posn[k], samples[k, :, 2]) - ca.ref_slide
-    max_sl = np.nanmax(np.abs(slide[:int(carry[0])]), axis=0) if carry[0] else np.zeros(n + 1)
+    max_sl = np.nanmax(np.abs(slide[:taken]), axis=0) if taken else np.zeros(n + 1)
     return status, t_col, rots, jrot, slide, posn, max_sl
 
 
@@ -244,7 +226,7 @@ def engine_respond(arch: VoussoirArch, motion: GroundMotion, settings: EngineSet
     quiet_needed = int(0.5 * settings.steps_per_T)
     t_most = max(t_stop, (n_out - 1) * dt_s)  # the run's longest: free motion or the window
     args = (ca, motion, every, n_out, t_stop, t_most, drop_limit, ke_rest, quiet_needed, progress)
-    if hasattr(ca, "run_response"):  # archrock's engine: compiled, checked at every step
+    if hasattr(ca, "respond_samples"):  # archrock's engine: compiled, checked at every step
         status, t_col, rots, jrot, slide, posn, max_sl = _run_compiled(*args)
     else:
         status, t_col, rots, jrot, slide, posn, max_sl = _run_stepwise(*args)

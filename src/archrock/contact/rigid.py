@@ -11,6 +11,8 @@ either."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..units import G
@@ -55,6 +57,7 @@ class RigidBlocks:
         self._reach = REACH * float(np.max(s.length)) if s.n_contacts else 0.0
         self.ref_pos = self.q[:, :2].copy()
         self.ref_ang = np.zeros(nb)
+        self.ref_slide = np.zeros(s.joints)
 
     # ------------------------------------------------------------------ stepping
     def advance(self, accel) -> None:
@@ -86,15 +89,42 @@ class RigidBlocks:
         self.time = self.steps * self.dt
         return int(status)
 
+    def respond_samples(self, motion, every, n_out, t_most, drop_limit, ke_rest, quiet_needed,
+                        progress=None):
+        """A whole response to ``motion`` (a GroundMotion) up to ``t_most`` [s], in compiled
+        chunks of a tenth of it (``progress(engine)`` after each), every step checked for
+        collapse and rest (:meth:`run_response`).  Returns (status 'collapsed', 'rest' or
+        'moving', t_collapse [s] or None, samples (n_out, nb, 3) of (x, y, rotation) every
+        ``every`` steps, NaN past the last, the number taken)."""
+        n_total = int(math.ceil(t_most / self.dt)) + 1
+        accel = np.ascontiguousarray(motion((np.arange(n_total) + 0.5) * self.dt), float)
+        samples = np.full((n_out, self.system.n_bodies, 3), np.nan)
+        carry = np.zeros(3, np.int64)
+        chunk = max(1, n_total // 10)
+        while True:
+            code = self.run_response(accel, self.steps + chunk, float(motion.times[-1]), every,
+                                     samples, carry, drop_limit, ke_rest, quiet_needed)
+            if code != 0:
+                break
+            if progress:
+                progress(self)
+        if code == 2:
+            return "collapsed", self.time, samples, int(carry[0])
+        status = "rest" if carry[2] and carry[1] >= quiet_needed else "moving"
+        return status, None, samples, int(carry[0])
+
     def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
         """Advance ``steps`` time steps under the constant ground acceleration [m/s^2]."""
         self.advance(np.full(int(steps), float(ground_accel)))
 
     def settle(self, duration: float = 0.0) -> None:
-        """The exact contacts need no settling: the rest state is the reference (kept for the
-        studies written for the pymunk engine)."""
+        """The exact contacts need no settling: the state now is the reference of every
+        rotation, slip and drop, and the clock restarts (kept for the studies written for the
+        pymunk engine)."""
         self.ref_pos = self.q[:, :2].copy()
         self.ref_ang = self.q[:, 2].copy()
+        self.ref_slide = self._sliding(self.ref_pos, self.ref_ang)
+        self.steps, self.time = 0, 0.0
 
     def at_rest(self) -> bool:
         """Whether every block is still to 1e-9 g dt [m/s] (and its rate times the size): under
@@ -133,16 +163,8 @@ class RigidBlocks:
                            s.joints, s.centroids)
 
     def _sides(self):
-        if getattr(self, "_sides_cache", None) is not None:
-            return self._sides_cache
-        s = self.system
-        a = np.full(s.joints, -1, np.int64)
-        b = np.full(s.joints, -1, np.int64)
-        for k in range(0, s.n_contacts, 4):
-            j = int(s.joint[k])
-            b[j], a[j] = s.owner[k], s.face[k]
-        self._sides_cache = (a, b)
-        return a, b
+        """(a, b) of every joint: each joint's first row is b's corner on a's face."""
+        return self.system.face[::4], self.system.owner[::4]
 
     def _rel_rotations(self, angles) -> np.ndarray:
         a, b = self._sides()
@@ -166,7 +188,7 @@ class RigidBlocks:
         ta = np.where(a >= 0, th[np.maximum(a, 0)], 0.0)
         tb = np.where(b >= 0, th[np.maximum(b, 0)], 0.0)
         mean = 0.5 * (ta + tb)
-        t0 = np.array([s.tangent[k] for k in range(0, s.n_contacts, 4)]).reshape(-1, 2)
+        t0 = s.tangent[::4]
         # the tangent of a's face, oriented from end 0 to end 1 of the joint
         tx = np.cos(mean) * t0[:, 0] - np.sin(mean) * t0[:, 1]
         ty = np.sin(mean) * t0[:, 0] + np.cos(mean) * t0[:, 1]
@@ -188,13 +210,6 @@ class RigidArch(RigidBlocks):
         tan = pts[:, 1] - pts[:, 0]
         ln = np.hypot(tan[:, 0], tan[:, 1])
         self.joint_lengths = ln
-        self.ref_slide = np.zeros(arch.n + 1)
-
-    def settle(self, duration: float = 0.0) -> None:
-        super().settle(duration)
-        pos, ang, _, _ = self.state()
-        self.ref_slide = self.joint_sliding(pos, ang)
-        self.steps, self.time = 0, 0.0
 
     def joint_rotations(self, angles) -> np.ndarray:
         """Relative rotation theta_j - theta_{j-1} at each joint 0..n [rad]."""
@@ -214,13 +229,6 @@ class RigidArcade(RigidBlocks):
         pts = np.array([np.asarray(ct.points, float) for ct in arc.contacts])
         self.contact_points = pts
         self.contact_lengths = np.hypot(*(pts[:, 1] - pts[:, 0]).T)
-        self.ref_slide = np.zeros(len(arc.contacts))
-
-    def settle(self, duration: float = 0.0) -> None:
-        super().settle(duration)
-        pos, ang, _, _ = self.state()
-        self.ref_slide = self.contact_sliding(pos, ang)
-        self.steps, self.time = 0, 0.0
 
     def contact_rotations(self, angles) -> np.ndarray:
         return self._rel_rotations(angles)
