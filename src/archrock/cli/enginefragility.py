@@ -8,6 +8,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import EXIT_INTERRUPTED, PROG, emit_json
+from .fragilityfigure import fragility_figure
 
 
 def _unused(args) -> list:
@@ -71,8 +72,6 @@ def run_engine_fragility(args, nominal, choice, plot) -> int:
             print(f"not used by the contact engine (four-link options): {', '.join(unused)}")
     sys.stdout.flush()
     if plot:
-        from .fragility import _figure
-
-        if _figure(res.as_ida(), None, plot) and not args.json:
+        if fragility_figure(res.as_ida(), None, plot) and not args.json:
             print(f"wrote {plot}", file=sys.stderr)
     return 0

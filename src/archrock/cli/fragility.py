@@ -6,6 +6,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import _int, emit_json, interrupted_study, non_negative_int
+from .fragilityfigure import fragility_figure
 from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
@@ -123,22 +124,6 @@ def run_fragility(args) -> int:
         print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
                                n_arches=len(models), n_requested=args.samples))
     sys.stdout.flush()
-    if plot and _figure(res_ida, res_msa, plot) and not args.json:
+    if plot and fragility_figure(res_ida, res_msa, plot) and not args.json:
         print(f"wrote {plot}", file=sys.stderr)
     return 0
-
-
-def _figure(res_ida, res_msa, plot) -> bool:
-    """Draw the fragility figure; where drawing fails, one warning line on stderr (the results
-    are already written) and False, never a traceback that ends the run."""
-    from ..reports.plots import plot_fragility
-
-    try:
-        fit = res_msa.fit if res_msa is not None and res_msa.fit is not None else res_ida.fit
-        plot_fragility(fit, res_msa, plot, ida=res_ida)
-    except Exception as exc:  # noqa: BLE001 -- any failure of a figure is a warning, by design
-        why = " ".join(str(exc).split()) or type(exc).__name__
-        print(f"archrock: warning: figure {plot} not written ({type(exc).__name__}: {why}); "
-              f"the results above are complete", file=sys.stderr)
-        return False
-    return True
