@@ -15,6 +15,7 @@ from archrock.studies.assessment import (SECTIONS, AssessConfig, Context, Paragr
                                          assess, section_geometry)
 from archrock.cli import main
 from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
+from archrock.studies.runner import RunSettings
 from archrock.geometry import oppenheim_arch
 from archrock.dynamics.impact import ImpactSpec
 from archrock.reports.html import render_html, write_report
@@ -34,7 +35,7 @@ KEYS = ["geometry", "governing", "limit", "friction", "impact", "response", "cur
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
     lines = []
-    res = assess(oppenheim_arch(), FAST, progress=lines.append)
+    res = assess(oppenheim_arch(), FAST, settings=RunSettings(progress=lines.append))
     out = tmp_path_factory.mktemp("assess")
     html_path, json_path = write_report(res, out / "opp.html")
     return res, html_path.read_text(encoding="utf-8"), json.loads(json_path.read_text()), lines

@@ -33,7 +33,7 @@ from ..geometry.blocks import block_counts, block_name
 from ..geometry.defect import defect_base
 from ..geometry.piers import _pier_runs, joint_place
 from ..statics.kinematic import kinematic_mechanisms
-from .runner import UNSET, resolve_settings
+from .runner import RunSettings
 
 __all__ = ["DefectMap", "defect_map", "defect_places", "names_text", "worst_summary"]
 
@@ -286,8 +286,7 @@ def _amplitude(arch, nominal, impact, pulse, a_max, n_scan, tol):
 def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: float | None = None,
                side: str = "", *, indices=None, pulse_duration: float | None = None,
                pulse_kind: str = "oppenheim", sign: int = -1, impact=None, a_max: float = 10.0,
-               n_scan: int = 60, tol: float = 1e-3,
-               progress=UNSET, settings=None) -> DefectMap:
+               n_scan: int = 60, tol: float = 1e-3, settings=None) -> DefectMap:
     """The defect map of ``arch`` (module docstring).
 
     kind: 'thickness' (value: remaining fraction, default 0.7), 'tilt' (value [deg], default 5)
@@ -298,11 +297,10 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     amplitude of the two) on each arch, with the impact law
     ``impact`` (an ImpactSpec or its name; default the paper's practice, evaluated on the
     undamaged arch), scanning ``n_scan`` amplitudes up to ``a_max`` [g] and bisecting to
-    ``tol`` [g]; settings: a :class:`~archrock.studies.runner.RunSettings` whose ``progress``
-    gets one line of text per damaged arch (:mod:`archrock._progress`; 0.6's ``progress=``
-    with a DeprecationWarning).
+    ``tol`` [g]; settings: a :class:`~archrock.studies.runner.RunSettings` (or its dict) whose
+    ``progress`` gets one line of text per damaged arch (:mod:`archrock._progress`).
     """
-    settings = resolve_settings(settings, "defect_map", progress=progress).only("defect_map")
+    settings = RunSettings.from_dict(settings).only("defect_map")
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
     progress = settings.sink

@@ -41,7 +41,7 @@ from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import PreparedArches, left_out_summary, prepare_many
 from ..dynamics.response import DynamicModel, prepare, respond
 from ..geometry.sampling import Spreads
-from .runner import UNSET, resolve_settings
+from .runner import RunSettings
 from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
                    response_cost_s)
 
@@ -178,12 +178,12 @@ def _progress(what, total, est, progress, unit="analysis"):
     return Progress(total, progress if est > PROGRESS_S else None, desc=what, unit=unit)
 
 
-def _inputs(study, records, models, im, settings, **old):
+def _inputs(records, models, im, settings):
     """The records, models, sample indices, arches left out, IM and run settings of
     :func:`ida` and :func:`msa`, checked."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
-    return recs, ms, ids, failed, _im(im), resolve_settings(settings, study, stacklevel=4, **old)
+    return recs, ms, ids, failed, _im(im), RunSettings.from_dict(settings)
 
 
 ENGINES = ("batch", "respond")
@@ -469,14 +469,12 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
 
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
         seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress=UNSET, engine: str = "batch", workers=UNSET,
-        scheduler=UNSET, early_stop: bool = False, out=UNSET, settings=None) -> IDAResult:
+        engine: str = "batch", early_stop: bool = False, settings=None) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
     (:mod:`archrock.studies.work`).  settings: how it runs
-    (:class:`~archrock.studies.runner.RunSettings`; the 0.6 keywords ``workers``,
-    ``scheduler``, ``out``, ``progress`` with a DeprecationWarning); its ``progress`` gets the
-    responses (or curves) done, for a long run (:mod:`archrock._progress`).
+    (:class:`~archrock.studies.runner.RunSettings`, its dict or None); its ``progress`` gets
+    the responses (or curves) done, for a long run (:mod:`archrock._progress`).
 
     engine: "batch" (default) runs every (arch, record, scale) of a round (the grid scan, then
     each bisection step) in one parallel call (:mod:`archrock.studies.runner`: in-process numba
@@ -488,9 +486,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     engine): a folder that keeps every finished response (:class:`archrock.studies.store.
     ResultStore`), so that the same call after an interruption recomputes nothing it had
     finished."""
-    recs, ms, ids, failed, im, settings = _inputs(
-        "ida", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
-        progress=progress)
+    recs, ms, ids, failed, im, settings = _inputs(records, models, im, settings)
     s = _grid("scales", scales)
     engine = _engine(engine)
     top = max(recs, key=lambda r: r.pga)
@@ -574,16 +570,13 @@ class StripeResult:
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress=UNSET, engine: str = "batch", workers=UNSET,
-        scheduler=UNSET, early_stop: bool = False, out=UNSET, settings=None) -> StripeResult:
+        engine: str = "batch", early_stop: bool = False, settings=None) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
     beyond the work bound (:mod:`archrock.studies.work`); ``engine``, ``early_stop`` and
-    ``settings`` (and the 0.6 keywords) as :func:`ida` (every level x arch x record in one
+    ``settings`` as :func:`ida` (every level x arch x record in one
     sweep)."""
-    recs, ms, ids, failed, im, settings = _inputs(
-        "msa", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
-        progress=progress)
+    recs, ms, ids, failed, im, settings = _inputs(records, models, im, settings)
     lv = _grid("levels", levels)
     engine = _engine(engine)
     factors = [_im_factor(r, im) for r in recs]
