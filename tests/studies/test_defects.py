@@ -371,6 +371,8 @@ def test_progress_lines_go_to_the_callback_not_stderr(capsys):
     # the one protocol (archrock._progress): anything but None, True or a callable is refused
     with pytest.raises(ArchInputError, match=r"^progress: 'yes'; allowed None, True"):
         defect_map(oppenheim_arch(), settings={"progress": "yes"})
+    with pytest.raises(TypeError, match="unexpected keyword argument 'progress'"):
+        defect_map(oppenheim_arch(), progress=lines.append)  # 0.6's keyword, gone in 0.7
 
 
 def test_side_is_one_spelling_with_the_old_ones_read(capsys):

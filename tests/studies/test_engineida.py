@@ -123,3 +123,10 @@ def test_bad_input_names_the_field(heavy_arch, records, kw, field):
     scales = args.pop("scales")
     with pytest.raises(ArchInputError, match=rf"^{field}"):
         engine_ida(heavy_arch, records, scales, **args)
+
+
+def test_the_0_6_run_keywords_are_gone(heavy_arch, records):
+    """0.7: workers, scheduler and progress go in settings= (RunSettings or its dict)."""
+    for old in ("workers", "scheduler", "progress"):
+        with pytest.raises(TypeError, match=f"unexpected keyword argument '{old}'"):
+            engine_ida(heavy_arch, records, SCALES, **{old: None})
