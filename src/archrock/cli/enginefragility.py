@@ -41,6 +41,7 @@ def run_engine_fragility(args, nominal, choice, plot) -> int:
     from ..studies.curves import parse_range
     from ..studies.engineida import engine_ida
     from ..studies.enginestudy import EngineRun
+    from ..studies.runner import RunSettings
     from .options import friction_words
     from .respond import _engine_settings
 
@@ -55,8 +56,9 @@ def run_engine_fragility(args, nominal, choice, plot) -> int:
             else lambda line: print(line, file=sys.stderr, flush=True))
     try:
         res = engine_ida(nominal, list(suite.records), scales, im=im, run=run,
-                         workers=args.workers, scheduler=args.scheduler, progress=sink,
-                         n_boot=args.bootstrap, seed=args.seed, dynamics=choice)
+                         n_boot=args.bootstrap, seed=args.seed, dynamics=choice,
+                         settings=RunSettings(workers=args.workers, scheduler=args.scheduler,
+                                              progress=sink))
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; nothing was kept (the contact engine's fragility keeps "
               f"no folder of finished runs)", file=sys.stderr)

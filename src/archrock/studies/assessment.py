@@ -28,7 +28,7 @@ from typing import Callable
 import numpy as np
 
 from .codecheck import CodeCheckConfig
-from .runner import UNSET
+from .runner import RunSettings
 from ..errors import ArchInputError, ArchrockError
 from ..geometry import VoussoirArch
 from ..dynamics.impact import PAPER_PRACTICE, ImpactSpec
@@ -330,13 +330,11 @@ def _version() -> str:
 
 
 def assess(arch: VoussoirArch, config: AssessConfig | None = None, *,
-           progress=UNSET, sections=None, settings=None) -> Assessment:
+           sections=None, settings=None) -> Assessment:
     """Run every section of :data:`SECTIONS` (or ``sections``) on ``arch``; the ``progress``
-    of ``settings`` (a :class:`~archrock.studies.runner.RunSettings`; 0.6's ``progress=``
-    with a DeprecationWarning) receives one line per section as it starts and ends."""
-    from .runner import resolve_settings
-
-    progress = resolve_settings(settings, "assess", progress=progress).only("assess").sink
+    of ``settings`` (a :class:`~archrock.studies.runner.RunSettings` or its dict) receives one
+    line per section as it starts and ends."""
+    progress = RunSettings.from_dict(settings).only("assess").sink
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
     funcs = SECTIONS if sections is None else sections

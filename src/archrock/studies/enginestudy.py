@@ -337,8 +337,29 @@ def engine_ensemble(config, engine: EngineRun | None = None, *,
     result); progress: a callable given one line per arch (never printed here).  The work is
     estimated from the nominal arch first (:func:`engine_run_cost_s`) and refused beyond the
     bound of :mod:`archrock.studies.work`."""
-    from ..dynamics.response import prepare
     from .ensemble.compute import sample_arch
+
+    run, motion = _engine_ensemble_inputs(config, engine, progress)
+    nominal = config.analysed_nominal
+    each = engine_run_cost_s(nominal, float(motion.times[-1]), run)
+    est = check_work("engine ensemble", config.samples, "arches", each,
+                     "reduce --samples (the engine takes seconds an arch), or use the four-link "
+                     "model (--dynamics fourlink) where it is valid", 1, kernel=False)
+    t0 = time.perf_counter()
+    rows = []
+    for i in range(config.samples):
+        rows.append(_engine_sample(lambda: sample_arch(config, i), i, motion, run))
+        if progress is not None:
+            progress(f"engine ensemble: arch {i + 1}/{config.samples} {rows[-1]['status']} "
+                     f"({rows[-1]['seconds']:.1f} s)")
+    wall = time.perf_counter() - t0
+    return EngineEnsembleResult(config, tuple(rows), run, dynamics, _nominal_limits(nominal),
+                                {"wall_s": wall, "estimate_s": est,
+                                 "seconds_per_arch": wall / config.samples})
+
+
+def _engine_ensemble_inputs(config, engine, progress):
+    """The engine run and the ground motion of :func:`engine_ensemble`, checked."""
     from .ensemble.config import EnsembleConfig
 
     if not isinstance(config, EnsembleConfig):
@@ -351,48 +372,44 @@ def engine_ensemble(config, engine: EngineRun | None = None, *,
         raise ArchInputError(f"engine: {run!r}; allowed None or an EngineRun")
     if progress is not None and not callable(progress):
         raise ArchInputError(f"progress: {progress!r}; allowed None or a callable")
-    motion = config.motion.build()
-    duration = float(motion.times[-1])
-    nominal = config.analysed_nominal
-    each = engine_run_cost_s(nominal, duration, run)
-    est = check_work("engine ensemble", config.samples, "arches", each,
-                     "reduce --samples (the engine takes seconds an arch), or use the four-link "
-                     "model (--dynamics fourlink) where it is valid", 1, kernel=False)
-    t0 = time.perf_counter()
-    rows = []
-    for i in range(config.samples):
-        t1 = time.perf_counter()
-        row = dict.fromkeys(ENGINE_COLUMNS)
-        row.update(index=i, k_l=math.nan, k_r=math.nan, collapsed=False, status="failed",
-                   peak=math.nan, t_collapse=math.nan, t_final=math.nan, error="")
-        try:
-            arch = sample_arch(config, i)
-            model = prepare(arch, "momentum")  # the limit mechanisms, for k and phi
-            row["k_l"], row["k_r"] = float(model.k_l), float(model.k_r)
-            res = run.respond(arch, motion, model)
-        except ArchrockError as exc:
-            row["error"] = " ".join(str(exc).split())
-        else:
-            row.update(collapsed=res.collapsed, status=res.status, peak=float(res.peak),
-                       t_collapse=math.nan if res.t_collapse is None else float(res.t_collapse),
-                       t_final=float(res.t_final))
-        row["seconds"] = time.perf_counter() - t1
-        rows.append(row)
-        if progress is not None:
-            progress(f"engine ensemble: arch {i + 1}/{config.samples} {row['status']} "
-                     f"({row['seconds']:.1f} s)")
-    wall = time.perf_counter() - t0
-    nom = {"k_l": None, "k_r": None}
+    return run, config.motion.build()
+
+
+def _engine_sample(make_arch, i: int, motion, run: EngineRun) -> dict:
+    """The row (:data:`ENGINE_COLUMNS`) of sample ``i`` (its arch from ``make_arch()``) under
+    ``motion``; status "failed" with the reason where the arch or the run has no answer."""
+    from ..dynamics.response import prepare
+
+    t1 = time.perf_counter()
+    row = dict.fromkeys(ENGINE_COLUMNS)
+    row.update(index=i, k_l=math.nan, k_r=math.nan, collapsed=False, status="failed",
+               peak=math.nan, t_collapse=math.nan, t_final=math.nan, error="")
+    try:
+        arch = make_arch()
+        model = prepare(arch, "momentum")  # the limit mechanisms, for k and phi
+        row["k_l"], row["k_r"] = float(model.k_l), float(model.k_r)
+        res = run.respond(arch, motion, model)
+    except ArchrockError as exc:
+        row["error"] = " ".join(str(exc).split())
+    else:
+        row.update(collapsed=res.collapsed, status=res.status, peak=float(res.peak),
+                   t_collapse=math.nan if res.t_collapse is None else float(res.t_collapse),
+                   t_final=float(res.t_final))
+    row["seconds"] = time.perf_counter() - t1
+    return row
+
+
+def _nominal_limits(nominal) -> dict:
+    """The nominal arch's k_l, k_r [g] and mechanisms (None where it has none)."""
+    from ..dynamics.response import prepare
+
     try:
         nm = prepare(nominal, "momentum")
-        nom = {"k_l": float(nm.k_l), "k_r": float(nm.k_r),
-               "mech_l": nm.mechanism("l").mechanism.label,
-               "mech_r": nm.mechanism("r").mechanism.label}
+        return {"k_l": float(nm.k_l), "k_r": float(nm.k_r),
+                "mech_l": nm.mechanism("l").mechanism.label,
+                "mech_r": nm.mechanism("r").mechanism.label}
     except (ArchrockError, AttributeError):
-        pass
-    return EngineEnsembleResult(config, tuple(rows), run, dynamics, nom,
-                                {"wall_s": wall, "estimate_s": est,
-                                 "seconds_per_arch": wall / config.samples})
+        return {"k_l": None, "k_r": None}
 
 
 # ---------------------------------------------------------------------------- first collapse
@@ -478,25 +495,10 @@ def engine_first_collapse(arch, duration: float, kind: str = "oppenheim", sign: 
     ``a_max``, then a bisection of the first collapsing interval until hi - lo <= rtol * hi
     (:func:`archrock.studies.curves.bisect_boundary`).  Bounded: n_scan + log2(1 / rtol) + 1
     runs at most, each estimated first (:func:`engine_run_cost_s`)."""
-    from ..dynamics.response import prepare
-    from ..groundmotion import pulse, pulse_kind
-    from .curves import _check_int, _check_real, _check_sign, bisect_boundary
+    from ..groundmotion import pulse
 
-    kind = pulse_kind(kind)
-    sign = _check_sign(sign)
-    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
-    n_scan = _check_int("n_scan", n_scan, 2)
-    if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 1e-4 <= rtol <= 0.5:
-        raise ArchInputError(f"rtol: {rtol!r}; allowed 1e-4 <= rtol <= 0.5 (relative to the "
-                             f"amplitude)")
-    run = EngineRun() if run is None else run
-    if model is None:
-        model = prepare(arch, "momentum")
-    thr = activation(arch, model, run.settings.friction)["l" if sign < 0 else "r"]
-    a_max = _check_real("a_max", a_max, None, "a finite number")
-    if not thr * (1 + 1e-6) < a_max <= 100.0:
-        raise ArchInputError(f"a_max: {a_max!r}; allowed above the activation threshold "
-                             f"{thr:.4f} g and <= 100 g")
+    kind, sign, tp, n_scan, run, model, thr, a_max = _first_collapse_inputs(
+        arch, duration, kind, sign, a_max, n_scan, rtol, run, model)
     probe = pulse(kind, sign * a_max, tp)
     steps = n_scan + math.ceil(math.log2(1.0 / rtol)) + 1
     check_work("engine first collapse", steps, "engine runs",
@@ -514,25 +516,58 @@ def engine_first_collapse(arch, duration: float, kind: str = "oppenheim", sign: 
         return cache[a]
 
     grid = np.geomspace(thr * (1 + 1e-6), a_max, n_scan)
-    flags = []
-    for a in grid:  # stop at the first collapse: the runs above it are not needed
-        flags.append(test(float(a)))
-        if flags[-1]:
-            break
-    amp = bracket = None
-    if flags[-1]:
-        i0 = len(flags) - 1
-        if i0 == 0:
-            bracket = (thr, float(grid[0]))
-        else:
-            bracket = bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, rtol,
-                                      relative=True)
-        amp = float(bracket[1])
-    return EngineFirstCollapse(tp, kind, sign, amp, None if bracket is None else
+    flags, bracket = _scan_then_bisect(test, grid, thr, rtol)
+    return EngineFirstCollapse(tp, kind, sign, None if bracket is None else float(bracket[1]),
+                               None if bracket is None else
                                (float(bracket[0]), float(bracket[1])), thr, float(a_max),
                                float(rtol), tuple(float(a) for a in grid[:len(flags)]),
                                tuple(bool(f) for f in flags), len(cache),
                                time.perf_counter() - t0, run)
+
+
+def _first_collapse_inputs(arch, duration, kind, sign, a_max, n_scan, rtol, run, model):
+    """The checked inputs of :func:`engine_first_collapse`, with the engine run, the dynamic
+    model (the limit mechanisms) and the activation threshold [g] of the pulse's sign."""
+    from ..dynamics.response import prepare
+    from ..groundmotion import pulse_kind
+    from .curves import _check_int, _check_real, _check_sign
+
+    kind = pulse_kind(kind)
+    sign = _check_sign(sign)
+    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
+    n_scan = _check_int("n_scan", n_scan, 2)
+    if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 1e-4 <= rtol <= 0.5:
+        raise ArchInputError(f"rtol: {rtol!r}; allowed 1e-4 <= rtol <= 0.5 (relative to the "
+                             f"amplitude)")
+    run = EngineRun() if run is None else run
+    if model is None:
+        model = prepare(arch, "momentum")
+    thr = activation(arch, model, run.settings.friction)["l" if sign < 0 else "r"]
+    a_max = _check_real("a_max", a_max, None, "a finite number")
+    if not thr * (1 + 1e-6) < a_max <= 100.0:
+        raise ArchInputError(f"a_max: {a_max!r}; allowed above the activation threshold "
+                             f"{thr:.4f} g and <= 100 g")
+    return kind, sign, tp, n_scan, run, model, thr, a_max
+
+
+def _scan_then_bisect(test, grid, thr: float, rtol: float):
+    """The scan's outcomes up to its first collapse (the runs above it are not needed), and
+    the bracket (last survival, first collapse) [g] bisected to ``rtol`` (None: no collapse;
+    from the threshold where the lowest amplitude collapsed)."""
+    from .curves import bisect_boundary
+
+    flags = []
+    for a in grid:
+        flags.append(test(float(a)))
+        if flags[-1]:
+            break
+    if not flags[-1]:
+        return flags, None
+    i0 = len(flags) - 1
+    if i0 == 0:
+        return flags, (thr, float(grid[0]))
+    return flags, bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, rtol,
+                                  relative=True)
 
 
 def engine_collapse_curve(arch, durations, kind: str = "oppenheim", sign: int = -1, *,
