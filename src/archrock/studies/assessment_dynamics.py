@@ -4,17 +4,13 @@ the assumptions (:mod:`archrock.studies.assessment` orders them)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from ..errors import ArchInputError, ArchrockError
 from ..geometry import VoussoirArch
+from .assessment_context import Context
 from .assessment_blocks import (REFERENCES, Figure, Paragraph, Section, Table, _f,
                                 _optional_missing, titled)
-
-if TYPE_CHECKING:  # the context is assessment.py's; sections read it only
-    from .assessment import Context
 
 
 @titled('impact', 'Impact coefficients by model')

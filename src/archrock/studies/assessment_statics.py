@@ -4,16 +4,13 @@ governing answer (:mod:`archrock.studies.assessment` orders them)."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import ArchrockError
 from ..geometry import Arch, PolygonArch, VoussoirArch
+from .assessment_context import Context
 from .assessment_blocks import Figure, Paragraph, Section, Table, _f, _optional_missing, titled
-
-if TYPE_CHECKING:  # the context is assessment.py's; sections read it only
-    from .assessment import Context
 
 
 def arch_extent(arch: VoussoirArch) -> tuple[float, float, float, float]:

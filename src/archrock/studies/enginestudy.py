@@ -597,7 +597,7 @@ def engine_curves_section(ctx, choice: DynamicsChoice):
     Oppenheim's pulse at each of the configuration's durations by the contact engine
     (:func:`engine_collapse_curve`, 2% relative), with the reason; no band over irregular
     arches (an engine run takes seconds)."""
-    from .assessment import Figure, Paragraph, Section, Table
+    from .assessment_blocks import Figure, Paragraph, Section, Table
 
     from ..contact.settings import EngineSettings
 
