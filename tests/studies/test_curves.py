@@ -10,6 +10,7 @@ from archrock.geometry import oppenheim_arch, random_arch
 from archrock.groundmotion import oppenheim_pulse, pulse
 from archrock.dynamics.response import prepare, respond
 from archrock.geometry.sampling import ArchSampler, Spreads
+from archrock.studies.runner import RunSettings
 
 CV_OPPENHEIM = 0.8754
 
@@ -131,7 +132,7 @@ def test_ensemble_independent_of_workers():
     nominal = oppenheim_arch()
     kw = dict(samples=3, seed=11, durations=[0.5], a_max=1.5, n_scan=25, tol=2e-3)
     assert np.array_equal(ensemble_curve(nominal, **kw).amplitudes,
-                          ensemble_curve(nominal, workers=2, **kw).amplitudes)
+                          ensemble_curve(nominal, **kw, settings=RunSettings(workers=2)).amplitudes)
 
 
 @pytest.mark.parametrize("kwargs, field", [

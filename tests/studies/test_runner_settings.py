@@ -81,13 +81,11 @@ def test_a_study_refuses_the_fields_it_does_not_use():
         defect_map(oppenheim_arch(), settings=RunSettings(out="x"))
 
 
-def test_ensemble_with_settings_is_bit_for_bit_the_old_call(tmp_path):
+def test_ensemble_with_settings_in_process_kept_and_resumed(tmp_path):
     cfg = small_config()
     new = run_ensemble(cfg, settings=RunSettings())
-    with pytest.warns(DeprecationWarning) as said:
-        old = run_ensemble(cfg, workers=1, progress=False)
-    assert {w.filename for w in said} == {__file__}  # the warning names the caller's line
-    pd.testing.assert_frame_equal(new.frame, old.frame)
+    one = run_ensemble(cfg, settings=RunSettings(workers=1))  # 1 worker: in-process too
+    pd.testing.assert_frame_equal(new.frame, one.frame)
     assert new.timing["executor"] == "in-process" and new.timing["workers"] == 1
     # kept in a folder, then resumed: nothing computed, the same table
     lines = []

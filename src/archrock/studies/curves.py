@@ -44,7 +44,7 @@ from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import left_out_summary, prepare_sample
 from ..dynamics.response import DynamicModel, prepare, respond
 from ..geometry.sampling import Spreads
-from .runner import UNSET, resolve_settings
+from .runner import RunSettings
 from .work import PROGRESS_S, check_work, response_cost_s
 
 __all__ = [
@@ -612,19 +612,16 @@ def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: 
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
                    literal_cv: bool = False, dt: float | None = None,
-                   engine: str = "batch", workers=UNSET, scheduler=UNSET, out=UNSET,
-                   settings=None) -> CollapseCurve:
+                   engine: str = "batch", settings=None) -> CollapseCurve:
     """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
     of :mod:`archrock.studies.work`.  engine: "batch" (default) runs the scans of every duration in one
     parallel sweep, then every bisection step of all of them in one more
     (:mod:`archrock.dynamics.sweep`); "respond" runs response after response (0.1.0's path).  Both give
-    the same curve, bit for bit.  settings (:class:`~archrock.studies.runner.RunSettings`; the
-    0.6 keywords ``workers``, ``scheduler``, ``out`` with a DeprecationWarning), batch engine
-    only: ``workers`` N > 1 a local process pool, ``scheduler`` a Dask cluster (address or
+    the same curve, bit for bit.  settings (:class:`~archrock.studies.runner.RunSettings`),
+    batch engine only: ``workers`` N > 1 a local process pool, ``scheduler`` a Dask cluster (address or
     Client), ``out`` a folder keeping every finished response so that the same call again
     recomputes nothing it had finished."""
-    settings = resolve_settings(settings, "collapse_curve", workers=workers,
-                                scheduler=scheduler, out=out)
+    settings = RunSettings.from_dict(settings)
     model = _model(model, impact, cv, literal_cv)
     d = _durations(durations)
     engine = _engine(engine)
@@ -743,9 +740,8 @@ def _batch_rows(nominal, sampler, samples, impact, d, kwargs, bar, run) -> tuple
 def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
-                   tol: float = 1e-3, dt: float | None = None, workers=UNSET,
-                   progress=UNSET, engine: str = "batch", scheduler=UNSET,
-                   out=UNSET, settings=None) -> EnsembleCurve:
+                   tol: float = 1e-3, dt: float | None = None, engine: str = "batch",
+                   settings=None) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
     Arch i is sample i of :class:`~archrock.geometry.sampling.ArchSampler` (nominal, spreads, seed): the
@@ -759,8 +755,7 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     fixed c_v to the rates literally instead of energy-consistently (docs/method.md, Impact).
     engine "batch" (default): the nominal and every random arch and duration of a search step in
     one sweep (:func:`collapse_curve`), on the executor of ``settings``
-    (:class:`~archrock.studies.runner.RunSettings`; the 0.6 keywords ``workers``, ``scheduler``,
-    ``out``, ``progress`` with a DeprecationWarning): in-process numba threads, ``workers`` > 1
+    (:class:`~archrock.studies.runner.RunSettings`): in-process numba threads, ``workers`` > 1
     a local process pool, ``scheduler`` a Dask cluster; ``out`` a folder keeping every finished
     response (a rerun recomputes nothing it had finished).  "respond": arch after arch,
     ``workers`` > 1 of them at once in a process pool (workers die with this process; no
@@ -769,8 +764,7 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     ``progress`` reports the responses (or arches) done when the estimate exceeds a few
     seconds (:mod:`archrock._progress`).
     """
-    settings = resolve_settings(settings, "ensemble_curve", workers=workers,
-                                scheduler=scheduler, out=out, progress=progress)
+    settings = RunSettings.from_dict(settings)
     if not isinstance(nominal, VoussoirArch):
         raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
     samples = _check_int("samples", samples, 1)

@@ -20,7 +20,7 @@ from typing import Callable
 
 from .. import published
 from ..errors import ArchInputError
-from .runner import UNSET
+from .runner import RunSettings
 
 __all__ = ["run_paper_study", "PAPER_K_OPPENHEIM", "FIG3_NAME", "FIG4_NAME", "find_random_arches",
            "PAPER_RA1", "PAPER_RA2", "PAPER_CV"]
@@ -206,21 +206,15 @@ def _silent(msg: str) -> None:
     """The default progress of the library: it does not print."""
 
 
-def run_paper_study(out_dir=UNSET, progress=UNSET, figures: dict | None = None, *,
-                    settings=None) -> dict:
+def run_paper_study(figures: dict | None = None, *, settings=None) -> dict:
     """Run the paper's study into the folder ``settings.out`` (a
     :class:`~archrock.studies.runner.RunSettings`; created if needed); returns the summary
     dict, also written to ``summary.json`` there.  The settings' ``progress`` receives
-    one-line messages (:mod:`archrock._progress`; None: silent).  0.6's ``out_dir`` and
-    ``progress`` (also positional) still work with a DeprecationWarning.
-    ``figures``: {"fig3": draw(limit_result, path,
+    one-line messages (:mod:`archrock._progress`; None: silent).  ``figures``: {"fig3": draw(limit_result, path,
     directions), "fig4": draw(responses, path, labels)} returning the path written (the CLI
     passes :data:`archrock.reports.plots.PAPER_FIGURES`); None writes no figure (studies do
     not draw: reports sit a layer above)."""
-    from .runner import resolve_settings
-
-    settings = resolve_settings(settings, "run_paper_study", out_dir=out_dir,
-                                progress=progress).only("run_paper_study", "out")
+    settings = RunSettings.from_dict(settings).only("run_paper_study", "out")
     if settings.out is None:
         raise ArchInputError("out: None; the paper's study writes its summary (and figures) "
                              "into a folder; allowed a folder path (RunSettings(out=...))")

@@ -44,7 +44,7 @@ from ..errors import ArchInputError, InvalidSampleError
 from ..geometry import Arch, FamilyArch, VoussoirArch, perturb_voussoirs
 from ..groundmotion import PulseSpec
 from ..geometry.sampling import DEFAULT_SPREADS, Spreads
-from .runner import UNSET, resolve_settings
+from .runner import RunSettings
 
 __all__ = ["SobolResult", "sobol_indices", "input_layout", "arches_from_inputs", "GROUPINGS",
            "PAPER_PULSE", "check_sensitivity_work"]
@@ -299,7 +299,7 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
 def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAULT_SPREADS,
                   samples: int = 1024, *, by: str = "kind", motion=PAPER_PULSE, impact=None,
                   seed: int = 0, conf_level: float = 0.95, num_resamples: int = 200,
-                  progress=UNSET, settings=None) -> SobolResult:
+                  settings=None) -> SobolResult:
     """Sobol indices of k_l, k_r, k and (with ``motion``) the collapse indicator over the
     random arches around ``nominal`` (module docstring).
 
@@ -310,10 +310,9 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     arch, its c_v fixed on every arch); seed: of the scrambled Sobol sequence and of the
     bootstrap; conf_level: of the intervals; settings: a
     :class:`~archrock.studies.runner.RunSettings` whose ``progress`` gets one line of text per
-    chunk of arches run (:mod:`archrock._progress`; 0.6's ``progress=`` with a
-    DeprecationWarning); it runs in this process (numba threads).
+    chunk of arches run (:mod:`archrock._progress`); it runs in this process (numba threads).
     """
-    settings = resolve_settings(settings, "sobol_indices", progress=progress).only(
+    settings = RunSettings.from_dict(settings).only(
         "sobol_indices")
     sample, analyze = _salib()
     from ..dynamics.batch import prepare_batch, simulate_batch

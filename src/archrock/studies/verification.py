@@ -25,7 +25,7 @@ import numpy as np
 from .._records import readonly_arrays
 from ..contact import EngineSettings, engine_respond
 from ..errors import ArchInputError, LimitExceededError
-from .runner import UNSET
+from .runner import RunSettings
 from ..geometry import VoussoirArch
 from ..groundmotion import PulseSpec
 from ..dynamics.impact import ImpactSpec
@@ -87,15 +87,12 @@ class VerifyResult:
 
 def verify(arch: VoussoirArch, amplitudes, durations, *, pulse: str = "oppenheim",
            settings: EngineSettings | None = None, t_free: float = 20.0,
-           progress=UNSET, run_settings=None) -> VerifyResult:
+           run_settings=None) -> VerifyResult:
     """Run the engine and the two four-link models on every (duration, amplitude) of the grid.
     settings: the contact engine's; run_settings: how it runs (a
     :class:`~archrock.studies.runner.RunSettings`, named so beside the engine's settings),
-    whose ``progress`` gets a line per grid point (0.6's ``progress=`` with a
-    DeprecationWarning)."""
-    from .runner import resolve_settings
-
-    progress = resolve_settings(run_settings, "verify", progress=progress).only("verify").sink
+    whose ``progress`` gets a line per grid point."""
+    progress = RunSettings.from_dict(run_settings).only("verify").sink
     amps = np.asarray(amplitudes, float).ravel()
     durs = np.asarray(durations, float).ravel()
     if amps.size == 0 or durs.size == 0 or not np.all(np.isfinite(amps)) or np.any(amps == 0):
@@ -340,8 +337,8 @@ def ramp_cost_s(settings: EngineSettings, ramp_options: dict | None = None) -> f
 
 
 def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | None = None,
-                    k_tol: float = DEFAULT_K_TOL, workers=UNSET, ramp_options=None,
-                    progress=UNSET, run_settings=None) -> EnsembleVerifyResult:
+                    k_tol: float = DEFAULT_K_TOL, ramp_options=None,
+                    run_settings=None) -> EnsembleVerifyResult:
     """The contact engine against the four-link model's mechanisms, arch by arch, over an
     ensemble (module docstring).
 
@@ -352,15 +349,12 @@ def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | 
     slide_threshold of :func:`~archrock.contact.ramp_direction`; run_settings: how it runs (a
     :class:`~archrock.studies.runner.RunSettings`, named so beside the engine's settings):
     ``workers`` > 1 a process pool of that many, one arch per task (results never depend on
-    it), ``progress`` a line per arch (0.6's ``workers=`` and ``progress=`` with a
-    DeprecationWarning).  Bounded by :func:`~archrock.studies.work.check_work`
+    it), ``progress`` a line per arch.  Bounded by :func:`~archrock.studies.work.check_work`
     (:data:`ENGINE_RAMP_S` an arch)."""
     from ..geometry.sampling import ArchSampler
-    from .runner import resolve_settings
     from .work import check_work
 
-    run = resolve_settings(run_settings, "verify_ensemble", workers=workers,
-                           progress=progress).only("verify_ensemble", "workers")
+    run = RunSettings.from_dict(run_settings).only("verify_ensemble", "workers")
     progress = run.sink
 
     sampler = arches if isinstance(arches, ArchSampler) else None

@@ -12,7 +12,7 @@ from .config import EnsembleConfig
 from .executors import execute
 from ..._progress import Progress
 from ..enginestudy import UNSET_FRICTION
-from ..runner import UNSET, resolve_settings
+from ..runner import RunSettings
 from .compute import run_batches
 from ..store import (OTHER_CODE, Manifest, batch_path, code_digest, is_damage, read_batch,
                     same_bits, say_damage, write_batch, written_by)
@@ -86,9 +86,8 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
                       "cluster (--scheduler)", cores)
 
 
-def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNSET,
-                 progress=UNSET, keep_frame: bool = True, *, out_dir=UNSET,
-                 settings=None, dynamics: str = "auto", engine=None,
+def run_ensemble(config: EnsembleConfig, *, keep_frame: bool = True, settings=None,
+                 dynamics: str = "auto", engine=None,
                  friction=UNSET_FRICTION) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
@@ -96,9 +95,8 @@ def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNS
     nothing written, silent): ``out`` the folder of the batches and manifest, resumed if it
     exists; ``workers`` > 1 a local process pool over batches (None or 1: in-process, the numba
     parallel loop); ``scheduler`` a Dask cluster, which takes precedence over ``workers``;
-    ``progress`` the progress protocol of :mod:`archrock._progress`.  The 0.6 keywords ``out``
-    (also positional), ``out_dir``, ``workers``, ``scheduler`` and ``progress`` still work for
-    one release, with a DeprecationWarning.  keep_frame: False keeps no per-sample table in
+    ``progress`` the progress protocol of :mod:`archrock._progress` (0.7 removed the 0.6
+    keywords ``out``, ``out_dir``, ``workers``, ``scheduler``, ``progress``).  keep_frame: False keeps no per-sample table in
     memory (needs ``out``): each batch is written and dropped, the result's ``frame`` is None
     and its summary is computed from the stored batches
     (:mod:`archrock.studies.ensemble.streaming`), so memory stays that of one batch however
@@ -117,8 +115,7 @@ def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNS
 
     if not isinstance(config, EnsembleConfig):
         raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
-    settings = resolve_settings(settings, "run_ensemble", out=out, out_dir=out_dir,
-                                workers=workers, scheduler=scheduler, progress=progress)
+    settings = RunSettings.from_dict(settings)
     workers = settings.workers or 1
     scheduler, out = settings.scheduler, settings.out
     if not isinstance(keep_frame, bool):
