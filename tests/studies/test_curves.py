@@ -381,7 +381,7 @@ def test_a_scan_point_with_many_impacts_grows_its_event_table(nominal_model, mon
     """A response with more impacts than the scan's event table (an arch whose impacts lose
     almost nothing rocks on near its threshold) is run again with a larger table, not stopped
     with a Python argument's name; its outcome and impacts are those of one large table."""
-    import archrock.studies.curves as C
+    import archrock.studies.amplitude as C  # the search of one amplitude
     from archrock.errors import LimitExceededError
 
     motion = oppenheim_pulse(-1.2 * nominal_model.k_l, 0.5)
