@@ -151,47 +151,14 @@ def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None
 
 
 def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list:
+    """The grids of every (model, duration) in one call of ``run``, then their bisections
+    together, one step per call; the :class:`CollapseAmplitude` of each, arch-major."""
     searches = [(m, float(tp)) for m in range(len(models)) for tp in d]
     grids = {s: np.geomspace(thrs[s[0]] * (1 + 1e-6), a_max, n_scan) for s in searches}
     keys = [(m, tp, float(a)) for (m, tp) in searches for a in grids[(m, tp)]]
     flags = dict(zip(searches, np.array(run(keys)).reshape(len(searches), n_scan)))
-    # bisection tasks: [search, lo, hi, lo_val, role, tol]; role 'first', ('wlo', w) or
-    # ('whi', w); a window's edges to window_tol (the same midpoints as collapse_amplitude)
-    tasks, first, windows = [], {}, {}
-    for s in searches:
-        grid, fl = grids[s], flags[s]
-        hits = np.flatnonzero(fl)
-        if hits.size == 0:
-            continue
-        i0 = int(hits[0])
-        if i0 == 0:
-            first[s] = (thrs[s[0]], float(grid[0]))
-        else:
-            tasks.append([s, float(grid[i0 - 1]), float(grid[i0]), False, "first", tol])
-        ws = []
-        for j, k in survival_runs(fl, i0):
-            w = len(ws)
-            ws.append([None, float(grid[k])])
-            tasks.append([s, float(grid[j - 1]), float(grid[j]), True, ("wlo", w),
-                          window_tol(tol, float(grid[j - 1]))])
-            if k + 1 < grid.size:
-                tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w),
-                              window_tol(tol, float(grid[k]))])
-        windows[s] = ws
-    for _ in range(MAX_BISECTIONS + 1):  # the rounds of bisect_boundary, bounded the same way
-        act = [t for t in tasks if _wider(t[1], t[2], t[5])]
-        if not act:
-            break
-        mids = [0.5 * (t[1] + t[2]) for t in act]
-        out = run([(t[0][0], t[0][1], x) for t, x in zip(act, mids)])
-        for t, x, c in zip(act, mids, out):
-            if c == t[3]:
-                t[1] = x
-            else:
-                t[2] = x
-    else:
-        raise LimitExceededError(f"curves: {len(act)} bisections still wider than the tolerance "
-                                 f"{tol:g} g after {MAX_BISECTIONS} steps")
+    tasks, first, windows = _bisections(searches, grids, flags, thrs, tol)
+    _bisect_together(run, tasks, tol)
     for s, lo, hi, _, role, _ in tasks:
         if role == "first":
             first[s] = (lo, hi)
@@ -218,6 +185,53 @@ def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list
                                         r.t_collapse, tuple(tuple(w) for w in windows[s]),
                                         thrs[m], a_max, tol, grid, fl, counts[s]))
     return points
+
+
+def _bisections(searches, grids, flags, thrs, tol) -> tuple:
+    """(tasks, first, windows) of the scans: bisection tasks [search, lo, hi, lo_val, role,
+    tol], role 'first', ('wlo', w) or ('whi', w), a window's edges to window_tol (the same
+    midpoints as collapse_amplitude); first: the searches whose first collapse is at the
+    threshold; windows: each search's windows [lo, hi], their ends filled in by the tasks."""
+    tasks, first, windows = [], {}, {}
+    for s in searches:
+        grid, fl = grids[s], flags[s]
+        hits = np.flatnonzero(fl)
+        if hits.size == 0:
+            continue
+        i0 = int(hits[0])
+        if i0 == 0:
+            first[s] = (thrs[s[0]], float(grid[0]))
+        else:
+            tasks.append([s, float(grid[i0 - 1]), float(grid[i0]), False, "first", tol])
+        ws = []
+        for j, k in survival_runs(fl, i0):
+            w = len(ws)
+            ws.append([None, float(grid[k])])
+            tasks.append([s, float(grid[j - 1]), float(grid[j]), True, ("wlo", w),
+                          window_tol(tol, float(grid[j - 1]))])
+            if k + 1 < grid.size:
+                tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w),
+                              window_tol(tol, float(grid[k]))])
+        windows[s] = ws
+    return tasks, first, windows
+
+
+def _bisect_together(run, tasks: list, tol: float) -> None:
+    """Every task's bracket narrowed in place, one midpoint of each per call of ``run``: the
+    rounds of bisect_boundary, bounded the same way."""
+    for _ in range(MAX_BISECTIONS + 1):
+        act = [t for t in tasks if _wider(t[1], t[2], t[5])]
+        if not act:
+            return
+        mids = [0.5 * (t[1] + t[2]) for t in act]
+        out = run([(t[0][0], t[0][1], x) for t, x in zip(act, mids)])
+        for t, x, c in zip(act, mids, out):
+            if c == t[3]:
+                t[1] = x
+            else:
+                t[2] = x
+    raise LimitExceededError(f"curves: {len(act)} bisections still wider than the tolerance "
+                             f"{tol:g} g after {MAX_BISECTIONS} steps")
 
 
 def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None,
@@ -455,10 +469,41 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     seconds (:mod:`archrock._progress`).
     """
     settings = RunSettings.from_dict(settings)
+    band = _configure_band(nominal, samples, seed, spreads, durations, quantiles, impact,
+                           literal_cv, n_scan=n_scan, a_max=a_max, tol=tol,
+                           workers=settings.workers or 1)
+    kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+    engine = _decide_engine(engine, settings)
+    nominal_prepared = _prepare_band_nominal(band, engine, kwargs)
+    if engine == "batch":
+        nominal_curve, rows = _band_rows_batch(band, nominal_prepared, kwargs, settings)
+    else:
+        nominal_curve, rows = nominal_prepared, _band_rows_respond(band, kwargs, settings)
+    return _band_curve(band, nominal_curve, rows)
+
+
+@dataclass(frozen=True)
+class _Band:
+    """What an ensemble curve is computed for, checked (:func:`_configure_band`)."""
+
+    nominal: Arch
+    samples: int
+    sampler: object
+    q: np.ndarray
+    d: np.ndarray
+    est: float
+    spec: ImpactSpec
+    resolved: ImpactSpec
+    workers: int
+
+
+def _configure_band(nominal, samples, seed, spreads, durations, quantiles, impact, literal_cv,
+                    *, n_scan, a_max, tol, workers) -> _Band:
+    """The checked inputs of :func:`ensemble_curve`, its sampler, the estimated seconds
+    (refused beyond the work bound) and the impact law as given and as resolved."""
     if not isinstance(nominal, VoussoirArch):
         raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
     samples = _check_int("samples", samples, 1)
-    workers = settings.workers or 1
     from ..statics.supports import study_sampler
 
     # on moved supports (a nominal of statics.supports.on_moved_supports) every random arch
@@ -470,76 +515,106 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     d = _durations(durations)
     est = _check_curve_work(samples + 1, d.size, n_scan, a_max, tol, workers)
     spec = ImpactSpec.parse(impact, literal=literal_cv)
-    resolved = spec.resolved(nominal)
-    kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+    return _Band(nominal, samples, sampler, q, d, est, spec, spec.resolved(nominal), workers)
+
+
+def _decide_engine(engine, settings) -> str:
+    """The engine of the curves ("batch" or "respond"), checked against the run settings."""
     engine = _engine(engine)
     _check_batch_run(engine, settings)
-    if engine == "batch":  # the checks of collapse_curve, before the arches are drawn
-        _check_real("a_max", a_max, None, "a finite number > the activation threshold")
-        nominal_model = prepare(nominal, spec)
-    else:
-        nominal_curve = collapse_curve(prepare(nominal, spec), d, engine=engine, **kwargs)
-    jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
+    return engine
+
+
+def _prepare_band_nominal(band: _Band, engine: str, kwargs: dict):
+    """The batch engine: the nominal arch's model (checked as :func:`collapse_curve` checks,
+    before the arches are drawn); "respond": its curve, computed here."""
+    if engine == "batch":
+        _check_real("a_max", kwargs["a_max"], None, "a finite number > the activation threshold")
+        return prepare(band.nominal, band.spec)
+    return collapse_curve(prepare(band.nominal, band.spec), band.d, engine=engine, **kwargs)
+
+
+def _band_rows_batch(band: _Band, nominal_model, kwargs: dict, settings) -> tuple:
+    """(the nominal curve, the rows of every random arch) by the batch engine, the responses
+    on the progress bar: the scan and (about) three bisections per arch and duration."""
     from .._progress import Progress
 
-    if engine == "batch":
-        # responses: the scan and (about) three bisections per arch and duration
-        per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
-            max(float(a_max) / float(tol), 2.0))))
-        bar = Progress((samples + 1) * d.size * per_curve,
-                       settings.progress if est > PROGRESS_S else None,
-                       desc="curves", unit="response")
-        run = dict(settings=settings)
-        try:
-            nominal_curve, rows = _batch_rows(nominal_model, sampler, samples, resolved, d,
-                                              kwargs, bar, run)
-            bar.finish()  # the total counted ~3 bisections a curve: an estimate from above
-        finally:
-            bar.close()
-    else:
-        bar = Progress(samples, settings.progress if est > PROGRESS_S else None, desc="curves",
-                       unit="arch")
-        try:
-            if workers == 1:
-                rows = []
-                for j in jobs:
-                    rows.append(_one_sample(j))
-                    bar.update(1)
-            else:
-                from .executors import worker_pool
+    n_scan, a_max, tol = kwargs["n_scan"], kwargs["a_max"], kwargs["tol"]
+    per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
+        max(float(a_max) / float(tol), 2.0))))
+    bar = Progress((band.samples + 1) * band.d.size * per_curve,
+                   settings.progress if band.est > PROGRESS_S else None,
+                   desc="curves", unit="response")
+    try:
+        out = _batch_rows(nominal_model, band.sampler, band.samples, band.resolved, band.d,
+                          kwargs, bar, dict(settings=settings))
+        bar.finish()  # the total counted ~3 bisections a curve: an estimate from above
+    finally:
+        bar.close()
+    return out
 
-                with worker_pool(min(workers, os.cpu_count() or 1)) as ex:
-                    rows = []
-                    for row in ex.map(_one_sample, jobs):
-                        rows.append(row)
-                        bar.update(1)
-            bar.finish()
-        finally:
-            bar.close()
+
+def _band_rows_respond(band: _Band, kwargs: dict, settings) -> list:
+    """The rows of every random arch, arch after arch (``workers`` > 1 of them at once in a
+    process pool)."""
+    from .._progress import Progress
+
+    jobs = [(band.sampler, i, band.resolved, band.d, kwargs) for i in range(band.samples)]
+    bar = Progress(band.samples, settings.progress if band.est > PROGRESS_S else None,
+                   desc="curves", unit="arch")
+    rows = []
+    try:
+        if band.workers == 1:
+            for j in jobs:
+                rows.append(_one_sample(j))
+                bar.update(1)
+        else:
+            from .executors import worker_pool
+
+            with worker_pool(min(band.workers, os.cpu_count() or 1)) as ex:
+                for row in ex.map(_one_sample, jobs):
+                    rows.append(row)
+                    bar.update(1)
+        bar.finish()
+    finally:
+        bar.close()
+    return rows
+
+
+def _band_curve(band: _Band, nominal_curve, rows) -> EnsembleCurve:
+    """The :class:`EnsembleCurve` of the rows: the usable arches' quantiles, the others listed
+    in ``failed``; ArchInputError when none is usable."""
     failed = tuple((i, why) for i, (_, why) in enumerate(rows) if why is not None)
     kept = tuple(i for i, (row, _) in enumerate(rows) if row is not None)
     if not kept:
         i, why = failed[0]
-        raise ArchInputError(f"samples: none of the {samples} random arches is usable (sample {i}: "
-                             f"{why}); allowed spreads that give arches able to stand")
+        raise ArchInputError(f"samples: none of the {band.samples} random arches is usable "
+                             f"(sample {i}: {why}); allowed spreads that give arches able to "
+                             f"stand")
     amps = np.array([rows[i][0] for i in kept])
-    requested, samples = samples, len(kept)
-    # quantiles with non-collapsing arches as +inf: order statistics, linear interpolation
+    bands = _quantile_bands(amps, band.q)
+    note = None
+    if len(kept) == 1:  # every quantile of one arch is its value: a band of zero width
+        bands, note = np.full_like(bands, np.nan), "not estimated: one usable arch"
+    sampler = band.sampler
+    return EnsembleCurve(band.d, tuple(float(x) for x in band.q), bands, amps, nominal_curve,
+                         sampler.seed, sampler.spreads, band.spec, band.resolved.cv, len(kept),
+                         failed, kept, band.samples, note,
+                         None if getattr(sampler, "movement", None) is None
+                         else sampler.movement.to_dict())
+
+
+def _quantile_bands(amps: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """bands[q_index, d_index] of the rows ``amps`` (non-collapsing arches as +inf): order
+    statistics, linear interpolation; inf where the quantile lies among the +inf."""
+    samples = len(amps)
     srt = np.sort(amps, axis=0)
     pos = q[:, None] * (samples - 1)
     lo_i = np.floor(pos).astype(int)
     hi_i = np.minimum(lo_i + 1, samples - 1)
     frac = pos - lo_i
-    cols = np.arange(d.size)[None, :]
+    cols = np.arange(amps.shape[1])[None, :]
     a_lo, a_hi = srt[lo_i, cols], srt[hi_i, cols]
     with np.errstate(invalid="ignore"):
-        bands = np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
-                         a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
-    note = None
-    if samples == 1:  # every quantile of one arch is its value: a band of zero width
-        bands, note = np.full_like(bands, np.nan), "not estimated: one usable arch"
-    return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
-                         sampler.seed, sampler.spreads, spec, resolved.cv, samples,
-                         failed, kept, requested, note,
-                         None if getattr(sampler, "movement", None) is None
-                         else sampler.movement.to_dict())
+        return np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
+                        a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
