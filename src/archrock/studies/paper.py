@@ -102,8 +102,29 @@ def _dynamics_step(out: Path, progress: Callable[[str], None], draw) -> dict:
              f"{res_nom.impacts[0]:.3f} s, peak {res_nom.peak:.4f} rad "
              f"(reference integrator: peak {res_ref.peak:.4f} rad)")
     found = find_random_arches(cv)
-    rows = {}
     responses, labels = [res_nom], ["Oppenheim's arch"]
+    rows = _random_rows(out, progress, found, responses, labels)
+    if draw is not None:
+        progress(f"wrote {draw(responses, out / FIG4_NAME, labels=labels)}")
+    return {
+        "cv_paper_model": cv, "cv_momentum_model": momentum, "paper_cv": PAPER_CV,
+        "least_loss_after_M_l": least.to_dict(),
+        "nominal": {"collapsed": res_nom.collapsed, "status": res_nom.status, "peak": res_nom.peak,
+                    "impacts": res_nom.impacts[:5], "reference_peak": res_ref.peak,
+                    "reference_impacts": res_ref.impacts[:5]},
+        "random": rows,
+        "random_search": {"seeds": found["searched"], "collapsing": found["failing"],
+                          "spreads": SPREADS, "near_radius": found["near_radius"],
+                          "near_collapsing": found["near"]},
+        "figure": FIG4_NAME if draw is not None else None,
+    }
+
+
+def _random_rows(out: Path, progress: Callable[[str], None], found: dict, responses: list,
+                 labels: list) -> dict:
+    """The summary rows of the RA-1 and RA-2 type arches found (their geometry written to
+    ``out``; their responses and labels appended for Fig. 4)."""
+    rows = {}
     for key in ("RA-1", "RA-2"):
         if found[key] is None:
             progress(f"{key}: no arch of that type among {found['searched']} seeds")
@@ -124,20 +145,7 @@ def _dynamics_step(out: Path, progress: Callable[[str], None], draw) -> dict:
                      "mechanism_r": model.limit.mechanism_r.to_dict(),
                      "restitution": model.impact.to_dict(),
                      "geometry": f"{key.lower()}_geometry.json"}
-    if draw is not None:
-        progress(f"wrote {draw(responses, out / FIG4_NAME, labels=labels)}")
-    return {
-        "cv_paper_model": cv, "cv_momentum_model": momentum, "paper_cv": PAPER_CV,
-        "least_loss_after_M_l": least.to_dict(),
-        "nominal": {"collapsed": res_nom.collapsed, "status": res_nom.status, "peak": res_nom.peak,
-                    "impacts": res_nom.impacts[:5], "reference_peak": res_ref.peak,
-                    "reference_impacts": res_ref.impacts[:5]},
-        "random": rows,
-        "random_search": {"seeds": found["searched"], "collapsing": found["failing"],
-                          "spreads": SPREADS, "near_radius": found["near_radius"],
-                          "near_collapsing": found["near"]},
-        "figure": FIG4_NAME if draw is not None else None,
-    }
+    return rows
 
 
 def _table(summary: dict) -> str:
