@@ -45,7 +45,7 @@ def _timed(config, **kw):
     from archrock.studies.ensemble import run_ensemble
 
     t0 = time.perf_counter()
-    res = run_ensemble(config, progress=False, **kw)
+    res = run_ensemble(config, **kw)
     wall = time.perf_counter() - t0
     return res, wall
 
@@ -123,7 +123,9 @@ def main(argv=None):
     out["threads"] = {"wall_s": wall, "arches_per_s": args.samples / wall, "threads": n_threads}
     print(f"in-process ({n_threads} threads): {wall:7.2f} s  {args.samples / wall:7.1f} arches/s")
 
-    res2, wall = _timed(cfg, workers=2)
+    from archrock.studies.runner import RunSettings
+
+    res2, wall = _timed(cfg, settings=RunSettings(workers=2))
     out["workers_2"] = {"wall_s": wall, "arches_per_s": args.samples / wall}
     print(f"process pool (2):       {wall:7.2f} s  {args.samples / wall:7.1f} arches/s")
 

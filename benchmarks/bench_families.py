@@ -41,9 +41,9 @@ def _config(nominal, samples, spreads=None):
 def _run(nominal, samples, spreads=None):
     from archrock.studies.ensemble import run_ensemble
 
-    run_ensemble(_config(nominal, min(samples, 50), spreads), progress=False)  # warm-up
+    run_ensemble(_config(nominal, min(samples, 50), spreads))  # warm-up
     t0 = time.perf_counter()
-    res = run_ensemble(_config(nominal, samples, spreads), progress=False)
+    res = run_ensemble(_config(nominal, samples, spreads))
     wall = time.perf_counter() - t0
     f = res.frame
     return {"samples": samples, "wall_s": wall, "arches_per_s": samples / wall,

@@ -87,7 +87,7 @@ def _run(cfg, threads):
     clock = KernelClock()
     try:
         t0 = time.perf_counter()
-        res = run_ensemble(cfg, progress=False)
+        res = run_ensemble(cfg)
         wall = time.perf_counter() - t0
     finally:
         clock.restore()

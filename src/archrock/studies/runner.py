@@ -7,9 +7,9 @@ multiple stripes, Sobol indices, defect maps, verification ensembles, the paper'
 assessment) runs on the executors of :mod:`archrock.studies.executors` (in-process, process
 pool, Dask), keeps its finished work in the store of :mod:`archrock.studies.store` (atomic
 Parquet files, a manifest, provenance, resume by verification) and reports through the one
-progress protocol of :mod:`archrock._progress` (the CLI renders it).  The 0.6 keyword arguments
-(``workers=``, ``scheduler=``, ``out=``, ``out_dir=``, ``progress=``) still work for one
-release, with a DeprecationWarning (:func:`resolve_settings`).
+progress protocol of :mod:`archrock._progress` (the CLI renders it).  0.7 removes the 0.6
+keyword arguments (``workers=``, ``scheduler=``, ``out=``, ``out_dir=``, ``progress=``);
+:func:`resolve_settings` reads them only for the studies that have not dropped them yet.
 
 IDA, multiple stripes and the collapse-acceleration curves search collapse boundaries in rounds
 (a scan, then bisection steps); every round is one list of items (arch, motion, scale) for

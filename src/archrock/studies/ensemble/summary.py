@@ -145,60 +145,83 @@ class EnsembleResult:
         for col, name in (("mech_l", "M_l"), ("mech_r", "M_r")):
             vc = df.loc[df[col] != "", col].value_counts()
             hinges[name] = {str(k): int(v) for k, v in vc.items()}
-        k0l, k0r = self.nominal["k_l"], self.nominal["k_r"]
-        far = {}
-        for name, (ral, rar) in PAPER_RANDOM_ARCHES.items():
-            dl = np.abs(kl - k0l) >= abs(ral - k0l)
-            dr = np.abs(kr - k0r) >= abs(rar - k0r)
-            asym = np.abs(kl - kr) >= abs(ral - rar)
-            share = (lambda m: float(m.mean()) if m.size else None)
-            far[name] = {"k_l_ref": ral, "k_r_ref": rar, "k_l": share(dl), "k_r": share(dr),
-                         "either": share(dl | dr), "both": share(dl & dr), "asymmetry": share(asym)}
-        out = {
-            "samples": int(len(df)),
-            "seed": self.config.seed,
-            "spreads": {"span": self.config.spreads.span,
-                        "thickness": self.config.spreads.thickness,
-                        "radius": self.config.spreads.radius,
-                        "tilt_deg": self.config.spreads.tilt},
-            "nominal": self.nominal,
-            "k_l": _stats(kl), "k_r": _stats(kr),
-            "k_min": _stats(np.minimum(kl, kr)),
-            "hinge_patterns": hinges,
-            "as_far_as": far,
-            "failed": {"count": int(len(failed)), "reasons": reasons},
-            "outcomes": _outcomes(df, self.config.motion is not None),
-            "impact": self.impact,
-            "motion": None if self.config.motion is None else self.config.motion.to_dict(),
-            "p_collapse": None,
-            "p_failure": None,
-            "response": None,
-            "timing": self.timing,
-        }
+        out = summary_dict(self.config, self.nominal, self.impact, self.timing, int(len(df)),
+                           {"k_l": _stats(kl), "k_r": _stats(kr),
+                            "k_min": _stats(np.minimum(kl, kr))},
+                           hinges, _far(kl, kr, self.nominal),
+                           {"count": int(len(failed)), "reasons": reasons},
+                           _outcomes(df, self.config.motion is not None))
         if self.config.motion is not None:
             ran = df[df["status"].isin(INTEGRATED)]
             n, k = int(len(ran)), int(ran["collapsed"].sum())
-            out["p_collapse"] = _wilson(k, n, confidence, P_COLLAPSE_RULE, collapses=k)
-            cs = out["outcomes"]["counts"]["cannot_stand"]
-            out["p_failure"] = _wilson(cs + k, cs + n, confidence, P_FAILURE_RULE,
-                                       failures=cs + k, cannot_stand=cs, collapses=k)
-            col = ran[ran["collapsed"]]
-            stopped = (ran["early_stopped"].to_numpy() if "early_stopped" in ran
-                       else np.zeros(len(ran), dtype=bool))
-            out["response"] = {
-                "status": {str(k_): int(v) for k_, v in ran["status"].value_counts().items()},
-                "activated": float((ran["n_activations"] > 0).mean()) if n else None,
-                "peak_rad": _stats(ran.loc[~ran["collapsed"], "peak"].to_numpy()),
-                # impacts after an early stop are not counted: those arches are left out
-                "n_impacts": _stats(ran.loc[~stopped, "n_impacts"].to_numpy()),
-                "early_stopped": int(stopped.sum()),
-                "events_truncated": int(ran["events_truncated"].sum()),
-                # the last passage of the unstable position; t_limit: the numerical stop
-                "t_collapse_s": _stats(col["t_collapse"].to_numpy()),
-                "t_limit_s": _stats(col["t_limit"].to_numpy()),
-                "t_unstable_s": _stats(ran["t_unstable"].to_numpy()),
-                "unstable_but_survived": int((np.isfinite(ran["t_unstable"].to_numpy())
-                                              & ~ran["collapsed"].to_numpy()).sum()),
-            }
+            out.update(probabilities(k, n, out["outcomes"]["counts"]["cannot_stand"],
+                                     confidence))
+            out["response"] = _response(ran)
         return out
 
+
+def summary_dict(config: EnsembleConfig, nominal: dict, impact: dict, timing: dict,
+                 samples: int, k_stats: dict, hinges: dict, far: dict, failed: dict,
+                 outcomes: dict) -> dict:
+    """The summary's keys, in order, from its parts (p_collapse, p_failure and response None:
+    the ensemble's motion fills them in)."""
+    sp = config.spreads
+    return {
+        "samples": samples, "seed": config.seed,
+        "spreads": {"span": sp.span, "thickness": sp.thickness, "radius": sp.radius,
+                    "tilt_deg": sp.tilt},
+        "nominal": nominal, **k_stats,
+        "hinge_patterns": hinges,
+        "as_far_as": far,
+        "failed": failed,
+        "outcomes": outcomes, "impact": impact,
+        "motion": None if config.motion is None else config.motion.to_dict(),
+        "p_collapse": None, "p_failure": None, "response": None,
+        "timing": timing,
+    }
+
+
+def probabilities(collapses: int, integrated: int, cannot_stand: int,
+                  confidence: float) -> dict:
+    """p_collapse and p_failure of the summary (module docstring), with Wilson intervals."""
+    k, n, cs = collapses, integrated, cannot_stand
+    return {"p_collapse": _wilson(k, n, confidence, P_COLLAPSE_RULE, collapses=k),
+            "p_failure": _wilson(cs + k, cs + n, confidence, P_FAILURE_RULE,
+                                 failures=cs + k, cannot_stand=cs, collapses=k)}
+
+
+def _far(kl, kr, nominal: dict) -> dict:
+    """The "as far from nominal as RA-x" shares (module docstring) of the standing arches."""
+    k0l, k0r = nominal["k_l"], nominal["k_r"]
+    far = {}
+    for name, (ral, rar) in PAPER_RANDOM_ARCHES.items():
+        dl = np.abs(kl - k0l) >= abs(ral - k0l)
+        dr = np.abs(kr - k0r) >= abs(rar - k0r)
+        asym = np.abs(kl - kr) >= abs(ral - rar)
+        share = (lambda m: float(m.mean()) if m.size else None)
+        far[name] = {"k_l_ref": ral, "k_r_ref": rar, "k_l": share(dl), "k_r": share(dr),
+                     "either": share(dl | dr), "both": share(dl & dr), "asymmetry": share(asym)}
+    return far
+
+
+def _response(ran) -> dict:
+    """The response statistics of the integrated samples ``ran`` (rows of the frame)."""
+    n = int(len(ran))
+    col = ran[ran["collapsed"]]
+    stopped = (ran["early_stopped"].to_numpy() if "early_stopped" in ran
+               else np.zeros(len(ran), dtype=bool))
+    return {
+        "status": {str(k_): int(v) for k_, v in ran["status"].value_counts().items()},
+        "activated": float((ran["n_activations"] > 0).mean()) if n else None,
+        "peak_rad": _stats(ran.loc[~ran["collapsed"], "peak"].to_numpy()),
+        # impacts after an early stop are not counted: those arches are left out
+        "n_impacts": _stats(ran.loc[~stopped, "n_impacts"].to_numpy()),
+        "early_stopped": int(stopped.sum()),
+        "events_truncated": int(ran["events_truncated"].sum()),
+        # the last passage of the unstable position; t_limit: the numerical stop
+        "t_collapse_s": _stats(col["t_collapse"].to_numpy()),
+        "t_limit_s": _stats(col["t_limit"].to_numpy()),
+        "t_unstable_s": _stats(ran["t_unstable"].to_numpy()),
+        "unstable_but_survived": int((np.isfinite(ran["t_unstable"].to_numpy())
+                                      & ~ran["collapsed"].to_numpy()).sum()),
+    }
