@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from ...leftout import REASONS, LeftOut
-from .summary import INTEGRATED, PAPER_RANDOM_ARCHES, probabilities, summary_dict
+from .statistics import INTEGRATED, PAPER_RANDOM_ARCHES, probabilities, summary_dict
 
 __all__ = ["summarize_batches", "summarize_store", "SUMMARY_COLUMNS", "QUANTILE_BINS"]
 
