@@ -146,6 +146,67 @@ def ramp_until_moving(blocks, motion, sign: float, lam: float, dlam: float, chec
             raise LimitExceededError(refusal)
 
 
+def check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
+                       lambda_start) -> None:
+    """ArchInputError naming the first option of a ramp (of an arch or an arcade) out of its
+    range (:func:`ramp_direction`)."""
+    if direction not in ("l", "r"):
+        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
+                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
+                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
+                            ("lambda_max", lambda_max, 1e-3, 100.0)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+    if (isinstance(lambda_start, bool) or not isinstance(lambda_start, (int, float))
+            or not 0.0 <= lambda_start < lambda_max):
+        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
+                             f"lambda_max = {lambda_max:g}")
+
+
+def ramp_stage_one(blocks, motion, direction, lambda_start, lambda_max, rate, settings, check,
+                   progress, refusal):
+    """Stage 1 on settled ``blocks`` in ``direction`` at ``rate`` per T from ``lambda_start``:
+    :func:`ramp_until_moving`'s (lambda first seen moving, last reading), with a progress line."""
+    sign = 1.0 if direction == "l" else -1.0
+    lam_seen, reading = ramp_until_moving(blocks, motion, sign, float(lambda_start),
+                                          rate / settings.steps_per_T, check, lambda_max, refusal)
+    if progress:
+        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
+    return lam_seen, reading
+
+
+def bisect_holds(moves, lam_seen: float, tol: float, direction: str, progress=None):
+    """Stage 2 of a ramp: holds from rest, ``moves(lam)`` -> (moved, reading or None), halving
+    down from ``lam_seen`` until one rests, then bisecting down to a relative width ``tol``.
+    Returns (lo, hi, holds ((lambda, moved), ...), the reading of the lowest hold that moved
+    with one, else None)."""
+    holds = []
+    hi, lo = lam_seen, 0.5 * lam_seen
+    first = None
+    while True:
+        moved, got = moves(lo)
+        holds.append((lo, moved))
+        if not moved:
+            break
+        first = got or first
+        if lo == 0.0:  # moves under gravity alone: the blocks do not stand in the engine
+            hi = 0.0
+            break
+        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
+    while hi - lo > tol * hi:
+        mid = 0.5 * (lo + hi)
+        moved, got = moves(mid)
+        holds.append((mid, moved))
+        if progress:
+            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
+        if moved:
+            hi, first = mid, got or first
+        else:
+            lo = mid
+    return lo, hi, tuple(holds), first
+
+
 def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> bool:
     ca = engine_arch(arch, settings)
     ca.settle()
@@ -177,33 +238,21 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     within the range; :func:`ramp_range` gives the range that follows an arch's k);
     lambda_start: the ramp starts from this lambda, held from rest (0 <= lambda_start <
     lambda_max)."""
-    if direction not in ("l", "r"):
-        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
-    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
-                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
-                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
-                            ("lambda_max", lambda_max, 1e-3, 100.0)):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
-            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
-    if (isinstance(lambda_start, bool) or not isinstance(lambda_start, (int, float))
-            or not 0.0 <= lambda_start < lambda_max):
-        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
-                             f"lambda_max = {lambda_max:g}")
+    check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
+                       lambda_start)
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arch(arch, settings)
     ca.settle()
     thr_slide = slide_threshold * float(np.mean(ca.joint_lengths))
     check = max(1, int(settings.steps_per_T // 100))
-    dlam = rate / settings.steps_per_T
-    lam_seen, (rot, sl, measure, pos, ang) = ramp_until_moving(
-        ca, lambda m: _motion(m, threshold, thr_slide), sign, float(lambda_start), dlam, check,
-        lambda_max, f"the arch did not move in the contact engine up to |xg''|/g = "
-                    f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
-                    f"analysis may give a larger multiplier or none: raise lambda_max, "
-                    f"`archrock dem --ramp --ramp-max`)")
-    if progress:
-        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
+    lam_seen, (rot, sl, measure, pos, ang) = ramp_stage_one(
+        ca, lambda m: _motion(m, threshold, thr_slide), direction, lambda_start, lambda_max,
+        rate, settings, check, progress,
+        "the arch did not move in the contact engine up to |xg''|/g = "
+        f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
+        f"analysis may give a larger multiplier or none: raise lambda_max, "
+        f"`archrock dem --ramp --ramp-max`)")
     # hinges: joints opening by at least a quarter of the largest relative rotation
     big = np.abs(rot).max()
     slid = tuple(int(j) for j in np.flatnonzero(np.abs(sl) > thr_slide))
@@ -211,32 +260,12 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     hinges = tuple(int(j) for j in np.flatnonzero(np.abs(rot) >= 0.05 * big)) if rocking else ()
     gaps = ca.end_gaps(pos, ang)
     edges = tuple(EDGE[int(np.argmin(gaps[j]))] for j in hinges)
-    # stage 2: holds from rest, bisecting [lo, hi]
-    holds = []
-    hi = lam_seen
-    lo = 0.5 * lam_seen
-    while True:
-        moved = _moves(arch, settings, sign, lo, hold, threshold, thr_slide, check)
-        holds.append((lo, moved))
-        if not moved:
-            break
-        if lo == 0.0:  # moves under gravity alone: the arch does not stand in the engine
-            hi = 0.0
-            break
-        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
-    while hi - lo > tol * hi:
-        mid = 0.5 * (lo + hi)
-        moved = _moves(arch, settings, sign, mid, hold, threshold, thr_slide, check)
-        holds.append((mid, moved))
-        if progress:
-            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
-        if moved:
-            hi = mid
-        else:
-            lo = mid
+    lo, hi, holds, _ = bisect_holds(
+        lambda lam: (_moves(arch, settings, sign, lam, hold, threshold, thr_slide, check), None),
+        lam_seen, tol, direction, progress)
     return RampDirection(direction, 0.5 * (lo + hi), lo, hi, "rocking" if rocking else "sliding",
                          hinges, edges, slid, float(lam_seen),
-                         tuple(float(x) for x in rot), tuple(float(x) for x in sl), tuple(holds))
+                         tuple(float(x) for x in rot), tuple(float(x) for x in sl), holds)
 
 
 def ramp(arch: VoussoirArch, settings: EngineSettings | None = None, progress=None, *,
