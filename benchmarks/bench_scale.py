@@ -22,12 +22,12 @@ Usage: python benchmarks/bench_scale.py [--samples 10000] [--million] [--json FI
 
 from __future__ import annotations
 
-import argparse
-import json
 import os
 import platform
 import resource
 import time
+
+from _common import finish, parser
 
 
 #: runs per configuration in the scaling table (the median is shown)
@@ -190,11 +190,9 @@ def million(samples=1_000_000, batch_size=10_000):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--samples", type=int, default=10000)
+    ap = parser(__doc__, samples=10000)
     ap.add_argument("--million", action="store_true",
                     help="also 10^6 arches with early stop, printing the peak resident memory")
-    ap.add_argument("--json", help="also write the figures to this JSON file")
     args = ap.parse_args(argv)
 
     import numba
@@ -209,10 +207,7 @@ def main(argv=None):
     out["scaling"] = scaling(args.samples)
     if args.million:
         out["million"] = million()
-    if args.json:
-        with open(args.json, "w") as fh:
-            json.dump(out, fh, indent=2)
-    return out
+    return finish(out, args.json)
 
 
 if __name__ == "__main__":
