@@ -9,8 +9,8 @@ import sys
 from ..errors import ArchInputError, GeometryOutcome, NotFourHingeError
 from ._parser import emit_json, finite_float, positive_float
 from ._friction import add_friction_option
-from .options import (add_dynamics_option, add_geometry_options,
-                      add_impact_options, add_motion_options, animation_arg, arch_from_args,
+from .options import (add_dynamics_option, add_geometry_options, add_impact_options,
+                      add_motion_options, add_output_options, animation_arg, arch_from_args,
                       figure_arg, friction_mu, friction_words, model_from_args, motion_from_args)
 
 
@@ -42,14 +42,12 @@ def add_respond_parser(subparsers):
                    help="rotation limit as a multiple of the unstable rotation (> 1): where the "
                         "integration of a collapse stops (t_limit); the collapse time, the last "
                         "passage of the unstable rotation, does not depend on it")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png",
-                   help="write a figure of the motion and response; it runs to --t-end or, when "
-                        "the run ends later (at rest, or at the rotation limit after a collapse), "
-                        "to that end plus 5%%, but at most to 2 x --t-end or 10 s after the ground "
-                        "motion, whichever is later")
-    p.add_argument("--animate", metavar="FILE.gif",
-                   help="write an animation of the mechanism (same time span as --plot)")
+    add_output_options(
+        p, plot="write a figure of the motion and response; it runs to --t-end or, when the run "
+                "ends later (at rest, or at the rotation limit after a collapse), to that end "
+                "plus 5%%, but at most to 2 x --t-end or 10 s after the ground motion, "
+                "whichever is later",
+        animate="write an animation of the mechanism (same time span as --plot)")
     p.set_defaults(func=run_respond)
     return p
 
