@@ -30,7 +30,7 @@ from ..geometry.arcade import GROUND, Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
 from .engine import PymunkBlocks, add_block, import_pymunk, settle_blocks
-from .ramp import bisect_holds, check_ramp_options, ramp_range, ramp_stage_one
+from .ramp import RampResult, bisect_holds, check_ramp_options, ramp_range, ramp_stage_one
 from .rigid import engine_arcade
 from .settings import EngineSettings, engine_scales
 
@@ -176,13 +176,9 @@ class ArcadeRampDirection:
 
 
 @dataclass(frozen=True)
-class ArcadeRamp:
-    """Both directions of :func:`arcade_ramp`, with the settings and ramp options used."""
-
-    l: ArcadeRampDirection
-    r: ArcadeRampDirection
-    settings: EngineSettings
-    ramp: dict
+class ArcadeRamp(RampResult):
+    """Both directions of :func:`arcade_ramp` (:class:`ArcadeRampDirection` each), with the
+    settings and ramp options used."""
 
     def to_dict(self) -> dict:
         return {"k_l": self.l.multiplier, "k_r": self.r.multiplier, "l": self.l.to_dict(),
@@ -247,12 +243,9 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arcade(arc, settings)
-    ca.settle()
-    thr_slide = slide_threshold * float(np.mean(ca.contact_lengths))
-    check = max(1, int(settings.steps_per_T // 100))
-    lam_seen, (rot, sl, measure, pos, ang) = ramp_stage_one(
-        ca, lambda m: _motion(m, threshold, thr_slide), direction, lambda_start, lambda_max,
-        rate, settings, check, progress,
+    thr_slide, check, lam_seen, (rot, sl, measure, pos, ang) = ramp_stage_one(
+        ca, ca.contact_lengths, _motion, direction, threshold, slide_threshold, lambda_start,
+        lambda_max, rate, progress,
         "the arcade did not move in the contact engine up to |xg''|/g = "
         f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
     ramp_reading = _read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)

@@ -164,16 +164,24 @@ def check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, l
                              f"lambda_max = {lambda_max:g}")
 
 
-def ramp_stage_one(blocks, motion, direction, lambda_start, lambda_max, rate, settings, check,
-                   progress, refusal):
-    """Stage 1 on settled ``blocks`` in ``direction`` at ``rate`` per T from ``lambda_start``:
-    :func:`ramp_until_moving`'s (lambda first seen moving, last reading), with a progress line."""
+def ramp_stage_one(blocks, lengths, motion, direction, threshold, slide_threshold,
+                   lambda_start, lambda_max, rate, progress, refusal):
+    """Settle ``blocks`` (an engine arch or arcade) and run stage 1 in ``direction`` at ``rate``
+    per T from ``lambda_start``; ``lengths`` are its joints' or contacts' lengths [m] (the
+    slide threshold is ``slide_threshold`` x their mean) and ``motion(blocks, thr_rot,
+    thr_slide)`` its reading.  Returns (slide threshold [m], steps between readings, the lambda
+    first seen moving, the last reading), with a progress line."""
+    blocks.settle()
+    thr_slide = slide_threshold * float(np.mean(lengths))
+    steps_per_T = blocks.settings.steps_per_T
+    check = max(1, int(steps_per_T // 100))
     sign = 1.0 if direction == "l" else -1.0
-    lam_seen, reading = ramp_until_moving(blocks, motion, sign, float(lambda_start),
-                                          rate / settings.steps_per_T, check, lambda_max, refusal)
+    lam_seen, reading = ramp_until_moving(
+        blocks, lambda m: motion(m, threshold, thr_slide), sign, float(lambda_start),
+        rate / steps_per_T, check, lambda_max, refusal)
     if progress:
         progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
-    return lam_seen, reading
+    return thr_slide, check, lam_seen, reading
 
 
 def bisect_holds(moves, lam_seen: float, tol: float, direction: str, progress=None):
@@ -243,12 +251,9 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arch(arch, settings)
-    ca.settle()
-    thr_slide = slide_threshold * float(np.mean(ca.joint_lengths))
-    check = max(1, int(settings.steps_per_T // 100))
-    lam_seen, (rot, sl, measure, pos, ang) = ramp_stage_one(
-        ca, lambda m: _motion(m, threshold, thr_slide), direction, lambda_start, lambda_max,
-        rate, settings, check, progress,
+    thr_slide, check, lam_seen, (rot, sl, measure, pos, ang) = ramp_stage_one(
+        ca, ca.joint_lengths, _motion, direction, threshold, slide_threshold, lambda_start,
+        lambda_max, rate, progress,
         "the arch did not move in the contact engine up to |xg''|/g = "
         f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
         f"analysis may give a larger multiplier or none: raise lambda_max, "
