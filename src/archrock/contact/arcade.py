@@ -30,7 +30,8 @@ from ..geometry.arcade import GROUND, Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
 from .engine import PymunkBlocks, add_block, import_pymunk, settle_blocks
-from .ramp import RampResult, bisect_holds, check_ramp_options, ramp_range, ramp_stage_one
+from .ramp import (RampResult, bisect_holds, check_ramp_options, ramp_range, ramp_stage_one,
+                   read_hinges)
 from .rigid import engine_arcade
 from .settings import EngineSettings, engine_scales
 
@@ -220,16 +221,6 @@ def _moves(arc, settings, sign, lam, hold, thr_rot, thr_slide, check):
     return moved, None
 
 
-def _read_hinges(rot, sl, gaps, threshold, thr_slide):
-    """(hinges ((contact, end), ...), sliding contacts, rocking?) of a contact motion: the
-    contacts turning by at least 5% of the largest relative rotation, at their closed end."""
-    big = np.abs(rot).max()
-    slid = tuple(int(c) for c in np.flatnonzero(np.abs(sl) > thr_slide))
-    rocking = big / threshold >= np.abs(sl).max() / thr_slide
-    turning = np.flatnonzero(np.abs(rot) >= 0.05 * big) if rocking else np.array([], int)
-    return tuple((int(c), int(np.argmin(gaps[c]))) for c in turning), slid, bool(rocking)
-
-
 def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings | None = None,
                           *, rate: float = 0.05, hold: float = 4.0, tol: float = 0.005,
                           threshold: float = 1e-3, slide_threshold: float = 1e-3,
@@ -248,11 +239,11 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
         lambda_max, rate, progress,
         "the arcade did not move in the contact engine up to |xg''|/g = "
         f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
-    ramp_reading = _read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
+    ramp_reading = read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
     lo, hi, holds, first = bisect_holds(
         lambda lam: _moves(arc, settings, sign, lam, hold, threshold, thr_slide, check),
         lam_seen, tol, direction, progress)
-    hinges, slid, rocking = (_read_hinges(*first, threshold, thr_slide) if first is not None
+    hinges, slid, rocking = (read_hinges(*first, threshold, thr_slide) if first is not None
                              else ramp_reading)
     places = tuple(arc.contacts[c].place(e) for c, e in hinges)
     return ArcadeRampDirection(direction, 0.5 * (lo + hi), lo, hi,

@@ -215,6 +215,18 @@ def bisect_holds(moves, lam_seen: float, tol: float, direction: str, progress=No
     return lo, hi, tuple(holds), first
 
 
+def read_hinges(rot, sl, gaps, threshold, thr_slide):
+    """(hinges ((joint or contact, end), ...), sliding ones, rocking?) of a motion: relative
+    rotations ``rot`` [rad] and slips ``sl`` [m] of each joint or contact, ``gaps`` (.., 2) of
+    its two ends [m]; the hinges turn by at least 5% of the largest relative rotation, each at
+    its end that stays closed (0 intrados, 1 extrados for an arch's joint)."""
+    big = np.abs(rot).max()
+    slid = tuple(int(c) for c in np.flatnonzero(np.abs(sl) > thr_slide))
+    rocking = big / threshold >= np.abs(sl).max() / thr_slide
+    turning = np.flatnonzero(np.abs(rot) >= 0.05 * big) if rocking else np.array([], int)
+    return tuple((int(c), int(np.argmin(gaps[c]))) for c in turning), slid, bool(rocking)
+
+
 def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> bool:
     ca = engine_arch(arch, settings)
     ca.settle()
@@ -258,13 +270,9 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
         f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
         f"analysis may give a larger multiplier or none: raise lambda_max, "
         f"`archrock dem --ramp --ramp-max`)")
-    # hinges: joints opening by at least a quarter of the largest relative rotation
-    big = np.abs(rot).max()
-    slid = tuple(int(j) for j in np.flatnonzero(np.abs(sl) > thr_slide))
-    rocking = big / threshold >= np.abs(sl).max() / thr_slide
-    hinges = tuple(int(j) for j in np.flatnonzero(np.abs(rot) >= 0.05 * big)) if rocking else ()
-    gaps = ca.end_gaps(pos, ang)
-    edges = tuple(EDGE[int(np.argmin(gaps[j]))] for j in hinges)
+    turning, slid, rocking = read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
+    hinges = tuple(j for j, _ in turning)
+    edges = tuple(EDGE[e] for _, e in turning)
     lo, hi, holds, _ = bisect_holds(
         lambda lam: (_moves(arch, settings, sign, lam, hold, threshold, thr_slide, check), None),
         lam_seen, tol, direction, progress)
