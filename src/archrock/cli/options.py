@@ -254,6 +254,16 @@ def add_output_options(parser, *, json: str = "print one JSON object", progress:
     return parser
 
 
+def add_window_options(parser, after: str):
+    """--t-end S and --dt-out S: the output window of one response; ``after`` says what the run
+    covers past the window."""
+    parser.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
+                        help=f"end of the output window [s] (default 3); {after}")
+    parser.add_argument("--dt-out", type=positive_float, default=0.005, metavar="S",
+                        help="output sampling [s] (default 0.005)")
+    return parser
+
+
 def add_run_options(parser, *, workers: str, scheduler: str, out: str | None = None):
     """--workers N, --scheduler ADDRESS and (where ``out`` is given) --out DIR: where a study
     runs and keeps its finished work, with each command's own help."""
