@@ -18,12 +18,20 @@ def parser(doc: str, samples: int | None = None) -> argparse.ArgumentParser:
     return ap
 
 
+def speed_record(samples: int, wall: float, prepare_s: float, response_s: float,
+                 **extra) -> dict:
+    """The speed of ``samples`` arches in ``wall`` [s], ``prepare_s`` and ``response_s`` [s] of
+    it, and the ``extra`` figures."""
+    return {"samples": samples, "wall_s": wall, "arches_per_s": samples / wall,
+            "prepare_s": prepare_s, "response_s": response_s, **extra}
+
+
 def ensemble_record(res, samples: int, wall: float) -> dict:
     """Speed and outcomes of a timed ensemble ``res`` of ``samples`` arches in ``wall`` [s]."""
     f = res.frame
-    return {"samples": samples, "wall_s": wall, "arches_per_s": samples / wall,
-            "prepare_s": res.timing["prepare_s"], "response_s": res.timing["response_s"],
-            "collapsed": int(f["collapsed"].sum()), "left_out": int((f["error"] != "").sum())}
+    return speed_record(samples, wall, res.timing["prepare_s"], res.timing["response_s"],
+                        collapsed=int(f["collapsed"].sum()),
+                        left_out=int((f["error"] != "").sum()))
 
 
 def finish(out: dict, path: str | None) -> dict:

@@ -27,7 +27,7 @@ import platform
 import resource
 import time
 
-from _common import finish, parser
+from _common import finish, parser, speed_record
 
 
 #: runs per configuration in the scaling table (the median is shown)
@@ -180,9 +180,8 @@ def million(samples=1_000_000, batch_size=10_000):
             print(f"  {(b + 1) * batch_size:>9,d} arches  {el:6.1f} s", flush=True)
     wall = time.perf_counter() - t0
     rss_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
-    out = {"samples": samples, "batch_size": batch_size, "wall_s": wall,
-           "arches_per_s": samples / wall, "prepare_s": prep, "response_s": resp,
-           "peak_rss_mb": rss_mb, **counts}
+    out = speed_record(samples, wall, prep, resp, batch_size=batch_size, peak_rss_mb=rss_mb,
+                       **counts)
     print(f"10^6 arches (early stop): {wall:.1f} s, {samples / wall:.0f} arches/s (prepare "
           f"{prep:.1f} s, response {resp:.1f} s), {counts['collapsed']} collapsed, peak resident "
           f"memory {rss_mb:.0f} MB")
