@@ -30,8 +30,7 @@ from ..geometry.arcade import GROUND, Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
 from .engine import PymunkBlocks, add_block, import_pymunk, settle_blocks
-from .ramp import (RampResult, bisect_holds, check_ramp_options, ramp_range, ramp_stage_one,
-                   read_hinges)
+from .ramp import RampResult, check_ramp_options, ramp_range, ramp_stages, read_hinges
 from .rigid import engine_arcade
 from .settings import EngineSettings, engine_scales
 
@@ -234,15 +233,13 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arcade(arc, settings)
-    thr_slide, check, lam_seen, (rot, sl, measure, pos, ang) = ramp_stage_one(
-        ca, ca.contact_lengths, _motion, direction, threshold, slide_threshold, lambda_start,
-        lambda_max, rate, progress,
+    thr_slide, lam_seen, (rot, sl, _, pos, ang), (lo, hi, holds, first) = ramp_stages(
+        ca, ca.contact_lengths, _motion,
+        lambda lam, thr, check: _moves(arc, settings, sign, lam, hold, threshold, thr, check),
+        direction, threshold, slide_threshold, lambda_start, lambda_max, rate, tol, progress,
         "the arcade did not move in the contact engine up to |xg''|/g = "
         f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
     ramp_reading = read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
-    lo, hi, holds, first = bisect_holds(
-        lambda lam: _moves(arc, settings, sign, lam, hold, threshold, thr_slide, check),
-        lam_seen, tol, direction, progress)
     hinges, slid, rocking = (read_hinges(*first, threshold, thr_slide) if first is not None
                              else ramp_reading)
     places = tuple(arc.contacts[c].place(e) for c, e in hinges)

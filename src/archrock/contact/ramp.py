@@ -184,6 +184,20 @@ def ramp_stage_one(blocks, lengths, motion, direction, threshold, slide_threshol
     return thr_slide, check, lam_seen, reading
 
 
+def ramp_stages(blocks, lengths, motion, moves, direction, threshold, slide_threshold,
+                lambda_start, lambda_max, rate, tol, progress, refusal):
+    """Both stages of a ramp on ``blocks``: :func:`ramp_stage_one`, then :func:`bisect_holds`
+    whose hold of ``lam`` is ``moves(lam, slide threshold, steps between readings)``.
+    Returns (slide threshold [m], lambda first seen moving, stage 1's last reading,
+    bisect_holds' (lo, hi, holds, first))."""
+    thr_slide, check, lam_seen, reading = ramp_stage_one(
+        blocks, lengths, motion, direction, threshold, slide_threshold, lambda_start,
+        lambda_max, rate, progress, refusal)
+    bracket = bisect_holds(lambda lam: moves(lam, thr_slide, check), lam_seen, tol, direction,
+                           progress)
+    return thr_slide, lam_seen, reading, bracket
+
+
 def bisect_holds(moves, lam_seen: float, tol: float, direction: str, progress=None):
     """Stage 2 of a ramp: holds from rest, ``moves(lam)`` -> (moved, reading or None), halving
     down from ``lam_seen`` until one rests, then bisecting down to a relative width ``tol``.
@@ -263,9 +277,11 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arch(arch, settings)
-    thr_slide, check, lam_seen, (rot, sl, measure, pos, ang) = ramp_stage_one(
-        ca, ca.joint_lengths, _motion, direction, threshold, slide_threshold, lambda_start,
-        lambda_max, rate, progress,
+    thr_slide, lam_seen, (rot, sl, _, pos, ang), (lo, hi, holds, _) = ramp_stages(
+        ca, ca.joint_lengths, _motion,
+        lambda lam, thr, check: (_moves(arch, settings, sign, lam, hold, threshold, thr, check),
+                                 None),
+        direction, threshold, slide_threshold, lambda_start, lambda_max, rate, tol, progress,
         "the arch did not move in the contact engine up to |xg''|/g = "
         f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
         f"analysis may give a larger multiplier or none: raise lambda_max, "
@@ -273,9 +289,6 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     turning, slid, rocking = read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
     hinges = tuple(j for j, _ in turning)
     edges = tuple(EDGE[e] for _, e in turning)
-    lo, hi, holds, _ = bisect_holds(
-        lambda lam: (_moves(arch, settings, sign, lam, hold, threshold, thr_slide, check), None),
-        lam_seen, tol, direction, progress)
     return RampDirection(direction, 0.5 * (lo + hi), lo, hi, "rocking" if rocking else "sliding",
                          hinges, edges, slid, float(lam_seen),
                          tuple(float(x) for x in rot), tuple(float(x) for x in sl), holds)
