@@ -8,7 +8,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from archrock.dynamics.batch import prepare_batch, simulate_batch
+from archrock.dynamics.batch import prepare_batch
 from archrock.errors import ArchInputError, InvalidSampleError
 from archrock.geometry import PolygonArch, family_arch
 from archrock.geometry.batchdraw import (OK, REFUSED, batch_properties, draw_lines, family_plan,
@@ -124,7 +124,8 @@ def test_batch_arrays_are_polygon_arch_arrays(shape, rise, joints):
     ("parabolic", 3.0, "vertical", Spreads(0.1, 0.1, 0.05), 0.8),
     ("circular", 3.0, "vertical", Spreads(0.2, 0.2, 0.1, 5.0), "paper")])
 def test_prepared_rows_and_outcomes_are_the_arch_object_paths(shape, rise, joints, spreads,
-                                                              impact, rows_close):
+                                                              impact, rows_close,
+                                                              same_outcomes):
     """prepare_family_batch row for row as prepare_batch of the per-arch arches, and the same
     outcomes (status, peak) under the paper's pulse."""
     nom = _nominal(shape, rise, joints)
@@ -134,17 +135,7 @@ def test_prepared_rows_and_outcomes_are_the_arch_object_paths(shape, rise, joint
                         impact=impact)
     new = prepare_family_batch(s, 5, 30, impact=impact)
     rows_close(new, old, FIELDS, RTOL)
-    motion = PulseSpec("oppenheim", -1.0, 0.2).build()
-    r_new, r_old = simulate_batch(new, motion), simulate_batch(old, motion)
-    # outcomes exactly, peaks to 1e-9 (the integration carries the geometry's rounding through
-    # impacts, amplified)
-    np.testing.assert_array_equal(r_new["status"], r_old["status"])
-    np.testing.assert_allclose(r_new["peak"], r_old["peak"], rtol=1e-9)
-    # and the outcomes are robust: no draw is within 1e-6 of the pulse from another outcome,
-    # so rounding (1e-16) cannot flip one on another CPU
-    for f in (1 - 1e-6, 1 + 1e-6):
-        near = simulate_batch(old, PulseSpec("oppenheim", -f, 0.2).build())
-        np.testing.assert_array_equal(near["status"], r_old["status"])
+    same_outcomes(new, old)
 
 
 def test_ensemble_rows_are_single_arch_outcomes():

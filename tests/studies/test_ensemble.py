@@ -498,14 +498,14 @@ def test_no_integrated_sample_gives_no_probability_and_says_why(base):
 
 
 def test_histograms_say_how_many_samples_are_not_shown(base, tmp_path, monkeypatch):
-    from archrock.reports import plots
+    from archrock.reports import studyplots
 
     df, _ = _with_outcomes(base)
     figs = []
-    real = plots.save_figure
-    monkeypatch.setattr(plots, "save_figure", lambda fig, path, dpi: figs.append(fig) or
+    real = studyplots.save_figure
+    monkeypatch.setattr(studyplots, "save_figure", lambda fig, path, dpi: figs.append(fig) or
                         real(fig, path, dpi))
-    plots.plot_multiplier_histograms(df, tmp_path / "k.png")
+    studyplots.plot_multiplier_histograms(df, tmp_path / "k.png")
     title = figs[0]._suptitle.get_text()
     # the impact failure keeps its k and is shown; the other three are not
     assert title.startswith("37 of 40 samples shown; not shown: 3 (")

@@ -596,7 +596,7 @@ def report_request(params: dict) -> dict:
                              f"the app's report runs up to {format_duration(MAX_REPORT_WORK_S)} "
                              f"(archrock assess for more)")
     try:
-        from ..reports.plots import _require_matplotlib
+        from ..reports.drawing import _require_matplotlib
 
         _require_matplotlib()
     except Exception as exc:  # noqa: BLE001 - the extra to install, in one line

@@ -5,11 +5,12 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import _int, emit_json, interrupted_study, non_negative_int
+from ._parser import emit_json, interrupted_study, non_negative_int
 from .fragilityfigure import fragility_figure
 from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
-from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
+from .options import (PROGRESS_ESTIMATED, add_geometry_options, add_impact_options,
+                      add_output_options, add_random_arches_options, add_run_options,
                       arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads_for)
 
 
@@ -44,10 +45,8 @@ def add_fragility_parser(subparsers):
                    help="batch (default): every arch x record x scale of a search step in one "
                         "parallel call; respond: response after response (0.1.0's path); the "
                         "results are identical")
-    p.add_argument("--workers", type=_int, default=1, metavar="N",
-                   help="1: in-process (numba threads, default); N > 1: local process pool")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run on an existing Dask cluster (needs archrock[dask])")
+    add_run_options(p, workers="1: in-process (numba threads, default); N > 1: local process pool",
+                    scheduler="run on an existing Dask cluster (needs archrock[dask])")
     p.add_argument("--early-stop", action="store_true",
                    help="batch engine: end a response once the record is over and the arch's "
                         "energy is below every mechanism it can open (same collapse decisions "
@@ -55,10 +54,8 @@ def add_fragility_parser(subparsers):
     p.add_argument("--out", metavar="DIR",
                    help="keep every finished response in DIR (Parquet + manifest.json); the same "
                         "command after an interruption resumes (batch engine)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--no-progress", action="store_true",
-                   help="no progress on stderr (shown for runs estimated above a few seconds)")
-    p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
+    add_output_options(p, progress=PROGRESS_ESTIMATED,
+                       plot="write the fragility curves to a figure")
     add_fourlink_dynamics_option(
         p, help="auto (default): the four-link model where one degree of freedom follows the "
                 "arch; the contact engine's IDA (no stripes, the nominal arch only) where it "

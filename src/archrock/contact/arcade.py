@@ -24,13 +24,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._records import readonly_arrays
+from .._records import EngineRecord
 from ..errors import ArchInputError
 from ..geometry.arcade import GROUND, Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
-from .engine import add_block, import_pymunk, settle_blocks
-from .ramp import ramp_range, ramp_until_moving
+from .engine import PymunkBlocks, add_block, import_pymunk, settle_blocks
+from .ramp import RampResult, check_ramp_options, ramp_range, ramp_stages, read_hinges
 from .rigid import engine_arcade
 from .settings import EngineSettings, engine_scales
 
@@ -38,7 +38,7 @@ __all__ = ["ContactArcade", "ArcadeRampDirection", "ArcadeRamp", "arcade_ramp",
            "arcade_ramp_direction", "ArcadeResponse", "arcade_respond"]
 
 
-class ContactArcade:
+class ContactArcade(PymunkBlocks):
     """One arcade in a pymunk space, at rest in its initial configuration (module docstring).
     ``time_scale`` T = sqrt(size/g) [s] with size = ``arcade.size``; ``dt`` = T / steps_per_T."""
 
@@ -98,25 +98,10 @@ class ContactArcade:
         self.b = np.array([ct.b for ct in arc.contacts])
         self.time, self.steps = 0.0, 0
 
-    def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
-        """``steps`` time steps under the horizontal ground acceleration [m/s^2] (toward +x)."""
-        self.space.gravity = (-float(ground_accel), -G)
-        for _ in range(steps):
-            self.space.step(self.dt)
-        self.steps += steps
-        self.time = self.steps * self.dt
-
     def settle(self, duration: float = 0.5) -> None:
         """Settle under gravity for ``duration`` T, stop every body, restart the clock: the
         reference of every rotation and slip reported."""
         settle_blocks(self, duration, self.contact_sliding)
-
-    def state(self):
-        """(centres (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,))."""
-        b = self.bodies
-        return (np.array([tuple(x.position) for x in b]), np.array([x.angle for x in b]),
-                np.array([tuple(x.velocity) for x in b]),
-                np.array([x.angular_velocity for x in b]))
 
     def contact_rotations(self, angles: np.ndarray) -> np.ndarray:
         """theta_b - theta_a at each contact [rad] (the ground: 0)."""
@@ -158,10 +143,6 @@ class ContactArcade:
         dd = d[np.arange(len(end)), end]
         return dd[:, 0] * tx + dd[:, 1] * ty
 
-    def kinetic_energy(self, vel, rate) -> float:
-        return float(0.5 * (self.masses * (vel ** 2).sum(axis=1)).sum()
-                     + 0.5 * (self.inertias * rate ** 2).sum())
-
 
 @dataclass(frozen=True)
 class ArcadeRampDirection:
@@ -195,13 +176,9 @@ class ArcadeRampDirection:
 
 
 @dataclass(frozen=True)
-class ArcadeRamp:
-    """Both directions of :func:`arcade_ramp`, with the settings and ramp options used."""
-
-    l: ArcadeRampDirection
-    r: ArcadeRampDirection
-    settings: EngineSettings
-    ramp: dict
+class ArcadeRamp(RampResult):
+    """Both directions of :func:`arcade_ramp` (:class:`ArcadeRampDirection` each), with the
+    settings and ramp options used."""
 
     def to_dict(self) -> dict:
         return {"k_l": self.l.multiplier, "k_r": self.r.multiplier, "l": self.l.to_dict(),
@@ -243,16 +220,6 @@ def _moves(arc, settings, sign, lam, hold, thr_rot, thr_slide, check):
     return moved, None
 
 
-def _read_hinges(rot, sl, gaps, threshold, thr_slide):
-    """(hinges ((contact, end), ...), sliding contacts, rocking?) of a contact motion: the
-    contacts turning by at least 5% of the largest relative rotation, at their closed end."""
-    big = np.abs(rot).max()
-    slid = tuple(int(c) for c in np.flatnonzero(np.abs(sl) > thr_slide))
-    rocking = big / threshold >= np.abs(sl).max() / thr_slide
-    turning = np.flatnonzero(np.abs(rot) >= 0.05 * big) if rocking else np.array([], int)
-    return tuple((int(c), int(np.argmin(gaps[c]))) for c in turning), slid, bool(rocking)
-
-
 def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings | None = None,
                           *, rate: float = 0.05, hold: float = 4.0, tol: float = 0.005,
                           threshold: float = 1e-3, slide_threshold: float = 1e-3,
@@ -261,60 +228,24 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
     """The engine's activation multiplier and hinges of ``arc`` in ``direction`` ('l': the
     ground accelerates toward -x, the loads push toward +x); the options are those of
     :func:`~archrock.contact.ramp.ramp_direction`."""
-    if direction not in ("l", "r"):
-        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
-    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
-                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
-                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
-                            ("lambda_max", lambda_max, 1e-3, 100.0)):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
-            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
-    if not 0.0 <= lambda_start < lambda_max:
-        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
-                             f"lambda_max = {lambda_max:g}")
+    check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
+                       lambda_start)
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arcade(arc, settings)
-    ca.settle()
-    thr_slide = slide_threshold * float(np.mean(ca.contact_lengths))
-    check = max(1, int(settings.steps_per_T // 100))
-    dlam = rate / settings.steps_per_T
-    lam_seen, (rot, sl, measure, pos, ang) = ramp_until_moving(
-        ca, lambda m: _motion(m, threshold, thr_slide), sign, float(lambda_start), dlam, check,
-        lambda_max, f"the arcade did not move in the contact engine up to |xg''|/g = "
-                    f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
-    if progress:
-        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
-    ramp_reading = _read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
-    holds = []
-    hi, lo = lam_seen, 0.5 * lam_seen
-    first = None  # the lowest hold whose motion grew: the mechanism at activation
-    while True:
-        moved, got = _moves(arc, settings, sign, lo, hold, threshold, thr_slide, check)
-        holds.append((lo, moved))
-        if not moved:
-            break
-        first = got or first
-        if lo == 0.0:
-            hi = 0.0
-            break
-        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
-    while hi - lo > tol * hi:
-        mid = 0.5 * (lo + hi)
-        moved, got = _moves(arc, settings, sign, mid, hold, threshold, thr_slide, check)
-        holds.append((mid, moved))
-        if progress:
-            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
-        if moved:
-            hi, first = mid, got or first
-        else:
-            lo = mid
-    hinges, slid, rocking = (_read_hinges(*first, threshold, thr_slide) if first is not None
+    thr_slide, lam_seen, (rot, sl, _, pos, ang), (lo, hi, holds, first) = ramp_stages(
+        ca, ca.contact_lengths, _motion,
+        lambda lam, thr, check: _moves(arc, settings, sign, lam, hold, threshold, thr, check),
+        direction, threshold, slide_threshold, lambda_start, lambda_max, rate, tol, progress,
+        "the arcade did not move in the contact engine up to |xg''|/g = "
+        f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
+    ramp_reading = read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
+    hinges, slid, rocking = (read_hinges(*first, threshold, thr_slide) if first is not None
                              else ramp_reading)
     places = tuple(arc.contacts[c].place(e) for c, e in hinges)
     return ArcadeRampDirection(direction, 0.5 * (lo + hi), lo, hi,
                                "rocking" if rocking else "sliding", hinges, places, slid,
-                               float(lam_seen), ramp_reading[0], tuple(holds))
+                               float(lam_seen), ramp_reading[0], holds)
 
 
 def arcade_ramp(arc: Arcade, settings: EngineSettings | None = None, progress=None, *,
@@ -343,7 +274,7 @@ def arcade_ramp(arc: Arcade, settings: EngineSettings | None = None, progress=No
 
 
 @dataclass(frozen=True, eq=False)
-class ArcadeResponse:
+class ArcadeResponse(EngineRecord):
     """:func:`arcade_respond`'s result: ``time`` (k,) [s], ``rotations`` (k, n) [rad] of every
     block since settling (counter-clockwise +), ``drops`` (k,) [m] the largest drop of a mass
     centre; ``status`` 'rest', 'collapsed' or 'moving'; ``t_collapse`` [s] (None without);
@@ -360,13 +291,6 @@ class ArcadeResponse:
     t_final: float
     settings: EngineSettings
     run: dict
-
-    def __post_init__(self):
-        readonly_arrays(self)
-
-    @property
-    def collapsed(self) -> bool:
-        return self.status == "collapsed"
 
     def to_dict(self, samples: bool = False) -> dict:
         d = {"collapsed": self.collapsed, "status": self.status,
