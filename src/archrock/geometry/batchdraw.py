@@ -1,6 +1,6 @@
 """Irregular family arches drawn for a whole batch, compiled: no Python per arch.
 
-:func:`~archrock.geometry.families.perturb_family` draws one irregular arch of a family in numpy
+:func:`~archrock.geometry.irregular.perturb_family` draws one irregular arch of a family in numpy
 (arc-length inversion, offset lines, joint cuts) and :class:`~archrock.geometry.PolygonArch`
 checks it and computes its mass properties: 6-20 ms per arch.  This module does the same
 arithmetic, operation for operation, in scalar loops that numba compiles (or that run as Python
@@ -33,8 +33,8 @@ import numpy as np
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from .._pairwise import np_sum
 from ..errors import ArchInputError
-from .families import _catenary_parameter, _vertical_joints_that_cut, circular_radius, \
-    three_centred_radii
+from .centreline import _catenary_parameter, circular_radius, three_centred_radii
+from .faces import _vertical_joints_that_cut
 from .polygon import FACE_TOLERANCE
 
 __all__ = ["FamilyPlan", "supported", "family_plan", "compiled_drawing", "draw_lines", "batch_properties", "refusal_message",
@@ -68,7 +68,7 @@ def supported(nominal) -> bool:
 # ---------------------------------------------------------------------------- the plan
 class FamilyPlan:
     """The per-nominal data of the compiled drawing (module docstring): built from the family's
-    recipe with the expressions of :func:`~archrock.geometry.families.centreline`, its tables
+    recipe with the expressions of :func:`~archrock.geometry.centreline.centreline`, its tables
     taken from the nominal's own centreline."""
 
     def __init__(self, nominal):
@@ -181,7 +181,7 @@ def compiled_drawing(sampler) -> bool:
 
 
 def _arc_par(cx, cy, r, th0, th1):
-    """Parameters of an arc piece as :func:`~archrock.geometry.families._arc` evaluates them."""
+    """Parameters of an arc piece as :func:`~archrock.geometry.centreline._arc` evaluates them."""
     return (ARC, [cx, cy, r, th0, th1 - th0, -(th1 - th0) * r, (th1 - th0) * r])
 
 
@@ -362,7 +362,7 @@ def _eval(s, side, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds)
         else:
             G = tab_n[j]
             for q in range(c):
-                # families._Piece.u_of_s: the cubic Hermite interpolant (families._hermite_u),
+                # centreline._Piece.u_of_s: the cubic Hermite interpolant (centreline._hermite_u),
                 # and one Newton step on the exact length where the table is not fine enough
                 kk = min(max(_search(tab_s[j], G, ss[q], True) - 1, 0), G - 2)
                 u0[q] = tab_u[j, kk]
@@ -411,7 +411,7 @@ def _thick(s, scal, k):
 
 @maybe_njit
 def _arc_between(px, py, qx, qy, cx, cy, ppr):
-    """``families._arc_between``: points after p up to q on the arc about (cx, cy)."""
+    """``faces._arc_between``: points after p up to q on the arc about (cx, cy)."""
     a0 = math.atan2(py - cy, px - cx)
     a1 = math.atan2(qy - cy, qx - cx)
     r0 = _dist(px, py, cx, cy)
@@ -477,7 +477,7 @@ def _segments_from_ends(s0, s1, sign, ptype, ppar, plen, pmode, tab_u, tab_s, ta
 
 @maybe_njit
 def _centre(s0, s1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds, scal):
-    """The centreline samples of ``families._sample_offset`` over [s0, s1] (not straddling a
+    """The centreline samples of ``faces._sample_offset`` over [s0, s1] (not straddling a
     pointed crown): arc lengths s (m + 1,) [m], points and unit tangents (m + 1, 2).  They do
     not depend on the side or the thickness: the intrados and the extrados share them."""
     big_l = scal[0]
@@ -501,7 +501,7 @@ def _centre(s0, s1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bounds
 
 @maybe_njit
 def _sample_plain(s0, s1, side, k, s, p, t, scal):
-    """``families._sample_offset`` over [s0, s1] not straddling a pointed crown, from its
+    """``faces._sample_offset`` over [s0, s1] not straddling a pointed crown, from its
     centreline samples (:func:`_centre`): (crossed, points); crossed is the
     _CrownOffsetCrossed case."""
     big_l = scal[0]
@@ -516,7 +516,7 @@ def _sample_plain(s0, s1, side, k, s, p, t, scal):
         pts[i, 1] = p[i, 1] + (side * t[i, 0]) * half
     if not (kink and (s1 == mid or s0 == mid)):
         return False, pts
-    # the crown point of this side's offset arcs (families._pointed_crown)
+    # the crown point of this side's offset arcs (faces._pointed_crown)
     t_c = _thick(mid, scal, k)
     pc, rho = scal[6], scal[7]
     r = rho + side * t_c / 2
@@ -571,7 +571,7 @@ def _centres(s0, s1, ptype, ppar, plen, pmode, tab_u, tab_s, tab_v, tab_n, bound
 
 @maybe_njit
 def _sample(s0, s1, side, k, two, sa, pa, ta, sb, pb, tb, scal):
-    """``families._sample_offset`` from the samples of :func:`_centres`: (crossed, points
+    """``faces._sample_offset`` from the samples of :func:`_centres`: (crossed, points
     (m, 2) [m])."""
     if two:
         mid = scal[0] / 2
@@ -590,7 +590,7 @@ def _sample(s0, s1, side, k, two, sa, pa, ta, sb, pb, tb, scal):
 
 @maybe_njit
 def _cut(poly, cx, cy, dx, dy, nx, ny):
-    """``families._cut``: (segment index or -1, x, y) of the crossing of the polyline with the
+    """``irregular._cut``: (segment index or -1, x, y) of the crossing of the polyline with the
     line through (cx, cy) along (dx, dy) nearest (nx, ny)."""
     m = poly.shape[0]
     best = -1
