@@ -105,11 +105,11 @@ def test_no_two_places_import_each_other():
     assert levels({"a": {"b"}, "b": {"c"}, "c": set()}) == 3  # the counter itself
 
 
-def _folder_edges(folder: Path) -> dict[str, set[str]]:
-    """Within one package folder: each child (module, or subfolder as one node; the folder's own
-    ``__init__`` as ``"__init__"``) -> the children it imports, at module level or inside a
-    function, through relative or absolute imports."""
-    pkg = ("archrock",) + folder.relative_to(ROOT).parts
+def _folder_edges(folder: Path, root: Path = ROOT) -> dict[str, set[str]]:
+    """Within one package folder under ``root`` (the archrock package): each child (module, or
+    subfolder as one node; the folder's own ``__init__`` as ``"__init__"``) -> the children it
+    imports, at module level or inside a function, through relative or absolute imports."""
+    pkg = (root.name,) + folder.relative_to(root).parts
     children = {p.stem for p in folder.glob("*.py")} | {
         p.parent.name for p in folder.glob("*/__init__.py")}
 
@@ -122,7 +122,7 @@ def _folder_edges(folder: Path) -> dict[str, set[str]]:
 
     graph: dict[str, set[str]] = {}
     for path in folder.rglob("*.py"):
-        rel = path.relative_to(ROOT.parent).with_suffix("").parts
+        rel = path.relative_to(root.parent).with_suffix("").parts
         own_pkg = rel[:-1]  # the package this file's relative imports start from
         own = node(rel[:-1] if path.name == "__init__.py" else rel)
         for n in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
@@ -164,34 +164,44 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str]:
     return []
 
 
-#: folders whose modules must not import one another in a circle (the others are being reworked)
-NO_CIRCLE = ["geometry", "statics"]
+#: folders being reworked for 0.7 whose circles are still allowed (issue 32; empty it after merge)
+NOT_YET = {"app", "cli", "contact", "dynamics/impact", "reports", "studies", "studies/ensemble"}
 
 
-def folder_cycles(names=None) -> dict[str, list[str]]:
-    """Package folder -> one import cycle among its modules, for each folder that has one."""
-    folders = [ROOT / n for n in names] if names else [
-        p.parent for p in sorted(ROOT.rglob("__init__.py"))]
+def folder_cycles() -> dict[str, list[str]]:
+    """Package folder ("archrock/geometry") -> one import cycle among its modules, for each
+    folder that has one."""
     out = {}
-    for f in folders:
-        if cycle := find_cycle(_folder_edges(f)):
-            out[str(f.relative_to(ROOT.parent))] = cycle
+    for init in sorted(ROOT.rglob("__init__.py")):
+        if cycle := find_cycle(_folder_edges(init.parent)):
+            out[init.parent.relative_to(ROOT.parent).as_posix()] = cycle
     return out
 
 
 def test_no_folder_imports_itself_in_a_circle():
     """Bottom to top inside each folder: no module reaches itself again through the modules it
     imports, lazy (function-level) imports included."""
-    cycles = folder_cycles(NO_CIRCLE)
+    cycles = {f: c for f, c in folder_cycles().items()
+              if f.removeprefix("archrock/") not in NOT_YET}
+    assert not {"geometry", "statics"} & NOT_YET  # the two this check was written for
     assert not cycles, "\n".join(f"{f}: {' -> '.join(c)}" for f, c in cycles.items())
 
 
-def test_the_circle_finder_finds_circles():
-    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+def test_the_circle_finder_finds_circles(tmp_path):
+    """The checker itself: a circle through a lazy import and a subfolder is found and named."""
     assert find_cycle({"a": {"b", "c"}, "b": {"c"}, "c": set()}) == []
-    edges = _folder_edges(ROOT / "geometry")
-    assert "base" in edges["circular"]  # module level
-    assert "circular" in edges["__init__"]
+    pkg = tmp_path / "archrock" / "layer"
+    (pkg / "sub").mkdir(parents=True)
+    files = {"__init__.py": "from .a import f\n", "a.py": "def f():\n    from .b import g\n",
+             "b.py": "import numpy\nfrom archrock.layer.sub import c\n",
+             "sub/__init__.py": "", "sub/c.py": "from ..a import f\nfrom ...errors import E\n"}
+    for name, text in files.items():
+        (pkg / name).write_text(text, encoding="utf-8")
+    edges = _folder_edges(pkg, tmp_path / "archrock")
+    assert edges == {"__init__": {"a"}, "a": {"b"}, "b": {"sub"}, "sub": {"a"}}
+    assert find_cycle(edges) == ["a", "b", "sub", "a"]
+    real = _folder_edges(ROOT / "geometry")
+    assert "base" in real["circular"] and "batchdraw" in real["sampling"]  # the latter lazy
 
 
 def test_app_and_cli_share_the_options_not_each_other():

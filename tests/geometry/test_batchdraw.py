@@ -11,9 +11,9 @@ import pytest
 from archrock.dynamics.batch import prepare_batch, simulate_batch
 from archrock.errors import ArchInputError, InvalidSampleError
 from archrock.geometry import PolygonArch, family_arch
-from archrock.geometry.batchdraw import (OK, REFUSED, batch_properties, draw_lines, family_plan,
-                                         np_sum)
-from archrock.geometry.batchdraw import _dist
+from archrock._pairwise import np_sum
+from archrock.geometry.batchdraw import OK, REFUSED, batch_properties, draw_lines, family_plan
+from archrock.geometry.batchlines import _dist
 from archrock.geometry.irregular import perturb_family
 from archrock.geometry.sampling import ArchSampler, Spreads
 from archrock.groundmotion import PulseSpec

@@ -101,7 +101,7 @@ class _Piece:
 def _hermite_u(s, s0, s1, u0, u1, v0, v1):
     """u at arc length s between two knots (s0, u0), (s1, u1) of a piece's table: the cubic
     Hermite interpolant with the exact slopes du/ds = 1/v at the knots (v the speed |p'(u)|).
-    :func:`archrock.geometry.batchdraw._eval` repeats this arithmetic operation for operation."""
+    :func:`archrock.geometry.batchlines._eval` repeats this arithmetic operation for operation."""
     h = s1 - s0
     w = (s - s0) / np.maximum(h, 1e-300)
     du = u1 - u0
