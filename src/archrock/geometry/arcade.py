@@ -133,13 +133,9 @@ class _Placed:
         return out + self.shift if self._moved else out
 
 
-def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcade:
-    """``arches`` (a list of n archrock arches, left to right) on n + 1 piers (module
-    docstring): ``heights`` and ``widths`` [m] one value for all piers or n + 1 values;
-    ``courses`` (1..200) one for all or n + 1.  Every arch is written as polygons (a circular
-    one with arcs of 0.002 rad, as :func:`~archrock.geometry.with_piers`) and moved so that its
-    left intrados springing stands a pier width right of the previous arch's right one, on the
-    same level; arch 1 stays where it is."""
+def _arch_polygons(arches) -> list:
+    """Each arch of ``arches`` checked and written as polygons (a repeated arch once), all of
+    one density."""
     if isinstance(arches, VoussoirArch):
         arches = [arches]
     if not isinstance(arches, (list, tuple)) or not arches:
@@ -156,12 +152,18 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
         if id(a) not in seen:  # a repeated arch is written as polygons once
             seen[id(a)] = _polygon_of(a)
         polys.append(seen[id(a)])
-    n = len(polys)
     density = polys[0].density
     for s, p in enumerate(polys):
         if p.density != density:
             raise ArchInputError(f"arches[{s}].density: {p.density:g} kg/m^3, arch 1's "
                                  f"{density:g}; allowed one density for the arcade")
+    return polys
+
+
+def _pier_sizes(polys, heights, widths, courses):
+    """(heights [m], widths [m], courses, tol [m]) of the n + 1 piers, each checked against the
+    largest arch's extent (1e-8 to 100 times it)."""
+    n = len(polys)
     hs = _per("heights", heights, n + 1)
     ws = _per("widths", widths, n + 1)
     cs = [_courses(f"courses[{i}]", c) for i, c in enumerate(_per("courses", courses, n + 1))]
@@ -181,107 +183,145 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
                                      f"{1e-8 * hi:.4g} m (a millionth of the largest arch's "
                                      f"extent) to {hi:.4g} m (100 times it)")
     hs, ws = [float(v) for v in hs], [float(v) for v in ws]
-    tol = 1e-9 * max([extent] + hs + ws)
-    # place the arches: each a translated copy (joints, outlines, loads) of its polygon form
+    return hs, ws, cs, 1e-9 * max([extent] + hs + ws)
+
+
+def _placed_arches(polys, ws) -> list:
+    """Each arch a translated copy of its polygon form: its left intrados springing a pier
+    width right of the previous arch's right one, on the same level; arch 1 where it is."""
     placed = [_Placed(polys[0], np.zeros(2))]
-    for s in range(1, n):
+    for s in range(1, len(polys)):
         a_in, a_ex = placed[-1].joint_points[-1]
         b_in, b_ex = polys[s].joint_points[0]
         dx = (a_in[0] + ws[s]) - b_in[0]
         dy = min(a_in[1], a_ex[1]) - min(b_in[1], b_ex[1])
         placed.append(_Placed(polys[s], np.array([dx, dy])))
-    blocks, contacts, spans, piers = [], [], [], []
-    flip = np.array([-1.0, 1.0])
+    return placed
 
-    def add_block(outline, kind, label, loads=()):
-        blocks.append(Block(np.asarray(outline, float), kind, label, tuple(loads),
-                            _checked=True))
-        return len(blocks) - 1
 
-    def side_name(p):  # end 0 / end 1 of a pier's contacts: an end pier's faces, an inner one's
-        return ("inner face", "outer face") if p in (1, n + 1) else ("left face", "right face")
+_FLIP = np.array([-1.0, 1.0])
+_JOINT_ENDS = ("intrados", "extrados")
 
-    # pier 1: the left end pier, foundation up (with_piers' own construction)
-    jp0 = placed[0].joint_points[0]
-    try:
-        left = _left_pier(jp0[0], jp0[1], hs[0], ws[0], cs[0], "left", tol)
-    except ArchInputError as exc:
-        msg = str(exc)
-        raise ArchInputError(msg.replace("width:", "widths[0]:", 1)) from None
-    idx = []
-    for c, (i_, e_) in enumerate(left):
-        idx.append(add_block(np.vstack([i_, e_[::-1]]), "pier", f"pier 1 course {c + 1}"))
-        if c == 0:
-            contacts.append(Contact(GROUND, idx[-1], np.array([i_[0], e_[0]]), "pier 1 foot",
-                                    side_name(1)))
-        else:
-            contacts.append(Contact(idx[-2], idx[-1], np.array([i_[0], e_[0]]),
-                                    f"pier 1 bed joint {c}", side_name(1)))
-    piers.append(tuple(idx))
-    below = idx[-1]  # the block the next span's left springing rests on
-    for s in range(n):
-        poly = placed[s]
+
+class _Assembly:
+    """The blocks and contacts of an arcade in reading order (module docstring), added pier by
+    pier and span by span."""
+
+    def __init__(self, n: int, tol: float):
+        self.n, self.tol = n, tol
+        self.blocks, self.contacts, self.spans, self.piers = [], [], [], []
+
+    def block(self, outline, kind, label, loads=()) -> int:
+        self.blocks.append(Block(np.asarray(outline, float), kind, label, tuple(loads),
+                                 _checked=True))
+        return len(self.blocks) - 1
+
+    def contact(self, a, b, points, label, ends=_JOINT_ENDS) -> None:
+        self.contacts.append(Contact(a, b, points, label, ends))
+
+    def faces(self, p):  # end 0 / end 1 of a pier's contacts: an end pier's faces, an inner one's
+        return ("inner face", "outer face") if p in (1, self.n + 1) else ("left face", "right face")
+
+    def left_pier(self, jp0, height, width, courses) -> int:
+        """Pier 1, foundation up (with_piers' own construction); the block its span rests on."""
+        try:
+            left = _left_pier(jp0[0], jp0[1], height, width, courses, "left", self.tol)
+        except ArchInputError as exc:
+            raise ArchInputError(str(exc).replace("width:", "widths[0]:", 1)) from None
+        idx = []
+        for c, (i_, e_) in enumerate(left):
+            idx.append(self.block(np.vstack([i_, e_[::-1]]), "pier", f"pier 1 course {c + 1}"))
+            if c == 0:
+                self.contact(GROUND, idx[-1], np.array([i_[0], e_[0]]), "pier 1 foot",
+                             self.faces(1))
+            else:
+                self.contact(idx[-2], idx[-1], np.array([i_[0], e_[0]]), f"pier 1 bed joint {c}",
+                             self.faces(1))
+        self.piers.append(tuple(idx))
+        return idx[-1]
+
+    def span(self, s: int, poly, below: int) -> list:
+        """Span s + 1's voussoirs, the first on block ``below``; their block indices."""
         jp = np.asarray(poly.joint_points, float)
         loads = {i: [] for i in range(poly.n)}
         for v, mass, at in poly.loads:
             loads[v].append((mass, at))
         vidx = []
         for i in range(poly.n):
-            vidx.append(add_block(poly.outline(i), "voussoir", f"span {s + 1} voussoir {i + 1}",
-                                  loads[i]))
+            vidx.append(self.block(poly.outline(i), "voussoir", f"span {s + 1} voussoir {i + 1}",
+                                   loads[i]))
             if i == 0:
-                contacts.append(Contact(below, vidx[0], jp[0],
-                                        f"span {s + 1} left springing (pier {s + 1} top)",
-                                        ("intrados", "extrados")))
+                self.contact(below, vidx[0], jp[0],
+                             f"span {s + 1} left springing (pier {s + 1} top)")
             else:
-                contacts.append(Contact(vidx[-2], vidx[-1], jp[i], f"span {s + 1} joint {i}",
-                                        ("intrados", "extrados")))
-        spans.append(tuple(vidx))
-        p = s + 2  # the pier right of span s + 1
-        if p == n + 1:  # the right end pier: a mirrored left pier, top down (with_piers)
-            try:
-                right_m = _left_pier(jp[-1][0] * flip, jp[-1][1] * flip, hs[n], ws[n], cs[n],
-                                     "right", tol)
-            except ArchInputError as exc:
-                raise ArchInputError(str(exc).replace("width:", f"widths[{n}]:", 1)) from None
-            right = [((i_ * flip)[::-1], (e_ * flip)[::-1]) for i_, e_ in reversed(right_m)]
-            pidx = []
-            cr = len(right)
-            for c, (i_, e_) in enumerate(right):
-                pidx.append(add_block(np.vstack([i_, e_[::-1]]), "pier",
-                                      f"pier {p} course {cr - c}"))
-                if c == 0:
-                    contacts.append(Contact(vidx[-1], pidx[0], jp[-1],
-                                            f"span {s + 1} right springing (pier {p} top)",
-                                            ("intrados", "extrados")))
-                else:
-                    contacts.append(Contact(pidx[-2], pidx[-1], np.array([i_[0], e_[0]]),
-                                            f"pier {p} bed joint {cr - c}", side_name(p)))
-            foot = right[-1]
-            contacts.append(Contact(GROUND, pidx[-1], np.array([foot[0][-1], foot[1][-1]]),
-                                    f"pier {p} foot", side_name(p)))
-            piers.append(tuple(pidx))
+                self.contact(vidx[-2], vidx[-1], jp[i], f"span {s + 1} joint {i}")
+        self.spans.append(tuple(vidx))
+        return vidx
+
+    def right_pier(self, s: int, jp, last: int, height, width, courses) -> None:
+        """The right end pier under span s + 1 (a mirrored left pier, top down: with_piers)."""
+        n, p = self.n, s + 2
+        try:
+            right_m = _left_pier(jp[-1][0] * _FLIP, jp[-1][1] * _FLIP, height, width, courses,
+                                 "right", self.tol)
+        except ArchInputError as exc:
+            raise ArchInputError(str(exc).replace("width:", f"widths[{n}]:", 1)) from None
+        right = [((i_ * _FLIP)[::-1], (e_ * _FLIP)[::-1]) for i_, e_ in reversed(right_m)]
+        pidx = []
+        cr = len(right)
+        for c, (i_, e_) in enumerate(right):
+            pidx.append(self.block(np.vstack([i_, e_[::-1]]), "pier", f"pier {p} course {cr - c}"))
+            if c == 0:
+                self.contact(last, pidx[0], jp[-1], f"span {s + 1} right springing (pier {p} top)")
+            else:
+                self.contact(pidx[-2], pidx[-1], np.array([i_[0], e_[0]]),
+                             f"pier {p} bed joint {cr - c}", self.faces(p))
+        foot = right[-1]
+        self.contact(GROUND, pidx[-1], np.array([foot[0][-1], foot[1][-1]]), f"pier {p} foot",
+                     self.faces(p))
+        self.piers.append(tuple(pidx))
+
+    def inner_pier(self, s: int, jp, nxt, last: int, height, courses) -> int:
+        """The pier between spans s + 1 and s + 2, top down; the block the next span rests on."""
+        p = s + 2
+        courses_out, levels = _inner_pier(jp[-1], nxt.joint_points[0], height, courses, p,
+                                          self.tol)
+        pidx = []
+        xl, xr = float(jp[-1][0][0]), float(nxt.joint_points[0][0][0])
+        for k, outline in enumerate(courses_out):
+            course = courses - k  # counted from the foot up
+            pidx.append(self.block(outline, "pier", f"pier {p} course {course}"))
+            if k == 0:
+                self.contact(last, pidx[0], jp[-1], f"span {s + 1} right springing (pier {p} top)")
+            else:
+                y = levels[course]
+                self.contact(pidx[-2], pidx[-1], np.array([[xl, y], [xr, y]]),
+                             f"pier {p} bed joint {course}", self.faces(p))
+        self.contact(GROUND, pidx[-1], np.array([[xl, levels[0]], [xr, levels[0]]]),
+                     f"pier {p} foot", self.faces(p))
+        self.piers.append(tuple(pidx))
+        return pidx[0]
+
+
+def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcade:
+    """``arches`` (a list of n archrock arches, left to right) on n + 1 piers (module
+    docstring): ``heights`` and ``widths`` [m] one value for all piers or n + 1 values;
+    ``courses`` (1..200) one for all or n + 1.  Every arch is written as polygons (a circular
+    one with arcs of 0.002 rad, as :func:`~archrock.geometry.with_piers`) and moved so that its
+    left intrados springing stands a pier width right of the previous arch's right one, on the
+    same level; arch 1 stays where it is."""
+    polys = _arch_polygons(arches)
+    n = len(polys)
+    hs, ws, cs, tol = _pier_sizes(polys, heights, widths, courses)
+    placed = _placed_arches(polys, ws)
+    out = _Assembly(n, tol)
+    below = out.left_pier(placed[0].joint_points[0], hs[0], ws[0], cs[0])
+    for s in range(n):
+        jp = np.asarray(placed[s].joint_points, float)
+        last = out.span(s, placed[s], below)[-1]
+        if s == n - 1:
+            out.right_pier(s, jp, last, hs[n], ws[n], cs[n])
         else:
-            nxt = placed[s + 1]
-            courses_out, levels = _inner_pier(jp[-1], nxt.joint_points[0], hs[p - 1], cs[p - 1],
-                                              p, tol)
-            pidx = []
-            cc = cs[p - 1]
-            xl, xr = float(jp[-1][0][0]), float(nxt.joint_points[0][0][0])
-            for k, outline in enumerate(courses_out):
-                course = cc - k  # counted from the foot up
-                pidx.append(add_block(outline, "pier", f"pier {p} course {course}"))
-                if k == 0:
-                    contacts.append(Contact(vidx[-1], pidx[0], jp[-1],
-                                            f"span {s + 1} right springing (pier {p} top)",
-                                            ("intrados", "extrados")))
-                else:
-                    y = levels[course]
-                    contacts.append(Contact(pidx[-2], pidx[-1], np.array([[xl, y], [xr, y]]),
-                                            f"pier {p} bed joint {course}", side_name(p)))
-            contacts.append(Contact(GROUND, pidx[-1], np.array([[xl, levels[0]],
-                                                                [xr, levels[0]]]),
-                                    f"pier {p} foot", side_name(p)))
-            piers.append(tuple(pidx))
-            below = pidx[0]
-    return Arcade(tuple(blocks), tuple(contacts), density, name, tuple(spans), tuple(piers))
+            below = out.inner_pier(s, jp, placed[s + 1], last, hs[s + 1], cs[s + 1])
+    return Arcade(tuple(out.blocks), tuple(out.contacts), polys[0].density, name,
+                  tuple(out.spans), tuple(out.piers))
