@@ -104,6 +104,132 @@ def _boundary_distance(pt, poly) -> float:
     return float(np.min(np.hypot(*(pt - c).T)))
 
 
+def _checked_block(i: int, b) -> Block:
+    """Block ``i`` of an arcade checked (kind, outline, loads, mass properties), its arrays
+    read-only."""
+    if not isinstance(b, Block):
+        raise ArchInputError(f"blocks[{i}]: expected a Block, got {type(b).__name__}")
+    if b.kind not in ARCADE_KINDS:
+        raise ArchInputError(f"blocks[{i}].kind: {b.kind!r}; allowed "
+                             f"{', '.join(ARCADE_KINDS)}")
+    out = np.array(_check_points(f"blocks[{i}].outline", b.outline))
+    if out.ndim != 2 or out.shape[1] != 2 or out.shape[0] < 3:
+        raise ArchInputError(f"blocks[{i}].outline: shape {out.shape}; allowed at least "
+                             f"3 points [x, y]")
+    if not b._checked and not _simple(out):
+        raise ArchInputError(f"blocks[{i}].outline: its boundary intersects itself; "
+                             f"allowed a simple polygon")
+    out.setflags(write=False)
+    loads = []
+    for k, ld in enumerate(b.loads):
+        try:
+            m, at = ld
+        except (TypeError, ValueError):
+            raise ArchInputError(f"blocks[{i}].loads[{k}]: expected (mass, (x, y))") \
+                from None
+        at = _check_point(f"blocks[{i}].loads[{k}].at", at)
+        m = _check_scalar(f"blocks[{i}].loads[{k}].mass", m, 0.0, None, lo_open=False,
+                          allowed=">= 0 kg per metre of depth")
+        at.setflags(write=False)
+        loads.append((m, at))
+    mp = b.mass_properties
+    if mp is not None:
+        try:
+            m, g, ii = mp
+        except (TypeError, ValueError):
+            raise ArchInputError(f"blocks[{i}].mass_properties: expected (mass, (x, y), "
+                                 f"inertia)") from None
+        m, ii = (_check_scalar(f"blocks[{i}].mass_properties.{k}", v,
+                               allowed="a finite number") for k, v in (("mass", m),
+                                                                       ("inertia", ii)))
+        g = _check_point(f"blocks[{i}].mass_properties.centre", g)
+        if not (m > 0 and ii >= 0 and math.isfinite(m) and math.isfinite(ii)
+                and np.all(np.isfinite(g))):
+            raise ArchInputError(f"blocks[{i}].mass_properties: mass {m!r}, inertia "
+                                 f"{ii!r}; allowed a finite mass > 0 and inertia >= 0")
+        g.setflags(write=False)
+        mp = (m, g, ii)
+    return Block(out, b.kind, str(b.label), tuple(loads), mp, b._checked)
+
+
+def _extent_of(blocks) -> float:
+    """The blocks' extent [m] (the larger side of the box around them), each of positive area."""
+    ext = np.vstack([b.outline for b in blocks])
+    extent = float(np.max(np.ptp(ext, axis=0)))
+    if not extent > 0:
+        raise ArchInputError("blocks: zero extent; allowed blocks of positive size")
+    for i, b in enumerate(blocks):
+        if abs(_signed_area(b.outline)) <= 1e-12 * extent ** 2:
+            raise ArchInputError(f"blocks[{i}].outline: zero area; allowed a region of "
+                                 f"positive area")
+    return extent
+
+
+def _checked_contact(c: int, ct, blocks, extent: float, tol: float) -> Contact:
+    """Contact ``c`` checked against the blocks (indices, a segment of positive length whose
+    ends lie within ``tol`` [m] of both blocks' boundaries, two end names)."""
+    nb = len(blocks)
+    if not isinstance(ct, Contact):
+        raise ArchInputError(f"contacts[{c}]: expected a Contact, got "
+                             f"{type(ct).__name__}")
+    for key, v, lo in (("a", ct.a, GROUND), ("b", ct.b, 0)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or \
+                not lo <= int(v) < nb:
+            raise ArchInputError(f"contacts[{c}].{key}: {v!r}; allowed a block index "
+                                 f"{lo} to {nb - 1}" + (" (-1: the ground)"
+                                                        if key == "a" else ""))
+    a, b_ = int(ct.a), int(ct.b)
+    if a == b_:
+        raise ArchInputError(f"contacts[{c}]: block {a} against itself; allowed two "
+                             f"different blocks")
+    pts = np.array(_check_points(f"contacts[{c}].points", ct.points, "two [x, y] points"))
+    if pts.shape != (2, 2) or not np.all(np.isfinite(pts)):
+        raise ArchInputError(f"contacts[{c}].points: expected two finite [x, y] points, "
+                             f"got shape {pts.shape}")
+    if np.hypot(*(pts[1] - pts[0])) <= 1e-9 * extent:
+        raise ArchInputError(f"contacts[{c}].points: its two ends coincide; allowed a "
+                             f"segment of positive length")
+    for side in (a, b_):
+        if side == GROUND:
+            continue
+        off = max(_boundary_distance(p, blocks[side].outline) for p in pts)
+        if off > tol:
+            raise ArchInputError(f"contacts[{c}].points: an end is {off:.4g} m off block "
+                                 f"{side}'s boundary; allowed at most {tol:.3g} m")
+    ends = tuple(ct.ends)
+    if len(ends) != 2 or not all(isinstance(e, str) for e in ends):
+        raise ArchInputError(f"contacts[{c}].ends: {ct.ends!r}; allowed two names")
+    pts.setflags(write=False)
+    return Contact(a, b_, pts, str(ct.label), ends)
+
+
+def _check_grounded(blocks, contacts) -> None:
+    """Every block touches another and reaches the ground through contacts (else it floats:
+    no equilibrium)."""
+    nb = len(blocks)
+    touched = {ct.a for ct in contacts} | {ct.b for ct in contacts}
+    lone = sorted(set(range(nb)) - touched)
+    if lone:
+        what = blocks[lone[0]].label or "no label"
+        raise ArchInputError(f"contacts: block {lone[0]} ({what}) touches nothing; allowed "
+                             f"every block in a contact")
+    seen, front = set(), [GROUND]
+    adj = {}
+    for ct in contacts:
+        adj.setdefault(ct.a, []).append(ct.b)
+        adj.setdefault(ct.b, []).append(ct.a)
+    while front:
+        v = front.pop()
+        for w in adj.get(v, ()):
+            if w not in seen:
+                seen.add(w)
+                front.append(w)
+    floating = sorted(set(range(nb)) - seen)
+    if floating:
+        raise ArchInputError(f"contacts: block {floating[0]} is not connected to the ground "
+                             f"(-1) through contacts; allowed blocks that rest on it")
+
+
 @dataclass(frozen=True, eq=False)
 class Arcade:
     """A graph of rigid blocks (module docstring): ``blocks``, ``contacts``, ``density``
@@ -126,119 +252,14 @@ class Arcade:
         if not isinstance(self.contacts, (list, tuple)) or not self.contacts:
             raise ArchInputError("contacts: expected a non-empty list of contacts")
         object.__setattr__(self, "density", _check_density(self.density))
-        blocks = []
-        for i, b in enumerate(self.blocks):
-            if not isinstance(b, Block):
-                raise ArchInputError(f"blocks[{i}]: expected a Block, got {type(b).__name__}")
-            if b.kind not in ARCADE_KINDS:
-                raise ArchInputError(f"blocks[{i}].kind: {b.kind!r}; allowed "
-                                     f"{', '.join(ARCADE_KINDS)}")
-            out = np.array(_check_points(f"blocks[{i}].outline", b.outline))
-            if out.ndim != 2 or out.shape[1] != 2 or out.shape[0] < 3:
-                raise ArchInputError(f"blocks[{i}].outline: shape {out.shape}; allowed at least "
-                                     f"3 points [x, y]")
-            if not b._checked and not _simple(out):
-                raise ArchInputError(f"blocks[{i}].outline: its boundary intersects itself; "
-                                     f"allowed a simple polygon")
-            out.setflags(write=False)
-            loads = []
-            for k, ld in enumerate(b.loads):
-                try:
-                    m, at = ld
-                except (TypeError, ValueError):
-                    raise ArchInputError(f"blocks[{i}].loads[{k}]: expected (mass, (x, y))") \
-                        from None
-                at = _check_point(f"blocks[{i}].loads[{k}].at", at)
-                m = _check_scalar(f"blocks[{i}].loads[{k}].mass", m, 0.0, None, lo_open=False,
-                                  allowed=">= 0 kg per metre of depth")
-                at.setflags(write=False)
-                loads.append((m, at))
-            mp = b.mass_properties
-            if mp is not None:
-                try:
-                    m, g, ii = mp
-                except (TypeError, ValueError):
-                    raise ArchInputError(f"blocks[{i}].mass_properties: expected (mass, (x, y), "
-                                         f"inertia)") from None
-                m, ii = (_check_scalar(f"blocks[{i}].mass_properties.{k}", v,
-                                       allowed="a finite number") for k, v in (("mass", m),
-                                                                               ("inertia", ii)))
-                g = _check_point(f"blocks[{i}].mass_properties.centre", g)
-                if not (m > 0 and ii >= 0 and math.isfinite(m) and math.isfinite(ii)
-                        and np.all(np.isfinite(g))):
-                    raise ArchInputError(f"blocks[{i}].mass_properties: mass {m!r}, inertia "
-                                         f"{ii!r}; allowed a finite mass > 0 and inertia >= 0")
-                g.setflags(write=False)
-                mp = (m, g, ii)
-            blocks.append(Block(out, b.kind, str(b.label), tuple(loads), mp, b._checked))
-        object.__setattr__(self, "blocks", tuple(blocks))
-        ext = np.vstack([b.outline for b in blocks])
-        extent = float(np.max(np.ptp(ext, axis=0)))
-        if not extent > 0:
-            raise ArchInputError("blocks: zero extent; allowed blocks of positive size")
-        for i, b in enumerate(blocks):
-            if abs(_signed_area(b.outline)) <= 1e-12 * extent ** 2:
-                raise ArchInputError(f"blocks[{i}].outline: zero area; allowed a region of "
-                                     f"positive area")
-        nb = len(blocks)
+        blocks = tuple(_checked_block(i, b) for i, b in enumerate(self.blocks))
+        object.__setattr__(self, "blocks", blocks)
+        extent = _extent_of(blocks)
         tol = FACE_TOLERANCE * min(1.0, 0.1 * extent)
-        contacts = []
-        for c, ct in enumerate(self.contacts):
-            if not isinstance(ct, Contact):
-                raise ArchInputError(f"contacts[{c}]: expected a Contact, got "
-                                     f"{type(ct).__name__}")
-            for key, v, lo in (("a", ct.a, GROUND), ("b", ct.b, 0)):
-                if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or \
-                        not lo <= int(v) < nb:
-                    raise ArchInputError(f"contacts[{c}].{key}: {v!r}; allowed a block index "
-                                         f"{lo} to {nb - 1}" + (" (-1: the ground)"
-                                                                if key == "a" else ""))
-            a, b_ = int(ct.a), int(ct.b)
-            if a == b_:
-                raise ArchInputError(f"contacts[{c}]: block {a} against itself; allowed two "
-                                     f"different blocks")
-            pts = np.array(_check_points(f"contacts[{c}].points", ct.points, "two [x, y] points"))
-            if pts.shape != (2, 2) or not np.all(np.isfinite(pts)):
-                raise ArchInputError(f"contacts[{c}].points: expected two finite [x, y] points, "
-                                     f"got shape {pts.shape}")
-            if np.hypot(*(pts[1] - pts[0])) <= 1e-9 * extent:
-                raise ArchInputError(f"contacts[{c}].points: its two ends coincide; allowed a "
-                                     f"segment of positive length")
-            for side in (a, b_):
-                if side == GROUND:
-                    continue
-                off = max(_boundary_distance(p, blocks[side].outline) for p in pts)
-                if off > tol:
-                    raise ArchInputError(f"contacts[{c}].points: an end is {off:.4g} m off block "
-                                         f"{side}'s boundary; allowed at most {tol:.3g} m")
-            ends = tuple(ct.ends)
-            if len(ends) != 2 or not all(isinstance(e, str) for e in ends):
-                raise ArchInputError(f"contacts[{c}].ends: {ct.ends!r}; allowed two names")
-            pts.setflags(write=False)
-            contacts.append(Contact(a, b_, pts, str(ct.label), ends))
-        object.__setattr__(self, "contacts", tuple(contacts))
-        touched = {ct.a for ct in contacts} | {ct.b for ct in contacts}
-        lone = sorted(set(range(nb)) - touched)
-        if lone:
-            what = blocks[lone[0]].label or "no label"
-            raise ArchInputError(f"contacts: block {lone[0]} ({what}) touches nothing; allowed "
-                                 f"every block in a contact")
-        # every block must reach the ground through contacts (else it floats: no equilibrium)
-        seen, front = set(), [GROUND]
-        adj = {}
-        for ct in contacts:
-            adj.setdefault(ct.a, []).append(ct.b)
-            adj.setdefault(ct.b, []).append(ct.a)
-        while front:
-            v = front.pop()
-            for w in adj.get(v, ()):
-                if w not in seen:
-                    seen.add(w)
-                    front.append(w)
-        floating = sorted(set(range(nb)) - seen)
-        if floating:
-            raise ArchInputError(f"contacts: block {floating[0]} is not connected to the ground "
-                                 f"(-1) through contacts; allowed blocks that rest on it")
+        contacts = tuple(_checked_contact(c, ct, blocks, extent, tol)
+                         for c, ct in enumerate(self.contacts))
+        object.__setattr__(self, "contacts", contacts)
+        _check_grounded(blocks, contacts)
         object.__setattr__(self, "spans", tuple(tuple(int(i) for i in s) for s in self.spans))
         object.__setattr__(self, "piers", tuple(tuple(int(i) for i in p) for p in self.piers))
 
