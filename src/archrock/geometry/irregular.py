@@ -100,9 +100,30 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
                              "arch) cannot be perturbed; allowed a circular Arch or an arch of "
                              "family_arch")
     line, thick = nominal._frame
-    big_l, ppr = line.length, r["points_per_rad"]
-    # the nominal's division points (with vertical joints: longer springing voussoirs where an
-    # equal division's vertical would miss the intrados)
+    lengths, s_div = _drawn_divisions(line, thick, r, u, spread_length)
+    u = np.asarray(u, float)
+    n = len(lengths)
+    c, d = _joint_lines(line, s_div, r["joints"], tilt_deg, u)
+    fac = 1.0 + spread_thickness * u[1]
+    off = spread_offset * u[2]
+    intr, extr = [], []
+    for i in range(n):
+        lines = {side: _face_line(line, thick, r, lengths, s_div, c, d, i,
+                                  fac[i] + 2.0 * side * off[i], side)
+                 for side in (-1, 1)}
+        intr.append(lines[-1])
+        extr.append(lines[1])
+    loads = tuple(r["loads"])
+    if r["fill"] is not None:
+        loads = loads + _fill(extr, r["fill"])[1]
+    return PolygonArch(tuple(intr), tuple(extr), r["density"], name, loads)
+
+
+def _drawn_divisions(line, thick, r, u, spread_length):
+    """(lengths, s_div) [m]: the drawn voussoirs' lengths along the centreline and their
+    division points, from the nominal's (with vertical joints: longer springing voussoirs where
+    an equal division's vertical would miss the intrados)."""
+    big_l = line.length
     base = big_l * np.arange(r["voussoirs"] + 1) / r["voussoirs"]
     if r["joints"] == "vertical":
         base = _vertical_joints_that_cut(line, thick, base)
@@ -116,62 +137,62 @@ def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickn
         raise ArchInputError("geometry: a voussoir length is <= 0")
     s_div = np.concatenate([[0.0], np.cumsum(lengths)])
     s_div[-1] = big_l
-    fac = 1.0 + spread_thickness * u[1]
-    off = spread_offset * u[2]
+    return lengths, s_div
+
+
+def _joint_lines(line, s_div, joints: str, tilt_deg: float, u):
+    """(c, d): each joint line's centreline point c_j [m] and unit direction d_j (intrados ->
+    extrados): normal to the centreline or vertical, interior joints turned by U3 x tilt."""
+    big_l, n = line.length, len(s_div) - 1
     tilt = np.zeros(n + 1)
     if tilt_deg and u.shape[0] == 4:
         tilt[1:n] = math.radians(tilt_deg) * u[3, :n - 1]
-    # joint lines: centreline point c_j and direction d_j (intrados -> extrados)
     c, tang = line.eval(s_div)
     d = np.column_stack([-tang[:, 1], tang[:, 0]])
     for j in range(1, n):
-        if r["joints"] == "vertical" or (line.kink and abs(s_div[j] - big_l / 2) <= 1e-12 * big_l):
+        if joints == "vertical" or (line.kink and abs(s_div[j] - big_l / 2) <= 1e-12 * big_l):
             d[j] = (0.0, 1.0)
     cs, sn = np.cos(tilt), np.sin(tilt)
     d = np.column_stack([cs * d[:, 0] - sn * d[:, 1], sn * d[:, 0] + cs * d[:, 1]])
+    return c, d
+
+
+def _face_line(line, thick, r, lengths, s_div, c, d, i: int, k: float, side: int):
+    """Voussoir i's intrados (side -1) or extrados (+1): its offset line at k times the nominal
+    half thickness, sampled as the family's and cut by its two joint lines."""
+    big_l, n, ppr = line.length, len(lengths), r["points_per_rad"]
     span, rise = r["span"], r["rise"]
-    intr, extr = [], []
-    for i in range(n):
-        lines = {}
-        for side in (-1, 1):
-            k = fac[i] + 2.0 * side * off[i]
-            if k <= 0:
-                raise ArchInputError(f"geometry: voussoir {i}'s offset exceeds half its thickness")
+    if k <= 0:
+        raise ArchInputError(f"geometry: voussoir {i}'s offset exceeds half its thickness")
 
-            def te(s, k=k):
-                return thick(s) * k
-            t_mid = float(te(big_l / 2))
+    def te(s, k=k):
+        return thick(s) * k
+    t_mid = float(te(big_l / 2))
 
-            def crown(sd, t_mid=t_mid):
-                return _pointed_crown(span, rise, t_mid, sd)
-            piece = None
-            for widen in (False, True):
-                lo = 0.0 if i == 0 else (0.0 if widen else max(0.0, s_div[i] - 0.5 * min(
-                    lengths[i - 1], lengths[i])))
-                hi = big_l if i == n - 1 else (big_l if widen else min(big_l, s_div[i + 1] + 0.5 * min(
-                    lengths[i], lengths[i + 1])))
-                try:
-                    pts = _sample_offset(line, te, lo, hi, side, ppr, crown)
-                except _CrownOffsetCrossed:  # a range ending just past a pointed crown: widen it
-                    continue
-                left = (0, pts[0]) if i == 0 else _cut(pts, c[i], d[i], c[i] + side * d[i])
-                right = (len(pts) - 2, pts[-1]) if i == n - 1 else \
-                    _cut(pts, c[i + 1], d[i + 1], c[i + 1] + side * d[i + 1])
-                if left is not None and right is not None and left[0] <= right[0]:
-                    piece = (pts, left, right)
-                    break
-            if piece is None:
-                raise ArchInputError(f"geometry: voussoir {i}'s joints do not cut its "
-                                     f"{'intrados' if side < 0 else 'extrados'} in order")
-            pts, (kl, ql), (kr, qr) = piece
-            mid = pts[kl + 1:kr + 1]
-            tol = 1e-9 * big_l
-            if len(mid):
-                mid = mid[(np.hypot(*(mid - ql).T) > tol) & (np.hypot(*(mid - qr).T) > tol)]
-            lines[side] = np.vstack([ql, mid, qr])
-        intr.append(lines[-1])
-        extr.append(lines[1])
-    loads = tuple(r["loads"])
-    if r["fill"] is not None:
-        loads = loads + _fill(extr, r["fill"])[1]
-    return PolygonArch(tuple(intr), tuple(extr), r["density"], name, loads)
+    def crown(sd, t_mid=t_mid):
+        return _pointed_crown(span, rise, t_mid, sd)
+    piece = None
+    for widen in (False, True):
+        lo = 0.0 if i == 0 else (0.0 if widen else max(0.0, s_div[i] - 0.5 * min(
+            lengths[i - 1], lengths[i])))
+        hi = big_l if i == n - 1 else (big_l if widen else min(big_l, s_div[i + 1] + 0.5 * min(
+            lengths[i], lengths[i + 1])))
+        try:
+            pts = _sample_offset(line, te, lo, hi, side, ppr, crown)
+        except _CrownOffsetCrossed:  # a range ending just past a pointed crown: widen it
+            continue
+        left = (0, pts[0]) if i == 0 else _cut(pts, c[i], d[i], c[i] + side * d[i])
+        right = (len(pts) - 2, pts[-1]) if i == n - 1 else \
+            _cut(pts, c[i + 1], d[i + 1], c[i + 1] + side * d[i + 1])
+        if left is not None and right is not None and left[0] <= right[0]:
+            piece = (pts, left, right)
+            break
+    if piece is None:
+        raise ArchInputError(f"geometry: voussoir {i}'s joints do not cut its "
+                             f"{'intrados' if side < 0 else 'extrados'} in order")
+    pts, (kl, ql), (kr, qr) = piece
+    mid = pts[kl + 1:kr + 1]
+    tol = 1e-9 * big_l
+    if len(mid):
+        mid = mid[(np.hypot(*(mid - ql).T) > tol) & (np.hypot(*(mid - qr).T) > tol)]
+    return np.vstack([ql, mid, qr])
