@@ -159,6 +159,33 @@ def _positive_int(name, value, lo):
     return int(value)
 
 
+def _checked_fill(fill):
+    """``fill`` checked: None, or {"level": y [m], "density": rho [kg/m^3]}."""
+    if fill is None:
+        return None
+    if not isinstance(fill, dict) or set(fill) != {"level", "density"}:
+        raise ArchInputError(f"fill: {fill!r}; allowed {{'level': y [m], 'density': rho "
+                             f"[kg/m^3]}}")
+    return {"level": _check_scalar("fill level", fill["level"], allowed="a finite y [m]"),
+            "density": _check_density(fill["density"], "fill density")}
+
+
+def _exact_circular(span, rise, thickness, n, density, name, user_loads):
+    """The exact circular :class:`~archrock.geometry.Arch` of a circular family arch with normal
+    joints, constant thickness and no fill: the circle's centre at the origin, the loads moved
+    down by the centre's height."""
+    r, yc = circular_radius(span, rise)
+    if thickness >= 2 * r:
+        raise ArchInputError(f"thickness: {thickness:g} m is too large for the curvature (the "
+                             f"intrados would self-intersect); allowed t < 2 R = {2 * r:g} m")
+    th0 = math.atan2(-yc, -span / 2) % (2 * math.pi)
+    arch = nominal_arch(r, math.degrees(2 * th0 - math.pi), thickness, n, density, name)
+    if user_loads:
+        moved = tuple(Load(ld.voussoir, ld.mass, (ld.at[0], ld.at[1] - yc)) for ld in user_loads)
+        arch = type(arch)(arch.spans, arch.radii, arch.thicknesses, density, name, moved)
+    return arch
+
+
 def family_arch(shape: str, span: float, rise: float, thickness: float, voussoirs: int, *,
                 thickness_crown: float | None = None, joints: str = "normal",
                 density: float = DEFAULT_DENSITY, loads=(), fill: dict | None = None,
@@ -208,12 +235,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
     density = _check_density(density)
     user_loads = tuple(ld if isinstance(ld, Load) else Load.from_dict(ld, i)
                        for i, ld in enumerate(loads or ()))
-    if fill is not None:
-        if not isinstance(fill, dict) or set(fill) != {"level", "density"}:
-            raise ArchInputError(f"fill: {fill!r}; allowed {{'level': y [m], 'density': rho "
-                                 f"[kg/m^3]}}")
-        fill = {"level": _check_scalar("fill level", fill["level"], allowed="a finite y [m]"),
-                "density": _check_density(fill["density"], "fill density")}
+    fill = _checked_fill(fill)
     name = name if name is not None else f"{shape} S={span:g} F={rise:g} t={thickness:g}"
     recipe = dict(shape=shape, span=span, rise=rise, thickness=thickness,
                   thickness_crown=thickness_crown if thickness_crown is None else t_crown,
@@ -221,16 +243,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
                   name=name, points_per_rad=ppr)
 
     if exact and shape == "circular" and joints == "normal" and t_crown == thickness and fill is None:
-        r, yc = circular_radius(span, rise)
-        if thickness >= 2 * r:
-            raise ArchInputError(f"thickness: {thickness:g} m is too large for the curvature (the "
-                                 f"intrados would self-intersect); allowed t < 2 R = {2 * r:g} m")
-        th0 = math.atan2(-yc, -span / 2) % (2 * math.pi)
-        arch = nominal_arch(r, math.degrees(2 * th0 - math.pi), thickness, n, density, name)
-        if user_loads:
-            moved = tuple(Load(ld.voussoir, ld.mass, (ld.at[0], ld.at[1] - yc)) for ld in user_loads)
-            arch = type(arch)(arch.spans, arch.radii, arch.thicknesses, density, name, moved)
-        return arch
+        return _exact_circular(span, rise, thickness, n, density, name, user_loads)
 
     line = centreline(shape, span, rise)
     big_l = line.length
