@@ -8,10 +8,10 @@ import textwrap
 import numpy as np
 import pytest
 
+from archrock._pairwise import np_sum
 from archrock.dynamics.batch import prepare_batch, simulate_batch
 from archrock.errors import ArchInputError, InvalidSampleError
 from archrock.geometry import PolygonArch, family_arch
-from archrock._pairwise import np_sum
 from archrock.geometry.batchdraw import OK, REFUSED, batch_properties, draw_lines, family_plan
 from archrock.geometry.batchlines import _dist
 from archrock.geometry.irregular import perturb_family

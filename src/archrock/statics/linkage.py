@@ -13,7 +13,7 @@ import numpy as np
 from ..geometry import VoussoirArch
 from ..geometry.displaced import DisplacedArch, SupportMovement
 
-
+#: The sign of the relative rotation that opens a joint about a hinge on each edge.
 _EDGE_SIGN = {"intrados": -1.0, "extrados": 1.0}
 
 
