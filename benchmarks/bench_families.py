@@ -54,7 +54,7 @@ def _legacy(nominal, samples):
 
     from archrock.dynamics.batch import prepare_batch, simulate_batch
     from archrock.errors import ArchInputError, InvalidSampleError
-    from archrock.geometry.families import perturb_family
+    from archrock.geometry.irregular import perturb_family
     from archrock.geometry.sampling import ArchSampler
     from archrock.groundmotion import PulseSpec
 

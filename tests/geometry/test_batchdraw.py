@@ -8,13 +8,13 @@ import textwrap
 import numpy as np
 import pytest
 
+from archrock._pairwise import np_sum
 from archrock.dynamics.batch import prepare_batch
 from archrock.errors import ArchInputError, InvalidSampleError
 from archrock.geometry import PolygonArch, family_arch
-from archrock.geometry.batchdraw import (OK, REFUSED, batch_properties, draw_lines, family_plan,
-                                         np_sum)
-from archrock.geometry.batchdraw import _dist
-from archrock.geometry.families import perturb_family
+from archrock.geometry.batchdraw import OK, REFUSED, batch_properties, draw_lines, family_plan
+from archrock.geometry.batchlines import _dist
+from archrock.geometry.irregular import perturb_family
 from archrock.geometry.sampling import ArchSampler, Spreads
 from archrock.groundmotion import PulseSpec
 from archrock.studies.ensemble.familybatch import prepare_family_batch
@@ -225,7 +225,7 @@ def test_uncertified_draws_are_decided_by_polygon_arch(rows_close):
 
 
 def test_family_polylines_match_the_newton_inversion_of_0_6():
-    """Since 0.7 u(s) is a cubic Hermite table (families._Piece) instead of Newton on the exact
+    """Since 0.7 u(s) is a cubic Hermite table (centreline._Piece) instead of Newton on the exact
     arc length: the polylines of 0.6 (tests/data/family_draws_0.6.0.npz, written by 0.6.0 for
     these nominals and one draw each) are kept to 1e-12 of the span."""
     from pathlib import Path
@@ -253,7 +253,7 @@ def test_family_polylines_match_the_newton_inversion_of_0_6():
 def test_hermite_table_is_exact_to_its_tolerance(shape, span, rise):
     """The arc-length table refines until u_Hermite(s) lies within HERMITE_TOL of the length of
     the exact inversion (Newton to round-off), checked here at 2001 points off the knots."""
-    from archrock.geometry.families import HERMITE_TOL, centreline
+    from archrock.geometry.centreline import HERMITE_TOL, centreline
 
     piece = centreline(shape, span, rise).pieces[0]
     s = np.linspace(0.0, piece.length, 2001)

@@ -5,7 +5,7 @@ A random arch of a study is a function of its uniform draws alone (:mod:`archroc
 for each voussoir i, U_span,i, U_thickness,i and U_radius,i on [-1, 1] (and, for a family arch
 with a joint tilt, U_tilt,j for each interior joint j = 1..n-1), mapped to the arch by
 :func:`archrock.geometry.perturb_voussoirs` (circular) or
-:func:`archrock.geometry.families.perturb_family` (any family), with the spreads of
+:func:`archrock.geometry.irregular.perturb_family` (any family), with the spreads of
 :class:`~archrock.geometry.sampling.Spreads`.  :func:`input_layout` names these inputs and
 :func:`arches_from_inputs` is the map from an input matrix to arches: the same map the
 ensemble's sampler uses, so the variance decomposed here is the ensemble's.
@@ -131,7 +131,7 @@ def arches_from_inputs(nominal: VoussoirArch, spreads: Spreads | dict | None, x)
     if isinstance(nominal, Arch):
         return perturb_voussoirs(nominal.spans, nominal.thicknesses, nominal.radii, u,
                                  spreads.span, spreads.thickness, spreads.radius)
-    from ..geometry.families import perturb_family
+    from ..geometry.irregular import perturb_family
 
     out = []
     for b in range(len(u)):
