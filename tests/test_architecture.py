@@ -164,10 +164,6 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str]:
     return []
 
 
-#: folders being reworked for 0.7 whose circles are still allowed (issue 32; empty it after merge)
-NOT_YET = {"app", "cli", "contact", "dynamics/impact", "reports", "studies", "studies/ensemble"}
-
-
 def folder_cycles() -> dict[str, list[str]]:
     """Package folder ("archrock/geometry") -> one import cycle among its modules, for each
     folder that has one."""
@@ -181,9 +177,7 @@ def folder_cycles() -> dict[str, list[str]]:
 def test_no_folder_imports_itself_in_a_circle():
     """Bottom to top inside each folder: no module reaches itself again through the modules it
     imports, lazy (function-level) imports included."""
-    cycles = {f: c for f, c in folder_cycles().items()
-              if f.removeprefix("archrock/") not in NOT_YET}
-    assert not {"geometry", "statics"} & NOT_YET  # the two this check was written for
+    cycles = folder_cycles()
     assert not cycles, "\n".join(f"{f}: {' -> '.join(c)}" for f, c in cycles.items())
 
 

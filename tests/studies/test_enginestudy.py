@@ -16,6 +16,7 @@ from archrock.geometry import nominal_arch
 from archrock.geometry.files import read_arch
 from archrock.groundmotion import PulseSpec
 from archrock.studies import enginestudy as es
+from archrock.studies.ensemble import engine as ee
 from archrock.studies.ensemble import EnsembleConfig, EnsembleResult, run_ensemble
 from archrock.studies.fragility import collapse_probability
 from archrock.studies.runner import RunSettings
@@ -124,7 +125,7 @@ def test_engine_ensemble_counts_on_a_tiny_coarse_ensemble(heavy_arch):
                                    spreads={"spread_span": 0.0})
     run = es.EngineRun(EngineSettings(steps_per_T=100, iterations=10), t_free=3.0)
     lines = []
-    res = es.engine_ensemble(cfg, run, progress=lines.append)
+    res = ee.engine_ensemble(cfg, run, progress=lines.append)
     s = _check_counts(res, cfg)
     assert len(lines) == 3 and lines[-1].startswith("engine ensemble: arch 3/3")
     assert s["engine"]["settings"]["steps_per_T"] == 100.0 and s["dynamics"] is None
@@ -142,7 +143,7 @@ def test_engine_ensemble_summary_counts_are_consistent(heavy_arch):
                                    spreads={"spread_span": 0.0})
     lines = []
     res = run_ensemble(cfg, settings=RunSettings(progress=lines.append))
-    assert isinstance(res, es.EngineEnsembleResult)
+    assert isinstance(res, ee.EngineEnsembleResult)
     s = _check_counts(res, cfg)
     assert s["dynamics"]["used"] == "engine"
     pc = s["p_collapse"]
@@ -157,14 +158,14 @@ def test_engine_ensemble_summary_counts_are_consistent(heavy_arch):
 def test_engine_ensemble_refuses_what_it_cannot_run():
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=2)
     with pytest.raises(ArchInputError, match="^motion: None"):
-        es.engine_ensemble(cfg)
+        ee.engine_ensemble(cfg)
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=2, motion=PulseSpec("oppenheim", -1.0, 0.2))
     with pytest.raises(ArchInputError, match="^engine: "):
-        es.engine_ensemble(cfg, engine={"t_free": 3})
+        ee.engine_ensemble(cfg, engine={"t_free": 3})
     with pytest.raises(ArchInputError, match="^engine: "):
         run_ensemble(cfg, dynamics="engine", engine="fast")
     with pytest.raises(ArchInputError, match="^progress: "):
-        es.engine_ensemble(cfg, progress="yes")
+        ee.engine_ensemble(cfg, progress="yes")
 
 
 def test_engine_run_round_trips_and_refuses_bad_fields():

@@ -19,7 +19,7 @@ from archrock.groundmotion import PulseSpec
 from archrock.dynamics.impact import ImpactSpec
 from archrock.studies.ensemble import EnsembleConfig, run_ensemble
 from archrock.studies.executors import Executor
-from archrock.studies.runner import RunSettings, resolve_settings
+from archrock.studies.runner import RunSettings
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "archrock"
 
@@ -55,19 +55,6 @@ def test_settings_are_frozen_and_read_back_from_json(tmp_path):
         RunSettings.from_dict({"n_jobs": 2})
     with pytest.raises(ArchInputError, match="^progress: a callable cannot be written"):
         RunSettings(progress=print).to_dict()
-
-
-def test_old_keywords_warn_and_mean_the_same(tmp_path):
-    with pytest.warns(DeprecationWarning, match=r"ida\(workers=...\) is now "
-                      r"ida\(settings=RunSettings\(workers=...\)\)"):
-        s = resolve_settings(None, "ida", workers=2, out=tmp_path, scheduler=None)
-    assert s == RunSettings(workers=2, out=tmp_path)
-    with pytest.warns(DeprecationWarning, match="out_dir= goes in archrock 0.8"):
-        assert resolve_settings(None, "p", out_dir=tmp_path).out == tmp_path
-    with pytest.raises(ArchInputError, match="^workers: give the run options once"):
-        resolve_settings(RunSettings(), "ida", workers=2)
-    with pytest.raises(ArchInputError, match="^out_dir: give the folder once"):
-        resolve_settings(None, "run_ensemble", out=tmp_path, out_dir=tmp_path)
 
 
 def test_a_study_refuses_the_fields_it_does_not_use():

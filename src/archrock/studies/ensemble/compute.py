@@ -20,22 +20,10 @@ import numpy as np
 
 from ...dynamics.batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, prepare_batch, simulate_batch
 from ...errors import ArchInputError
+from ..store import COLUMNS
 from .config import EnsembleConfig
 
 __all__ = ["COLUMNS", "run_batch", "run_batches", "sample_arch"]
-
-#: Columns of a batch's table (one row per sample).  Times [s]: t_collapse, the last upward
-#: passage of the unstable position before the rotation limit (the physical collapse time, which
-#: the limit does not move); t_limit, when the limit (a numerical stop) was reached; t_unstable,
-#: the first passage of the unstable position (NaN if never).  early_stopped: the arch was no
-#: longer followed once it could not collapse (EnsembleConfig.early_stop; status "stopped":
-#: peak final, n_impacts / n_activations only those before the stop, no rest).  error: '' for an
-#: arch that was analysed, else why it was left out: the text of the
-#: :class:`~archrock.leftout.LeftOut` it was refused with (a table and its Parquet file hold
-#: text, as every release since 0.4 wrote it), read back by :meth:`~archrock.leftout.LeftOut.read`.
-COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
-           "status", "peak", "t_collapse", "t_limit", "t_unstable", "n_impacts", "n_activations",
-           "events_truncated", "early_stopped", "error"]
 
 
 def _on_moved_supports(arch, movement):

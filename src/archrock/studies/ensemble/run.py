@@ -104,7 +104,7 @@ def run_ensemble(config: EnsembleConfig, *, keep_frame: bool = True, settings=No
     dynamics: "auto" (default), "fourlink" or "engine" (:func:`archrock.studies.enginestudy.
     choose_dynamics`): under a motion, where one degree of freedom cannot follow the nominal
     arch (its piers rock with it) or where asked, the arches are run in the contact engine
-    and an :class:`~archrock.studies.enginestudy.EngineEnsembleResult` is returned (nothing
+    and an :class:`~archrock.studies.ensemble.engine.EngineEnsembleResult` is returned (nothing
     stored; ``engine``: its :class:`~archrock.studies.enginestudy.EngineRun`); on rigid ground
     "auto" is the four-link ensemble, unchanged.  The choice is in the summary's nominal
     ("dynamics") where the arch has piers or another dynamics was asked for.  friction: the
@@ -148,7 +148,7 @@ def decide_dynamics(config: EnsembleConfig, dynamics: str, friction):
 
 def _engine_ensemble(config: EnsembleConfig, engine, choice, settings):
     """The ensemble run in the contact engine (nothing stored), arch by arch on the bar."""
-    from ..enginestudy import engine_ensemble
+    from .engine import engine_ensemble
 
     bar = Progress(config.samples, settings.progress, desc="engine ensemble")
     try:
