@@ -311,13 +311,15 @@ class Response:
     first passage of phi_u (None if never; the arch may come back); t_final [s]: when the run
     ended (at rest, or :attr:`t_limit` after a collapse); status: 'rest', 'collapsed' or
     'moving' (still rocking when the free-motion cap ran out).
+    event_table: the integrator's events as rows (kind code, time [s], mode before, mode after,
+    rate before, rate after [rad/s]); :attr:`events` reads them as :class:`Event` records.
     """
 
     model: DynamicModel = field(repr=False)
     motion: GroundMotion = field(repr=False)
     time: np.ndarray = field(repr=False)
     response: np.ndarray = field(repr=False)
-    events: tuple[Event, ...] = field(repr=False)
+    event_table: np.ndarray = field(repr=False)
     status: str
     peak: float
     t_collapse: float | None
@@ -332,6 +334,13 @@ class Response:
     @property
     def collapsed(self) -> bool:
         return self.status == "collapsed"
+
+    @cached_property
+    def events(self) -> tuple[Event, ...]:
+        """The events of the run, in time order.  Decoded at the first use: a study that reads
+        only the outcome should not pay for records it never reads (the paper's case has about a
+        hundred events; making them took a quarter of the kernel's time)."""
+        return _events(self.model, self.event_table)
 
     @property
     def t_limit(self) -> float | None:
@@ -489,8 +498,7 @@ def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *,
     out, ev, n_ev, status, t_final, peak, t_col, t_uns = res
     if n_ev > max_events:
         raise LimitExceededError(f"max_events: more than {max_events} events; raise max_events")
-    events = _events(model, ev[:n_ev])
-    return Response(model, motion, np.arange(n_out) * dt_out, out, events,
+    return Response(model, motion, np.arange(n_out) * dt_out, out, ev[:n_ev],
                     {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}[int(status)],
                     float(peak), None if t_col < 0 else float(t_col), None if t_uns < 0 else float(t_uns),
                     float(t_final), integrator, settings)
