@@ -17,7 +17,8 @@ import math
 import numpy as np
 
 from .._jit import maybe_njit
-from .fourlink import fast_coefficients, filling_acceleration, potential, table_acceleration
+from .linkage import potential
+from .tables import fast_coefficients, filling_acceleration, table_acceleration
 
 # event kinds (column 0 of the event table)
 # EV_COLLAPSE: the last upward passage of phi_u before the limit; EV_LIMIT: the limit reached
