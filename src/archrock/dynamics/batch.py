@@ -13,12 +13,12 @@ parallel loop of the single-response kernel :func:`archrock.dynamics.kernel.simu
   Every arch carries its chain (padded to the batch's longest; the paper's alternation is the
   two rows M_l, M_r).  Arches that cannot be used (invalid geometry, no mechanism, an impact
   model that creates energy) are not dropped: their ``error`` holds the reason.
-* :func:`simulate_batch` (:mod:`archrock.dynamics.batchsim`) integrates one ground motion for every prepared arch with a numba
-  ``prange`` loop over arches (no output samples, ``n_out = 1``), returning per-arch summaries:
-  status, peak, t_collapse (the last upward passage of phi_u before the rotation limit), t_limit
-  (when the limit, a numerical stop, was reached), t_unstable (the first passage of phi_u), number
-  of impacts and of activations, and whether the
-  event table overflowed (``events_truncated``: the outcome is still complete, only the impact
+* :func:`simulate_batch` (:mod:`archrock.dynamics.batchsim`) integrates one ground motion for
+  every prepared arch with a numba ``prange`` loop over arches (no output samples,
+  ``n_out = 1``), returning per-arch summaries: status, peak, t_collapse (the last upward
+  passage of phi_u before the rotation limit), t_limit (when the limit, a numerical stop, was
+  reached), t_unstable (the first passage of phi_u), number of impacts and of activations, and
+  whether the event table overflowed (``events_truncated``: the outcome is still complete, only the impact
   and activation counts are then lower bounds).  Without numba the same loop runs in Python.
 """
 
