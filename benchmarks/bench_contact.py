@@ -15,10 +15,10 @@ Usage: python benchmarks/bench_contact.py [--window 6] [--repeat 3] [--no-ramp] 
 
 from __future__ import annotations
 
-import argparse
-import json
 import platform
 import time
+
+from _common import finish, parser
 
 
 def _engine(arch, motion, settings, window):
@@ -61,11 +61,10 @@ def main(argv=None):
     from archrock.groundmotion import oppenheim_pulse
     from archrock.dynamics.response import prepare, respond
 
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = parser(__doc__)
     ap.add_argument("--window", type=float, default=6.0, help="simulated seconds (default 6)")
     ap.add_argument("--repeat", type=int, default=3, help="repeats; the best is kept")
     ap.add_argument("--no-ramp", action="store_true", help="skip the ramps on the pointed arch")
-    ap.add_argument("--json", help="write the figures to this JSON file")
     args = ap.parse_args(argv)
     arch = oppenheim_arch()
     motion = oppenheim_pulse(-1.0, 0.2)
@@ -109,10 +108,7 @@ def main(argv=None):
                   f"{e['hinges_r']}")
         print(f"  ramp {r['speedup']:.1f}x faster; activation simplified / fine - 1: M_l "
               f"{100 * r['k_diff_l']:+.2f}%, M_r {100 * r['k_diff_r']:+.2f}%")
-    if args.json:
-        with open(args.json, "w", encoding="utf-8") as f:
-            json.dump(out, f, indent=2)
-    return out
+    return finish(out, args.json)
 
 
 if __name__ == "__main__":

@@ -64,6 +64,7 @@ def main(argv=None):
     from archrock.geometry.files import read_arch
     from archrock.studies.engineida import engine_ida
     from archrock.studies.enginestudy import choose_dynamics
+    from archrock.studies.runner import RunSettings
 
     arch = read_arch(HEAVY)
     recs = ([noise_record(i, args.duration) for i in range(args.records)]
@@ -71,11 +72,11 @@ def main(argv=None):
             [sine_record(p) for p in np.geomspace(0.5, 3.0, args.records)])
     scales = np.geomspace(0.1, 1.5, args.scales)
     # compile (or load the cache) outside the timing: one short run
-    engine_ida(arch, recs[:1], scales[:1], workers=1)
+    engine_ida(arch, recs[:1], scales[:1])
     t0 = time.perf_counter()
-    res = engine_ida(arch, recs, scales, workers=args.workers,
-                     progress=lambda line: print(line, flush=True),
-                     dynamics=choose_dynamics(arch))
+    res = engine_ida(arch, recs, scales, dynamics=choose_dynamics(arch),
+                     settings=RunSettings(workers=args.workers,
+                                          progress=lambda line: print(line, flush=True)))
     wall = time.perf_counter() - t0
     runs = len(recs) * scales.size
     print(f"cpus {os.cpu_count()}, executor {res.timing['workers']}")

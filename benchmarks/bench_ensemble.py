@@ -21,13 +21,13 @@ Usage: python benchmarks/bench_ensemble.py [--samples 10000] [--naive 200] [--po
 
 from __future__ import annotations
 
-import argparse
-import json
 import os
 import platform
 import time
 
 import numpy as np
+
+from _common import ensemble_record, finish, parser
 
 
 def _config(samples, seed=0):
@@ -45,7 +45,7 @@ def _timed(config, **kw):
     from archrock.studies.ensemble import run_ensemble
 
     t0 = time.perf_counter()
-    res = run_ensemble(config, progress=False, **kw)
+    res = run_ensemble(config, **kw)
     wall = time.perf_counter() - t0
     return res, wall
 
@@ -82,10 +82,7 @@ def pointed(samples):
                                    motion=PulseSpec("oppenheim", -1.0, 0.2),
                                    impact=ImpactSpec.fixed(0.8754))
     res, wall = _timed(cfg)
-    f = res.frame
-    out = {"samples": samples, "wall_s": wall, "arches_per_s": samples / wall,
-           "prepare_s": res.timing["prepare_s"], "response_s": res.timing["response_s"],
-           "collapsed": int(f["collapsed"].sum()), "left_out": int((f["error"] != "").sum())}
+    out = ensemble_record(res, samples, wall)
     print(f"pointed (irregular, {samples}): {wall:7.2f} s  {samples / wall:7.1f} arches/s  "
           f"(prepare {out['prepare_s']:.2f} s, response {out['response_s']:.2f} s; "
           f"{out['collapsed']} collapsed, {out['left_out']} left out)")
@@ -93,12 +90,10 @@ def pointed(samples):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--samples", type=int, default=10000)
+    ap = parser(__doc__, samples=10000)
     ap.add_argument("--naive", type=int, default=200, help="arches for the naive loop")
     ap.add_argument("--pointed", type=int, default=0,
                     help="irregular pointed arches through the general batch path (0: skipped)")
-    ap.add_argument("--json", help="also write the figures to this JSON file")
     args = ap.parse_args(argv)
 
     import numba
@@ -123,7 +118,9 @@ def main(argv=None):
     out["threads"] = {"wall_s": wall, "arches_per_s": args.samples / wall, "threads": n_threads}
     print(f"in-process ({n_threads} threads): {wall:7.2f} s  {args.samples / wall:7.1f} arches/s")
 
-    res2, wall = _timed(cfg, workers=2)
+    from archrock.studies.runner import RunSettings
+
+    res2, wall = _timed(cfg, settings=RunSettings(workers=2))
     out["workers_2"] = {"wall_s": wall, "arches_per_s": args.samples / wall}
     print(f"process pool (2):       {wall:7.2f} s  {args.samples / wall:7.1f} arches/s")
 
@@ -151,10 +148,7 @@ def main(argv=None):
     print("speed-up vs naive: " + ", ".join(f"{k} x{v:.1f}" for k, v in out["speedup_vs_naive"].items()))
     if args.pointed:
         out["pointed"] = pointed(args.pointed)
-    if args.json:
-        with open(args.json, "w") as fh:
-            json.dump(out, fh, indent=2)
-    return out
+    return finish(out, args.json)
 
 
 if __name__ == "__main__":

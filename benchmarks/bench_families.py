@@ -17,11 +17,11 @@ Usage: python benchmarks/bench_families.py [--samples 10000] [--legacy] [--json 
 
 from __future__ import annotations
 
-import argparse
-import json
 import os
 import platform
 import time
+
+from _common import ensemble_record, finish, parser
 
 FAMILIES = (("pointed", 7.0), ("elliptical", 4.0), ("three-centred", 3.0), ("parabolic", 4.0),
             ("catenary", 5.0), ("circular", 3.0))
@@ -41,14 +41,11 @@ def _config(nominal, samples, spreads=None):
 def _run(nominal, samples, spreads=None):
     from archrock.studies.ensemble import run_ensemble
 
-    run_ensemble(_config(nominal, min(samples, 50), spreads), progress=False)  # warm-up
+    run_ensemble(_config(nominal, min(samples, 50), spreads))  # warm-up
     t0 = time.perf_counter()
-    res = run_ensemble(_config(nominal, samples, spreads), progress=False)
+    res = run_ensemble(_config(nominal, samples, spreads))
     wall = time.perf_counter() - t0
-    f = res.frame
-    return {"samples": samples, "wall_s": wall, "arches_per_s": samples / wall,
-            "prepare_s": res.timing["prepare_s"], "response_s": res.timing["response_s"],
-            "collapsed": int(f["collapsed"].sum()), "left_out": int((f["error"] != "").sum())}
+    return ensemble_record(res, samples, wall)
 
 
 def _legacy(nominal, samples):
@@ -57,7 +54,7 @@ def _legacy(nominal, samples):
 
     from archrock.dynamics.batch import prepare_batch, simulate_batch
     from archrock.errors import ArchInputError, InvalidSampleError
-    from archrock.geometry.families import perturb_family
+    from archrock.geometry.irregular import perturb_family
     from archrock.geometry.sampling import ArchSampler
     from archrock.groundmotion import PulseSpec
 
@@ -80,15 +77,13 @@ def _legacy(nominal, samples):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--samples", type=int, default=10000)
+    ap = parser(__doc__, samples=10000)
     ap.add_argument("--families",
                     default=",".join([f for f, _ in FAMILIES] + ["surveyed", "piers"]),
                     help="comma-separated families, 'surveyed' for a surveyed polygon arch, "
                          "'piers' for an arch on piers (default: all)")
     ap.add_argument("--legacy", action="store_true", help="also time the arch-object path")
     ap.add_argument("--legacy-samples", type=int, default=500)
-    ap.add_argument("--json", help="also write the figures to this JSON file")
     args = ap.parse_args(argv)
 
     from archrock._jit import HAVE_NUMBA, numba
@@ -141,10 +136,7 @@ def main(argv=None):
               f"{r['response_s']:8.2f} {r['ratio_to_circular']:10.2f}   ({r['left_out']} left "
               f"out, {r['collapsed']} collapsed)", flush=True)
         out["families"][key] = r
-    if args.json:
-        with open(args.json, "w") as fh:
-            json.dump(out, fh, indent=2)
-    return out
+    return finish(out, args.json)
 
 
 if __name__ == "__main__":

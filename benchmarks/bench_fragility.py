@@ -59,6 +59,7 @@ def main(argv=None):
     from archrock._jit import HAVE_NUMBA, numba
     from archrock.geometry import nominal_arch
     from archrock.studies.ida import ida, random_models
+    from archrock.studies.runner import RunSettings
     from archrock.dynamics.sweep import HAVE_EARLY_STOP
 
     threads = numba.get_num_threads() if HAVE_NUMBA else 1
@@ -97,7 +98,7 @@ def main(argv=None):
     res = ida(records, models, scales, engine="batch")
     rows.append((f"batch, {threads} threads", time.perf_counter() - t0, res))
     t0 = time.perf_counter()
-    pool = ida(records, models, scales, engine="batch", workers=2)
+    pool = ida(records, models, scales, engine="batch", settings=RunSettings(workers=2))
     rows.append(("batch, 2 worker processes", time.perf_counter() - t0, pool))
     if args.early_stop and HAVE_EARLY_STOP:
         t0 = time.perf_counter()

@@ -22,12 +22,12 @@ Usage: python benchmarks/bench_scale.py [--samples 10000] [--million] [--json FI
 
 from __future__ import annotations
 
-import argparse
-import json
 import os
 import platform
 import resource
 import time
+
+from _common import finish, parser, speed_record
 
 
 #: runs per configuration in the scaling table (the median is shown)
@@ -87,7 +87,7 @@ def _run(cfg, threads):
     clock = KernelClock()
     try:
         t0 = time.perf_counter()
-        res = run_ensemble(cfg, progress=False)
+        res = run_ensemble(cfg)
         wall = time.perf_counter() - t0
     finally:
         clock.restore()
@@ -180,9 +180,8 @@ def million(samples=1_000_000, batch_size=10_000):
             print(f"  {(b + 1) * batch_size:>9,d} arches  {el:6.1f} s", flush=True)
     wall = time.perf_counter() - t0
     rss_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
-    out = {"samples": samples, "batch_size": batch_size, "wall_s": wall,
-           "arches_per_s": samples / wall, "prepare_s": prep, "response_s": resp,
-           "peak_rss_mb": rss_mb, **counts}
+    out = speed_record(samples, wall, prep, resp, batch_size=batch_size, peak_rss_mb=rss_mb,
+                       **counts)
     print(f"10^6 arches (early stop): {wall:.1f} s, {samples / wall:.0f} arches/s (prepare "
           f"{prep:.1f} s, response {resp:.1f} s), {counts['collapsed']} collapsed, peak resident "
           f"memory {rss_mb:.0f} MB")
@@ -190,11 +189,9 @@ def million(samples=1_000_000, batch_size=10_000):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--samples", type=int, default=10000)
+    ap = parser(__doc__, samples=10000)
     ap.add_argument("--million", action="store_true",
                     help="also 10^6 arches with early stop, printing the peak resident memory")
-    ap.add_argument("--json", help="also write the figures to this JSON file")
     args = ap.parse_args(argv)
 
     import numba
@@ -209,10 +206,7 @@ def main(argv=None):
     out["scaling"] = scaling(args.samples)
     if args.million:
         out["million"] = million()
-    if args.json:
-        with open(args.json, "w") as fh:
-            json.dump(out, fh, indent=2)
-    return out
+    return finish(out, args.json)
 
 
 if __name__ == "__main__":

@@ -63,6 +63,31 @@ def rows_close():
     return _rows_close
 
 
+def _same_outcomes(new, old):
+    """Two prepared batches (two paths to the same arches) under the paper's pulse: the same
+    outcomes exactly, peaks to 1e-9 (the integration carries the geometry's rounding through
+    impacts, amplified); and the outcomes are robust: no draw is within 1e-6 of the pulse from
+    another outcome, so rounding (1e-16) cannot flip one on another CPU."""
+    import numpy as np
+
+    from archrock.dynamics.batch import simulate_batch
+    from archrock.groundmotion import PulseSpec
+
+    motion = PulseSpec("oppenheim", -1.0, 0.2).build()
+    r_new, r_old = simulate_batch(new, motion), simulate_batch(old, motion)
+    np.testing.assert_array_equal(r_new["status"], r_old["status"])
+    np.testing.assert_allclose(r_new["peak"], r_old["peak"], rtol=1e-9)
+    for f in (1 - 1e-6, 1 + 1e-6):
+        near = simulate_batch(old, PulseSpec("oppenheim", -f, 0.2).build())
+        np.testing.assert_array_equal(near["status"], r_old["status"])
+
+
+@pytest.fixture
+def same_outcomes():
+    """The check that two paths' batches give the same outcomes (:func:`_same_outcomes`)."""
+    return _same_outcomes
+
+
 def _rocking_frame(b, h, beam_depth, span=6.0, density=2000.0, loads=()):
     """Makris & Vassiliou's rocking frame as a 3-block polygon arch: two columns 2b x 2h
     standing at x = 0 and x = span under a free rectangular beam of depth ``beam_depth`` resting

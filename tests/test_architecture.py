@@ -10,7 +10,7 @@ ROOT = Path(archrock.__file__).parent
 #: top-level module or folder -> layer (docs/architecture.md): one folder, one layer
 LAYER = {
     "errors": 0, "units": 0, "published": 0, "_jit": 0, "_records": 0, "_progress": 0,
-    "_pairwise": 0, "_moved": 0, "leftout": 0,
+    "_pairwise": 0, "leftout": 0,
     "geometry": 1,
     "statics": 2,
     "groundmotion": 3,
@@ -105,6 +105,99 @@ def test_no_two_places_import_each_other():
     assert levels({"a": {"b"}, "b": {"c"}, "c": set()}) == 3  # the counter itself
 
 
+def _folder_edges(folder: Path, root: Path = ROOT) -> dict[str, set[str]]:
+    """Within one package folder under ``root`` (the archrock package): each child (module, or
+    subfolder as one node; the folder's own ``__init__`` as ``"__init__"``) -> the children it
+    imports, at module level or inside a function, through relative or absolute imports."""
+    pkg = (root.name,) + folder.relative_to(root).parts
+    children = {p.stem for p in folder.glob("*.py")} | {
+        p.parent.name for p in folder.glob("*/__init__.py")}
+
+    def node(parts: tuple) -> str | None:
+        """The child of ``folder`` that holds the dotted module ``parts``, if any."""
+        if parts[:len(pkg)] != pkg:
+            return None
+        rest = parts[len(pkg):]
+        return rest[0] if rest else "__init__"
+
+    graph: dict[str, set[str]] = {}
+    for path in folder.rglob("*.py"):
+        rel = path.relative_to(root.parent).with_suffix("").parts
+        own_pkg = rel[:-1]  # the package this file's relative imports start from
+        own = node(rel[:-1] if path.name == "__init__.py" else rel)
+        for n in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(n, ast.ImportFrom):
+                base = (own_pkg[:len(own_pkg) - (n.level - 1)] if n.level else ()) + tuple(
+                    n.module.split(".") if n.module else ())
+                targets = [base + (a.name,) if base == pkg and a.name in children else base
+                           for a in n.names]
+            elif isinstance(n, ast.Import):
+                targets = [tuple(a.name.split(".")) for a in n.names]
+            else:
+                continue
+            for t in targets:
+                other = node(t)
+                if other is not None and other != own:
+                    graph.setdefault(own, set()).add(other)
+    return graph
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str]:
+    """One cycle of ``graph`` as [a, b, ..., a], or [] when it has none."""
+    state: dict[str, int] = {}  # 1 on the current path, 2 done
+    path: list[str] = []
+
+    def visit(p: str) -> list[str]:
+        state[p] = 1
+        path.append(p)
+        for q in sorted(graph.get(p, ())):
+            if state.get(q) == 1:
+                return path[path.index(q):] + [q]
+            if q not in state and (found := visit(q)):
+                return found
+        state[p] = 2
+        path.pop()
+        return []
+    for p in sorted(graph):
+        if p not in state and (found := visit(p)):
+            return found
+    return []
+
+
+def folder_cycles() -> dict[str, list[str]]:
+    """Package folder ("archrock/geometry") -> one import cycle among its modules, for each
+    folder that has one."""
+    out = {}
+    for init in sorted(ROOT.rglob("__init__.py")):
+        if cycle := find_cycle(_folder_edges(init.parent)):
+            out[init.parent.relative_to(ROOT.parent).as_posix()] = cycle
+    return out
+
+
+def test_no_folder_imports_itself_in_a_circle():
+    """Bottom to top inside each folder: no module reaches itself again through the modules it
+    imports, lazy (function-level) imports included."""
+    cycles = folder_cycles()
+    assert not cycles, "\n".join(f"{f}: {' -> '.join(c)}" for f, c in cycles.items())
+
+
+def test_the_circle_finder_finds_circles(tmp_path):
+    """The checker itself: a circle through a lazy import and a subfolder is found and named."""
+    assert find_cycle({"a": {"b", "c"}, "b": {"c"}, "c": set()}) == []
+    pkg = tmp_path / "archrock" / "layer"
+    (pkg / "sub").mkdir(parents=True)
+    files = {"__init__.py": "from .a import f\n", "a.py": "def f():\n    from .b import g\n",
+             "b.py": "import numpy\nfrom archrock.layer.sub import c\n",
+             "sub/__init__.py": "", "sub/c.py": "from ..a import f\nfrom ...errors import E\n"}
+    for name, text in files.items():
+        (pkg / name).write_text(text, encoding="utf-8")
+    edges = _folder_edges(pkg, tmp_path / "archrock")
+    assert edges == {"__init__": {"a"}, "a": {"b"}, "b": {"sub"}, "sub": {"a"}}
+    assert find_cycle(edges) == ["a", "b", "sub", "a"]
+    real = _folder_edges(ROOT / "geometry")
+    assert "base" in real["circular"] and "batchdraw" in real["sampling"]  # the latter lazy
+
+
 def test_app_and_cli_share_the_options_not_each_other():
     """The option builders live below both front ends: the app imports ``archrock.options``, never
     the command line, and the command line only launches the app (one edge, cli -> app)."""
@@ -165,3 +258,5 @@ def test_tests_read_nothing_outside_the_repository():
 if __name__ == "__main__":  # the figures of docs/architecture.md
     g = import_graph()
     print(f"{len(g)} places, {sum(map(len, g.values()))} edges, {levels(g)} levels")
+    for folder, cycle in folder_cycles().items():
+        print(f"cycle in {folder}: {' -> '.join(cycle)}")

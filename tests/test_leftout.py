@@ -186,7 +186,7 @@ def test_a_real_ensembles_counts_by_reason_are_0_6s():
                                    spreads=Spreads(0.3, 0.3, 0.2),
                                    motion=PulseSpec("oppenheim", -1.0, 0.2),
                                    impact=ImpactSpec("paper"))
-    res = run_ensemble(cfg, progress=False)
+    res = run_ensemble(cfg)
     s = res.summary()
     err = [e for e in res.frame["error"] if e]
     assert len(err) >= 5

@@ -145,6 +145,7 @@ def study(quick=False):
     from archrock.reports.plots import new_figure, save_figure
     from archrock.reports.verification import format_verify, verify_markdown
     from archrock.studies.verification import verify
+    from archrock.studies.runner import RunSettings
 
     amps = [-0.4, -0.5, -0.75, -1.0, -1.25, -1.5, -2.0, -2.5, -3.0, -4.0, -5.0, -6.0, -8.0]
     if quick:
@@ -156,8 +157,8 @@ def study(quick=False):
     fig, axes = new_figure(1, 2, figsize=(11.0, 4.4))
     texts = []
     for k, (arch, durs) in enumerate(cases):
-        res = verify(arch, amps, durs, settings=base_settings(),
-                     progress=lambda m: print(m, file=sys.stderr, flush=True))
+        said = RunSettings(progress=lambda m: print(m, file=sys.stderr, flush=True))
+        res = verify(arch, amps, durs, settings=base_settings(), run_settings=said)
         tag = "oppenheim" if k == 0 else "2m"
         (FIG / f"verify_{tag}{_suffix()}.json").write_text(json.dumps(res.to_dict(), indent=1))
         save_verify_figure(res, None, ax=axes[0][k])

@@ -34,7 +34,7 @@ def main(argv=None):
             cfg = EnsembleConfig.from_arch(nom, samples=args.samples, seed=0,
                                            spreads=Spreads(0.0, 0.1, 0.05),
                                            motion=PulseSpec("oppenheim", amp, 0.2))
-            res = run_ensemble(cfg, progress=False)
+            res = run_ensemble(cfg)
             s = res.summary()
             pc = s["p_collapse"]
             row = {"arch": label, "amplitude_g": amp, "nominal_k_l": s["nominal"]["k_l"],

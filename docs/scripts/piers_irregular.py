@@ -43,7 +43,7 @@ def main(argv=None):
             t0 = time.perf_counter()
             cfg = EnsembleConfig.from_arch(nom, samples=args.samples, seed=0, spreads=spreads,
                                            motion=PulseSpec("oppenheim", amp, 0.2))
-            res = run_ensemble(cfg, progress=False)
+            res = run_ensemble(cfg)
             s = res.summary()
             pc = s["p_collapse"]
             kl = s.get("k_l") or {}

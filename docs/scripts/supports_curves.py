@@ -40,7 +40,7 @@ def main(argv=None):
         arch = on_moved_supports(nominal_arch(), mv)
         t0 = time.perf_counter()
         curve = collapse_curve(prepare(arch), DURATIONS)
-        band = ensemble_curve(arch, args.samples, 0, None, (0.2,), progress=False)
+        band = ensemble_curve(arch, args.samples, 0, None, (0.2,))
         rows.append({"kind": kind, "movement_m": d, "k_l": curve.k_l, "k_r": curve.k_r,
                      "durations": list(DURATIONS),
                      "amplitudes_g": [float(a) for a in curve.amplitudes],

@@ -34,7 +34,7 @@ def main(argv=None):
         t0 = time.perf_counter()
         cfg = EnsembleConfig.from_arch(nominal_arch(), samples=args.samples, seed=0,
                                        motion=PulseSpec("oppenheim", -1.0, 0.2), support=mv)
-        res = run_ensemble(cfg, progress=False)
+        res = run_ensemble(cfg)
         s, f = res.summary(), res.frame
         pc = s["p_collapse"]
         row = {"kind": kind, "movement_m": d, "nominal_k_l": s["nominal"]["k_l"],

@@ -26,10 +26,6 @@ Names are imported on first use, so ``import archrock`` stays cheap and the opti
 
 from importlib import import_module
 
-from . import _moved
-
-_moved.install()
-
 _EXPORTS = {
     "errors": ("ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
                "NoMechanismError", "NotFourHingeError", "InvalidSampleError", "ImpactModelError",
@@ -58,8 +54,6 @@ __all__ = sorted(_OWNER)
 
 def __getattr__(name):
     module = _OWNER.get(name)
-    if module is None and name in _moved.MOVED:  # an old module path: archrock.limit
-        return import_module(f"{__name__}.{name}")
     if module is None:
         raise AttributeError(f"module 'archrock' has no attribute {name!r}")
     value = getattr(import_module(f".{module}", __name__), name)

@@ -16,3 +16,15 @@ def readonly_arrays(record) -> None:
             view = value.view()
             view.flags.writeable = False
             object.__setattr__(record, f.name, view)
+
+
+class EngineRecord:
+    """Base of the contact engine's run records (frozen dataclasses with a ``status`` field):
+    read-only arrays, and ``collapsed`` read from the status."""
+
+    def __post_init__(self):
+        readonly_arrays(self)
+
+    @property
+    def collapsed(self) -> bool:
+        return self.status == "collapsed"

@@ -207,7 +207,7 @@ def test_ensemble_job_finishes_with_the_clis_summary(client, wait_job):
     assert len(counts) == 30 and sum(counts) == res["summary"]["k_min"]["count"] > 190
     # the same configuration through the library's run_ensemble (archrock ensemble)
     cfg = api.ensemble_config(body)
-    lib = archrock.run_ensemble(cfg, progress=False).summary()
+    lib = archrock.run_ensemble(cfg).summary()
     assert res["summary"]["k_min"]["mean"] == pytest.approx(lib["k_min"]["mean"], rel=1e-12)
     pc, lpc = res["summary"]["p_collapse"], lib["p_collapse"]
     assert pc["collapses"] == lpc["collapses"] and pc["trials"] == lpc["trials"] == 200

@@ -48,7 +48,7 @@ def test_curves_low_friction_runs_the_engine_at_that_friction(monkeypatch):
 def test_ensemble_routes_at_its_friction(heavy_piers_file, monkeypatch, capsys):
     """The heavy piers' engine ensemble runs at --friction; none is refused there (the engine
     cannot exclude sliding) before any work."""
-    from archrock.studies import enginestudy
+    from archrock.studies.ensemble import engine as ensemble_engine
 
     seen = {}
 
@@ -56,7 +56,7 @@ def test_ensemble_routes_at_its_friction(heavy_piers_file, monkeypatch, capsys):
         seen["friction"], seen["dynamics"] = engine.settings.friction, dynamics
         raise Captured
 
-    monkeypatch.setattr(enginestudy, "engine_ensemble", engine_ensemble)
+    monkeypatch.setattr(ensemble_engine, "engine_ensemble", engine_ensemble)
     argv = ["ensemble", "--geometry", str(heavy_piers_file), "--samples", "2", *PULSE,
             "--no-progress"]
     with pytest.raises(Captured):

@@ -346,9 +346,10 @@ def test_coefficients_are_python_floats_without_numba(without_numba):
     JSON output in the pure-Python mode)."""
     import json
 
-    script = ("import json; from archrock import geometry, limit, mechanism, _jit; "
+    script = ("import json; from archrock import geometry, _jit; "
+              "from archrock.statics import limit; from archrock.dynamics import fourlink; "
               "a = geometry.oppenheim_arch(); r = limit.limit_analysis(a, verify=False); "
-              "c = mechanism.four_link(a, r.mechanism_l).coefficients(0.01); "
+              "c = fourlink.four_link(a, r.mechanism_l).coefficients(0.01); "
               "print(json.dumps([_jit.HAVE_NUMBA, [type(v).__name__ for v in c], list(c)]))")
     have_numba, types, values = json.loads(without_numba("-c", script, timeout=300))
     assert not have_numba and types == ["float"] * 4

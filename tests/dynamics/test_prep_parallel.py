@@ -210,9 +210,9 @@ def test_cannot_collapse_energy_test():
 
 def test_ensemble_early_stop_column_and_summary():
     kw = dict(samples=60, batch_size=30, seed=3, motion=PULSE, impact=ImpactSpec.fixed(0.8754))
-    full = run_ensemble(EnsembleConfig.from_arch(oppenheim_arch(), **kw), progress=False)
+    full = run_ensemble(EnsembleConfig.from_arch(oppenheim_arch(), **kw))
     cfg = EnsembleConfig.from_arch(oppenheim_arch(), early_stop=True, **kw)
-    fast = run_ensemble(cfg, progress=False)
+    fast = run_ensemble(cfg)
     a, b = full.frame, fast.frame
     assert not a["early_stopped"].any() and b["early_stopped"].any()
     assert (b.loc[b["early_stopped"], "status"] == "stopped").all()

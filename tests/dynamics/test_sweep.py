@@ -10,6 +10,7 @@ from archrock.errors import ArchInputError
 from archrock.geometry import nominal_arch
 from archrock.groundmotion import from_samples
 from archrock.studies.ida import ida, msa, random_models
+from archrock.studies.runner import RunSettings
 from archrock.dynamics.response import respond
 from archrock.geometry.sampling import ArchSampler
 from archrock.dynamics.sweep import SweepArches, SweepMotions, sweep
@@ -129,7 +130,7 @@ def test_bad_items_and_engine(models, records):
     with pytest.raises(ArchInputError, match="engine"):
         ida(records, models, [1.0, 2.0], engine="fast")
     with pytest.raises(ArchInputError, match="workers"):
-        ida(records, models, [1.0, 2.0], workers=0)
+        ida(records, models, [1.0, 2.0], settings={"workers": 0})
 
 
 def test_curves_batch_equal_response_by_response():
@@ -186,7 +187,7 @@ def test_out_folder_keeps_responses_and_resumes(models, records, tmp_path, monke
     scales = np.linspace(0.8, 6.0, 10)
     ref = ida(records, models, scales, tol=5e-3)
     out = tmp_path / "run"
-    first = ida(records, models, scales, tol=5e-3, out=out)
+    first = ida(records, models, scales, tol=5e-3, settings=RunSettings(out=out))
     assert [c.to_dict() for c in first.curves] == [c.to_dict() for c in ref.curves]
     chunks = sorted((out / "items").glob("chunk-*.parquet"))
     assert chunks and (out / "manifest.json").exists()
@@ -198,29 +199,30 @@ def test_out_folder_keeps_responses_and_resumes(models, records, tmp_path, monke
     ran = []
     real = sr.sweep
     monkeypatch.setattr(sr, "sweep", lambda *a, **k: ran.append(len(a[2])) or real(*a, **k))
-    again = ida(records, models, scales, tol=5e-3, out=out)
+    again = ida(records, models, scales, tol=5e-3, settings=RunSettings(out=out))
     assert [c.to_dict() for c in again.curves] == [c.to_dict() for c in ref.curves]
     total = sum(len(f.read_bytes()) > 0 for f in (out / "items").glob("chunk-*.parquet"))
     assert 0 < sum(ran) and kept > 0 and total > len(chunks) // 2
     # everything kept now: nothing runs
     ran.clear()
-    ida(records, models, scales, tol=5e-3, out=out)
+    ida(records, models, scales, tol=5e-3, settings=RunSettings(out=out))
     assert sum(ran) == 0
     # another study in the same folder is refused, naming --out
     with pytest.raises(ArchInputError, match="^out:"):
-        ida(records[:1], models, scales, tol=5e-3, out=out)
+        ida(records[:1], models, scales, tol=5e-3, settings=RunSettings(out=out))
 
 
 @pytest.mark.slow  # spawns worker processes (each compiles its serial loop) and a Dask cluster
 def test_process_pool_and_dask_give_the_same_curves(models, records):
     scales = np.linspace(0.8, 6.0, 8)
     ref = [c.to_dict() for c in ida(records, models, scales).curves]
-    assert [c.to_dict() for c in ida(records, models, scales, workers=2).curves] == ref
+    assert [c.to_dict() for c in ida(records, models, scales, settings=RunSettings(workers=2)).curves] == ref
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        assert [c.to_dict() for c in ida(records, models, scales, scheduler=client).curves] == ref
+        assert [c.to_dict() for c in ida(records, models, scales,
+                                              settings=RunSettings(scheduler=client)).curves] == ref
 
 
 def test_least_loss_chains_equal_respond(records):

@@ -8,13 +8,13 @@ import textwrap
 import numpy as np
 import pytest
 
-from archrock.dynamics.batch import prepare_batch, simulate_batch
+from archrock._pairwise import np_sum
+from archrock.dynamics.batch import prepare_batch
 from archrock.errors import ArchInputError, InvalidSampleError
 from archrock.geometry import PolygonArch, family_arch
-from archrock.geometry.batchdraw import (OK, REFUSED, batch_properties, draw_lines, family_plan,
-                                         np_sum)
-from archrock.geometry.batchdraw import _dist
-from archrock.geometry.families import perturb_family
+from archrock.geometry.batchdraw import OK, REFUSED, batch_properties, draw_lines, family_plan
+from archrock.geometry.batchlines import _dist
+from archrock.geometry.irregular import perturb_family
 from archrock.geometry.sampling import ArchSampler, Spreads
 from archrock.groundmotion import PulseSpec
 from archrock.studies.ensemble.familybatch import prepare_family_batch
@@ -124,7 +124,8 @@ def test_batch_arrays_are_polygon_arch_arrays(shape, rise, joints):
     ("parabolic", 3.0, "vertical", Spreads(0.1, 0.1, 0.05), 0.8),
     ("circular", 3.0, "vertical", Spreads(0.2, 0.2, 0.1, 5.0), "paper")])
 def test_prepared_rows_and_outcomes_are_the_arch_object_paths(shape, rise, joints, spreads,
-                                                              impact, rows_close):
+                                                              impact, rows_close,
+                                                              same_outcomes):
     """prepare_family_batch row for row as prepare_batch of the per-arch arches, and the same
     outcomes (status, peak) under the paper's pulse."""
     nom = _nominal(shape, rise, joints)
@@ -134,17 +135,7 @@ def test_prepared_rows_and_outcomes_are_the_arch_object_paths(shape, rise, joint
                         impact=impact)
     new = prepare_family_batch(s, 5, 30, impact=impact)
     rows_close(new, old, FIELDS, RTOL)
-    motion = PulseSpec("oppenheim", -1.0, 0.2).build()
-    r_new, r_old = simulate_batch(new, motion), simulate_batch(old, motion)
-    # outcomes exactly, peaks to 1e-9 (the integration carries the geometry's rounding through
-    # impacts, amplified)
-    np.testing.assert_array_equal(r_new["status"], r_old["status"])
-    np.testing.assert_allclose(r_new["peak"], r_old["peak"], rtol=1e-9)
-    # and the outcomes are robust: no draw is within 1e-6 of the pulse from another outcome,
-    # so rounding (1e-16) cannot flip one on another CPU
-    for f in (1 - 1e-6, 1 + 1e-6):
-        near = simulate_batch(old, PulseSpec("oppenheim", -f, 0.2).build())
-        np.testing.assert_array_equal(near["status"], r_old["status"])
+    same_outcomes(new, old)
 
 
 def test_ensemble_rows_are_single_arch_outcomes():
@@ -234,7 +225,7 @@ def test_uncertified_draws_are_decided_by_polygon_arch(rows_close):
 
 
 def test_family_polylines_match_the_newton_inversion_of_0_6():
-    """Since 0.7 u(s) is a cubic Hermite table (families._Piece) instead of Newton on the exact
+    """Since 0.7 u(s) is a cubic Hermite table (centreline._Piece) instead of Newton on the exact
     arc length: the polylines of 0.6 (tests/data/family_draws_0.6.0.npz, written by 0.6.0 for
     these nominals and one draw each) are kept to 1e-12 of the span."""
     from pathlib import Path
@@ -262,7 +253,7 @@ def test_family_polylines_match_the_newton_inversion_of_0_6():
 def test_hermite_table_is_exact_to_its_tolerance(shape, span, rise):
     """The arc-length table refines until u_Hermite(s) lies within HERMITE_TOL of the length of
     the exact inversion (Newton to round-off), checked here at 2001 points off the knots."""
-    from archrock.geometry.families import HERMITE_TOL, centreline
+    from archrock.geometry.centreline import HERMITE_TOL, centreline
 
     piece = centreline(shape, span, rise).pieces[0]
     s = np.linspace(0.0, piece.length, 2001)

@@ -10,7 +10,7 @@ from archrock.errors import ArchInputError
 from archrock.geometry import (Arch, FamilyArch, PolygonArch, family_arch, oppenheim_arch,
                                random_arch)
 from archrock.statics.limit import limit_analysis
-from archrock.geometry.families import SHAPES, centreline, three_centred_radii
+from archrock.geometry.centreline import SHAPES, centreline, three_centred_radii
 
 S = 10.0
 RISE = {"circular": 3.0, "pointed": 7.0, "elliptical": 3.5, "three-centred": 3.5,

@@ -61,7 +61,7 @@ def test_an_ensemble_around_a_survey_is_its_samples(survey):
 
     cfg = EnsembleConfig(nominal=survey, samples=4, seed=3, batch_size=2,
                          spreads=Spreads(0.0, 0.1, 0.05))
-    res = run_ensemble(cfg, progress=None)
+    res = run_ensemble(cfg)
     sampler = ArchSampler(survey, Spreads(0.0, 0.1, 0.05), seed=3)
     for i in range(4):
         lim = limit_analysis(sampler.arch(i))

@@ -99,17 +99,18 @@ def test_codecheck_legend_lists_each_visible_curve_once():
 
 def test_ensemble_histogram_legend_below_the_panels(tmp_path, monkeypatch):
     pd = pytest.importorskip("pandas")
-    from archrock.reports import plots
+    from archrock.reports import studyplots
 
     figs = []
-    real = plots.save_figure
-    monkeypatch.setattr(plots, "save_figure", lambda fig, path, dpi=150: (figs.append(fig),
-                                                                           real(fig, path, dpi))[1])
+    real = studyplots.save_figure
+    monkeypatch.setattr(studyplots, "save_figure",
+                        lambda fig, path, dpi=150: (figs.append(fig), real(fig, path, dpi))[1])
     rng = np.random.default_rng(0)
     k = rng.normal(0.37, 0.02, (200, 2))
-    plots.plot_multiplier_histograms(pd.DataFrame({"k_l": k[:, 0], "k_r": k[:, 1]}),
-                                     tmp_path / "h.png",
-                                     reference={"nominal": (0.37, 0.37), "RA-1": (0.35, 0.38)})
+    studyplots.plot_multiplier_histograms(pd.DataFrame({"k_l": k[:, 0], "k_r": k[:, 1]}),
+                                          tmp_path / "h.png",
+                                          reference={"nominal": (0.37, 0.37),
+                                                     "RA-1": (0.35, 0.38)})
     fig = figs[0]
     assert all(ax.get_legend() is None for ax in fig.axes)  # nothing inside the panels
     leg = fig.legends[0]

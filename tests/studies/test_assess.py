@@ -14,7 +14,9 @@ pytest.importorskip("matplotlib")
 from archrock.studies.assessment import (SECTIONS, AssessConfig, Context, Paragraph, Section,
                                          assess, section_geometry)
 from archrock.cli import main
+from archrock.errors import ArchInputError
 from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
+from archrock.studies.runner import RunSettings
 from archrock.geometry import oppenheim_arch
 from archrock.dynamics.impact import ImpactSpec
 from archrock.reports.html import render_html, write_report
@@ -34,10 +36,19 @@ KEYS = ["geometry", "governing", "limit", "friction", "impact", "response", "cur
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
     lines = []
-    res = assess(oppenheim_arch(), FAST, progress=lines.append)
+    res = assess(oppenheim_arch(), FAST, settings=RunSettings(progress=lines.append))
     out = tmp_path_factory.mktemp("assess")
     html_path, json_path = write_report(res, out / "opp.html")
     return res, html_path.read_text(encoding="utf-8"), json.loads(json_path.read_text()), lines
+
+
+def test_how_it_runs_is_settings_alone():
+    """0.7: the 0.6 progress= keyword is gone; settings= is refused by field where the
+    assessment does not use it (it runs in this process and keeps no folder)."""
+    with pytest.raises(TypeError, match="unexpected keyword argument 'progress'"):
+        assess(oppenheim_arch(), FAST, progress=print)
+    with pytest.raises(ArchInputError, match="^workers: 2; assess runs in this process"):
+        assess(oppenheim_arch(), FAST, settings={"workers": 2})
 
 
 def test_sections_titles_and_json(report):

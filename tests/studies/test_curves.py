@@ -10,6 +10,7 @@ from archrock.geometry import oppenheim_arch, random_arch
 from archrock.groundmotion import oppenheim_pulse, pulse
 from archrock.dynamics.response import prepare, respond
 from archrock.geometry.sampling import ArchSampler, Spreads
+from archrock.studies.runner import RunSettings
 
 CV_OPPENHEIM = 0.8754
 
@@ -131,7 +132,7 @@ def test_ensemble_independent_of_workers():
     nominal = oppenheim_arch()
     kw = dict(samples=3, seed=11, durations=[0.5], a_max=1.5, n_scan=25, tol=2e-3)
     assert np.array_equal(ensemble_curve(nominal, **kw).amplitudes,
-                          ensemble_curve(nominal, workers=2, **kw).amplitudes)
+                          ensemble_curve(nominal, **kw, settings=RunSettings(workers=2)).amplitudes)
 
 
 @pytest.mark.parametrize("kwargs, field", [
@@ -380,7 +381,7 @@ def test_a_scan_point_with_many_impacts_grows_its_event_table(nominal_model, mon
     """A response with more impacts than the scan's event table (an arch whose impacts lose
     almost nothing rocks on near its threshold) is run again with a larger table, not stopped
     with a Python argument's name; its outcome and impacts are those of one large table."""
-    import archrock.studies.curves as C
+    import archrock.studies.amplitude as C  # the search of one amplitude
     from archrock.errors import LimitExceededError
 
     motion = oppenheim_pulse(-1.2 * nominal_model.k_l, 0.5)

@@ -7,6 +7,7 @@ import pytest
 
 from archrock.cli import main
 from archrock.studies.defectmap import defect_map
+from archrock.studies.runner import RunSettings
 from archrock.errors import ArchInputError
 from archrock.geometry import (Arch, Defect, PolygonArch, apply_defect, as_polygon, family_arch,
                                oppenheim_arch)
@@ -359,7 +360,8 @@ def test_progress_lines_go_to_the_callback_not_stderr(capsys):
     """The library prints nothing: a progress line per damaged arch goes to the callback (the
     CLI's prints it on stderr), none without one."""
     lines = []
-    m = defect_map(oppenheim_arch(), "thickness", 0.7, indices=[0, 3], progress=lines.append)
+    m = defect_map(oppenheim_arch(), "thickness", 0.7, indices=[0, 3],
+                   settings=RunSettings(progress=lines.append))
     assert capsys.readouterr() == ("", "")
     assert [ln.split("  [")[0] for ln in lines] == [
         f"  voussoir {i} ({j + 1}/2): k_l = {m.k_l[j]:.4f}, k_r = {m.k_r[j]:.4f}"
@@ -369,6 +371,8 @@ def test_progress_lines_go_to_the_callback_not_stderr(capsys):
     # the one protocol (archrock._progress): anything but None, True or a callable is refused
     with pytest.raises(ArchInputError, match=r"^progress: 'yes'; allowed None, True"):
         defect_map(oppenheim_arch(), settings={"progress": "yes"})
+    with pytest.raises(TypeError, match="unexpected keyword argument 'progress'"):
+        defect_map(oppenheim_arch(), progress=lines.append)  # 0.6's keyword, gone in 0.7
 
 
 def test_side_is_one_spelling_with_the_old_ones_read(capsys):

@@ -13,6 +13,7 @@ from archrock.geometry.files import read_arch
 from archrock.groundmotion import G, GroundMotion
 from archrock.studies.engineida import EngineIDAResult, engine_ida
 from archrock.studies.enginestudy import EngineRun, choose_dynamics
+from archrock.studies.runner import RunSettings
 
 #: the scale grid: 0.05 g is below the arch's activation (k = 0.113 g: nothing moves), 2 g far
 #: above the engine's first collapse (about 0.7 g on the heavy piers)
@@ -45,7 +46,8 @@ def records():
 @pytest.fixture(scope="module")
 def result(heavy_arch, records, coarse):
     lines = []
-    res = engine_ida(heavy_arch, records, SCALES, run=coarse, progress=lines.append,
+    res = engine_ida(heavy_arch, records, SCALES, run=coarse,
+                     settings=RunSettings(progress=lines.append),
                      dynamics=choose_dynamics(heavy_arch))
     return res, lines
 
@@ -91,8 +93,8 @@ def test_two_workers_give_the_same_matrix(heavy_arch, records, coarse, result):
     res1, _ = result
     lines = []
     # two records, one a worker, finishing in any order; the grid's two ends (seconds)
-    res2 = engine_ida(heavy_arch, records, SCALES[::3], run=coarse, workers=2,
-                      progress=lines.append)
+    res2 = engine_ida(heavy_arch, records, SCALES[::3], run=coarse,
+                      settings=RunSettings(workers=2, progress=lines.append))
     assert res2.timing["workers"].startswith("process pool")
     np.testing.assert_array_equal(res2.collapsed, res1.collapsed[:, ::3])
     assert res2.status == tuple(row[::3] for row in res1.status)
@@ -109,9 +111,10 @@ def test_a_record_that_never_collapses_is_censored(heavy_arch, records, coarse):
 @pytest.mark.parametrize("kw, field", [
     (dict(scales=(1.0, 0.5)), "scales"),
     (dict(run="fast"), "run"),
-    (dict(workers=0), "workers"),
+    (dict(settings={"workers": 0}), "workers"),
     (dict(n_boot=1), "n_boot"),
-    (dict(progress=3), "progress"),
+    (dict(settings={"progress": 3}), "progress"),
+    (dict(settings=RunSettings(out="x")), "out"),
     (dict(im="nope"), "im"),
 ])
 def test_bad_input_names_the_field(heavy_arch, records, kw, field):
@@ -120,3 +123,10 @@ def test_bad_input_names_the_field(heavy_arch, records, kw, field):
     scales = args.pop("scales")
     with pytest.raises(ArchInputError, match=rf"^{field}"):
         engine_ida(heavy_arch, records, scales, **args)
+
+
+def test_the_0_6_run_keywords_are_gone(heavy_arch, records):
+    """0.7: workers, scheduler and progress go in settings= (RunSettings or its dict)."""
+    for old in ("workers", "scheduler", "progress"):
+        with pytest.raises(TypeError, match=f"unexpected keyword argument '{old}'"):
+            engine_ida(heavy_arch, records, SCALES, **{old: None})

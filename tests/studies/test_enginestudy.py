@@ -16,8 +16,10 @@ from archrock.geometry import nominal_arch
 from archrock.geometry.files import read_arch
 from archrock.groundmotion import PulseSpec
 from archrock.studies import enginestudy as es
+from archrock.studies.ensemble import engine as ee
 from archrock.studies.ensemble import EnsembleConfig, EnsembleResult, run_ensemble
 from archrock.studies.fragility import collapse_probability
+from archrock.studies.runner import RunSettings
 
 pytest.importorskip("pymunk")
 
@@ -59,7 +61,7 @@ def test_a_bad_dynamics_value_is_refused_naming_the_field(bad):
         es.check_dynamics(bad)
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=2)
     with pytest.raises(ArchInputError, match=r"^dynamics: "):
-        run_ensemble(cfg, progress=None, dynamics=bad)
+        run_ensemble(cfg, dynamics=bad)
 
 
 def test_the_cli_refuses_a_bad_dynamics_value(capsys):
@@ -70,8 +72,8 @@ def test_the_cli_refuses_a_bad_dynamics_value(capsys):
 def test_auto_on_rigid_ground_is_the_four_link_ensemble_bit_for_bit():
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=100, seed=3,
                                    motion=PulseSpec("oppenheim", -1.0, 0.2))
-    auto = run_ensemble(cfg, progress=None)
-    four = run_ensemble(cfg, progress=None, dynamics="fourlink")
+    auto = run_ensemble(cfg)
+    four = run_ensemble(cfg, dynamics="fourlink")
     assert isinstance(auto, EnsembleResult)
     import pandas as pd
 
@@ -88,7 +90,7 @@ def test_auto_keeps_the_published_ten_thousand_arch_ensemble():
     """docs/ensemble.md: 2803 collapses of 10,000 arches around Oppenheim's arch, paper pulse."""
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=10000, seed=0,
                                    motion=PulseSpec("oppenheim", -1.0, 0.2))
-    s = run_ensemble(cfg, progress=None).summary()
+    s = run_ensemble(cfg).summary()
     assert s["p_collapse"]["collapses"] == 2803 and s["p_collapse"]["trials"] == 10000
 
 
@@ -123,7 +125,7 @@ def test_engine_ensemble_counts_on_a_tiny_coarse_ensemble(heavy_arch):
                                    spreads={"spread_span": 0.0})
     run = es.EngineRun(EngineSettings(steps_per_T=100, iterations=10), t_free=3.0)
     lines = []
-    res = es.engine_ensemble(cfg, run, progress=lines.append)
+    res = ee.engine_ensemble(cfg, run, progress=lines.append)
     s = _check_counts(res, cfg)
     assert len(lines) == 3 and lines[-1].startswith("engine ensemble: arch 3/3")
     assert s["engine"]["settings"]["steps_per_T"] == 100.0 and s["dynamics"] is None
@@ -140,8 +142,8 @@ def test_engine_ensemble_summary_counts_are_consistent(heavy_arch):
                                    motion=PulseSpec("oppenheim", -1.5, 0.2),
                                    spreads={"spread_span": 0.0})
     lines = []
-    res = run_ensemble(cfg, progress=lines.append)
-    assert isinstance(res, es.EngineEnsembleResult)
+    res = run_ensemble(cfg, settings=RunSettings(progress=lines.append))
+    assert isinstance(res, ee.EngineEnsembleResult)
     s = _check_counts(res, cfg)
     assert s["dynamics"]["used"] == "engine"
     pc = s["p_collapse"]
@@ -156,14 +158,14 @@ def test_engine_ensemble_summary_counts_are_consistent(heavy_arch):
 def test_engine_ensemble_refuses_what_it_cannot_run():
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=2)
     with pytest.raises(ArchInputError, match="^motion: None"):
-        es.engine_ensemble(cfg)
+        ee.engine_ensemble(cfg)
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=2, motion=PulseSpec("oppenheim", -1.0, 0.2))
     with pytest.raises(ArchInputError, match="^engine: "):
-        es.engine_ensemble(cfg, engine={"t_free": 3})
+        ee.engine_ensemble(cfg, engine={"t_free": 3})
     with pytest.raises(ArchInputError, match="^engine: "):
-        run_ensemble(cfg, progress=None, dynamics="engine", engine="fast")
+        run_ensemble(cfg, dynamics="engine", engine="fast")
     with pytest.raises(ArchInputError, match="^progress: "):
-        es.engine_ensemble(cfg, progress="yes")
+        ee.engine_ensemble(cfg, progress="yes")
 
 
 def test_engine_run_round_trips_and_refuses_bad_fields():
@@ -329,11 +331,11 @@ def test_a_four_link_ensemble_on_piers_carries_the_choice():
     arch = with_piers(nominal_arch(radius=5, embrace_deg=180, thickness=0.8, voussoirs=9), 1.0, 3.0)
     cfg = EnsembleConfig.from_arch(arch, samples=2, motion=PulseSpec("oppenheim", -0.3, 0.2),
                                    spreads={"spread_span": 0.0})
-    res = run_ensemble(cfg, progress=None)
+    res = run_ensemble(cfg)
     assert isinstance(res, EnsembleResult)
     d = res.summary()["nominal"]["dynamics"]
     assert d["requested"] == "auto" and d["used"] == "fourlink" and d["single_dof"]["valid"]
-    eng = run_ensemble(cfg, progress=None, dynamics="engine",
+    eng = run_ensemble(cfg, dynamics="engine",
                        engine=es.EngineRun(EngineSettings(steps_per_T=50, iterations=5),
                                            t_free=1.0))
     s = eng.summary()

@@ -12,6 +12,7 @@ from archrock.studies.ensemble import (COLUMNS, EnsembleConfig, EnsembleConfigMi
                                        run_ensemble, sample_arch)
 from archrock.errors import ArchInputError
 from archrock.studies.fragility import collapse_probability
+from archrock.studies.runner import RunSettings
 from archrock.geometry import oppenheim_arch
 from archrock.groundmotion import PulseSpec
 from archrock.dynamics.impact import ImpactSpec
@@ -35,12 +36,12 @@ def config(**kw):
 
 @pytest.fixture(scope="module")
 def base():
-    return run_ensemble(config(), progress=False)
+    return run_ensemble(config())
 
 
 def test_zero_spreads_every_sample_is_the_nominal_arch():
     cfg = config(samples=15, batch_size=4, spread_span=0.0, spread_thickness=0.0, spread_radius=0.0)
-    res = run_ensemble(cfg, progress=False)
+    res = run_ensemble(cfg)
     df = res.frame
     assert len(df) == 15
     np.testing.assert_allclose(df["k_l"], 0.3700, atol=5e-5)
@@ -100,9 +101,9 @@ def test_summary_numbers(base):
 
 
 def test_same_seed_same_results_with_two_workers(base):
-    res2 = run_ensemble(config(), workers=2, progress=False)
+    res2 = run_ensemble(config(), settings=RunSettings(workers=2))
     pd.testing.assert_frame_equal(base.frame, res2.frame)
-    other = run_ensemble(config(seed=12, samples=10), progress=False)
+    other = run_ensemble(config(seed=12, samples=10))
     assert not np.allclose(other.frame["k_l"], base.frame["k_l"][:10])
 
 
@@ -142,14 +143,14 @@ def test_in_process_groups_runs_of_consecutive_batches(monkeypatch):
     monkeypatch.setattr(executors, "GROUP_ARCHES", 1)
     assert executors._groups(cfg, [0, 1]) == [[0], [1]]
     # a resumed run computes only the missing batches, grouped, with the same rows
-    full = run_ensemble(config(samples=95), progress=False).frame
+    full = run_ensemble(config(samples=95)).frame
     monkeypatch.setattr(executors, "GROUP_ARCHES", 4000)
-    pd.testing.assert_frame_equal(run_ensemble(config(samples=95), progress=False).frame, full)
+    pd.testing.assert_frame_equal(run_ensemble(config(samples=95)).frame, full)
 
 
 def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     out = tmp_path / "ens"
-    first = run_ensemble(config(), out=out, progress=False)
+    first = run_ensemble(config(), settings=RunSettings(out=out))
     pd.testing.assert_frame_equal(first.frame, base.frame)
     files = sorted(p.name for p in (out / "batches").iterdir())
     assert files == [f"batch-{b:05d}.parquet{x}" for b in range(4) for x in ("", ".sha256")]
@@ -157,7 +158,7 @@ def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
     # a half-written file of a killed run (its process is gone) is removed
     stale = out / "batches" / "batch-00003.parquet.tmp-99999999"
     stale.write_bytes(b"partial")
-    again = run_ensemble(config(), out=out, progress=False)
+    again = run_ensemble(config(), settings=RunSettings(out=out))
     pd.testing.assert_frame_equal(again.frame, base.frame)
     assert again.timing["computed_batches"] == [2]
     assert again.timing["loaded_batches"] == [0, 1, 3]
@@ -174,45 +175,46 @@ def test_resume_recomputes_only_the_missing_batch(base, tmp_path):
 
 def test_progress_callable_receives_the_resume_notes(base, tmp_path, capsys):
     out = tmp_path / "ens"
-    run_ensemble(config(), out=out, progress=None)
+    run_ensemble(config(), settings=RunSettings(out=out))
     (out / "batches" / "batch-00001.parquet").write_bytes(b"damaged")
     lines = []
-    again = run_ensemble(config(), out=out, progress=lines.append)
+    again = run_ensemble(config(), settings=RunSettings(out=out, progress=lines.append))
     pd.testing.assert_frame_equal(again.frame, base.frame)
     assert capsys.readouterr().err == ""
     assert any("recomputing batch 1: batch-00001.parquet damaged: its sha256" in x for x in lines)
     assert lines[-1].startswith("ensemble: ") and lines[-1].endswith("(100%)")
 
 
-def test_out_dir_is_the_old_name_of_out(base, tmp_path):
-    with pytest.warns(DeprecationWarning, match=r"run_ensemble\(out_dir=...\) is now "
-                      r"run_ensemble\(settings=RunSettings\(out=...\)\)"):
-        res = run_ensemble(config(), out_dir=tmp_path / "a", progress=None)
-    assert res.timing["computed_batches"] == [0, 1, 2, 3]
-    assert run_ensemble(config(), tmp_path / "a", progress=None).timing["loaded_batches"] == [
-        0, 1, 2, 3]
-    with pytest.raises(ArchInputError, match="out_dir: give the folder once"):
-        run_ensemble(config(), out=tmp_path / "a", out_dir=tmp_path / "b", progress=None)
+def test_the_0_6_keywords_are_gone(tmp_path):
+    """0.7 removed out=, out_dir=, workers=, scheduler=, progress= (and ``out`` positional):
+    Python's own TypeError names the keyword, and nothing is written."""
+    for kw in ({"out": tmp_path / "a"}, {"out_dir": tmp_path / "a"}, {"workers": 2},
+               {"scheduler": "tcp://127.0.0.1:1"}, {"progress": None}):
+        with pytest.raises(TypeError, match=f"unexpected keyword argument '{next(iter(kw))}'"):
+            run_ensemble(config(samples=2), **kw)
+    with pytest.raises(TypeError, match="positional argument"):
+        run_ensemble(config(samples=2), tmp_path / "a")
+    assert not (tmp_path / "a").exists()
 
 
 def test_resume_refuses_another_configuration(tmp_path):
     out = tmp_path / "ens"
-    run_ensemble(config(samples=10), out=out, progress=False)
+    run_ensemble(config(samples=10), settings=RunSettings(out=out))
     with pytest.raises(EnsembleConfigMismatch, match="'seed' is 11 there and 12 here"):
-        run_ensemble(config(samples=10, seed=12), out=out, progress=False)
+        run_ensemble(config(samples=10, seed=12), settings=RunSettings(out=out))
 
 
 def test_dask_local_cluster(base):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=1, processes=False, threads_per_worker=1,
                                   dashboard_address=None) as cluster:
-        res = run_ensemble(config(), scheduler=cluster.scheduler_address, progress=False)
+        res = run_ensemble(config(), settings=RunSettings(scheduler=cluster.scheduler_address))
     assert res.timing["executor"] == "dask"
     pd.testing.assert_frame_equal(res.frame, base.frame)
 
 
 def test_limit_only_without_motion():
-    res = run_ensemble(config(samples=12, motion=None), progress=False)
+    res = run_ensemble(config(samples=12, motion=None))
     s = res.summary()
     assert s["p_collapse"] is None and s["response"] is None
     assert set(res.frame["status"]) == {"limit-only"}
@@ -222,8 +224,7 @@ def test_limit_only_without_motion():
 def test_paper_impact_failures_are_counted():
     # wide spreads: the per-geometry 'paper' impact model creates energy on many arches
     res = run_ensemble(config(samples=100, batch_size=50, impact="paper", cv=None, seed=0,
-                              spread_span=0.3, spread_thickness=0.3, spread_radius=0.2),
-                       progress=False)
+                              spread_span=0.3, spread_thickness=0.3, spread_radius=0.2))
     s = res.summary()
     failed = res.frame[res.frame["error"] != ""]
     assert len(failed) >= 10 and (failed["status"] == "failed").all()
@@ -240,7 +241,7 @@ def test_paper_impact_failures_are_counted():
 
 
 def test_nominal_paper_impact_is_the_papers_cv():
-    res = run_ensemble(config(samples=3, impact="nominal-paper", cv=None), progress=False)
+    res = run_ensemble(config(samples=3, impact="nominal-paper", cv=None))
     assert res.impact["applied"]["cv"] == pytest.approx(0.8754, abs=5e-5)
     assert res.impact["model"] == "paper" and res.impact["on"] == "nominal"
     assert res.frame["c_l_to_r"].tolist() != [] and np.isfinite(res.frame["c_l_to_r"]).all()
@@ -276,7 +277,7 @@ def test_motion_specification_serialises_as_the_manifests_dict():
 
 def test_bad_workers():
     with pytest.raises(ArchInputError, match="workers"):
-        run_ensemble(config(samples=2), workers=0, progress=False)
+        run_ensemble(config(samples=2), settings=RunSettings(workers=0))
 
 
 # ---------------------------------------------------------------------------- command line
@@ -297,7 +298,7 @@ def test_cli_json_summary(capsys):
     assert 0.3 < s["k_l"]["mean"] < 0.4 and s["k_l"]["std"] > 0.005
     assert s["p_collapse"] is None
     # the same ensemble through the library
-    lib = run_ensemble(EnsembleConfig.from_arch(oppenheim_arch(), samples=20), progress=False)
+    lib = run_ensemble(EnsembleConfig.from_arch(oppenheim_arch(), samples=20))
     assert s["k_l"]["mean"] == pytest.approx(lib.summary()["k_l"]["mean"], rel=1e-12)
 
 
@@ -358,7 +359,7 @@ def test_unreachable_scheduler_is_a_one_line_error(capsys, monkeypatch):
     address = f"127.0.0.1:{_unused_port()}"
     t0 = time.perf_counter()
     with pytest.raises(ArchInputError, match=f"scheduler: cannot connect to '{address}'"):
-        run_ensemble(config(samples=2), scheduler=address, progress=False)
+        run_ensemble(config(samples=2), settings=RunSettings(scheduler=address))
     code, out, err = cli(capsys, "ensemble", "--samples", "2", "--scheduler", address,
                          "--no-progress")
     assert code == 2 and err.startswith("archrock: error: scheduler: cannot connect to ")
@@ -370,7 +371,7 @@ def test_event_table_overflow_is_flagged_not_failed(base, monkeypatch):
     from archrock.studies.ensemble import compute
 
     monkeypatch.setattr(compute, "MAX_EVENTS", 8)
-    res = run_ensemble(config(), progress=False)
+    res = run_ensemble(config())
     df, ref = res.frame, base.frame
     over = df["events_truncated"].to_numpy()
     assert over.any() and not ref["events_truncated"].any()
@@ -408,7 +409,7 @@ def test_summary_leaves_out_arches_that_cannot_stand_and_collapsed_peaks(base):
 
 
 def test_one_sample_has_no_std():
-    s = run_ensemble(config(samples=1, motion=None), progress=False).summary()
+    s = run_ensemble(config(samples=1, motion=None)).summary()
     assert s["k_l"]["count"] == 1 and s["k_l"]["std"] is None and s["k_l"]["mean"] is not None
     # nor a 5-95% range: one value would print as a zero-width one
     assert s["k_l"]["q05"] is None and s["k_l"]["q95"] is None and "one sample" in s["k_l"]["note"]
@@ -497,14 +498,14 @@ def test_no_integrated_sample_gives_no_probability_and_says_why(base):
 
 
 def test_histograms_say_how_many_samples_are_not_shown(base, tmp_path, monkeypatch):
-    from archrock.reports import plots
+    from archrock.reports import studyplots
 
     df, _ = _with_outcomes(base)
     figs = []
-    real = plots.save_figure
-    monkeypatch.setattr(plots, "save_figure", lambda fig, path, dpi: figs.append(fig) or
+    real = studyplots.save_figure
+    monkeypatch.setattr(studyplots, "save_figure", lambda fig, path, dpi: figs.append(fig) or
                         real(fig, path, dpi))
-    plots.plot_multiplier_histograms(df, tmp_path / "k.png")
+    studyplots.plot_multiplier_histograms(df, tmp_path / "k.png")
     title = figs[0]._suptitle.get_text()
     # the impact failure keeps its k and is shown; the other three are not
     assert title.startswith("37 of 40 samples shown; not shown: 3 (")
@@ -518,7 +519,7 @@ def test_histograms_say_how_many_samples_are_not_shown(base, tmp_path, monkeypat
 @pytest.fixture
 def written(base, tmp_path):
     out = tmp_path / "ens"
-    run_ensemble(config(), out=out, progress=False)
+    run_ensemble(config(), settings=RunSettings(out=out))
     return out
 
 
@@ -533,7 +534,7 @@ def _resume(out, capsys):
 def test_resume_without_manifest_is_refused(written):
     (written / "manifest.json").unlink()
     with pytest.raises(ArchInputError, match=r"batches'? holds batch files but .*manifest.json"):
-        run_ensemble(config(seed=12), out=written, progress=False)
+        run_ensemble(config(seed=12), settings=RunSettings(out=written))
     assert len(list((written / "batches").iterdir())) == 8  # nothing touched (4 + checksums)
 
 
@@ -559,7 +560,7 @@ def test_resume_checks_config_index_and_code(base, written, capsys, monkeypatch)
     from archrock.studies.ensemble import store
 
     other = written.parent / "other"
-    run_ensemble(config(seed=12), out=other, progress=False)
+    run_ensemble(config(seed=12), settings=RunSettings(out=other))
     batches = written / "batches"
     for name in ("batch-00002.parquet", "batch-00002.parquet.sha256"):  # with its checksum
         (other / "batches" / name).replace(batches / name)
@@ -647,7 +648,7 @@ def test_tmp_files_of_live_processes_are_kept(written):
     dead = written / "manifest.json.tmp-99999999"
     mine.write_bytes(b"x")
     dead.write_bytes(b"x")
-    run_ensemble(config(), out=written, progress=False)
+    run_ensemble(config(), settings=RunSettings(out=written))
     assert mine.exists() and not dead.exists()
     manifest = json.loads((written / "manifest.json").read_text())
     assert manifest["runs"][-1]["removed_tmp"] == ["manifest.json.tmp-99999999"]
@@ -675,7 +676,7 @@ def test_sample_i_is_the_same_arch_in_ensemble_curves_and_fragility(base):
     for i in (0, 1):
         direct = collapse_amplitude(models[i], 0.5, n_scan=10, a_max=2.0).amplitude
         assert band.amplitudes[i, 0] == (np.inf if direct is None else direct)
-    assert base.frame["k_l"].tolist() == run_ensemble(other, progress=False).frame["k_l"].tolist()
+    assert base.frame["k_l"].tolist() == run_ensemble(other).frame["k_l"].tolist()
 
 
 def test_least_loss_ensemble_runs_the_chain_and_agrees_with_respond():
@@ -685,7 +686,7 @@ def test_least_loss_ensemble_runs_the_chain_and_agrees_with_respond():
 
     motion = PulseSpec("oppenheim", -1.0, 0.4)
     cfg = config(samples=6, batch_size=3, impact="least-loss", cv=None, motion=motion)
-    res = run_ensemble(cfg, progress=False)
+    res = run_ensemble(cfg)
     df = res.frame
     assert (df["error"] == "").all()
     for i in range(6):
@@ -695,7 +696,7 @@ def test_least_loss_ensemble_runs_the_chain_and_agrees_with_respond():
         assert df["n_impacts"].iloc[i] == len(one.impacts)
     assert df["collapsed"].any() and not df["collapsed"].all()
     # the least-loss chain differs from the paper's alternation on these arches
-    paper = run_ensemble(config(samples=6, batch_size=3, motion=cfg.motion), progress=False).frame
+    paper = run_ensemble(config(samples=6, batch_size=3, motion=cfg.motion)).frame
     assert not np.array_equal(paper["peak"].to_numpy(), df["peak"].to_numpy())
 
 

@@ -31,11 +31,10 @@ def test_zero_or_no_movement_keeps_the_configuration_and_its_hash():
 def test_each_row_is_its_arch_on_moved_supports():
     mv = SupportMovement(0.5, 0.2, "left")
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=6, seed=3, batch_size=3, support=mv)
-    res = run_ensemble(cfg, progress=False)
+    res = run_ensemble(cfg)
     nom = reclosed(displace(nominal_arch(), mv).arch)
     assert res.nominal["k_l"] == pytest.approx(limit_analysis(nom).k_l, rel=1e-12)
-    fixed = run_ensemble(EnsembleConfig.from_arch(nominal_arch(), samples=6, seed=3),
-                         progress=False).frame
+    fixed = run_ensemble(EnsembleConfig.from_arch(nominal_arch(), samples=6, seed=3)).frame
     for row, k_fixed in zip(res.frame.itertuples(), fixed["k_l"]):
         arch = sample_arch(cfg, row.index)
         assert arch.movement == mv and not arch.point_joints  # re-closed
@@ -50,13 +49,13 @@ def test_an_arch_that_cannot_stand_on_its_moved_supports_is_counted_so():
     collapse on the way (at 1.87-1.90 m) and count as "cannot stand", not as invalid draws."""
     cfg = EnsembleConfig.from_arch(nominal_arch(), samples=8, seed=0,
                                    support=SupportMovement(2.0))
-    res = run_ensemble(cfg, progress=False)
+    res = run_ensemble(cfg)
     bad = [e for e in res.frame["error"] if e]
     assert len(bad) == 4 and all("cannot stand on its moved supports" in e for e in bad)
     assert res.summary()["outcomes"]["counts"]["cannot_stand"] == 4
     with pytest.raises(CannotStandError, match="cannot stand"):  # the nominal itself
         run_ensemble(EnsembleConfig.from_arch(nominal_arch(), samples=2,
-                                              support=SupportMovement(3.0)), progress=False)
+                                              support=SupportMovement(3.0)))
 
 
 def test_cli_ensemble_moves_supports_and_other_studies_refuse(capsys):
@@ -87,7 +86,7 @@ def test_a_movement_drawn_per_arch():
                                    support_draw="uniform")
     assert cfg.to_dict()["support_draw"] == "uniform"
     assert EnsembleConfig.from_dict(json.loads(cfg.to_json())) == cfg
-    res = run_ensemble(cfg, progress=False)
+    res = run_ensemble(cfg)
     for row in res.frame.itertuples():
         arch = sample_arch(cfg, row.index)
         assert arch.movement == mv.scaled(float(u[row.index]))

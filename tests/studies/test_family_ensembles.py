@@ -10,7 +10,7 @@ from archrock.dynamics.batch import prepare_batch, simulate_batch
 from archrock.errors import ArchInputError, InvalidSampleError
 from archrock.geometry import (FamilyArch, PolygonArch, arch_from_dict, as_polygon, family_arch,
                                oppenheim_arch)
-from archrock.geometry.families import perturb_family
+from archrock.geometry.irregular import perturb_family
 from archrock.statics.limit import limit_analysis, static_multiplier
 from archrock.dynamics.response import prepare, respond
 from archrock.geometry.sampling import ArchSampler, Spreads

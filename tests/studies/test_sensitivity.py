@@ -11,6 +11,7 @@ from archrock.cli import main  # noqa: E402
 from archrock.geometry import family_arch, oppenheim_arch  # noqa: E402
 from archrock.geometry.sampling import ArchSampler, Spreads  # noqa: E402
 from archrock.studies.sensitivity import arches_from_inputs, input_layout, sobol_indices  # noqa: E402
+from archrock.studies.runner import RunSettings  # noqa: E402
 
 
 def _inputs_of(sampler, count):
@@ -166,7 +167,8 @@ def test_progress_lines_go_to_the_callback_and_the_cli_prints_them(capsys):
     from archrock.errors import ArchInputError
 
     lines = []
-    sobol_indices(oppenheim_arch(), Spreads(0.05, 0.05, 0.0), 16, motion=None, progress=lines.append)
+    sobol_indices(oppenheim_arch(), Spreads(0.05, 0.05, 0.0), 16, motion=None,
+                  settings=RunSettings(progress=lines.append))
     assert capsys.readouterr() == ("", "")
     assert lines[0] == "sensitivity: 80 arches (16 x (3 groups + 2))"
     assert lines[-1].startswith("sensitivity: 80/80 arches [")

@@ -13,6 +13,7 @@ from archrock.geometry import oppenheim_arch
 from archrock.groundmotion import PulseSpec
 from archrock.dynamics.impact import ImpactSpec
 from archrock.geometry.sampling import Spreads
+from archrock.studies.runner import RunSettings
 
 
 def _close(a, b, path=""):
@@ -34,8 +35,8 @@ def test_streamed_summary_equals_in_memory(tmp_path, early_stop):
                                    spreads=Spreads(0.2, 0.3, 0.3), early_stop=early_stop,
                                    motion=PulseSpec("oppenheim", -1.0, 0.2),
                                    impact=ImpactSpec.fixed(0.8754))
-    full = run_ensemble(cfg, out=tmp_path / "a", progress=False)
-    lean = run_ensemble(cfg, out=tmp_path / "a", progress=False, keep_frame=False)
+    full = run_ensemble(cfg, settings=RunSettings(out=tmp_path / "a"))
+    lean = run_ensemble(cfg, keep_frame=False, settings=RunSettings(out=tmp_path / "a"))
     assert lean.frame is None and lean.timing["loaded_batches"] == list(range(cfg.n_batches))
     ref, got = full.summary(), lean.summary()
     assert got.pop("streamed")["passes"] == 3
@@ -81,7 +82,7 @@ def test_atoms_single_values_and_empty_series():
 def test_keep_frame_false_needs_a_folder():
     cfg = EnsembleConfig.from_arch(oppenheim_arch(), samples=2)
     with pytest.raises(ArchInputError, match="keep_frame"):
-        run_ensemble(cfg, progress=False, keep_frame=False)
+        run_ensemble(cfg, keep_frame=False)
 
 
 def test_cli_low_memory_prints_the_same_summary(tmp_path, capsys):

@@ -15,6 +15,7 @@ from archrock.geometry import family_arch, nominal_arch  # noqa: E402
 from archrock.geometry.sampling import ArchSampler, Spreads  # noqa: E402
 from archrock.statics.limit import limit_analysis  # noqa: E402
 from archrock.studies.verification import verify_ensemble  # noqa: E402
+from archrock.studies.runner import RunSettings  # noqa: E402
 
 #: coarse engine and ramp: enough for the hinges and k within a few % on 5 voussoirs
 COARSE = EngineSettings(steps_per_T=100, iterations=20)
@@ -54,7 +55,7 @@ def test_verify_ensemble_bad_input_and_work_bound(monkeypatch):
     with pytest.raises(ArchInputError, match="k_tol"):
         verify_ensemble(s, 1, k_tol=0.0)
     with pytest.raises(ArchInputError, match="workers"):
-        verify_ensemble(s, 1, workers=0)
+        verify_ensemble(s, 1, run_settings=RunSettings(workers=0))
     with pytest.raises(ArchInputError, match="ramp_options: unknown"):
         verify_ensemble(s, 1, ramp_options={"lambda_max": 3})
     with pytest.raises(ArchInputError, match="arches"):
@@ -94,10 +95,11 @@ def test_verify_ensemble_six_irregular_pointed_arches_in_a_pool():
     eng = EngineSettings()  # the coarse settings are not converged enough on these arches
     opts = {"tol": 0.02, "rate": 0.1, "hold": 2.0}
     lines = []
-    pool = verify_ensemble(s, 6, settings=eng, ramp_options=opts, workers=2,
-                           progress=lines.append)
+    pool = verify_ensemble(s, 6, settings=eng, ramp_options=opts,
+                           run_settings=RunSettings(workers=2, progress=lines.append))
     assert len(lines) == 6
-    one = verify_ensemble(s, 6, settings=eng, ramp_options=opts, workers=1)
+    one = verify_ensemble(s, 6, settings=eng, ramp_options=opts,
+                          run_settings=RunSettings(workers=1))
     assert [a.to_dict() | {"seconds": 0} for a in pool.arches] == \
         [a.to_dict() | {"seconds": 0} for a in one.arches]
     for a in pool.arches:

@@ -24,6 +24,7 @@ from ..errors import ArchInputError
 from ..options import JOINTS, SHAPES  # the command line's own lists
 from .fields import (ARCH_FIELDS, COMPUTE_LOCK, MAX_VOUSSOIRS, choice, number, object_field,
                      only, request_object, xy)
+from .drawing import arch_drawing, block_counts
 from .fields import friction as friction_field
 from .uploads import (MAX_RECORD_T_END_S, MAX_RESPONSE_WORK_S, RecordStore, record_motion,
                       trace)
@@ -115,12 +116,6 @@ def arch_from_params(params: dict):
     return arch
 
 
-def block_counts(arch) -> tuple[int, int]:
-    """(voussoirs, pier courses) of an arch: the blocks of its piers are not voussoirs."""
-    p = len(getattr(arch, "pier_blocks", ()))
-    return int(arch.n) - p, p
-
-
 def _uploaded_arch(data, ns, name):
     """The arch of an uploaded geometry file's parsed JSON (``archrock random-arch`` writes
     one), with the request's defects and piers; the geometry flags are refused beside it, as
@@ -150,20 +145,6 @@ def _uploaded_arch(data, ns, name):
     if ns.defect:
         arch = apply_defects(arch, ns.defect)
     return piers_from_args(ns, arch)
-
-
-def arch_drawing(arch) -> dict:
-    """What the page draws of an arch: ``n`` blocks (``voussoirs`` and ``pier_courses``, the
-    blocks of both piers), each block's closed outline [[x, y], ...] [m], each
-    joint's contact segment (intrados end, extrados end) [m] and the ground level [m]."""
-    from ..reports.plots import springing_level, voussoir_outline
-
-    outlines = [xy(voussoir_outline(arch, i, points_per_rad=30.0)) for i in range(arch.n)]
-    v, p = block_counts(arch)
-    return {"name": arch.name, "n": int(arch.n), "voussoirs": v, "pier_courses": p,
-            "outlines": outlines,
-            "joints": xy(arch.joint_points), "ground": springing_level(arch),
-            "kind": type(arch).__name__}
 
 
 # ---------------------------------------------------------------------------- statics
@@ -615,7 +596,7 @@ def report_request(params: dict) -> dict:
                              f"the app's report runs up to {format_duration(MAX_REPORT_WORK_S)} "
                              f"(archrock assess for more)")
     try:
-        from ..reports.plots import _require_matplotlib
+        from ..reports.drawing import _require_matplotlib
 
         _require_matplotlib()
     except Exception as exc:  # noqa: BLE001 - the extra to install, in one line

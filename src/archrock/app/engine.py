@@ -115,7 +115,7 @@ def run_engine_job(req: dict, progress, cancelled) -> dict | None:
     from ..contact.motion import engine_respond
     from ..contact.settings import engine_scales
     from ..units import G
-    from .api import arch_drawing
+    from .drawing import arch_drawing
     from .uploads import trace
 
     arch, motion, t_end = req["arch"], req["motion"], req["t_end"]

@@ -81,12 +81,22 @@ def interrupted_study(out) -> int:
     return EXIT_INTERRUPTED
 
 
+def parsed(text: str, cast, expected: str):
+    """``cast(text)``, or argparse's error 'expected <expected>, got <text>'."""
+    try:
+        return cast(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}") from None
+
+
+def out_of_range(text: str, allowed: str) -> argparse.ArgumentTypeError:
+    """argparse's error for a value outside its range, naming what is ``allowed``."""
+    return argparse.ArgumentTypeError(f"{text!r} is out of range; allowed {allowed}")
+
+
 def finite_float(text: str) -> float:
     """argparse type: a finite number (NaN and infinities refused)."""
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    v = parsed(text, float, "a number")
     if not math.isfinite(v):
         raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
     return v
@@ -96,18 +106,15 @@ def positive_float(text: str) -> float:
     """argparse type: a finite number > 0."""
     v = finite_float(text)
     if v <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r} is out of range; allowed > 0")
+        raise out_of_range(text, "> 0")
     return v
 
 
 def non_negative_int(text: str) -> int:
     """argparse type: an integer >= 0 (e.g. a random seed)."""
-    try:
-        v = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+    v = parsed(text, int, "an integer")
     if v < 0:
-        raise argparse.ArgumentTypeError(f"{text!r} is out of range; allowed an integer >= 0")
+        raise out_of_range(text, "an integer >= 0")
     return v
 
 

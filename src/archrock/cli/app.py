@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from ._parser import CLIError
+from ._parser import CLIError, out_of_range, parsed
 
 #: The loopback address: nothing on another machine can reach the app unless --host says so.
 DEFAULT_HOST = "127.0.0.1"
@@ -12,15 +12,9 @@ DEFAULT_PORT = 8765
 
 
 def _port(text: str) -> int:
-    import argparse
-
-    try:
-        v = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+    v = parsed(text, int, "an integer")
     if not 0 <= v <= 65535:
-        raise argparse.ArgumentTypeError(f"{text!r} is out of range; allowed 0 to 65535 "
-                                         f"(0: any free port)")
+        raise out_of_range(text, "0 to 65535 (0: any free port)")
     return v
 
 

@@ -58,7 +58,7 @@ def run_assess(args) -> int:
     from ..studies.curves import parse_range
     from ..reports.html import write_pdf, write_report
 
-    from ..reports.plots import _require_matplotlib
+    from ..reports.drawing import _require_matplotlib
 
     _require_matplotlib()  # the figures need it: say so before minutes of work, not after
     if not args.out.lower().endswith((".html", ".htm")):

@@ -5,11 +5,12 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import _int, emit_json, interrupted_study, positive_float
+from ._parser import emit_json, interrupted_study
 from .runsettings import run_settings
 from ._friction import add_friction_option
-from .options import (add_geometry_options, add_impact_options,
-                      add_random_arches_options, arch_from_args, figure_arg, folder_arg,
+from .options import (PROGRESS_ESTIMATED, add_dynamics_option, add_geometry_options,
+                      add_impact_options, add_output_options, add_random_arches_options,
+                      add_run_options, add_scan_options, arch_from_args, figure_arg, folder_arg,
                       friction_mu, friction_words, impact_spec_from_args, spreads_for)
 
 
@@ -22,43 +23,28 @@ def add_curves_parser(subparsers):
     add_geometry_options(p)
     p.add_argument("--durations", default="0.1:1.0:10", metavar="LO:HI:N|A,B,...",
                    help="pulse durations t_p [s] (default 0.1:1.0:10)")
-    p.add_argument("--pulse", default="oppenheim", metavar="KIND",
-                   help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
-    p.add_argument("--sign", type=_int, choices=(-1, 1), default=-1,
-                   help="sign of the amplitude (main lobe): -1 (xg'' < 0, opens M_l; default) or "
-                        "+1; the first push except for ricker, whose first lobe is -0.446 a")
-    p.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
-                   help="top of the amplitude scan [g] (default 10)")
-    p.add_argument("--n-scan", type=_int, default=150, metavar="N",
-                   help="amplitude grid points (geometric, default 150)")
-    p.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
-                   help="bisection tolerance on the collapse amplitude [g], 1e-9 to 0.1 "
-                        "(default 0.001)")
+    add_scan_options(
+        p, sign_choices=(-1, 1), n_scan=150,
+        sign_help="sign of the amplitude (main lobe): -1 (xg'' < 0, opens M_l; default) or +1; "
+                  "the first push except for ricker, whose first lobe is -0.446 a",
+        tol_help="bisection tolerance on the collapse amplitude [g], 1e-9 to 0.1 (default 0.001)")
     add_random_arches_options(p, "random arches for quantile bands (0 = nominal only, default)")
     p.add_argument("--engine", choices=("batch", "respond"), default="batch",
                    help="batch (default): the scans and bisection steps of every arch and "
                         "duration in one parallel call each; respond: arch after arch (0.1.0's "
                         "path); the results are identical")
-    p.add_argument("--workers", type=_int, default=1, metavar="N",
-                   help="1: in-process (numba threads, default); N > 1: a local process pool "
-                        "(of the batch engine's items, or of --engine respond's arches)")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="batch engine: run on an existing Dask cluster (needs archrock[dask])")
-    p.add_argument("--out", metavar="DIR",
-                   help="batch engine: keep every finished response in DIR (Parquet + "
-                        "manifest.json); the same command after an interruption resumes")
+    add_run_options(
+        p, workers="1: in-process (numba threads, default); N > 1: a local process pool (of the "
+                   "batch engine's items, or of --engine respond's arches)",
+        scheduler="batch engine: run on an existing Dask cluster (needs archrock[dask])",
+        out="batch engine: keep every finished response in DIR (Parquet + manifest.json); the "
+            "same command after an interruption resumes")
     add_impact_options(p)
-    p.add_argument("--dynamics", choices=("auto", "fourlink", "engine"), default="auto",
-                   help="auto (default): the four-link model where one degree of freedom "
-                        "follows the arch, the contact engine where its piers rock with it "
-                        "(docs/piers-dynamics.md) or where the joints slide at --friction; "
-                        "fourlink or engine as asked")
+    add_dynamics_option(p, "each response")
     add_friction_option(p, "the routing of the dynamics and, where it runs, the contact "
                            "engine")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--no-progress", action="store_true",
-                   help="no progress on stderr (shown for runs estimated above a few seconds)")
-    p.add_argument("--plot", metavar="FILE.png", help="write the curve (with bands) to a figure")
+    add_output_options(p, progress=PROGRESS_ESTIMATED,
+                       plot="write the curve (with bands) to a figure")
     p.set_defaults(func=run_curves)
     return p
 

@@ -6,8 +6,9 @@ from __future__ import annotations
 
 from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
-from ._parser import _int, emit_json, finite_float, positive_float
-from .options import add_geometry_options, add_impact_options, arch_from_args, figure_arg
+from ._parser import emit_json, finite_float, positive_float
+from .options import (add_geometry_options, add_impact_options, add_output_options,
+                      add_scan_options, arch_from_args, figure_arg)
 
 
 def add_defects_parser(subparsers):
@@ -40,22 +41,14 @@ def add_defects_parser(subparsers):
                                       "each damaged arch (archrock curves' scan and bisection)")
     m.add_argument("--pulse-duration", type=positive_float, default=None, metavar="S",
                    help="pulse duration t_p [s] (e.g. 0.2, the paper's)")
-    m.add_argument("--pulse", default="oppenheim", metavar="KIND",
-                   help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
-    m.add_argument("--sign", type=_int, choices=(-1, 0, 1), default=-1,
-                   help="sign of the amplitude: -1 (opens M_l; default), +1 (opens M_r) or 0 "
-                        "(both: the smaller first collapse amplitude of the two)")
-    m.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
-                   help="top of the amplitude scan [g] (default 10)")
-    m.add_argument("--n-scan", type=_int, default=60, metavar="N",
-                   help="amplitude grid points (geometric, default 60)")
-    m.add_argument("--tol", type=positive_float, default=1e-3, metavar="G",
-                   help="bisection tolerance [g] (default 0.001)")
+    add_scan_options(
+        m, sign_choices=(-1, 0, 1), n_scan=60, tol_help="bisection tolerance [g] (default 0.001)",
+        sign_help="sign of the amplitude: -1 (opens M_l; default), +1 (opens M_r) or 0 (both: "
+                  "the smaller first collapse amplitude of the two)")
     add_impact_options(p)
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png",
-                   help="write the arch coloured by the capacity lost at each voussoir or joint")
-    p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
+    add_output_options(
+        p, plot="write the arch coloured by the capacity lost at each voussoir or joint",
+        progress="no progress lines on stderr")
     add_fourlink_dynamics_option(p)
     p.set_defaults(func=run_defects)
     return p

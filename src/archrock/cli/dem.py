@@ -7,8 +7,8 @@ import sys
 
 from ._parser import CLIError, emit_json, finite_float, positive_float
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      animation_arg, arch_from_args, figure_arg, impact_spec_from_args,
-                      motion_spec_from_args)
+                      add_output_options, add_window_options, animation_arg, arch_from_args,
+                      figure_arg, impact_spec_from_args, motion_spec_from_args)
 
 
 def add_engine_options(p):
@@ -87,19 +87,12 @@ def add_dem_parser(subparsers):
                    help="--push: support speed in sizes per T = sqrt(size/g) (default 0.005)")
     p.add_argument("--push-max", type=positive_float, default=None, metavar="M",
                    help="--push: the largest displacement tried [m] (default half the size)")
-    p.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
-                   help="end of the output window [s] (default 3); the run goes on to rest or "
-                        "collapse")
-    p.add_argument("--dt-out", type=positive_float, default=0.005, metavar="S",
-                   help="output sampling [s] (default 0.005)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--no-progress", action="store_true",
-                   help="no progress on stderr (the engine's run, the animation's frames)")
-    p.add_argument("--plot", metavar="FILE.png",
-                   help="figure: the engine's equivalent rotation over the four-link phi(t), "
-                        "every voussoir's rotation and the sliding at each joint")
-    p.add_argument("--animate", metavar="FILE.gif",
-                   help="animation of the engine's run beside the four-link one")
+    add_window_options(p, "the run goes on to rest or collapse")
+    add_output_options(
+        p, progress="no progress on stderr (the engine's run, the animation's frames)",
+        plot="figure: the engine's equivalent rotation over the four-link phi(t), every "
+             "voussoir's rotation and the sliding at each joint",
+        animate="animation of the engine's run beside the four-link one")
     p.set_defaults(func=run_dem)
     return p
 

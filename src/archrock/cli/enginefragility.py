@@ -8,6 +8,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import EXIT_INTERRUPTED, PROG, emit_json
+from .fragilityfigure import fragility_figure
 
 
 def _unused(args) -> list:
@@ -40,6 +41,7 @@ def run_engine_fragility(args, nominal, choice, plot) -> int:
     from ..studies.curves import parse_range
     from ..studies.engineida import engine_ida
     from ..studies.enginestudy import EngineRun
+    from ..studies.runner import RunSettings
     from .options import friction_words
     from .respond import _engine_settings
 
@@ -54,8 +56,9 @@ def run_engine_fragility(args, nominal, choice, plot) -> int:
             else lambda line: print(line, file=sys.stderr, flush=True))
     try:
         res = engine_ida(nominal, list(suite.records), scales, im=im, run=run,
-                         workers=args.workers, scheduler=args.scheduler, progress=sink,
-                         n_boot=args.bootstrap, seed=args.seed, dynamics=choice)
+                         n_boot=args.bootstrap, seed=args.seed, dynamics=choice,
+                         settings=RunSettings(workers=args.workers, scheduler=args.scheduler,
+                                              progress=sink))
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted; nothing was kept (the contact engine's fragility keeps "
               f"no folder of finished runs)", file=sys.stderr)
@@ -71,8 +74,6 @@ def run_engine_fragility(args, nominal, choice, plot) -> int:
             print(f"not used by the contact engine (four-link options): {', '.join(unused)}")
     sys.stdout.flush()
     if plot:
-        from .fragility import _figure
-
-        if _figure(res.as_ida(), None, plot) and not args.json:
+        if fragility_figure(res.as_ida(), None, plot) and not args.json:
             print(f"wrote {plot}", file=sys.stderr)
     return 0

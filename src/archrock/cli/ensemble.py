@@ -8,9 +8,10 @@ from pathlib import Path
 from ._parser import EXIT_INTERRUPTED, PROG, CLIError, _int, emit_json
 from .runsettings import run_settings
 from ._friction import add_friction_option
-from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      add_spread_options, arch_from_args, figure_arg, folder_arg, friction_mu,
-                      friction_words, impact_spec_from_args, motion_spec_from_args, spreads_for)
+from .options import (add_dynamics_option, add_geometry_options, add_impact_options,
+                      add_motion_options, add_output_options, add_run_options, add_spread_options,
+                      arch_from_args, figure_arg, folder_arg, friction_mu, friction_words,
+                      impact_spec_from_args, motion_spec_from_args, spreads_for)
 
 
 def add_ensemble_parser(subparsers):
@@ -30,12 +31,9 @@ def add_ensemble_parser(subparsers):
     p.add_argument("--batch-size", type=_int, default=500, metavar="B",
                    help="samples per batch: the unit of work and of resumption, >= 1 "
                         "(default 500)")
-    p.add_argument("--workers", type=_int, default=1, metavar="N",
-                   help="1: in-process (numba threads, default); N > 1: local process pool")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run the batches on an existing Dask cluster (needs archrock[dask])")
-    p.add_argument("--out", metavar="DIR",
-                   help="folder for batches/*.parquet and manifest.json; resumes if it exists")
+    add_run_options(p, workers="1: in-process (numba threads, default); N > 1: local process pool",
+                    scheduler="run the batches on an existing Dask cluster (needs archrock[dask])",
+                    out="folder for batches/*.parquet and manifest.json; resumes if it exists")
     add_motion_options(p)
     add_impact_options(p)
     p.add_argument("--support-draw", choices=("fixed", "uniform"), default="fixed",
@@ -51,16 +49,11 @@ def add_ensemble_parser(subparsers):
                    help="keep no per-sample table in memory (needs --out; not with --plot): each "
                         "batch is written and dropped and the summary is read back from the "
                         "stored batches, exactly (for 10^7 arches and more)")
-    p.add_argument("--dynamics", choices=("auto", "fourlink", "engine"), default="auto",
-                   help="under a motion: auto (default) the four-link model where one degree of "
-                        "freedom follows the arch, the contact engine where its piers rock with "
-                        "it (docs/piers-dynamics.md) or where its joints slide at --friction; "
-                        "fourlink or engine as asked")
+    add_dynamics_option(p, "under a motion, each response")
     add_friction_option(p, "the routing of the dynamics and, where it runs, the contact "
                            "engine")
-    p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="histograms of k_l and k_r")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    add_output_options(p, json="print the summary as one JSON object",
+                       plot="histograms of k_l and k_r", progress="no progress bar on stderr")
     p.set_defaults(func=run_ensemble_cmd)
     return p
 

@@ -5,10 +5,12 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError
-from ._parser import _int, emit_json, interrupted_study, non_negative_int
+from ._parser import emit_json, interrupted_study, non_negative_int
+from .fragilityfigure import fragility_figure
 from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
-from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
+from .options import (PROGRESS_ESTIMATED, add_geometry_options, add_impact_options,
+                      add_output_options, add_random_arches_options, add_run_options,
                       arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads_for)
 
 
@@ -43,10 +45,8 @@ def add_fragility_parser(subparsers):
                    help="batch (default): every arch x record x scale of a search step in one "
                         "parallel call; respond: response after response (0.1.0's path); the "
                         "results are identical")
-    p.add_argument("--workers", type=_int, default=1, metavar="N",
-                   help="1: in-process (numba threads, default); N > 1: local process pool")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run on an existing Dask cluster (needs archrock[dask])")
+    add_run_options(p, workers="1: in-process (numba threads, default); N > 1: local process pool",
+                    scheduler="run on an existing Dask cluster (needs archrock[dask])")
     p.add_argument("--early-stop", action="store_true",
                    help="batch engine: end a response once the record is over and the arch's "
                         "energy is below every mechanism it can open (same collapse decisions "
@@ -54,10 +54,8 @@ def add_fragility_parser(subparsers):
     p.add_argument("--out", metavar="DIR",
                    help="keep every finished response in DIR (Parquet + manifest.json); the same "
                         "command after an interruption resumes (batch engine)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--no-progress", action="store_true",
-                   help="no progress on stderr (shown for runs estimated above a few seconds)")
-    p.add_argument("--plot", metavar="FILE.png", help="write the fragility curves to a figure")
+    add_output_options(p, progress=PROGRESS_ESTIMATED,
+                       plot="write the fragility curves to a figure")
     add_fourlink_dynamics_option(
         p, help="auto (default): the four-link model where one degree of freedom follows the "
                 "arch; the contact engine's IDA (no stripes, the nominal arch only) where it "
@@ -123,22 +121,6 @@ def run_fragility(args) -> int:
         print(format_fragility(res_ida, res_msa, arch_name=nominal.name, n_records=len(records),
                                n_arches=len(models), n_requested=args.samples))
     sys.stdout.flush()
-    if plot and _figure(res_ida, res_msa, plot) and not args.json:
+    if plot and fragility_figure(res_ida, res_msa, plot) and not args.json:
         print(f"wrote {plot}", file=sys.stderr)
     return 0
-
-
-def _figure(res_ida, res_msa, plot) -> bool:
-    """Draw the fragility figure; where drawing fails, one warning line on stderr (the results
-    are already written) and False, never a traceback that ends the run."""
-    from ..reports.plots import plot_fragility
-
-    try:
-        fit = res_msa.fit if res_msa is not None and res_msa.fit is not None else res_ida.fit
-        plot_fragility(fit, res_msa, plot, ida=res_ida)
-    except Exception as exc:  # noqa: BLE001 -- any failure of a figure is a warning, by design
-        why = " ".join(str(exc).split()) or type(exc).__name__
-        print(f"archrock: warning: figure {plot} not written ({type(exc).__name__}: {why}); "
-              f"the results above are complete", file=sys.stderr)
-        return False
-    return True

@@ -13,7 +13,7 @@ from ..options import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args,  # noq
                        impact_spec_from_args, model_from_args, motion_from_args,
                        motion_spec_from_args, piers_from_args, spreads, supports_from_args,
                        undamaged_arch_from_args)
-from ._parser import PROG, CLIError, _int, finite_float, non_negative_int
+from ._parser import PROG, CLIError, _int, finite_float, non_negative_int, positive_float
 
 # the old private names of the builders (archrock <= 0.6.0 imported them from here)
 _piers_from_args = piers_from_args
@@ -233,6 +233,60 @@ def friction_words(args) -> str:
     from ._friction import NOT_GIVEN, resolve_friction
 
     return "friction: " + resolve_friction(getattr(args, "friction", NOT_GIVEN))[1]
+
+
+# ---------------------------------------------------------------------------- output and runs
+#: --no-progress of the studies that say how long they will take
+PROGRESS_ESTIMATED = "no progress on stderr (shown for runs estimated above a few seconds)"
+
+
+def add_output_options(parser, *, json: str = "print one JSON object", progress: str | None = None,
+                       plot: str | None = None, animate: str | None = None):
+    """--json, and each of --no-progress, --plot FILE.png and --animate FILE.gif whose help is
+    given: the output options of the commands, one spelling in all."""
+    parser.add_argument("--json", action="store_true", help=json)
+    if progress:
+        parser.add_argument("--no-progress", action="store_true", help=progress)
+    if plot:
+        parser.add_argument("--plot", metavar="FILE.png", help=plot)
+    if animate:
+        parser.add_argument("--animate", metavar="FILE.gif", help=animate)
+    return parser
+
+
+def add_window_options(parser, after: str):
+    """--t-end S and --dt-out S: the output window of one response; ``after`` says what the run
+    covers past the window."""
+    parser.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
+                        help=f"end of the output window [s] (default 3); {after}")
+    parser.add_argument("--dt-out", type=positive_float, default=0.005, metavar="S",
+                        help="output sampling [s] (default 0.005)")
+    return parser
+
+
+def add_run_options(parser, *, workers: str, scheduler: str, out: str | None = None):
+    """--workers N, --scheduler ADDRESS and (where ``out`` is given) --out DIR: where a study
+    runs and keeps its finished work, with each command's own help."""
+    parser.add_argument("--workers", type=_int, default=1, metavar="N", help=workers)
+    parser.add_argument("--scheduler", metavar="ADDRESS", help=scheduler)
+    if out:
+        parser.add_argument("--out", metavar="DIR", help=out)
+    return parser
+
+
+def add_scan_options(group, *, sign_choices: tuple, sign_help: str, n_scan: int,
+                     tol_help: str):
+    """The amplitude scan of a collapse-amplitude search (curves, defects): --pulse KIND,
+    --sign, --a-max G, --n-scan N and --tol G."""
+    group.add_argument("--pulse", default="oppenheim", metavar="KIND",
+                       help="oppenheim (default), rectangular, half-sine, one-sine or ricker")
+    group.add_argument("--sign", type=_int, choices=sign_choices, default=-1, help=sign_help)
+    group.add_argument("--a-max", type=positive_float, default=10.0, metavar="G",
+                       help="top of the amplitude scan [g] (default 10)")
+    group.add_argument("--n-scan", type=_int, default=n_scan, metavar="N",
+                       help=f"amplitude grid points (geometric, default {n_scan})")
+    group.add_argument("--tol", type=positive_float, default=1e-3, metavar="G", help=tol_help)
+    return group
 
 
 # ---------------------------------------------------------------------------- impact

@@ -7,11 +7,12 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArchInputError, GeometryOutcome, NotFourHingeError
-from ._parser import emit_json, finite_float, positive_float
+from ._parser import emit_json, finite_float
 from ._friction import add_friction_option
-from .options import (add_dynamics_option, add_geometry_options,
-                      add_impact_options, add_motion_options, animation_arg, arch_from_args,
-                      figure_arg, friction_mu, friction_words, model_from_args, motion_from_args)
+from .options import (add_dynamics_option, add_geometry_options, add_impact_options,
+                      add_motion_options, add_output_options, add_window_options, animation_arg,
+                      arch_from_args, figure_arg, friction_mu, friction_words, model_from_args,
+                      motion_from_args)
 
 
 def add_respond_parser(subparsers):
@@ -29,27 +30,21 @@ def add_respond_parser(subparsers):
     add_dynamics_option(p)
     add_friction_option(p, "the routing of the dynamics (the joints slide where the four-link "
                            "collapse needs more) and the contact engine")
-    p.add_argument("--no-progress", action="store_true",
-                   help="no progress on stderr (the engine's run, the animation's frames)")
-    p.add_argument("--t-end", type=positive_float, default=3.0, metavar="S",
-                   help="end of the output window [s] (default 3); the outcome covers the whole "
-                        "ground motion and the free motion after it")
-    p.add_argument("--dt-out", type=positive_float, default=0.005, metavar="S",
-                   help="output sampling [s] (default 0.005)")
+    add_window_options(p, "the outcome covers the whole ground motion and the free motion "
+                          "after it")
     p.add_argument("--integrator", choices=("fast", "reference"), default="fast",
                    help="fast: RK4 + events (numba); reference: scipy DOP853 (default fast)")
     p.add_argument("--limit-factor", type=finite_float, default=None, metavar="F",
                    help="rotation limit as a multiple of the unstable rotation (> 1): where the "
                         "integration of a collapse stops (t_limit); the collapse time, the last "
                         "passage of the unstable rotation, does not depend on it")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png",
-                   help="write a figure of the motion and response; it runs to --t-end or, when "
-                        "the run ends later (at rest, or at the rotation limit after a collapse), "
-                        "to that end plus 5%%, but at most to 2 x --t-end or 10 s after the ground "
-                        "motion, whichever is later")
-    p.add_argument("--animate", metavar="FILE.gif",
-                   help="write an animation of the mechanism (same time span as --plot)")
+    add_output_options(
+        p, progress="no progress on stderr (the engine's run, the animation's frames)",
+        plot="write a figure of the motion and response; it runs to --t-end or, when the run "
+                "ends later (at rest, or at the rotation limit after a collapse), to that end "
+                "plus 5%%, but at most to 2 x --t-end or 10 s after the ground motion, "
+                "whichever is later",
+        animate="write an animation of the mechanism (same time span as --plot)")
     p.set_defaults(func=run_respond)
     return p
 

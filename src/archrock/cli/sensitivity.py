@@ -7,8 +7,8 @@ from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
 from ._parser import _int, emit_json, non_negative_int
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
-                      add_spread_options, arch_from_args, impact_spec_from_args,
-                      motion_spec_from_args, spreads_for)
+                      add_output_options, add_spread_options, arch_from_args,
+                      impact_spec_from_args, motion_spec_from_args, spreads_for)
 
 
 def add_sensitivity_parser(subparsers):
@@ -35,8 +35,7 @@ def add_sensitivity_parser(subparsers):
                    help="k_l, k_r and k only (no ground motion; default: also the collapse under "
                         "the paper's pulse, a = -1 g, t_p = 0.2 s, or the motion given)")
     add_impact_options(p)
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
+    add_output_options(p, progress="no progress lines on stderr")
     add_fourlink_dynamics_option(p)
     p.set_defaults(func=run_sensitivity)
     return p

@@ -1,7 +1,7 @@
 """An arcade (a graph of blocks, :class:`~archrock.geometry.arcade.Arcade`) in the contact
 engine: its activation by the engine's ramp and its response to a ground motion.
 
-:class:`ContactArcade` builds the bodies as :class:`~archrock.contact.engine.ContactArch` does
+:class:`ContactArcade` (:mod:`.pymunkarcade`) builds the bodies as :class:`~archrock.contact.engine.ContactArch` does
 (exact mass properties, the outline simplified within ``outline_tol`` with every contact's ends
 kept, cut into convex pieces with rounded corners, the friction and restitution of
 :class:`~archrock.contact.settings.EngineSettings`, ground motion as the ground frame's body
@@ -24,143 +24,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._records import readonly_arrays
+from .._records import EngineRecord
 from ..errors import ArchInputError
-from ..geometry.arcade import GROUND, Arcade
+from ..geometry.arcade import Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
-from .engine import add_block, import_pymunk, settle_blocks
-from .ramp import ramp_range, ramp_until_moving
+from .pymunkarcade import ContactArcade
+from .ramp import RampResult, check_ramp_options, ramp_range, ramp_stages, read_hinges
 from .rigid import engine_arcade
-from .settings import EngineSettings, engine_scales
+from .settings import EngineSettings
 
 __all__ = ["ContactArcade", "ArcadeRampDirection", "ArcadeRamp", "arcade_ramp",
            "arcade_ramp_direction", "ArcadeResponse", "arcade_respond"]
-
-
-class ContactArcade:
-    """One arcade in a pymunk space, at rest in its initial configuration (module docstring).
-    ``time_scale`` T = sqrt(size/g) [s] with size = ``arcade.size``; ``dt`` = T / steps_per_T."""
-
-    def __init__(self, arc: Arcade, settings: EngineSettings | None = None):
-        pymunk = import_pymunk()
-        if not isinstance(arc, Arcade):
-            raise ArchInputError(f"arcade: expected an Arcade, got {type(arc).__name__}")
-        self.arcade = arc
-        self.settings = settings = settings or EngineSettings()
-        self.scales = sc = engine_scales(arc, settings)
-        self.size, self.time_scale, self.dt = sc.size, sc.time_scale, sc.dt
-        space = pymunk.Space()
-        space.iterations = settings.iterations
-        space.collision_slop = sc.slop
-        space.collision_bias = (1.0 - settings.bias) ** (1.0 / self.dt) if settings.bias < 1 \
-            else 0.0
-        space.gravity = (0.0, -G)
-        space.damping = 1.0
-        space.sleep_time_threshold = float("inf")
-        self.space = space
-        mu, e, r = math.sqrt(settings.friction), math.sqrt(settings.restitution), sc.rounding
-        self.masses = np.asarray(arc.masses, float)
-        self.centroids0 = np.asarray(arc.centroids, float)
-        self.inertias = np.asarray(arc.inertias, float)
-        self.bodies, self.pieces = [], []
-        ends = {i: [] for i in range(arc.n_blocks)}
-        for ct in arc.contacts:
-            for blk in (ct.a, ct.b):
-                if blk != GROUND:
-                    ends[blk] += [ct.points[0], ct.points[1]]
-        for i, blk in enumerate(arc.blocks):
-            # the arcade keeps its blocks' own outlines (the pieces carry the cut)
-            body, _, pieces = add_block(pymunk, space, np.asarray(blk.outline, float),
-                                        np.array(ends[i]), self.masses[i], self.inertias[i],
-                                        self.centroids0[i], sc, mu, e, r)
-            self.pieces.append(pieces)
-            self.bodies.append(body)
-        normals = np.asarray(arc.contact_normals, float)
-        self.ground_outlines = []
-        for c, ct in enumerate(arc.contacts):
-            if ct.a != GROUND:
-                continue
-            p0, p1 = ct.points
-            length = float(np.hypot(*(p1 - p0)))
-            n = normals[c]  # into the block: the ground lies on the other side
-            quad = np.array([p0, p1, p1 - length * n, p0 - length * n])
-            s = pymunk.Poly(space.static_body, [tuple(map(float, q)) for q in quad])
-            s.friction, s.elasticity = mu, e
-            space.add(s)
-            self.ground_outlines.append(quad)
-        pts = np.array([ct.points for ct in arc.contacts], float)
-        self.contact_points = pts
-        tan = pts[:, 1] - pts[:, 0]
-        self.contact_lengths = np.hypot(tan[:, 0], tan[:, 1])
-        self.contact_tangents = tan / self.contact_lengths[:, None]
-        self.a = np.array([ct.a for ct in arc.contacts])
-        self.b = np.array([ct.b for ct in arc.contacts])
-        self.time, self.steps = 0.0, 0
-
-    def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
-        """``steps`` time steps under the horizontal ground acceleration [m/s^2] (toward +x)."""
-        self.space.gravity = (-float(ground_accel), -G)
-        for _ in range(steps):
-            self.space.step(self.dt)
-        self.steps += steps
-        self.time = self.steps * self.dt
-
-    def settle(self, duration: float = 0.5) -> None:
-        """Settle under gravity for ``duration`` T, stop every body, restart the clock: the
-        reference of every rotation and slip reported."""
-        settle_blocks(self, duration, self.contact_sliding)
-
-    def state(self):
-        """(centres (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,))."""
-        b = self.bodies
-        return (np.array([tuple(x.position) for x in b]), np.array([x.angle for x in b]),
-                np.array([tuple(x.velocity) for x in b]),
-                np.array([x.angular_velocity for x in b]))
-
-    def contact_rotations(self, angles: np.ndarray) -> np.ndarray:
-        """theta_b - theta_a at each contact [rad] (the ground: 0)."""
-        th = np.concatenate([angles, [0.0]])  # index -1: the ground
-        return th[self.b] - th[self.a]
-
-    def _copies(self, pos, angles, blk, p):
-        if blk == GROUND:
-            return p
-        r = p - self.centroids0[blk]
-        ca, sa = math.cos(angles[blk]), math.sin(angles[blk])
-        return pos[blk] + np.array([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1]])
-
-    def _end_offsets(self, pos, angles) -> np.ndarray:
-        """(m, 2, 2): block b's copy minus block a's copy of each contact's two ends [m]."""
-        out = np.empty((len(self.a), 2, 2))
-        for c in range(len(self.a)):
-            for e in (0, 1):
-                p = self.contact_points[c, e]
-                out[c, e] = (self._copies(pos, angles, self.b[c], p)
-                             - self._copies(pos, angles, self.a[c], p))
-        return out
-
-    def end_gaps(self, pos, angles) -> np.ndarray:
-        """(m, 2) distance between the two blocks' copies of each contact end [m]."""
-        d = self._end_offsets(pos, angles)
-        return np.hypot(d[:, :, 0], d[:, :, 1])
-
-    def contact_sliding(self, pos, angles) -> np.ndarray:
-        """Slip [m] at each contact: the relative displacement of its end closer to closed,
-        along the contact turned by the mean rotation of its two blocks."""
-        d = self._end_offsets(pos, angles)
-        th = np.concatenate([angles, [0.0]])
-        mean = 0.5 * (th[self.a] + th[self.b])
-        t0 = self.contact_tangents
-        tx = np.cos(mean) * t0[:, 0] - np.sin(mean) * t0[:, 1]
-        ty = np.sin(mean) * t0[:, 0] + np.cos(mean) * t0[:, 1]
-        end = np.argmin(np.hypot(d[:, :, 0], d[:, :, 1]), axis=1)
-        dd = d[np.arange(len(end)), end]
-        return dd[:, 0] * tx + dd[:, 1] * ty
-
-    def kinetic_energy(self, vel, rate) -> float:
-        return float(0.5 * (self.masses * (vel ** 2).sum(axis=1)).sum()
-                     + 0.5 * (self.inertias * rate ** 2).sum())
 
 
 @dataclass(frozen=True)
@@ -195,13 +70,9 @@ class ArcadeRampDirection:
 
 
 @dataclass(frozen=True)
-class ArcadeRamp:
-    """Both directions of :func:`arcade_ramp`, with the settings and ramp options used."""
-
-    l: ArcadeRampDirection
-    r: ArcadeRampDirection
-    settings: EngineSettings
-    ramp: dict
+class ArcadeRamp(RampResult):
+    """Both directions of :func:`arcade_ramp` (:class:`ArcadeRampDirection` each), with the
+    settings and ramp options used."""
 
     def to_dict(self) -> dict:
         return {"k_l": self.l.multiplier, "k_r": self.r.multiplier, "l": self.l.to_dict(),
@@ -243,16 +114,6 @@ def _moves(arc, settings, sign, lam, hold, thr_rot, thr_slide, check):
     return moved, None
 
 
-def _read_hinges(rot, sl, gaps, threshold, thr_slide):
-    """(hinges ((contact, end), ...), sliding contacts, rocking?) of a contact motion: the
-    contacts turning by at least 5% of the largest relative rotation, at their closed end."""
-    big = np.abs(rot).max()
-    slid = tuple(int(c) for c in np.flatnonzero(np.abs(sl) > thr_slide))
-    rocking = big / threshold >= np.abs(sl).max() / thr_slide
-    turning = np.flatnonzero(np.abs(rot) >= 0.05 * big) if rocking else np.array([], int)
-    return tuple((int(c), int(np.argmin(gaps[c]))) for c in turning), slid, bool(rocking)
-
-
 def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings | None = None,
                           *, rate: float = 0.05, hold: float = 4.0, tol: float = 0.005,
                           threshold: float = 1e-3, slide_threshold: float = 1e-3,
@@ -261,60 +122,24 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
     """The engine's activation multiplier and hinges of ``arc`` in ``direction`` ('l': the
     ground accelerates toward -x, the loads push toward +x); the options are those of
     :func:`~archrock.contact.ramp.ramp_direction`."""
-    if direction not in ("l", "r"):
-        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
-    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
-                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
-                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
-                            ("lambda_max", lambda_max, 1e-3, 100.0)):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
-            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
-    if not 0.0 <= lambda_start < lambda_max:
-        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
-                             f"lambda_max = {lambda_max:g}")
+    check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
+                       lambda_start)
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arcade(arc, settings)
-    ca.settle()
-    thr_slide = slide_threshold * float(np.mean(ca.contact_lengths))
-    check = max(1, int(settings.steps_per_T // 100))
-    dlam = rate / settings.steps_per_T
-    lam_seen, (rot, sl, measure, pos, ang) = ramp_until_moving(
-        ca, lambda m: _motion(m, threshold, thr_slide), sign, float(lambda_start), dlam, check,
-        lambda_max, f"the arcade did not move in the contact engine up to |xg''|/g = "
-                    f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
-    if progress:
-        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
-    ramp_reading = _read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
-    holds = []
-    hi, lo = lam_seen, 0.5 * lam_seen
-    first = None  # the lowest hold whose motion grew: the mechanism at activation
-    while True:
-        moved, got = _moves(arc, settings, sign, lo, hold, threshold, thr_slide, check)
-        holds.append((lo, moved))
-        if not moved:
-            break
-        first = got or first
-        if lo == 0.0:
-            hi = 0.0
-            break
-        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
-    while hi - lo > tol * hi:
-        mid = 0.5 * (lo + hi)
-        moved, got = _moves(arc, settings, sign, mid, hold, threshold, thr_slide, check)
-        holds.append((mid, moved))
-        if progress:
-            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
-        if moved:
-            hi, first = mid, got or first
-        else:
-            lo = mid
-    hinges, slid, rocking = (_read_hinges(*first, threshold, thr_slide) if first is not None
+    thr_slide, lam_seen, (rot, sl, _, pos, ang), (lo, hi, holds, first) = ramp_stages(
+        ca, ca.contact_lengths, _motion,
+        lambda lam, thr, check: _moves(arc, settings, sign, lam, hold, threshold, thr, check),
+        direction, threshold, slide_threshold, lambda_start, lambda_max, rate, tol, progress,
+        "the arcade did not move in the contact engine up to |xg''|/g = "
+        f"{lambda_max:g} in direction {direction!r} (the ramp's range)")
+    ramp_reading = read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
+    hinges, slid, rocking = (read_hinges(*first, threshold, thr_slide) if first is not None
                              else ramp_reading)
     places = tuple(arc.contacts[c].place(e) for c, e in hinges)
     return ArcadeRampDirection(direction, 0.5 * (lo + hi), lo, hi,
                                "rocking" if rocking else "sliding", hinges, places, slid,
-                               float(lam_seen), ramp_reading[0], tuple(holds))
+                               float(lam_seen), ramp_reading[0], holds)
 
 
 def arcade_ramp(arc: Arcade, settings: EngineSettings | None = None, progress=None, *,
@@ -343,7 +168,7 @@ def arcade_ramp(arc: Arcade, settings: EngineSettings | None = None, progress=No
 
 
 @dataclass(frozen=True, eq=False)
-class ArcadeResponse:
+class ArcadeResponse(EngineRecord):
     """:func:`arcade_respond`'s result: ``time`` (k,) [s], ``rotations`` (k, n) [rad] of every
     block since settling (counter-clockwise +), ``drops`` (k,) [m] the largest drop of a mass
     centre; ``status`` 'rest', 'collapsed' or 'moving'; ``t_collapse`` [s] (None without);
@@ -360,13 +185,6 @@ class ArcadeResponse:
     t_final: float
     settings: EngineSettings
     run: dict
-
-    def __post_init__(self):
-        readonly_arrays(self)
-
-    @property
-    def collapsed(self) -> bool:
-        return self.status == "collapsed"
 
     def to_dict(self, samples: bool = False) -> dict:
         d = {"collapsed": self.collapsed, "status": self.status,

@@ -34,7 +34,7 @@ from ..units import G
 from .convex import convex_pieces, inset, simplify_outline, strip_pieces
 from .settings import EngineSettings, engine_scales
 
-__all__ = ["ContactArch", "import_pymunk"]
+__all__ = ["ContactArch", "PymunkBlocks", "import_pymunk"]
 
 
 def import_pymunk():
@@ -95,7 +95,36 @@ def add_block(pymunk, space, outline, ends, mass, inertia, centroid, sc, mu, e, 
     return body, outline, pieces
 
 
-class ContactArch:
+class PymunkBlocks:
+    """What the pymunk models of an arch and of an arcade share: stepping under a ground
+    acceleration, reading the bodies' state and their kinetic energy.  A subclass sets
+    ``space``, ``dt``, ``bodies``, ``masses``, ``inertias``, ``steps`` and ``time``."""
+
+    def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
+        """Advance ``steps`` time steps under the horizontal ground acceleration
+        ``ground_accel`` [m/s^2] (the body force -m xg'' of the ground's frame)."""
+        self.space.gravity = (-float(ground_accel), -G)
+        for _ in range(steps):
+            self.space.step(self.dt)
+        self.steps += steps
+        self.time = self.steps * self.dt
+
+    def state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(centroids (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,) [rad/s])."""
+        b = self.bodies
+        pos = np.array([tuple(x.position) for x in b])
+        ang = np.array([x.angle for x in b])
+        vel = np.array([tuple(x.velocity) for x in b])
+        rate = np.array([x.angular_velocity for x in b])
+        return pos, ang, vel, rate
+
+    def kinetic_energy(self, vel: np.ndarray, rate: np.ndarray) -> float:
+        """Kinetic energy relative to the ground [J per m of depth]."""
+        return float(0.5 * (self.masses * (vel ** 2).sum(axis=1)).sum()
+                     + 0.5 * (self.inertias * rate ** 2).sum())
+
+
+class ContactArch(PymunkBlocks):
     """One arch in a pymunk space, at rest in its initial configuration.
 
     ``time_scale`` T = sqrt(size/g) [s]; ``dt`` = T / steps_per_T [s]; :meth:`step` advances the
@@ -184,15 +213,6 @@ class ContactArch:
         self.steps = 0
 
     # ------------------------------------------------------------------ stepping
-    def step(self, ground_accel: float = 0.0, steps: int = 1) -> None:
-        """Advance ``steps`` time steps under the horizontal ground acceleration
-        ``ground_accel`` [m/s^2] (the body force -m xg'' of the ground's frame)."""
-        self.space.gravity = (-float(ground_accel), -G)
-        for _ in range(steps):
-            self.space.step(self.dt)
-        self.steps += steps
-        self.time = self.steps * self.dt
-
     def settle(self, duration: float = 0.5) -> None:
         """Let the arch settle under gravity for ``duration`` T (its rounded joints close by
         about 2 x rounding x size), then stop every body and restart the clock: the settled state
@@ -200,15 +220,6 @@ class ContactArch:
         settle_blocks(self, duration, self.joint_sliding)
 
     # ------------------------------------------------------------------ state
-    def state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """(centroids (n, 2) [m], angles (n,) [rad], velocities (n, 2) [m/s], rates (n,) [rad/s])."""
-        b = self.bodies
-        pos = np.array([tuple(x.position) for x in b])
-        ang = np.array([x.angle for x in b])
-        vel = np.array([tuple(x.velocity) for x in b])
-        rate = np.array([x.angular_velocity for x in b])
-        return pos, ang, vel, rate
-
     def joint_rotations(self, angles: np.ndarray) -> np.ndarray:
         """Relative rotation theta_j - theta_{j-1} at each joint 0..n [rad]."""
         th = np.concatenate([[0.0], angles, [0.0]])
@@ -257,11 +268,6 @@ class ContactArch:
         extrados (1) end: the end that stays closed while a joint opens is its hinge."""
         d = self._end_offsets(pos, angles)
         return np.hypot(d[:, :, 0], d[:, :, 1])
-
-    def kinetic_energy(self, vel: np.ndarray, rate: np.ndarray) -> float:
-        """Kinetic energy relative to the ground [J per m of depth]."""
-        return float(0.5 * (self.masses * (vel ** 2).sum(axis=1)).sum()
-                     + 0.5 * (self.inertias * rate ** 2).sum())
 
     def drops(self, pos: np.ndarray) -> np.ndarray:
         """How far each voussoir's mass centre has dropped below its initial height [m]."""

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._records import readonly_arrays
+from .._records import EngineRecord
 from ..errors import ArchInputError
 from ..geometry import VoussoirArch
 from ..groundmotion import GroundMotion
@@ -35,7 +35,7 @@ __all__ = ["ContactResponse", "engine_respond", "equivalent_rotation"]
 
 
 @dataclass(frozen=True, eq=False)
-class ContactResponse:
+class ContactResponse(EngineRecord):
     """Result of :func:`engine_respond`.
 
     time (k,) [s]: output samples up to t_end; rotations (k, n) [rad]: every voussoir's
@@ -58,13 +58,6 @@ class ContactResponse:
     t_final: float
     settings: EngineSettings
     run: dict
-
-    def __post_init__(self):
-        readonly_arrays(self)
-
-    @property
-    def collapsed(self) -> bool:
-        return self.status == "collapsed"
 
     def to_dict(self, samples: bool = True) -> dict:
         d = {"collapsed": self.collapsed, "status": self.status, "t_collapse": self.t_collapse,

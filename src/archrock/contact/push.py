@@ -59,7 +59,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._records import readonly_arrays
+from .._records import EngineRecord
 from ..errors import ArchInputError, CannotStandError
 from ..geometry import VoussoirArch
 from ..units import G
@@ -104,7 +104,7 @@ def _num(name, value, lo, hi, allowed=None):
 
 
 @dataclass(frozen=True, eq=False)
-class PushResult:
+class PushResult(EngineRecord):
     """Result of :func:`push_support`.
 
     Samples (k of them; the first at rest before the push): ``displacement`` (k,) [m] the imposed
@@ -160,13 +160,6 @@ class PushResult:
     wall_seconds: float
     settings: EngineSettings
     run: dict
-
-    def __post_init__(self):
-        readonly_arrays(self)
-
-    @property
-    def collapsed(self) -> bool:
-        return self.status == "collapsed"
 
     def to_dict(self, samples: bool = True) -> dict:
         d = {"movement": self.movement, "side": self.side, "status": self.status,

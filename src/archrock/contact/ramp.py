@@ -146,6 +146,101 @@ def ramp_until_moving(blocks, motion, sign: float, lam: float, dlam: float, chec
             raise LimitExceededError(refusal)
 
 
+def check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
+                       lambda_start) -> None:
+    """ArchInputError naming the first option of a ramp (of an arch or an arcade) out of its
+    range (:func:`ramp_direction`)."""
+    if direction not in ("l", "r"):
+        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
+    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
+                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
+                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
+                            ("lambda_max", lambda_max, 1e-3, 100.0)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
+    if (isinstance(lambda_start, bool) or not isinstance(lambda_start, (int, float))
+            or not 0.0 <= lambda_start < lambda_max):
+        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
+                             f"lambda_max = {lambda_max:g}")
+
+
+def ramp_stage_one(blocks, lengths, motion, direction, threshold, slide_threshold,
+                   lambda_start, lambda_max, rate, progress, refusal):
+    """Settle ``blocks`` (an engine arch or arcade) and run stage 1 in ``direction`` at ``rate``
+    per T from ``lambda_start``; ``lengths`` are its joints' or contacts' lengths [m] (the
+    slide threshold is ``slide_threshold`` x their mean) and ``motion(blocks, thr_rot,
+    thr_slide)`` its reading.  Returns (slide threshold [m], steps between readings, the lambda
+    first seen moving, the last reading), with a progress line."""
+    blocks.settle()
+    thr_slide = slide_threshold * float(np.mean(lengths))
+    steps_per_T = blocks.settings.steps_per_T
+    check = max(1, int(steps_per_T // 100))
+    sign = 1.0 if direction == "l" else -1.0
+    lam_seen, reading = ramp_until_moving(
+        blocks, lambda m: motion(m, threshold, thr_slide), sign, float(lambda_start),
+        rate / steps_per_T, check, lambda_max, refusal)
+    if progress:
+        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
+    return thr_slide, check, lam_seen, reading
+
+
+def ramp_stages(blocks, lengths, motion, moves, direction, threshold, slide_threshold,
+                lambda_start, lambda_max, rate, tol, progress, refusal):
+    """Both stages of a ramp on ``blocks``: :func:`ramp_stage_one`, then :func:`bisect_holds`
+    whose hold of ``lam`` is ``moves(lam, slide threshold, steps between readings)``.
+    Returns (slide threshold [m], lambda first seen moving, stage 1's last reading,
+    bisect_holds' (lo, hi, holds, first))."""
+    thr_slide, check, lam_seen, reading = ramp_stage_one(
+        blocks, lengths, motion, direction, threshold, slide_threshold, lambda_start,
+        lambda_max, rate, progress, refusal)
+    bracket = bisect_holds(lambda lam: moves(lam, thr_slide, check), lam_seen, tol, direction,
+                           progress)
+    return thr_slide, lam_seen, reading, bracket
+
+
+def bisect_holds(moves, lam_seen: float, tol: float, direction: str, progress=None):
+    """Stage 2 of a ramp: holds from rest, ``moves(lam)`` -> (moved, reading or None), halving
+    down from ``lam_seen`` until one rests, then bisecting down to a relative width ``tol``.
+    Returns (lo, hi, holds ((lambda, moved), ...), the reading of the lowest hold that moved
+    with one, else None)."""
+    holds = []
+    hi, lo = lam_seen, 0.5 * lam_seen
+    first = None
+    while True:
+        moved, got = moves(lo)
+        holds.append((lo, moved))
+        if not moved:
+            break
+        first = got or first
+        if lo == 0.0:  # moves under gravity alone: the blocks do not stand in the engine
+            hi = 0.0
+            break
+        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
+    while hi - lo > tol * hi:
+        mid = 0.5 * (lo + hi)
+        moved, got = moves(mid)
+        holds.append((mid, moved))
+        if progress:
+            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
+        if moved:
+            hi, first = mid, got or first
+        else:
+            lo = mid
+    return lo, hi, tuple(holds), first
+
+
+def read_hinges(rot, sl, gaps, threshold, thr_slide):
+    """(hinges ((joint or contact, end), ...), sliding ones, rocking?) of a motion: relative
+    rotations ``rot`` [rad] and slips ``sl`` [m] of each joint or contact, ``gaps`` (.., 2) of
+    its two ends [m]; the hinges turn by at least 5% of the largest relative rotation, each at
+    its end that stays closed (0 intrados, 1 extrados for an arch's joint)."""
+    big = np.abs(rot).max()
+    slid = tuple(int(c) for c in np.flatnonzero(np.abs(sl) > thr_slide))
+    rocking = big / threshold >= np.abs(sl).max() / thr_slide
+    turning = np.flatnonzero(np.abs(rot) >= 0.05 * big) if rocking else np.array([], int)
+    return tuple((int(c), int(np.argmin(gaps[c]))) for c in turning), slid, bool(rocking)
+
+
 def _moves(arch, settings, sign, lam, hold, thr_rot, thr_slide, check_every) -> bool:
     ca = engine_arch(arch, settings)
     ca.settle()
@@ -177,66 +272,26 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     within the range; :func:`ramp_range` gives the range that follows an arch's k);
     lambda_start: the ramp starts from this lambda, held from rest (0 <= lambda_start <
     lambda_max)."""
-    if direction not in ("l", "r"):
-        raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
-    for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
-                            ("tol", tol, 1e-5, 0.5), ("threshold", threshold, 1e-7, 0.5),
-                            ("slide_threshold", slide_threshold, 1e-7, 0.5),
-                            ("lambda_max", lambda_max, 1e-3, 100.0)):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
-            raise ArchInputError(f"{name}: {v!r}; allowed {lo:g} <= {name} <= {hi:g}")
-    if (isinstance(lambda_start, bool) or not isinstance(lambda_start, (int, float))
-            or not 0.0 <= lambda_start < lambda_max):
-        raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
-                             f"lambda_max = {lambda_max:g}")
+    check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
+                       lambda_start)
     settings = settings or EngineSettings()
     sign = 1.0 if direction == "l" else -1.0
     ca = engine_arch(arch, settings)
-    ca.settle()
-    thr_slide = slide_threshold * float(np.mean(ca.joint_lengths))
-    check = max(1, int(settings.steps_per_T // 100))
-    dlam = rate / settings.steps_per_T
-    lam_seen, (rot, sl, measure, pos, ang) = ramp_until_moving(
-        ca, lambda m: _motion(m, threshold, thr_slide), sign, float(lambda_start), dlam, check,
-        lambda_max, f"the arch did not move in the contact engine up to |xg''|/g = "
-                    f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
-                    f"analysis may give a larger multiplier or none: raise lambda_max, "
-                    f"`archrock dem --ramp --ramp-max`)")
-    if progress:
-        progress(f"ramp {direction}: motion seen at lambda = {lam_seen:.4f}")
-    # hinges: joints opening by at least a quarter of the largest relative rotation
-    big = np.abs(rot).max()
-    slid = tuple(int(j) for j in np.flatnonzero(np.abs(sl) > thr_slide))
-    rocking = big / threshold >= np.abs(sl).max() / thr_slide
-    hinges = tuple(int(j) for j in np.flatnonzero(np.abs(rot) >= 0.05 * big)) if rocking else ()
-    gaps = ca.end_gaps(pos, ang)
-    edges = tuple(EDGE[int(np.argmin(gaps[j]))] for j in hinges)
-    # stage 2: holds from rest, bisecting [lo, hi]
-    holds = []
-    hi = lam_seen
-    lo = 0.5 * lam_seen
-    while True:
-        moved = _moves(arch, settings, sign, lo, hold, threshold, thr_slide, check)
-        holds.append((lo, moved))
-        if not moved:
-            break
-        if lo == 0.0:  # moves under gravity alone: the arch does not stand in the engine
-            hi = 0.0
-            break
-        hi, lo = lo, (0.5 * lo if lo > 0.01 * lam_seen else 0.0)
-    while hi - lo > tol * hi:
-        mid = 0.5 * (lo + hi)
-        moved = _moves(arch, settings, sign, mid, hold, threshold, thr_slide, check)
-        holds.append((mid, moved))
-        if progress:
-            progress(f"hold {direction}: lambda = {mid:.4f} {'moves' if moved else 'rests'}")
-        if moved:
-            hi = mid
-        else:
-            lo = mid
+    thr_slide, lam_seen, (rot, sl, _, pos, ang), (lo, hi, holds, _) = ramp_stages(
+        ca, ca.joint_lengths, _motion,
+        lambda lam, thr, check: (_moves(arch, settings, sign, lam, hold, threshold, thr, check),
+                                 None),
+        direction, threshold, slide_threshold, lambda_start, lambda_max, rate, tol, progress,
+        "the arch did not move in the contact engine up to |xg''|/g = "
+        f"{lambda_max:g} in direction {direction!r} (the ramp's range; the limit "
+        f"analysis may give a larger multiplier or none: raise lambda_max, "
+        f"`archrock dem --ramp --ramp-max`)")
+    turning, slid, rocking = read_hinges(rot, sl, ca.end_gaps(pos, ang), threshold, thr_slide)
+    hinges = tuple(j for j, _ in turning)
+    edges = tuple(EDGE[e] for _, e in turning)
     return RampDirection(direction, 0.5 * (lo + hi), lo, hi, "rocking" if rocking else "sliding",
                          hinges, edges, slid, float(lam_seen),
-                         tuple(float(x) for x in rot), tuple(float(x) for x in sl), tuple(holds))
+                         tuple(float(x) for x in rot), tuple(float(x) for x in sl), holds)
 
 
 def ramp(arch: VoussoirArch, settings: EngineSettings | None = None, progress=None, *,

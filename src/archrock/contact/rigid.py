@@ -6,7 +6,7 @@ exactly).
 :meth:`RigidBlocks.run_response`); :class:`RigidArch` and :class:`RigidArcade` read it as the
 engine's studies read a structure (joint rotations, sliding, the ends' gaps), with the same
 methods as the pymunk engine (:class:`~.engine.ContactArch`,
-:class:`~.arcade.ContactArcade`) so that the ramp, the response and the arcade's studies run on
+:class:`~.pymunkarcade.ContactArcade`) so that the ramp, the response and the arcade's studies run on
 either."""
 
 from __future__ import annotations
@@ -221,7 +221,7 @@ class RigidArch(RigidBlocks):
 
 class RigidArcade(RigidBlocks):
     """An :class:`~archrock.geometry.arcade.Arcade` in archrock's engine, read as
-    :class:`~.arcade.ContactArcade` reads one."""
+    :class:`~.pymunkarcade.ContactArcade` reads one."""
 
     def __init__(self, arc, settings: EngineSettings | None = None):
         super().__init__(blocks_of_arcade(arc), settings)
@@ -252,7 +252,7 @@ def engine_arcade(arc, settings: EngineSettings | None = None):
     """The arcade in the engine that ``settings.engine`` names (:func:`engine_arch`)."""
     settings = settings or EngineSettings()
     if settings.engine == "pymunk":
-        from .arcade import ContactArcade
+        from .pymunkarcade import ContactArcade
 
         return ContactArcade(arc, settings)
     from ..errors import ArchInputError

@@ -44,7 +44,7 @@ from ..statics.sums import _batch_sums, arch_sums
 from .chain import pack_chains
 # the batch's response loop is a module of its own; its names stay importable from here
 from .batchsim import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, simulate_batch
-from .linkage import (GEO_ERRORS, GEO_SIZE, coefficients, dead_point, mechanism_geo,
+from .fourbar import (GEO_ERRORS, GEO_SIZE, coefficients, dead_point, mechanism_geo,
                       rest_rate, rotation_limit, table_range, unstable_rotation)
 
 __all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch",

@@ -1,5 +1,5 @@
 """Oppenheim's four-link mechanism of an arch: :class:`FourLink` and :func:`four_link`, which build
-the flat geometry vector of its compiled kinematics (:mod:`archrock.dynamics.linkage`: the loop
+the flat geometry vector of its compiled kinematics (:mod:`archrock.dynamics.fourbar`: the loop
 closure and the coefficients of the equation of motion, docs/method.md, Four-link equation) and
 its coefficient tables for the fast integrator (:mod:`archrock.dynamics.tables`).  The compiled
 functions of both modules are importable from here too, as before they were split off.
@@ -17,7 +17,7 @@ from ..errors import ArchInputError, NotFourHingeError
 from ..geometry import VoussoirArch
 from ..statics.hinges import EDGES, Mechanism
 from ..units import G
-from .linkage import (_GC, _I, _M, _S, GEO_SIZE, configuration, rates, coefficients, potential,
+from .fourbar import (_GC, _I, _M, _S, GEO_SIZE, configuration, rates, coefficients, potential,
                       GEO_OK, GEO_SINGULAR, GEO_NOT_ADMISSIBLE, GEO_WRONG_DIRECTION, GEO_ERRORS,
                       mechanism_geo, dead_point, unstable_rotation, rotation_limit, rest_rate,
                       table_range)

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from .._jit import maybe_njit
-from .linkage import potential
+from .fourbar import potential
 from .tables import fast_coefficients, filling_acceleration, table_acceleration
 
 # event kinds (column 0 of the event table)

@@ -11,7 +11,7 @@ import numpy as np
 
 from .._jit import maybe_njit
 from ..errors import ArchInputError
-from .linkage import GEO_SIZE, coefficients
+from .fourbar import GEO_SIZE, coefficients
 
 # ---------------------------------------------------------------------------- tabulated coefficients
 # The fast integrator evaluates the equation of motion a few million times per ensemble.  It

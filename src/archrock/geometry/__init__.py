@@ -18,10 +18,11 @@ under ``"family"``, is rebuilt as the :class:`FamilyArch`).
 
 from .base import DEFAULT_DENSITY, Load, VoussoirArch, polygon_properties, power_of_two_near
 from .circular import (OPPENHEIM, Arch, nominal_arch, oppenheim_arch, perturb_voussoirs,
-                       random_arch, random_spans_thicknesses_radii, sector_properties)
+                       random_spans_thicknesses_radii, sector_properties)
 from .defect import Defect, apply_defect, apply_defects
 from .displaced import DisplacedArch, SupportMovement
 from .families import JOINTS, SHAPES, FamilyArch, family_arch
+from .irregular import random_arch
 from .piers import ArchOnPiers, with_piers
 from .polygon import FACE_TOLERANCE, PolygonArch, as_polygon
 

@@ -21,16 +21,18 @@ from .base import (DEFAULT_DENSITY, MAX_VOUSSOIRS, Load, VoussoirArch, _check_le
                    _check_density, _check_load_reach, _check_scalar, _check_size,
                    _check_voussoir_count,
                    _finite_array, _loads)
+from .polygon import PolygonArch, as_polygon
 
 __all__ = [
     "Arch",
     "nominal_arch",
     "oppenheim_arch",
-    "random_arch",
     "OPPENHEIM",
     "sector_properties",
     "perturb_voussoirs",
     "random_spans_thicknesses_radii",
+    "polygon_form",
+    "ARC_STEP",
 ]
 
 #: Nominal parameters of Oppenheim's arch (1992): R [m], embrace [deg], t [m], n.
@@ -344,42 +346,18 @@ def random_spans_thicknesses_radii(nominal: Arch, u: np.ndarray, spread_span: fl
                              spread_thickness, spread_radius)
 
 
-def random_arch(nominal: VoussoirArch | None = None, seed=None, spread_span: float = 0.1,
-                spread_thickness: float = 0.1, spread_radius: float = 0.05,
-                rng: np.random.Generator | None = None, spread_tilt_deg: float = 0.0):
-    """An irregular arch drawn around ``nominal`` (default: Oppenheim's arch).
+#: Largest angle [rad] of one polyline segment where a circular arch is written as a polygon
+#: (piers beneath it, defects cut into it).
+ARC_STEP = 0.002
 
-    Each voussoir's span (its length along the centreline), thickness and radius (a normal
-    offset of its centreline) are independent uniform perturbations (widths ``spread_*``,
-    dimensionless, see :func:`random_spans_thicknesses_radii`); for an arch of
-    :func:`~archrock.geometry.family_arch` also each interior joint's tilt, +-``spread_tilt_deg``
-    degrees (:func:`~archrock.geometry.families.perturb_family`).  Reproducible from ``seed``
-    (an int or a numpy SeedSequence) or a given ``rng``.  A circular :class:`Arch` gives an
-    ``Arch``, a family arch a :class:`~archrock.geometry.PolygonArch`.
-    """
-    nominal = oppenheim_arch() if nominal is None else nominal
-    s_a = _check_spread("spread_span", spread_span, 1.0)
-    s_t = _check_spread("spread_thickness", spread_thickness, 1.0)
-    s_r = _check_spread("spread_radius", spread_radius, 1.0)
-    tilt = _check_scalar("spread_tilt_deg", spread_tilt_deg, 0.0, 45.0, lo_open=False,
-                         allowed="0 <= tilt < 45 deg")
-    rng = np.random.default_rng(seed) if rng is None else rng
-    label = f"random (seed {seed})" if seed is not None else "random"
-    if isinstance(nominal, Arch):
-        if tilt:
-            raise ArchInputError("spread_tilt_deg: the joints of a circular Arch stay radial; "
-                                 "tilt joints on family_arch('circular', ..., exact=False)")
-        u = rng.uniform(-1.0, 1.0, size=(3, nominal.n))
-        spans, thick, radii = random_spans_thicknesses_radii(nominal, u, s_a, s_t, s_r)
-        return Arch(spans, radii, thick, nominal.density, name=label)
-    from .families import FamilyArch, perturb_family
 
-    if not isinstance(nominal, FamilyArch) or nominal.recipe is None:
-        from .displaced import refuse_moved_supports
-
-        refuse_moved_supports(nominal)
-        raise ArchInputError(f"nominal: a {type(nominal).__name__} without a family recipe (e.g. "
-                             f"a surveyed arch) cannot be perturbed; allowed a circular Arch or "
-                             f"an arch of family_arch")
-    u = rng.uniform(-1.0, 1.0, size=(4 if tilt else 3, nominal.n))
-    return perturb_family(nominal, u, s_a, s_t, s_r, tilt, name=label)
+def polygon_form(arch: VoussoirArch, step: float = ARC_STEP) -> PolygonArch:
+    """``arch`` as polygon voussoirs: a :class:`PolygonArch` itself, a circular :class:`Arch`
+    with its arcs as polylines of segments at most ``step`` [rad] of turning (at least 8 points
+    per arc)."""
+    if isinstance(arch, PolygonArch):
+        return arch
+    if isinstance(arch, Arch):
+        per = max(8, int(math.ceil(float(np.max(arch.spans)) / step)) + 1)
+        return as_polygon(arch, per)
+    raise ArchInputError(f"arch: a {type(arch).__name__}; allowed an Arch or a PolygonArch")

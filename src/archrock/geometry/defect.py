@@ -49,8 +49,9 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import VoussoirArch, _check_scalar
-from .circular import Arch
-from .polygon import PolygonArch, as_polygon
+from .circular import ARC_STEP, Arch, polygon_form
+from .piers import ArchOnPiers, lean_pier
+from .polygon import PolygonArch
 
 __all__ = ["Defect", "apply_defect", "apply_defects", "DEFECT_KINDS", "parse_defect",
            "defect_base"]
@@ -66,8 +67,9 @@ _SIDE_KEY = {"thickness": "at", "mortar": "from", "pier-tilt": "side"}
 #: Smallest fraction a thickness or mortar defect leaves: below it the damaged outline has
 #: coinciding points (1e-300 gave "voussoirs[2].intrados: two consecutive points coincide").
 MIN_DEFECT_FRACTION = 1e-9
-#: largest angle [rad] of one polyline segment when a circular arch is written as a polygon
-_ARC_STEP = 0.002
+#: largest angle [rad] of one polyline segment when a circular arch is written as a polygon (a
+#: module name of its own, so a test may refine it for the defects alone)
+_ARC_STEP = ARC_STEP
 
 
 def _allowed_value(kind: str) -> str:
@@ -270,12 +272,7 @@ def _dedupe(p: np.ndarray, tol: float) -> np.ndarray:
 
 
 def _as_polygon(arch: VoussoirArch) -> PolygonArch:
-    if isinstance(arch, PolygonArch):
-        return arch
-    if isinstance(arch, Arch):
-        per = max(8, int(math.ceil(float(np.max(arch.spans)) / _ARC_STEP)) + 1)
-        return as_polygon(arch, per)
-    raise ArchInputError(f"arch: a {type(arch).__name__}; allowed an Arch or a PolygonArch")
+    return polygon_form(arch, _ARC_STEP)  # read here, so a test may refine the step
 
 
 def defect_base(arch: VoussoirArch, kind: str) -> VoussoirArch:
@@ -468,12 +465,8 @@ def _unmortared(arch: VoussoirArch, d: Defect) -> PolygonArch:
 
 
 def _pier_tilted(arch, d: Defect):
-    from .piers import lean_pier
-
     out = lean_pier(arch, d.side, d.value)
     if out is arch:  # 0 deg: the same arch, under its own name
-        from .piers import ArchOnPiers
-
         out = ArchOnPiers(arch.intrados, arch.extrados, arch.density, arch.name, arch.loads,
                           block_kinds=arch.block_kinds)
     return out
@@ -495,8 +488,6 @@ def apply_defect(arch: VoussoirArch, defect: Defect | str) -> VoussoirArch:
     kinds = getattr(arch, "block_kinds", ())
     if kinds and "voussoir" in kinds and len(set(kinds)) > 1 and not hasattr(out, "block_kinds"):
         # an arch on piers stays one: its piers are still piers, counted and named apart
-        from .piers import ArchOnPiers
-
         out = ArchOnPiers(out.intrados, out.extrados, out.density, out.name, out.loads,
                           block_kinds=kinds)
     object.__setattr__(out, "name", f"{arch.name} [{d.spec()}]")

@@ -38,8 +38,9 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ArchInputError
-from . import DEFAULT_DENSITY, FACE_TOLERANCE, PolygonArch
+from .base import DEFAULT_DENSITY
 from .inputfile import read_input
+from .polygon import FACE_TOLERANCE, PolygonArch
 
 __all__ = ["read_dxf", "read_dxf_outlines", "arch_from_outlines", "UNITS"]
 

@@ -24,6 +24,7 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import Load, VoussoirArch, _check_scalar
+from .circular import polygon_form
 from .polygon import PolygonArch, _signed_area, _simple
 
 __all__ = ["ArchOnPiers", "with_piers", "MAX_COURSES", "BLOCK_KINDS", "MAX_BATTER",
@@ -42,7 +43,7 @@ MAX_LEAN = 15.0
 
 
 @dataclass(frozen=True, eq=False)
-class ArchOnPiers(PolygonArch):
+class ArchOnPiers(PolygonArch, reads_block_kinds=True):
     """A :class:`PolygonArch` whose blocks are piers or voussoirs: ``block_kinds`` holds one of
     :data:`BLOCK_KINDS` per block, in chain order (empty: all voussoirs)."""
 
@@ -239,9 +240,7 @@ def _steps(name: str, value, hi: float) -> tuple:
 
 
 def _polygon_of(arch: VoussoirArch) -> PolygonArch:
-    from .defect import _as_polygon
-
-    return _as_polygon(arch)
+    return polygon_form(arch)
 
 
 def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int = 1,

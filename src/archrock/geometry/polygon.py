@@ -85,6 +85,15 @@ class PolygonArch(VoussoirArch):
     name: str = field(default="arch", compare=False)
     loads: tuple = ()
 
+    #: The subclass that reads blocks with a ``"kind"`` (:class:`~archrock.geometry.ArchOnPiers`,
+    #: which names itself with ``reads_block_kinds=True``: piers sit above this module).
+    _block_kinds_reader = None
+
+    def __init_subclass__(cls, reads_block_kinds: bool = False, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if reads_block_kinds:
+            PolygonArch._block_kinds_reader = cls
+
     def __post_init__(self):
         if not isinstance(self.intrados, (list, tuple)) or not isinstance(self.extrados, (list, tuple)):
             raise ArchInputError("voussoirs: intrados and extrados must be lists of polylines")
@@ -250,10 +259,9 @@ class PolygonArch(VoussoirArch):
         """The polygon geometry format; blocks with a ``"kind"`` (written by an arch on piers)
         give an :class:`~archrock.geometry.ArchOnPiers`."""
         if cls is PolygonArch and isinstance(data, dict) and isinstance(data.get("voussoirs"), list) \
-                and any(isinstance(v, dict) and "kind" in v for v in data["voussoirs"]):
-            from .piers import ArchOnPiers
-
-            return ArchOnPiers.from_dict(data, name=name)
+                and any(isinstance(v, dict) and "kind" in v for v in data["voussoirs"]) \
+                and PolygonArch._block_kinds_reader is not None:
+            return PolygonArch._block_kinds_reader.from_dict(data, name=name)
         intr, extr, density, loads = cls._parse_dict(data)
         return cls(intr, extr, density, name, loads)
 

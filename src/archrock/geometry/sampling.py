@@ -19,7 +19,7 @@ draws and arches are 0.1.0's.
 Nominal arches: a circular :class:`~archrock.geometry.Arch` (voussoirs perturbed as annular
 sectors, :func:`~archrock.geometry.perturb_voussoirs`) or a family arch
 (:class:`~archrock.geometry.FamilyArch`, perturbed through its recipe,
-:func:`~archrock.geometry.families.perturb_family`; with numba, for a family arch without loads
+:func:`~archrock.geometry.irregular.perturb_family`; with numba, for a family arch without loads
 or fill, its arithmetic compiled in :mod:`archrock.geometry.batchdraw`: the same polylines).  A
 polygon arch without a recipe (a surveyed arch, e.g. from a DXF drawing) keeps its joints and
 varies each voussoir's thickness and centreline offset (:mod:`archrock.geometry.survey`; span
@@ -40,8 +40,11 @@ import numpy as np
 
 from .. import published
 from ..errors import ArchInputError, InvalidSampleError
-from . import Arch, FamilyArch, PolygonArch, VoussoirArch, perturb_voussoirs
-from .families import perturb_family
+from .base import VoussoirArch
+from .circular import Arch, perturb_voussoirs
+from .families import FamilyArch
+from .irregular import perturb_family
+from .polygon import PolygonArch
 
 __all__ = ["Spreads", "ArchSampler", "BLOCK", "DEFAULT_SPREADS", "LEGACY_KEYS", "PIER_SPREADS"]
 

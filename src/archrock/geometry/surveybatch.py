@@ -6,7 +6,7 @@ numbers (its thickness and offset draws): point = line + (amount * t) * d, with 
 length t and the direction d the nominal's.  :class:`SurveyPlan` keeps line, t and d of every face
 once; :func:`survey_properties` applies the draws of a batch and computes each arch's checks,
 mass properties and joint segments with the compiled checks of
-:func:`archrock.geometry.batchdraw._arch_arrays` (those of ``PolygonArch``, with margins), no
+:func:`archrock.geometry.batchpolygon._arch_arrays` (those of ``PolygonArch``, with margins), no
 Python per arch.  The arithmetic is perturb_survey's, operation for operation, so each certified
 row is that of the arch object to the last bit; a draw the compiled checks do not certify goes
 back to the arch object (:mod:`archrock.studies.ensemble.familybatch`).
@@ -18,7 +18,8 @@ import numpy as np
 
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError
-from .batchdraw import OK, REFUSED, UNCERTIFIED, _arch_arrays, cached_plan
+from .batchplan import OK, REFUSED, UNCERTIFIED, cached_plan
+from .batchpolygon import _arch_arrays
 from .survey import _fractions, is_survey, joint_frames
 
 __all__ = ["SurveyPlan", "survey_supported", "survey_plan", "survey_properties",

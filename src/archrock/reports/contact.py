@@ -180,7 +180,7 @@ def format_engine_response(res, four_link, arch, motion, choice=None) -> str:
                      + f", peak phi {four_link.peak:.4f} rad, impacts "
                      + ", ".join(f"{t:.3f}" for t in four_link.impacts[:6]))
         if four_link.model.impact.fallback:  # the law named is the law that ran
-            from .response import impact_law_line
+            from .impact import impact_law_line
 
             lines.append(f"    four-link {impact_law_line(four_link.model.impact)}")
     ms = res.max_sliding

@@ -149,6 +149,18 @@ def _needing_friction(fd) -> str:
     return ", ".join(f"{j} ({fd.ratios[j]:.4f})" for j in fd.joints)
 
 
+def _friction_rows(friction, frictionless: bool) -> list[str]:
+    """One table row a direction: k with friction, k without it (when ``frictionless``),
+    whether sliding governs, and the joints needing most friction."""
+    rows = []
+    for d in ("l", "r"):
+        fd = friction.direction(d)
+        free = f"{fd.frictionless:15.4f}  " if frictionless else ""
+        rows.append(f"  M_{d}        {fd.multiplier:12.4f}  {free}"
+                    f"{'yes' if fd.sliding_governs else 'no':>15}  {_needing_friction(fd)}")
+    return rows
+
+
 def friction_lines(needed=None, friction=None) -> list[str]:
     """Readable lines of a friction analysis (see :func:`friction_summary`)."""
     if needed is None and friction is None:
@@ -168,11 +180,7 @@ def friction_lines(needed=None, friction=None) -> list[str]:
     lines += [f"  with mu = {friction.mu:g}:",
               "  mechanism  k (friction)  k (no friction)  sliding governs  "
               "joints needing most friction (|T|/N)"]
-    for d in ("l", "r"):
-        fd = friction.direction(d)
-        joints = _needing_friction(fd)
-        lines.append(f"  M_{d}        {fd.multiplier:12.4f}  {fd.frictionless:15.4f}  "
-                     f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
+    lines += _friction_rows(friction, frictionless=True)
     lines.append(f"  k with friction = {friction.k:.4f}")
     return lines
 
@@ -338,11 +346,7 @@ def format_friction_only(arch, why: str, min_thickness=None, friction=None,
     lines += [f"Limit analysis with friction mu = {friction.mu:g} (Coulomb |T| <= mu N at every "
               f"joint; associative: docs/friction.md)",
               "  mechanism  k (friction)  sliding governs  joints needing most friction (|T|/N)"]
-    for d in ("l", "r"):
-        fd = friction.direction(d)
-        joints = _needing_friction(fd)
-        lines.append(f"  M_{d}        {fd.multiplier:12.4f}  "
-                     f"{'yes' if fd.sliding_governs else 'no':>15}  {joints}")
+    lines += _friction_rows(friction, frictionless=False)
     lines.append(f"  k = min(k_l, k_r) with friction = {friction.k:.4f} (joints slide; the "
                  f"four-link model does not hold)")
     lines += _extras(arch, min_thickness, min_thickness_friction, thrust, min_pier_width)

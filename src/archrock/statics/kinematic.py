@@ -35,7 +35,7 @@ from .liftoff import (_DUAL_CONFIRM, GENERAL_MAX_VOUSSOIRS, _certify_arch, _lp_m
                       general_mechanisms)
 from .lp import ThrustLine, _radial, _stands, static_multiplier
 from .overload import cannot_stand_message
-from .sums import _batch_sums, _enumerate_sums, _virtual_work, arch_sums
+from .sums import _batch_sums, _enumerate_sums, _virtual_work, arch_sums, signed_work
 
 __all__ = ["kinematic_mechanisms", "kinematic_multipliers_batch", "kinematic_multipliers_arches",
            "limit_progress", "enumeration_estimate", "SEARCH_CHOICES",
@@ -67,6 +67,8 @@ if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see arc
         bit)."""
         for b in numba.prange(cw.shape[0]):
             _numba_arch(b, cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, ja0, ja1, rank0)
+
+    _signed_work_jit = maybe_njit(nogil=True)(signed_work)
 
     @maybe_njit(nogil=True)
     def _numba_arch(b, cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, ja0, ja1, rank0):
@@ -131,16 +133,9 @@ if HAVE_NUMBA:  # one switch for the whole package: ARCHROCK_NO_NUMBA=1 (see arc
                                 sigma = -1.0
                             else:
                                 continue
-                            vBx = -(By - Ay)
-                            vBy = Bx - Ax
-                            work_x = (-(Y1 - W1 * Ay)
-                                      + W2 * vBx - (Y2 - W2 * By) * w2
-                                      - (Y3 - W3 * Dy) * w3)
-                            work_y = ((X1 - W1 * Ax)
-                                      + W2 * vBy + (X2 - W2 * Bx) * w2
-                                      + (X3 - W3 * Dx) * w3)
-                            work_x = sigma * work_x
-                            work_y = sigma * work_y
+                            work_x, work_y = _signed_work_jit(
+                                sigma, W1, X1, Y1, W2, X2, Y2, W3, X3, Y3, Ax, Ay, Bx, By, Dx,
+                                Dy, w2, w3)
                             if work_x > tiny:
                                 lam = work_y / work_x
                                 if lam < best_l:

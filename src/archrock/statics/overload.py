@@ -14,6 +14,7 @@ import math
 
 from ..errors import ArchrockError
 from .lp import _stands
+from .pierwidth import piers_cannot_stand
 from .search import least_standing
 
 __all__ = ["cannot_stand_message", "largest_load_mass"]
@@ -66,8 +67,6 @@ def cannot_stand_message(arch, detail: str) -> str:
     the load it cannot carry and what would carry it, where the arch without its loads stands;
     otherwise its self-weight, with the advice to thicken it."""
     # on piers that cannot carry the arch's thrust the piers are to blame, not the thickness
-    from .buttress import piers_cannot_stand
-
     piers = piers_cannot_stand(arch, detail)
     if piers is not None:
         return piers

@@ -118,6 +118,22 @@ def _enumerate_sums(cw, cwx, cwy, px, py, cand=None):
     return _virtual_work(points, links, sign)
 
 
+def signed_work(sigma, W1, X1, Y1, W2, X2, Y2, W3, X3, Y3, Ax, Ay, Bx, By, Dx, Dy, w2, w3):
+    """(horizontal, vertical) virtual work of a four-hinge candidate (hinges A, B, D; link k's
+    weight W_k [N/m] and first moments X_k, Y_k [N]) in the motion w1 = 1, w2, w3 [rad] taken
+    with the sign ``sigma`` that opens every hinge.  Plain arithmetic: numpy arrays here, the
+    numba kernel's scalars in :mod:`.kinematic` (the same operations, so the same bits)."""
+    # velocity of B on link 1 (rotation w1 = 1 about A): k x (B - A)
+    vBx, vBy = -(By - Ay), (Bx - Ax)
+    work_x = (-(Y1 - W1 * Ay)
+              + W2 * vBx - (Y2 - W2 * By) * w2
+              - (Y3 - W3 * Dy) * w3)
+    work_y = ((X1 - W1 * Ax)
+              + W2 * vBy + (X2 - W2 * Bx) * w2
+              + (X3 - W3 * Dx) * w3)
+    return sigma * work_x, sigma * work_y
+
+
 def _virtual_work(points, links, sign):
     """Multipliers (lam_l, lam_r) of four-hinge candidates from their hinge points
     [(Ax, Ay), .., (Dx, Dy)], the weight sums of their three links [(W, X, Y) per link] and the
@@ -146,16 +162,8 @@ def _virtual_work(points, links, sign):
     neg = (q0 < nthr) & (q1 < nthr) & (q2 < nthr) & (q3 < nthr)
     sigma = np.where(pos, 1.0, -1.0)
     admissible = ok & (pos | neg)
-    # velocity of B on link 1 (rotation w1 = 1 about A): k x (B - A)
-    vBx, vBy = -(By - Ay), (Bx - Ax)
-    work_x = (-(Y1 - W1 * Ay)
-              + W2 * vBx - (Y2 - W2 * By) * w2
-              - (Y3 - W3 * Dy) * w3)
-    work_y = ((X1 - W1 * Ax)
-              + W2 * vBy + (X2 - W2 * Bx) * w2
-              + (X3 - W3 * Dx) * w3)
-    work_x = sigma * work_x
-    work_y = sigma * work_y
+    work_x, work_y = signed_work(sigma, W1, X1, Y1, W2, X2, Y2, W3, X3, Y3, Ax, Ay, Bx, By,
+                                 Dx, Dy, w2, w3)
     tiny = 1e-14
     lam_l = np.where(admissible & (work_x > tiny), work_y / np.where(work_x > tiny, work_x, 1.0), np.inf)
     lam_r = np.where(admissible & (work_x < -tiny), work_y / np.where(work_x < -tiny, -work_x, 1.0), np.inf)

@@ -4,17 +4,13 @@ the assumptions (:mod:`archrock.studies.assessment` orders them)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from ..errors import ArchInputError, ArchrockError
 from ..geometry import VoussoirArch
+from .assessment_context import Context
 from .assessment_blocks import (REFERENCES, Figure, Paragraph, Section, Table, _f,
                                 _optional_missing, titled)
-
-if TYPE_CHECKING:  # the context is assessment.py's; sections read it only
-    from .assessment import Context
 
 
 @titled('impact', 'Impact coefficients by model')
@@ -306,6 +302,22 @@ def _fragility_words(res_ida, res_msa, fit) -> tuple[str, tuple]:
     return " ".join(parts), (("fragility median PGA [g]", f"{fit.theta:.3f}"),)
 
 
+def _contact_rows(eng, lim) -> tuple:
+    """The table rows of the contact-engine check, one a direction: the engine's multiplier
+    beside the limit analysis's at the same friction, their difference, the refined run's and
+    both hinge sets."""
+    ref, refined = eng.details["compared_with"], eng.details["refined"]
+    rows = []
+    for d in ("l", "r"):
+        k_eng, k_ref = eng.k(d), ref[d]
+        diff = "-" if not k_ref else f"{100 * (k_eng / k_ref - 1):+.1f}%"
+        fine = "-" if d not in refined else f"{refined[d]['multiplier']:.4f}"
+        rows.append((f"M_{d}", f"{k_eng:.4f}", "-" if k_ref is None else f"{k_ref:.4f}", diff,
+                     fine, eng.mechanism(d), " ".join(map(str, lim.mechanism(d).joints)),
+                     "holds" if eng.holds[d] else "not converged"))
+    return tuple(rows)
+
+
 @titled('contact', 'Contact-engine check')
 def section_contact(ctx: Context) -> Section:
     """OPTIONAL: the contact-engine check (archrock.contact, the 'dem' extra): the governing
@@ -329,16 +341,9 @@ def section_contact(ctx: Context) -> Section:
                                      "The contact-engine (pymunk) check")
         return Section("contact", title, (Paragraph(f"Not run: {why}."),),
                        {"available": False, "why": why})
-    lim, det = ctx.limit, eng.details
+    det = eng.details
     ref, refined = det["compared_with"], det["refined"]
-    rows = []
-    for d in ("l", "r"):
-        k_eng, k_ref = eng.k(d), ref[d]
-        diff = "-" if not k_ref else f"{100 * (k_eng / k_ref - 1):+.1f}%"
-        fine = "-" if d not in refined else f"{refined[d]['multiplier']:.4f}"
-        rows.append((f"M_{d}", f"{k_eng:.4f}", "-" if k_ref is None else f"{k_ref:.4f}", diff,
-                     fine, eng.mechanism(d), " ".join(map(str, lim.mechanism(d).joints)),
-                     "holds" if eng.holds[d] else "not converged"))
+    rows = _contact_rows(eng, ctx.limit)
     mu = det["settings"]["friction"]
     text = ("The same voussoirs as rigid bodies with contact and non-associative Coulomb "
             f"friction (mu = {mu:g}, the report's friction"
@@ -353,7 +358,7 @@ def section_contact(ctx: Context) -> Section:
     blocks = [Paragraph(text),
               Table(("direction", "engine multiplier", "limit analysis at the same friction",
                      "difference", "engine refined", "engine hinges", "limit hinges",
-                     "engine"), tuple(rows))]
+                     "engine"), rows)]
     if gov.findings:
         blocks.append(Paragraph("Finding: " + " ".join(gov.findings)))
     data = {"available": True, "k_l": eng.k_l, "k_r": eng.k_r,

@@ -4,16 +4,13 @@ governing answer (:mod:`archrock.studies.assessment` orders them)."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import ArchrockError
 from ..geometry import Arch, PolygonArch, VoussoirArch
+from .assessment_context import Context
 from .assessment_blocks import Figure, Paragraph, Section, Table, _f, _optional_missing, titled
-
-if TYPE_CHECKING:  # the context is assessment.py's; sections read it only
-    from .assessment import Context
 
 
 def arch_extent(arch: VoussoirArch) -> tuple[float, float, float, float]:
@@ -157,14 +154,47 @@ def section_limit(ctx: Context) -> Section:
     return Section("limit", "Limit analysis (both directions)", blocks, data, head)
 
 
+def _support_capacity(arch, base, mv, blocks: list, data: dict, head: list) -> None:
+    """The capacity that remains along the movement's direction (and the gaps that close
+    first), into ``blocks``, ``data`` and ``head`` of the supports section."""
+    from ..statics.supports import gap_closing, movement_capacity, movement_size
+
+    cap = movement_capacity(base, mv)
+    mag = movement_size(base, mv)  # in the capacity's units: rad for a turn alone, else m
+    unit = "rad" if cap.fraction is None else "m"
+    left = cap.capacity - mag
+    mech = ", ".join(f"{h.joint}{h.edge[0]}" for h in cap.mechanism)
+    span = "" if cap.fraction is None else f"{100 * cap.fraction:.3g}% of the span; "
+    blocks.append(Paragraph(
+        f"Pushed further the same way, the arch stands up to {cap.capacity:.4g} {unit} of "
+        f"this movement ({span}{cap.reason}, hinges {mech}): {left:.4g} {unit} remain, "
+        f"{cap.capacity / mag:.3g} times the movement so far"
+        + (f" (a turn with a translation is measured as hypot(spread, settlement, rotation x "
+           f"{base.size:.4g} m), docs/supports.md)" if mv.rotation and unit == "m" else "")
+        + "."))
+    data["capacity"] = {k: v for k, v in cap.to_dict().items() if k != "curve"}
+    data["capacity_remaining"] = left
+    data["units"]["capacity"] = unit
+    head.append((f"support capacity remaining [{unit}]",
+                 f"{left:.4g} ({cap.capacity / mag:.3g} x the movement)"))
+    gc = gap_closing(arch)
+    if gc is not None:
+        shut = sorted(set(gc.closing_l) | set(gc.closing_r))
+        blocks.append(Paragraph(
+            f"Before those multipliers, the open joints' point contacts let the arch rock "
+            f"from k_l = {gc.k_l:.4g}, k_r = {gc.k_r:.4g} g, turning joint(s) "
+            f"{', '.join(map(str, shut))} back until their gaps close: a bounded motion, "
+            f"not a collapse."))
+        data["gap_closing"] = gc.to_dict()
+
+
 @titled('supports', 'Supports that have moved')
 def section_supports(ctx: Context) -> Section | None:
     """The arch on moved supports (docs/supports.md): the movement, the hinges it opened, the
     multipliers on the displaced arch beside those on fixed supports, and the capacity that
     remains along the movement's direction.  None (left out) on fixed supports."""
     from ..statics.limit import limit_analysis
-    from ..statics.supports import (displace, gap_closing, moved_parts, movement_capacity,
-                                    movement_size)
+    from ..statics.supports import displace, moved_parts
 
     base, mv = moved_parts(ctx.arch)
     if mv is None:
@@ -188,62 +218,33 @@ def section_supports(ctx: Context) -> Section | None:
     head = [("support movement", mv.describe())]
     blocks = [Paragraph(text)]
     if np.any(mv.relative) or mv.rotation:
-        cap = movement_capacity(base, mv)
-        mag = movement_size(base, mv)  # in the capacity's units: rad for a turn alone, else m
-        unit = "rad" if cap.fraction is None else "m"
-        left = cap.capacity - mag
-        mech = ", ".join(f"{h.joint}{h.edge[0]}" for h in cap.mechanism)
-        span = "" if cap.fraction is None else f"{100 * cap.fraction:.3g}% of the span; "
-        blocks.append(Paragraph(
-            f"Pushed further the same way, the arch stands up to {cap.capacity:.4g} {unit} of "
-            f"this movement ({span}{cap.reason}, hinges {mech}): {left:.4g} {unit} remain, "
-            f"{cap.capacity / mag:.3g} times the movement so far"
-            + (f" (a turn with a translation is measured as hypot(spread, settlement, rotation x "
-               f"{base.size:.4g} m), docs/supports.md)" if mv.rotation and unit == "m" else "")
-            + "."))
-        data["capacity"] = {k: v for k, v in cap.to_dict().items() if k != "curve"}
-        data["capacity_remaining"] = left
-        data["units"]["capacity"] = unit
-        head.append((f"support capacity remaining [{unit}]",
-                     f"{left:.4g} ({cap.capacity / mag:.3g} x the movement)"))
-        gc = gap_closing(ctx.arch)
-        if gc is not None:
-            shut = sorted(set(gc.closing_l) | set(gc.closing_r))
-            blocks.append(Paragraph(
-                f"Before those multipliers, the open joints' point contacts let the arch rock "
-                f"from k_l = {gc.k_l:.4g}, k_r = {gc.k_r:.4g} g, turning joint(s) "
-                f"{', '.join(map(str, shut))} back until their gaps close: a bounded motion, "
-                f"not a collapse."))
-            data["gap_closing"] = gc.to_dict()
+        _support_capacity(ctx.arch, base, mv, blocks, data, head)
     blocks += [Table(("", "fixed supports", "moved supports"), tuple(rows)),
                Figure("arch", f"{ctx.arch.name}: the arch on its moved supports.", ctx.arch)]
     return Section("supports", "Supports that have moved", tuple(blocks), data, tuple(head))
-@titled('piers', 'The piers')
-def section_piers(ctx: Context) -> Section | None:
-    """An arch on piers (docs/piers.md): each pier's size, where the mechanisms' hinges are
-    (named as ``archrock limit`` names them), the least width of rectangular piers of that
-    height that carry the arch (statics.buttress), and whether the four-link model (one
-    degree of freedom) can follow the structure (dynamics.piers).  None (left out) on rigid
-    ground."""
-    from ..geometry.piers import ArchOnPiers, arch_without_piers, hinge_place, pier_sizes
+def _piers_of(arch):
+    """(the arch on piers, a sentence when its piers were guessed) of the report's arch, or
+    (None, "") on rigid ground.  A geometry file that names no kinds: the end blocks the
+    single-DOF check takes for piers (heavy, rising as columns from level foundations), if any."""
+    from ..geometry.piers import ArchOnPiers
 
-    arch = ctx.arch
-    guessed = ""
-    if not isinstance(arch, ArchOnPiers) or not arch.pier_blocks:
-        # a geometry file that names no kinds: the end blocks the single-DOF check takes for
-        # piers (heavy, rising as columns from level foundations), if any
-        from ..dynamics.piers import pier_blocks
+    if isinstance(arch, ArchOnPiers) and arch.pier_blocks:
+        return arch, ""
+    from ..dynamics.piers import pier_blocks
 
-        found, how = pier_blocks(arch) if isinstance(arch, PolygonArch) else ((), "none")
-        if how != "geometry":
-            return None
-        kinds = tuple("pier" if i in found else "voussoir" for i in range(arch.n))
-        arch = ArchOnPiers(arch.intrados, arch.extrados, arch.density, arch.name, arch.loads,
-                           block_kinds=kinds)
-        guessed = (f" The geometry names no block kinds: block(s) "
+    found, how = pier_blocks(arch) if isinstance(arch, PolygonArch) else ((), "none")
+    if how != "geometry":
+        return None, ""
+    kinds = tuple("pier" if i in found else "voussoir" for i in range(arch.n))
+    piers = ArchOnPiers(arch.intrados, arch.extrados, arch.density, arch.name, arch.loads,
+                        block_kinds=kinds)
+    return piers, (f" The geometry names no block kinds: block(s) "
                    f"{', '.join(map(str, found))} are taken for piers (heavy end blocks rising "
                    f"as columns from level foundations; kinds in the file would say so).")
-    sizes = pier_sizes(arch)
+
+
+def _pier_sizes(sizes: dict, guessed: str) -> tuple[str, list]:
+    """Each pier's size in words, and the paragraph and table that give them."""
     rows = tuple((side, sz["kind"], sz["blocks"], f"{sz['height']:.3f}",
                   f"{sz['width_top']:.3f}" if math.isfinite(sz["width_top"]) else "-",
                   f"{sz['width_foot']:.3f}",
@@ -254,13 +255,19 @@ def section_piers(ctx: Context) -> Section | None:
                       + (f", {abs(sz['lean_deg']):.3g} deg out of plumb "
                          f"{'outward' if sz['lean_deg'] > 0 else 'inward'}"
                          if abs(sz["lean_deg"]) > 1e-9 else "") for side, sz in sizes.items())
-    blocks = [Paragraph(f"The arch stands on piers ({words}). Blocks are numbered from the "
-                        f"left pier's foot; hinges are named where they are on the drawing."
-                        + guessed),
-              Table(("pier", "kind", "blocks", "height [m]", "width at top [m]",
-                     "width at foot [m]", "lean [deg, outward +]"), rows,
-                    "Sizes in each pier's own frame (turned back by its lean).")]
-    lim = ctx.limit
+    return words, [Paragraph(f"The arch stands on piers ({words}). Blocks are numbered from the "
+                             f"left pier's foot; hinges are named where they are on the drawing."
+                             + guessed),
+                   Table(("pier", "kind", "blocks", "height [m]", "width at top [m]",
+                          "width at foot [m]", "lean [deg, outward +]"), rows,
+                         "Sizes in each pier's own frame (turned back by its lean).")]
+
+
+def _pier_hinges(arch, lim) -> tuple[list, list]:
+    """The rows (mechanism, hinge, joint, where) of the limit mechanisms' hinges, and those
+    that lie in the piers, in words."""
+    from ..geometry.piers import hinge_place
+
     hinge_rows, at_piers = [], []
     for d in ("l", "r"):
         for lab, h in lim.mechanism(d).labelled():
@@ -268,17 +275,13 @@ def section_piers(ctx: Context) -> Section | None:
             hinge_rows.append((f"M_{d}", lab, f"{h.joint}{h.edge[0]}", place))
             if "pier" in place or "buttress" in place:
                 at_piers.append(f"M_{d} {lab}: {place}")
-    blocks.append(Table(("mechanism", "hinge", "joint", "where"), tuple(hinge_rows),
-                        "The hinges of the limit mechanisms, named as archrock limit names "
-                        "them."))
-    data = {"piers": sizes, "hinges": [dict(zip(("mechanism", "hinge", "joint", "place"), r))
-                                       for r in hinge_rows],
-            "units": {"height": "m", "width_top": "m", "width_foot": "m", "foot_level": "m",
-                      "lean_deg": "deg"}}
-    head = [("piers", words)]
-    if at_piers:
-        blocks.append(Paragraph("Hinges in the piers: " + "; ".join(at_piers) + "."))
-    # the buttress question: the least width of rectangular piers of this height
+    return hinge_rows, at_piers
+
+
+def _least_pier_widths(arch, sizes: dict) -> tuple[list, Paragraph]:
+    """The buttress question: the least width of rectangular piers of each pier's height with
+    which the arch stands (statics.buttress), as data and in words."""
+    from ..geometry.piers import arch_without_piers
     from ..statics.buttress import minimum_pier_width
 
     mins = {}
@@ -288,7 +291,6 @@ def section_piers(ctx: Context) -> Section | None:
             mins[h] = {"width": mw.width, "governed_by": mw.governed_by}
         except ArchrockError as exc:
             mins[h] = {"width": None, "error": " ".join(str(exc).split())}
-    data["minimum_pier_width"] = [{"height": h, **v} for h, v in mins.items()]
     txt = []
     for side, sz in sizes.items():
         m = mins[round(sz["height"], 9)]
@@ -300,11 +302,15 @@ def section_piers(ctx: Context) -> Section | None:
                        f"(this pier {sz['width_top']:.3g} m, {ratio:.2f} x"
                        + (", the springing joint's own width governs" if m["governed_by"] ==
                           "springing" else "") + ")")
-    blocks.append(Paragraph("The least width of two rectangular monolithic piers of this height "
-                            "with which the arch stands under its own weight (a line of thrust "
-                            "inside arch and piers; Heyman 1995, Ochsendorf 2002): "
-                            + "; ".join(txt) + "."))
-    # one degree of freedom or more (docs/piers-dynamics.md)
+    return [{"height": h, **v} for h, v in mins.items()], Paragraph(
+        "The least width of two rectangular monolithic piers of this height with which the "
+        "arch stands under its own weight (a line of thrust inside arch and piers; Heyman "
+        "1995, Ochsendorf 2002): " + "; ".join(txt) + ".")
+
+
+def _single_dof(ctx, data: dict, blocks: list, head: list) -> None:
+    """One degree of freedom or more (docs/piers-dynamics.md): the check into ``data``, and a
+    warning into ``blocks`` and ``head`` where the four-link model cannot follow the piers."""
     try:
         from ..dynamics.piers import single_dof_check
 
@@ -320,6 +326,36 @@ def section_piers(ctx: Context) -> Section | None:
                          "(figures can be unconservative)"))
     except ArchrockError as exc:
         data["single_dof"] = {"error": " ".join(str(exc).split())}
+
+
+@titled('piers', 'The piers')
+def section_piers(ctx: Context) -> Section | None:
+    """An arch on piers (docs/piers.md): each pier's size, where the mechanisms' hinges are
+    (named as ``archrock limit`` names them), the least width of rectangular piers of that
+    height that carry the arch (statics.buttress), and whether the four-link model (one
+    degree of freedom) can follow the structure (dynamics.piers).  None (left out) on rigid
+    ground."""
+    from ..geometry.piers import pier_sizes
+
+    arch, guessed = _piers_of(ctx.arch)
+    if arch is None:
+        return None
+    sizes = pier_sizes(arch)
+    words, blocks = _pier_sizes(sizes, guessed)
+    hinge_rows, at_piers = _pier_hinges(arch, ctx.limit)
+    blocks.append(Table(("mechanism", "hinge", "joint", "where"), tuple(hinge_rows),
+                        "The hinges of the limit mechanisms, named as archrock limit names "
+                        "them."))
+    data = {"piers": sizes, "hinges": [dict(zip(("mechanism", "hinge", "joint", "place"), r))
+                                       for r in hinge_rows],
+            "units": {"height": "m", "width_top": "m", "width_foot": "m", "foot_level": "m",
+                      "lean_deg": "deg"}}
+    head = [("piers", words)]
+    if at_piers:
+        blocks.append(Paragraph("Hinges in the piers: " + "; ".join(at_piers) + "."))
+    data["minimum_pier_width"], least = _least_pier_widths(arch, sizes)
+    blocks.append(least)
+    _single_dof(ctx, data, blocks, head)
     return Section("piers", "The piers", tuple(blocks), data, tuple(head))
 
 

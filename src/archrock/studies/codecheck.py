@@ -595,6 +595,43 @@ class CodeCheckResult:
         return out
 
 
+def _control_point(kin: Kinematics, control):
+    """(displacements d_k [m] of the control point along the mechanism, its virtual dx_k, its
+    name): the mass centre of the moving voussoirs ("centre") or of voussoir ``control``."""
+    m, dx = kin.masses, kin.dx
+    if control == "centre":
+        w = m * (dx != 0)
+        return (kin.shift @ w / w.sum(), float(np.sum(w * dx) / w.sum()),
+                "mass centre of the moving voussoirs")
+    i = int(control)
+    if i >= m.size:
+        raise ArchInputError(f"control: {i}; allowed 'centre' or a voussoir index 0..{m.size - 1}")
+    if not dx[i] > 0:
+        raise ArchInputError(f"control: voussoir {i} does not move horizontally in this "
+                             f"mechanism; choose one that does, or 'centre'")
+    return kin.shift[:, i], float(dx[i]), f"mass centre of voussoir {i}"
+
+
+def _spectrum_checks(cfg: CodeCheckConfig, a0_star: float, du: float, ts: float) -> dict:
+    """The linear (a_0* [m/s^2] against Se(0) / q) and nonlinear (d_u* [m] against
+    S_De(T_s)) checks of Circolare 2019 C8.7.1.2.1 against the configuration's spectrum."""
+    spec = cfg.spectrum
+    if ts > spec.t_max:
+        raise ArchInputError(f"spectrum: the secant period T_s = {ts:.3g} s lies beyond the "
+                             f"spectrum's last period {spec.t_max:g} s; extend the table")
+    demand, sde = spec.pga / cfg.q, spec.sde(ts)
+    return {"linear": {
+        "clause": "Circolare 2019 C8.7.1.2.1 (linear kinematic analysis, mechanism at ground "
+                  "level): a_0* >= a_g S / q = Se(0) / q",
+        "capacity_g": a0_star / G, "demand_g": demand, "q": cfg.q,
+        "ratio": (a0_star / G) / demand if demand > 0 else math.inf,
+        "passed": bool(a0_star / G >= demand)}, "nonlinear": {
+        "clause": "Circolare 2019 C8.7.1.2.1 (nonlinear kinematic analysis, mechanism at "
+                  "ground level): d_u* >= S_De(T_s)",
+        "capacity_m": du, "demand_m": sde, "Se_Ts_g": float(spec.se(ts)), "ts": ts,
+        "ratio": du / sde if sde > 0 else math.inf, "passed": bool(du >= sde)}}
+
+
 def kinematic_check(kin: Kinematics, config: CodeCheckConfig | None = None,
                     direction: str = "l") -> DirectionCheck:
     """The code's linear and nonlinear kinematic analysis of one mechanism (module docstring)."""
@@ -609,20 +646,7 @@ def kinematic_check(kin: Kinematics, config: CodeCheckConfig | None = None,
     m_star = sx * sx / sxx               # (sum P dx)^2 / (g sum P dx^2), P = m g
     e_star = m_star / mass               # g M* / sum P
     a0_star = alpha_0 * G / (e_star * cfg.fc)
-    if cfg.control == "centre":
-        moving = dx != 0
-        w = m * moving
-        d_k = kin.shift @ w / w.sum()
-        dx_k = float(np.sum(w * dx) / w.sum())
-        control = "mass centre of the moving voussoirs"
-    else:
-        i = int(cfg.control)
-        if i >= m.size:
-            raise ArchInputError(f"control: {i}; allowed 'centre' or a voussoir index 0..{m.size - 1}")
-        if not dx[i] > 0:
-            raise ArchInputError(f"control: voussoir {i} does not move horizontally in this "
-                                 f"mechanism; choose one that does, or 'centre'")
-        d_k, dx_k, control = kin.shift[:, i], float(dx[i]), f"mass centre of voussoir {i}"
+    d_k, dx_k, control = _control_point(kin, cfg.control)
     factor = sxx / (dx_k * sx)           # d* = d_k sum P dx^2 / (dx_k sum P dx)
     d_star = np.asarray(d_k) * factor
     a_star = np.asarray(kin.alpha) * G / (e_star * cfg.fc)
@@ -633,25 +657,7 @@ def kinematic_check(kin: Kinematics, config: CodeCheckConfig | None = None,
     as_star = float(np.interp(ds, d_star, a_star))
     as_lin = a0_star * (1.0 - ds / d0_star)
     ts = 2.0 * math.pi * math.sqrt(ds / as_star)
-    checks = {}
-    spec = cfg.spectrum
-    if spec is not None:
-        demand = spec.pga / cfg.q
-        checks["linear"] = {
-            "clause": "Circolare 2019 C8.7.1.2.1 (linear kinematic analysis, mechanism at ground "
-                      "level): a_0* >= a_g S / q = Se(0) / q",
-            "capacity_g": a0_star / G, "demand_g": demand, "q": cfg.q,
-            "ratio": (a0_star / G) / demand if demand > 0 else math.inf,
-            "passed": bool(a0_star / G >= demand)}
-        if ts > spec.t_max:
-            raise ArchInputError(f"spectrum: the secant period T_s = {ts:.3g} s lies beyond the "
-                                 f"spectrum's last period {spec.t_max:g} s; extend the table")
-        sde = spec.sde(ts)
-        checks["nonlinear"] = {
-            "clause": "Circolare 2019 C8.7.1.2.1 (nonlinear kinematic analysis, mechanism at "
-                      "ground level): d_u* >= S_De(T_s)",
-            "capacity_m": du, "demand_m": sde, "Se_Ts_g": float(spec.se(ts)), "ts": ts,
-            "ratio": du / sde if sde > 0 else math.inf, "passed": bool(du >= sde)}
+    checks = {} if cfg.spectrum is None else _spectrum_checks(cfg, a0_star, du, ts)
     return DirectionCheck(direction, kin.label, alpha_0, mass, m_star, e_star, a0_star, control,
                           dx_k, d0, d0_star, du, ds, as_star, as_lin, ts,
                           np.asarray(kin.rotation, float).copy(), d_star, a_star, checks)

@@ -39,12 +39,19 @@ import numpy as np
 from .._records import readonly_arrays
 from ..errors import ArchInputError, LimitExceededError
 from ..geometry import Arch, VoussoirArch
-from ..groundmotion import MAX_PGA_G, pulse, pulse_kind
+from ..groundmotion import pulse, pulse_kind
 from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import left_out_summary, prepare_sample
-from ..dynamics.response import DynamicModel, prepare, respond
+from ..dynamics.response import prepare
 from ..geometry.sampling import Spreads
-from .runner import UNSET, resolve_settings
+# the search of one amplitude lives in .amplitude; its names stay importable from here, where
+# the CLI, the app and the other studies have always found them
+from .amplitude import (MAX_BISECTIONS, TOL_MAX_G, TOL_MIN_G, WINDOW_RTOL,  # noqa: F401
+                        CollapseAmplitude, _check_int, _check_real, _check_sign, _model,
+                        _respond_scan, _RESPOND, _wider, bisect_boundary, check_a_max,
+                        check_tol, collapse_amplitude, collapse_mode, parse_range,
+                        survival_runs, window_tol)
+from .runner import RunSettings
 from .work import PROGRESS_S, check_work, response_cost_s
 
 __all__ = [
@@ -58,321 +65,6 @@ __all__ = [
     "parse_range",
     "ENGINES",
 ]
-
-#: Allowed range of ``tol``, the bisection's tolerance on the amplitude [g]: below 1e-9 g the
-#: boundary is finer than the integrator resolves it (and a bisection to 1e-300 would stall at one
-#: ulp); above 0.1 g the "boundary" is coarser than the activation thresholds of slender arches
-#: (0.05-0.4 g) and than the default grid's spacing, i.e. no bisection at all.
-TOL_MIN_G, TOL_MAX_G = 1e-9, 0.1
-#: Bound on the steps of one bisection (:func:`bisect_boundary`, the batch engine's rounds).
-#: From a bracket of at most MAX_PGA_G = 20 g to TOL_MIN_G takes 35 halvings (a relative
-#: tolerance of 1e-9 on a bracket [lo, hi] with lo >= 0: 30), so the bound only turns a
-#: pathological ``test`` into an error instead of an endless loop.
-MAX_BISECTIONS = 64
-
-#: Relative tolerance of the survival windows' edges: they are bisected to min(tol, this x the
-#: lower end of their bracket) [g], so a window narrower than ``tol`` (0.0007 g wide at 0.46 g on
-#: Oppenheim's arch) has edges that describe it.  A few more halvings per edge, bounded as any.
-WINDOW_RTOL = 1e-4
-
-
-def window_tol(tol: float, lo: float) -> float:
-    """Bisection tolerance [g] of a survival window's edge bracketed from ``lo`` [g]."""
-    return min(tol, WINDOW_RTOL * lo)
-
-
-#: Response settings used by every collapse test (outcome only: coarse output sampling).
-_RESPOND = {"t_end": 0.5, "dt_out": 0.5, "max_events": 20_000}
-#: the most impacts one response of a scan may keep: an arch whose impacts lose almost nothing
-#: (three voussoirs keep 99.998% of the energy) rocks on for the whole free-motion time near
-#: its threshold, with tens of thousands of impacts; past this the search stops with a message
-MAX_RESPONSE_EVENTS = 2_000_000
-
-
-def _respond_scan(model, motion, dt):
-    """``respond`` of one scan point, its event table grown (x10, up to
-    :data:`MAX_RESPONSE_EVENTS`) where the arch keeps rocking: the outcome never depends on the
-    table's size, only whether it is kept."""
-    n = _RESPOND["max_events"]
-    while True:
-        try:
-            return respond(model, motion, dt=dt, **{**_RESPOND, "max_events": n})
-        except LimitExceededError:
-            if n >= MAX_RESPONSE_EVENTS:
-                raise LimitExceededError(
-                    f"curves: a response of the scan has more than {MAX_RESPONSE_EVENTS} impacts "
-                    f"(the arch keeps rocking with almost no loss at its impacts); lower --a-max "
-                    f"or use another impact law (--impact)") from None
-            n = min(10 * n, MAX_RESPONSE_EVENTS)
-
-
-# ---------------------------------------------------------------------------- helpers
-def _check_real(name: str, value, lo: float | None = None, allowed: str = "") -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ArchInputError(f"{name}: {value!r}; allowed {allowed or 'a finite number'}")
-    v = float(value)
-    if not math.isfinite(v) or (lo is not None and v <= lo):
-        raise ArchInputError(f"{name}: {value!r}; allowed {allowed or 'a finite number'}")
-    return v
-
-
-def check_tol(value, name: str = "tol") -> float:
-    """The amplitude tolerance [g] as a float, or ArchInputError naming ``name`` and the
-    allowed range TOL_MIN_G <= tol <= TOL_MAX_G."""
-    allowed = (f"a tolerance on the collapse amplitude, {TOL_MIN_G:g} g <= {name} <= "
-               f"{TOL_MAX_G:g} g")
-    v = _check_real(name, value, 0.0, allowed)
-    if not TOL_MIN_G <= v <= TOL_MAX_G:
-        raise ArchInputError(f"{name}: {value!r}; allowed {allowed}")
-    return v
-
-
-def _check_int(name: str, value, lo: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
-        raise ArchInputError(f"{name}: {value!r}; allowed an integer >= {lo}")
-    return int(value)
-
-
-def _check_sign(sign) -> int:
-    if isinstance(sign, bool) or sign not in (-1, 1):
-        raise ArchInputError(f"sign: {sign!r}; allowed -1 (main lobe xg'' = a < 0, opens M_l) "
-                             f"or +1 (opens M_r)")
-    return int(sign)
-
-
-def parse_range(text: str, name: str = "durations", signed: bool = False) -> np.ndarray:
-    """``"lo:hi:n"`` (n >= 2 evenly spaced values, both ends included) or ``"a,b,c"`` -> array of
-    floats > 0 (``signed``: nonzero, e.g. pulse amplitudes whose sign is the direction): the one
-    grammar of the command line's number lists."""
-    what = "nonzero numbers" if signed else "numbers > 0"
-    if not isinstance(text, str) or not text.strip():
-        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' or a comma list of {what}")
-    try:
-        if ":" in text:
-            parts = text.split(":")
-            if len(parts) != 3:
-                raise ValueError
-            lo, hi, n = float(parts[0]), float(parts[1]), int(parts[2])
-            if n < 2 or not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
-                raise ValueError
-            vals = np.linspace(lo, hi, n)
-        else:
-            vals = np.array([float(p) for p in text.split(",")])
-    except ValueError:
-        raise ArchInputError(f"{name}: {text!r}; allowed 'lo:hi:n' (lo < hi, n >= 2: both ends "
-                             f"included; one value: write it alone) or a comma list "
-                             f"of {what}") from None
-    if vals.size == 0 or not np.all(np.isfinite(vals)) or np.any(vals == 0 if signed
-                                                                   else vals <= 0):
-        raise ArchInputError(f"{name}: {text!r}; allowed {what}")
-    return vals
-
-
-def collapse_mode(response) -> str | None:
-    """'before first impact', 'after N impacts' for a collapsed response, None otherwise."""
-    if not response.collapsed:
-        return None
-    n = len(response.impacts)
-    return "before first impact" if n == 0 else f"after {n} impact{'s' if n > 1 else ''}"
-
-
-def _model(arch_or_model, impact, cv, literal_cv=False):
-    if isinstance(arch_or_model, DynamicModel):
-        given = [n for n, v in (("impact", impact), ("cv", cv), ("literal_cv", literal_cv))
-                 if v is not None and v is not False]
-        if given:
-            raise ArchInputError(f"{given[0]}: the model is already prepared with its impact law "
-                                 f"({arch_or_model.impact.model}); allowed only with an Arch (or "
-                                 f"prepare the model with the impact law wanted)")
-        return arch_or_model
-    if not isinstance(arch_or_model, Arch):
-        raise ArchInputError(f"model: expected an Arch or a DynamicModel, got {type(arch_or_model).__name__}")
-    # one arch analysed alone is its own nominal arch: the model on it (ImpactSpec docs)
-    return prepare(arch_or_model, ImpactSpec.parse(impact, cv=cv, literal=literal_cv))
-
-
-# ---------------------------------------------------------------------------- one duration
-@dataclass(frozen=True)
-class CollapseAmplitude:
-    """First collapse amplitude of one pulse duration.
-
-    amplitude: first collapse |a| [g] (None if no collapse up to ``a_max``); the signed amplitude
-    is ``sign * amplitude``.  bracket: (last survival, first collapse) after bisection, |a| [g],
-    hi - lo <= tol.  mode: 'before first impact' or 'after N impacts' at the first collapse;
-    t_collapse [s] there: the last upward passage of the unstable position before the rotation
-    limit (:attr:`archrock.dynamics.response.Response.t_collapse`; the limit, a numerical stop, does not
-    move it).  windows: survival windows above the first collapse, (lo, hi) in |a| [g]:
-    lo is the smallest and hi the largest surviving amplitude found (edges bisected to ``tol``;
-    hi = a_max when the arch still survives at a_max).  threshold: activation threshold |a| [g]
-    (k_l for sign -1, k_r for sign +1).  scan_amplitudes / scan_collapsed: the grid and outcomes.
-    :attr:`resolution`: the step of that grid, under which a window may be missed.
-    """
-
-    duration: float
-    kind: str
-    sign: int
-    amplitude: float | None
-    bracket: tuple[float, float] | None
-    mode: str | None
-    t_collapse: float | None
-    windows: tuple[tuple[float, float], ...]
-    threshold: float
-    a_max: float
-    tol: float
-    scan_amplitudes: np.ndarray = field(repr=False)
-    scan_collapsed: np.ndarray = field(repr=False)
-    n_responses: int = 0
-
-    def __post_init__(self):
-        readonly_arrays(self)
-
-    @property
-    def resolution(self) -> dict:
-        """The resolution the windows were searched at: the geometric grid's relative step, its
-        step in g at the first collapse (at the threshold where none) and at a_max, and the
-        sentence 'windows narrower than X g may be missed'."""
-        g = np.asarray(self.scan_amplitudes, dtype=float)
-        rel = float(g[1] / g[0] - 1.0)
-        at = self.amplitude if self.amplitude is not None else float(g[0])
-        i = min(max(int(np.searchsorted(g, at)), 1), g.size - 1)
-        here, top = float(g[i] - g[i - 1]), float(g[-1] - g[-2])
-        where = "the first collapse" if self.amplitude is not None else "the threshold"
-        return {"grid": "geometric", "n_scan": int(g.size), "step_relative": rel,
-                "step_g": here, "step_g_at_a_max": top,
-                "edge_tol_g": f"min({self.tol:g}, {WINDOW_RTOL:g} |a|)",
-                "note": (f"searched on a grid stepping {100 * rel:.2g}% of |a|: windows narrower "
-                         f"than {here:.4f} g near {where} ({at:.4f} g; {top:.3g} g at a_max "
-                         f"{self.a_max:g} g) may be missed")}
-
-    def to_dict(self) -> dict:
-        return {
-            "duration": self.duration, "kind": self.kind, "sign": self.sign,
-            "amplitude_g": self.amplitude,
-            "bracket_g": None if self.bracket is None else list(self.bracket),
-            "mode": self.mode, "t_collapse": self.t_collapse,
-            "survival_windows_g": [list(w) for w in self.windows],
-            "windows_resolution": self.resolution,
-            "threshold_g": self.threshold, "a_max_g": self.a_max, "tol_g": self.tol,
-            "scan_amplitudes_g": self.scan_amplitudes.tolist(),
-            "scan_collapsed": [bool(c) for c in self.scan_collapsed],
-            "n_responses": self.n_responses,
-        }
-
-
-def survival_runs(flags, i0: int):
-    """(j, k) of each run of survivals flags[j..k] (False) after the first collapse at i0:
-    collapse at j - 1, and at k + 1 unless k is the last grid point."""
-    n = len(flags)
-    j = i0
-    while j < n:
-        if flags[j]:
-            j += 1
-            continue
-        k = j
-        while k + 1 < n and not flags[k + 1]:
-            k += 1
-        yield j, k
-        j = k + 1
-
-
-def bisect_boundary(test, lo, hi, lo_val, tol, relative=False):
-    """Boundary between lo (outcome ``test(lo) == lo_val``) and hi (the other outcome), narrowed
-    until hi - lo <= tol (or tol * hi with ``relative``); returns the final (lo, hi).
-
-    The one bisection of the package: collapse amplitudes here, IDA scale factors in
-    :mod:`archrock.studies.ida`.  Collapse is not monotonic, so the result is *a* boundary between the
-    given ends, not necessarily the lowest one.  Bounded: it also stops where the bracket is
-    one or two ulps wide (a tolerance below the floats' resolution), and raises
-    LimitExceededError after MAX_BISECTIONS steps (never reached with the tolerances the
-    callers allow: 35 steps at most)."""
-    for _ in range(MAX_BISECTIONS):
-        if not _wider(lo, hi, tol, relative):
-            return lo, hi
-        mid = 0.5 * (lo + hi)
-        if test(mid) == lo_val:
-            lo = mid
-        else:
-            hi = mid
-    if _wider(lo, hi, tol, relative):
-        raise LimitExceededError(f"bisection: [{lo:.17g}, {hi:.17g}] still wider than the "
-                                 f"tolerance {tol:g}{' relative' if relative else ''} after "
-                                 f"{MAX_BISECTIONS} steps")
-    return lo, hi
-
-
-def _wider(lo, hi, tol, relative=False):
-    """hi - lo above the tolerance (``tol`` or ``tol * hi``) and above the floats' resolution
-    at hi (4 ulps: the midpoint of a narrower bracket is one of its ends).  Arrays too."""
-    width = np.abs(hi) * tol if relative else tol
-    return (hi - lo > width) & (hi - lo > 4 * np.finfo(float).eps * np.abs(hi))
-
-
-def collapse_amplitude(model, duration: float, kind: str = "oppenheim", sign: int = -1, *,
-                       a_max: float = 10.0, n_scan: int = 150, tol: float = 1e-3,
-                       impact=None, cv: float | None = None, literal_cv: bool = False,
-                       dt: float | None = None) -> CollapseAmplitude:
-    """First collapse amplitude [g] of a ``kind`` pulse of duration ``duration`` [s] (module doc).
-
-    model: a prepared :class:`DynamicModel` (or an Arch, prepared with ``impact``/``cv``/
-    ``literal_cv`` as :func:`~archrock.dynamics.response.prepare` reads them; default the paper's model
-    on that arch; ``literal_cv=True`` applies a fixed c_v to the rates, docs/method.md, Impact); a prepared
-    model carries its own impact law, so ``impact``/``cv``/``literal_cv`` are refused with it.
-    sign: -1 or +1, the sign of the amplitude a (of the main lobe; for the Ricker pulse not the
-    first push, module doc).
-    a_max [g]: top of the scan; n_scan: grid points (geometric spacing); tol [g]: bisection
-    tolerance; dt [s]: RK4 step of the fast integrator (default: from the arch's size,
-    :func:`archrock.dynamics.response.default_steps`).
-    """
-    model = _model(model, impact, cv, literal_cv)
-    kind = pulse_kind(kind)
-    sign = _check_sign(sign)
-    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
-    tol = check_tol(tol)
-    n_scan = _check_int("n_scan", n_scan, 2)
-    thr = float(model.k_l if sign < 0 else model.k_r)
-    a_max = _check_real("a_max", a_max, None, f"a finite number > the activation threshold {thr:.4f} g")
-    if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
-        raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation threshold "
-                             f"{thr:.4f} g and <= {MAX_PGA_G:g} g")
-    count = [0]
-    cache: dict[float, object] = {}
-
-    def run(a):
-        if a not in cache:
-            count[0] += 1
-            cache[a] = _respond_scan(model, pulse(kind, sign * a, tp), dt)
-        return cache[a]
-
-    def test(a):
-        return run(a).collapsed
-
-    grid = np.geomspace(thr * (1 + 1e-6), a_max, n_scan)
-    flags = np.array([test(float(a)) for a in grid])
-    hits = np.flatnonzero(flags)
-    if hits.size == 0:
-        return CollapseAmplitude(tp, kind, sign, None, None, None, None, (), thr, a_max, tol, grid,
-                                 flags, count[0])
-    i0 = int(hits[0])
-    if i0 == 0:
-        lo, hi = thr, float(grid[0])  # collapse right at activation: the threshold is the boundary
-    else:
-        lo, hi = bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, tol)
-    r = run(hi)
-    # survival windows above the first collapse, edges bisected
-    windows = []
-    n = grid.size
-    for j, k in survival_runs(flags, i0):
-        _, w_lo = bisect_boundary(test, float(grid[j - 1]), float(grid[j]), True,
-                                  window_tol(tol, float(grid[j - 1])))
-        if k + 1 < n:
-            w_hi, _ = bisect_boundary(test, float(grid[k]), float(grid[k + 1]), False,
-                                      window_tol(tol, float(grid[k])))
-        else:
-            w_hi = float(grid[k])
-        windows.append((w_lo, w_hi))
-    return CollapseAmplitude(tp, kind, sign, hi, (lo, hi), collapse_mode(r), r.t_collapse,
-                             tuple(windows), thr, a_max, tol, grid, flags, count[0])
-
 
 # ---------------------------------------------------------------------------- batch engine
 #: items per sweep call of the curves' batch engine (each item carries its own pulse)
@@ -452,56 +144,21 @@ def _amplitudes_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None
     n_scan = _check_int("n_scan", n_scan, 2)
     thrs = [float(m.k_l if sign < 0 else m.k_r) for m in models]
     for thr in thrs:
-        if a_max <= thr * (1 + 1e-6) or a_max > MAX_PGA_G:
-            raise ArchInputError(f"a_max: {a_max!r}; allowed a finite number > the activation "
-                                 f"threshold {thr:.4f} g and <= {MAX_PGA_G:g} g")
+        check_a_max(a_max, thr)
     with _PulseRunner(models, d, kind, sign, dt, bar, settings=settings) as run:
         return _search(run, models, d, kind, sign, thrs, a_max=a_max, n_scan=n_scan, tol=tol,
                        dt=dt)
 
 
 def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list:
+    """The grids of every (model, duration) in one call of ``run``, then their bisections
+    together, one step per call; the :class:`CollapseAmplitude` of each, arch-major."""
     searches = [(m, float(tp)) for m in range(len(models)) for tp in d]
     grids = {s: np.geomspace(thrs[s[0]] * (1 + 1e-6), a_max, n_scan) for s in searches}
     keys = [(m, tp, float(a)) for (m, tp) in searches for a in grids[(m, tp)]]
     flags = dict(zip(searches, np.array(run(keys)).reshape(len(searches), n_scan)))
-    # bisection tasks: [search, lo, hi, lo_val, role, tol]; role 'first', ('wlo', w) or
-    # ('whi', w); a window's edges to window_tol (the same midpoints as collapse_amplitude)
-    tasks, first, windows = [], {}, {}
-    for s in searches:
-        grid, fl = grids[s], flags[s]
-        hits = np.flatnonzero(fl)
-        if hits.size == 0:
-            continue
-        i0 = int(hits[0])
-        if i0 == 0:
-            first[s] = (thrs[s[0]], float(grid[0]))
-        else:
-            tasks.append([s, float(grid[i0 - 1]), float(grid[i0]), False, "first", tol])
-        ws = []
-        for j, k in survival_runs(fl, i0):
-            w = len(ws)
-            ws.append([None, float(grid[k])])
-            tasks.append([s, float(grid[j - 1]), float(grid[j]), True, ("wlo", w),
-                          window_tol(tol, float(grid[j - 1]))])
-            if k + 1 < grid.size:
-                tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w),
-                              window_tol(tol, float(grid[k]))])
-        windows[s] = ws
-    for _ in range(MAX_BISECTIONS + 1):  # the rounds of bisect_boundary, bounded the same way
-        act = [t for t in tasks if _wider(t[1], t[2], t[5])]
-        if not act:
-            break
-        mids = [0.5 * (t[1] + t[2]) for t in act]
-        out = run([(t[0][0], t[0][1], x) for t, x in zip(act, mids)])
-        for t, x, c in zip(act, mids, out):
-            if c == t[3]:
-                t[1] = x
-            else:
-                t[2] = x
-    else:
-        raise LimitExceededError(f"curves: {len(act)} bisections still wider than the tolerance "
-                                 f"{tol:g} g after {MAX_BISECTIONS} steps")
+    tasks, first, windows = _bisections(searches, grids, flags, thrs, tol)
+    _bisect_together(run, tasks, tol)
     for s, lo, hi, _, role, _ in tasks:
         if role == "first":
             first[s] = (lo, hi)
@@ -528,6 +185,53 @@ def _search(run, models, d, kind, sign, thrs, *, a_max, n_scan, tol, dt) -> list
                                         r.t_collapse, tuple(tuple(w) for w in windows[s]),
                                         thrs[m], a_max, tol, grid, fl, counts[s]))
     return points
+
+
+def _bisections(searches, grids, flags, thrs, tol) -> tuple:
+    """(tasks, first, windows) of the scans: bisection tasks [search, lo, hi, lo_val, role,
+    tol], role 'first', ('wlo', w) or ('whi', w), a window's edges to window_tol (the same
+    midpoints as collapse_amplitude); first: the searches whose first collapse is at the
+    threshold; windows: each search's windows [lo, hi], their ends filled in by the tasks."""
+    tasks, first, windows = [], {}, {}
+    for s in searches:
+        grid, fl = grids[s], flags[s]
+        hits = np.flatnonzero(fl)
+        if hits.size == 0:
+            continue
+        i0 = int(hits[0])
+        if i0 == 0:
+            first[s] = (thrs[s[0]], float(grid[0]))
+        else:
+            tasks.append([s, float(grid[i0 - 1]), float(grid[i0]), False, "first", tol])
+        ws = []
+        for j, k in survival_runs(fl, i0):
+            w = len(ws)
+            ws.append([None, float(grid[k])])
+            tasks.append([s, float(grid[j - 1]), float(grid[j]), True, ("wlo", w),
+                          window_tol(tol, float(grid[j - 1]))])
+            if k + 1 < grid.size:
+                tasks.append([s, float(grid[k]), float(grid[k + 1]), False, ("whi", w),
+                              window_tol(tol, float(grid[k]))])
+        windows[s] = ws
+    return tasks, first, windows
+
+
+def _bisect_together(run, tasks: list, tol: float) -> None:
+    """Every task's bracket narrowed in place, one midpoint of each per call of ``run``: the
+    rounds of bisect_boundary, bounded the same way."""
+    for _ in range(MAX_BISECTIONS + 1):
+        act = [t for t in tasks if _wider(t[1], t[2], t[5])]
+        if not act:
+            return
+        mids = [0.5 * (t[1] + t[2]) for t in act]
+        out = run([(t[0][0], t[0][1], x) for t, x in zip(act, mids)])
+        for t, x, c in zip(act, mids, out):
+            if c == t[3]:
+                t[1] = x
+            else:
+                t[2] = x
+    raise LimitExceededError(f"curves: {len(act)} bisections still wider than the tolerance "
+                             f"{tol:g} g after {MAX_BISECTIONS} steps")
 
 
 def _curves_batch(models, d, kind, sign, *, a_max, n_scan, tol, dt, bar=None,
@@ -612,19 +316,16 @@ def _check_curve_work(arches: int, durations: int, n_scan, a_max, tol, workers: 
 def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *, a_max: float = 10.0,
                    n_scan: int = 150, tol: float = 1e-3, impact=None, cv: float | None = None,
                    literal_cv: bool = False, dt: float | None = None,
-                   engine: str = "batch", workers=UNSET, scheduler=UNSET, out=UNSET,
-                   settings=None) -> CollapseCurve:
+                   engine: str = "batch", settings=None) -> CollapseCurve:
     """:func:`collapse_amplitude` for each of ``durations`` [s]; refused beyond the work bound
     of :mod:`archrock.studies.work`.  engine: "batch" (default) runs the scans of every duration in one
     parallel sweep, then every bisection step of all of them in one more
     (:mod:`archrock.dynamics.sweep`); "respond" runs response after response (0.1.0's path).  Both give
-    the same curve, bit for bit.  settings (:class:`~archrock.studies.runner.RunSettings`; the
-    0.6 keywords ``workers``, ``scheduler``, ``out`` with a DeprecationWarning), batch engine
-    only: ``workers`` N > 1 a local process pool, ``scheduler`` a Dask cluster (address or
+    the same curve, bit for bit.  settings (:class:`~archrock.studies.runner.RunSettings`),
+    batch engine only: ``workers`` N > 1 a local process pool, ``scheduler`` a Dask cluster (address or
     Client), ``out`` a folder keeping every finished response so that the same call again
     recomputes nothing it had finished."""
-    settings = resolve_settings(settings, "collapse_curve", workers=workers,
-                                scheduler=scheduler, out=out)
+    settings = RunSettings.from_dict(settings)
     model = _model(model, impact, cv, literal_cv)
     d = _durations(durations)
     engine = _engine(engine)
@@ -743,9 +444,8 @@ def _batch_rows(nominal, sampler, samples, impact, d, kwargs, bar, run) -> tuple
 def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads | dict | None = None,
                    durations=(0.2,), quantiles=(0.05, 0.5, 0.95), *, impact=None,
                    literal_cv: bool = False, kind: str = "oppenheim", sign: int = -1, a_max: float = 10.0, n_scan: int = 150,
-                   tol: float = 1e-3, dt: float | None = None, workers=UNSET,
-                   progress=UNSET, engine: str = "batch", scheduler=UNSET,
-                   out=UNSET, settings=None) -> EnsembleCurve:
+                   tol: float = 1e-3, dt: float | None = None, engine: str = "batch",
+                   settings=None) -> EnsembleCurve:
     """Collapse-acceleration curves of ``samples`` random arches around ``nominal``, as quantiles.
 
     Arch i is sample i of :class:`~archrock.geometry.sampling.ArchSampler` (nominal, spreads, seed): the
@@ -759,8 +459,7 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     fixed c_v to the rates literally instead of energy-consistently (docs/method.md, Impact).
     engine "batch" (default): the nominal and every random arch and duration of a search step in
     one sweep (:func:`collapse_curve`), on the executor of ``settings``
-    (:class:`~archrock.studies.runner.RunSettings`; the 0.6 keywords ``workers``, ``scheduler``,
-    ``out``, ``progress`` with a DeprecationWarning): in-process numba threads, ``workers`` > 1
+    (:class:`~archrock.studies.runner.RunSettings`): in-process numba threads, ``workers`` > 1
     a local process pool, ``scheduler`` a Dask cluster; ``out`` a folder keeping every finished
     response (a rerun recomputes nothing it had finished).  "respond": arch after arch,
     ``workers`` > 1 of them at once in a process pool (workers die with this process; no
@@ -769,12 +468,42 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     ``progress`` reports the responses (or arches) done when the estimate exceeds a few
     seconds (:mod:`archrock._progress`).
     """
-    settings = resolve_settings(settings, "ensemble_curve", workers=workers,
-                                scheduler=scheduler, out=out, progress=progress)
+    settings = RunSettings.from_dict(settings)
+    band = _configure_band(nominal, samples, seed, spreads, durations, quantiles, impact,
+                           literal_cv, n_scan=n_scan, a_max=a_max, tol=tol,
+                           workers=settings.workers or 1)
+    kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+    engine = _decide_engine(engine, settings)
+    nominal_prepared = _prepare_band_nominal(band, engine, kwargs)
+    if engine == "batch":
+        nominal_curve, rows = _band_rows_batch(band, nominal_prepared, kwargs, settings)
+    else:
+        nominal_curve, rows = nominal_prepared, _band_rows_respond(band, kwargs, settings)
+    return _band_curve(band, nominal_curve, rows)
+
+
+@dataclass(frozen=True)
+class _Band:
+    """What an ensemble curve is computed for, checked (:func:`_configure_band`)."""
+
+    nominal: Arch
+    samples: int
+    sampler: object
+    q: np.ndarray
+    d: np.ndarray
+    est: float
+    spec: ImpactSpec
+    resolved: ImpactSpec
+    workers: int
+
+
+def _configure_band(nominal, samples, seed, spreads, durations, quantiles, impact, literal_cv,
+                    *, n_scan, a_max, tol, workers) -> _Band:
+    """The checked inputs of :func:`ensemble_curve`, its sampler, the estimated seconds
+    (refused beyond the work bound) and the impact law as given and as resolved."""
     if not isinstance(nominal, VoussoirArch):
         raise ArchInputError(f"nominal: expected an arch, got {type(nominal).__name__}")
     samples = _check_int("samples", samples, 1)
-    workers = settings.workers or 1
     from ..statics.supports import study_sampler
 
     # on moved supports (a nominal of statics.supports.on_moved_supports) every random arch
@@ -786,76 +515,106 @@ def ensemble_curve(nominal: Arch, samples: int, seed: int = 0, spreads: Spreads 
     d = _durations(durations)
     est = _check_curve_work(samples + 1, d.size, n_scan, a_max, tol, workers)
     spec = ImpactSpec.parse(impact, literal=literal_cv)
-    resolved = spec.resolved(nominal)
-    kwargs = dict(kind=kind, sign=sign, a_max=a_max, n_scan=n_scan, tol=tol, dt=dt)
+    return _Band(nominal, samples, sampler, q, d, est, spec, spec.resolved(nominal), workers)
+
+
+def _decide_engine(engine, settings) -> str:
+    """The engine of the curves ("batch" or "respond"), checked against the run settings."""
     engine = _engine(engine)
     _check_batch_run(engine, settings)
-    if engine == "batch":  # the checks of collapse_curve, before the arches are drawn
-        _check_real("a_max", a_max, None, "a finite number > the activation threshold")
-        nominal_model = prepare(nominal, spec)
-    else:
-        nominal_curve = collapse_curve(prepare(nominal, spec), d, engine=engine, **kwargs)
-    jobs = [(sampler, i, resolved, d, kwargs) for i in range(samples)]
+    return engine
+
+
+def _prepare_band_nominal(band: _Band, engine: str, kwargs: dict):
+    """The batch engine: the nominal arch's model (checked as :func:`collapse_curve` checks,
+    before the arches are drawn); "respond": its curve, computed here."""
+    if engine == "batch":
+        _check_real("a_max", kwargs["a_max"], None, "a finite number > the activation threshold")
+        return prepare(band.nominal, band.spec)
+    return collapse_curve(prepare(band.nominal, band.spec), band.d, engine=engine, **kwargs)
+
+
+def _band_rows_batch(band: _Band, nominal_model, kwargs: dict, settings) -> tuple:
+    """(the nominal curve, the rows of every random arch) by the batch engine, the responses
+    on the progress bar: the scan and (about) three bisections per arch and duration."""
     from .._progress import Progress
 
-    if engine == "batch":
-        # responses: the scan and (about) three bisections per arch and duration
-        per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
-            max(float(a_max) / float(tol), 2.0))))
-        bar = Progress((samples + 1) * d.size * per_curve,
-                       settings.progress if est > PROGRESS_S else None,
-                       desc="curves", unit="response")
-        run = dict(settings=settings)
-        try:
-            nominal_curve, rows = _batch_rows(nominal_model, sampler, samples, resolved, d,
-                                              kwargs, bar, run)
-            bar.finish()  # the total counted ~3 bisections a curve: an estimate from above
-        finally:
-            bar.close()
-    else:
-        bar = Progress(samples, settings.progress if est > PROGRESS_S else None, desc="curves",
-                       unit="arch")
-        try:
-            if workers == 1:
-                rows = []
-                for j in jobs:
-                    rows.append(_one_sample(j))
-                    bar.update(1)
-            else:
-                from .executors import worker_pool
+    n_scan, a_max, tol = kwargs["n_scan"], kwargs["a_max"], kwargs["tol"]
+    per_curve = _check_int("n_scan", n_scan, 2) + 3 * max(1, math.ceil(math.log2(
+        max(float(a_max) / float(tol), 2.0))))
+    bar = Progress((band.samples + 1) * band.d.size * per_curve,
+                   settings.progress if band.est > PROGRESS_S else None,
+                   desc="curves", unit="response")
+    try:
+        out = _batch_rows(nominal_model, band.sampler, band.samples, band.resolved, band.d,
+                          kwargs, bar, dict(settings=settings))
+        bar.finish()  # the total counted ~3 bisections a curve: an estimate from above
+    finally:
+        bar.close()
+    return out
 
-                with worker_pool(min(workers, os.cpu_count() or 1)) as ex:
-                    rows = []
-                    for row in ex.map(_one_sample, jobs):
-                        rows.append(row)
-                        bar.update(1)
-            bar.finish()
-        finally:
-            bar.close()
+
+def _band_rows_respond(band: _Band, kwargs: dict, settings) -> list:
+    """The rows of every random arch, arch after arch (``workers`` > 1 of them at once in a
+    process pool)."""
+    from .._progress import Progress
+
+    jobs = [(band.sampler, i, band.resolved, band.d, kwargs) for i in range(band.samples)]
+    bar = Progress(band.samples, settings.progress if band.est > PROGRESS_S else None,
+                   desc="curves", unit="arch")
+    rows = []
+    try:
+        if band.workers == 1:
+            for j in jobs:
+                rows.append(_one_sample(j))
+                bar.update(1)
+        else:
+            from .executors import worker_pool
+
+            with worker_pool(min(band.workers, os.cpu_count() or 1)) as ex:
+                for row in ex.map(_one_sample, jobs):
+                    rows.append(row)
+                    bar.update(1)
+        bar.finish()
+    finally:
+        bar.close()
+    return rows
+
+
+def _band_curve(band: _Band, nominal_curve, rows) -> EnsembleCurve:
+    """The :class:`EnsembleCurve` of the rows: the usable arches' quantiles, the others listed
+    in ``failed``; ArchInputError when none is usable."""
     failed = tuple((i, why) for i, (_, why) in enumerate(rows) if why is not None)
     kept = tuple(i for i, (row, _) in enumerate(rows) if row is not None)
     if not kept:
         i, why = failed[0]
-        raise ArchInputError(f"samples: none of the {samples} random arches is usable (sample {i}: "
-                             f"{why}); allowed spreads that give arches able to stand")
+        raise ArchInputError(f"samples: none of the {band.samples} random arches is usable "
+                             f"(sample {i}: {why}); allowed spreads that give arches able to "
+                             f"stand")
     amps = np.array([rows[i][0] for i in kept])
-    requested, samples = samples, len(kept)
-    # quantiles with non-collapsing arches as +inf: order statistics, linear interpolation
+    bands = _quantile_bands(amps, band.q)
+    note = None
+    if len(kept) == 1:  # every quantile of one arch is its value: a band of zero width
+        bands, note = np.full_like(bands, np.nan), "not estimated: one usable arch"
+    sampler = band.sampler
+    return EnsembleCurve(band.d, tuple(float(x) for x in band.q), bands, amps, nominal_curve,
+                         sampler.seed, sampler.spreads, band.spec, band.resolved.cv, len(kept),
+                         failed, kept, band.samples, note,
+                         None if getattr(sampler, "movement", None) is None
+                         else sampler.movement.to_dict())
+
+
+def _quantile_bands(amps: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """bands[q_index, d_index] of the rows ``amps`` (non-collapsing arches as +inf): order
+    statistics, linear interpolation; inf where the quantile lies among the +inf."""
+    samples = len(amps)
     srt = np.sort(amps, axis=0)
     pos = q[:, None] * (samples - 1)
     lo_i = np.floor(pos).astype(int)
     hi_i = np.minimum(lo_i + 1, samples - 1)
     frac = pos - lo_i
-    cols = np.arange(d.size)[None, :]
+    cols = np.arange(amps.shape[1])[None, :]
     a_lo, a_hi = srt[lo_i, cols], srt[hi_i, cols]
     with np.errstate(invalid="ignore"):
-        bands = np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
-                         a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))
-    note = None
-    if samples == 1:  # every quantile of one arch is its value: a band of zero width
-        bands, note = np.full_like(bands, np.nan), "not estimated: one usable arch"
-    return EnsembleCurve(d, tuple(float(x) for x in q), bands, amps, nominal_curve,
-                         sampler.seed, sampler.spreads, spec, resolved.cv, samples,
-                         failed, kept, requested, note,
-                         None if getattr(sampler, "movement", None) is None
-                         else sampler.movement.to_dict())
+        return np.where(np.isinf(a_hi) & (frac > 0) | np.isinf(a_lo), np.inf,
+                        a_lo + frac * (np.where(np.isinf(a_hi), a_lo, a_hi) - a_lo))

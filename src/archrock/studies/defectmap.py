@@ -33,7 +33,7 @@ from ..geometry.blocks import block_counts, block_name
 from ..geometry.defect import defect_base
 from ..geometry.piers import _pier_runs, joint_place
 from ..statics.kinematic import kinematic_mechanisms
-from .runner import UNSET, resolve_settings
+from .runner import RunSettings
 
 __all__ = ["DefectMap", "defect_map", "defect_places", "names_text", "worst_summary"]
 
@@ -283,11 +283,81 @@ def _amplitude(arch, nominal, impact, pulse, a_max, n_scan, tol):
     return out if math.isfinite(out) else np.nan
 
 
+def _template(kind, value, side) -> Defect:
+    """The defect applied in turn: ``kind`` a Defect (its own value and side) or a kind's name
+    with ``value`` (default: the kind's) and ``side``."""
+    if isinstance(kind, Defect):
+        if value is not None or side:
+            raise ArchInputError("value, side: given with a Defect, which holds its own; give "
+                                 "one or the other")
+        return kind
+    default = {"thickness": 0.7, "tilt": 5.0, "mortar": 0.3}
+    if kind not in default:
+        raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(default)}")
+    return Defect(kind, 0, default[kind] if value is None else value, side)
+
+
+def _indices(arch, template: Defect, indices) -> np.ndarray:
+    """The voussoirs (or joints) damaged in turn: ``indices``, checked, or all of them."""
+    hi = arch.n - 1 if template.target == "voussoir" else arch.n
+    if indices is None:
+        return np.arange(hi + 1)
+    idx = np.atleast_1d(np.asarray(indices))
+    if idx.size == 0 or idx.dtype.kind not in "iu" or np.any(idx < 0) or np.any(idx > hi):
+        raise ArchInputError(f"indices: {indices!r}; allowed {template.target} indices "
+                             f"0..{hi}")
+    return idx
+
+
+def _pulse(pulse_duration, pulse_kind, sign) -> dict | None:
+    """The pulse of the first collapse amplitudes ({"kind", "duration" [s], "sign"}), or None
+    without a duration."""
+    if pulse_duration is None:
+        return None
+    from ..groundmotion import pulse_kind as _pk
+
+    if not np.isfinite(pulse_duration) or pulse_duration <= 0:
+        raise ArchInputError(f"pulse_duration: {pulse_duration!r}; allowed a number > 0 s")
+    if isinstance(sign, bool) or sign not in (-1, 0, 1):
+        raise ArchInputError(f"sign: {sign!r}; allowed -1, +1 or 0 (both: the smaller "
+                             f"first collapse amplitude)")
+    return {"kind": _pk(pulse_kind), "duration": float(pulse_duration), "sign": int(sign)}
+
+
+def _damaged(arch, base, d: Defect, impact, pulse, scan) -> tuple:
+    """(k_l, k_r, hinges of M_l, hinges of M_r, first collapse amplitude or NaN, note) of
+    ``arch`` with defect ``d``; NaN multipliers and the reason in the note where the damaged
+    arch cannot stand (or has no amplitude)."""
+    note, a = "", np.nan
+    try:
+        damaged = apply_defect(arch, d)
+        kl, kr, hl, hr = _labels(damaged)
+    except GeometryOutcome as exc:
+        kl = kr = np.nan
+        hl = hr = ""
+        note = "cannot stand under its own weight" if isinstance(exc, CannotStandError) \
+            else str(exc)
+    if pulse and not note:
+        try:
+            a = _amplitude(damaged, base, impact, pulse, *scan)
+        except UNUSABLE_ARCH as exc:  # e.g. an impact law that creates energy on it
+            note = f"no first collapse amplitude: {exc}"
+    return kl, kr, hl, hr, a, note
+
+
+def _method(pulse, a_max, n_scan, tol) -> str:
+    how = "kinematic enumeration of each damaged arch (archrock.statics.limit)"
+    if pulse:
+        how += (f"; first collapse amplitude of a {pulse['kind']} pulse, t_p = "
+                f"{pulse['duration']:g} s, scan of {n_scan} amplitudes up to {a_max:g} g "
+                f"bisected to {tol:g} g (archrock.studies.curves.collapse_amplitude)")
+    return how
+
+
 def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: float | None = None,
                side: str = "", *, indices=None, pulse_duration: float | None = None,
                pulse_kind: str = "oppenheim", sign: int = -1, impact=None, a_max: float = 10.0,
-               n_scan: int = 60, tol: float = 1e-3,
-               progress=UNSET, settings=None) -> DefectMap:
+               n_scan: int = 60, tol: float = 1e-3, settings=None) -> DefectMap:
     """The defect map of ``arch`` (module docstring).
 
     kind: 'thickness' (value: remaining fraction, default 0.7), 'tilt' (value [deg], default 5)
@@ -298,87 +368,34 @@ def defect_map(arch: VoussoirArch, kind: str | Defect = "thickness", value: floa
     amplitude of the two) on each arch, with the impact law
     ``impact`` (an ImpactSpec or its name; default the paper's practice, evaluated on the
     undamaged arch), scanning ``n_scan`` amplitudes up to ``a_max`` [g] and bisecting to
-    ``tol`` [g]; settings: a :class:`~archrock.studies.runner.RunSettings` whose ``progress``
-    gets one line of text per damaged arch (:mod:`archrock._progress`; 0.6's ``progress=``
-    with a DeprecationWarning).
+    ``tol`` [g]; settings: a :class:`~archrock.studies.runner.RunSettings` (or its dict) whose
+    ``progress`` gets one line of text per damaged arch (:mod:`archrock._progress`).
     """
-    settings = resolve_settings(settings, "defect_map", progress=progress).only("defect_map")
+    progress = RunSettings.from_dict(settings).only("defect_map").sink
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
-    progress = settings.sink
-    if isinstance(kind, Defect):
-        if value is not None or side:
-            raise ArchInputError("value, side: given with a Defect, which holds its own; give "
-                                 "one or the other")
-        template = kind
-    else:
-        default = {"thickness": 0.7, "tilt": 5.0, "mortar": 0.3}
-        if kind not in default:
-            raise ArchInputError(f"kind: {kind!r}; allowed {', '.join(default)}")
-        template = Defect(kind, 0, default[kind] if value is None else value, side)
-    hi = arch.n - 1 if template.target == "voussoir" else arch.n
-    if indices is None:
-        idx = np.arange(hi + 1)
-    else:
-        idx = np.atleast_1d(np.asarray(indices))
-        if idx.size == 0 or idx.dtype.kind not in "iu" or np.any(idx < 0) or np.any(idx > hi):
-            raise ArchInputError(f"indices: {indices!r}; allowed {template.target} indices "
-                                 f"0..{hi}")
-    pulse = None
-    if pulse_duration is not None:
-        from ..groundmotion import pulse_kind as _pk
-
-        if not np.isfinite(pulse_duration) or pulse_duration <= 0:
-            raise ArchInputError(f"pulse_duration: {pulse_duration!r}; allowed a number > 0 s")
-        if isinstance(sign, bool) or sign not in (-1, 0, 1):
-            raise ArchInputError(f"sign: {sign!r}; allowed -1, +1 or 0 (both: the smaller "
-                                 f"first collapse amplitude)")
-        pulse = {"kind": _pk(pulse_kind), "duration": float(pulse_duration), "sign": int(sign)}
-
+    template = _template(kind, value, side)
+    idx = _indices(arch, template, indices)
+    pulse = _pulse(pulse_duration, pulse_kind, sign)
     t0 = time.monotonic()
     # the undamaged arch in the form the defects are applied to (a circular arch's polygon for a
     # tilt or missing mortar): the losses are then the defects' alone
     base = defect_base(arch, template.kind)
     k_l0, k_r0, h_l0, h_r0 = _labels(base)
-    amp0 = None
-    if pulse:
-        amp0 = _amplitude(base, base, impact, pulse, a_max, n_scan, tol)
-    k_l, k_r, amps, h_l, h_r, notes = [], [], [], [], [], []
+    scan = (a_max, n_scan, tol)
+    amp0 = _amplitude(base, base, impact, pulse, *scan) if pulse else None
     places, groups = defect_places(arch, template.target, idx)
+    rows = []
     for m, i in enumerate(idx):
-        d = template.at_index(int(i))
-        note = ""
-        try:
-            damaged = apply_defect(arch, d)
-            kl, kr, hl, hr = _labels(damaged)
-        except GeometryOutcome as exc:
-            kl = kr = np.nan
-            hl = hr = ""
-            note = "cannot stand under its own weight" if isinstance(exc, CannotStandError) \
-                else str(exc)
-        k_l.append(kl)
-        k_r.append(kr)
-        h_l.append(hl)
-        h_r.append(hr)
-        if pulse:
-            a = np.nan
-            if not note:
-                try:
-                    a = _amplitude(damaged, base, impact, pulse, a_max, n_scan, tol)
-                except UNUSABLE_ARCH as exc:  # e.g. an impact law that creates energy on it
-                    note = f"no first collapse amplitude: {exc}"
-            amps.append(a)
-        notes.append(note)
+        rows.append(_damaged(arch, base, template.at_index(int(i)), impact, pulse, scan))
+        kl, kr, _, _, a, _ = rows[-1]
         if progress is not None:
             progress(f"  {places[m]} ({m + 1}/{len(idx)}): k_l = {kl:.4f}, "
-                     f"k_r = {kr:.4f}" + (f", amplitude {amps[-1]:.4f} g" if pulse else "")
+                     f"k_r = {kr:.4f}" + (f", amplitude {a:.4f} g" if pulse else "")
                      + f"  [{time.monotonic() - t0:.1f} s]")
-    how = "kinematic enumeration of each damaged arch (archrock.statics.limit)"
-    if pulse:
-        how += (f"; first collapse amplitude of a {pulse['kind']} pulse, t_p = "
-                f"{pulse['duration']:g} s, scan of {n_scan} amplitudes up to {a_max:g} g "
-                f"bisected to {tol:g} g (archrock.studies.curves.collapse_amplitude)")
+    k_l, k_r, h_l, h_r, amps, notes = zip(*rows)
     return DefectMap(arch, template.at_index(int(idx[0])), idx.astype(int), float(k_l0),
                      float(k_r0), h_l0, h_r0, np.array(k_l, float), np.array(k_r, float),
                      tuple(h_l), tuple(h_r), tuple(notes), pulse, amp0,
-                     np.array(amps, float) if pulse else None, how, places, groups)
+                     np.array(amps, float) if pulse else None,
+                     _method(pulse, a_max, n_scan, tol), places, groups)

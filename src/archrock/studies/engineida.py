@@ -13,7 +13,8 @@ would be unconservative (heavy piers: 3.02 g by the four-link model, 0.71 g by t
 * the lognormal fit is the IDA's own (:func:`~archrock.studies.fragility.fit_ida_moments`:
   moments, or censored MLE with its plateau test where some records never collapse);
 * records run in parallel on the studies' executors (:mod:`archrock.studies.executors`) with
-  ``workers`` > 1; every cell is independent, so the matrix does not depend on ``workers``.
+  the settings' ``workers`` > 1 (or a Dask ``scheduler``); every cell is independent, so the
+  matrix does not depend on them.
 
 The work is estimated first (:func:`~archrock.studies.enginestudy.engine_run_cost_s`, refused
 beyond :data:`archrock.studies.work.MAX_WORK_S`); progress is one line per finished record,
@@ -155,57 +156,49 @@ def _record_row(shared, i: int):
     return tuple(status), tuple(errors), time.perf_counter() - t0
 
 
-def _check_inputs(records, scales, im, run, workers, progress, n_boot, dynamics):
+def _check_inputs(records, scales, im, run, n_boot, dynamics, settings):
+    """The records, grid, IM, engine run and run settings of :func:`engine_ida`, checked."""
+    from .runner import RunSettings
+
+    settings = RunSettings.from_dict(settings).only("engine_ida", "workers", "scheduler")
     recs = _records(records)
     s = _grid("scales", scales)
     im = _im(im)
     run = EngineRun() if run is None else run
     if not isinstance(run, EngineRun):
         raise ArchInputError(f"run: {run!r}; allowed None or an EngineRun")
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ArchInputError(f"workers: {workers!r}; allowed an integer >= 1")
-    if progress is not None and not callable(progress):
-        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable")
     if isinstance(n_boot, bool) or not isinstance(n_boot, (int, np.integer)) or n_boot < 0 \
             or n_boot == 1:
         raise ArchInputError(f"n_boot: {n_boot!r}; allowed 0 (no band) or an integer >= 2")
     if dynamics is not None and not isinstance(dynamics, (DynamicsChoice, dict)):
         raise ArchInputError(f"dynamics: {dynamics!r}; allowed None, a DynamicsChoice or its "
                              f"dict")
-    return recs, s, im, run
+    return recs, s, im, run, settings
 
 
-def engine_ida(arch, records, scales, *, im: str = "pga", run: EngineRun | None = None,
-               workers: int = 1, scheduler=None, progress=None, n_boot: int = 0, seed=0,
-               confidence: float = 0.9, dynamics=None) -> EngineIDAResult:
-    """IDA of ``arch`` by the contact engine: every record of ``records`` (GroundMotions) scaled
-    by every factor of ``scales`` (strictly increasing, > 0), one engine run each (``run``: an
-    :class:`EngineRun`, default settings).  im: the IM of the capacities and the fit (as
-    :func:`archrock.studies.ida.ida`); workers: 1 in this process, N > 1 a process pool over
-    the records; scheduler: a Dask cluster instead (its address or a ``distributed.Client``); progress: a callable given one line per finished record; n_boot, seed,
-    confidence: the fit's bootstrap band (0: none); dynamics: the DynamicsChoice (or its dict)
-    that sent the arch here, kept in the result.  Refused beyond the work bound (estimated
-    from :func:`engine_run_cost_s` of the longest record)."""
-    from .executors import Executor
-    from .runner import RunSettings
-
-    recs, s, im, run = _check_inputs(records, scales, im, run, workers, progress, n_boot,
-                                     dynamics)
+def _check_engine_work(arch, recs, s, run, workers) -> float:
+    """Estimated seconds of the grid's engine runs, refused beyond the work bound (and a
+    scaled PGA beyond MAX_PGA_G)."""
     top = max(recs, key=lambda r: r.pga)
     check_pga(float(s[-1]) * top.pga_g, f"scales: {s[-1]:g} x record {top.name!r}",
               "reduce the largest scale factor", warn=False)
     longest = max(float(r.times[-1]) for r in recs)
-    n_runs = len(recs) * s.size
-    est = check_work("engine ida", n_runs, "engine runs",
-                     engine_run_cost_s(arch, longest, run),
-                     "reduce the scale factors or the records (the engine takes seconds a "
-                     "run), or use the four-link model (--dynamics fourlink) where it is valid",
-                     int(workers), kernel=False)
-    factors = np.array([_im_factor(r, im) for r in recs])
-    t0 = time.perf_counter()
+    return check_work("engine ida", len(recs) * s.size, "engine runs",
+                      engine_run_cost_s(arch, longest, run),
+                      "reduce the scale factors or the records (the engine takes seconds a "
+                      "run), or use the four-link model (--dynamics fourlink) where it is valid",
+                      workers, kernel=False)
+
+
+def _run_records(arch, recs, s, run, settings):
+    """Every record's row of :func:`_record_row`, in the records' order, on the executor of
+    ``settings`` (one task a record); and the executor's name."""
+    from .executors import Executor
+
+    progress = settings.sink
     rows: list = [None] * len(recs)
     shared = (arch, tuple(recs), tuple(float(x) for x in s), run)
-    with Executor(RunSettings(workers=int(workers), scheduler=scheduler), shared=shared) as ex:
+    with Executor(settings, shared=shared) as ex:
         for done, (i, row) in enumerate(ex.map_unordered(_record_row,
                                                          [(i,) for i in range(len(recs))]), 1):
             rows[i] = row
@@ -213,21 +206,47 @@ def engine_ida(arch, records, scales, *, im: str = "pga", run: EngineRun | None 
                 k = sum(st == "collapsed" for st in row[0])
                 progress(f"engine ida: record {done}/{len(recs)} {recs[i].name!r}: "
                          f"{k}/{s.size} scales collapsed ({row[2]:.1f} s)")
+    return rows, ex.name
+
+
+def _engine_fit(firsts, factors, im, s, n_boot, seed, confidence):
+    """The IDA's lognormal fit of the first-collapse IMs (censored at the grid's top where a
+    record never collapsed); (fit, error), and the IMs."""
+    x = np.array([np.inf if f is None else im_at(g, im, f) for f, g in zip(firsts, factors)])
+    kw = dict(n_boot=int(n_boot), seed=seed, confidence=confidence, n_records=len(firsts))
+    if np.any(np.isinf(x)):  # records that never collapsed: right-censored at the grid's top
+        return _fit(fit_ida_moments, x, censored="mle", plateau="auto",
+                    max_intensity=np.array([im_at(g, im, float(s[-1])) for g in factors]), **kw)
+    return _fit(fit_ida_moments, x, **kw)
+
+
+def engine_ida(arch, records, scales, *, im: str = "pga", run: EngineRun | None = None,
+               n_boot: int = 0, seed=0, confidence: float = 0.9, dynamics=None,
+               settings=None) -> EngineIDAResult:
+    """IDA of ``arch`` by the contact engine: every record of ``records`` (GroundMotions) scaled
+    by every factor of ``scales`` (strictly increasing, > 0), one engine run each (``run``: an
+    :class:`EngineRun`, default settings).  im: the IM of the capacities and the fit (as
+    :func:`archrock.studies.ida.ida`); n_boot, seed, confidence: the fit's bootstrap band (0:
+    none); dynamics: the DynamicsChoice (or its dict) that sent the arch here, kept in the
+    result.  settings (:class:`~archrock.studies.runner.RunSettings` or its dict): ``workers``
+    N > 1 a process pool over the records, ``scheduler`` a Dask cluster instead, ``progress``
+    one line per finished record; no ``out`` (nothing is kept).  Refused beyond the work bound
+    (estimated from :func:`engine_run_cost_s` of the longest record)."""
+    recs, s, im, run, settings = _check_inputs(records, scales, im, run, n_boot, dynamics,
+                                               settings)
+    est = _check_engine_work(arch, recs, s, run, settings.workers or 1)
+    factors = np.array([_im_factor(r, im) for r in recs])
+    t0 = time.perf_counter()
+    rows, where = _run_records(arch, recs, s, run, settings)
     wall = time.perf_counter() - t0
     collapsed = np.array([[st == "collapsed" for st in r[0]] for r in rows], dtype=bool)
     firsts = tuple(first_collapse(s, c)["first_collapse"] for c in collapsed)
-    x = np.array([np.inf if f is None else im_at(g, im, f) for f, g in zip(firsts, factors)])
-    kw = dict(n_boot=int(n_boot), seed=seed, confidence=confidence, n_records=len(recs))
-    if np.any(np.isinf(x)):  # records that never collapsed: right-censored at the grid's top
-        fit, err = _fit(fit_ida_moments, x, censored="mle", plateau="auto",
-                        max_intensity=np.array([im_at(g, im, float(s[-1])) for g in factors]),
-                        **kw)
-    else:
-        fit, err = _fit(fit_ida_moments, x, **kw)
+    fit, err = _engine_fit(firsts, factors, im, s, n_boot, seed, confidence)
     dyn = dynamics.to_dict() if isinstance(dynamics, DynamicsChoice) else dynamics
+    n_runs = len(recs) * s.size
     return EngineIDAResult(tuple(r.name for r in recs), s, collapsed,
                            tuple(r[0] for r in rows), tuple(r[1] for r in rows), factors,
                            np.array([r.pga_g for r in recs]), firsts, im, fit, err, run, dyn,
                            {"wall_s": wall, "estimate_s": est, "runs": n_runs,
-                            "workers": ex.name, "runs_per_s": n_runs / wall if wall > 0
+                            "workers": where, "runs_per_s": n_runs / wall if wall > 0
                             else None})

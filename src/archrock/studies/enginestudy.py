@@ -7,10 +7,8 @@ such arches with the engine instead:
 
 * :func:`choose_dynamics` -- the routing: ``dynamics`` "auto" (the four-link model where the
   check says it is valid, the engine otherwise), "fourlink" or "engine", with the reason;
-* :func:`engine_ensemble` -- the ensemble's random arches (sample i is sample i of the
-  :class:`~archrock.studies.ensemble.EnsembleConfig`'s sampler, as in the four-link ensemble),
-  each run in the engine under the configuration's motion; P(collapse) with its Wilson
-  interval;
+* :func:`~archrock.studies.ensemble.engine.engine_ensemble` (in the ensemble's folder, which
+  builds on this module) -- the ensemble's random arches in the engine;
 * :func:`engine_first_collapse` / :func:`engine_collapse_curve` -- the first-collapse amplitude
   of a pulse by the engine: a short geometric scan from the activation threshold, then a
   bounded bisection to a relative tolerance.
@@ -31,9 +29,9 @@ from ..errors import ArchInputError, ArchrockError
 from .work import check_work
 
 __all__ = ["DYNAMICS", "check_dynamics", "DynamicsChoice", "choose_dynamics", "EngineRun",
-           "engine_run_cost_s", "EngineEnsembleResult", "engine_ensemble",
+           "engine_run_cost_s",
            "EngineFirstCollapse", "engine_first_collapse", "engine_collapse_curve",
-           "ENGINE_STEP_S", "ARCHROCK_STEP_S", "engine_curves_section", "ENGINE_COLUMNS", "activation"]
+           "ENGINE_STEP_S", "ARCHROCK_STEP_S", "engine_curves_section", "activation"]
 
 #: The dynamics a study may use: "auto" (the four-link model where one degree of freedom is
 #: valid, the contact engine otherwise), "fourlink", "engine".
@@ -242,159 +240,6 @@ def engine_run_cost_s(arch, duration: float, run: EngineRun) -> float:
     return steps * pieces * ENGINE_STEP_S * run.settings.iterations / 40.0
 
 
-def _wilson(k: int, n: int, confidence: float) -> tuple:
-    """(p, low, high) with the Wilson score interval (scipy's binomtest)."""
-    from scipy.stats import binomtest
-
-    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=confidence, method="wilson")
-    return k / n, float(ci.low), float(ci.high)
-
-
-def _stats(x) -> dict:
-    x = np.asarray(x, float)
-    x = x[np.isfinite(x)]
-    if not x.size:
-        return {"count": 0, "mean": None, "min": None, "median": None, "max": None}
-    return {"count": int(x.size), "mean": float(x.mean()), "min": float(x.min()),
-            "median": float(np.median(x)), "max": float(x.max())}
-
-
-#: Columns of an engine ensemble's rows.
-ENGINE_COLUMNS = ("index", "k_l", "k_r", "collapsed", "status", "peak", "t_collapse",
-                  "t_final", "seconds", "error")
-
-
-@dataclass(frozen=True)
-class EngineEnsembleResult:
-    """Result of :func:`engine_ensemble`: one row per sample (:data:`ENGINE_COLUMNS`: status
-    'rest', 'collapsed' or 'moving' (still moving when t_free ran out: counted as not
-    collapsed) or 'failed' with ``error``), the ensemble's configuration, the engine run, the
-    dynamics choice that sent it here and the timing (wall_s, estimate_s)."""
-
-    config: object
-    rows: tuple = field(repr=False)
-    run: EngineRun = field(default_factory=EngineRun)
-    dynamics: DynamicsChoice | None = None
-    nominal: dict = field(default_factory=dict)
-    timing: dict = field(default_factory=dict)
-
-    @property
-    def frame(self):
-        import pandas as pd
-
-        return pd.DataFrame(list(self.rows), columns=list(ENGINE_COLUMNS))
-
-    def summary(self, confidence: float = 0.95) -> dict:
-        """JSON-ready: counts (every sample one outcome), P(collapse | integrated) with its
-        Wilson interval (None and a note with no integrated sample), peaks of the survivors,
-        how it was computed."""
-        rows = self.rows
-        n = len(rows)
-        ran = [r for r in rows if r["status"] != "failed"]
-        k = sum(1 for r in ran if r["collapsed"])
-        reasons: dict[str, int] = {}
-        for r in rows:
-            if r["status"] == "failed":
-                key = r["error"].split(":")[0]
-                reasons[key] = reasons.get(key, 0) + 1
-        status = {s: sum(1 for r in ran if r["status"] == s) for s in ("rest", "collapsed",
-                                                                        "moving")}
-        pc = {"p": None, "low": None, "high": None, "confidence": confidence,
-              "method": "wilson", "collapses": k, "trials": len(ran),
-              "rule": "conditional: collapsed / integrated samples (engine runs that "
-                      "ended); failed samples left out", "note": None}
-        if ran:
-            pc["p"], pc["low"], pc["high"] = _wilson(k, len(ran), confidence)
-        else:
-            pc["note"] = "no trials: the probability cannot be estimated"
-        m = self.config.motion
-        return {
-            "samples": n, "seed": self.config.seed,
-            "spreads": self.config.spreads.to_dict(),
-            "how": "contact engine",
-            "dynamics": None if self.dynamics is None else self.dynamics.to_dict(),
-            "engine": self.run.to_dict(),
-            "motion": None if m is None else m.to_dict(),
-            "nominal": self.nominal,
-            "outcomes": {"samples": n, "integrated": len(ran), "failed": n - len(ran),
-                         "status": status, "failed_reasons": reasons},
-            "p_collapse": pc,
-            "peak_rad": _stats([r["peak"] for r in ran if not r["collapsed"]]),
-            "t_collapse_s": _stats([r["t_collapse"] for r in ran if r["collapsed"]]),
-            "timing": dict(self.timing),
-        }
-
-    def to_dict(self) -> dict:
-        return {"summary": self.summary(), "rows": [dict(r) for r in self.rows]}
-
-
-def engine_ensemble(config, engine: EngineRun | None = None, *,
-                    dynamics: DynamicsChoice | None = None, progress=None) -> EngineEnsembleResult:
-    """The ensemble of ``config`` (an :class:`~archrock.studies.ensemble.EnsembleConfig` with
-    a motion) run in the contact engine: sample i is ``sample_arch(config, i)``, the arch of the
-    four-link ensemble (on its moved supports where the configuration has them).  engine: how
-    each response is run (:class:`EngineRun`, default settings); dynamics: the choice that sent it here (kept in the
-    result); progress: a callable given one line per arch (never printed here).  The work is
-    estimated from the nominal arch first (:func:`engine_run_cost_s`) and refused beyond the
-    bound of :mod:`archrock.studies.work`."""
-    from ..dynamics.response import prepare
-    from .ensemble.compute import sample_arch
-    from .ensemble.config import EnsembleConfig
-
-    if not isinstance(config, EnsembleConfig):
-        raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
-    if config.motion is None:
-        raise ArchInputError("motion: None; the engine ensemble needs a ground motion (a "
-                             "PulseSpec or RecordSpec)")
-    run = EngineRun() if engine is None else engine
-    if not isinstance(run, EngineRun):
-        raise ArchInputError(f"engine: {run!r}; allowed None or an EngineRun")
-    if progress is not None and not callable(progress):
-        raise ArchInputError(f"progress: {progress!r}; allowed None or a callable")
-    motion = config.motion.build()
-    duration = float(motion.times[-1])
-    nominal = config.analysed_nominal
-    each = engine_run_cost_s(nominal, duration, run)
-    est = check_work("engine ensemble", config.samples, "arches", each,
-                     "reduce --samples (the engine takes seconds an arch), or use the four-link "
-                     "model (--dynamics fourlink) where it is valid", 1, kernel=False)
-    t0 = time.perf_counter()
-    rows = []
-    for i in range(config.samples):
-        t1 = time.perf_counter()
-        row = dict.fromkeys(ENGINE_COLUMNS)
-        row.update(index=i, k_l=math.nan, k_r=math.nan, collapsed=False, status="failed",
-                   peak=math.nan, t_collapse=math.nan, t_final=math.nan, error="")
-        try:
-            arch = sample_arch(config, i)
-            model = prepare(arch, "momentum")  # the limit mechanisms, for k and phi
-            row["k_l"], row["k_r"] = float(model.k_l), float(model.k_r)
-            res = run.respond(arch, motion, model)
-        except ArchrockError as exc:
-            row["error"] = " ".join(str(exc).split())
-        else:
-            row.update(collapsed=res.collapsed, status=res.status, peak=float(res.peak),
-                       t_collapse=math.nan if res.t_collapse is None else float(res.t_collapse),
-                       t_final=float(res.t_final))
-        row["seconds"] = time.perf_counter() - t1
-        rows.append(row)
-        if progress is not None:
-            progress(f"engine ensemble: arch {i + 1}/{config.samples} {row['status']} "
-                     f"({row['seconds']:.1f} s)")
-    wall = time.perf_counter() - t0
-    nom = {"k_l": None, "k_r": None}
-    try:
-        nm = prepare(nominal, "momentum")
-        nom = {"k_l": float(nm.k_l), "k_r": float(nm.k_r),
-               "mech_l": nm.mechanism("l").mechanism.label,
-               "mech_r": nm.mechanism("r").mechanism.label}
-    except (ArchrockError, AttributeError):
-        pass
-    return EngineEnsembleResult(config, tuple(rows), run, dynamics, nom,
-                                {"wall_s": wall, "estimate_s": est,
-                                 "seconds_per_arch": wall / config.samples})
-
-
 # ---------------------------------------------------------------------------- first collapse
 @dataclass(frozen=True)
 class EngineFirstCollapse:
@@ -478,25 +323,10 @@ def engine_first_collapse(arch, duration: float, kind: str = "oppenheim", sign: 
     ``a_max``, then a bisection of the first collapsing interval until hi - lo <= rtol * hi
     (:func:`archrock.studies.curves.bisect_boundary`).  Bounded: n_scan + log2(1 / rtol) + 1
     runs at most, each estimated first (:func:`engine_run_cost_s`)."""
-    from ..dynamics.response import prepare
-    from ..groundmotion import pulse, pulse_kind
-    from .curves import _check_int, _check_real, _check_sign, bisect_boundary
+    from ..groundmotion import pulse
 
-    kind = pulse_kind(kind)
-    sign = _check_sign(sign)
-    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
-    n_scan = _check_int("n_scan", n_scan, 2)
-    if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 1e-4 <= rtol <= 0.5:
-        raise ArchInputError(f"rtol: {rtol!r}; allowed 1e-4 <= rtol <= 0.5 (relative to the "
-                             f"amplitude)")
-    run = EngineRun() if run is None else run
-    if model is None:
-        model = prepare(arch, "momentum")
-    thr = activation(arch, model, run.settings.friction)["l" if sign < 0 else "r"]
-    a_max = _check_real("a_max", a_max, None, "a finite number")
-    if not thr * (1 + 1e-6) < a_max <= 100.0:
-        raise ArchInputError(f"a_max: {a_max!r}; allowed above the activation threshold "
-                             f"{thr:.4f} g and <= 100 g")
+    kind, sign, tp, n_scan, run, model, thr, a_max = _first_collapse_inputs(
+        arch, duration, kind, sign, a_max, n_scan, rtol, run, model)
     probe = pulse(kind, sign * a_max, tp)
     steps = n_scan + math.ceil(math.log2(1.0 / rtol)) + 1
     check_work("engine first collapse", steps, "engine runs",
@@ -514,25 +344,58 @@ def engine_first_collapse(arch, duration: float, kind: str = "oppenheim", sign: 
         return cache[a]
 
     grid = np.geomspace(thr * (1 + 1e-6), a_max, n_scan)
-    flags = []
-    for a in grid:  # stop at the first collapse: the runs above it are not needed
-        flags.append(test(float(a)))
-        if flags[-1]:
-            break
-    amp = bracket = None
-    if flags[-1]:
-        i0 = len(flags) - 1
-        if i0 == 0:
-            bracket = (thr, float(grid[0]))
-        else:
-            bracket = bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, rtol,
-                                      relative=True)
-        amp = float(bracket[1])
-    return EngineFirstCollapse(tp, kind, sign, amp, None if bracket is None else
+    flags, bracket = _scan_then_bisect(test, grid, thr, rtol)
+    return EngineFirstCollapse(tp, kind, sign, None if bracket is None else float(bracket[1]),
+                               None if bracket is None else
                                (float(bracket[0]), float(bracket[1])), thr, float(a_max),
                                float(rtol), tuple(float(a) for a in grid[:len(flags)]),
                                tuple(bool(f) for f in flags), len(cache),
                                time.perf_counter() - t0, run)
+
+
+def _first_collapse_inputs(arch, duration, kind, sign, a_max, n_scan, rtol, run, model):
+    """The checked inputs of :func:`engine_first_collapse`, with the engine run, the dynamic
+    model (the limit mechanisms) and the activation threshold [g] of the pulse's sign."""
+    from ..dynamics.response import prepare
+    from ..groundmotion import pulse_kind
+    from .curves import _check_int, _check_real, _check_sign
+
+    kind = pulse_kind(kind)
+    sign = _check_sign(sign)
+    tp = _check_real("duration", duration, 0.0, "a finite number > 0 s")
+    n_scan = _check_int("n_scan", n_scan, 2)
+    if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 1e-4 <= rtol <= 0.5:
+        raise ArchInputError(f"rtol: {rtol!r}; allowed 1e-4 <= rtol <= 0.5 (relative to the "
+                             f"amplitude)")
+    run = EngineRun() if run is None else run
+    if model is None:
+        model = prepare(arch, "momentum")
+    thr = activation(arch, model, run.settings.friction)["l" if sign < 0 else "r"]
+    a_max = _check_real("a_max", a_max, None, "a finite number")
+    if not thr * (1 + 1e-6) < a_max <= 100.0:
+        raise ArchInputError(f"a_max: {a_max!r}; allowed above the activation threshold "
+                             f"{thr:.4f} g and <= 100 g")
+    return kind, sign, tp, n_scan, run, model, thr, a_max
+
+
+def _scan_then_bisect(test, grid, thr: float, rtol: float):
+    """The scan's outcomes up to its first collapse (the runs above it are not needed), and
+    the bracket (last survival, first collapse) [g] bisected to ``rtol`` (None: no collapse;
+    from the threshold where the lowest amplitude collapsed)."""
+    from .curves import bisect_boundary
+
+    flags = []
+    for a in grid:
+        flags.append(test(float(a)))
+        if flags[-1]:
+            break
+    if not flags[-1]:
+        return flags, None
+    i0 = len(flags) - 1
+    if i0 == 0:
+        return flags, (thr, float(grid[0]))
+    return flags, bisect_boundary(test, float(grid[i0 - 1]), float(grid[i0]), False, rtol,
+                                  relative=True)
 
 
 def engine_collapse_curve(arch, durations, kind: str = "oppenheim", sign: int = -1, *,
@@ -562,7 +425,7 @@ def engine_curves_section(ctx, choice: DynamicsChoice):
     Oppenheim's pulse at each of the configuration's durations by the contact engine
     (:func:`engine_collapse_curve`, 2% relative), with the reason; no band over irregular
     arches (an engine run takes seconds)."""
-    from .assessment import Figure, Paragraph, Section, Table
+    from .assessment_blocks import Figure, Paragraph, Section, Table
 
     from ..contact.settings import EngineSettings
 

@@ -250,6 +250,43 @@ def _refine(arch, d, settings, k_ref, progress):
                           progress=progress), fine
 
 
+def _engine_direction(arch, d, k_ref, rd, settings, run_mu, progress):
+    """(holds, why, findings, refined or None) of the engine's ramp ``rd`` in direction d,
+    against the limit analysis's ``k_ref`` at the same friction, refined where they disagree."""
+    k_eng = rd.multiplier
+    if k_ref is None or not math.isfinite(k_ref) or k_ref <= 0:
+        return True, "no limit value to compare with", [], None
+    diff = k_eng / k_ref - 1
+    if abs(diff) <= AGREEMENT:
+        return True, (f"agrees with the limit analysis within {100 * AGREEMENT:g}% "
+                      f"({100 * diff:+.1f}%): the same answer within the engine's "
+                      f"discretisation, the exact limit value is quoted"), [], None
+    fine_rd, fine = _refine(arch, d, settings, k_ref, progress)
+    k_fine = fine_rd.multiplier
+    moved = k_fine / k_eng - 1
+    refined = {"multiplier": k_fine, "moved": moved, "settings": fine.to_dict(),
+               "mode": fine_rd.mode, "hinges": list(fine_rd.hinges)}
+    head = (f"M_{d}: the contact engine at mu = {run_mu:g} gives {k_eng:.4f}, the limit "
+            f"analysis {k_ref:.4f} ({100 * diff:+.1f}%, more than {100 * AGREEMENT:g}%)")
+    if abs(moved) > AGREEMENT:
+        why = (f"not converged on this arch: refined ({_refinement(fine)}) it moves "
+               f"from {k_eng:.4f} to "
+               f"{k_fine:.4f} ({100 * moved:+.1f}%)")
+        finding = (f"{head}; run again refined ({_refinement(fine)}) the engine "
+                   f"gives {k_fine:.4f} ({100 * moved:+.1f}%): its value moves with its own "
+                   f"discretisation, so it is not converged on this arch, and the limit analysis "
+                   f"{k_ref:.4f} governs (exact within its hypotheses: kinematic = static LP).")
+        return False, why, [finding], refined
+    why = (f"converged: refined it gives {k_fine:.4f} ({100 * moved:+.1f}%), "
+           f"a disagreement of the models, not of the discretisation")
+    low = "the engine's value governs" if k_eng < k_ref else "the limit analysis governs"
+    finding = (f"{head}; refined the engine gives {k_fine:.4f} ({100 * moved:+.1f}%, within "
+               f"{100 * AGREEMENT:g}%): the models disagree, and {low} (the least: with "
+               f"non-associative friction the associative limit analysis is not a lower "
+               f"bound).")
+    return True, why, [finding], refined
+
+
 def _engine(arch, lim, mu, needed, ref, progress):
     """(Capacity, findings) of the engine's ramp at mu, compared with ``ref`` (the limit
     analysis at the same friction, per direction), refined where they disagree."""
@@ -261,44 +298,11 @@ def _engine(arch, lim, mu, needed, ref, progress):
     eng = {d: getattr(res, d) for d in DIRS}
     holds, why, findings, refined = {}, {}, [], {}
     for d in DIRS:
-        k_ref, k_eng = ref[d], eng[d].multiplier
-        if k_ref is None or not math.isfinite(k_ref) or k_ref <= 0:
-            holds[d], why[d] = True, "no limit value to compare with"
-            continue
-        diff = k_eng / k_ref - 1
-        if abs(diff) <= AGREEMENT:
-            holds[d] = True
-            why[d] = (f"agrees with the limit analysis within {100 * AGREEMENT:g}% "
-                      f"({100 * diff:+.1f}%): the same answer within the engine's "
-                      f"discretisation, the exact limit value is quoted")
-            continue
-        fine_rd, fine = _refine(arch, d, settings, k_ref, progress)
-        k_fine = fine_rd.multiplier
-        moved = k_fine / k_eng - 1
-        refined[d] = {"multiplier": k_fine, "moved": moved, "settings": fine.to_dict(),
-                      "mode": fine_rd.mode, "hinges": list(fine_rd.hinges)}
-        head = (f"M_{d}: the contact engine at mu = {run_mu:g} gives {k_eng:.4f}, the limit "
-                f"analysis {k_ref:.4f} ({100 * diff:+.1f}%, more than {100 * AGREEMENT:g}%)")
-        if abs(moved) > AGREEMENT:
-            holds[d] = False
-            why[d] = (f"not converged on this arch: refined ({_refinement(fine)}) it moves "
-                      f"from {k_eng:.4f} to "
-                      f"{k_fine:.4f} ({100 * moved:+.1f}%)")
-            findings.append(
-                f"{head}; run again refined ({_refinement(fine)}) the engine "
-                f"gives {k_fine:.4f} ({100 * moved:+.1f}%): its value moves with its own "
-                f"discretisation, so it is not converged on this arch, and the limit analysis "
-                f"{k_ref:.4f} governs (exact within its hypotheses: kinematic = static LP).")
-        else:
-            holds[d] = True
-            why[d] = (f"converged: refined it gives {k_fine:.4f} ({100 * moved:+.1f}%), "
-                      f"a disagreement of the models, not of the discretisation")
-            low = "the engine's value governs" if k_eng < k_ref else "the limit analysis governs"
-            findings.append(
-                f"{head}; refined the engine gives {k_fine:.4f} ({100 * moved:+.1f}%, within "
-                f"{100 * AGREEMENT:g}%): the models disagree, and {low} (the least: with "
-                f"non-associative friction the associative limit analysis is not a lower "
-                f"bound).")
+        holds[d], why[d], found, refined_d = _engine_direction(
+            arch, d, ref[d], eng[d], settings, run_mu, progress)
+        findings.extend(found)
+        if refined_d is not None:
+            refined[d] = refined_d
     if arch.is_symmetric() and abs(eng["l"].multiplier / eng["r"].multiplier - 1) > AGREEMENT:
         findings.append(
             f"The arch is mirror-symmetric, yet the engine gives {eng['l'].multiplier:.4f} "
@@ -345,25 +349,15 @@ def _decide(analyses) -> tuple[Governing | None, str]:
                      why), ""
 
 
-def governing_capacity(arch, friction=DEFAULT_FRICTION, *, engine: bool = False, limit=None,
-                       progress=None, engine_left_out: str = ENGINE_NOT_ASKED
-                       ) -> GoverningCapacity:
-    """The governing horizontal-load multiplier of ``arch`` [g] (:class:`GoverningCapacity`).
-
-    friction: the joints' Coulomb coefficient (default the package's
-    :data:`~archrock.statics.friction.DEFAULT_FRICTION`); None: sliding excluded by the user
-    (the friction analysis is left out; NoMechanismError where no mechanism opens without
-    sliding, else the no-sliding analysis is left out with the reason). engine: also ramp the contact engine (minutes; left out
-    where pymunk does not import); limit: the arch's LimitResult if already computed;
-    progress: a callback of the engine's lines; engine_left_out: why the engine is left out
-    when ``engine`` is False."""
+def _statics(arch, mu, limit):
+    """The statical analyses of :func:`governing_capacity`: (the no-sliding LimitResult or None,
+    the friction each direction needs or None, [no sliding, with friction] as they apply, the
+    analyses left out with why)."""
+    from ..errors import NoMechanismError
     from ..statics.friction import friction_needed
     from ..statics.limit import limit_analysis
 
-    from ..errors import NoMechanismError
-
-    mu = None if friction is None else check_friction(friction)
-    analyses, left_out, findings = [], [], []
+    analyses, left_out = [], []
     try:
         lim = limit if limit is not None else limit_analysis(arch, verify=True)
     except NoMechanismError as exc:  # only friction brings this arch to a mechanism
@@ -376,18 +370,32 @@ def governing_capacity(arch, friction=DEFAULT_FRICTION, *, engine: bool = False,
     except ArchrockError as exc:
         needed = None
         left_out.append(("friction needed", _one_line(exc)))
-    ref = {d: None for d in DIRS}
     if lim is not None:
-        no_slide = _no_sliding(lim, needed, mu)
-        analyses.append(no_slide)
-        ref = {d: no_slide.k(d) for d in DIRS}
+        analyses.append(_no_sliding(lim, needed, mu))
     if mu is None:
         left_out.append((WITH_FRICTION, "sliding excluded by the user (friction None, "
                                         "--friction none): Heyman's no-sliding hypothesis"))
     else:
-        fr = _with_friction(arch, mu)
-        analyses.append(fr)
-        ref = {d: fr.k(d) for d in DIRS}
+        analyses.append(_with_friction(arch, mu))
+    return lim, needed, analyses, left_out
+
+
+def governing_capacity(arch, friction=DEFAULT_FRICTION, *, engine: bool = False, limit=None,
+                       progress=None, engine_left_out: str = ENGINE_NOT_ASKED
+                       ) -> GoverningCapacity:
+    """The governing horizontal-load multiplier of ``arch`` [g] (:class:`GoverningCapacity`).
+
+    friction: the joints' Coulomb coefficient (default the package's
+    :data:`~archrock.statics.friction.DEFAULT_FRICTION`); None: sliding excluded by the user
+    (the friction analysis is left out; NoMechanismError where no mechanism opens without
+    sliding, else the no-sliding analysis is left out with the reason). engine: also ramp the contact engine (minutes; left out
+    where pymunk does not import); limit: the arch's LimitResult if already computed;
+    progress: a callback of the engine's lines; engine_left_out: why the engine is left out
+    when ``engine`` is False."""
+    mu = None if friction is None else check_friction(friction)
+    lim, needed, analyses, left_out = _statics(arch, mu, limit)
+    ref = {d: (analyses[-1].k(d) if analyses else None) for d in DIRS}
+    findings = []
     if engine and lim is None:
         left_out.append((ENGINE, "no mechanism without sliding to set the ramp's range: "
                                  "archrock dem --ramp --ramp-max"))

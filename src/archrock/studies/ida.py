@@ -41,7 +41,7 @@ from ..dynamics.impact import ImpactSpec
 from ..dynamics.population import PreparedArches, left_out_summary, prepare_many
 from ..dynamics.response import DynamicModel, prepare, respond
 from ..geometry.sampling import Spreads
-from .runner import UNSET, resolve_settings
+from .runner import RunSettings
 from .work import (FIT_MLE_S, FIT_MOMENTS_S, PROGRESS_S, check_work,
                    response_cost_s)
 
@@ -178,12 +178,12 @@ def _progress(what, total, est, progress, unit="analysis"):
     return Progress(total, progress if est > PROGRESS_S else None, desc=what, unit=unit)
 
 
-def _inputs(study, records, models, im, settings, **old):
+def _inputs(records, models, im, settings):
     """The records, models, sample indices, arches left out, IM and run settings of
     :func:`ida` and :func:`msa`, checked."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
-    return recs, ms, ids, failed, _im(im), resolve_settings(settings, study, stacklevel=4, **old)
+    return recs, ms, ids, failed, _im(im), RunSettings.from_dict(settings)
 
 
 ENGINES = ("batch", "respond")
@@ -216,6 +216,99 @@ def _runner(recs, ms, dt, t_free, settings, bar, early_stop=False):
                        max_events=_TEST_EVENTS, early_stop=early_stop, bar=bar, store=store)
 
 
+@dataclass
+class _Pairs:
+    """The search state of every (arch, record) pair of :func:`_ida_batch`: pair p is arch
+    ``pa[p]`` under record ``pr[p]``; lo / hi the bracket of its first collapse (NaN: none
+    yet), first the grid index of its first collapse, below / safe whether the lowest grid scale
+    collapsed and the no-activation scale below it, checks the pairs whose safe scale is tried."""
+
+    pa: np.ndarray
+    pr: np.ndarray
+    flags: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    below: np.ndarray
+    safe: list
+    first: list
+    checks: list
+
+
+def _grid_brackets(flags, s, ms, recs, pa, pr) -> _Pairs:
+    """The brackets of the grid scan: between the last survival and the first collapse, or,
+    where the lowest grid scale collapsed, from the no-activation scale (to be checked)."""
+    P = flags.shape[0]
+    b = _Pairs(pa, pr, flags, np.full(P, np.nan), np.full(P, np.nan), np.zeros(P, dtype=bool),
+               [None] * P, [None] * P, [])
+    for p in range(P):
+        hits = np.flatnonzero(flags[p])
+        if hits.size == 0:
+            continue
+        i0 = int(hits[0])
+        b.first[p] = i0
+        if i0 == 0:
+            b.below[p] = True
+            x = safe_scale(ms[pa[p]], recs[pr[p]])
+            if x < float(s[0]):
+                b.safe[p] = x
+                b.checks.append(p)
+            else:  # not reachable for a consistent model: keep the grid point
+                b.hi[p] = float(s[0])
+        else:
+            b.lo[p], b.hi[p] = float(s[i0 - 1]), float(s[i0])
+    return b
+
+
+def _check_safe(run, b: _Pairs, s) -> None:
+    """One round: the no-activation scales of the pairs whose lowest grid scale collapsed; a
+    survival there brackets the first collapse, a collapse leaves the grid point alone."""
+    if not b.checks:
+        return
+    c = np.array(b.checks)
+    st = run(b.pa[c], b.pr[c], np.array([b.safe[p] for p in b.checks]))["status"]
+    for p, collapsed in zip(b.checks, st == 1):
+        if collapsed:  # unbracketed: the grid point alone
+            b.safe[p], b.hi[p] = None, float(s[0])
+        else:
+            b.lo[p], b.hi[p] = b.safe[p], float(s[0])
+
+
+def _bisect_pairs(run, b: _Pairs, tol) -> None:
+    """bisect_boundary(test, lo, hi, False, tol, relative=True) of every bracketed pair at
+    once, one round a step (the same midpoints, in the same order)."""
+    lo, hi = b.lo, b.hi
+    for _ in range(MAX_BISECTIONS + 1):  # bounded as bisect_boundary
+        act = np.flatnonzero(~np.isnan(lo) & _wider(lo, hi, tol, relative=True))
+        if act.size == 0:
+            return
+        mid = 0.5 * (lo[act] + hi[act])
+        col = run(b.pa[act], b.pr[act], mid)["status"] == 1
+        lo[act] = np.where(col, lo[act], mid)
+        hi[act] = np.where(col, mid, hi[act])
+    raise LimitExceededError(f"ida: {act.size} bisections still wider than the "
+                             f"tolerance {tol:g} (relative) after {MAX_BISECTIONS} steps")
+
+
+def _pair_curves(b: _Pairs, recs, ids, s, im, factors) -> list:
+    """The :class:`IDACurve` of every pair from its grid and bracket."""
+    curves = []
+    for p in range(len(b.pa)):
+        r, j = recs[b.pr[p]], ids[b.pa[p]]
+        f = factors[b.pr[p]]
+        fl = b.flags[p]
+        if b.first[p] is None:
+            curves.append(IDACurve(r.name, j, r.pga_g, s, fl, None, None, None, (), 0,
+                                   float(im_at(f, im, s[-1]))))
+            continue
+        fc = first_collapse(s, fl)
+        h = float(b.hi[p])
+        br = None if np.isnan(b.lo[p]) else (float(b.lo[p]), h)
+        curves.append(IDACurve(r.name, j, r.pga_g, s, fl, h, br, im_at(f, im, h),
+                               tuple(fc["survivals_above"]), fc["resurrections"],
+                               float(im_at(f, im, s[-1])), bool(b.below[p]), b.safe[p]))
+    return curves
+
+
 def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, settings, bar,
                early_stop=False, factors=None) -> list:
     """The curves of :func:`ida_curve` for every (arch, record), arch-major, each round of the
@@ -228,66 +321,11 @@ def _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, settings, bar,
     pr = np.tile(np.arange(Rn), A)
     with _runner(recs, ms, dt, t_free, settings, bar, early_stop) as run:
         st = run(np.repeat(pa, n), np.repeat(pr, n), np.tile(s, P))["status"]
-        flags = (st == 1).reshape(P, n)
-        lo = np.full(P, np.nan)
-        hi = np.full(P, np.nan)
-        below = np.zeros(P, dtype=bool)
-        safe = [None] * P
-        first = [None] * P
-        checks = []
-        for p in range(P):
-            hits = np.flatnonzero(flags[p])
-            if hits.size == 0:
-                continue
-            i0 = int(hits[0])
-            first[p] = i0
-            if i0 == 0:
-                below[p] = True
-                x = safe_scale(ms[pa[p]], recs[pr[p]])
-                if x < float(s[0]):
-                    safe[p] = x
-                    checks.append(p)
-                else:  # not reachable for a consistent model: keep the grid point
-                    hi[p] = float(s[0])
-            else:
-                lo[p], hi[p] = float(s[i0 - 1]), float(s[i0])
-        if checks:
-            c = np.array(checks)
-            st = run(pa[c], pr[c], np.array([safe[p] for p in checks]))["status"]
-            for p, collapsed in zip(checks, st == 1):
-                if collapsed:  # unbracketed: the grid point alone
-                    safe[p], hi[p] = None, float(s[0])
-                else:
-                    lo[p], hi[p] = safe[p], float(s[0])
-        # bisect_boundary(test, lo, hi, False, tol, relative=True), all pairs at once
-        for _ in range(MAX_BISECTIONS + 1):  # bounded as bisect_boundary
-            act = np.flatnonzero(~np.isnan(lo) & _wider(lo, hi, tol, relative=True))
-            if act.size == 0:
-                break
-            mid = 0.5 * (lo[act] + hi[act])
-            col = run(pa[act], pr[act], mid)["status"] == 1
-            lo[act] = np.where(col, lo[act], mid)
-            hi[act] = np.where(col, mid, hi[act])
-        else:
-            raise LimitExceededError(f"ida: {act.size} bisections still wider than the "
-                                     f"tolerance {tol:g} (relative) after {MAX_BISECTIONS} steps")
-    curves = []
+        b = _grid_brackets((st == 1).reshape(P, n), s, ms, recs, pa, pr)
+        _check_safe(run, b, s)
+        _bisect_pairs(run, b, tol)
     factors = [_im_factor(r, im) for r in recs] if factors is None else factors
-    for p in range(P):
-        r, j = recs[pr[p]], ids[pa[p]]
-        f = factors[pr[p]]
-        fl = flags[p]
-        if first[p] is None:
-            curves.append(IDACurve(r.name, j, r.pga_g, s, fl, None, None, None, (), 0,
-                                   float(im_at(f, im, s[-1]))))
-            continue
-        fc = first_collapse(s, fl)
-        h = float(hi[p])
-        br = None if np.isnan(lo[p]) else (float(lo[p]), h)
-        curves.append(IDACurve(r.name, j, r.pga_g, s, fl, h, br, im_at(f, im, h),
-                               tuple(fc["survivals_above"]), fc["resurrections"],
-                               float(im_at(f, im, s[-1])), bool(below[p]), safe[p]))
-    return curves
+    return _pair_curves(b, recs, ids, s, im, factors)
 
 
 def _collapsed(model, record, scale, dt, t_free) -> bool:
@@ -467,16 +505,41 @@ def ida_curve(model: DynamicModel, record: GroundMotion, scales, *, im: str = "p
                     float(im_at(f, im, s[-1])), below, safe)
 
 
+def _ida_curves(engine, recs, ms, ids, s, im, tol, dt, t_free, settings, bar, early_stop,
+                factors) -> list:
+    """The curves of :func:`ida` by ``engine``: the batch rounds (:func:`_ida_batch`) or
+    :func:`ida_curve` curve after curve (one progress count each)."""
+    if engine == "batch":
+        return _ida_batch(recs, ms, ids, s, im, tol, dt, t_free, settings, bar, early_stop,
+                          factors)
+    curves = []
+    for j, m in zip(ids, ms):
+        for r, f in zip(recs, factors):
+            curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
+                                    t_free=t_free, factor=f))
+            bar.update(1)
+    return curves
+
+
+def _ida_fit(curves, n_boot, seed, confidence, n_records):
+    """(fit, error) of the first-collapse IMs: moments, or the censored MLE with its plateau
+    test where some curves never collapsed (right-censored at their top IM)."""
+    x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
+    kw = dict(n_boot=n_boot, seed=seed, confidence=confidence, n_records=n_records)
+    if np.any(np.isinf(x)):
+        return _fit(fit_ida_moments, x, censored="mle", plateau="auto",
+                    max_intensity=np.array([c.max_im for c in curves]), **kw)
+    return _fit(fit_ida_moments, x, **kw)
+
+
 def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: int = 0,
         seed=0, confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress=UNSET, engine: str = "batch", workers=UNSET,
-        scheduler=UNSET, early_stop: bool = False, out=UNSET, settings=None) -> IDAResult:
+        engine: str = "batch", early_stop: bool = False, settings=None) -> IDAResult:
     """IDA of every record on every arch (models: DynamicModel(s) or Arch(es)); scale grid
     ``scales``. Refused when the largest scaled PGA exceeds MAX_PGA_G or the work its bound
     (:mod:`archrock.studies.work`).  settings: how it runs
-    (:class:`~archrock.studies.runner.RunSettings`; the 0.6 keywords ``workers``,
-    ``scheduler``, ``out``, ``progress`` with a DeprecationWarning); its ``progress`` gets the
-    responses (or curves) done, for a long run (:mod:`archrock._progress`).
+    (:class:`~archrock.studies.runner.RunSettings`, its dict or None); its ``progress`` gets
+    the responses (or curves) done, for a long run (:mod:`archrock._progress`).
 
     engine: "batch" (default) runs every (arch, record, scale) of a round (the grid scan, then
     each bisection step) in one parallel call (:mod:`archrock.studies.runner`: in-process numba
@@ -488,9 +551,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     engine): a folder that keeps every finished response (:class:`archrock.studies.store.
     ResultStore`), so that the same call after an interruption recomputes nothing it had
     finished."""
-    recs, ms, ids, failed, im, settings = _inputs(
-        "ida", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
-        progress=progress)
+    recs, ms, ids, failed, im, settings = _inputs(records, models, im, settings)
     s = _grid("scales", scales)
     engine = _engine(engine)
     top = max(recs, key=lambda r: r.pga)
@@ -500,36 +561,16 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     bisect_steps = 2 + math.ceil(math.log2(1.0 / tol))
     est = _check_analyses("ida", recs, len(ms), s.size + bisect_steps, n_boot, FIT_MOMENTS_S)
     factors = [_im_factor(r, im) for r in recs]
-    if engine == "batch":
-        bar = _progress("ida", len(ms) * len(recs) * (s.size + bisect_steps), est,
-                        settings.progress, unit="response")
-        try:
-            curves = _ida_batch(recs, ms, ids, s, im, float(tol), dt, t_free, settings, bar,
-                                early_stop, factors)
-            bar.finish()  # the total counted every bisection step; most curves need fewer
-        finally:
-            bar.close()
-    else:
-        bar = _progress("ida", len(ms) * len(recs), est, settings.progress)
-        curves = []
-        try:
-            for j, m in zip(ids, ms):
-                for r, f in zip(recs, factors):
-                    curves.append(ida_curve(m, r, s, im=im, tol=tol, arch_index=j, dt=dt,
-                                            t_free=t_free, factor=f))
-                    bar.update(1)
-            bar.finish()
-        finally:
-            bar.close()
-    curves = tuple(curves)
-    x = np.array([np.inf if c.first_im is None else c.first_im for c in curves])
-    if np.any(np.isinf(x)):
-        fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
-                        n_records=len(recs), censored="mle", plateau="auto",
-                        max_intensity=np.array([c.max_im for c in curves]))
-    else:
-        fit, err = _fit(fit_ida_moments, x, n_boot=n_boot, seed=seed, confidence=confidence,
-                        n_records=len(recs))
+    total = len(ms) * len(recs) * ((s.size + bisect_steps) if engine == "batch" else 1)
+    bar = _progress("ida", total, est, settings.progress,
+                    unit="response" if engine == "batch" else "analysis")
+    try:
+        curves = tuple(_ida_curves(engine, recs, ms, ids, s, im, float(tol), dt, t_free,
+                                   settings, bar, early_stop, factors))
+        bar.finish()  # batch: the total counted every bisection step; most curves need fewer
+    finally:
+        bar.close()
+    fit, err = _ida_fit(curves, n_boot, seed, confidence, len(recs))
     return IDAResult(curves, im, fit, err, failed)
 
 
@@ -574,16 +615,13 @@ class StripeResult:
 
 def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
         confidence: float = 0.9, dt: float | None = None, t_free: float | None = None,
-        progress=UNSET, engine: str = "batch", workers=UNSET,
-        scheduler=UNSET, early_stop: bool = False, out=UNSET, settings=None) -> StripeResult:
+        engine: str = "batch", early_stop: bool = False, settings=None) -> StripeResult:
     """Multiple-stripe analysis at IM ``levels`` (PGA in g for im='pga': each record is scaled by
     level / its PGA in g); stripes fitted by maximum likelihood. Refused above MAX_PGA_G or
     beyond the work bound (:mod:`archrock.studies.work`); ``engine``, ``early_stop`` and
-    ``settings`` (and the 0.6 keywords) as :func:`ida` (every level x arch x record in one
+    ``settings`` as :func:`ida` (every level x arch x record in one
     sweep)."""
-    recs, ms, ids, failed, im, settings = _inputs(
-        "msa", records, models, im, settings, workers=workers, scheduler=scheduler, out=out,
-        progress=progress)
+    recs, ms, ids, failed, im, settings = _inputs(records, models, im, settings)
     lv = _grid("levels", levels)
     engine = _engine(engine)
     factors = [_im_factor(r, im) for r in recs]

@@ -20,7 +20,7 @@ from typing import Callable
 
 from .. import published
 from ..errors import ArchInputError
-from .runner import UNSET
+from .runner import RunSettings
 
 __all__ = ["run_paper_study", "PAPER_K_OPPENHEIM", "FIG3_NAME", "FIG4_NAME", "find_random_arches",
            "PAPER_RA1", "PAPER_RA2", "PAPER_CV"]
@@ -102,8 +102,29 @@ def _dynamics_step(out: Path, progress: Callable[[str], None], draw) -> dict:
              f"{res_nom.impacts[0]:.3f} s, peak {res_nom.peak:.4f} rad "
              f"(reference integrator: peak {res_ref.peak:.4f} rad)")
     found = find_random_arches(cv)
-    rows = {}
     responses, labels = [res_nom], ["Oppenheim's arch"]
+    rows = _random_rows(out, progress, found, responses, labels)
+    if draw is not None:
+        progress(f"wrote {draw(responses, out / FIG4_NAME, labels=labels)}")
+    return {
+        "cv_paper_model": cv, "cv_momentum_model": momentum, "paper_cv": PAPER_CV,
+        "least_loss_after_M_l": least.to_dict(),
+        "nominal": {"collapsed": res_nom.collapsed, "status": res_nom.status, "peak": res_nom.peak,
+                    "impacts": res_nom.impacts[:5], "reference_peak": res_ref.peak,
+                    "reference_impacts": res_ref.impacts[:5]},
+        "random": rows,
+        "random_search": {"seeds": found["searched"], "collapsing": found["failing"],
+                          "spreads": SPREADS, "near_radius": found["near_radius"],
+                          "near_collapsing": found["near"]},
+        "figure": FIG4_NAME if draw is not None else None,
+    }
+
+
+def _random_rows(out: Path, progress: Callable[[str], None], found: dict, responses: list,
+                 labels: list) -> dict:
+    """The summary rows of the RA-1 and RA-2 type arches found (their geometry written to
+    ``out``; their responses and labels appended for Fig. 4)."""
+    rows = {}
     for key in ("RA-1", "RA-2"):
         if found[key] is None:
             progress(f"{key}: no arch of that type among {found['searched']} seeds")
@@ -124,20 +145,7 @@ def _dynamics_step(out: Path, progress: Callable[[str], None], draw) -> dict:
                      "mechanism_r": model.limit.mechanism_r.to_dict(),
                      "restitution": model.impact.to_dict(),
                      "geometry": f"{key.lower()}_geometry.json"}
-    if draw is not None:
-        progress(f"wrote {draw(responses, out / FIG4_NAME, labels=labels)}")
-    return {
-        "cv_paper_model": cv, "cv_momentum_model": momentum, "paper_cv": PAPER_CV,
-        "least_loss_after_M_l": least.to_dict(),
-        "nominal": {"collapsed": res_nom.collapsed, "status": res_nom.status, "peak": res_nom.peak,
-                    "impacts": res_nom.impacts[:5], "reference_peak": res_ref.peak,
-                    "reference_impacts": res_ref.impacts[:5]},
-        "random": rows,
-        "random_search": {"seeds": found["searched"], "collapsing": found["failing"],
-                          "spreads": SPREADS, "near_radius": found["near_radius"],
-                          "near_collapsing": found["near"]},
-        "figure": FIG4_NAME if draw is not None else None,
-    }
+    return rows
 
 
 def _table(summary: dict) -> str:
@@ -206,21 +214,15 @@ def _silent(msg: str) -> None:
     """The default progress of the library: it does not print."""
 
 
-def run_paper_study(out_dir=UNSET, progress=UNSET, figures: dict | None = None, *,
-                    settings=None) -> dict:
+def run_paper_study(figures: dict | None = None, *, settings=None) -> dict:
     """Run the paper's study into the folder ``settings.out`` (a
     :class:`~archrock.studies.runner.RunSettings`; created if needed); returns the summary
     dict, also written to ``summary.json`` there.  The settings' ``progress`` receives
-    one-line messages (:mod:`archrock._progress`; None: silent).  0.6's ``out_dir`` and
-    ``progress`` (also positional) still work with a DeprecationWarning.
-    ``figures``: {"fig3": draw(limit_result, path,
+    one-line messages (:mod:`archrock._progress`; None: silent).  ``figures``: {"fig3": draw(limit_result, path,
     directions), "fig4": draw(responses, path, labels)} returning the path written (the CLI
     passes :data:`archrock.reports.plots.PAPER_FIGURES`); None writes no figure (studies do
     not draw: reports sit a layer above)."""
-    from .runner import resolve_settings
-
-    settings = resolve_settings(settings, "run_paper_study", out_dir=out_dir,
-                                progress=progress).only("run_paper_study", "out")
+    settings = RunSettings.from_dict(settings).only("run_paper_study", "out")
     if settings.out is None:
         raise ArchInputError("out: None; the paper's study writes its summary (and figures) "
                              "into a folder; allowed a folder path (RunSettings(out=...))")

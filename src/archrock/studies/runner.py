@@ -7,9 +7,9 @@ multiple stripes, Sobol indices, defect maps, verification ensembles, the paper'
 assessment) runs on the executors of :mod:`archrock.studies.executors` (in-process, process
 pool, Dask), keeps its finished work in the store of :mod:`archrock.studies.store` (atomic
 Parquet files, a manifest, provenance, resume by verification) and reports through the one
-progress protocol of :mod:`archrock._progress` (the CLI renders it).  The 0.6 keyword arguments
-(``workers=``, ``scheduler=``, ``out=``, ``out_dir=``, ``progress=``) still work for one
-release, with a DeprecationWarning (:func:`resolve_settings`).
+progress protocol of :mod:`archrock._progress` (the CLI renders it).  The 0.6 keyword
+arguments (``workers=``, ``scheduler=``, ``out=``, ``out_dir=``, ``progress=``) are gone in 0.7:
+``settings=`` alone says how a study runs.
 
 IDA, multiple stripes and the collapse-acceleration curves search collapse boundaries in rounds
 (a scan, then bisection steps); every round is one list of items (arch, motion, scale) for
@@ -29,7 +29,6 @@ items per sweep call to bound their memory.
 from __future__ import annotations
 
 import os
-import warnings
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
@@ -41,7 +40,7 @@ from ..dynamics.sweep import SweepArches, SweepMotions, sweep
 from .executors import Executor
 from .store import ResultStore  # noqa: F401 - its 0.6 home
 
-__all__ = ["RunSettings", "resolve_settings", "UNSET", "SweepRunner", "ResultStore",
+__all__ = ["RunSettings", "SweepRunner", "ResultStore",
            "check_workers"]
 
 
@@ -144,47 +143,6 @@ class RunSettings:
             raise ArchInputError(f"settings: unknown field {extra[0]!r}; allowed "
                                  f"{', '.join(sorted(known))}")
         return cls(**data)
-
-
-class _Unset:
-    """The default of a 0.6 run keyword: not given (None is a value some callers give)."""
-
-    def __repr__(self):
-        return "<unset>"
-
-    def __bool__(self):
-        return False
-
-
-UNSET = _Unset()
-
-#: the 0.6 keywords and the fields they set
-_OLD = {"workers": "workers", "scheduler": "scheduler", "out": "out", "out_dir": "out",
-        "progress": "progress"}
-
-
-def resolve_settings(settings, study: str, *, stacklevel: int = 3, **old) -> RunSettings:
-    """The :class:`RunSettings` of a study called with ``settings`` (a RunSettings, its dict or
-    None) and the 0.6 keywords ``old`` (:data:`UNSET`: not given).  A keyword given says a
-    DeprecationWarning (it goes in archrock 0.8); one given beside ``settings``, or a field
-    given twice (``out`` and ``out_dir``), is refused by name.  stacklevel: that of the
-    warning, so that it names the caller's line (3: the study called this itself)."""
-    given = {k: v for k, v in old.items() if v is not UNSET}
-    base = RunSettings.from_dict(settings)
-    if not given:
-        return base
-    if settings is not None:
-        raise ArchInputError(f"{next(iter(given))}: give the run options once, in settings= "
-                             f"(RunSettings); the keyword is their 0.6 spelling")
-    if "out" in given and "out_dir" in given:
-        raise ArchInputError("out_dir: give the folder once, as out (out_dir is its old name)")
-    for k in given:
-        new = _OLD[k]
-        warnings.warn(f"{study}({k}=...) is now {study}(settings=RunSettings({new}=...)) (one "
-                      f"settings object in every study); {k}= goes in archrock 0.8",
-                      DeprecationWarning, stacklevel=stacklevel)
-    return RunSettings(**{_OLD[k]: v for k, v in given.items()})
-
 
 
 def _sweep_state(shared):

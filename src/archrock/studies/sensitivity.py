@@ -5,7 +5,7 @@ A random arch of a study is a function of its uniform draws alone (:mod:`archroc
 for each voussoir i, U_span,i, U_thickness,i and U_radius,i on [-1, 1] (and, for a family arch
 with a joint tilt, U_tilt,j for each interior joint j = 1..n-1), mapped to the arch by
 :func:`archrock.geometry.perturb_voussoirs` (circular) or
-:func:`archrock.geometry.families.perturb_family` (any family), with the spreads of
+:func:`archrock.geometry.irregular.perturb_family` (any family), with the spreads of
 :class:`~archrock.geometry.sampling.Spreads`.  :func:`input_layout` names these inputs and
 :func:`arches_from_inputs` is the map from an input matrix to arches: the same map the
 ensemble's sampler uses, so the variance decomposed here is the ensemble's.
@@ -44,7 +44,7 @@ from ..errors import ArchInputError, InvalidSampleError
 from ..geometry import Arch, FamilyArch, VoussoirArch, perturb_voussoirs
 from ..groundmotion import PulseSpec
 from ..geometry.sampling import DEFAULT_SPREADS, Spreads
-from .runner import UNSET, resolve_settings
+from .runner import RunSettings
 
 __all__ = ["SobolResult", "sobol_indices", "input_layout", "arches_from_inputs", "GROUPINGS",
            "PAPER_PULSE", "check_sensitivity_work"]
@@ -131,7 +131,7 @@ def arches_from_inputs(nominal: VoussoirArch, spreads: Spreads | dict | None, x)
     if isinstance(nominal, Arch):
         return perturb_voussoirs(nominal.spans, nominal.thicknesses, nominal.radii, u,
                                  spreads.span, spreads.thickness, spreads.radius)
-    from ..geometry.families import perturb_family
+    from ..geometry.irregular import perturb_family
 
     out = []
     for b in range(len(u)):
@@ -299,7 +299,7 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
 def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAULT_SPREADS,
                   samples: int = 1024, *, by: str = "kind", motion=PAPER_PULSE, impact=None,
                   seed: int = 0, conf_level: float = 0.95, num_resamples: int = 200,
-                  progress=UNSET, settings=None) -> SobolResult:
+                  settings=None) -> SobolResult:
     """Sobol indices of k_l, k_r, k and (with ``motion``) the collapse indicator over the
     random arches around ``nominal`` (module docstring).
 
@@ -310,18 +310,54 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     arch, its c_v fixed on every arch); seed: of the scrambled Sobol sequence and of the
     bootstrap; conf_level: of the intervals; settings: a
     :class:`~archrock.studies.runner.RunSettings` whose ``progress`` gets one line of text per
-    chunk of arches run (:mod:`archrock._progress`; 0.6's ``progress=`` with a
-    DeprecationWarning); it runs in this process (numba threads).
+    chunk of arches run (:mod:`archrock._progress`); it runs in this process (numba threads).
     """
-    settings = resolve_settings(settings, "sobol_indices", progress=progress).only(
-        "sobol_indices")
+    settings = RunSettings.from_dict(settings).only("sobol_indices")
     sample, analyze = _salib()
-    from ..dynamics.batch import prepare_batch, simulate_batch
-    from ..dynamics.kernel import ST_COLLAPSED
+    job = _configure_sobol(nominal, spreads, samples, by, motion, impact, seed, conf_level,
+                           num_resamples)
+    progress = settings.sink
+    t0 = time.perf_counter()
+    x = sample.sample(job.problem, job.samples, calc_second_order=False, seed=job.seed)
+    x = np.clip(x, -1.0, 1.0)
+    if progress is not None:
+        progress(f"sensitivity: {len(x)} arches ({job.samples} x ({len(job.names)} groups "
+                 f"+ 2))")
+    resolved = job.spec.resolved(nominal)  # the nominal's impact law, applied to every arch
+    built, dt, t_free = decide_dynamics(nominal, job.motion)
+    ys, ok, t_prep, t_sim = _run_arches(job, x, resolved, built, (dt, t_free), progress, t0)
+    t_an = time.perf_counter()
+    indices = _analyse(analyze, job, x, ys)
+    return _sobol_result(job, ys, indices, int((~ok).sum()), len(x),
+                         {"prepare": t_prep, "simulate": t_sim,
+                          "analyse": time.perf_counter() - t_an})
+
+
+@dataclass(frozen=True)
+class _SobolJob:
+    """The checked inputs of :func:`sobol_indices` and SALib's problem."""
+
+    nominal: VoussoirArch
+    base: VoussoirArch
+    movement: object
+    spreads: Spreads
+    by: str
+    layout: list
+    names: list
+    problem: dict
+    samples: int
+    seed: int
+    conf_level: float
+    num_resamples: int
+    motion: object
+    spec: object
+
+
+def _configure_sobol(nominal, spreads, samples, by, motion, impact, seed, conf_level,
+                     num_resamples) -> _SobolJob:
+    """Every input checked by name, the work bound applied, SALib's problem laid out."""
     from ..groundmotion import RecordSpec, motion_spec_from_dict
     from ..dynamics.impact import ImpactSpec
-    from ..dynamics.response import default_steps
-
     from ..statics.supports import moved_parts
 
     spreads = Spreads.from_dict(spreads)
@@ -336,6 +372,25 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     layout = input_layout(base, spreads)
     if movement is not None:
         layout = layout + [("support", "support", 0, -1, -1)]
+    _check_numbers(by, samples, seed, conf_level, num_resamples)
+    if isinstance(motion, dict):
+        motion = motion_spec_from_dict(motion)
+    if motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):
+        raise ArchInputError(f"motion: {motion!r}; allowed None, a PulseSpec or RecordSpec")
+    spec = ImpactSpec.parse(impact)
+    groups = _groups(layout, by)
+    names = list(dict.fromkeys(groups))
+    check_sensitivity_work(nominal, int(samples), len(names), motion, int(num_resamples))
+    problem = {"num_vars": len(layout), "names": [lay[0] for lay in layout],
+               "bounds": [[-1.0, 1.0]] * len(layout)}
+    if by != "input":
+        problem["groups"] = groups
+    return _SobolJob(nominal, base, movement, spreads, by, layout, names, problem, int(samples),
+                     int(seed), float(conf_level), int(num_resamples), motion, spec)
+
+
+def _check_numbers(by, samples, seed, conf_level, num_resamples) -> None:
+    """The grouping and the numbers of :func:`sobol_indices`, each refused by name."""
     if by not in GROUPINGS:
         raise ArchInputError(f"by: {by!r}; allowed {', '.join(GROUPINGS)}")
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 16 \
@@ -349,49 +404,47 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     if isinstance(num_resamples, bool) or not isinstance(num_resamples, (int, np.integer)) \
             or num_resamples < 2:
         raise ArchInputError(f"num_resamples: {num_resamples!r}; allowed an integer >= 2")
-    progress = settings.sink
-    if isinstance(motion, dict):
-        motion = motion_spec_from_dict(motion)
-    if motion is not None and not isinstance(motion, (PulseSpec, RecordSpec)):
-        raise ArchInputError(f"motion: {motion!r}; allowed None, a PulseSpec or RecordSpec")
-    spec = ImpactSpec.parse(impact)
-    groups = _groups(layout, by)
-    names = list(dict.fromkeys(groups))
-    check_sensitivity_work(nominal, int(samples), len(names), motion, int(num_resamples))
-    problem = {"num_vars": len(layout), "names": [lay[0] for lay in layout],
-               "bounds": [[-1.0, 1.0]] * len(layout)}
-    if by != "input":
-        problem["groups"] = groups
-    t0 = time.perf_counter()
-    x = sample.sample(problem, int(samples), calc_second_order=False, seed=int(seed))
-    x = np.clip(x, -1.0, 1.0)
-    runs = len(x)
-    if progress is not None:
-        progress(f"sensitivity: {runs} arches ({samples} x ({len(names)} groups + 2))")
-    resolved = spec.resolved(nominal)
+
+
+def decide_dynamics(nominal, motion) -> tuple:
+    """(the motion built, RK4 step [s], free-motion time [s]) of the study: the four-link
+    model under ``motion`` at the nominal arch's default steps; None for k only."""
+    from ..dynamics.response import default_steps
+
     built = motion.build() if motion is not None else None
     dt, t_free = default_steps(nominal)
+    return built, dt, t_free
+
+
+def _run_arches(job: _SobolJob, x, resolved, built, steps, progress, t0) -> tuple:
+    """({"k_l", "k_r", "k"[, "collapse"]}: the outputs of the arches of the inputs ``x``,
+    usable flags, seconds preparing, seconds integrating), in chunks of :data:`_CHUNK` arches
+    so that a long run says how far it got (an unusable arch: k 0, collapsed)."""
+    from ..dynamics.batch import prepare_batch, simulate_batch
+    from ..dynamics.kernel import ST_COLLAPSED
+
+    nominal, runs = job.nominal, len(x)
     k_l, k_r = np.zeros(runs), np.zeros(runs)
     collapse = np.ones(runs)
     ok = np.zeros(runs, dtype=bool)
     t_prep = t_sim = 0.0
-    # in chunks, so that a long run says how far it got
     for start in range(0, runs, _CHUNK):
         sl = slice(start, min(runs, start + _CHUNK))
         ta = time.perf_counter()
-        if movement is not None:
-            pb = prepare_batch(_moved_arches(base, spreads, movement, x[sl]), impact=resolved)
+        if job.movement is not None:
+            pb = prepare_batch(_moved_arches(job.base, job.spreads, job.movement, x[sl]),
+                               impact=resolved)
         elif isinstance(nominal, Arch):
-            spans, thick, radii = arches_from_inputs(nominal, spreads, x[sl])
+            spans, thick, radii = arches_from_inputs(nominal, job.spreads, x[sl])
             pb = prepare_batch(spans, radii, thick, nominal.density, impact=resolved)
         else:
-            pb = prepare_batch(arches_from_inputs(nominal, spreads, x[sl]), impact=resolved)
+            pb = prepare_batch(arches_from_inputs(nominal, job.spreads, x[sl]), impact=resolved)
         tb = time.perf_counter()
         ok[sl] = pb.ok
         k_l[sl] = np.where(pb.ok, pb.k_l, 0.0)
         k_r[sl] = np.where(pb.ok, pb.k_r, 0.0)
         if built is not None:
-            res = simulate_batch(pb, built, dt=dt, t_free=t_free)
+            res = simulate_batch(pb, built, dt=steps[0], t_free=steps[1])
             collapse[sl] = np.where(pb.ok, res["status"] == ST_COLLAPSED, True)
         tc = time.perf_counter()
         t_prep += tb - ta
@@ -401,9 +454,13 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
     ys = {"k_l": k_l, "k_r": k_r, "k": np.minimum(k_l, k_r)}
     if built is not None:
         ys["collapse"] = collapse
-    t_an = time.perf_counter()
-    G = len(names)
-    shape = (len(ys), G)
+    return ys, ok, t_prep, t_sim
+
+
+def _analyse(analyze, job: _SobolJob, x, ys: dict) -> tuple:
+    """(S1, S1 interval, ST, ST interval, mean, var, R^2) of each output by SALib (NaN indices
+    of a constant output: nothing to decompose)."""
+    shape = (len(ys), len(job.names))
     s1, s1c, st, stc = (np.full(shape, np.nan) for _ in range(4))
     mean, var, r2 = (np.empty(len(ys)) for _ in range(3))
     for o, y in enumerate(ys.values()):
@@ -413,25 +470,31 @@ def sobol_indices(nominal: VoussoirArch, spreads: Spreads | dict | None = DEFAUL
             var[o] = 0.0  # the rest is rounding noise
             continue  # nothing to decompose: indices undefined (NaN)
         with np.errstate(divide="ignore", invalid="ignore"):
-            si = analyze.analyze(problem, y, calc_second_order=False, conf_level=conf_level,
-                                 num_resamples=int(num_resamples),
+            si = analyze.analyze(job.problem, y, calc_second_order=False,
+                                 conf_level=job.conf_level, num_resamples=job.num_resamples,
                                  # a Generator, not the int: SALib's `if seed:` drops seed 0 and
                                  # the bootstrap intervals then differ from run to run
-                                 seed=np.random.default_rng(int(seed)))
+                                 seed=np.random.default_rng(job.seed))
         s1[o], s1c[o], st[o], stc[o] = si["S1"], si["S1_conf"], si["ST"], si["ST_conf"]
-    t_analyse = time.perf_counter() - t_an
+    return s1, s1c, st, stc, mean, var, r2
+
+
+def _sobol_result(job: _SobolJob, ys: dict, indices: tuple, failed: int, runs: int,
+                  timing: dict) -> SobolResult:
+    """The :class:`SobolResult`, with the sentence of how it was computed."""
+    G = len(job.names)
     how = (f"Saltelli scheme on a scrambled Sobol sequence (SALib.sample.sobol, "
-           f"calc_second_order=False), {int(samples)} base samples x ({G} groups + 2) = {runs} "
-           f"arches through archrock.dynamics.batch; SALib.analyze.sobol with {int(num_resamples)} "
-           f"bootstrap resamples, {conf_level:.0%} intervals")
-    if movement is not None:
-        how += (f"; the supports moved by U x ({movement.describe()}), U = (x + 1) / 2 the input "
-                f"'support', each arch displaced and re-closed "
+           f"calc_second_order=False), {job.samples} base samples x ({G} groups + 2) = {runs} "
+           f"arches through archrock.dynamics.batch; SALib.analyze.sobol with "
+           f"{job.num_resamples} bootstrap resamples, {job.conf_level:.0%} intervals")
+    if job.movement is not None:
+        how += (f"; the supports moved by U x ({job.movement.describe()}), U = (x + 1) / 2 the "
+                f"input 'support', each arch displaced and re-closed "
                 f"(statics.supports.on_moved_supports)")
+    motion, spec = job.motion, job.spec
     return SobolResult(
-        nominal.name, spreads, by, tuple(ys), tuple(names), s1, s1c, st, stc, mean, var, r2,
-        int(samples), runs, int((~ok).sum()), int(seed), float(conf_level),
+        job.nominal.name, job.spreads, job.by, tuple(ys), tuple(job.names), *indices,
+        job.samples, runs, failed, job.seed, job.conf_level,
         None if motion is None else {**motion.to_dict(), "description": motion.describe()},
-        {**spec.to_dict(), "description": spec.describe()},
-        {"prepare": t_prep, "simulate": t_sim, "analyse": t_analyse}, how,
-        None if movement is None else movement.to_dict())
+        {**spec.to_dict(), "description": spec.describe()}, timing, how,
+        None if job.movement is None else job.movement.to_dict())

@@ -35,14 +35,9 @@ from pathlib import Path
 
 import numpy as np
 
-from typing import TYPE_CHECKING
-
 from ..errors import ArchInputError
 from .checksums import (check_seal, check_sidecar, file_sha256, seal, sidecar_path, write_atomic,
                         write_sidecar)
-
-if TYPE_CHECKING:  # imported lazily: the ensemble package imports this module
-    from .ensemble.config import EnsembleConfig
 
 __all__ = ["EnsembleConfigMismatch", "Manifest", "batch_path", "read_batch", "write_batch",
            "written_by", "same_bits", "code_digest", "is_damage", "say_damage", "MANIFEST",
@@ -135,16 +130,16 @@ def _code_digest() -> str:
     return _package_digest()
 
 
-def _config_hash(config: EnsembleConfig) -> str:
+def _config_hash(config) -> str:
     return config.config_hash()  # from archrock 0.4's form of the configuration
 
 
-def _provenance(config: EnsembleConfig, b: int) -> dict:
+def _provenance(config, b: int) -> dict:
     return {"format": FORMAT, "config_sha256": _config_hash(config), "batch": int(b),
             "code_sha256": _code_digest()}
 
 
-def write_batch(out: Path, b: int, df, config: EnsembleConfig) -> None:
+def write_batch(out: Path, b: int, df, config) -> None:
     """Write batch ``b``'s table atomically, with its provenance in the Parquet metadata."""
     import pyarrow as pa
 
@@ -204,7 +199,7 @@ def same_bits(old, new) -> str | None:
     return None
 
 
-def read_batch(out: Path, b: int, config: EnsembleConfig, any_code: bool = False):
+def read_batch(out: Path, b: int, config, any_code: bool = False):
     """(DataFrame, None) for a verified batch file; (None, None) when there is none; (None,
     reason) when the file exists but cannot be used (it is then recomputed).  ``any_code``: a
     file written by other archrock sources is returned too (the caller verifies it, see
@@ -239,11 +234,9 @@ def _legacy_sha256(path: Path) -> tuple:
         return f"unreadable ({exc.strerror or type(exc).__name__})", None
 
 
-def _read_checked(path: Path, b: int, config: EnsembleConfig, any_code: bool):
+def _read_checked(path: Path, b: int, config, any_code: bool):
     """:func:`read_batch` of a file whose checksum was checked: its provenance and rows."""
     import pyarrow.parquet as pq
-
-    from .ensemble.compute import COLUMNS
 
     try:
         table = pq.read_table(path)
@@ -271,7 +264,19 @@ def _read_checked(path: Path, b: int, config: EnsembleConfig, any_code: bool):
     return df, None
 
 
-#: a batch's columns by kind (:data:`archrock.studies.ensemble.compute.COLUMNS`)
+#: Columns of a batch's table (one row per sample).  Times [s]: t_collapse, the last upward
+#: passage of the unstable position before the rotation limit (the physical collapse time, which
+#: the limit does not move); t_limit, when the limit (a numerical stop) was reached; t_unstable,
+#: the first passage of the unstable position (NaN if never).  early_stopped: the arch was no
+#: longer followed once it could not collapse (EnsembleConfig.early_stop; status "stopped":
+#: peak final, n_impacts / n_activations only those before the stop, no rest).  error: '' for an
+#: arch that was analysed, else why it was left out: the text of the
+#: :class:`~archrock.leftout.LeftOut` it was refused with (a table and its Parquet file hold
+#: text, as every release since 0.4 wrote it), read back by :meth:`~archrock.leftout.LeftOut.read`.
+COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
+           "status", "peak", "t_collapse", "t_limit", "t_unstable", "n_impacts", "n_activations",
+           "events_truncated", "early_stopped", "error"]
+#: a batch's columns by kind (:data:`COLUMNS`)
 _INTS = ("batch", "index", "n_impacts", "n_activations")
 _BOOLS = ("collapsed", "events_truncated", "early_stopped")
 _FLOATS = ("k_l", "k_r", "c_l_to_r", "c_r_to_l", "peak", "t_collapse", "t_limit", "t_unstable")
@@ -352,7 +357,7 @@ class Manifest:
     """``manifest.json`` of an output folder: created, or checked against ``config`` (raises
     :class:`EnsembleConfigMismatch` naming the first differing field); each run is appended."""
 
-    def __init__(self, out: Path, config: EnsembleConfig, impact: dict, nominal: dict):
+    def __init__(self, out: Path, config, impact: dict, nominal: dict):
         self.out = out
         self.path = out / MANIFEST
         try:
@@ -373,9 +378,7 @@ class Manifest:
                     f"out: {str(self.path)!r} is damaged (its config, runs or batches are "
                     f"missing), so what it records cannot be trusted; use another output "
                     f"folder, or delete this one to start again")
-            from .ensemble.config import EnsembleConfig
-
-            old = EnsembleConfig.upgrade_dict(data.get("config", {}))  # 0.4-0.6's keys too
+            old = type(config).upgrade_dict(data.get("config", {}))  # 0.4-0.6's keys too
             diff = _config_differences(old, cfg)
             if diff:
                 a, b = _flatten(old), _flatten(cfg)

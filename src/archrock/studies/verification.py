@@ -25,7 +25,7 @@ import numpy as np
 from .._records import readonly_arrays
 from ..contact import EngineSettings, engine_respond
 from ..errors import ArchInputError, LimitExceededError
-from .runner import UNSET
+from .runner import RunSettings
 from ..geometry import VoussoirArch
 from ..groundmotion import PulseSpec
 from ..dynamics.impact import ImpactSpec
@@ -87,15 +87,12 @@ class VerifyResult:
 
 def verify(arch: VoussoirArch, amplitudes, durations, *, pulse: str = "oppenheim",
            settings: EngineSettings | None = None, t_free: float = 20.0,
-           progress=UNSET, run_settings=None) -> VerifyResult:
+           run_settings=None) -> VerifyResult:
     """Run the engine and the two four-link models on every (duration, amplitude) of the grid.
     settings: the contact engine's; run_settings: how it runs (a
     :class:`~archrock.studies.runner.RunSettings`, named so beside the engine's settings),
-    whose ``progress`` gets a line per grid point (0.6's ``progress=`` with a
-    DeprecationWarning)."""
-    from .runner import resolve_settings
-
-    progress = resolve_settings(run_settings, "verify", progress=progress).only("verify").sink
+    whose ``progress`` gets a line per grid point."""
+    progress = RunSettings.from_dict(run_settings).only("verify").sink
     amps = np.asarray(amplitudes, float).ravel()
     durs = np.asarray(durations, float).ravel()
     if amps.size == 0 or durs.size == 0 or not np.all(np.isfinite(amps)) or np.any(amps == 0):
@@ -340,8 +337,8 @@ def ramp_cost_s(settings: EngineSettings, ramp_options: dict | None = None) -> f
 
 
 def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | None = None,
-                    k_tol: float = DEFAULT_K_TOL, workers=UNSET, ramp_options=None,
-                    progress=UNSET, run_settings=None) -> EnsembleVerifyResult:
+                    k_tol: float = DEFAULT_K_TOL, ramp_options=None,
+                    run_settings=None) -> EnsembleVerifyResult:
     """The contact engine against the four-link model's mechanisms, arch by arch, over an
     ensemble (module docstring).
 
@@ -352,38 +349,12 @@ def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | 
     slide_threshold of :func:`~archrock.contact.ramp_direction`; run_settings: how it runs (a
     :class:`~archrock.studies.runner.RunSettings`, named so beside the engine's settings):
     ``workers`` > 1 a process pool of that many, one arch per task (results never depend on
-    it), ``progress`` a line per arch (0.6's ``workers=`` and ``progress=`` with a
-    DeprecationWarning).  Bounded by :func:`~archrock.studies.work.check_work`
+    it), ``progress`` a line per arch.  Bounded by :func:`~archrock.studies.work.check_work`
     (:data:`ENGINE_RAMP_S` an arch)."""
-    from ..geometry.sampling import ArchSampler
-    from .runner import resolve_settings
     from .work import check_work
 
-    run = resolve_settings(run_settings, "verify_ensemble", workers=workers,
-                           progress=progress).only("verify_ensemble", "workers")
-    progress = run.sink
-
-    sampler = arches if isinstance(arches, ArchSampler) else None
-    if sampler is not None:
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-            raise ArchInputError(f"n: {n!r}; allowed an integer >= 1 (arches of the sampler)")
-        items = list(range(int(n)))
-    else:
-        try:
-            arch_list = list(arches)
-        except TypeError:
-            raise ArchInputError(f"arches: expected an ArchSampler or a sequence of arches, got "
-                                 f"{type(arches).__name__}") from None
-        if not arch_list or not all(isinstance(a, VoussoirArch) for a in arch_list):
-            raise ArchInputError("arches: expected an ArchSampler or a non-empty sequence of "
-                                 "VoussoirArch")
-        if n is not None:
-            if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or \
-                    not 1 <= n <= len(arch_list):
-                raise ArchInputError(f"n: {n!r}; allowed 1 <= n <= {len(arch_list)} (the "
-                                     f"arches given) or None")
-            arch_list = arch_list[:int(n)]
-        items = list(range(len(arch_list)))
+    run = RunSettings.from_dict(run_settings).only("verify_ensemble", "workers")
+    sampler, arch_list, items = _ensemble_arches(arches, n)
     if isinstance(k_tol, bool) or not isinstance(k_tol, (int, float)) or not 0 < k_tol < 1:
         raise ArchInputError(f"k_tol: {k_tol!r}; allowed 0 < k_tol < 1")
     workers = run.workers or 1
@@ -396,28 +367,15 @@ def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | 
                ramp_cost_s(settings, opts), "give fewer arches (--samples) or more --workers",
                workers=workers, kernel=False)
     results: dict = {}
+    progress = run.sink
 
     def done(chk: ArchCheck):
         results[chk.index] = chk
         if progress:
-            what = "agree" if chk.agree else "; ".join(
-                f"{d.direction}: {', '.join(d.differences)}" for d in (chk.l, chk.r)
-                if not d.agree)
-            progress(f"{len(results)}/{len(items)}: arch {chk.index}: k_l {chk.l.k_engine:.4f} "
-                     f"(four-link {chk.l.k_four_link:.4f}), k_r {chk.r.k_engine:.4f} "
-                     f"({chk.r.k_four_link:.4f}): {what}")
+            progress(_check_line(chk, len(results), len(items)))
 
     if workers > 1 and len(items) > 1:
-        from concurrent.futures import as_completed
-
-        from .ensemble.executors import worker_pool
-
-        sd = settings.to_dict()
-        with worker_pool(min(workers, len(items)), spawn=True) as pool:
-            futs = [pool.submit(_pool_check, i, sampler if sampler is not None else arch_list[i],
-                                sd, float(k_tol), opts) for i in items]
-            for fut in as_completed(futs):
-                done(fut.result())
+        _checks_in_pool(items, sampler, arch_list, settings, float(k_tol), opts, workers, done)
     else:
         for i in items:
             arch = sampler.arch(i) if sampler is not None else arch_list[i]
@@ -425,3 +383,53 @@ def verify_ensemble(arches, n: int | None = None, *, settings: EngineSettings | 
     return EnsembleVerifyResult(tuple(results[i] for i in items), settings, float(k_tol),
                                 {**_ramp_defaults(), **opts},
                                 None if sampler is None else sampler.to_dict())
+
+
+def _ensemble_arches(arches, n) -> tuple:
+    """(sampler or None, list of arches or None, the indices to check) of
+    :func:`verify_ensemble`'s ``arches`` and ``n``, refused by name."""
+    from ..geometry.sampling import ArchSampler
+
+    if isinstance(arches, ArchSampler):
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ArchInputError(f"n: {n!r}; allowed an integer >= 1 (arches of the sampler)")
+        return arches, None, list(range(int(n)))
+    try:
+        arch_list = list(arches)
+    except TypeError:
+        raise ArchInputError(f"arches: expected an ArchSampler or a sequence of arches, got "
+                             f"{type(arches).__name__}") from None
+    if not arch_list or not all(isinstance(a, VoussoirArch) for a in arch_list):
+        raise ArchInputError("arches: expected an ArchSampler or a non-empty sequence of "
+                             "VoussoirArch")
+    if n is not None:
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or \
+                not 1 <= n <= len(arch_list):
+            raise ArchInputError(f"n: {n!r}; allowed 1 <= n <= {len(arch_list)} (the "
+                                 f"arches given) or None")
+        arch_list = arch_list[:int(n)]
+    return None, arch_list, list(range(len(arch_list)))
+
+
+def _check_line(chk: ArchCheck, done: int, total: int) -> str:
+    """The progress line of one arch checked."""
+    what = "agree" if chk.agree else "; ".join(
+        f"{d.direction}: {', '.join(d.differences)}" for d in (chk.l, chk.r) if not d.agree)
+    return (f"{done}/{total}: arch {chk.index}: k_l {chk.l.k_engine:.4f} "
+            f"(four-link {chk.l.k_four_link:.4f}), k_r {chk.r.k_engine:.4f} "
+            f"({chk.r.k_four_link:.4f}): {what}")
+
+
+def _checks_in_pool(items, sampler, arch_list, settings, k_tol, opts, workers, done) -> None:
+    """:func:`_check_arch` of the items in a process pool, one arch per task, each result
+    given to ``done`` as it finishes."""
+    from concurrent.futures import as_completed
+
+    from .ensemble.executors import worker_pool
+
+    sd = settings.to_dict()
+    with worker_pool(min(workers, len(items)), spawn=True) as pool:
+        futs = [pool.submit(_pool_check, i, sampler if sampler is not None else arch_list[i],
+                            sd, k_tol, opts) for i in items]
+        for fut in as_completed(futs):
+            done(fut.result())

@@ -30,11 +30,12 @@ import numpy as np
 from ...errors import ArchInputError, EnergyGainError, ImpactModelError
 from ...geometry import power_of_two_near
 from ..fourlink import FourLink
-from .spec import IMPACT_MODELS
 
 __all__ = ["ImpactLaw", "impact_law", "paper_rate_ratio", "momentum_rate_ratio",
            "EnergyGainWarning", "projection_ratio", "fallback_note"]
 
+#: The impact models an ImpactSpec can name (the laws below, and the least-loss choice).
+IMPACT_MODELS = ("paper", "momentum", "fixed", "least-loss")
 #: The models that give a rate ratio per direction (least-loss builds a chain on top of momentum).
 _LAW_MODELS = tuple(m for m in IMPACT_MODELS if m != "least-loss")
 

@@ -39,11 +39,10 @@ import warnings
 from dataclasses import dataclass
 
 from ...errors import ArchInputError, ImpactModelError
+from .laws import IMPACT_MODELS, impact_law
 
 __all__ = ["ImpactSpec", "PAPER_PRACTICE", "IMPACT_MODELS", "FALLBACK_MODELS", "nominal_cv"]
 
-#: The impact models an ImpactSpec can name.
-IMPACT_MODELS = ("paper", "momentum", "fixed", "least-loss")
 _ON = ("arch", "nominal")
 #: What the paper model may fall back to where it cannot be used (ImpactSpec.fallback).
 FALLBACK_MODELS = ("momentum",)
@@ -221,7 +220,6 @@ _NOMINAL_CV: dict = {}
 def _evaluate_cv(arch, model: str, fallback: str | None) -> tuple[float, str | None]:
     from ...statics.limit import limit_analysis
     from ..fourlink import four_link
-    from .laws import impact_law
 
     lim = limit_analysis(arch, verify=False)
     # Where a joint of the nominal arch lifts off, its own mechanism has no four-link model; the

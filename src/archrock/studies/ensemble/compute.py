@@ -20,22 +20,10 @@ import numpy as np
 
 from ...dynamics.batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, prepare_batch, simulate_batch
 from ...errors import ArchInputError
+from ..store import COLUMNS
 from .config import EnsembleConfig
 
 __all__ = ["COLUMNS", "run_batch", "run_batches", "sample_arch"]
-
-#: Columns of a batch's table (one row per sample).  Times [s]: t_collapse, the last upward
-#: passage of the unstable position before the rotation limit (the physical collapse time, which
-#: the limit does not move); t_limit, when the limit (a numerical stop) was reached; t_unstable,
-#: the first passage of the unstable position (NaN if never).  early_stopped: the arch was no
-#: longer followed once it could not collapse (EnsembleConfig.early_stop; status "stopped":
-#: peak final, n_impacts / n_activations only those before the stop, no rest).  error: '' for an
-#: arch that was analysed, else why it was left out: the text of the
-#: :class:`~archrock.leftout.LeftOut` it was refused with (a table and its Parquet file hold
-#: text, as every release since 0.4 wrote it), read back by :meth:`~archrock.leftout.LeftOut.read`.
-COLUMNS = ["batch", "index", "k_l", "k_r", "mech_l", "mech_r", "c_l_to_r", "c_r_to_l", "collapsed",
-           "status", "peak", "t_collapse", "t_limit", "t_unstable", "n_impacts", "n_activations",
-           "events_truncated", "early_stopped", "error"]
 
 
 def _on_moved_supports(arch, movement):
@@ -86,56 +74,86 @@ def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
     rows are those of :func:`run_batch` batch by batch (every arch is computed on its own);
     only the Python around the compiled loops is paid once.  Timings are shared out in
     proportion to the batches' sizes.  Returns [(b, DataFrame, timings), ...]."""
-    import pandas as pd
-
     t0 = time.perf_counter()
+    bs = _consecutive(cfg, batches)
+    start = cfg.batch_range(bs[0])[0]
+    last, n_last = cfg.batch_range(bs[-1])
+    nb = last + n_last - start
+    pb = _prepare_group(cfg, start, nb, parallel)
+    error = pb.error.copy()  # as prepared, before the responses
+    res, status, sim_seconds = _responses(cfg, pb, error, nb, parallel)
+    table = _group_table(cfg, bs, start, pb, res, status, error)
+    prepare_s = float(sum(pb.seconds.values()))
+    total_s = time.perf_counter() - t0
+    out = []
+    # the group's table cut into the batches' tables (copy-on-write slices: building a table
+    # per batch converted every string column again)
+    for b in bs:
+        lo, count = cfg.batch_range(b)
+        lo -= start
+        df = table.iloc[lo:lo + count].reset_index(drop=True)
+        share = count / nb
+        out.append((b, df, {"prepare_s": prepare_s * share, "response_s": float(sim_seconds) * share,
+                            "total_s": total_s * share, "pid": os.getpid()}))
+    return out
+
+
+def _consecutive(cfg: EnsembleConfig, batches) -> list[int]:
+    """``batches`` as a list of consecutive batch numbers of the ensemble, or refused."""
     bs = [int(b) for b in batches]
     if not bs or any(not 0 <= b < cfg.n_batches for b in bs):
         raise ArchInputError(f"batches: {bs}; allowed consecutive batches in 0..{cfg.n_batches - 1}")
     if bs != list(range(bs[0], bs[0] + len(bs))):
         raise ArchInputError(f"batches: {bs}; allowed consecutive batches")
-    sampler = cfg.sampler
-    start = cfg.batch_range(bs[0])[0]
-    last, n_last = cfg.batch_range(bs[-1])
-    nb = last + n_last - start
-    if cfg.support is not None:  # each arch on its moved supports, as an object
-        pb = prepare_batch([_on_moved_supports(a, mv) for a, mv in
-                            zip(sampler.arches(start, nb), cfg.movements(start, nb))],
-                           impact=cfg.impact.resolved(cfg.analysed_nominal), parallel=parallel)
-    elif sampler.circular:
-        spans, thick, radii = sampler.draw(start, nb)
-        pb = prepare_batch(spans, radii, thick, sampler.nominal.density,
-                           impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
-    else:  # any other family: drawn as arrays, row for row the arches' (invalid draws
-        # carry their reason)
-        from .familybatch import prepare_family_batch
+    return bs
 
-        pb = prepare_family_batch(sampler, start, nb, impact=cfg.impact.resolved(sampler.nominal),
-                                  parallel=parallel)
-    motion = cfg.motion.build() if cfg.motion is not None else None
-    error = pb.error.copy()
-    if motion is not None:
-        res = simulate_batch(pb, motion, dt=cfg.dt, t_free=cfg.t_free, parallel=parallel,
-                             tabulate=cfg.tabulate, max_events=MAX_EVENTS,
-                             early_stop=cfg.early_stop)
-        st = res["status"]
-        # status names by table look-up (codes -1 .. 3), not arch by arch
-        names = np.array(["failed"] + [STATUS_NAMES.get(c, "failed") for c in range(4)],
-                         dtype=object)
-        status = names[np.clip(st, ST_NOT_RUN, 3) + 1]
-        sim_seconds = res["seconds"]
-    else:
+
+def _prepare_group(cfg: EnsembleConfig, start: int, nb: int, parallel: bool):
+    """The prepared batch (:func:`~archrock.dynamics.batch.prepare_batch`) of samples start ..
+    start + nb - 1."""
+    sampler = cfg.sampler
+    if cfg.support is not None:  # each arch on its moved supports, as an object
+        return prepare_batch([_on_moved_supports(a, mv) for a, mv in
+                              zip(sampler.arches(start, nb), cfg.movements(start, nb))],
+                             impact=cfg.impact.resolved(cfg.analysed_nominal), parallel=parallel)
+    if sampler.circular:
+        spans, thick, radii = sampler.draw(start, nb)
+        return prepare_batch(spans, radii, thick, sampler.nominal.density,
+                             impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
+    # any other family: drawn as arrays, row for row the arches' (invalid draws carry their
+    # reason)
+    from .familybatch import prepare_family_batch
+
+    return prepare_family_batch(sampler, start, nb, impact=cfg.impact.resolved(sampler.nominal),
+                                parallel=parallel)
+
+
+def _responses(cfg: EnsembleConfig, pb, error, nb: int, parallel: bool) -> tuple:
+    """(response columns, status names, seconds of the responses) of the prepared arches; on
+    rigid ground without a motion: NaN and zero columns, status "limit-only" or "failed"."""
+    if cfg.motion is None:
         res = {"peak": np.full(nb, np.nan), "t_collapse": np.full(nb, np.nan),
-               "t_limit": np.full(nb, np.nan), "t_unstable": np.full(nb, np.nan), "n_impacts": np.zeros(nb, dtype=np.int64),
+               "t_limit": np.full(nb, np.nan), "t_unstable": np.full(nb, np.nan),
+               "n_impacts": np.zeros(nb, dtype=np.int64),
                "n_activations": np.zeros(nb, dtype=np.int64),
                "events_truncated": np.zeros(nb, dtype=bool),
                "early_stopped": np.zeros(nb, dtype=bool)}
-        status = np.where(error == "", "limit-only", "failed").astype(object)
-        sim_seconds = 0.0
-    # one table for the group, cut into the batches' tables (copy-on-write slices: building a
-    # table per batch converted every string column again)
+        return res, np.where(error == "", "limit-only", "failed").astype(object), 0.0
+    res = simulate_batch(pb, cfg.motion.build(), dt=cfg.dt, t_free=cfg.t_free, parallel=parallel,
+                         tabulate=cfg.tabulate, max_events=MAX_EVENTS, early_stop=cfg.early_stop)
+    # status names by table look-up (codes -1 .. 3), not arch by arch
+    names = np.array(["failed"] + [STATUS_NAMES.get(c, "failed") for c in range(4)],
+                     dtype=object)
+    return res, names[np.clip(res["status"], ST_NOT_RUN, 3) + 1], res["seconds"]
+
+
+def _group_table(cfg: EnsembleConfig, bs, start: int, pb, res: dict, status, error):
+    """One table (columns :data:`COLUMNS`) of the samples of batches ``bs``."""
+    import pandas as pd
+
+    nb = len(status)
     batch_of = np.concatenate([np.full(cfg.batch_range(b)[1], b, dtype=np.int64) for b in bs])
-    table = pd.DataFrame({
+    return pd.DataFrame({
         "batch": batch_of,
         "index": np.arange(start, start + nb, dtype=np.int64),
         "k_l": pb.k_l, "k_r": pb.k_r,
@@ -152,14 +170,3 @@ def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
         "early_stopped": res["early_stopped"].astype(bool),
         "error": error,
     }, columns=COLUMNS)
-    prepare_s = float(sum(pb.seconds.values()))
-    total_s = time.perf_counter() - t0
-    out = []
-    for b in bs:
-        lo, count = cfg.batch_range(b)
-        lo -= start
-        df = table.iloc[lo:lo + count].reset_index(drop=True)
-        share = count / nb
-        out.append((b, df, {"prepare_s": prepare_s * share, "response_s": float(sim_seconds) * share,
-                            "total_s": total_s * share, "pid": os.getpid()}))
-    return out

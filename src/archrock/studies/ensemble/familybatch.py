@@ -60,45 +60,19 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
     t0 = time.perf_counter()
     spec = _spec(impact, cv, nominal)
     B = int(count)
-    if survey:
-        plan = survey_plan(sampler.nominal)
-        bp = survey_properties(plan, sampler.uniforms(start, B), sampler.spreads, parallel)
-    else:
-        plan = family_plan(sampler.nominal)
-        bp = batch_properties(plan, sampler.uniforms(start, B), sampler.spreads, parallel)
-    state = bp["state"]
-    density = plan.density
+    plan, bp = _draw(sampler, start, B, survey, parallel)
     areas, cen, polar, jp = bp["areas"], bp["centroids"], bp["polar"], bp["joint_points"]
     size = bp["size"].copy()
     # far from the origin, arch_sums would shift its moments: such rows go as objects
-    far = (state == OK) & ~(np.max(np.abs(jp), axis=(1, 2, 3)) <= 8.0 * size)
-    state = np.where(far, -1, state)
-    error = np.full(B, "", dtype=object)
-    objects = {}
-    for b in np.flatnonzero(state != OK):
-        if state[b] == REFUSED:
-            why = survey_refusal(bp["index"][b]) if survey else \
-                refusal_message(bp["code"][b], bp["index"][b], bp["side"][b])
-            error[b] = _row_error(InvalidSampleError(f"not a valid arch: {why}"))
-            continue
-        try:
-            objects[b] = sampler.arch(int(start + b))
-        except InvalidSampleError as exc:
-            error[b] = _row_error(exc)
+    far = (bp["state"] == OK) & ~(np.max(np.abs(jp), axis=(1, 2, 3)) <= 8.0 * size)
+    state = np.where(far, -1, bp["state"])
+    error, objects = _refused_and_objects(sampler, start, bp, state, survey)
     certified = state == OK
     ref = np.ones(B)
     ref[certified] = power_of_two_near(size[certified])
-    # arch_sums of every row, stacked: weights per unit total area and their moments
-    with np.errstate(all="ignore"):
-        w = areas / np.where(certified, bp["area_sum"], 1.0)[:, None]
-        g = cen / ref[:, None, None]
-        zero = np.zeros((B, 1))
-        sums = [np.concatenate([zero, np.cumsum(w, axis=1)], axis=1),
-                np.concatenate([zero, np.cumsum(w * g[..., 0], axis=1)], axis=1),
-                np.concatenate([zero, np.cumsum(w * g[..., 1], axis=1)], axis=1),
-                jp[..., 0] / ref[:, None, None], jp[..., 1] / ref[:, None, None]]
-    mass = density * areas
-    inert = density * polar
+    sums = _stacked_sums(bp, certified, ref)
+    mass = plan.density * areas
+    inert = plan.density * polar
     for b, arch in objects.items():
         for k, arr in enumerate(arch_sums(arch)):
             sums[k][b] = arr[0]
@@ -110,6 +84,63 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
     def arch_of(b):
         return objects[b] if b in objects else sampler.arch(int(start + b))
 
+    k_l, k_r, cand_l, cand_r = _limit_rows(n, B, sums, error, arch_of, parallel)
+    t1 = time.perf_counter()
+    _fill_unusable(error == "", n, jp, mass, cen, inert, ref)
+    px = np.ascontiguousarray(jp[..., 0])
+    py = np.ascontiguousarray(jp[..., 1])
+    return _finish(n, px, py, np.ascontiguousarray(mass), np.ascontiguousarray(cen),
+                   np.ascontiguousarray(inert), ref, k_l, k_r, cand_l, cand_r, error, spec,
+                   arch_of, t0, t1, parallel)
+
+
+def _draw(sampler, start: int, B: int, survey: bool, parallel: bool) -> tuple:
+    """(plan, properties) of the B arches drawn from ``start``: by the survey's compiled
+    drawing where it applies, else by the family's."""
+    if survey:
+        plan = survey_plan(sampler.nominal)
+        return plan, survey_properties(plan, sampler.uniforms(start, B), sampler.spreads,
+                                       parallel)
+    plan = family_plan(sampler.nominal)
+    return plan, batch_properties(plan, sampler.uniforms(start, B), sampler.spreads, parallel)
+
+
+def _refused_and_objects(sampler, start: int, bp: dict, state, survey: bool) -> tuple:
+    """(error per row, {row: arch object}): a refused draw gets its reason; the other rows
+    the arrays cannot take (state not OK) are built as objects (or refused by the sampler)."""
+    error = np.full(len(state), "", dtype=object)
+    objects = {}
+    for b in np.flatnonzero(state != OK):
+        if state[b] == REFUSED:
+            why = survey_refusal(bp["index"][b]) if survey else \
+                refusal_message(bp["code"][b], bp["index"][b], bp["side"][b])
+            error[b] = _row_error(InvalidSampleError(f"not a valid arch: {why}"))
+            continue
+        try:
+            objects[b] = sampler.arch(int(start + b))
+        except InvalidSampleError as exc:
+            error[b] = _row_error(exc)
+    return error, objects
+
+
+def _stacked_sums(bp: dict, certified, ref) -> list:
+    """arch_sums of every row, stacked: weights per unit total area and their moments, and
+    the joints' points, in units of ``ref``."""
+    areas, cen, jp = bp["areas"], bp["centroids"], bp["joint_points"]
+    B = len(ref)
+    with np.errstate(all="ignore"):
+        w = areas / np.where(certified, bp["area_sum"], 1.0)[:, None]
+        g = cen / ref[:, None, None]
+        zero = np.zeros((B, 1))
+        return [np.concatenate([zero, np.cumsum(w, axis=1)], axis=1),
+                np.concatenate([zero, np.cumsum(w * g[..., 0], axis=1)], axis=1),
+                np.concatenate([zero, np.cumsum(w * g[..., 1], axis=1)], axis=1),
+                jp[..., 0] / ref[:, None, None], jp[..., 1] / ref[:, None, None]]
+
+
+def _limit_rows(n: int, B: int, sums: list, error, arch_of, parallel: bool) -> tuple:
+    """(k_l, k_r, cand_l, cand_r) of the rows without an error, by full enumeration; the rows
+    whose limit analysis or lift-off check fails get their reason in ``error``."""
     ok = error == ""
     rows = np.flatnonzero(ok)
     max_seconds = _check_method("auto", None)
@@ -120,8 +151,12 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
     _limit_errors(k_l, k_r, ok, error, arch_of)
     _lift_off_errors(n, lambda r: tuple(np.ascontiguousarray(a[r]) for a in sums), arch_of,
                      k_l, k_r, cand_l, cand_r, error)
-    ok = error == ""
-    t1 = time.perf_counter()
+    return k_l, k_r, cand_l, cand_r
+
+
+def _fill_unusable(ok, n: int, jp, mass, cen, inert, ref) -> None:
+    """The rows not ``ok`` take a usable row's geometry (or the circular stand-in of
+    prepare_batch when none is), so that the compiled preparation runs on every row."""
     if ok.any():
         safe = np.flatnonzero(ok)[0]
         fill = (jp[safe], mass[safe], cen[safe], inert[safe], ref[safe])
@@ -132,8 +167,3 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
         fill = (a.joint_points, a.masses, a.centroids, a.inertias, a.reference_length)
     bad = ~ok
     jp[bad], mass[bad], cen[bad], inert[bad], ref[bad] = fill
-    px = np.ascontiguousarray(jp[..., 0])
-    py = np.ascontiguousarray(jp[..., 1])
-    return _finish(n, px, py, np.ascontiguousarray(mass), np.ascontiguousarray(cen),
-                   np.ascontiguousarray(inert), ref, k_l, k_r, cand_l, cand_r, error, spec,
-                   arch_of, t0, t1, parallel)

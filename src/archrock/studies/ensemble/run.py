@@ -1,5 +1,8 @@
-"""Run (or resume) an ensemble: the batches missing from the output folder are computed, the
-others loaded, and the per-sample tables joined into an :class:`EnsembleResult`."""
+"""Run (or resume) an ensemble, in four steps: check the configuration and run settings,
+decide the dynamics (four-link model or contact engine), prepare the nominal arch (its
+multipliers, mechanisms and impact law, for the manifest and the summary), then the batches
+(:mod:`.resume`: those missing from the output folder are computed, the others loaded) joined
+into an :class:`EnsembleResult`."""
 
 from __future__ import annotations
 
@@ -9,13 +12,10 @@ from ...errors import ArchInputError
 from ...geometry import Arch
 from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
 from .config import EnsembleConfig
-from .executors import execute
 from ..._progress import Progress
 from ..enginestudy import UNSET_FRICTION
-from ..runner import UNSET, resolve_settings
-from .compute import run_batches
-from ..store import (OTHER_CODE, Manifest, batch_path, code_digest, is_damage, read_batch,
-                    same_bits, say_damage, write_batch, written_by)
+from ..runner import RunSettings
+from .resume import EnsembleBatches
 from .summary import EnsembleResult
 
 __all__ = ["run_ensemble"]
@@ -86,9 +86,8 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
                       "cluster (--scheduler)", cores)
 
 
-def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNSET,
-                 progress=UNSET, keep_frame: bool = True, *, out_dir=UNSET,
-                 settings=None, dynamics: str = "auto", engine=None,
+def run_ensemble(config: EnsembleConfig, *, keep_frame: bool = True, settings=None,
+                 dynamics: str = "auto", engine=None,
                  friction=UNSET_FRICTION) -> EnsembleResult:
     """Run (or resume) an ensemble.
 
@@ -96,152 +95,75 @@ def run_ensemble(config: EnsembleConfig, out=UNSET, workers=UNSET, scheduler=UNS
     nothing written, silent): ``out`` the folder of the batches and manifest, resumed if it
     exists; ``workers`` > 1 a local process pool over batches (None or 1: in-process, the numba
     parallel loop); ``scheduler`` a Dask cluster, which takes precedence over ``workers``;
-    ``progress`` the progress protocol of :mod:`archrock._progress`.  The 0.6 keywords ``out``
-    (also positional), ``out_dir``, ``workers``, ``scheduler`` and ``progress`` still work for
-    one release, with a DeprecationWarning.  keep_frame: False keeps no per-sample table in
-    memory (needs ``out``): each batch is written and dropped, the result's ``frame`` is None
+    ``progress`` the progress protocol of :mod:`archrock._progress` (0.7 removed the 0.6
+    keywords ``out``, ``out_dir``, ``workers``, ``scheduler``, ``progress``).
+    keep_frame: False keeps no per-sample table in memory (needs ``out``): each batch is written and dropped, the result's ``frame`` is None
     and its summary is computed from the stored batches
     (:mod:`archrock.studies.ensemble.streaming`), so memory stays that of one batch however
     many samples (10^7 and more).
     dynamics: "auto" (default), "fourlink" or "engine" (:func:`archrock.studies.enginestudy.
     choose_dynamics`): under a motion, where one degree of freedom cannot follow the nominal
     arch (its piers rock with it) or where asked, the arches are run in the contact engine
-    and an :class:`~archrock.studies.enginestudy.EngineEnsembleResult` is returned (nothing
+    and an :class:`~archrock.studies.ensemble.engine.EngineEnsembleResult` is returned (nothing
     stored; ``engine``: its :class:`~archrock.studies.enginestudy.EngineRun`); on rigid ground
     "auto" is the four-link ensemble, unchanged.  The choice is in the summary's nominal
     ("dynamics") where the arch has piers or another dynamics was asked for.  friction: the
     Coulomb coefficient the routing checks the joints against (default the package's; None:
     sliding excluded), the command's one friction, which ``engine`` should use too.
     """
-    import pandas as pd
+    settings = configure(config, keep_frame, settings)
+    choice = decide_dynamics(config, dynamics, friction)
+    if choice.engine and config.motion is not None:  # docs/piers-dynamics.md
+        return _engine_ensemble(config, engine, choice, settings)
+    _check_ensemble_work(config, (settings.workers or 1) if settings.scheduler is None else 1)
+    t_start = time.perf_counter()
+    impact, nominal = prepare_nominal(config, choice)
+    batches = EnsembleBatches(config, settings, keep_frame, impact, nominal, t_start)
+    batches.run()
+    return EnsembleResult(config, batches.frame(), nominal, impact,
+                          batches.timing(settings.workers or 1),
+                          str(settings.out) if settings.out is not None else None)
 
+
+def configure(config: EnsembleConfig, keep_frame, settings) -> RunSettings:
+    """The run settings, once the configuration and ``keep_frame`` are checked."""
     if not isinstance(config, EnsembleConfig):
         raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
-    settings = resolve_settings(settings, "run_ensemble", out=out, out_dir=out_dir,
-                                workers=workers, scheduler=scheduler, progress=progress)
-    workers = settings.workers or 1
-    scheduler, out = settings.scheduler, settings.out
+    settings = RunSettings.from_dict(settings)
     if not isinstance(keep_frame, bool):
         raise ArchInputError(f"keep_frame: {keep_frame!r}; allowed true or false")
-    if not keep_frame and out is None:
+    if not keep_frame and settings.out is None:
         raise ArchInputError("keep_frame: False needs out (the summary is then read from "
                              "the stored batches)")
+    return settings
+
+
+def decide_dynamics(config: EnsembleConfig, dynamics: str, friction):
+    """The dynamics of the ensemble (:func:`archrock.studies.enginestudy.choose_dynamics` on
+    the nominal arch as analysed); it checks ``dynamics`` and ``friction`` first."""
     from ..enginestudy import choose_dynamics
 
-    choice = choose_dynamics(config.analysed_nominal, dynamics,
-                             friction=friction)  # checks the values first
-    if choice.engine and config.motion is not None:  # docs/piers-dynamics.md
-        from ..enginestudy import engine_ensemble
+    return choose_dynamics(config.analysed_nominal, dynamics, friction=friction)
 
-        bar = Progress(config.samples, settings.progress, desc="engine ensemble")
-        try:
-            return engine_ensemble(config, engine, dynamics=choice,
-                                   progress=lambda line: bar.update(1))
-        finally:
-            bar.close()
-    _check_ensemble_work(config, workers if scheduler is None else 1)
-    t_start = time.perf_counter()
+
+def _engine_ensemble(config: EnsembleConfig, engine, choice, settings):
+    """The ensemble run in the contact engine (nothing stored), arch by arch on the bar."""
+    from .engine import engine_ensemble
+
+    bar = Progress(config.samples, settings.progress, desc="engine ensemble")
+    try:
+        return engine_ensemble(config, engine, dynamics=choice,
+                               progress=lambda line: bar.update(1))
+    finally:
+        bar.close()
+
+
+def prepare_nominal(config: EnsembleConfig, choice) -> tuple[dict, dict]:
+    """(impact, nominal) of the manifest and summary: the impact law as applied, and the
+    nominal arch's multipliers and mechanisms (with the dynamics chosen where the arch has
+    piers or another dynamics was asked for; on rigid ground under "auto": as before)."""
     impact = _impact_info(config)
     nominal = _nominal_info(config)
     if choice.single_dof is not None or choice.requested != "auto":
-        nominal["dynamics"] = choice.to_dict()  # rigid ground under "auto": as before
-    manifest = Manifest(out, config, impact, nominal) if out is not None else None
-    frames: dict[int, object] = {}
-    done: set[int] = set()
-    batch_timings: dict[int, dict] = {}
-    todo = []
-    recomputed: dict[int, str] = {}
-    foreign: dict[str, list[int]] = {}  # batches written by other sources, by their digest
-    bar = Progress(config.samples, settings.progress)
-
-    def loaded(b, df):
-        done.add(b)
-        if keep_frame:
-            frames[b] = df
-        manifest.batch_done(b, len(df), {}, computed=False)
-        bar.update(len(df))
-
-    def recompute(b, why):
-        todo.append(b)
-        recomputed[b] = why
-        manifest.run["recomputed"][str(b)] = why
-        line = f"ensemble: recomputing batch {b}: {batch_path(out, b).name} {why}"
-        if is_damage(why):  # never silent, even without progress output
-            say_damage(line, bar.note if bar.enabled else None)
-        else:
-            bar.note(line)
-
-    def finished(b, df, timings):
-        done.add(b)
-        if keep_frame:
-            frames[b] = df
-        batch_timings[b] = timings
-        if out is not None:
-            write_batch(out, b, df, config)
-            manifest.batch_done(b, len(df), timings, computed=True)
-            manifest.save()
-        bar.update(len(df))
-
-    try:
-        mine = code_digest() if out is not None else None
-        for b in range(config.n_batches):
-            df, why = read_batch(out, b, config, any_code=True) if out is not None else (None, None)
-            writer = written_by(out, b) if df is not None else mine
-            if writer != mine:
-                foreign.setdefault(writer, []).append(b)
-            elif df is not None:
-                loaded(b, df)
-            elif why is not None:
-                recompute(b, why)
-            else:
-                todo.append(b)
-            del df
-        for digest, bs in foreign.items():
-            # resume by verification: the first batch of these sources is recomputed here; the
-            # others are kept (and re-stamped with this code's digest) only if it comes out bit
-            # for bit the same, so an older release's folder resumes without recomputing
-            old, _ = read_batch(out, bs[0], config, any_code=True)
-            recomputed[bs[0]] = manifest.run["recomputed"][str(bs[0])] = (
-                f"{OTHER_CODE} ({str(digest)[:12]}): recomputed to verify its other batches")
-            (_, new, timings), = run_batches(config, [bs[0]],
-                                                 settings.executor == "in-process")
-            finished(bs[0], new, timings)
-            differs = same_bits(old, read_batch(out, bs[0], config)[0])
-            del old, new
-            if differs is None:
-                bar.note(f"ensemble: batch {bs[0]}, {OTHER_CODE} ({str(digest)[:12]}), "
-                         f"recomputed bit for bit the same: its {len(bs) - 1} other batch(es) "
-                         f"kept")
-                manifest.run.setdefault("verified", {})[str(digest)] = {
-                    "recomputed_batch": bs[0], "kept": bs[1:]}
-                for b in bs[1:]:
-                    df, _ = read_batch(out, b, config, any_code=True)
-                    write_batch(out, b, df, config)
-                    loaded(b, df)
-                    del df
-            else:
-                for b in bs[1:]:
-                    recompute(b, f"{OTHER_CODE}, whose batch {bs[0]} this code recomputes "
-                                 f"differently ({differs})")
-        todo.sort()
-        if manifest is not None:
-            manifest.save()
-
-        executor = execute(config, todo, finished, settings)
-    finally:
-        bar.close()
-        if manifest is not None:
-            manifest.finish(complete=len(done) == config.n_batches)
-    frame = pd.concat([frames[b] for b in sorted(frames)], ignore_index=True) if keep_frame else None
-    wall = time.perf_counter() - t_start
-    computed = sorted(batch_timings)
-    n_computed = int(sum(config.batch_range(b)[1] for b in computed))
-    timing = {"wall_s": wall, "executor": executor, "workers": workers,
-              "computed_batches": computed, "loaded_batches": sorted(done - set(computed)),
-              "recomputed_batches": {str(b): why for b, why in sorted(recomputed.items())},
-              "computed_samples": n_computed,
-              "samples_per_s": n_computed / wall if n_computed and wall > 0 else None,
-              "prepare_s": float(sum(t["prepare_s"] for t in batch_timings.values())),
-              "response_s": float(sum(t["response_s"] for t in batch_timings.values()))}
-    return EnsembleResult(config, frame, nominal, impact, timing,
-                          str(out) if out is not None else None)
+        nominal["dynamics"] = choice.to_dict()
+    return impact, nominal

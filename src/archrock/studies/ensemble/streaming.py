@@ -30,8 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from ...leftout import REASONS, LeftOut
-from .summary import (INTEGRATED, P_COLLAPSE_RULE, P_FAILURE_RULE, PAPER_RANDOM_ARCHES,
-                      _wilson)
+from .statistics import INTEGRATED, PAPER_RANDOM_ARCHES, probabilities, summary_dict
 
 __all__ = ["summarize_batches", "summarize_store", "SUMMARY_COLUMNS", "QUANTILE_BINS"]
 
@@ -162,70 +161,14 @@ def summarize_batches(batches, config, nominal: dict, impact: dict, timing: dict
     """The summary of :meth:`EnsembleResult.summary` from ``batches()``, a callable returning
     a fresh iterable of batch DataFrames (it is called three times; see the module docstring)."""
     motion = config.motion is not None
-    names = _SERIES if motion else _SERIES[:3]
-    stats = {k: _Stat() for k in names}
-    n_all = 0
-    counts = dict.fromkeys(REASONS, 0)
-    reasons: Counter = Counter()
-    hinges = {"M_l": Counter(), "M_r": Counter()}
-    far = {name: Counter() for name in PAPER_RANDOM_ARCHES}
-    k_ok_n = 0
-    status_counts: Counter = Counter()
-    activated = truncated = unstable_survived = early = collapses = 0
-    k0l, k0r = nominal["k_l"], nominal["k_r"]
-    done_status = INTEGRATED if motion else ("limit-only",)
+    tally = _Tally(motion, nominal)
     for df in batches():
-        n_all += len(df)
-        err = df["error"].to_numpy()
-        status = df["status"].to_numpy()
-        failed = err != ""
-        for e, c in Counter(err[failed].tolist()).items():
-            why = LeftOut.read(e)  # the column holds its text (module docstring of leftout)
-            counts[why.reason] += c
-            reasons[why.group] += c
-        counts["other"] += int((~failed & ~np.isin(status, done_status)).sum())
-        for col, name in (("mech_l", "M_l"), ("mech_r", "M_r")):
-            v = df[col].to_numpy()
-            hinges[name].update(Counter(v[v != ""].tolist()))
-        kl, kr = df["k_l"].to_numpy(float), df["k_r"].to_numpy(float)
-        with np.errstate(invalid="ignore"):
-            k_ok = np.isfinite(kl) & np.isfinite(kr) & (kl > 0) & (kr > 0)
-        kl, kr = kl[k_ok], kr[k_ok]
-        k_ok_n += int(k_ok.sum())
-        for name, (ral, rar) in PAPER_RANDOM_ARCHES.items():
-            dl = np.abs(kl - k0l) >= abs(ral - k0l)
-            dr = np.abs(kr - k0r) >= abs(rar - k0r)
-            asym = np.abs(kl - kr) >= abs(ral - rar)
-            far[name].update({"k_l": int(dl.sum()), "k_r": int(dr.sum()),
-                              "either": int((dl | dr).sum()), "both": int((dl & dr).sum()),
-                              "asymmetry": int(asym.sum())})
-        status_counts.update(Counter(status.tolist()))
-        if motion:
-            ran = np.isin(status, INTEGRATED)
-            col = df["collapsed"].to_numpy(bool)
-            collapses += int((ran & col).sum())
-            activated += int((ran & (df["n_activations"].to_numpy() > 0)).sum())
-            truncated += int((ran & df["events_truncated"].to_numpy(bool)).sum())
-            unstable_survived += int((ran & np.isfinite(df["t_unstable"].to_numpy(float))
-                                      & ~col).sum())
-            if "early_stopped" in df:
-                early += int((ran & df["early_stopped"].to_numpy(bool)).sum())
-        for k, x in _series(df, motion).items():
-            stats[k].pass1(x)
-    for s in stats.values():
-        s.start2()
-    for df in batches():
-        for k, x in _series(df, motion).items():
-            stats[k].pass2(x)
-    for s in stats.values():
-        s.start3()
-    if any(s.want for s in stats.values()):
-        for df in batches():
-            for k, x in _series(df, motion).items():
-                stats[k].pass3(x)
-    res = {k: s.result() for k, s in stats.items()}
+        tally.add(df)
+    res, passes = _quantile_passes(tally.stats, batches, motion)
+    counts, status_counts = tally.counts, tally.status_counts
+    n_all = tally.n_all
     done = "integrated" if motion else "limit_only"
-    counts[done] = int(sum(status_counts[s] for s in done_status))
+    counts[done] = int(sum(status_counts[s] for s in tally.done_status))
     outcomes = {"samples": n_all,
                 "rule": "each sample has exactly one outcome; shares over all samples",
                 "counts": counts,
@@ -233,41 +176,123 @@ def summarize_batches(batches, config, nominal: dict, impact: dict, timing: dict
     if motion:
         outcomes["integrated"] = {k: int(status_counts[k]) for k in INTEGRATED
                                   if k != "stopped" or status_counts[k]}
-    share = (lambda c: c / k_ok_n if k_ok_n else None)
-    out = {
-        "samples": n_all, "seed": config.seed,
-        "spreads": {"span": config.spreads.span, "thickness": config.spreads.thickness,
-                    "radius": config.spreads.radius, "tilt_deg": config.spreads.tilt},
-        "nominal": nominal, "k_l": res["k_l"], "k_r": res["k_r"], "k_min": res["k_min"],
-        "hinge_patterns": {name: dict(c.most_common()) for name, c in hinges.items()},
-        "as_far_as": {name: {"k_l_ref": ral, "k_r_ref": rar,
-                             **{k: share(far[name][k]) for k in
-                                ("k_l", "k_r", "either", "both", "asymmetry")}}
-                      for name, (ral, rar) in PAPER_RANDOM_ARCHES.items()},
-        "failed": {"count": int(sum(reasons.values())), "reasons": dict(reasons)},
-        "outcomes": outcomes, "impact": impact,
-        "motion": None if not motion else config.motion.to_dict(),
-        "p_collapse": None, "p_failure": None, "response": None,
-        "timing": timing or {},
-    }
+    out = summary_dict(config, nominal, impact, timing or {}, n_all,
+                       {k: res[k] for k in ("k_l", "k_r", "k_min")},
+                       {name: dict(c.most_common()) for name, c in tally.hinges.items()},
+                       tally.far_shares(),
+                       {"count": int(sum(tally.reasons.values())),
+                        "reasons": dict(tally.reasons)}, outcomes)
     if motion:
-        n = counts["integrated"]
-        out["p_collapse"] = _wilson(collapses, n, confidence, P_COLLAPSE_RULE, collapses=collapses)
-        cs = counts["cannot_stand"]
-        out["p_failure"] = _wilson(cs + collapses, cs + n, confidence, P_FAILURE_RULE,
-                                   failures=cs + collapses, cannot_stand=cs, collapses=collapses)
-        out["response"] = {
-            "status": {k: int(status_counts[k]) for k in INTEGRATED if status_counts[k]},
-            "activated": activated / n if n else None,
-            "peak_rad": res["peak"], "n_impacts": res["n_impacts"],
-            "early_stopped": early, "events_truncated": truncated,
-            "t_collapse_s": res["t_collapse"], "t_limit_s": res["t_limit"],
-            "t_unstable_s": res["t_unstable"], "unstable_but_survived": unstable_survived,
-        }
-    out["streamed"] = {"passes": 3 if any(s.want for s in stats.values()) else 2,
+        out.update(probabilities(tally.collapses, counts["integrated"],
+                                 counts["cannot_stand"], confidence))
+        out["response"] = tally.response(res, counts["integrated"])
+    out["streamed"] = {"passes": passes,
                        "quantiles": "exact (histogram of %d bins, then the values of the bins "
                                     "holding the order statistics)" % QUANTILE_BINS}
     return out
+
+
+def _quantile_passes(stats: dict, batches, motion: bool) -> tuple[dict, int]:
+    """Passes 2 and 3 (module docstring) of the statistics after the counting pass: (each
+    statistic's figures, passes made in all)."""
+    for s in stats.values():
+        s.start2()
+    for df in batches():
+        for k, x in _series(df, motion).items():
+            stats[k].pass2(x)
+    for s in stats.values():
+        s.start3()
+    third = any(s.want for s in stats.values())
+    if third:
+        for df in batches():
+            for k, x in _series(df, motion).items():
+                stats[k].pass3(x)
+    return {k: s.result() for k, s in stats.items()}, 3 if third else 2
+
+
+class _Tally:
+    """The counting pass (module docstring, 1.) over the batches, one :meth:`add` each."""
+
+    def __init__(self, motion: bool, nominal: dict):
+        self.motion = motion
+        self.k0 = (nominal["k_l"], nominal["k_r"])
+        self.stats = {k: _Stat() for k in (_SERIES if motion else _SERIES[:3])}
+        self.n_all = self.k_ok_n = 0
+        self.counts = dict.fromkeys(REASONS, 0)
+        self.reasons: Counter = Counter()
+        self.hinges = {"M_l": Counter(), "M_r": Counter()}
+        self.far = {name: Counter() for name in PAPER_RANDOM_ARCHES}
+        self.status_counts: Counter = Counter()
+        self.activated = self.truncated = self.unstable_survived = 0
+        self.early = self.collapses = 0
+        self.done_status = INTEGRATED if motion else ("limit-only",)
+
+    def add(self, df) -> None:
+        """Count one batch's outcomes, hinges, "as far as" rows and response flags."""
+        self.n_all += len(df)
+        err = df["error"].to_numpy()
+        status = df["status"].to_numpy()
+        failed = err != ""
+        for e, c in Counter(err[failed].tolist()).items():
+            why = LeftOut.read(e)  # the column holds its text (module docstring of leftout)
+            self.counts[why.reason] += c
+            self.reasons[why.group] += c
+        self.counts["other"] += int((~failed & ~np.isin(status, self.done_status)).sum())
+        for col, name in (("mech_l", "M_l"), ("mech_r", "M_r")):
+            v = df[col].to_numpy()
+            self.hinges[name].update(Counter(v[v != ""].tolist()))
+        self._add_far(df["k_l"].to_numpy(float), df["k_r"].to_numpy(float))
+        self.status_counts.update(Counter(status.tolist()))
+        if self.motion:
+            self._add_response(df, np.isin(status, INTEGRATED))
+        for k, x in _series(df, self.motion).items():
+            self.stats[k].pass1(x)
+
+    def _add_far(self, kl, kr) -> None:
+        with np.errstate(invalid="ignore"):
+            k_ok = np.isfinite(kl) & np.isfinite(kr) & (kl > 0) & (kr > 0)
+        kl, kr = kl[k_ok], kr[k_ok]
+        self.k_ok_n += int(k_ok.sum())
+        k0l, k0r = self.k0
+        for name, (ral, rar) in PAPER_RANDOM_ARCHES.items():
+            dl = np.abs(kl - k0l) >= abs(ral - k0l)
+            dr = np.abs(kr - k0r) >= abs(rar - k0r)
+            asym = np.abs(kl - kr) >= abs(ral - rar)
+            self.far[name].update({"k_l": int(dl.sum()), "k_r": int(dr.sum()),
+                                   "either": int((dl | dr).sum()), "both": int((dl & dr).sum()),
+                                   "asymmetry": int(asym.sum())})
+
+    def _add_response(self, df, ran) -> None:
+        col = df["collapsed"].to_numpy(bool)
+        self.collapses += int((ran & col).sum())
+        self.activated += int((ran & (df["n_activations"].to_numpy() > 0)).sum())
+        self.truncated += int((ran & df["events_truncated"].to_numpy(bool)).sum())
+        self.unstable_survived += int((ran & np.isfinite(df["t_unstable"].to_numpy(float))
+                                       & ~col).sum())
+        if "early_stopped" in df:
+            self.early += int((ran & df["early_stopped"].to_numpy(bool)).sum())
+
+    def far_shares(self) -> dict:
+        """The "as far as RA-x" shares of the standing arches."""
+        def share(c):
+            return c / self.k_ok_n if self.k_ok_n else None
+        return {name: {"k_l_ref": ral, "k_r_ref": rar,
+                       **{k: share(self.far[name][k]) for k in
+                          ("k_l", "k_r", "either", "both", "asymmetry")}}
+                for name, (ral, rar) in PAPER_RANDOM_ARCHES.items()}
+
+    def response(self, res: dict, n: int) -> dict:
+        """The summary's response statistics (``res``: the statistics' figures; n: samples
+        integrated)."""
+        return {
+            "status": {k: int(self.status_counts[k]) for k in INTEGRATED
+                       if self.status_counts[k]},
+            "activated": self.activated / n if n else None,
+            "peak_rad": res["peak"], "n_impacts": res["n_impacts"],
+            "early_stopped": self.early, "events_truncated": self.truncated,
+            "t_collapse_s": res["t_collapse"], "t_limit_s": res["t_limit"],
+            "t_unstable_s": res["t_unstable"], "unstable_but_survived": self.unstable_survived,
+        }
 
 
 def summarize_store(out_dir, config, nominal: dict, impact: dict, timing: dict | None = None,
