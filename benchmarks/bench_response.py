@@ -17,6 +17,7 @@ import os
 for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
     os.environ[_v] = "1"
 
+import json  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 
@@ -114,6 +115,10 @@ def main(quick=False):
     print("\nsummary: ratio fast/reference "
           + ", ".join(f"{k}: {v:.0f}x" for k, v in ratios.items())
           + f"; {rate_many:.0f} responses/s/core (prepared)")
+    # the last line, for machines (docs/scripts/doc_numbers_registry.py reads the ratios)
+    print("json: " + json.dumps({"paper_ratio": round(ratios["paper's case (3 s)"], 1),
+                                 "record_ratio": round(ratios["synthetic 20 s record"], 1),
+                                 "prepared_per_s": round(rate_many, 1)}))
 
 
 if __name__ == "__main__":

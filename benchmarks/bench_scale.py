@@ -50,13 +50,13 @@ class KernelClock:
     """Wraps the compiled parallel loops of the package and adds up the seconds spent in them."""
 
     def __init__(self):
-        from archrock.dynamics import batch
+        from archrock.dynamics import batch, batchsim
         from archrock.statics import kinematic
         from archrock.dynamics.impact import compiled
 
         self.seconds = 0.0
         self._saved = []
-        for mod, name in ((batch, "_prepare_loop_nb"), (batch, "_simulate_loop_nb"),
+        for mod, name in ((batch, "_prepare_loop_nb"), (batchsim, "_simulate_loop_nb"),
                           (kinematic, "_numba_kernel_par"), (compiled, "_loop_nb")):
             fn = getattr(mod, name)
             if fn is None:

@@ -120,3 +120,21 @@ def test_update_rewrites_a_drifted_number_in_the_doc_alone(tmp_path, monkeypatch
     assert [c.split(": ", 1)[1] for c in changes] == ["0.2000 -> 0.3700   (archrock limit)",
                                                       "2,800 -> 2,803   (archrock limit)"]
     assert [dn.check(e).drifted for e in entries] == [[]]
+
+
+def test_a_floor_holds_a_ratio_and_update_leaves_it(tmp_path, monkeypatch):
+    """A speed ratio is quoted as a floor (at_least): any value at or above it agrees, one below
+    it is reported, and --update does not lower the floor."""
+    (tmp_path / "docs").mkdir()
+    readme = tmp_path / "README.md"
+    readme.write_text("at least 300x the reference\n")
+    monkeypatch.setattr(dn, "ROOT", tmp_path)
+    entry = dn.Entry("README.md", "at least {}x the reference", "py:ratio", "json:r",
+                     at_least=True)
+    monkeypatch.setattr(dn, "_OUTPUTS", {"py:ratio": '{"r": 512.3}'})
+    assert dn.check(entry).drifted == []
+    monkeypatch.setattr(dn, "_OUTPUTS", {"py:ratio": '{"r": 299.9}'})
+    found = dn.check(entry)
+    assert found.drifted == [0] and abs(found.values[0] - 299.9) < 1e-9
+    assert dn.update([found]) == []
+    assert readme.read_text() == "at least 300x the reference\n"

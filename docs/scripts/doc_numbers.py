@@ -55,7 +55,10 @@ class Entry:
     exit status the command must end with (3: an outcome quoted from its message); ``order``:
     which of ``read``'s groups each ``{}`` takes, where the output prints them in another order
     (default: the groups in turn); ``skip``: the ``{}`` (by position) read but not compared,
-    because the command does not print them reproducibly (say why beside the entry)."""
+    because the command does not print them reproducibly (say why beside the entry);
+    ``at_least``: each quoted number is a floor, not a value: the command's value must reach it
+    (speed ratios, which vary from run to run with the machine's load), and ``--update`` leaves
+    it alone (a value below its floor is a slowdown to look into, not a number to rewrite)."""
 
     doc: str
     quote: str
@@ -66,6 +69,7 @@ class Entry:
     status: int = 0
     order: tuple = ()
     skip: tuple = ()
+    at_least: bool = False
 
     @property
     def count(self) -> int:
@@ -127,6 +131,11 @@ def agrees(quoted: str, value: float, printed: float = 0.0) -> bool:
     one number: 0.7535 printed 0.753 and quoted 75.4%)."""
     q = parse(quoted)
     return abs(value - q) <= 0.5 * (unit(quoted) + printed) * (1 + 1e-9) + 1e-12 * abs(q)
+
+
+def reaches(quoted: str, value: float, printed: float = 0.0) -> bool:
+    """``value`` is at least the floor ``quoted`` (a speed ratio quoted as "at least 200x")."""
+    return value >= parse(quoted)
 
 
 def formatted(quoted: str, value: float) -> str:
@@ -195,8 +204,9 @@ class Finding:
 
     @property
     def drifted(self) -> list[int]:
+        ok = reaches if self.entry.at_least else agrees
         return [i for i, (q, v, p) in enumerate(zip(self.quoted, self.values, self.printed))
-                if i not in self.entry.skip and not agrees(q, v, p)]
+                if i not in self.entry.skip and not ok(q, v, p)]
 
 
 def json_values(text: str, paths: str) -> list[str] | None:
@@ -258,7 +268,7 @@ def update(findings: list[Finding]) -> list[str]:
     """Rewrite the drifted numbers in their docs; one line per change."""
     changes, by_doc = [], {}
     for f in findings:
-        if not f.problem and f.drifted:
+        if not f.problem and f.drifted and not f.entry.at_least:
             by_doc.setdefault(f.entry.doc, []).append(f)
     for doc, fs in by_doc.items():
         path = ROOT / doc
@@ -386,7 +396,8 @@ def main(argv=None) -> int:
         if f.problem:
             print(f"ERROR {e.doc}: {f.problem}", flush=True)
         for i in f.drifted:
-            print(f"DRIFT {e.doc}:{f.line}: quoted {f.quoted[i]}, {e.key()} gives "
+            print(f"{'BELOW FLOOR' if e.at_least else 'DRIFT'} {e.doc}:{f.line}: quoted "
+                  f"{f.quoted[i]}, {e.key()} gives "
                   f"{formatted(f.quoted[i], f.values[i])} ({f.values[i]:.6g})", flush=True)
     missing = unregistered() + read_before_written()
     for m in missing:

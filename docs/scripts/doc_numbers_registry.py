@@ -526,3 +526,28 @@ UNCHECKED: list[Unchecked] = [
               "the inputs, echoed"),
     Unchecked(PD, "    11    {}\n```", "wall time"),
 ]
+
+
+# --- docs/performance.md: speed ratios, each quoted as a floor (timings vary with the load) ---
+
+def bench_response() -> str:
+    """The JSON last line of ``benchmarks/bench_response.py --quick`` (the ratios fast/reference
+    measured in one run), run in a process of its own: it pins every thread pool to one thread
+    before numpy loads."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    out = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "bench_response.py"),
+                          "--quick"], capture_output=True, text=True, env=env, check=True).stdout
+    return out.rsplit("json: ", 1)[-1]
+
+
+FUNCTIONS[bench_response.__name__] = bench_response
+PERF = "docs/performance.md"
+ENTRIES += [
+    Entry(PERF, "the fast integrator is at least {}x the reference on the paper's case and at "
+                "least {}x on the 20 s record", "py:bench_response",
+          "json:paper_ratio,record_ratio", at_least=True, slow=True),
+]

@@ -196,3 +196,23 @@ def test_table_error_falls_as_the_fourth_power_of_the_interval(model):
     assert np.all(np.isfinite(errs))
     order = math.log(errs[1] / errs[2]) / math.log(8.0)
     assert 3.7 < order < 4.7
+
+
+def test_event_table_grows_and_counts_past_max_events(model):
+    """The paper's case has 98 events, past the table's first EVENT_ROWS: the table grows and
+    keeps every one; with a smaller max_events the run is the same, the table keeps the first
+    max_events rows and the count goes on."""
+    from archrock.groundmotion import oppenheim_pulse
+    from archrock.dynamics.response import respond
+
+    m = oppenheim_pulse(-1.0, 0.2)
+    args = model._kernel_chain(True) + (model.k_l, model.k_r, model.v_rest, m.times, m.accel,
+                                        G, 601, 0.005, 2e-3, 60.0)
+    out, ev, n, st, tf, pk, *_ = K.simulate_chain(*args, 100_000)
+    assert n > K.EVENT_ROWS and ev.shape[0] >= n
+    assert np.count_nonzero(ev[:n, 0] == K.EV_IMPACT) == len(respond(model, m).impacts) == 96
+    out2, ev2, n2, st2, tf2, pk2, *_ = K.simulate_chain(*args, 10)
+    assert n2 == n and st2 == st and ev2.shape[0] == 10
+    np.testing.assert_array_equal(ev2, ev[:10])
+    np.testing.assert_array_equal(out2, out)
+    assert tf2 == tf and pk2 == pk  # the same code path on the same machine

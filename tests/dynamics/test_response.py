@@ -684,3 +684,42 @@ def test_default_keeps_the_papers_law_where_it_can_be_used(nominal, paper_case):
     assert res.to_dict()["restitution"]["fallback"] is None
     # the paper's figures to their four printed decimals
     assert res.impacts[:3] == pytest.approx([0.6012, 2.2294, 3.3706], abs=5e-5)
+
+
+def test_events_decoded_from_the_event_table():
+    """Response.events reads the kernel's rows: one record per row, same times and rates,
+    impacts carrying the energy ratio of the law, the rest from the impact law's rows."""
+    from archrock.dynamics import kernel as K
+
+    model = prepare(geometry.oppenheim_arch(), "paper")
+    r = respond(model, gm.oppenheim_pulse(-1.0, 0.2))
+    table = r.event_table
+    assert not table.flags.writeable and table.shape == (len(r.events), 6)
+    np.testing.assert_array_equal([e.time for e in r.events], table[:, 1])
+    np.testing.assert_array_equal([e.rate_after for e in r.events], table[:, 5])
+    first = r.events[0]
+    assert (first.kind, first.before, first.after) == ("activation", "rest", "l")
+    assert first.row_after == 0
+    impacts = [e for e in r.events if e.kind == "impact" and e.after != "rest"]
+    e_lr = model.impact.energy_l_to_r
+    assert impacts and all(abs(e.energy_ratio - (e_lr if e.before == "l" else
+                                                 model.impact.energy_r_to_l)) < 1e-12
+                           for e in impacts)
+    assert np.count_nonzero(table[:, 0] == K.EV_IMPACT) == len(r.impacts)
+    assert r.events is r.events  # decoded once
+
+
+def test_prepared_chain_reused_without_change():
+    """respond packs the chain once per model: a second run on the same model, and a run on a
+    fresh model, give the same response bit for bit (same code path, same machine)."""
+    arch = geometry.oppenheim_arch()
+    model = prepare(arch, "paper")
+    pulse = gm.oppenheim_pulse(-1.0, 0.2)
+    first, again = respond(model, pulse), respond(model, pulse)
+    fresh = respond(prepare(arch, "paper"), pulse)
+    for r in (again, fresh):
+        np.testing.assert_array_equal(r.response, first.response)
+        np.testing.assert_array_equal(r.event_table, first.event_table)
+        assert (r.peak, r.t_final, r.status) == (first.peak, first.t_final, first.status)
+    exact = respond(model, pulse, tabulate=False)  # the other packed form, cached beside it
+    assert exact.status == first.status and abs(exact.peak - first.peak) < 1e-6

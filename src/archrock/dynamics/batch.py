@@ -13,12 +13,12 @@ parallel loop of the single-response kernel :func:`archrock.dynamics.kernel.simu
   Every arch carries its chain (padded to the batch's longest; the paper's alternation is the
   two rows M_l, M_r).  Arches that cannot be used (invalid geometry, no mechanism, an impact
   model that creates energy) are not dropped: their ``error`` holds the reason.
-* :func:`simulate_batch` integrates one ground motion for every prepared arch with a numba
-  ``prange`` loop over arches (no output samples, ``n_out = 1``), returning per-arch summaries:
-  status, peak, t_collapse (the last upward passage of phi_u before the rotation limit), t_limit
-  (when the limit, a numerical stop, was reached), t_unstable (the first passage of phi_u), number
-  of impacts and of activations, and whether the
-  event table overflowed (``events_truncated``: the outcome is still complete, only the impact
+* :func:`simulate_batch` (:mod:`archrock.dynamics.batchsim`) integrates one ground motion for
+  every prepared arch with a numba ``prange`` loop over arches (no output samples,
+  ``n_out = 1``), returning per-arch summaries: status, peak, t_collapse (the last upward
+  passage of phi_u before the rotation limit), t_limit (when the limit, a numerical stop, was
+  reached), t_unstable (the first passage of phi_u), number of impacts and of activations, and
+  whether the event table overflowed (``events_truncated``: the outcome is still complete, only the impact
   and activation counts are then lower bounds).  Without numba the same loop runs in Python.
 """
 
@@ -30,34 +30,26 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import kernel as K
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError, ArchrockError
 from ..leftout import LeftOut
 from .impact import ImpactSpec, fallback_note
 from ..geometry import Arch, power_of_two_near, sector_properties
-from ..groundmotion import G, GroundMotion
+from ..groundmotion import G
 from ..statics.hinges import _mechanism_from_candidate, candidate_hinges
 from ..statics.kinematic import kinematic_multipliers_arches, kinematic_multipliers_batch
 from ..statics.liftoff import LIFT_OFF_REASON, certify_candidates
 from ..statics.lp import static_multiplier
 from ..statics.sums import _batch_sums, arch_sums
 from .chain import pack_chains
-from .fourlink import (GEO_ERRORS, GEO_SIZE, check_table_intervals, coefficients, dead_point,
-                       init_table, mechanism_geo, rest_rate, rotation_limit, table_range,
-                       table_size, unstable_rotation)
+# the batch's response loop is a module of its own; its names stay importable from here
+from .batchsim import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, simulate_batch
+from .fourbar import (GEO_ERRORS, GEO_SIZE, coefficients, dead_point, mechanism_geo,
+                      rest_rate, rotation_limit, table_range, unstable_rotation)
 
 __all__ = ["PreparedBatch", "check_geometries", "prepare_batch", "simulate_batch",
-           "mechanism_label", "STATUS_NAMES", "MAX_EVENTS"]
+           "mechanism_label", "STATUS_NAMES", "ST_NOT_RUN", "MAX_EVENTS"]
 
-#: status codes of :func:`simulate_batch` (those of the kernel, plus -1 not run / failed).
-STATUS_NAMES = {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving",
-                K.ST_STOPPED: "stopped"}
-ST_NOT_RUN = -1
-#: event-table size per response in the batch kernel (the paper's pulse needs about 100).  The
-#: kernel keeps integrating past it (status, peak and times stay exact); only the counts of
-#: impacts and activations then miss the events beyond the table.
-MAX_EVENTS = 4096
 
 # ---------------------------------------------------------------------------- random geometry
 
@@ -617,129 +609,3 @@ def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
             # the range of FourLink.tabulated(lim), which the one-arch fast integrator reads
             arr["chain_table"][b, j] = table_range(fl.geo, lim, fl.phi_dead)
     return arr
-
-
-# ---------------------------------------------------------------------------- batch kernel
-@maybe_njit
-def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
-                  v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns,
-                  t_lim, n_imp, n_act, n_ev, early_stop):
-    """Integrate arch b over its chain and write its summary into the output arrays (shared by
-    both loops)."""
-    R = n_rows[b]
-    if n_tab > 0:
-        # built interval by interval as the motion reaches them (mechanism.init_table)
-        rows = np.empty((R, table_size(n_tab)))
-        for j in range(R):
-            init_table(rows[j], geos[b, j], tabs[b, j, 0], tabs[b, j, 1], n_tab)
-    else:
-        rows = geos[b, :R].copy()
-    # kernel modes are rows + 1 (0 = rest)
-    _, ev, ne, st, tf, pk, tc, tu = K.simulate_chain_stop(
-        rows, lims[b, :R].copy(), phus[b, :R].copy(), dirs[b, :R].copy(), nexts[b, :R] + 1,
-        ratios[b, :R].copy(), k_l[b], k_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free,
-        max_events, early_stop)
-    m = min(ne, max_events)
-    ni = 0
-    na = 0
-    for e in range(m):
-        if ev[e, 0] == K.EV_IMPACT:
-            ni += 1
-        elif ev[e, 0] == K.EV_ACTIVATION:
-            na += 1
-    status[b] = st  # complete even when the event table overflowed (ne > max_events)
-    peak[b] = pk
-    t_col[b] = tc
-    t_uns[b] = tu
-    t_lim[b] = tf if st == K.ST_COLLAPSED else -1.0
-    n_imp[b] = ni
-    n_act[b] = na
-    n_ev[b] = ne
-
-
-def _simulate_loop_py(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
-                      v_rest, run, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                      t_uns, t_lim, n_imp, n_act, n_ev, early_stop):
-    for b in range(geos.shape[0]):
-        if run[b]:
-            _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
-                          v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col,
-                          t_uns, t_lim, n_imp, n_act, n_ev, early_stop)
-
-
-if HAVE_NUMBA:
-    @maybe_njit(parallel=True)
-    def _simulate_loop_nb(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
-                          v_rest, run, times, accel, g, dt, t_free, max_events, status, peak,
-                          t_col, t_uns, t_lim, n_imp, n_act, n_ev, early_stop):
-        for b in numba.prange(geos.shape[0]):
-            if run[b]:
-                _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts,
-                              ratios, v_rest, times, accel, g, dt, t_free, max_events, status,
-                              peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev, early_stop)
-
-    _simulate_loop_serial = maybe_njit(_simulate_loop_py)
-else:  # pragma: no cover - without numba
-    _simulate_loop_nb = _simulate_loop_serial = None
-
-
-def simulate_batch(prepared: PreparedBatch, motion: GroundMotion, *, dt: float = 2e-3,
-                   t_free: float = 60.0, max_events: int = MAX_EVENTS, parallel: bool = True,
-                   tabulate: bool = True, table_intervals: int = 600,
-                   early_stop: bool = False) -> dict:
-    """Response of every usable arch of ``prepared`` to ``motion`` (RK4 kernel, step ``dt`` [s],
-    free motion after the record at most ``t_free`` [s]).
-
-    Returns a dict of arrays (B,): status (0 rest, 1 collapsed, 2 still moving, -1 not run:
-    unusable arch), peak [rad], t_collapse [s] (the last upward passage of the unstable position
-    before the rotation limit, independent of the limit), t_limit [s] (when the limit, a
-    numerical stop, was reached), t_unstable [s] (its first passage) (each NaN if never), n_impacts,
-    n_activations, events_truncated (more than ``max_events`` events: status, peak and times are
-    still exact, n_impacts and n_activations are lower bounds); plus 'seconds'.
-    ``tabulate``: the kernel reads phi'' from tables of ``table_intervals`` intervals (as
-    ``respond(..., tabulate=True)``, relative error ~2e-9), each interval built inside the loop
-    when the arch's motion first reaches it; otherwise the exact loop closure.
-    ``parallel`` uses the numba prange loop (all numba threads); otherwise a serial compiled loop
-    (for process-pool or Dask workers); a Python loop when numba is absent.
-    ``early_stop``: an arch is no longer followed from the first impact after the ground motion
-    from which it can neither collapse nor exceed its peak (:func:`archrock.dynamics.kernel.cannot_collapse`:
-    energy below every reachable mechanism's barrier under impacts that never add energy); its
-    status is then 3 ("stopped", ``early_stopped`` True): not collapsed, peak and t_unstable
-    final, n_impacts / n_activations only those before the stop, no time of rest.  Status,
-    collapse and peak of every arch are those of the full run.
-    """
-    if not isinstance(motion, GroundMotion):
-        raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
-    t0 = time.perf_counter()
-    B = len(prepared)
-    run = np.ascontiguousarray(prepared.ok)
-    res = {"status": np.full(B, ST_NOT_RUN, dtype=np.int64), "peak": np.full(B, np.nan),
-           "t_collapse": np.full(B, np.nan), "t_limit": np.full(B, np.nan),
-           "t_unstable": np.full(B, np.nan),
-           "n_impacts": np.zeros(B, dtype=np.int64), "n_activations": np.zeros(B, dtype=np.int64),
-           "n_events": np.zeros(B, dtype=np.int64)}
-    times = np.ascontiguousarray(motion.times, dtype=float)
-    accel = np.ascontiguousarray(motion.accel, dtype=float)
-    p = prepared
-    run = run & (p.n_mechanisms >= 2)
-    args = (np.ascontiguousarray(p.chain_geo, dtype=float),
-            np.ascontiguousarray(p.chain_table, dtype=float), p.n_mechanisms.astype(np.int64),
-            check_table_intervals(table_intervals) if tabulate else 0, p.k_l, p.k_r,
-            np.ascontiguousarray(p.chain_limit, dtype=float),
-            np.ascontiguousarray(p.chain_unstable, dtype=float),
-            np.ascontiguousarray(p.chain_direction, dtype=float),
-            np.ascontiguousarray(p.chain_next, dtype=np.int64),
-            np.ascontiguousarray(p.chain_ratio, dtype=float), p.v_rest, run, times, accel, G,
-            float(dt), float(t_free), int(max_events), res["status"], res["peak"],
-            res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_impacts"],
-            res["n_activations"], res["n_events"], bool(early_stop))
-    if HAVE_NUMBA:
-        (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
-    else:
-        _simulate_loop_py(*args)
-    for key in ("t_collapse", "t_limit", "t_unstable"):
-        res[key][res[key] < 0] = np.nan
-    res["events_truncated"] = res.pop("n_events") > int(max_events)
-    res["early_stopped"] = res["status"] == K.ST_STOPPED
-    res["seconds"] = time.perf_counter() - t0
-    return res

@@ -17,7 +17,8 @@ import math
 import numpy as np
 
 from .._jit import maybe_njit
-from .fourlink import fast_coefficients, filling_acceleration, potential, table_acceleration
+from .fourbar import potential
+from .tables import fast_coefficients, filling_acceleration, table_acceleration
 
 # event kinds (column 0 of the event table)
 # EV_COLLAPSE: the last upward passage of phi_u before the limit; EV_LIMIT: the limit reached
@@ -30,6 +31,8 @@ ST_REST, ST_COLLAPSED, ST_MOVING, ST_STOPPED = 0, 1, 2, 3
 STOP_MARGIN = 1e-2
 #: step multiplier in the free motion after the ground motion
 FREE_STEP_FACTOR = 4.0
+#: rows of the event table a run starts with (doubled as needed, up to ``max_events``)
+EVENT_ROWS = 64
 
 
 @maybe_njit
@@ -215,7 +218,13 @@ def _fill_value(out, dt_out, t1, value, start):
 
 
 @maybe_njit
-def _add_event(ev, n_ev, kind, t, mode_before, mode_after, rate_before, rate_after):
+def _add_event(ev, n_ev, max_events, kind, t, mode_before, mode_after, rate_before, rate_after):
+    """Write event ``n_ev`` into the table ``ev``, doubled when full up to ``max_events`` rows
+    (an event past those is only counted).  Returns (table, count)."""
+    if n_ev >= ev.shape[0] and ev.shape[0] < max_events:
+        bigger = np.zeros((min(2 * ev.shape[0], max_events), 6))
+        bigger[:n_ev] = ev[:n_ev]
+        ev = bigger
     if n_ev < ev.shape[0]:
         ev[n_ev, 0] = kind
         ev[n_ev, 1] = t
@@ -223,7 +232,7 @@ def _add_event(ev, n_ev, kind, t, mode_before, mode_after, rate_before, rate_aft
         ev[n_ev, 3] = mode_after
         ev[n_ev, 4] = rate_before
         ev[n_ev, 5] = rate_after
-    return n_ev + 1
+    return ev, n_ev + 1
 
 
 @maybe_njit
@@ -298,7 +307,8 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
     :func:`cannot_collapse`: its outcome (no collapse) and peak are final, its impacts and
     time to rest are not followed."""
     out = np.zeros(n_out)
-    ev = np.zeros((max_events, 6))
+    # a table of max_events rows zeroed up front cost as much as a short response
+    ev = np.zeros((min(max_events, EVENT_ROWS), 6))
     n_ev = 0
     nseg = times.size - 1
     t_motion = times[-1]
@@ -359,7 +369,7 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
             mode = new_mode
             phi = 0.0
             w = 0.0
-            n_ev = _add_event(ev, n_ev, EV_ACTIVATION, t, 0, mode, 0.0, 0.0)
+            ev, n_ev = _add_event(ev, n_ev, max_events, EV_ACTIVATION, t, 0, mode, 0.0, 0.0)
             continue
         geo = geos[mode - 1]
         lim = lims[mode - 1]
@@ -385,7 +395,8 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
             t_up = t + hu
             if t_unstable < 0:
                 t_unstable = t_up
-                n_ev = _add_event(ev, n_ev, EV_UNSTABLE, t_up, mode, mode, w_up, w_up)
+                ev, n_ev = _add_event(ev, n_ev, max_events, EV_UNSTABLE, t_up, mode, mode,
+                                      w_up, w_up)
         if p1 >= lim:
             hc, p1, w1 = _locate(phi, w, t, h, i, times, accel, geo, g, lim, False, p1, w1)
             k_out = _fill(out, dt_out, t, t + hc, phi, w, p1, w1, sign, k_out)
@@ -394,8 +405,9 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
             # (a numerical stop) only ends the run
             t_collapse = t_up if t_up >= 0 else t
             peak = max(peak, lim)
-            n_ev = _add_event(ev, n_ev, EV_COLLAPSE, t_collapse, mode, mode, w_up, w_up)
-            n_ev = _add_event(ev, n_ev, EV_LIMIT, t, mode, mode, w1, 0.0)
+            ev, n_ev = _add_event(ev, n_ev, max_events, EV_COLLAPSE, t_collapse, mode, mode,
+                                  w_up, w_up)
+            ev, n_ev = _add_event(ev, n_ev, max_events, EV_LIMIT, t, mode, mode, w1, 0.0)
             k_out = _fill_value(out, dt_out, 1e300, np.nan, k_out)
             status = ST_COLLAPSED
             break
@@ -407,14 +419,15 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
             w_minus = w1 if w1 < 0 else 0.0
             w_plus = -ratios[mode - 1] * w_minus
             if w_plus < v_rest:
-                n_ev = _add_event(ev, n_ev, EV_IMPACT, t, mode, 0, w_minus, 0.0)
-                n_ev = _add_event(ev, n_ev, EV_REST, t, mode, 0, 0.0, 0.0)
+                ev, n_ev = _add_event(ev, n_ev, max_events, EV_IMPACT, t, mode, 0, w_minus, 0.0)
+                ev, n_ev = _add_event(ev, n_ev, max_events, EV_REST, t, mode, 0, 0.0, 0.0)
                 mode = 0
                 phi = 0.0
                 w = 0.0
             else:
                 new_mode = nexts[mode - 1]
-                n_ev = _add_event(ev, n_ev, EV_IMPACT, t, mode, new_mode, w_minus, w_plus)
+                ev, n_ev = _add_event(ev, n_ev, max_events, EV_IMPACT, t, mode, new_mode,
+                                      w_minus, w_plus)
                 mode = new_mode
                 phi = 0.0
                 w = w_plus

@@ -140,6 +140,65 @@ class DynamicModel:
         mechs, lims, _ = self.chain
         return tuple(fl.tabulated(lim) for fl, lim in zip(mechs, lims))
 
+    @cached_property
+    def steps(self) -> tuple[float, float]:
+        """:func:`default_steps` of the arch: (dt, t_free) [s]."""
+        return default_steps(self.arch)
+
+    def _kernel_chain(self, tabulate: bool) -> tuple[np.ndarray, ...]:
+        """The chain as the arrays :func:`kernel.simulate_chain` reads (rows, limits, unstable
+        rotations, directions, next modes, rate ratios), packed once per model and form so that
+        each :func:`respond` only passes them on.  Private: the kernel never writes into them
+        (the tables are complete, no interval is left to build), but numba wants them
+        writable."""
+        packed = self._packed
+        if tabulate not in packed:
+            c = pack_chains([self.chain], rows=[self.tables] if tabulate else None)
+            packed[tabulate] = (c["rows"][0], c["limit"][0], c["unstable"][0],
+                                c["direction"][0], c["next"][0] + 1, c["ratio"][0])
+        return packed[tabulate]
+
+    @cached_property
+    def _packed(self) -> dict:
+        return {}
+
+    @cached_property
+    def _event_codes(self) -> dict:
+        """(kind, mode before, mode after) of a kernel event -> the fields of its :class:`Event`
+        that do not change from run to run; filled as codes come (:func:`_events`)."""
+        return {}
+
+
+def _event_code(model: DynamicModel, k: int, b: int, a: int) -> tuple:
+    """(kind, before, after, energy ratio, row before, row after, label before, label after) of
+    a kernel event of kind ``k`` from mode ``b`` to mode ``a`` (modes are chain rows + 1, 0 at
+    rest)."""
+    mechs, _, trans = model.chain
+    name = ["rest"] + [fl.direction for fl in mechs]
+    label = [None] + model.labels
+    gain = None
+    if k == K.EV_IMPACT:
+        n, c = trans[b - 1]
+        gain = 0.0
+        if a == n + 1:  # kinetic energy after / before the impact (0: the arch came to rest)
+            m0 = [fl.coefficients(0.0)[0] for fl in mechs]
+            gain = c * c * m0[n] / m0[b - 1]
+    return _KIND_NAME[k], name[b], name[a], gain, b - 1, a - 1, label[b], label[a]
+
+
+def _events(model: DynamicModel, table: np.ndarray) -> tuple:
+    """The :class:`Event` records of the kernel's event table (rows kind, time, mode before,
+    mode after, rate before, rate after)."""
+    codes = model._event_codes
+    new = tuple.__new__
+    events = []
+    for k, t, b, a, rb, ra in table.tolist():
+        c = codes.get((k, b, a))
+        if c is None:
+            c = codes[(k, b, a)] = _event_code(model, int(k), int(b), int(a))
+        events.append(new(Event, (c[0], t, c[1], c[2], rb, ra, c[3], c[4], c[5], c[6], c[7])))
+    return tuple(events)
+
 
 def _label(fl: FourLink) -> str:
     return fl.mechanism.label if fl.mechanism is not None else f"M_{fl.direction}"
@@ -252,13 +311,15 @@ class Response:
     first passage of phi_u (None if never; the arch may come back); t_final [s]: when the run
     ended (at rest, or :attr:`t_limit` after a collapse); status: 'rest', 'collapsed' or
     'moving' (still rocking when the free-motion cap ran out).
+    event_table: the integrator's events as rows (kind code, time [s], mode before, mode after,
+    rate before, rate after [rad/s]); :attr:`events` reads them as :class:`Event` records.
     """
 
     model: DynamicModel = field(repr=False)
     motion: GroundMotion = field(repr=False)
     time: np.ndarray = field(repr=False)
     response: np.ndarray = field(repr=False)
-    events: tuple[Event, ...] = field(repr=False)
+    event_table: np.ndarray = field(repr=False)
     status: str
     peak: float
     t_collapse: float | None
@@ -273,6 +334,13 @@ class Response:
     @property
     def collapsed(self) -> bool:
         return self.status == "collapsed"
+
+    @cached_property
+    def events(self) -> tuple[Event, ...]:
+        """The events of the run, in time order.  Decoded at the first use: a study that reads
+        only the outcome should not pay for records it never reads (the paper's case has about a
+        hundred events; making them took a quarter of the kernel's time)."""
+        return _events(self.model, self.event_table)
 
     @property
     def t_limit(self) -> float | None:
@@ -408,7 +476,7 @@ def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *,
     model = arch_or_model if isinstance(arch_or_model, DynamicModel) else prepare(arch_or_model, impact, cv=cv)
     if not isinstance(motion, GroundMotion):
         raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
-    dt0, t_free0 = default_steps(model.arch)
+    dt0, t_free0 = model.steps
     dt = dt0 if dt is None else dt
     t_free = t_free0 if t_free is None else t_free
     _check_times(t_end, dt_out, dt, t_free)
@@ -417,11 +485,9 @@ def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *,
     accel = np.ascontiguousarray(motion.accel, dtype=float)
     settings = {"t_end": t_end, "dt_out": dt_out, "t_free": t_free}
     if integrator == "fast":
-        c = pack_chains([model.chain], rows=[model.tables] if tabulate else None)
-        res = K.simulate_chain(
-            c["rows"][0], c["limit"][0], c["unstable"][0], c["direction"][0], c["next"][0] + 1,
-            c["ratio"][0], model.k_l, model.k_r, model.v_rest, times, accel, G, n_out, dt_out,
-            dt, t_free, max_events)
+        res = K.simulate_chain(*model._kernel_chain(bool(tabulate)), model.k_l, model.k_r,
+                               model.v_rest, times, accel, G, n_out, dt_out, dt, t_free,
+                               max_events)
         settings.update(dt=dt, tabulated=tabulate, method="RK4 fixed step with event location"
                         + (" (numba)" if HAVE_NUMBA else " (pure Python)"))
     elif integrator == "reference":
@@ -432,17 +498,7 @@ def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *,
     out, ev, n_ev, status, t_final, peak, t_col, t_uns = res
     if n_ev > max_events:
         raise LimitExceededError(f"max_events: more than {max_events} events; raise max_events")
-    mechs, _, trans = model.chain
-    m0 = [fl.coefficients(0.0)[0] for fl in mechs]
-    gain = {(j + 1, n + 1): c * c * m0[n] / m0[j] for j, (n, c) in enumerate(trans)}
-    name = {0: "rest", **{j + 1: fl.direction for j, fl in enumerate(mechs)}}
-    label = {0: None, **{j + 1: lab for j, lab in enumerate(model.labels)}}
-    # kernel modes are chain rows + 1 (0 = rest)
-    events = tuple(Event(_KIND_NAME[int(k)], t, name[int(b)], name[int(a)], rb, ra,
-                         gain.get((int(b), int(a)), 0.0) if k == K.EV_IMPACT else None,
-                         int(b) - 1, int(a) - 1, label[int(b)], label[int(a)])
-                   for k, t, b, a, rb, ra in ev[:n_ev].tolist())
-    return Response(model, motion, np.arange(n_out) * dt_out, out, events,
+    return Response(model, motion, np.arange(n_out) * dt_out, out, ev[:n_ev],
                     {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "moving"}[int(status)],
                     float(peak), None if t_col < 0 else float(t_col), None if t_uns < 0 else float(t_uns),
                     float(t_final), integrator, settings)
