@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import json
 import time
-from pathlib import Path
 
 import numpy as np
+from _figures import FIGURES
 
 from archrock.dynamics.response import prepare
 from archrock.geometry import nominal_arch
@@ -55,8 +55,7 @@ def main():
         out["seconds"] = time.perf_counter() - t0
         rows.append(out)
         print(json.dumps(out), flush=True)
-    here = Path(__file__).resolve().parents[1] / "figures"
-    (here / "supports_fragility.json").write_text(json.dumps(rows, indent=1))
+    (FIGURES / "supports_fragility.json").write_text(json.dumps(rows, indent=1))
 
 
 if __name__ == "__main__":
