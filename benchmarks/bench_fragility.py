@@ -24,19 +24,12 @@ import os
 import time
 
 import numpy as np
-from scipy.signal import butter, sosfilt
 
 
 def synthetic_record(seed: int, duration=20.0, dt=0.01, pga_g=0.4):
-    from archrock.groundmotion import from_samples
+    from archrock.groundmotion import band_limited_noise
 
-    rng = np.random.default_rng(seed)
-    n = int(duration / dt)
-    sos = butter(2, [0.2, 2.5], btype="band", fs=1 / dt, output="sos")
-    x = sosfilt(sos, rng.standard_normal(n))
-    t = np.arange(n) * dt
-    x *= np.sin(np.pi * t / duration) ** 2
-    return from_samples(x * pga_g / np.max(np.abs(x)), dt, name=f"synthetic {seed}")
+    return band_limited_noise(duration, dt, (0.2, 2.5), seed, pga_g, name=f"synthetic {seed}")
 
 
 def _same(a, b) -> bool:

@@ -19,14 +19,18 @@ import statistics
 import time
 
 
-def wait(page, expr, timeout=600.0):
+def wait(page, expr: str, timeout: float = 600.0):
+    """Poll the JS expression ``expr`` every 20 ms until it is truthy; its value (a
+    TimeoutError after ``timeout`` s).  Polled with ``page.evaluate``, which the app's Content
+    Security Policy (no eval) does not govern, unlike ``wait_for_function``; the browser tests
+    (tests/app/test_app_browser.py) poll with it too."""
     end = time.monotonic() + timeout
     while True:
         v = page.evaluate(expr)
         if v:
             return v
         if time.monotonic() > end:
-            raise TimeoutError(expr)
+            raise TimeoutError(f"still false after {timeout:g} s: {expr}")
         time.sleep(0.02)
 
 

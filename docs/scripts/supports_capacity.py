@@ -12,9 +12,8 @@ Usage: PYTHONPATH=src python docs/scripts/supports_capacity.py
 from __future__ import annotations
 
 import json
-from pathlib import Path
-
 import numpy as np
+from _figures import FIGURES, new_axes, save_axes
 
 from archrock.errors import ArchrockError
 from archrock.geometry import nominal_arch
@@ -22,14 +21,8 @@ from archrock.statics.supports import displacement_capacity
 
 
 def main():
-    figs = Path(__file__).resolve().parents[1] / "figures"
-    engine = json.loads((figs / "supports_engine.json").read_text())["semicircles"]
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    engine = json.loads((FIGURES / "supports_engine.json").read_text())["semicircles"]
+    fig, ax = new_axes((6.4, 3.8))
     for n, colour in ((16, "tab:blue"), (36, "tab:red")):
         tr = np.round(np.arange(0.11, 0.3201, 0.01), 2)
         cap = []
@@ -51,10 +44,7 @@ def main():
     ax.set_xlabel("t / R (R: centreline radius)")
     ax.set_ylabel("spreading capacity / R")
     ax.set_title("Semicircle, right support spreading: capacity by two methods", fontsize=9)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(figs / "supports_capacity.png", dpi=110)
+    save_axes(fig, ax, "supports_capacity.png")
 
 
 if __name__ == "__main__":

@@ -11,13 +11,10 @@ Usage: PYTHONPATH=src python docs/scripts/supports_curves.py [--samples 100]
 
 from __future__ import annotations
 
-import argparse
 import json
 import time
-from pathlib import Path
 
-import numpy as np
-
+from _figures import FIGURES, new_axes, samples_arg, save_axes
 from archrock.dynamics.response import prepare
 from archrock.geometry import nominal_arch
 from archrock.geometry.displaced import SupportMovement
@@ -30,17 +27,14 @@ DURATIONS = (0.1, 0.2, 0.3, 0.5, 0.7, 1.0)
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--samples", type=int, default=100)
-    args = ap.parse_args(argv)
-    here = Path(__file__).resolve().parents[1] / "figures"
+    samples = samples_arg(__doc__, 100, argv)
     rows = []
     for kind, d in CASES:
         mv = SupportMovement(d if kind == "spread" else 0.0, d if kind == "settlement" else 0.0)
         arch = on_moved_supports(nominal_arch(), mv)
         t0 = time.perf_counter()
         curve = collapse_curve(prepare(arch), DURATIONS)
-        band = ensemble_curve(arch, args.samples, 0, None, (0.2,))
+        band = ensemble_curve(arch, samples, 0, None, (0.2,))
         rows.append({"kind": kind, "movement_m": d, "k_l": curve.k_l, "k_r": curve.k_r,
                      "durations": list(DURATIONS),
                      "amplitudes_g": [float(a) for a in curve.amplitudes],
@@ -48,12 +42,8 @@ def main(argv=None):
                      "usable": band.n_samples, "requested": band.n_requested,
                      "seconds": time.perf_counter() - t0})
         print(json.dumps(rows[-1]))
-    (here / "supports_curves.json").write_text(json.dumps(rows, indent=1))
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    (FIGURES / "supports_curves.json").write_text(json.dumps(rows, indent=1))
+    fig, ax = new_axes((6.4, 4.0))
     for r in rows:
         lab = "fixed supports" if r["kind"] == "fixed" else f"{r['kind']} {r['movement_m']:g} m"
         ax.plot(r["durations"], r["amplitudes_g"], "o-" if r["kind"] != "settlement" else "s--",
@@ -61,11 +51,7 @@ def main(argv=None):
     ax.set_xlabel("pulse duration t_p [s]")
     ax.set_ylabel("first collapse amplitude |a| [g]")
     ax.set_title("Oppenheim's arch, right support moved (Oppenheim pulse, sign -1)")
-    ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(here / "supports_curves.png", dpi=110)
-    print("wrote", here / "supports_curves.png")
+    print("wrote", save_axes(fig, ax, "supports_curves.png", lw=0.3, alpha=0.5))
 
 
 if __name__ == "__main__":

@@ -9,11 +9,10 @@ Usage: PYTHONPATH=src python docs/scripts/supports_ensemble.py [--samples 1000]
 
 from __future__ import annotations
 
-import argparse
 import json
 import time
-from pathlib import Path
 
+from _figures import FIGURES, new_axes, samples_arg, save_axes
 from archrock.geometry import nominal_arch
 from archrock.geometry.displaced import SupportMovement
 from archrock.groundmotion import PulseSpec
@@ -24,15 +23,12 @@ CASES = [("spread", 0.0), ("spread", 0.1), ("spread", 0.5), ("spread", 1.0), ("s
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--samples", type=int, default=1000)
-    args = ap.parse_args(argv)
-    here = Path(__file__).resolve().parents[1] / "figures"
+    samples = samples_arg(__doc__, 1000, argv)
     rows = []
     for kind, d in CASES:
         mv = SupportMovement(d, 0.0) if kind == "spread" else SupportMovement(0.0, d)
         t0 = time.perf_counter()
-        cfg = EnsembleConfig.from_arch(nominal_arch(), samples=args.samples, seed=0,
+        cfg = EnsembleConfig.from_arch(nominal_arch(), samples=samples, seed=0,
                                        motion=PulseSpec("oppenheim", -1.0, 0.2), support=mv)
         res = run_ensemble(cfg)
         s, f = res.summary(), res.frame
@@ -46,14 +42,9 @@ def main(argv=None):
                "wall_s": time.perf_counter() - t0}
         rows.append(row)
         print(json.dumps(row), flush=True)
-    (here / "supports_ensemble.json").write_text(json.dumps(
-        {"samples": args.samples, "rows": rows}, indent=1))
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    (FIGURES / "supports_ensemble.json").write_text(json.dumps(
+        {"samples": samples, "rows": rows}, indent=1))
+    fig, ax = new_axes((6.4, 3.6))
     for kind, colour in (("spread", "tab:blue"), ("settlement", "tab:red")):
         rr = [r for r in rows if r["kind"] == kind or r["movement_m"] == 0.0]
         x = [r["movement_m"] for r in rr]
@@ -63,12 +54,9 @@ def main(argv=None):
                     label=f"right support {kind}")
     ax.set_xlabel("imposed movement of the right support [m] (span 19.6 m)")
     ax.set_ylabel("P(collapse), 95% Wilson")
-    ax.set_title(f"Oppenheim's arch, {args.samples} irregular arches, pulse -1 g, t_p 0.2 s",
+    ax.set_title(f"Oppenheim's arch, {samples} irregular arches, pulse -1 g, t_p 0.2 s",
                  fontsize=9)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(here / "supports_ensemble.png", dpi=110)
+    save_axes(fig, ax, "supports_ensemble.png")
 
 
 if __name__ == "__main__":

@@ -14,15 +14,14 @@ from __future__ import annotations
 
 import json
 import time
-from pathlib import Path
 
 import numpy as np
-from scipy.signal import butter, sosfilt
+from _figures import FIGURES
 
 from archrock.dynamics.response import prepare
 from archrock.geometry import nominal_arch
 from archrock.geometry.displaced import SupportMovement
-from archrock.groundmotion import from_samples
+from archrock.groundmotion import band_limited_noise
 from archrock.statics.supports import on_moved_supports
 from archrock.studies.ida import ida, random_models
 
@@ -32,13 +31,7 @@ CASES = [("fixed", SupportMovement()), ("spread 0.5 m", SupportMovement(0.5)),
 
 
 def noise_record(seed, duration=8.0, dt=0.01, pga_g=0.3):
-    rng = np.random.default_rng(seed)
-    n = int(duration / dt)
-    sos = butter(2, [0.3, 2.0], btype="band", fs=1 / dt, output="sos")
-    x = sosfilt(sos, rng.standard_normal(n))
-    t = np.arange(n) * dt
-    x *= np.sin(np.pi * t / duration) ** 2
-    return from_samples(x * pga_g / np.max(np.abs(x)), dt, name=f"noise {seed}")
+    return band_limited_noise(duration, dt, (0.3, 2.0), seed, pga_g)
 
 
 def main():
@@ -62,8 +55,7 @@ def main():
         out["seconds"] = time.perf_counter() - t0
         rows.append(out)
         print(json.dumps(out), flush=True)
-    here = Path(__file__).resolve().parents[1] / "figures"
-    (here / "supports_fragility.json").write_text(json.dumps(rows, indent=1))
+    (FIGURES / "supports_fragility.json").write_text(json.dumps(rows, indent=1))
 
 
 if __name__ == "__main__":

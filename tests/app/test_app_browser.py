@@ -7,6 +7,7 @@ Security Policy (no eval: the page is polled with ``page.evaluate``, which the p
 govern, rather than ``wait_for_function``)."""
 
 import os
+import sys
 import time
 from pathlib import Path
 
@@ -16,6 +17,9 @@ pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 pytest.importorskip("pandas")
 sync_api = pytest.importorskip("playwright.sync_api", reason="needs playwright (pip install playwright)")
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "docs" / "scripts"))
+import app_timings  # noqa: E402
+
 CHROMIUM = Path(os.environ.get("ARCHROCK_CHROMIUM", "/usr/bin/chromium"))
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not CHROMIUM.exists(),
@@ -23,15 +27,9 @@ pytestmark = [pytest.mark.slow,
 
 
 def wait(page, expr: str, timeout: float = 120.0):
-    """Poll the JS expression ``expr`` until it is truthy; its value."""
-    end = time.monotonic() + timeout
-    while True:
-        v = page.evaluate(expr)
-        if v:
-            return v
-        if time.monotonic() > end:
-            raise AssertionError(f"still false after {timeout} s: {expr}")
-        time.sleep(0.03)
+    """Poll the JS expression ``expr`` until it is truthy; its value (the timings script's
+    poll, with a test's shorter patience)."""
+    return app_timings.wait(page, expr, timeout)
 
 
 @pytest.fixture(scope="module")

@@ -6,6 +6,20 @@ import numpy as np
 import pytest
 
 
+#: the pulse the heavy piers are run under (their geometry file's metadata: Oppenheim's, -0.95 g)
+HEAVY_PIERS_PULSE = ("--pulse", "oppenheim", "--pulse-duration", "0.2", "--amplitude", "-0.95")
+
+
+@pytest.fixture
+def on_heavy_piers(heavy_piers_file):
+    """``argv(command, *more)``: the command line of ``command`` on tests/data/heavy_piers.json
+    under :data:`HEAVY_PIERS_PULSE`, ``more`` options after."""
+    def argv(command: str, *more: str) -> list[str]:
+        return [command, "--geometry", str(heavy_piers_file), *HEAVY_PIERS_PULSE, *more]
+
+    return argv
+
+
 @pytest.fixture
 def engine_calls(monkeypatch):
     """The contact engine replaced by a stand-in (it takes tens of seconds on the heavy piers)

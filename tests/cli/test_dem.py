@@ -13,10 +13,9 @@ from archrock.cli import main
 PULSE = ["--pulse", "oppenheim", "--pulse-duration", "0.2"]
 
 
-def test_dem_labels_the_four_link_run_not_valid_on_heavy_piers(heavy_piers_file, engine_calls,
+def test_dem_labels_the_four_link_run_not_valid_on_heavy_piers(on_heavy_piers, engine_calls,
                                                                capsys):
-    argv = ["dem", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
-            "--friction", "0.9"]
+    argv = on_heavy_piers("dem", "--friction", "0.9")
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert out.startswith("Contact engine: heavy_piers, 12 voussoirs on two piers (found by "

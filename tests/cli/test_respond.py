@@ -15,10 +15,10 @@ from archrock.groundmotion import oppenheim_pulse
 PULSE = ["--pulse", "oppenheim", "--pulse-duration", "0.2"]
 
 
-def test_heavy_piers_route_to_the_engine(heavy_piers_file, engine_calls, capsys):
+def test_heavy_piers_route_to_the_engine(on_heavy_piers, engine_calls, capsys):
     """By default the heavy piers get the engine's outcome, labelled, with the reason and the
     one friction; no four-link number (k, impacts) in the output."""
-    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95"]
+    argv = on_heavy_piers("respond")
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert "outcome (contact engine): COLLAPSED at t = 2.500 s" in out
@@ -44,13 +44,12 @@ def test_heavy_piers_route_to_the_engine(heavy_piers_file, engine_calls, capsys)
             in capsys.readouterr().out)
 
 
-def test_engine_figure_animation_and_progress(heavy_piers_file, engine_calls, tmp_path,
+def test_engine_figure_animation_and_progress(on_heavy_piers, engine_calls, tmp_path,
                                               capsys):
     """--plot and --animate draw the engine's run, the animation's frames reported on stderr
     up to 100%; --no-progress gives the engine no progress sink and prints none."""
     png, gif = tmp_path / "r.png", tmp_path / "r.gif"
-    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
-            "--plot", str(png), "--animate", str(gif), "--t-end", "0.4"]
+    argv = on_heavy_piers("respond", "--plot", str(png), "--animate", str(gif), "--t-end", "0.4")
     assert main(argv) == 0
     cap = capsys.readouterr()
     assert png.stat().st_size > 1000 and gif.stat().st_size > 1000
@@ -61,11 +60,10 @@ def test_engine_figure_animation_and_progress(heavy_piers_file, engine_calls, tm
     assert capsys.readouterr().err == "" and engine_calls[1]["progress"] is None
 
 
-def test_fourlink_by_name_is_labelled_not_valid(heavy_piers_file, capsys):
+def test_fourlink_by_name_is_labelled_not_valid(on_heavy_piers, capsys):
     """--dynamics fourlink on the heavy piers: the four-link answer under the heading, never
     as a bare outcome line; the JSON says it does not hold."""
-    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
-            "--dynamics", "fourlink"]
+    argv = on_heavy_piers("respond", "--dynamics", "fourlink")
     assert main(argv) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("four-link model: not valid here (single degree of freedom not "
@@ -81,7 +79,7 @@ def test_fourlink_by_name_is_labelled_not_valid(heavy_piers_file, capsys):
     assert d["dynamics"]["requested"] == "fourlink" and "WARNING" in d["dynamics"]["reason"]
 
 
-def test_the_engine_answers_without_pymunk(heavy_piers_file, monkeypatch, capsys):
+def test_the_engine_answers_without_pymunk(on_heavy_piers, monkeypatch, capsys):
     """archrock's own engine needs no pymunk: with pymunk missing the heavy-pier arch is answered
     by the contact engine (its collapse under -0.95 g), never by the four-link model."""
     from archrock.contact import engine
@@ -90,16 +88,14 @@ def test_the_engine_answers_without_pymunk(heavy_piers_file, monkeypatch, capsys
         raise ImportError("no pymunk")
 
     monkeypatch.setattr(engine, "import_pymunk", no_pymunk)
-    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
-            "--json"]
+    argv = on_heavy_piers("respond", "--json")
     assert main(argv) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["model"] == "engine" and d["collapsed"] is True
 
 
-def test_friction_none_cannot_run_the_engine(heavy_piers_file, capsys):
-    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
-            "--friction", "none"]
+def test_friction_none_cannot_run_the_engine(on_heavy_piers, capsys):
+    argv = on_heavy_piers("respond", "--friction", "none")
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.startswith("archrock: error: friction: none (sliding excluded) cannot be "
@@ -141,12 +137,11 @@ def test_oppenheim_unchanged(capsys):
 
 
 @pytest.mark.slow
-def test_heavy_piers_collapse_by_the_engine(heavy_piers_file, capsys):
+def test_heavy_piers_collapse_by_the_engine(on_heavy_piers, capsys):
     """The issue's case: respond on the heavy piers at -0.95 g collapses, by the engine
     (about 10-30 s; measured 2.802 s with the default settings)."""
     pytest.importorskip("pymunk")
-    argv = ["respond", "--geometry", str(heavy_piers_file), *PULSE, "--amplitude", "-0.95",
-            "--json"]
+    argv = on_heavy_piers("respond", "--json")
     assert main(argv) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["model"] == "engine" and d["collapsed"] is True

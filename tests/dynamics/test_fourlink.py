@@ -186,15 +186,21 @@ def test_energy_conserved_outward_arc(opp, randoms):
 
 
 # ------------------------------------------------------------------------- (d) symmetry, mirror
+def _assert_mirror_images(a, b, phi, rel, rel_l):
+    """Mechanisms ``a`` and ``b`` have the same equation of motion at ``phi`` but for the sign of
+    the ground's term P; L, a difference of near-equal terms, to ``rel_l`` (and rel * M)."""
+    Ma, La, Fa, Pa = a.coefficients(phi)
+    Mb, Lb, Fb, Pb = b.coefficients(phi)
+    assert Ma == pytest.approx(Mb, rel=rel)
+    assert La == pytest.approx(Lb, rel=rel_l, abs=rel * Mb)
+    assert Fa == pytest.approx(Fb, rel=rel)
+    assert Pa == pytest.approx(-Pb, rel=rel)
+
+
 def test_symmetric_arch_same_equation(opp):
     _, ml, mr = opp
     for phi in (0.0, 0.01, 0.05, 0.1, 0.2):
-        Ml, Ll, Fl, Pl = ml.coefficients(phi)
-        Mr, Lr, Fr, Pr = mr.coefficients(phi)
-        assert Mr == pytest.approx(Ml, rel=1e-12)
-        assert Lr == pytest.approx(Ll, rel=1e-9, abs=1e-12 * Ml)
-        assert Fr == pytest.approx(Fl, rel=1e-12)
-        assert Pr == pytest.approx(-Pl, rel=1e-12)
+        _assert_mirror_images(mr, ml, phi, 1e-12, 1e-9)
     assert mr.phi_unstable == pytest.approx(ml.phi_unstable, rel=1e-10)
 
 
@@ -208,12 +214,7 @@ def test_mirrored_arch_swaps_mechanisms():
         assert not math.isclose(lim.k_l, lim.k_r, rel_tol=1e-3)  # really irregular
         for phi in (0.0, 0.03, 0.08, 0.15):
             for a, b in ((mlm, mr), (mrm, ml)):
-                Ma, La, Fa, Pa = a.coefficients(phi)
-                Mb, Lb, Fb, Pb = b.coefficients(phi)
-                assert Ma == pytest.approx(Mb, rel=1e-10)
-                assert La == pytest.approx(Lb, rel=1e-8, abs=1e-10 * Mb)
-                assert Fa == pytest.approx(Fb, rel=1e-10)
-                assert Pa == pytest.approx(-Pb, rel=1e-10)
+                _assert_mirror_images(a, b, phi, 1e-10, 1e-8)
         # and the two mechanisms of the irregular arch really differ
         assert not math.isclose(ml.coefficients(0.0)[0], mr.coefficients(0.0)[0], rel_tol=1e-4)
 

@@ -5,24 +5,17 @@ import os
 
 import numpy as np
 import pytest
-from scipy.signal import butter, sosfilt
 
 from archrock.errors import ArchInputError
 from archrock.geometry import nominal_arch
-from archrock.groundmotion import from_samples, read_at2
+from archrock.groundmotion import band_limited_noise, read_at2
 from archrock.studies.ida import ida, ida_curve, msa, random_models
 from archrock.dynamics.response import prepare, respond
 
 
 def noise_record(seed, duration=6.0, dt=0.01, pga_g=0.3):
     """Seeded band-limited (1-5 Hz) noise with a smooth envelope, PGA = pga_g."""
-    rng = np.random.default_rng(seed)
-    n = int(duration / dt)
-    sos = butter(2, [1.0, 5.0], btype="band", fs=1 / dt, output="sos")
-    x = sosfilt(sos, rng.standard_normal(n))
-    t = np.arange(n) * dt
-    x *= np.sin(np.pi * t / duration) ** 2
-    return from_samples(x * pga_g / np.max(np.abs(x)), dt, name=f"noise {seed}")
+    return band_limited_noise(duration, dt, (1.0, 5.0), seed, pga_g)
 
 
 @pytest.fixture(scope="module")

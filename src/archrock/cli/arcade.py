@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 
 from ._parser import CLIError, _int, emit_json, finite_float, positive_float
-from .options import add_motion_options, figure_arg, motion_spec_from_args
+from .options import add_motion_options, figure_arg, motion_spec_from_args, say_written
 
 #: the library's field -> the flag that gives it (ArchInputError messages start with the field)
 _FLAGS = (("heights", "--pier-height"), ("widths", "--pier-width"),
@@ -402,7 +402,5 @@ def run_arcade(args) -> int:
         emit_json(out)
         return 0
     print(format_result(arc, results, ramp, response))
-    for f in (written, plot):
-        if f:
-            print(f"wrote {f}")
+    say_written(written, plot)
     return 0

@@ -8,7 +8,7 @@ import sys
 from ._parser import CLIError, emit_json, finite_float, positive_float
 from .options import (add_geometry_options, add_impact_options, add_motion_options,
                       add_output_options, add_window_options, animation_arg, arch_from_args,
-                      figure_arg, impact_spec_from_args, motion_spec_from_args)
+                      figure_arg, impact_spec_from_args, motion_spec_from_args, say_written)
 
 
 def add_engine_options(p):
@@ -248,7 +248,5 @@ def run_dem(args) -> int:
     print(format_engine_response(res, fl, arch, motion, choice))
     if fl_note:
         print(f"  {fl_note}")
-    for f in (plot, animation):
-        if f:
-            print(f"wrote {f}")
+    say_written(plot, animation)
     return 0

@@ -41,6 +41,13 @@ def animation_arg(path):
     return animation_path(path)
 
 
+def say_written(*paths) -> None:
+    """One 'wrote PATH' line on stdout for each file a command wrote (None: not asked for)."""
+    for path in paths:
+        if path:
+            print(f"wrote {path}")
+
+
 def folder_arg(path, flag: str = "--out", what: str = "a folder name"):
     """An output folder (or file) option: None if not given; an empty name is refused (it
     would silently mean the current folder, or nothing, depending on the command)."""

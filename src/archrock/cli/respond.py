@@ -12,7 +12,7 @@ from ._friction import add_friction_option
 from .options import (add_dynamics_option, add_geometry_options, add_impact_options,
                       add_motion_options, add_output_options, add_window_options, animation_arg,
                       arch_from_args, figure_arg, friction_mu, friction_words, model_from_args,
-                      motion_from_args)
+                      motion_from_args, say_written)
 
 
 def add_respond_parser(subparsers):
@@ -123,9 +123,7 @@ def _run_fourlink(args, arch, motion, choice, plot, animation) -> int:
                 if line.startswith("outcome:") else line for line in text.splitlines()]
         print("\n".join("  " + line for line in head + body))
         print("  (the governing answer on this arch is the contact engine's: --dynamics auto)")
-    for f in (plot, animation):
-        if f:
-            print(f"wrote {f}")
+    say_written(plot, animation)
     return 0
 
 
@@ -197,7 +195,5 @@ def _run_engine(args, arch, motion, choice, plot, animation) -> int:
     print(format_engine_outcome(res, arch, motion, choice, friction_words(args)))
     if unused:
         print(f"not used by the contact engine (four-link options): {', '.join(unused)}")
-    for f in (plot, animation):
-        if f:
-            print(f"wrote {f}")
+    say_written(plot, animation)
     return 0

@@ -30,7 +30,7 @@ from ..geometry.arcade import Arcade
 from ..groundmotion import GroundMotion
 from ..units import G
 from .pymunkarcade import ContactArcade
-from .ramp import RampResult, check_ramp_options, ramp_range, ramp_stages, read_hinges
+from .ramp import RampResult, ramp_range, ramp_stages, read_hinges, start_ramp
 from .rigid import engine_arcade
 from .settings import EngineSettings
 
@@ -122,10 +122,8 @@ def arcade_ramp_direction(arc: Arcade, direction: str, settings: EngineSettings 
     """The engine's activation multiplier and hinges of ``arc`` in ``direction`` ('l': the
     ground accelerates toward -x, the loads push toward +x); the options are those of
     :func:`~archrock.contact.ramp.ramp_direction`."""
-    check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
-                       lambda_start)
-    settings = settings or EngineSettings()
-    sign = 1.0 if direction == "l" else -1.0
+    settings, sign = start_ramp(direction, settings, rate, hold, tol, threshold, slide_threshold,
+                                lambda_max, lambda_start)
     ca = engine_arcade(arc, settings)
     thr_slide, lam_seen, (rot, sl, _, pos, ang), (lo, hi, holds, first) = ramp_stages(
         ca, ca.contact_lengths, _motion,

@@ -146,10 +146,11 @@ def ramp_until_moving(blocks, motion, sign: float, lam: float, dlam: float, chec
             raise LimitExceededError(refusal)
 
 
-def check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
-                       lambda_start) -> None:
-    """ArchInputError naming the first option of a ramp (of an arch or an arcade) out of its
-    range (:func:`ramp_direction`)."""
+def start_ramp(direction, settings, rate, hold, tol, threshold, slide_threshold, lambda_max,
+               lambda_start) -> tuple[EngineSettings, float]:
+    """What a ramp (of an arch or an arcade) starts from: (``settings`` or the default ones, the
+    sign of its load: +1 in direction 'l'), once its options are checked: ArchInputError naming
+    the first out of its range (:func:`ramp_direction`)."""
     if direction not in ("l", "r"):
         raise ArchInputError(f"direction: {direction!r}; allowed 'l' or 'r'")
     for name, v, lo, hi in (("rate", rate, 1e-5, 10.0), ("hold", hold, 0.1, 1e3),
@@ -162,6 +163,7 @@ def check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, l
             or not 0.0 <= lambda_start < lambda_max):
         raise ArchInputError(f"lambda_start: {lambda_start!r}; allowed 0 <= lambda_start < "
                              f"lambda_max = {lambda_max:g}")
+    return settings or EngineSettings(), 1.0 if direction == "l" else -1.0
 
 
 def ramp_stage_one(blocks, lengths, motion, direction, threshold, slide_threshold,
@@ -272,10 +274,8 @@ def ramp_direction(arch: VoussoirArch, direction: str, settings: EngineSettings 
     within the range; :func:`ramp_range` gives the range that follows an arch's k);
     lambda_start: the ramp starts from this lambda, held from rest (0 <= lambda_start <
     lambda_max)."""
-    check_ramp_options(direction, rate, hold, tol, threshold, slide_threshold, lambda_max,
-                       lambda_start)
-    settings = settings or EngineSettings()
-    sign = 1.0 if direction == "l" else -1.0
+    settings, sign = start_ramp(direction, settings, rate, hold, tol, threshold, slide_threshold,
+                                lambda_max, lambda_start)
     ca = engine_arch(arch, settings)
     thr_slide, lam_seen, (rot, sl, _, pos, ang), (lo, hi, holds, _) = ramp_stages(
         ca, ca.joint_lengths, _motion,

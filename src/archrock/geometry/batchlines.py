@@ -424,7 +424,7 @@ def _sample(s0, s1, side, k, two, sa, pa, ta, sb, pb, tb, scal):
 
 @maybe_njit
 def _cut(poly, cx, cy, dx, dy, nx, ny):
-    """``irregular._cut``: (segment index or -1, x, y) of the crossing of the polyline with the
+    """``faces.cut_polyline``: (segment index or -1, x, y) of the crossing of the polyline with the
     line through (cx, cy) along (dx, dy) nearest (nx, ny)."""
     m = poly.shape[0]
     best = -1

@@ -50,6 +50,7 @@ import numpy as np
 from ..errors import ArchInputError
 from .base import VoussoirArch, _check_scalar
 from .circular import ARC_STEP, Arch, polygon_form
+from .faces import cut_polyline
 from .piers import ArchOnPiers, lean_pier
 from .polygon import PolygonArch
 
@@ -321,19 +322,6 @@ def _thinner(arch: VoussoirArch, d: Defect) -> VoussoirArch:
     return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads)
 
 
-def _cut_line(line: np.ndarray, c: np.ndarray, u: np.ndarray, near: np.ndarray):
-    """(segment k, point) where the polyline crosses the line through c along u, nearest ``near``."""
-    f = u[0] * (line[:, 1] - c[1]) - u[1] * (line[:, 0] - c[0])
-    k = np.flatnonzero((f[:-1] * f[1:] <= 0) & ((f[:-1] != 0) | (f[1:] != 0)))
-    if k.size == 0:
-        return None
-    den = f[k] - f[k + 1]
-    w = np.where(den != 0, f[k] / np.where(den != 0, den, 1.0), 0.0)
-    pts = line[k] + w[:, None] * (line[k + 1] - line[k])
-    j = int(np.argmin(np.hypot(*(pts - near).T)))
-    return int(k[j]), pts[j]
-
-
 def _circle_through(p0, p1, p2):
     """(centre, radius) of the circle through three points, or None when they are collinear
     (to rounding)."""
@@ -418,7 +406,7 @@ def _tilted(arch: VoussoirArch, d: Defect) -> PolygonArch:
         else:
             line = _dedupe(np.vstack([lines[j - 1], lines[j]]), tol)
             circle = None
-        hit = _cut_line(line, mid, u, near)
+        hit = cut_polyline(line, mid, u, near)
         if hit is None:
             raise ArchInputError(f"defect tilt: {d.value:g} deg at joint {j}: the tilted joint "
                                  f"misses the voussoirs' faces; allowed a smaller tilt")

@@ -255,3 +255,18 @@ def _fill(extr, fill):
         loads.append(Load(i, rho * area, (mx / area, my / area)))
     return tuple(regions), tuple(loads)
 
+
+def cut_polyline(poly: np.ndarray, c, d, near):
+    """Where the polyline ``poly`` (k, 2) [m] crosses the line through ``c`` along ``d``:
+    (segment index k, point) of the crossing nearest ``near``, or None (a tilted joint of an
+    irregular arch or of a defect, cut through its voussoirs' faces)."""
+    f = d[0] * (poly[:, 1] - c[1]) - d[1] * (poly[:, 0] - c[0])
+    k = np.flatnonzero((f[:-1] * f[1:] <= 0) & ((f[:-1] != 0) | (f[1:] != 0)))
+    if k.size == 0:
+        return None
+    den = f[k] - f[k + 1]
+    # a segment lying on the line (den = 0) crosses it at its start
+    w = np.where(den != 0, f[k] / np.where(den != 0, den, 1.0), 0.0)
+    q = poly[k] + w[:, None] * (poly[k + 1] - poly[k])
+    j = int(np.argmin(np.hypot(q[:, 0] - near[0], q[:, 1] - near[1])))
+    return int(k[j]), q[j]

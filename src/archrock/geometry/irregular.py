@@ -15,7 +15,7 @@ from .base import VoussoirArch, _check_scalar
 from .circular import Arch, _check_spread, oppenheim_arch, random_spans_thicknesses_radii
 from .displaced import refuse_moved_supports
 from .faces import (_CrownOffsetCrossed, _fill, _pointed_crown, _sample_offset,
-                    _vertical_joints_that_cut)
+                    _vertical_joints_that_cut, cut_polyline)
 from .families import FamilyArch
 from .polygon import PolygonArch
 
@@ -57,20 +57,6 @@ def random_arch(nominal: VoussoirArch | None = None, seed=None, spread_span: flo
                              f"an arch of family_arch")
     u = rng.uniform(-1.0, 1.0, size=(4 if tilt else 3, nominal.n))
     return perturb_family(nominal, u, s_a, s_t, s_r, tilt, name=label)
-
-
-def _cut(poly, c, d, near):
-    """Where the polyline ``poly`` (k, 2) crosses the line through ``c`` along ``d``: (segment
-    index k, point) of the crossing nearest ``near``, or None."""
-    f = d[0] * (poly[:, 1] - c[1]) - d[1] * (poly[:, 0] - c[0])
-    k = np.flatnonzero((f[:-1] * f[1:] <= 0) & ((f[:-1] != 0) | (f[1:] != 0)))
-    if k.size == 0:
-        return None
-    den = f[k] - f[k + 1]
-    w = np.where(den != 0, f[k] / np.where(den != 0, den, 1.0), 0.0)
-    q = poly[k] + w[:, None] * (poly[k + 1] - poly[k])
-    j = int(np.argmin(np.hypot(q[:, 0] - near[0], q[:, 1] - near[1])))
-    return int(k[j]), q[j]
 
 
 def perturb_family(nominal: "FamilyArch", u, spread_length: float, spread_thickness: float,
@@ -181,9 +167,9 @@ def _face_line(line, thick, r, lengths, s_div, c, d, i: int, k: float, side: int
             pts = _sample_offset(line, te, lo, hi, side, ppr, crown)
         except _CrownOffsetCrossed:  # a range ending just past a pointed crown: widen it
             continue
-        left = (0, pts[0]) if i == 0 else _cut(pts, c[i], d[i], c[i] + side * d[i])
+        left = (0, pts[0]) if i == 0 else cut_polyline(pts, c[i], d[i], c[i] + side * d[i])
         right = (len(pts) - 2, pts[-1]) if i == n - 1 else \
-            _cut(pts, c[i + 1], d[i + 1], c[i + 1] + side * d[i + 1])
+            cut_polyline(pts, c[i + 1], d[i + 1], c[i + 1] + side * d[i + 1])
         if left is not None and right is not None and left[0] <= right[0]:
             piece = (pts, left, right)
             break

@@ -13,7 +13,8 @@ the last sample the acceleration is 0.  So a record whose last sample is nonzero
 pulse constructors end their histories with an explicit 0 where the drop matters.
 
 Modules: :mod:`.motion` (the model, :func:`from_samples`), :mod:`.pulses` (idealised pulses),
-:mod:`.records` (two-column and PEER NGA ``.AT2`` files), :mod:`.spec` (serialisable
+:mod:`.records` (two-column and PEER NGA ``.AT2`` files), :mod:`.synthetic` (seeded
+band-limited noise), :mod:`.spec` (serialisable
 specifications that rebuild a motion: :class:`PulseSpec`, :class:`RecordSpec`).  Every bad input
 raises :class:`archrock.errors.ArchInputError` with a one-line message naming the field; a PGA
 above :data:`MAX_PGA_G` or a record sampled more coarsely than :data:`MAX_RECORD_DT_S` cannot be
@@ -27,6 +28,7 @@ from .pulses import (PULSE_KINDS, half_sine_pulse, one_sine_pulse, oppenheim_pul
                      pulse_kind, rectangular_pulse, ricker_pulse)
 from .records import load_record, read_at2, read_two_column
 from .spec import PulseSpec, RecordSpec, motion_spec_from_dict
+from .synthetic import band_limited_noise
 
 __all__ = [
     "G",
@@ -49,6 +51,7 @@ __all__ = [
     "read_two_column",
     "read_at2",
     "load_record",
+    "band_limited_noise",
     "PulseSpec",
     "RecordSpec",
     "motion_spec_from_dict",

@@ -95,21 +95,9 @@ def _build_rotated(arch: VoussoirArch, movement: SupportMovement, hinges, points
     if link is None:
         return None
     Q2, t1, t2 = link
-    j1, j2, j3 = (h_.joint for h_ in hinges)
-    n = arch.n
-    angles, origins, images = np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2))
-    for i in range(n):
-        if i < j1:
-            angles[i], origins[i], images[i] = tl, cl, cl + ul
-        elif i < j2:
-            angles[i], origins[i], images[i] = t1, P1, Q1
-        elif i < j3:
-            angles[i], origins[i], images[i] = t2, P2, Q2
-        else:
-            angles[i], origins[i], images[i] = tr, cr, cr + ur
-    pts = ((j1, *Q1), (j2, *Q2), (j3, *Q3))
-    return DisplacedArch(arch, tuple(angles), tuple(origins), tuple(images), pts, movement,
-                         tuple(hinges))
+    return _assemble(arch, movement, hinges,
+                     ((tl, cl, cl + ul), (t1, P1, Q1), (t2, P2, Q2), (tr, cr, cr + ur)),
+                     (Q1, Q2, Q3))
 
 
 def _rot(a: float) -> np.ndarray:
@@ -129,18 +117,21 @@ def _build(arch: VoussoirArch, movement: SupportMovement, hinges, points):
     if link is None:
         return None
     Q2, t1, t2 = link
-    j1, j2, j3 = (h.joint for h in hinges)
+    still = np.zeros(2)  # the supports' bodies translate only: no rotation about any origin
+    return _assemble(arch, movement, hinges,
+                     ((0.0, still, ul), (t1, P1, P1 + ul), (t2, P2, Q2 + ul), (0.0, still, ur)),
+                     (P1 + ul, Q2 + ul, P3 + ur))
+
+
+def _assemble(arch: VoussoirArch, movement: SupportMovement, hinges, groups, moved):
+    """The DisplacedArch whose bodies move in four rigid groups split at the hinges' joints
+    (left support to h1, h1 to h2, h2 to h3, h3 to the right support), each group's motion its
+    (angle [rad], origin, image of the origin) in ``groups``; ``moved``: the hinges' new points."""
+    joints = [h.joint for h in hinges]
     n = arch.n
     angles, origins, images = np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2))
     for i in range(n):
-        if i < j1:
-            images[i] = ul
-        elif i < j2:
-            angles[i], origins[i], images[i] = t1, P1, P1 + ul
-        elif i < j3:
-            angles[i], origins[i], images[i] = t2, P2, Q2 + ul
-        else:
-            images[i] = ur
-    pts = ((j1, *(P1 + ul)), (j2, *(Q2 + ul)), (j3, *(P3 + ur)))
+        angles[i], origins[i], images[i] = groups[sum(i >= j for j in joints)]
+    pts = tuple((j, *q) for j, q in zip(joints, moved))
     return DisplacedArch(arch, tuple(angles), tuple(origins), tuple(images), pts, movement,
                          tuple(hinges))
