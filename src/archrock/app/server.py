@@ -153,47 +153,52 @@ def _endpoint(func):
     return endpoint
 
 
-def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | None = None,
-               token: str | None = None, warm_up: bool = False) -> Starlette:
-    """The app served at ``host``:``port`` (the bound address: the only Host header accepted,
-    with the ``host:port`` names of ``hosts``); ``token``: the page's token (default a new
-    random one, ``app.state.token``); ``warm_up``: compile the numba kernels in the
-    background at start (the statics here, the ensemble's in the job worker)."""
-    token = token or secrets.token_urlsafe(32)
-    jobs = Jobs(warm_up=warm_up)
-    records = uploads.RecordStore()
+def _page(token: str) -> str:
+    """index.html with ``token`` in its token element."""
     page = (STATIC / "index.html").read_text(encoding="utf-8")
     if TOKEN_META not in page:
         raise RuntimeError("index.html has lost its token element")
-    page = page.replace(TOKEN_META, f'<meta name="archrock-token" content="{token}">')
+    return page.replace(TOKEN_META, f'<meta name="archrock-token" content="{token}">')
 
+
+def _index(page: str):
     async def index(request):
         return Response(page, media_type="text/html; charset=utf-8",
                         headers={"Cache-Control": "no-store"})
+    return index
 
-    async def favicon(request):
-        return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
 
-    def job_route(check, total, run, extra=lambda req: {}):
-        """A route that checks its request (``check``, in a thread: it may read files or
-        estimate work) and starts ``run(req, progress, cancelled)`` as a job of ``total(req)``
-        steps in the job worker."""
-        async def route(request: Request):
-            try:
-                req = await run_in_threadpool(check, await _body(request))
-                job = await run_in_threadpool(jobs.start, total(req), run, req)
-                return _json({**job.to_dict(), **extra(req)})
-            except Exception as exc:  # noqa: BLE001
-                return _error(exc)
-        return route
+async def _favicon(request):
+    return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
 
-    ensemble = job_route(api.ensemble_request, lambda req: req["config"].samples,
-                         api.run_ensemble_request)
-    curve = job_route(api.curve_request, lambda req: req["samples"] * len(req["durations"]),
-                      api.run_curve_job)
-    report = job_route(api.report_request, lambda req: 1, api.run_report_job,
-                       lambda req: {"estimate_s": req["estimate_s"]})
 
+async def _limits(request):
+    return _json({"max_voussoirs": api.MAX_VOUSSOIRS, "max_samples": api.MAX_SAMPLES,
+                  "max_t_end_s": api.MAX_T_END_S, "max_pulse_s": api.MAX_PULSE_S,
+                  "max_amplitude_g": api.MAX_AMPLITUDE_G, "shapes": api.SHAPES,
+                  "joints": api.JOINTS, "pulses": api.PULSE_KINDS,
+                  "max_file_bytes": uploads.MAX_FILE_BYTES,
+                  "max_record_t_end_s": uploads.MAX_RECORD_T_END_S,
+                  "record_units": uploads.RECORD_UNITS, "dxf_units": uploads.DXF_UNITS,
+                  "max_report_samples": api.MAX_REPORT_SAMPLES,
+                  "default_friction": DEFAULT_FRICTION, "dynamics": engine.DYNAMICS})
+
+
+def _job_route(jobs: Jobs, check, total, run, extra=lambda req: {}):
+    """A route that checks its request (``check``, in a thread: it may read files or
+    estimate work) and starts ``run(req, progress, cancelled)`` as a job of ``total(req)``
+    steps in the job worker."""
+    async def route(request: Request):
+        try:
+            req = await run_in_threadpool(check, await _body(request))
+            job = await run_in_threadpool(jobs.start, total(req), run, req)
+            return _json({**job.to_dict(), **extra(req)})
+        except Exception as exc:  # noqa: BLE001
+            return _error(exc)
+    return route
+
+
+def _respond(jobs: Jobs, records):
     async def respond(request: Request):
         """The response of the model that holds (the routing of the package): the four-link
         one answered now, the contact engine's started as a job (seconds to minutes)."""
@@ -207,7 +212,16 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                           "label": "contact engine (pymunk): " + chosen.reason})
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
+    return respond
 
+
+def _attachment(name: str, media: str, text) -> Response:
+    return Response(text, media_type=media,
+                    headers={"Content-Disposition": f'attachment; filename="{name}"'})
+
+
+def _job_endpoints(jobs: Jobs):
+    """The routes of one job: (download, status, cancel)."""
     async def job_download(request: Request):
         try:
             job = jobs.get(request.path_params["job"])
@@ -215,20 +229,7 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                 raise ArchInputError(f"job: {job.id} has no file ({job.state})")
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
-        name, media, text = job.download
-        return Response(text, media_type=media,
-                        headers={"Content-Disposition": f'attachment; filename="{name}"'})
-
-    def _uploader(field, func):
-        async def endpoint(request: Request):
-            try:
-                with tempfile.TemporaryDirectory(prefix="archrock-app-") as folder:
-                    data = await _upload(request, field, folder)
-                    params = dict(request.query_params)
-                    return _json(await run_in_threadpool(func, data, params))
-            except Exception as exc:  # noqa: BLE001
-                return _error(exc)
-        return endpoint
+        return _attachment(*job.download)
 
     async def job_status(request: Request):
         try:
@@ -242,33 +243,47 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
                                                   request.path_params["job"])).to_dict())
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
+    return job_download, job_status, job_cancel
 
+
+def _uploader(field, func):
+    async def endpoint(request: Request):
+        try:
+            with tempfile.TemporaryDirectory(prefix="archrock-app-") as folder:
+                data = await _upload(request, field, folder)
+                params = dict(request.query_params)
+                return _json(await run_in_threadpool(func, data, params))
+        except Exception as exc:  # noqa: BLE001
+            return _error(exc)
+    return endpoint
+
+
+def _export(records):
     async def export(request: Request):
         try:
             body = await _body(request)
             name, media, text = await run_in_threadpool(api.export, body, records)
         except Exception as exc:  # noqa: BLE001
             return _error(exc)
-        return Response(text, media_type=media,
-                        headers={"Content-Disposition": f'attachment; filename="{name}"'})
+        return _attachment(name, media, text)
+    return export
 
-    async def limits(request):
-        return _json({"max_voussoirs": api.MAX_VOUSSOIRS, "max_samples": api.MAX_SAMPLES,
-                      "max_t_end_s": api.MAX_T_END_S, "max_pulse_s": api.MAX_PULSE_S,
-                      "max_amplitude_g": api.MAX_AMPLITUDE_G, "shapes": api.SHAPES,
-                      "joints": api.JOINTS, "pulses": api.PULSE_KINDS,
-                      "max_file_bytes": uploads.MAX_FILE_BYTES,
-                      "max_record_t_end_s": uploads.MAX_RECORD_T_END_S,
-                      "record_units": uploads.RECORD_UNITS, "dxf_units": uploads.DXF_UNITS,
-                      "max_report_samples": api.MAX_REPORT_SAMPLES,
-                      "default_friction": DEFAULT_FRICTION, "dynamics": engine.DYNAMICS})
 
-    routes = [
-        Route("/", index),
-        Route("/favicon.ico", favicon),
-        Route("/api/limits", limits),
+def _routes(page: str, jobs: Jobs, records) -> list:
+    """The app's routes (module docstring)."""
+    ensemble = _job_route(jobs, api.ensemble_request, lambda req: req["config"].samples,
+                          api.run_ensemble_request)
+    curve = _job_route(jobs, api.curve_request,
+                       lambda req: req["samples"] * len(req["durations"]), api.run_curve_job)
+    report = _job_route(jobs, api.report_request, lambda req: 1, api.run_report_job,
+                        lambda req: {"estimate_s": req["estimate_s"]})
+    job_download, job_status, job_cancel = _job_endpoints(jobs)
+    return [
+        Route("/", _index(page)),
+        Route("/favicon.ico", _favicon),
+        Route("/api/limits", _limits),
         Route("/api/limit", _endpoint(api.limit), methods=["POST"]),
-        Route("/api/respond", respond, methods=["POST"]),
+        Route("/api/respond", _respond(jobs, records), methods=["POST"]),
         Route("/api/record", _uploader("record", lambda data, params: uploads.load_record_upload(
             data, params, records)), methods=["POST"]),
         Route("/api/dxf", _uploader("dxf", uploads.load_dxf_upload), methods=["POST"]),
@@ -278,10 +293,12 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
         Route("/api/curve", curve, methods=["POST"]),
         Route("/api/jobs/{job}", job_status),
         Route("/api/jobs/{job}/cancel", job_cancel, methods=["POST"]),
-        Route("/api/export", export, methods=["POST"]),
+        Route("/api/export", _export(records), methods=["POST"]),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
 
+
+def _lifespan(jobs: Jobs, warm_up: bool):
     @contextlib.asynccontextmanager
     async def lifespan(app):
         if warm_up:
@@ -291,8 +308,20 @@ def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | 
         await run_in_threadpool(jobs.prepare)  # the worker's imports start now, not at the job
         yield
         await run_in_threadpool(jobs.close)
+    return lifespan
 
-    app = Starlette(routes=routes, lifespan=lifespan)
+
+def create_app(host: str = "127.0.0.1", port: int = 8765, *, hosts: list[str] | None = None,
+               token: str | None = None, warm_up: bool = False) -> Starlette:
+    """The app served at ``host``:``port`` (the bound address: the only Host header accepted,
+    with the ``host:port`` names of ``hosts``); ``token``: the page's token (default a new
+    random one, ``app.state.token``); ``warm_up``: compile the numba kernels in the
+    background at start (the statics here, the ensemble's in the job worker)."""
+    token = token or secrets.token_urlsafe(32)
+    jobs = Jobs(warm_up=warm_up)
+    records = uploads.RecordStore()
+    page = _page(token)
+    app = Starlette(routes=_routes(page, jobs, records), lifespan=_lifespan(jobs, warm_up))
     # outermost first: every answer (a refusal too) carries the security headers
     app.add_middleware(_Guard, names=_host_names(host, port, hosts), port=port, token=token,
                        any_ip=host.strip() in WILDCARDS)

@@ -107,10 +107,114 @@ def _per_span(args, name, flag, n, default):
     return list(vals)
 
 
+def _arches_from_files(args, arch_flags, max_spans):
+    """The arches of --geometry FILE... (and --repeat), each file read once."""
+    given = [f for f, v in arch_flags if v is not None]
+    if given:
+        raise CLIError(f"--geometry: cannot be combined with {', '.join(given)}; each file "
+                       f"holds its arch")
+    from ..geometry.files import read_arch
+
+    files = list(args.geometry)
+    if args.repeat is not None:
+        if len(files) != 1:
+            raise CLIError("--repeat: applies to one --geometry FILE; give one file")
+        if not 1 <= args.repeat <= max_spans:
+            raise CLIError(f"--repeat: {args.repeat} is out of range; allowed 1 to "
+                           f"{max_spans}")
+        files = files * args.repeat
+    cache = {}
+    arches = []
+    for f in files:
+        if f not in cache:
+            cache[f] = read_arch(f)
+        arches.append(cache[f])
+    return arches
+
+
+def _check_spans(args, max_spans) -> int:
+    """Check --spans, --shape and --rises (no --repeat without --geometry): the span count."""
+    if args.repeat is not None:
+        raise CLIError("--repeat: applies to --geometry FILE only")
+    if args.spans is None:
+        raise CLIError("--spans: needed (the span of each arch's centreline, in metres), or "
+                       "--geometry FILE... or --arcade FILE")
+    n = len(args.spans)
+    if not 1 <= n <= max_spans:
+        raise CLIError(f"--spans: {n} spans; allowed 1 to {max_spans}")
+    for i, s in enumerate(args.spans):
+        if not 1e-8 <= s <= 1e8:
+            raise CLIError(f"--spans: {s:g} (span {i + 1}) is out of range; allowed 1e-8 "
+                           f"to 1e8 m")
+    if args.rises is not None and args.shape is None:
+        raise CLIError("--rises: needs --shape (the family of the arches)")
+    if args.shape is not None and args.rises is None:
+        raise CLIError("--rises: needed with --shape (the rise of each arch's centreline, "
+                       "in metres)")
+    return n
+
+
+def _span_arch(args, s, thickness, voussoirs, rise, density):
+    """The arch of span s (0-based): a semicircle, or of --shape; its errors name the flag."""
+    from ..errors import ArchInputError
+    from ..geometry import family_arch, nominal_arch
+
+    try:
+        if args.shape is None:
+            return nominal_arch(radius=args.spans[s] / 2, embrace_deg=180.0,
+                                thickness=thickness, voussoirs=voussoirs, density=density,
+                                name=f"span {s + 1}")
+        return family_arch(args.shape, args.spans[s], rise, thickness, voussoirs,
+                           density=density, name=f"span {s + 1}")
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field in ("thickness", "voussoirs", "rise", "span", "density"):
+            if msg.startswith(field):
+                flag = {"rise": "--rises", "span": "--spans"}.get(field, f"--{field}")
+                raise ArchInputError(f"{flag} (span {s + 1}){msg[len(field):]}") from None
+        raise ArchInputError(f"span {s + 1}: {msg}") from None
+
+
+def _arches_from_spans(args, max_spans):
+    """The arches of --spans (with --shape, --rises, --thickness, --voussoirs, --density)."""
+    n = _check_spans(args, max_spans)
+    t = _per_span(args, "thickness", "--thickness", n, lambda s: args.spans[s] / 10)
+    nv = _per_span(args, "voussoirs", "--voussoirs", n, lambda s: 9)
+    rises = _per_span(args, "rises", "--rises", n, lambda s: None)
+    density = 2000.0 if args.density is None else args.density
+    arches, cache = [], {}
+    for s in range(n):
+        key = (args.spans[s], t[s], nv[s], rises[s])
+        if key not in cache:  # equal spans share one arch (written as polygons once)
+            cache[key] = _span_arch(args, s, t[s], nv[s], rises[s], density)
+        arches.append(cache[key])
+    return arches
+
+
+def _on_piers(args, arches, pier_flags):
+    """The arcade of ``arches`` on the piers of the options, its work checked first."""
+    from ..errors import ArchInputError
+    from ..geometry.arcade import arcade
+
+    for flag, v in pier_flags[:2]:
+        if v is None:
+            raise CLIError(f"{flag}: needed (one value for every pier, or {len(arches) + 1}, "
+                           f"in metres)")
+    # courses are checked by arcade(); only a plausible count enters the estimate
+    courses = [c for c in (args.pier_courses or [1]) if isinstance(c, int) and 0 < c <= 10**6]
+    n_piers = len(arches) + 1
+    pier_blocks = (courses[0] * n_piers if len(courses) == 1 else sum(courses)) if courses else 0
+    _check_work(args, sum(a.n for a in arches) + pier_blocks)
+    try:
+        return arcade(arches, list(args.pier_height), list(args.pier_width),
+                      courses=list(args.pier_courses or [1]))
+    except ArchInputError as exc:
+        raise _renamed(exc) from None
+
+
 def arcade_from_args(args):
     """The Arcade of the options (the arches on their piers, or an arcade document)."""
-    from ..errors import ArchInputError
-    from ..geometry.arcade import MAX_SPANS, arcade
+    from ..geometry.arcade import MAX_SPANS
 
     arch_flags = [("--spans", args.spans), ("--shape", args.shape), ("--rises", args.rises),
                   ("--thickness", args.thickness), ("--voussoirs", args.voussoirs),
@@ -128,88 +232,10 @@ def arcade_from_args(args):
 
         return read_arcade(args.arcade, on_size=lambda n: _check_work(args, n))
     if args.geometry:
-        given = [f for f, v in arch_flags if v is not None]
-        if given:
-            raise CLIError(f"--geometry: cannot be combined with {', '.join(given)}; each file "
-                           f"holds its arch")
-        from ..geometry.files import read_arch
-
-        files = list(args.geometry)
-        if args.repeat is not None:
-            if len(files) != 1:
-                raise CLIError("--repeat: applies to one --geometry FILE; give one file")
-            if not 1 <= args.repeat <= MAX_SPANS:
-                raise CLIError(f"--repeat: {args.repeat} is out of range; allowed 1 to "
-                               f"{MAX_SPANS}")
-            files = files * args.repeat
-        cache = {}
-        arches = []
-        for f in files:
-            if f not in cache:
-                cache[f] = read_arch(f)
-            arches.append(cache[f])
+        arches = _arches_from_files(args, arch_flags, MAX_SPANS)
     else:
-        if args.repeat is not None:
-            raise CLIError("--repeat: applies to --geometry FILE only")
-        if args.spans is None:
-            raise CLIError("--spans: needed (the span of each arch's centreline, in metres), or "
-                           "--geometry FILE... or --arcade FILE")
-        n = len(args.spans)
-        if not 1 <= n <= MAX_SPANS:
-            raise CLIError(f"--spans: {n} spans; allowed 1 to {MAX_SPANS}")
-        for i, s in enumerate(args.spans):
-            if not 1e-8 <= s <= 1e8:
-                raise CLIError(f"--spans: {s:g} (span {i + 1}) is out of range; allowed 1e-8 "
-                               f"to 1e8 m")
-        if args.rises is not None and args.shape is None:
-            raise CLIError("--rises: needs --shape (the family of the arches)")
-        if args.shape is not None and args.rises is None:
-            raise CLIError("--rises: needed with --shape (the rise of each arch's centreline, "
-                           "in metres)")
-        t = _per_span(args, "thickness", "--thickness", n, lambda s: args.spans[s] / 10)
-        nv = _per_span(args, "voussoirs", "--voussoirs", n, lambda s: 9)
-        rises = _per_span(args, "rises", "--rises", n, lambda s: None)
-        density = 2000.0 if args.density is None else args.density
-        arches, cache = [], {}
-        from ..geometry import family_arch, nominal_arch
-
-        for s in range(n):
-            key = (args.spans[s], t[s], nv[s], rises[s])
-            if key in cache:  # equal spans share one arch (written as polygons once)
-                arches.append(cache[key])
-                continue
-            try:
-                if args.shape is None:
-                    a = nominal_arch(radius=args.spans[s] / 2, embrace_deg=180.0,
-                                     thickness=t[s], voussoirs=nv[s], density=density,
-                                     name=f"span {s + 1}")
-                else:
-                    a = family_arch(args.shape, args.spans[s], rises[s], t[s], nv[s],
-                                    density=density, name=f"span {s + 1}")
-            except ArchInputError as exc:
-                msg = str(exc)
-                for field in ("thickness", "voussoirs", "rise", "span", "density"):
-                    if msg.startswith(field):
-                        flag = {"rise": "--rises", "span": "--spans"}.get(field, f"--{field}")
-                        raise ArchInputError(f"{flag} (span {s + 1}){msg[len(field):]}") \
-                            from None
-                raise ArchInputError(f"span {s + 1}: {msg}") from None
-            cache[key] = a
-            arches.append(a)
-    for flag, v in pier_flags[:2]:
-        if v is None:
-            raise CLIError(f"{flag}: needed (one value for every pier, or {len(arches) + 1}, "
-                           f"in metres)")
-    # courses are checked by arcade(); only a plausible count enters the estimate
-    courses = [c for c in (args.pier_courses or [1]) if isinstance(c, int) and 0 < c <= 10**6]
-    n_piers = len(arches) + 1
-    pier_blocks = (courses[0] * n_piers if len(courses) == 1 else sum(courses)) if courses else 0
-    _check_work(args, sum(a.n for a in arches) + pier_blocks)
-    try:
-        return arcade(arches, list(args.pier_height), list(args.pier_width),
-                      courses=list(args.pier_courses or [1]))
-    except ArchInputError as exc:
-        raise _renamed(exc) from None
+        arches = _arches_from_spans(args, MAX_SPANS)
+    return _on_piers(args, arches, pier_flags)
 
 
 def _check_work(args, n_blocks: int) -> float:

@@ -420,6 +420,253 @@ class _Push:
         return False, ()
 
 
+def _push_params(arch, movement, side, settings, *, rate, max_displacement, sample, open_gap,
+                 hold, stop, tol, ke_factor, max_rotation, max_time, pivot_depth):
+    """Check push_support's input, in its order: (movement, side, settings, checked values)."""
+    if not isinstance(arch, VoussoirArch):
+        raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    movement, side = check_support_movement(movement, side)
+    settings = settings or EngineSettings()
+    if not isinstance(settings, EngineSettings):
+        raise ArchInputError(f"settings: expected EngineSettings, got {type(settings).__name__}")
+    size = float(arch.size)
+    p = {"size": size}
+    p["rate"] = _num("rate", rate, 1e-5, 0.5, "1e-5 <= rate <= 0.5 (sizes per T)")
+    if max_displacement is None:
+        max_displacement = 0.5 * size
+    p["max_displacement"] = max_displacement = _num(
+        "max_displacement", max_displacement, 1e-6 * size, 2.0 * size,
+        f"{1e-6 * size:g} m <= max_displacement <= 2 x size = {2 * size:g} m")
+    p["sample"] = _num("sample", sample, 1e-5, 0.05,
+                       "1e-5 <= sample <= 0.05 (fraction of the size)")
+    p["open_gap"] = _num("open_gap", open_gap, 1e-7, 1e-2,
+                         "1e-7 <= open_gap <= 1e-2 (fraction of the size)")
+    p["hold"] = _num("hold", hold, 0.1, 100.0, "0.1 <= hold <= 100 (T)")
+    p["stop"] = _num("stop", stop, 0.0, 100.0, "0 <= stop <= 100 (T)")
+    p["tol"] = _num("tol", tol, 1e-4, 0.5)
+    p["ke_factor"] = _num("ke_factor", ke_factor, 1.5, 1e6)
+    p["max_rotation"] = _num("max_rotation", max_rotation, 1e-3, math.pi,
+                             "1e-3 <= max_rotation <= pi (rad)")
+    p["max_time"] = max_time = _num("max_time", max_time, 1.0, 1e6, "1 <= max_time <= 1e6 (T)")
+    push_T = max_displacement / (p["rate"] * size)
+    if push_T > max_time:
+        raise ArchInputError(
+            f"max_displacement / rate: the push would take {push_T:.4g} T of simulated time; "
+            f"allowed at most max_time = {max_time:g} T (raise rate or max_time, or lower "
+            f"max_displacement)")
+    if p["sample"] * size > max_displacement:
+        raise ArchInputError(f"sample: {p['sample']:g} x size = {p['sample'] * size:g} m; "
+                             f"allowed at most max_displacement = {max_displacement:g} m")
+    p["pivot_depth"] = _num("pivot_depth", pivot_depth, 0.0, 1e4, "0 <= pivot_depth <= 1e4 m")
+    return movement, side, settings, p
+
+
+class _PushRun:
+    """One push_support run: the live push, its record, its holds and its collapse."""
+
+    def __init__(self, arch, settings, movement, side, p, progress):
+        self.settings, self.movement, self.side, self.p = settings, movement, side, p
+        self.live = live = _Push(arch, settings, movement, side, p["rate"], p["open_gap"],
+                                 p["pivot_depth"])
+        self.v, self.dt = v, dt = live.speed, live.dt
+        self.window = max(1, int(round(p["sample"] * p["size"] / (v * dt))))
+        self.hold_steps = int(math.ceil(p["hold"] * settings.steps_per_T))
+        self.stop_steps = max(1, int(math.ceil(p["stop"] * settings.steps_per_T)))
+        self.check = max(1, int(settings.steps_per_T // 100))
+        self.ke_lim = p["ke_factor"] * (0.5 * live.m_tot * v * v)
+        self.say = progress or (lambda msg: None)
+        self.rec = {k: [] for k in ("d", "t", "fl", "fr", "jrot", "ke", "pe", "crown")}
+        self.extra_steps = 0  # steps run on copies (holds, bisection)
+        self.holds: list[tuple[float, bool]] = []
+        self.changes: list[tuple[float, tuple[str, ...]]] = []
+        self.last_labels: tuple[str, ...] = ()
+        self.opening = self.first_d = None
+        self.hinges: tuple[str, ...] = ()
+        self.status, self.collapse_by, self.trigger = "standing", None, None
+        self.collapse_hinges: tuple[str, ...] = ()
+
+    def record(self, d):
+        """Record one sample at displacement d [m]: (joint rotations, relative ones, KE)."""
+        f = self.live.window_force()
+        jrot, rel, ke, pe, crown = self.live.measure()
+        for key, value in (("d", d), ("t", self.live.sim_steps * self.dt), ("fl", f[0]),
+                           ("fr", f[1]), ("jrot", jrot), ("ke", ke), ("pe", pe),
+                           ("crown", crown)):
+            self.rec[key].append(value)
+        return jrot, rel, ke
+
+    def held(self, state):
+        """Hold a copy of ``state``: (displacement where it is held, moved, labels)."""
+        st = state.copy()
+        moved, labels = st.hold(self.stop_steps, self.hold_steps, self.check,
+                                self.p["max_rotation"], self.ke_lim)
+        self.extra_steps += st.sim_steps - state.sim_steps
+        d = st.displacement()
+        self.holds.append((d, moved))
+        self.say(f"hold at d = {d:.5g} m: {'moves' if moved else 'rests'}")
+        return d, moved, labels
+
+    def track_hinges(self, d, jrot):
+        """Note the open joints' labels at d: a change, the first opening, the first hinges."""
+        ratio = np.abs(jrot) / self.live.rot_thr
+        labels = self.live.labels(jrot)
+        if labels != self.last_labels:
+            self.changes.append((d, labels))
+            self.last_labels = labels
+        if self.opening is None and ratio.max() >= 1.0:
+            self.opening = d
+        if self.first_d is None and ratio.max() >= 4.0:
+            self.first_d, self.hinges = d, labels
+            self.say(f"first opening at d = {d:.5g} m: {'-'.join(self.hinges)}")
+        return labels
+
+    def collapse(self, by, trigger, labels):
+        self.status, self.collapse_by, self.trigger = "collapsed", by, trigger
+        self.collapse_hinges = labels
+
+    def push(self):
+        """Settle the arch, then push until it collapses or reaches max_displacement."""
+        live, p = self.live, self.p
+        live.step(self.window)  # the settled arch at rest: one window of forces before the push
+        self.record(0.0)
+        start = live.copy()
+        live.set_moving(True)
+        self.checkpoints = [(0.0, start)]
+        armed, k = True, 0
+        while True:
+            live.step(self.window)
+            k += 1
+            d = live.displacement()
+            jrot, rel, ke = self.record(d)
+            labels = self.track_hinges(d, jrot)
+            if np.abs(rel).max() > p["max_rotation"]:
+                self.collapse("rotation", d, labels)
+                break
+            if ke > self.ke_lim and armed:
+                d_held, moved, labels = self.held(live)
+                if moved:
+                    self.collapse("hold", d_held, labels)
+                    break
+                armed = False  # a snap between mechanisms: push on, re-arm once it has calmed
+            elif ke <= self.ke_lim:
+                armed = True
+            if k % CHECKPOINT_EVERY == 0:
+                self.checkpoints.append((d, live.copy()))
+            if d >= p["max_displacement"] - 0.5 * self.v * self.dt:
+                break
+
+    def bracket(self):
+        """The capacity's bracket (lo, hi) [m], None while the arch stands."""
+        if self.status == "collapsed" and self.collapse_by == "rotation":
+            prev = self.rec["d"][-2] if len(self.rec["d"]) > 1 else 0.0
+            return (float(prev), float(self.trigger))
+        if self.status == "collapsed":
+            lo, hi, lo_state = self.bisect_checkpoints(float(self.trigger))
+            return self.refine(lo, hi, lo_state)
+        return None
+
+    def bisect_checkpoints(self, hi):
+        """Bisect the checkpoints before hi [m] by holding them: (lo, hi, lo's state).
+
+        In held displacements: lo rests when held, hi moves on (the push itself runs on past
+        the capacity, as the unstable motion grows from nothing while the support keeps moving)."""
+        cks = [(dc, st) for dc, st in self.checkpoints if dc < hi]
+        i_lo, i_hi, lo = 0, len(cks), None
+        while i_hi - i_lo > 1:
+            i_mid = (i_lo + i_hi) // 2
+            d_held, moved, labels = self.held(cks[i_mid][1])
+            if moved:
+                i_hi, hi, self.collapse_hinges = i_mid, min(hi, d_held), labels
+            else:
+                i_lo, lo = i_mid, d_held
+        lo_state = cks[i_lo][1]
+        if lo is None:  # the settled arch itself: does it stand when held?
+            d_held, moved, labels = self.held(lo_state)
+            if moved:
+                raise CannotStandError("arch: it does not stand in the contact engine with its "
+                                       "supports held at rest (a held copy of the settled arch "
+                                       "moves on)")
+            lo = d_held
+        return lo, hi, lo_state
+
+    def refine(self, lo, hi, lo_state):
+        """Narrow (lo, hi) [m] to the relative width tol with copies pushed on from lo."""
+        step_d = self.v * self.dt
+        for _ in range(64):
+            if hi - lo <= self.p["tol"] * hi:
+                break
+            mid = 0.5 * (lo + hi)
+            steps = int(round((mid - lo) / step_d))
+            if steps < 1:  # the step grid cannot split the bracket further
+                break
+            st = lo_state.copy()
+            st.set_moving(True)
+            st.step(steps)
+            self.extra_steps += steps
+            d_held, moved, labels = self.held(st)
+            if moved:
+                hi, self.collapse_hinges = d_held, labels
+            else:
+                lo, lo_state = d_held, st
+        return (float(lo), float(hi))
+
+    def thrust(self, fl, fr):
+        """The thrust H [N/m] on the moving support(s), > 0 pushing it outward."""
+        if self.side == "right":
+            return fr[:, 0]
+        if self.side == "left":
+            return -fl[:, 0]
+        return 0.5 * (fr[:, 0] - fl[:, 0])
+
+    def thrust_start(self, d_arr, thrust, upto):
+        """The thrust at the start: a line through H(d) after the first opening, at d = 0."""
+        if self.first_d is None:
+            return None
+        sel = (d_arr > self.first_d) & (d_arr <= min(self.first_d + FIT_SPAN * self.p["size"],
+                                                     upto))
+        if sel.sum() < 3:
+            return None
+        slope, icpt = np.polyfit(d_arr[sel], thrust[sel], 1)
+        return float(icpt)
+
+    def run_record(self):
+        """The run's parameters, as PushResult.run keeps them."""
+        p = self.p
+        run = {"rate": p["rate"], "speed": self.v, "max_displacement": p["max_displacement"],
+               "sample": p["sample"], "window_steps": self.window, "open_gap": p["open_gap"],
+               "hold": p["hold"], "stop": p["stop"], "tol": p["tol"],
+               "ke_factor": p["ke_factor"], "max_rotation": p["max_rotation"],
+               "max_time": p["max_time"], "dt": self.dt, "size": p["size"],
+               "time_scale": self.live.ca.time_scale, "ke_ratio_max": KE_RATIO_MAX,
+               "ke_check_from": KE_CHECK_FROM, "fit_span": FIT_SPAN}
+        if self.movement == "rotate":
+            run.update({"pivot_depth": p["pivot_depth"], "displacement": "rotation x size [m]"})
+        return run
+
+    def result(self, bracket, t_wall):
+        """The PushResult of this run, bracket [m] from :meth:`bracket`."""
+        rec = self.rec
+        capacity = None if bracket is None else float(0.5 * (bracket[0] + bracket[1]))
+        d_arr = np.array(rec["d"])
+        fl, fr = np.array(rec["fl"]).reshape(-1, 2), np.array(rec["fr"]).reshape(-1, 2)
+        thrust = self.thrust(fl, fr)
+        ke_arr, pe_arr = np.array(rec["ke"]), np.array(rec["pe"])
+        upto = bracket[0] if bracket is not None else d_arr[-1]
+        thrust_start = self.thrust_start(d_arr, thrust, upto)
+        # quasi-static check: KE / |dPE| past KE_CHECK_FROM x size, before the collapse bracket
+        sel = (d_arr >= KE_CHECK_FROM * self.p["size"]) & (d_arr <= upto) & (np.abs(pe_arr) > 0)
+        ke_ratio = float(np.max(ke_arr[sel] / np.abs(pe_arr[sel]))) if sel.any() else None
+        quasi = None if ke_ratio is None else bool(ke_ratio <= KE_RATIO_MAX)
+        sim_seconds = (self.live.sim_steps + self.extra_steps) * self.dt
+        return PushResult(self.movement, self.side, d_arr, np.array(rec["t"]), fl, fr, thrust,
+                          np.array(rec["crown"]), np.array(rec["jrot"]), ke_arr, pe_arr,
+                          float(thrust[0]), thrust_start, self.opening, tuple(self.hinges),
+                          tuple(self.changes), self.status, capacity, bracket,
+                          self.collapse_by, tuple(self.collapse_hinges), tuple(self.holds),
+                          ke_ratio, quasi, float(sim_seconds), _time.perf_counter() - t_wall,
+                          self.settings, self.run_record())
+
+
 def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "right",
                  settings: EngineSettings | None = None, *, rate: float = 0.005,
                  max_displacement: float | None = None, sample: float = 1e-3,
@@ -442,207 +689,10 @@ def push_support(arch: VoussoirArch, movement: str = "spread", side: str = "righ
     support's foot is (module docstring; d, the capacity and its bracket are then the rotation
     times the size, in m: divide by ``run['size']`` for rad)."""
     t_wall = _time.perf_counter()
-    if not isinstance(arch, VoussoirArch):
-        raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
-    movement, side = check_support_movement(movement, side)
-    settings = settings or EngineSettings()
-    if not isinstance(settings, EngineSettings):
-        raise ArchInputError(f"settings: expected EngineSettings, got {type(settings).__name__}")
-    size = float(arch.size)
-    rate = _num("rate", rate, 1e-5, 0.5, "1e-5 <= rate <= 0.5 (sizes per T)")
-    if max_displacement is None:
-        max_displacement = 0.5 * size
-    max_displacement = _num("max_displacement", max_displacement, 1e-6 * size, 2.0 * size,
-                            f"{1e-6 * size:g} m <= max_displacement <= 2 x size = "
-                            f"{2 * size:g} m")
-    sample = _num("sample", sample, 1e-5, 0.05, "1e-5 <= sample <= 0.05 (fraction of the size)")
-    open_gap = _num("open_gap", open_gap, 1e-7, 1e-2,
-                    "1e-7 <= open_gap <= 1e-2 (fraction of the size)")
-    hold = _num("hold", hold, 0.1, 100.0, "0.1 <= hold <= 100 (T)")
-    stop = _num("stop", stop, 0.0, 100.0, "0 <= stop <= 100 (T)")
-    tol = _num("tol", tol, 1e-4, 0.5)
-    ke_factor = _num("ke_factor", ke_factor, 1.5, 1e6)
-    max_rotation = _num("max_rotation", max_rotation, 1e-3, math.pi,
-                        "1e-3 <= max_rotation <= pi (rad)")
-    max_time = _num("max_time", max_time, 1.0, 1e6, "1 <= max_time <= 1e6 (T)")
-    push_T = max_displacement / (rate * size)
-    if push_T > max_time:
-        raise ArchInputError(
-            f"max_displacement / rate: the push would take {push_T:.4g} T of simulated time; "
-            f"allowed at most max_time = {max_time:g} T (raise rate or max_time, or lower "
-            f"max_displacement)")
-    if sample * size > max_displacement:
-        raise ArchInputError(f"sample: {sample:g} x size = {sample * size:g} m; allowed at most "
-                             f"max_displacement = {max_displacement:g} m")
-
-    pivot_depth = _num("pivot_depth", pivot_depth, 0.0, 1e4, "0 <= pivot_depth <= 1e4 m")
-    live = _Push(arch, settings, movement, side, rate, open_gap, pivot_depth)
-    ca = live.ca
-    v, dt = live.speed, live.dt
-    window = max(1, int(round(sample * size / (v * dt))))
-    hold_steps = int(math.ceil(hold * settings.steps_per_T))
-    stop_steps = max(1, int(math.ceil(stop * settings.steps_per_T)))
-    check = max(1, int(settings.steps_per_T // 100))
-    ke_ref = 0.5 * live.m_tot * v * v
-    ke_lim = ke_factor * ke_ref
-    say = progress or (lambda msg: None)
-
-    rec = {k: [] for k in ("d", "t", "fl", "fr", "jrot", "ke", "pe", "crown")}
-
-    def record(d):
-        f = live.window_force()
-        jrot, rel, ke, pe, crown = live.measure()
-        rec["d"].append(d)
-        rec["t"].append(live.sim_steps * dt)
-        rec["fl"].append(f[0])
-        rec["fr"].append(f[1])
-        rec["jrot"].append(jrot)
-        rec["ke"].append(ke)
-        rec["pe"].append(pe)
-        rec["crown"].append(crown)
-        return jrot, rel, ke
-
-    extra_steps = 0  # steps run on copies (holds, bisection)
-
-    def held(state):
-        """Hold a copy of ``state``: (displacement where it is held, moved, labels)."""
-        nonlocal extra_steps
-        st = state.copy()
-        moved, labels = st.hold(stop_steps, hold_steps, check, max_rotation, ke_lim)
-        extra_steps += st.sim_steps - state.sim_steps
-        d = st.displacement()
-        holds.append((d, moved))
-        say(f"hold at d = {d:.5g} m: {'moves' if moved else 'rests'}")
-        return d, moved, labels
-
-    # the settled arch at rest: one window of forces before the push
-    live.step(window)
-    record(0.0)
-    start = live.copy()
-    live.set_moving(True)
-    checkpoints = [(0.0, start)]
-    holds: list[tuple[float, bool]] = []
-    changes: list[tuple[float, tuple[str, ...]]] = []
-    last_labels: tuple[str, ...] = ()
-    opening = None
-    hinges: tuple[str, ...] = ()
-    first_d = None
-    status, collapse_by, trigger = "standing", None, None
-    collapse_hinges: tuple[str, ...] = ()
-    armed = True
-    k = 0
-    while True:
-        live.step(window)
-        k += 1
-        d = live.displacement()
-        jrot, rel, ke = record(d)
-        ratio = np.abs(jrot) / live.rot_thr
-        labels = live.labels(jrot)
-        if labels != last_labels:
-            changes.append((d, labels))
-            last_labels = labels
-        if opening is None and ratio.max() >= 1.0:
-            opening = d
-        if first_d is None and ratio.max() >= 4.0:
-            first_d, hinges = d, labels
-            say(f"first opening at d = {d:.5g} m: {'-'.join(hinges)}")
-        if np.abs(rel).max() > max_rotation:
-            status, collapse_by, trigger = "collapsed", "rotation", d
-            collapse_hinges = labels
-            break
-        if ke > ke_lim and armed:
-            d_held, moved, labels = held(live)
-            if moved:
-                status, collapse_by, trigger = "collapsed", "hold", d_held
-                collapse_hinges = labels
-                break
-            armed = False  # a snap between mechanisms: push on, re-arm once it has calmed
-        elif ke <= ke_lim:
-            armed = True
-        if k % CHECKPOINT_EVERY == 0:
-            checkpoints.append((d, live.copy()))
-        if d >= max_displacement - 0.5 * v * dt:
-            break
-
-    capacity = bracket = None
-    if status == "collapsed" and collapse_by == "rotation":
-        prev = rec["d"][-2] if len(rec["d"]) > 1 else 0.0
-        bracket = (float(prev), float(trigger))
-    elif status == "collapsed":
-        # the bracket in held displacements: lo rests when held, hi moves on; the checkpoints
-        # before the trigger are searched by bisection (the push itself runs on past the
-        # capacity, as the unstable motion grows from nothing while the support keeps moving)
-        hi = float(trigger)
-        cks = [(dc, st) for dc, st in checkpoints if dc < hi]
-        i_lo, i_hi, lo = 0, len(cks), None
-        while i_hi - i_lo > 1:
-            i_mid = (i_lo + i_hi) // 2
-            d_held, moved, labels = held(cks[i_mid][1])
-            if moved:
-                i_hi, hi, collapse_hinges = i_mid, min(hi, d_held), labels
-            else:
-                i_lo, lo = i_mid, d_held
-        lo_state = cks[i_lo][1]
-        if lo is None:  # the settled arch itself: does it stand when held?
-            d_held, moved, labels = held(lo_state)
-            if moved:
-                raise CannotStandError("arch: it does not stand in the contact engine with its "
-                                       "supports held at rest (a held copy of the settled arch "
-                                       "moves on)")
-            lo = d_held
-        for _ in range(64):
-            if hi - lo <= tol * hi:
-                break
-            mid = 0.5 * (lo + hi)
-            steps = int(round((mid - lo) / (v * dt)))
-            if steps < 1:  # the step grid cannot split the bracket further
-                break
-            st = lo_state.copy()
-            st.set_moving(True)
-            st.step(steps)
-            extra_steps += steps
-            d_held, moved, labels = held(st)
-            if moved:
-                hi, collapse_hinges = d_held, labels
-            else:
-                lo, lo_state = d_held, st
-        bracket = (float(lo), float(hi))
-    if bracket is not None:
-        capacity = 0.5 * (bracket[0] + bracket[1])
-
-    d_arr = np.array(rec["d"])
-    fl, fr = np.array(rec["fl"]).reshape(-1, 2), np.array(rec["fr"]).reshape(-1, 2)
-    if side == "right":
-        thrust = fr[:, 0]
-    elif side == "left":
-        thrust = -fl[:, 0]
-    else:
-        thrust = 0.5 * (fr[:, 0] - fl[:, 0])
-    ke_arr, pe_arr = np.array(rec["ke"]), np.array(rec["pe"])
-    # the thrust at the start: a line through H(d) after the first opening, at d = 0
-    thrust_start = None
-    if first_d is not None:
-        upto = bracket[0] if bracket is not None else d_arr[-1]
-        sel = (d_arr > first_d) & (d_arr <= min(first_d + FIT_SPAN * size, upto))
-        if sel.sum() >= 3:
-            slope, icpt = np.polyfit(d_arr[sel], thrust[sel], 1)
-            thrust_start = float(icpt)
-    # quasi-static check: KE / |dPE| past KE_CHECK_FROM x size, before the collapse bracket
-    upto = bracket[0] if bracket is not None else d_arr[-1]
-    sel = (d_arr >= KE_CHECK_FROM * size) & (d_arr <= upto) & (np.abs(pe_arr) > 0)
-    ke_ratio = float(np.max(ke_arr[sel] / np.abs(pe_arr[sel]))) if sel.any() else None
-    quasi = None if ke_ratio is None else bool(ke_ratio <= KE_RATIO_MAX)
-    sim_seconds = (live.sim_steps + extra_steps) * dt
-    run = {"rate": rate, "speed": v, "max_displacement": max_displacement, "sample": sample,
-           "window_steps": window, "open_gap": open_gap, "hold": hold, "stop": stop, "tol": tol,
-           "ke_factor": ke_factor, "max_rotation": max_rotation, "max_time": max_time,
-           "dt": dt, "size": size, "time_scale": ca.time_scale,
-           "ke_ratio_max": KE_RATIO_MAX, "ke_check_from": KE_CHECK_FROM, "fit_span": FIT_SPAN,
-           **({"pivot_depth": pivot_depth, "displacement": "rotation x size [m]"}
-              if movement == "rotate" else {})}
-    return PushResult(movement, side, d_arr, np.array(rec["t"]), fl, fr, thrust,
-                      np.array(rec["crown"]), np.array(rec["jrot"]), ke_arr, pe_arr,
-                      float(thrust[0]), thrust_start, opening, tuple(hinges),
-                      tuple(changes), status, None if capacity is None else float(capacity),
-                      bracket, collapse_by, tuple(collapse_hinges), tuple(holds), ke_ratio,
-                      quasi, float(sim_seconds), _time.perf_counter() - t_wall, settings, run)
+    movement, side, settings, p = _push_params(
+        arch, movement, side, settings, rate=rate, max_displacement=max_displacement,
+        sample=sample, open_gap=open_gap, hold=hold, stop=stop, tol=tol, ke_factor=ke_factor,
+        max_rotation=max_rotation, max_time=max_time, pivot_depth=pivot_depth)
+    run = _PushRun(arch, settings, movement, side, p, progress)
+    run.push()
+    return run.result(run.bracket(), t_wall)

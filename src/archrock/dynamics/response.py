@@ -505,36 +505,44 @@ def respond(arch_or_model: VoussoirArch | DynamicModel, motion: GroundMotion, *,
 
 
 # ---------------------------------------------------------------------------- reference
-def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, atol, max_events):
-    """Adaptive reference integrator (scipy DOP853), same rules as :func:`kernel.simulate_chain`."""
-    chain_mechs, chain_lims, chain_trans = model.chain
-    out = np.zeros(n_out)
-    ev = []
-    nseg = times.size - 1
-    t_motion = times[-1]
-    t_stop = t_motion + t_free
-    grid = np.arange(n_out) * dt_out
-    thr_l, thr_r = -model.k_l * G, model.k_r * G
-    # segments with positive length, plus the free motion after the record
-    seg_j = [j for j in range(nseg) if times[j + 1] > times[j]]
+class _Reference:
+    """Adaptive reference integrator (scipy DOP853), same rules as :func:`kernel.simulate_chain`:
+    the record's state (sampled output, events, peak, times of instability and collapse)."""
 
-    def a_of(t, j):
+    def __init__(self, model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, atol):
+        self.model, self.times, self.accel, self.rtol, self.atol = model, times, accel, rtol, atol
+        self.mechs, self.lims, self.trans = model.chain
+        self.out = np.zeros(n_out)
+        self.ev = []
+        self.t_motion = times[-1]
+        self.t_stop = self.t_motion + t_free
+        self.grid = np.arange(n_out) * dt_out
+        self.thr_l, self.thr_r = -model.k_l * G, model.k_r * G
+        # segments with positive length, plus the free motion after the record
+        self.seg_j = [j for j in range(times.size - 1) if times[j + 1] > times[j]]
+        self.peak, self.t_col, self.t_uns = 0.0, -1.0, -1.0
+        # last upward passage of the open mechanism's phi_u (each arc starts at phi = 0 < phi_u)
+        self.t_up, self.w_up = -1.0, 0.0
+
+    def a_of(self, t, j):
         if j < 0:
             return 0.0
-        return K._accel(t, j, times, accel)
+        return K._accel(t, j, self.times, self.accel)
 
-    def segments_from(t):
+    def segments_from(self, t):
         """(j, t_start, t_end) pieces from t on; j = -1 is the free motion after the record."""
-        for j in seg_j:
-            if times[j + 1] > t:
-                yield j, max(t, times[j]), times[j + 1]
-        yield -1, max(t, t_motion), t_stop
+        for j in self.seg_j:
+            if self.times[j + 1] > t:
+                yield j, max(t, self.times[j]), self.times[j + 1]
+        yield -1, max(t, self.t_motion), self.t_stop
 
-    def first_activation(t):
-        for j, t0, t1 in segments_from(t):
+    def first_activation(self, t):
+        """(time [s], segment, mode) of the first activation from rest at t, None if none."""
+        thr_l, thr_r = self.thr_l, self.thr_r
+        for j, t0, t1 in self.segments_from(t):
             if j < 0:
                 return None
-            a0, a1 = a_of(t0, j), accel[j + 1]
+            a0, a1 = self.a_of(t0, j), self.accel[j + 1]
             if a0 < thr_l:  # strictly: at the threshold phi = 0 is in equilibrium
                 return t0, j, 1
             if a0 > thr_r:
@@ -545,112 +553,128 @@ def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, a
                 return t0 + (t1 - t0) * (thr_r - a0) / (a1 - a0), j, 2
         return None
 
-    def fill(t0, t1, sol_fun, sign, value=None):
-        mask = (grid >= t0) & (grid < t1)
+    def fill(self, t0, t1, sol_fun, sign, value=None):
+        """The output samples in [t0, t1): ``value``, or sign x phi from ``sol_fun``."""
+        mask = (self.grid >= t0) & (self.grid < t1)
         if value is not None:
-            out[mask] = value
+            self.out[mask] = value
         elif np.any(mask):
-            out[mask] = sign * sol_fun(grid[mask])[0]
+            self.out[mask] = sign * sol_fun(self.grid[mask])[0]
 
-    t, mode, phi, w = 0.0, 0, 0.0, 0.0
-    peak, t_col, t_uns, status = 0.0, -1.0, -1.0, K.ST_REST
-    # last upward passage of the open mechanism's phi_u (each arc starts at phi = 0 < phi_u)
-    t_up, w_up = -1.0, 0.0
-    while True:
-        if mode == 0:
-            act = first_activation(t)
-            if act is None:
-                fill(t, np.inf, None, 1.0, 0.0)
-                t = max(t, t_motion)
-                status = K.ST_REST
-                break
-            t_act, _, mode = act
-            fill(t, t_act, None, 1.0, 0.0)
-            t, phi, w = t_act, 0.0, 0.0
-            ev.append((K.EV_ACTIVATION, t, 0, mode, 0.0, 0.0))
-            continue
-        fl = chain_mechs[mode - 1]
-        geo = fl.geo
-        lim = chain_lims[mode - 1]
-        phu = fl.phi_unstable
+    def solve(self, j, t0, t1, phi, w, geo, lim, phu):
+        """One piece of an arc: solve_ivp from (phi, w) at t0 to t1 or a terminal event."""
+        def rhs(tt, y):
+            return [y[1], exact_acceleration(y[0], y[1], self.a_of(tt, j), G, geo)]
+
+        def close(tt, y):
+            # phi = 0 exactly at the start of an arc is not a closure: only a return to 0
+            return y[0] if tt > t0 else 1.0
+        close.terminal, close.direction = True, -1
+
+        def turning(tt, y):
+            return y[1]
+        turning.terminal, turning.direction = False, -1
+
+        def limit_ev(tt, y):
+            return y[0] - lim
+        limit_ev.terminal, limit_ev.direction = True, 1
+
+        def unstable_ev(tt, y):
+            return y[0] - phu
+        unstable_ev.terminal, unstable_ev.direction = False, 1
+
+        return solve_ivp(rhs, (t0, t1), [phi, w], method="DOP853", rtol=self.rtol, atol=self.atol,
+                         events=(close, limit_ev, unstable_ev, turning), dense_output=True,
+                         first_step=min(1e-4, (t1 - t0) / 2))
+
+    def note(self, sol, mode):
+        """The instability's passages and the peak met by one solved piece of an arc."""
+        if sol.t_events[2].size:
+            if self.t_uns < 0:
+                self.t_uns = float(sol.t_events[2][0])
+                self.ev.append((K.EV_UNSTABLE, self.t_uns, mode, mode,
+                                float(sol.y_events[2][0][1]), float(sol.y_events[2][0][1])))
+            # the last upward passage so far (events past a terminal one are not listed)
+            self.t_up, self.w_up = float(sol.t_events[2][-1]), float(sol.y_events[2][-1][1])
+        # the true maximum is at a turning point (phi' = 0), not at a solver node
+        self.peak = max(self.peak, float(np.max(sol.y[0])),
+                        max((float(y[0]) for y in sol.y_events[3]), default=0.0))
+
+    def arc(self, mode, t, phi, w):
+        """Follow mechanism ``mode`` from t: (how it ended: 'collapse', 'impact' or None, t, w)."""
+        fl, lim = self.mechs[mode - 1], self.lims[mode - 1]
         sign = 1.0 if fl.direction == "l" else -1.0
-        ended = None
-        for j, t0, t1 in segments_from(t):
-            if t0 >= t_stop:
+        for j, t0, t1 in self.segments_from(t):
+            if t0 >= self.t_stop:
                 break
-
-            def rhs(tt, y, j=j):
-                return [y[1], exact_acceleration(y[0], y[1], a_of(tt, j), G, geo)]
-
-            def close(tt, y, t_start=t0):
-                # phi = 0 exactly at the start of an arc is not a closure: only a return to 0
-                return y[0] if tt > t_start else 1.0
-            close.terminal, close.direction = True, -1
-
-            def turning(tt, y):
-                return y[1]
-            turning.terminal, turning.direction = False, -1
-
-            def limit_ev(tt, y):
-                return y[0] - lim
-            limit_ev.terminal, limit_ev.direction = True, 1
-
-            def unstable_ev(tt, y):
-                return y[0] - phu
-            unstable_ev.terminal, unstable_ev.direction = False, 1
-
-            sol = solve_ivp(rhs, (t0, t1), [phi, w], method="DOP853", rtol=rtol, atol=atol,
-                            events=(close, limit_ev, unstable_ev, turning), dense_output=True,
-                            first_step=min(1e-4, (t1 - t0) / 2))
-            if sol.t_events[2].size:
-                if t_uns < 0:
-                    t_uns = float(sol.t_events[2][0])
-                    ev.append((K.EV_UNSTABLE, t_uns, mode, mode, float(sol.y_events[2][0][1]),
-                               float(sol.y_events[2][0][1])))
-                # the last upward passage so far (events past a terminal one are not listed)
-                t_up, w_up = float(sol.t_events[2][-1]), float(sol.y_events[2][-1][1])
-            # the true maximum is at a turning point (phi' = 0), not at a solver node
-            peak = max(peak, float(np.max(sol.y[0])),
-                       max((float(y[0]) for y in sol.y_events[3]), default=0.0))
-            t_hit = sol.t[-1]
-            fill(t0, t_hit, sol.sol, sign)
+            sol = self.solve(j, t0, t1, phi, w, fl.geo, lim, fl.phi_unstable)
+            self.note(sol, mode)
+            self.fill(t0, sol.t[-1], sol.sol, sign)
             if sol.status == 1 and sol.t_events[1].size:
-                t, w = float(sol.t_events[1][0]), float(sol.y_events[1][0][1])
-                ended = "collapse"
-                break
+                return "collapse", float(sol.t_events[1][0]), float(sol.y_events[1][0][1])
             if sol.status == 1 and sol.t_events[0].size:
-                t, w = float(sol.t_events[0][0]), float(sol.y_events[0][0][1])
-                ended = "impact"
-                break
+                return "impact", float(sol.t_events[0][0]), float(sol.y_events[0][0][1])
             if sol.status != 0:
                 raise RuntimeError(f"reference integrator failed: {sol.message}")
             t, phi, w = t1, float(sol.y[0, -1]), float(sol.y[1, -1])
-        if ended is None:
-            status = K.ST_MOVING
-            break
-        if ended == "collapse":
-            # certain since the last upward passage of phi_u; the limit only ends the run
-            t_col = t_up if t_up >= 0 else t
-            if t_uns < 0:
-                t_uns = t_col
-            peak = max(peak, lim)
-            ev.append((K.EV_COLLAPSE, t_col, mode, mode, w_up, w_up))
-            ev.append((K.EV_LIMIT, t, mode, mode, w, 0.0))
-            fill(t, np.inf, None, 1.0, np.nan)
-            status = K.ST_COLLAPSED
-            break
+        return None, t, w
+
+    def collapse(self, mode, t, w):
+        """Record the collapse of ``mode``, whose limit rotation is reached at t with rate w."""
+        # certain since the last upward passage of phi_u; the limit only ends the run
+        self.t_col = self.t_up if self.t_up >= 0 else t
+        if self.t_uns < 0:
+            self.t_uns = self.t_col
+        self.peak = max(self.peak, self.lims[mode - 1])
+        self.ev.append((K.EV_COLLAPSE, self.t_col, mode, mode, self.w_up, self.w_up))
+        self.ev.append((K.EV_LIMIT, t, mode, mode, w, 0.0))
+        self.fill(t, np.inf, None, 1.0, np.nan)
+
+    def impact(self, mode, t, w):
+        """The impact closing ``mode`` at t with rate w: the next (mode, phi, w), 0 at rest."""
         w_minus = min(w, 0.0)
-        nxt, ratio = chain_trans[mode - 1]
+        nxt, ratio = self.trans[mode - 1]
         w_plus = -ratio * w_minus
-        if w_plus < model.v_rest:
-            ev.append((K.EV_IMPACT, t, mode, 0, w_minus, 0.0))
-            ev.append((K.EV_REST, t, mode, 0, 0.0, 0.0))
-            mode, phi, w = 0, 0.0, 0.0
-        else:
-            new = nxt + 1
-            ev.append((K.EV_IMPACT, t, mode, new, w_minus, w_plus))
-            mode, phi, w = new, 0.0, w_plus
-        if len(ev) > max_events:
-            break
-    table = np.array(ev, dtype=float).reshape(-1, 6)
-    return out, table, len(ev), status, t, peak, t_col, t_uns
+        if w_plus < self.model.v_rest:
+            self.ev.append((K.EV_IMPACT, t, mode, 0, w_minus, 0.0))
+            self.ev.append((K.EV_REST, t, mode, 0, 0.0, 0.0))
+            return 0, 0.0, 0.0
+        new = nxt + 1
+        self.ev.append((K.EV_IMPACT, t, mode, new, w_minus, w_plus))
+        return new, 0.0, w_plus
+
+    def run(self, max_events):
+        """Integrate the record: (out, event table, events, status, t_final, peak, t_col, t_uns)."""
+        t, mode, phi, w = 0.0, 0, 0.0, 0.0
+        while True:
+            if mode == 0:
+                act = self.first_activation(t)
+                if act is None:
+                    self.fill(t, np.inf, None, 1.0, 0.0)
+                    t, status = max(t, self.t_motion), K.ST_REST
+                    break
+                t_act, _, mode = act
+                self.fill(t, t_act, None, 1.0, 0.0)
+                t, phi, w = t_act, 0.0, 0.0
+                self.ev.append((K.EV_ACTIVATION, t, 0, mode, 0.0, 0.0))
+                continue
+            ended, t, w = self.arc(mode, t, phi, w)
+            if ended is None:
+                status = K.ST_MOVING
+                break
+            if ended == "collapse":
+                self.collapse(mode, t, w)
+                status = K.ST_COLLAPSED
+                break
+            mode, phi, w = self.impact(mode, t, w)
+            if len(self.ev) > max_events:
+                status = K.ST_REST
+                break
+        table = np.array(self.ev, dtype=float).reshape(-1, 6)
+        return (self.out, table, len(self.ev), status, t, self.peak, self.t_col, self.t_uns)
+
+
+def _reference(model: DynamicModel, times, accel, n_out, dt_out, t_free, rtol, atol, max_events):
+    """Adaptive reference integrator (scipy DOP853), same rules as :func:`kernel.simulate_chain`."""
+    ref = _Reference(model, times, accel, n_out, dt_out, t_free, rtol, atol)
+    return ref.run(max_events)

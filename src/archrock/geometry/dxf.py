@@ -176,14 +176,8 @@ def _chain(m: int, start: int, stop: int) -> list[int]:
 
 
 # ---------------------------------------------------------------------------- the arch
-def arch_from_outlines(outlines, labels=None, *, density: float = DEFAULT_DENSITY,
-                       name: str = "arch", tol: float | None = None):
-    """A :class:`PolygonArch` from one closed outline per voussoir, in any order, each a
-    sequence of (x, y) vertices [m] in either direction from any vertex (module docstring).
-
-    labels: one name per outline for the messages (the DXF handles; default its index).
-    Returns ``(arch, order)``: ``order[i]`` is the index of the outline that became voussoir i.
-    """
+def _checked_polygons(outlines, labels):
+    """The outlines as cleaned polygons, checked: (labels, polygons)."""
     outlines = list(outlines)
     labels = [str(i) for i in range(len(outlines))] if labels is None else [str(s) for s in labels]
     if len(labels) != len(outlines):
@@ -203,14 +197,14 @@ def arch_from_outlines(outlines, labels=None, *, density: float = DEFAULT_DENSIT
     if n < 3:
         raise ArchInputError(f"found {n} closed polyline(s); an arch needs at least 3 voussoirs, "
                              f"one closed polyline each")
-    allpts = np.vstack(polys)
-    size = 0.5 * float(np.max(np.ptp(allpts, axis=0)))
-    if tol is None:
-        tol = FACE_TOLERANCE * min(1.0, 0.1 * size)
+    return labels, polys
+
+
+def _contacts(polys, labels, tol):
+    """Step 1: (faces, nbrs); faces[(i, j)] = (first, last) edge of polygon i along polygon j."""
+    n = len(polys)
     lo = np.array([p.min(axis=0) for p in polys]) - tol
     hi = np.array([p.max(axis=0) for p in polys]) + tol
-
-    # 1. contacts: faces[(i, j)] = (first, last) edge of polygon i along polygon j
     faces: dict[tuple[int, int], tuple[int, int]] = {}
     nbrs: list[list[int]] = [[] for _ in range(n)]
     for i in range(n):
@@ -235,15 +229,13 @@ def arch_from_outlines(outlines, labels=None, *, density: float = DEFAULT_DENSIT
             faces[i, j], faces[j, i] = ri, rj
             nbrs[i].append(j)
             nbrs[j].append(i)
+    return faces, nbrs
 
-    # 2. one chain
-    for i in range(n):
-        if len(nbrs[i]) > 2:
-            others = ", ".join(labels[j] for j in nbrs[i])
-            raise ArchInputError(f"voussoir {labels[i]} touches {len(nbrs[i])} others ({others}); "
-                                 f"allowed at most two neighbours (one chain of voussoirs)")
-    comp = -np.ones(n, int)
-    for s in range(n):
+
+def _components(nbrs) -> np.ndarray:
+    """comp[i]: the lowest index of the polygons connected to polygon i."""
+    comp = -np.ones(len(nbrs), int)
+    for s in range(len(nbrs)):
         if comp[s] >= 0:
             continue
         stack = [s]
@@ -254,26 +246,44 @@ def arch_from_outlines(outlines, labels=None, *, density: float = DEFAULT_DENSIT
                 if comp[j] < 0:
                     comp[j] = s
                     stack.append(j)
+    return comp
+
+
+def _chain_break(polys, labels, comp, n_parts, tol) -> ArchInputError:
+    """The error for a chain in n_parts pieces, named by its closest pair across a break."""
+    n = len(polys)
+    best = None
+    for i in range(n):
+        for j in range(i + 1, n):
+            if comp[i] != comp[j]:
+                d = _segment_distance(polys[i], polys[j])
+                if best is None or d < best[0]:
+                    best = (d, i, j)
+    d, i, j = best
+    more = f" (and {n_parts - 2} more break(s) in the chain)" if n_parts > 2 else ""
+    depth = _overlap_depth(polys[i], polys[j]) if d <= tol else 0.0
+    if depth > 0:
+        what = (f"overlap by {depth:.4g} m without a common face; allowed neighbours whose "
+                f"faces lie on one line within {tol:.3g} m")
+    elif d <= tol:
+        what = "touch at a corner only; allowed neighbours that share a straight face"
+    else:
+        what = f"do not touch: a gap of {d:.4g} m; allowed at most {tol:.3g} m"
+    return ArchInputError(f"voussoirs {labels[i]} and {labels[j]} {what}{more}")
+
+
+def _chain_order(polys, labels, nbrs, tol) -> list[int]:
+    """Step 2: the polygons' order along one open chain, from its leftmost end."""
+    n = len(polys)
+    for i in range(n):
+        if len(nbrs[i]) > 2:
+            others = ", ".join(labels[j] for j in nbrs[i])
+            raise ArchInputError(f"voussoir {labels[i]} touches {len(nbrs[i])} others ({others}); "
+                                 f"allowed at most two neighbours (one chain of voussoirs)")
+    comp = _components(nbrs)
     roots = sorted(set(comp.tolist()))
     if len(roots) > 1:
-        best = None
-        for i in range(n):
-            for j in range(i + 1, n):
-                if comp[i] != comp[j]:
-                    d = _segment_distance(polys[i], polys[j])
-                    if best is None or d < best[0]:
-                        best = (d, i, j)
-        d, i, j = best
-        more = f" (and {len(roots) - 2} more break(s) in the chain)" if len(roots) > 2 else ""
-        depth = _overlap_depth(polys[i], polys[j]) if d <= tol else 0.0
-        if depth > 0:
-            what = (f"overlap by {depth:.4g} m without a common face; allowed neighbours whose "
-                    f"faces lie on one line within {tol:.3g} m")
-        elif d <= tol:
-            what = "touch at a corner only; allowed neighbours that share a straight face"
-        else:
-            what = f"do not touch: a gap of {d:.4g} m; allowed at most {tol:.3g} m"
-        raise ArchInputError(f"voussoirs {labels[i]} and {labels[j]} {what}{more}")
+        raise _chain_break(polys, labels, comp, len(roots), tol)
     ends = [i for i in range(n) if len(nbrs[i]) == 1]
     if not ends:
         raise ArchInputError("the voussoirs close into a ring; allowed an open chain between "
@@ -284,8 +294,24 @@ def arch_from_outlines(outlines, labels=None, *, density: float = DEFAULT_DENSIT
     while len(order) < n:
         nxt = [j for j in nbrs[order[-1]] if j not in order[-2:]]
         order.append(nxt[0])
+    return order
 
-    # 3-4. faces, intrados, extrados
+
+def _springing_face(p, own, lab):
+    """The free face (two vertex indices) of a springing voussoir p whose face ``own`` touches
+    its neighbour: the two sharpest corners of the rest of its boundary."""
+    free = _chain(len(p), own[1], own[0])[1:-1]  # vertices of the free boundary
+    if len(free) < 2:
+        raise ArchInputError(f"voussoir {lab}: a springing voussoir needs at least "
+                             f"two corners besides its face towards its neighbour")
+    turn = _turns(p)[free]
+    a, b = sorted(np.argsort(turn)[-2:])
+    return (free[a], free[b])
+
+
+def _intrados_extrados(polys, labels, faces, order):
+    """Steps 3-4: each voussoir's faces, then its intrados and extrados (lists, in order)."""
+    n = len(order)
     intr, extr = [], []
     for pos, i in enumerate(order):
         p = polys[i]
@@ -303,25 +329,34 @@ def arch_from_outlines(outlines, labels=None, *, density: float = DEFAULT_DENSIT
                 raise ArchInputError(f"voussoir {labels[i]}: its faces towards "
                                      f"{labels[order[pos - 1]]} and {labels[order[pos + 1]]} "
                                      f"meet; allowed a voussoir with an intrados and an extrados")
+        elif left is None:
+            left = _springing_face(p, right, labels[i])
         else:
-            own = left if left is not None else right
-            free = _chain(m, own[1], own[0])[1:-1]  # vertices of the free boundary
-            if len(free) < 2:
-                raise ArchInputError(f"voussoir {labels[i]}: a springing voussoir needs at least "
-                                     f"two corners besides its face towards its neighbour")
-            turn = _turns(p)[free]
-            a, b = sorted(np.argsort(turn)[-2:])
-            face = (free[a], free[b])
-            if left is None:
-                left = face
-            else:
-                right = face
+            right = _springing_face(p, left, labels[i])
         li, ri = _chain(m, left[1], right[0]), _chain(m, right[1], left[0])
         if len(li) < 2 or len(ri) < 2:
             raise ArchInputError(f"voussoir {labels[i]}: its faces meet at a corner; allowed a "
                                  f"voussoir with an intrados and an extrados")
         intr.append(p[li])
         extr.append(p[ri][::-1])
+    return intr, extr
+
+
+def arch_from_outlines(outlines, labels=None, *, density: float = DEFAULT_DENSITY,
+                       name: str = "arch", tol: float | None = None):
+    """A :class:`PolygonArch` from one closed outline per voussoir, in any order, each a
+    sequence of (x, y) vertices [m] in either direction from any vertex (module docstring).
+
+    labels: one name per outline for the messages (the DXF handles; default its index).
+    Returns ``(arch, order)``: ``order[i]`` is the index of the outline that became voussoir i.
+    """
+    labels, polys = _checked_polygons(outlines, labels)
+    size = 0.5 * float(np.max(np.ptp(np.vstack(polys), axis=0)))
+    if tol is None:
+        tol = FACE_TOLERANCE * min(1.0, 0.1 * size)
+    faces, nbrs = _contacts(polys, labels, tol)
+    order = _chain_order(polys, labels, nbrs, tol)
+    intr, extr = _intrados_extrados(polys, labels, faces, order)
     try:
         arch = PolygonArch(tuple(intr), tuple(extr), density, name)
     except ArchInputError as exc:
