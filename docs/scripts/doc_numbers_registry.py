@@ -101,8 +101,16 @@ def readme_three_voussoirs() -> str:
         return run_archrock(["limit", "--geometry", str(path)])
 
 
+def readme_noise() -> str:
+    def run():
+        from archrock.groundmotion import band_limited_noise
+        noise = band_limited_noise(8.0, 0.01, (0.3, 2.0), seed=1, pga_g=0.3)
+        print(noise.name, noise.pga_g, noise.times[-1])
+    return _printed(run)
+
+
 FUNCTIONS = {f.__name__: f for f in (readme_statics, readme_dynamics, readme_namespace,
-                                     readme_shapes, readme_three_voussoirs)}
+                                     readme_shapes, readme_three_voussoirs, readme_noise)}
 
 R = "README.md"
 CLI = "docs/cli.md"      # the command line, moved out of the README in 0.7
@@ -163,6 +171,7 @@ ENTRIES: list[Entry] = [
     Entry(PY, "print(ar.limit_analysis(pointed).k) # {}", "py:readme_shapes", r"pointed (\S+)"),
     Entry(PY, "# {} (sector: {})", "py:readme_shapes", r"polygon (\S+)\nsector (\S+)"),
     Entry(PY, "# {}: twice the crown voussoir's mass on top", "py:readme_shapes", r"loaded (\S+)"),
+    Entry(PY, "# noise {} {} {} (g, s)", "py:readme_noise", r"noise (\S+) (\S+) (\S+)"),
 ]
 
 ENSEMBLE_10K = ("ensemble", "--samples", "10000", "--seed", "0", "--spread-span", "0.1",
