@@ -18,16 +18,9 @@ from ..enginestudy import DynamicsChoice, EngineRun, engine_run_cost_s
 from ..work import check_work
 from .compute import sample_arch
 from .config import EnsembleConfig
+from .statistics import _wilson
 
 __all__ = ["EngineEnsembleResult", "engine_ensemble", "ENGINE_COLUMNS"]
-
-
-def _wilson(k: int, n: int, confidence: float) -> tuple:
-    """(p, low, high) with the Wilson score interval (scipy's binomtest)."""
-    from scipy.stats import binomtest
-
-    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=confidence, method="wilson")
-    return k / n, float(ci.low), float(ci.high)
 
 
 def _stats(x) -> dict:
@@ -79,14 +72,8 @@ class EngineEnsembleResult:
                 reasons[key] = reasons.get(key, 0) + 1
         status = {s: sum(1 for r in ran if r["status"] == s) for s in ("rest", "collapsed",
                                                                         "moving")}
-        pc = {"p": None, "low": None, "high": None, "confidence": confidence,
-              "method": "wilson", "collapses": k, "trials": len(ran),
-              "rule": "conditional: collapsed / integrated samples (engine runs that "
-                      "ended); failed samples left out", "note": None}
-        if ran:
-            pc["p"], pc["low"], pc["high"] = _wilson(k, len(ran), confidence)
-        else:
-            pc["note"] = "no trials: the probability cannot be estimated"
+        pc = _wilson(k, len(ran), confidence, "conditional: collapsed / integrated samples "
+                     "(engine runs that ended); failed samples left out", collapses=k)
         m = self.config.motion
         return {
             "samples": n, "seed": self.config.seed,
