@@ -631,3 +631,28 @@ ENTRIES += [
     Entry(REC, "amplitude of 1 g does not collapse the arch; at {} g it does", _CURVES_4,
           r"\n\s+0\.200\s+(\S+)", slow=True),
 ]
+
+
+def bench_p695() -> str:
+    """The JSON of ``benchmarks/bench_p695.py`` (extra ``records``; 10 minutes or more on two
+    cores: the 200 arches and 4 of them arch by arch), run in a process of its own."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "bench.json")
+        subprocess.run([sys.executable, str(ROOT / "benchmarks" / "bench_p695.py"), "--json",
+                        path], capture_output=True, text=True, env=env, check=True)
+        with open(path, encoding="utf-8") as fh:
+            return fh.read()
+
+
+FUNCTIONS[bench_p695.__name__] = bench_p695
+ENTRIES += [
+    Entry(PERF, "requires the batch path to be at\nleast {}x the arch-by-arch one on Oppenheim's "
+                "arch and at least {}x on the 200 arches", "py:bench_p695",
+          "json:nominal.speedup,population.speedup", at_least=True, slow=True),
+]
