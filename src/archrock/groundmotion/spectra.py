@@ -40,16 +40,16 @@ _SAME_STEP_REL = 1e-9
 def _runs(times: np.ndarray) -> list:
     """(first, last) sample indices of the runs of equal nonzero intervals, in time order."""
     h = np.diff(times)
-    runs, k = [], 0
-    while k < h.size:
-        if h[k] <= 0.0:  # a step: no time passes
-            k += 1
-            continue
+    moving = h > 0.0  # a repeated time is a step: no time passes
+    same = np.zeros(h.size, bool)
+    same[1:] = moving[1:] & moving[:-1] & (np.abs(h[1:] - h[:-1]) <= _SAME_STEP_REL * h[:-1])
+    starts = np.flatnonzero(moving & ~same)
+    ends = np.append(starts[1:], h.size)
+    runs = []
+    for k, end in zip(starts.tolist(), ends.tolist()):
         j = k + 1
-        while j < h.size and abs(h[j] - h[k]) <= _SAME_STEP_REL * h[k]:
-            j += 1
+        j += int(np.argmin(same[j:end])) if not same[j:end].all() else end - j
         runs.append((k, j))
-        k = j
     return runs
 
 
@@ -88,7 +88,7 @@ def _step_map(h: float, w: float, z: float) -> tuple:
 def _run(u0, v0, p, h, w, z):
     """Displacements at the knots of one run (forcing ``p`` at knots h apart, state (u0, v0) at
     the first) and the state at the last knot."""
-    from scipy.signal import lfilter, lfiltic
+    from scipy.signal import lfilter
 
     phi, g0, g1 = _step_map(h, w, z)
     # state y_k = x_k - Gamma1 p_k: y_{k+1} = Phi y_k + (Phi Gamma1 + Gamma0) p_k,
@@ -100,8 +100,9 @@ def _run(u0, v0, p, h, w, z):
     y0 = np.array([u0, v0]) - g1 * p[0]
     # the filter's initial conditions: the outputs the state y0 had one and two steps before
     # (free vibration backwards, no forcing then)
-    back_u, _ = _free(y0[0], y0[1], np.array([-h, -2.0 * h]), w, z)
-    u = lfilter(b, a, p, zi=lfiltic(b, a, back_u, [0.0, 0.0]))[0]
+    (u1, u2), _ = _free(y0[0], y0[1], np.array([-h, -2.0 * h]), w, z)
+    # lfilter's transposed direct form holds -a1 u_-1 - a2 u_-2 and -a2 u_-1 (inputs 0 then)
+    u = lfilter(b, a, p, zi=[-a[1] * u1 - a[2] * u2, -a[2] * u1])[0]
     if u.size == 1:
         return u, (u0, v0)
     # u' at the last knot, from the last two displacements and the exact step between them
