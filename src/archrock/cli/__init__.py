@@ -15,7 +15,7 @@ NaN/inf), sets ``parser.set_defaults(func=run_<name>)`` and returns the parser; 
 from __future__ import annotations
 
 from . import (app, arcade, assess, codecheck, curves, defects, dem, ensemble, fragility, importdxf,
-               limit, paper, respond, sensitivity, verify)
+               limit, paper, records, respond, sensitivity, verify)
 from ._parser import (SUBCOMMANDS, CLIError, emit_json, finite_float, new_parser,
                       non_negative_int, positive_float, run_command, subcommand)
 from .options import (GEOMETRY_DEFAULTS, add_geometry_options, add_impact_options,
@@ -48,6 +48,7 @@ SUBCOMMANDS.update({
     "dem": dem.add_dem_parser,
     "arcade": arcade.add_arcade_parser,
     "verify": verify.add_verify_parser,
+    "records": records.add_records_parser,
     "app": app.add_app_parser,
 })
 

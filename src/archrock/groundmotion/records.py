@@ -21,6 +21,7 @@ import numpy as np
 from ..errors import ArchInputError
 from ..geometry.inputfile import read_input
 from ..units import G
+from .p695 import is_suite, is_suite_ref, record_sha256, suite_motion
 from .motion import (MAX_RECORD_DT_S, WARN_RECORD_DT_S, GroundMotion, _unit_factor,
                      check_pga)
 
@@ -40,7 +41,10 @@ __all__ = ["read_two_column", "read_at2", "load_record", "file_sha256", "check_t
 def file_sha256(path) -> str:
     """sha256 of a record file's bytes (hex): the checksum every record spec and suite carries.
     Read through the bounded reader (a stream such as /dev/urandom is refused, not hashed
-    forever)."""
+    forever).  A built-in suite's record (``p695-far-field/1a``) has the sha256 of its samples
+    (:func:`archrock.groundmotion.p695.record_sha256`)."""
+    if is_suite_ref(path):
+        return record_sha256(path.strip())
     return hashlib.sha256(read_input(path, "record")).hexdigest()
 
 
@@ -270,9 +274,18 @@ def read_at2(path) -> GroundMotion:
 
 def load_record(path, units: str | None = None) -> GroundMotion:
     """Read a record by suffix: ``.AT2`` (any case) -> :func:`read_at2` (units must be g or None),
-    anything else -> :func:`read_two_column` with ``units`` (default 'g')."""
+    anything else -> :func:`read_two_column` with ``units`` (default 'g').  A built-in suite's
+    record ``SUITE/ID`` (:mod:`.p695`; in g) is read from the suite."""
     if not isinstance(path, (str, Path)) and not hasattr(path, "__fspath__"):
         raise ArchInputError(f"record path: {path!r}; allowed a file path")
+    if is_suite_ref(path):
+        if units is not None and units != "g":
+            raise ArchInputError(f"units: {units!r} for {path.strip()}; allowed 'g' (the FEMA "
+                                 f"P695 sets are in g)")
+        return suite_motion(path.strip())
+    if is_suite(path):
+        raise ArchInputError(f"record: {path!r} is a suite of records; allowed one record "
+                             f"SUITE/ID such as {path}/1a (a suite goes where records go)")
     p = Path(path)
     if p.suffix.lower() == ".at2":
         if units is not None and units != "g":

@@ -18,6 +18,7 @@ from pathlib import Path
 from ..errors import ArchInputError
 from .motion import UNITS, GroundMotion, _positive, _real, check_pga
 from .pulses import pulse, pulse_kind
+from .p695 import is_suite_ref
 from .records import file_sha256, load_record
 
 __all__ = ["PulseSpec", "RecordSpec", "motion_spec_from_dict"]
@@ -103,6 +104,8 @@ class RecordSpec:
         """The specification of the file at ``path`` as it is now (absolute path, its sha256)."""
         if not isinstance(path, (str, Path)) and not hasattr(path, "__fspath__"):
             raise ArchInputError(f"record path: {path!r}; allowed a file path")
+        if is_suite_ref(path):  # a built-in suite's record: its name is its path
+            return cls(path.strip(), units, scale, _file_sha256(path.strip()))
         p = Path(path).resolve()
         return cls(str(p), units, scale, _file_sha256(p))
 
@@ -119,7 +122,7 @@ class RecordSpec:
 
     def describe(self) -> str:
         scale = f", scaled by {self.scale:g}" if self.scale != 1.0 else ""
-        return (f"record {Path(self.path).name} (units {self.units or 'g'}{scale}; "
+        return (f"record {_shown(self.path)} (units {self.units or 'g'}{scale}; "
                 f"sha256 {self.sha256[:12]}...)")
 
     def to_dict(self) -> dict:
@@ -154,9 +157,14 @@ def _build_record(spec: RecordSpec) -> GroundMotion:
     motion = load_record(spec.path, spec.units)
     if spec.scale == 1.0:
         return motion
-    check_pga(abs(spec.scale) * motion.pga_g, f"record {Path(spec.path).name} scaled by "
+    check_pga(abs(spec.scale) * motion.pga_g, f"record {_shown(spec.path)} scaled by "
               f"{spec.scale:g}", "is the scale factor meant? --scale multiplies the values")
     return motion.scaled(spec.scale)
+
+
+def _shown(path: str) -> str:
+    """A record's name in a message: a suite record's SUITE/ID, a file's name."""
+    return path if is_suite_ref(path) else Path(path).name
 
 
 def _file_sha256(path) -> str:

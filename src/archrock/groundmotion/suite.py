@@ -1,6 +1,7 @@
 """A record suite: a folder of accelerograms read once, each with its file's sha256.
 
-A fragility study runs every record of a suite on every arch at many scale factors.  The suite is
+A suite is a folder of ``.AT2`` files or one of the built-in FEMA P695 sets (:mod:`.p695`,
+extra ``records``).  A fragility study runs every record of a suite on every arch at many scale factors.  The suite is
 read here once (:func:`read_suite`); the study packs the records end to end
 (:class:`archrock.dynamics.sweep.SweepMotions`) and hands them to every worker once, and the results name
 each record with the sha256 of its file, so a result can be traced to the exact files.
@@ -13,6 +14,7 @@ from pathlib import Path
 
 from ..errors import ArchInputError
 from .motion import GroundMotion
+from .p695 import SUITES, is_suite, is_suite_ref, suite_refs
 from .records import file_sha256, load_record
 
 __all__ = ["RecordSuite", "read_suite", "read_records", "record_paths", "suite_files",
@@ -57,10 +59,17 @@ def suite_files(folder) -> list[Path]:
 
 
 def record_paths(items) -> tuple:
-    """Record files and folders, in the order given, as the files they name (a folder stands
-    for :func:`suite_files`): the one reading of a ``--records`` list in every command."""
+    """Record files, folders and built-in suites, in the order given, as the records they name
+    (a folder stands for :func:`suite_files`, a suite such as ``p695-far-field`` for its
+    records ``SUITE/ID``): the one reading of a ``--records`` list in every command."""
     out = []
     for item in items or ():
+        if is_suite(item):  # a built-in suite stands for its records, SUITE/ID each
+            out += list(suite_refs(item))
+            continue
+        if is_suite_ref(item):
+            out.append(item.strip())
+            continue
         p = Path(item)
         if p.is_dir():
             out += [str(f) for f in suite_files(p)]
@@ -68,8 +77,8 @@ def record_paths(items) -> tuple:
             out.append(str(p))
         else:
             raise ArchInputError(f"records: {str(item)!r} is neither a file nor a folder; "
-                                 f"allowed record files (PEER .AT2 or two-column text) and "
-                                 f"folders of .AT2 files")
+                                 f"allowed record files (PEER .AT2 or two-column text), "
+                                 f"folders of .AT2 files and the suites {', '.join(SUITES)}")
     return tuple(out)
 
 
@@ -86,7 +95,7 @@ def read_records(paths, units: str | None = None) -> RecordSuite:
     shas = [file_sha256(p) for p in files]
     seen = {}
     for f, h in zip(files, shas):
-        key = str(Path(f).resolve())
+        key = f if is_suite_ref(f) else str(Path(f).resolve())
         if key in seen:
             raise ArchInputError(f"records: {f!r} is given twice; allowed each record once")
         seen[key] = h
