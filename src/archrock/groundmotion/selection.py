@@ -14,7 +14,7 @@ checks and states:
 How the records are chosen (pure and deterministic):
 
 1. each record's spectrum on a log-period grid over the range (and the target's own periods
-   there, so its corners are checked), and its own factor f_i: the geometric mean of
+   there, when they are few: its corners are checked), and its own factor f_i: the geometric mean of
    target / Sa_i over the range, clipped to the bounds;
 2. its misfit: the rms of log(f_i Sa_i / target) over the range (spectral shape);
 3. at most one component per event when the names are FEMA P695 references ``SUITE/NNc``
@@ -160,8 +160,12 @@ def _target(periods, sa) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _grid(tp: np.ndarray, lo: float, hi: float) -> np.ndarray:
-    """Log-spaced periods over [lo, hi] with the target's own periods inside (its corners)."""
+    """Log-spaced periods over [lo, hi], with the target's own periods inside when they are
+    few (a code spectrum's corners, a table's rows); a densely sampled target is read between
+    its periods on the log grid alone."""
     inner = tp[(tp > lo) & (tp < hi)]
+    if inner.size > GRID_POINTS:
+        inner = inner[:0]
     return np.unique(np.concatenate([np.geomspace(lo, hi, GRID_POINTS), inner]))
 
 
