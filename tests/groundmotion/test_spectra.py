@@ -123,3 +123,13 @@ def test_bad_input_names_the_field(noise, periods, damping, field):
         response_spectrum(noise, periods, damping)
     with pytest.raises(ArchInputError, match="^motion: "):
         response_spectrum(np.zeros(3), [0.5])
+
+
+def test_matches_the_recurrence_on_short_ramps():
+    # steps written as 1 us ramps, as a record file writes them: runs of one tiny interval
+    from archrock.groundmotion import GroundMotion
+
+    m = GroundMotion(np.array([0.0, 0.3, 0.300001, 0.9, 0.900001, 2.0]),
+                     np.array([2.0, 2.0, -1.0, -1.0, 0.5, 0.0]))
+    np.testing.assert_allclose(response_spectrum(m, PERIODS),
+                               [reference_sa(m, T) for T in PERIODS], rtol=RTOL)
