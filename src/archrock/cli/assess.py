@@ -35,8 +35,10 @@ def add_assess_parser(subparsers):
                                  "the nominal arch only)")
     p.set_defaults(samples=12)
     p.add_argument("--records", nargs="+", metavar="FILE_OR_DIR", default=None,
-                   help="accelerograms (PEER .AT2 or two-column files, or folders of .AT2 "
-                        "files) for the fragility section")
+                   help="accelerograms (PEER .AT2 or two-column files, folders of .AT2 "
+                        "files, or a suite such as p695-far-field) for the time-history "
+                        "verification and the fragility section (default with a site "
+                        "spectrum: p695-far-field where the 'records' extra is installed)")
     p.add_argument("--record-units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of two-column records (default g)")
     p.add_argument("--scales", default="0.2:3:15", metavar="LO:HI:N|A,B,...",
@@ -68,13 +70,15 @@ def run_assess(args) -> int:
     t0 = time.perf_counter()
     arch = arch_from_args(args)
     mu, stated = resolve_friction(args.friction)
+    codecheck = codecheck_config_from_args(args)
+    records = _records_or_default(args.records, codecheck.spectrum, say)
     cfg = AssessConfig(
         impact=impact_spec_from_args(args), durations=tuple(parse_range(args.durations, "durations")),
         n_scan=args.n_scan, samples=args.samples, seed=args.seed,
         spreads=spreads_for(args, arch),
-        records=record_paths(args.records), record_units=args.record_units,
+        records=record_paths(records), record_units=args.record_units,
         scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
-        codecheck=codecheck_config_from_args(args), friction=mu)
+        codecheck=codecheck, friction=mu)
     from ..geometry.blocks import describe_blocks
 
     say(f"archrock assess: {arch.name}, {describe_blocks(arch)}; friction {stated}")
@@ -85,8 +89,41 @@ def run_assess(args) -> int:
     html_path, json_path = write_report(result, args.out, progress=say)
     print(f"wrote {html_path}")
     print(f"wrote {json_path}")
+    line = _timehistory_line(result)
+    if line:
+        print(line)
     if args.pdf:
         pdf = write_pdf(html_path, html_path.with_suffix(".pdf"))
         print(f"wrote {pdf}")
     say(f"done in {time.perf_counter() - t0:.1f} s")
     return 0
+
+
+#: the suite the time-history verification and the fragility take with a site spectrum and no
+#: --records, where the 'records' extra is installed
+DEFAULT_SUITE = "p695-far-field"
+
+
+def _records_or_default(records, spectrum, say):
+    """The --records given, or with a site spectrum and none given the default suite where the
+    'records' extra is installed (without it the report's section says how to get it)."""
+    if records or spectrum is None:
+        return records
+    from ..groundmotion.p695 import extra_available
+
+    if not extra_available():
+        return records
+    say(f"records: {DEFAULT_SUITE} (the default with a site spectrum; --records to choose)")
+    return [DEFAULT_SUITE]
+
+
+def _timehistory_line(result) -> str:
+    """The time-history verification's verdict beside the kinematic check's, one line."""
+    sec = {s.key: s for s in result.sections}.get("timehistory")
+    if sec is None or "rule" not in sec.data:
+        return ""
+    rule, kin = sec.data["rule"], sec.data["kinematic"]
+    e = "inf" if rule["unbounded"] else f"{rule['value']:.3f}"
+    kc = "-" if kin["passed"] is None else ("pass" if kin["passed"] else "FAIL")
+    return (f"time history: {'pass' if rule['passed'] else 'FAIL'}, E = {e} ({rule['rule']} of "
+            f"{rule['n']} records); kinematic check: {kc}")
