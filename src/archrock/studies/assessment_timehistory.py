@@ -136,13 +136,20 @@ def section_timehistory(ctx: Context) -> Section:
                      "--soil, or --ec8-type): the records are chosen and scaled for it")
     if not cfg.records:
         return _skip(_no_records_reason())
-    motions = ctx.records
+    motions, count = ctx.records, cfg.selection.count
+    if count < LEAST_RECORDS:
+        return _skip(f"the selection asks for {count} record(s); the codes verify by time "
+                     f"history with at least {LEAST_RECORDS} (the mean of the effects from "
+                     f"{MEAN_RULE_RECORDS} on)")
+    if len(motions) < count:
+        return _skip(f"{len(motions)} record(s) given, the selection asks for {count} "
+                     f"(--count N, at least {LEAST_RECORDS}; with fewer than "
+                     f"{MEAN_RULE_RECORDS} the largest effect governs)")
     sel = _select(spec, motions, cfg.selection)
     sel_block = _selection_blocks(sel, len(motions))
     cc = ctx.once("codecheck", lambda: code_check(ctx.arch, ctx.limit, cfg.codecheck))
-    data = {"selection": sel.to_dict(), "dynamics": None}
     choice = ctx.dynamics
-    data["dynamics"] = choice.to_dict()
+    data = {"selection": sel.to_dict(), "dynamics": choice.to_dict()}
     if choice.engine:
         why = (f"the four-link model is not valid here ({choice.reason}), and the report does "
                f"not run the contact engine over the selected records (minutes per record): "
@@ -245,7 +252,8 @@ def _kinematic_verdict(cc) -> dict:
         for name, chk in c.checks.items():
             if isinstance(chk, dict) and "ratio" in chk:
                 dc = 1.0 / chk["ratio"] if chk["ratio"] > 0 else math.inf
-                if worst is None or dc > worst[0]:
+                # rounded: on a symmetric arch the directions tie and M_l is named
+                if worst is None or round(dc, 9) > round(worst[0], 9):
                     worst = (dc, name, c.direction)
     if worst is None:
         return {"passed": None, "value": None, "check": None, "direction": None}
