@@ -14,11 +14,13 @@ checks and states:
 How the records are chosen (pure and deterministic):
 
 1. each record's spectrum on a log-period grid over the range (and the target's own periods
-   there, so its corners are checked), and its own factor f_i: the geometric mean of
+   there, when they are few: its corners are checked), and its own factor f_i: the geometric mean of
    target / Sa_i over the range, clipped to the bounds;
 2. its misfit: the rms of log(f_i Sa_i / target) over the range (spectral shape);
 3. at most one component per event when the names are FEMA P695 references ``SUITE/NNc``
-   (the best fitting of ``1a``/``1b``), so that 7 records are 7 earthquakes' stations;
+   (the better fitting of ``1a``/``1b``), so that 7 records are 7 stations; the event is P695's
+   record number, a station of an earthquake (the far-field set has 22 stations of 14
+   earthquakes: two stations of one earthquake may both be chosen);
 4. the ``count`` records of least misfit, then one common adjustment c, the smallest that
    meets the 90% rule and the PGA rule with every c f_i within the bounds;
 5. if c would leave the bounds, a bounded search swaps one record at a time for the swap that
@@ -160,8 +162,12 @@ def _target(periods, sa) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _grid(tp: np.ndarray, lo: float, hi: float) -> np.ndarray:
-    """Log-spaced periods over [lo, hi] with the target's own periods inside (its corners)."""
+    """Log-spaced periods over [lo, hi], with the target's own periods inside when they are
+    few (a code spectrum's corners, a table's rows); a densely sampled target is read between
+    its periods on the log grid alone."""
     inner = tp[(tp > lo) & (tp < hi)]
+    if inner.size > GRID_POINTS:
+        inner = inner[:0]
     return np.unique(np.concatenate([np.geomspace(lo, hi, GRID_POINTS), inner]))
 
 
@@ -342,7 +348,7 @@ def _rules(count, lower, rng, ratio, at, bounds, factors, pga_min_g, pga_mean, o
     """(rule, holds, what was found) of each rule the codes set (module doc)."""
     n_ok = count >= CODE_MIN_RECORDS
     rules = [
-        (f"at least {CODE_MIN_RECORDS} records (NTC 2018 3.2.3.6, EN 1998-1 3.2.3.1.2)", n_ok,
+        (f"at least {CODE_MIN_RECORDS} records", n_ok,
          f"{count} records" + ("" if n_ok else "; the codes' mean rule does not apply: "
                                                "the largest response governs")),
         (f"mean spectrum >= {lower:g} x target over {rng[0]:g}-{rng[1]:g} s", ratio >= lower
@@ -354,6 +360,7 @@ def _rules(count, lower, rng, ratio, at, bounds, factors, pga_min_g, pga_mean, o
     if pga_min_g is not None:
         rules.append((f"mean PGA of the scaled set >= the site's {pga_min_g:.3g} g (a_g S)",
                       pga_mean >= pga_min_g * (1 - 1e-12), f"mean PGA {pga_mean:.3g} g"))
-    rules.append(("one component per event" if one else "components chosen freely (both of "
-                  "one event allowed)", True, ""))
+    rules.append(("one component per event (a P695 record number: one station of an "
+                  "earthquake)" if one else "components chosen freely (both of one event "
+                  "allowed)", True, ""))
     return tuple(rules)
