@@ -8,6 +8,7 @@ import time
 from ._friction import add_friction_option, resolve_friction
 from ._parser import CLIError, _int, non_negative_int
 from .codecheck import add_codecheck_options, codecheck_config_from_args
+from .select import DEFAULT_SUITE, add_selection_options, selection_config_from_args
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, impact_spec_from_args, spreads_for)
 
@@ -18,7 +19,8 @@ def add_assess_parser(subparsers):
         description="Geometry, limit analysis (both directions, Fig. 3), impact coefficients, "
                     "the response to the paper's pulse, the collapse-acceleration curve with its "
                     "band over irregular arches, fragility curves (with --records), the code "
-                    "check, and every assumption with references; written as one HTML file "
+                    "check, the time-history verification under records scaled to the site "
+                    "spectrum (with a spectrum and records), and every assumption with references; written as one HTML file "
                     "(figures embedded, no network needed) and the JSON behind it.")
     add_geometry_options(p)
     p.add_argument("--out", metavar="REPORT.html", default="assessment.html",
@@ -49,6 +51,7 @@ def add_assess_parser(subparsers):
     add_friction_option(p, "the whole report: the friction analysis, the governing answer, the "
                            "routing of the dynamics and the contact engine")
     add_codecheck_options(p)
+    add_selection_options(p)  # the time-history verification's records, as `archrock select`
     p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
     p.set_defaults(func=run_assess)
     return p
@@ -78,7 +81,7 @@ def run_assess(args) -> int:
         spreads=spreads_for(args, arch),
         records=record_paths(records), record_units=args.record_units,
         scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
-        codecheck=codecheck, friction=mu)
+        codecheck=codecheck, friction=mu, selection=selection_config_from_args(args))
     from ..geometry.blocks import describe_blocks
 
     say(f"archrock assess: {arch.name}, {describe_blocks(arch)}; friction {stated}")
@@ -97,11 +100,6 @@ def run_assess(args) -> int:
         print(f"wrote {pdf}")
     say(f"done in {time.perf_counter() - t0:.1f} s")
     return 0
-
-
-#: the suite the time-history verification and the fragility take with a site spectrum and no
-#: --records, where the 'records' extra is installed
-DEFAULT_SUITE = "p695-far-field"
 
 
 def _records_or_default(records, spectrum, say):
@@ -123,7 +121,7 @@ def _timehistory_line(result) -> str:
     if sec is None or "rule" not in sec.data:
         return ""
     rule, kin = sec.data["rule"], sec.data["kinematic"]
-    e = "inf" if rule["unbounded"] else f"{rule['value']:.3f}"
+    e = "inf" if rule["unbounded"] else f"{rule['value']:.3g}"
     kc = "-" if kin["passed"] is None else ("pass" if kin["passed"] else "FAIL")
     return (f"time history: {'pass' if rule['passed'] else 'FAIL'}, E = {e} ({rule['rule']} of "
             f"{rule['n']} records); kinematic check: {kc}")

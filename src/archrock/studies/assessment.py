@@ -142,7 +142,7 @@ def _timehistory_sentence(sec) -> str:
     if sec is None or "rule" not in sec.data:
         return ""
     rule = sec.data["rule"]
-    e = "unbounded (a record collapses the arch)" if rule["unbounded"] else f"{rule['value']:.3f}"
+    e = "unbounded (a record collapses the arch)" if rule["unbounded"] else f"{rule['value']:.3g}"
     return (f" By time history ({rule['n']} records scaled to the spectrum, "
             f"{rule['rule']} of the effects E = {e}) the arch "
             f"{'passes' if rule['passed'] else 'FAILS'} (section Time-history verification).")

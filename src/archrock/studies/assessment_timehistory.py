@@ -146,7 +146,7 @@ def section_timehistory(ctx: Context) -> Section:
                      f"(--count N, at least {LEAST_RECORDS}; with fewer than "
                      f"{MEAN_RULE_RECORDS} the largest effect governs)")
     sel = _select(spec, motions, cfg.selection)
-    sel_block = _selection_blocks(sel, len(motions))
+    sel_block = _selection_blocks(sel, motions, spec)
     cc = ctx.once("codecheck", lambda: code_check(ctx.arch, ctx.limit, cfg.codecheck))
     choice = ctx.dynamics
     data = {"selection": sel.to_dict(), "dynamics": choice.to_dict()}
@@ -191,7 +191,10 @@ def _select(spec, motions, config):
     return select_for_site(spec, motions, config)
 
 
-def _selection_blocks(sel, pool: int) -> tuple:
+def _selection_blocks(sel, motions, spec) -> tuple:
+    """The selection's paragraph, its table and its figure (the figure draws the spectra beyond
+    the period range from the motions it was made from and the target)."""
+    pool = len(motions)
     rows = tuple((n, f"{f:.3f}", f"{p:.3f}") for n, f, p in zip(sel.names, sel.factors, sel.pga_g))
     lo, hi = sel.period_range
     text = (f"{sel.count} of {pool} records chosen and scaled for the site spectrum, as NTC "
@@ -204,7 +207,7 @@ def _selection_blocks(sel, pool: int) -> tuple:
     return (Paragraph(text),
             Table(("record", "scale factor", "scaled PGA [g]"), rows, "The selection."),
             Figure("selection", "Spectra of the scaled records, their mean, the target and "
-                                "the period range.", sel))
+                                "the period range.", (sel, motions, spec)))
 
 
 def _method_text(model) -> str:
@@ -223,7 +226,7 @@ def _method_text(model) -> str:
 
 
 def _e(x) -> str:
-    return "inf" if x is None or not math.isfinite(x) else f"{x:.3f}"
+    return "inf" if x is None or not math.isfinite(x) else f"{x:.3g}"
 
 
 def _run_row(r: dict) -> tuple:
