@@ -8,8 +8,8 @@ behind it, which go to the report's JSON.  ``None`` leaves the section out.  Blo
 data at this layer; :mod:`archrock.reports.html` (layer 7) renders them, and draws each
 :class:`Figure` with the figure function its ``kind`` names (``reports.html.FIGURES``).
 
-Adding a section: write one function (in assessment_statics.py or assessment_dynamics.py,
-by what it computes) and add it to :data:`SECTIONS`; a new kind of figure
+Adding a section: write one function (in assessment_statics.py, assessment_dynamics.py or
+assessment_timehistory.py, by what it computes) and add it to :data:`SECTIONS`; a new kind of figure
 also needs one function in ``reports.html.FIGURES``.  Sections that use an optional part of the
 package (:func:`section_defects`, :func:`section_friction`, :func:`section_contact`) import it
 inside, and say "not available in this installation" when it does not import.
@@ -27,7 +27,7 @@ from typing import Callable
 from .runner import RunSettings
 from ..errors import ArchInputError, ArchrockError
 from ..geometry import VoussoirArch
-# the sections live in three modules by layer of the answer; their names stay importable here
+# the sections live in their modules by layer of the answer; their names stay importable here
 from .assessment_blocks import (REFERENCES, Figure, Paragraph, Section, Table,  # noqa: F401
                                 _f, _optional_missing, titled)  # noqa: F401
 from .assessment_statics import (arch_extent, friction_caveat,  # noqa: F401
