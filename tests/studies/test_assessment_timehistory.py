@@ -151,3 +151,58 @@ def test_without_records_the_section_says_why(monkeypatch):
     assert d["skipped"] is True and "pip install 'archrock[records]'" in d["reason"]
     res = assess(oppenheim_arch(), AssessConfig(), sections=[section_timehistory])
     assert "no site spectrum was given" in res.section("timehistory").data["reason"]
+
+
+# ---------------------------------------------------------------------------- user's records
+@pytest.fixture(scope="module")
+def noise_files(tmp_path_factory):
+    """Five band-limited noise records (10 s, PGA 0.3 g) as two-column files [s, g]."""
+    from archrock.groundmotion import G
+    from archrock.groundmotion.synthetic import band_limited_noise
+
+    folder = tmp_path_factory.mktemp("noise")
+    paths = []
+    for seed in range(5):
+        m = band_limited_noise(10.0, 0.01, (0.5, 8.0), seed, 0.3)
+        path = folder / f"noise{seed}.txt"
+        np.savetxt(path, np.column_stack([m.times, m.accel / G]))
+        paths.append(str(path))
+    return tuple(paths)
+
+
+def _assess_files(paths, count, **kw):
+    from archrock.studies.assessment import AssessConfig, assess
+    from archrock.studies.assessment_timehistory import section_timehistory
+    from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
+    from archrock.studies.selection import SelectionConfig
+
+    cfg = AssessConfig(records=paths, selection=SelectionConfig(count=count),
+                       codecheck=CodeCheckConfig(spectrum=SiteSpectrum.ntc(0.25, 2.5, 0.3, "B")))
+    return assess(oppenheim_arch(), cfg, sections=[section_timehistory], **kw)
+
+
+def test_five_records_of_the_user_take_the_largest_effect(noise_files):
+    d = _assess_files(noise_files, 5).section("timehistory").data
+    assert d["selection"]["count"] == 5 and d["rule"]["rule"] == "max" and d["rule"]["n"] == 5
+    assert d["rule"]["value"] == pytest.approx(max(r["effect"] for r in d["records"]), rel=1e-12)
+    assert "max_i E_i" in d["rule"]["formula"]
+
+
+def test_fewer_records_than_asked_is_said(noise_files):
+    sec = _assess_files(noise_files[:4], 5).section("timehistory")
+    assert sec.data["skipped"] is True
+    assert sec.data["reason"].startswith("4 record(s) given, the selection asks for 5")
+
+
+def test_where_the_engine_governs_the_records_are_not_run(noise_files, monkeypatch):
+    """Where only the contact engine holds, the selection is shown and no verdict given (the
+    engine over the records is minutes each), never the four-link model's."""
+    from archrock.studies import enginestudy
+
+    real = enginestudy.choose_dynamics
+    monkeypatch.setattr(enginestudy, "choose_dynamics",
+                        lambda arch, dynamics="auto", **kw: real(arch, "engine", **kw))
+    sec = _assess_files(noise_files, 5).section("timehistory")
+    assert sec.data["skipped"] is True and "records" not in sec.data and "rule" not in sec.data
+    assert sec.data["selection"]["count"] == 5
+    assert "Not run: the four-link model is not valid here" in sec.blocks[-1].text
