@@ -447,6 +447,20 @@ ENTRIES += [
           ("curves", "--durations", "1", "--n-scan", "30", "--no-progress", "--json"),
           r'"survival_windows_g": \[\s*\[\s*\[\s*(\S+),\s*(\S+)\s*\]'),
 ]
+#: the time-history verification of Oppenheim's arch at two NTC 2018 sites (the FEMA P695
+#: far-field set by default: the 'records' extra); the whole report, so slow
+ASSESS_SITE = ("--f0", "2.5", "--tc-star", "0.3", "--soil", "B", "--samples", "0",
+               "--durations", "0.3,0.7", "--n-scan", "12", "--no-progress")
+ENTRIES += [
+    Entry(A, "time history: pass, E = {} (mean of {} records); kinematic check: pass",
+          ("assess", "--out", "site.html", "--ag", "0.25", *ASSESS_SITE),
+          r"time history: pass, E = (\S+) \(mean of (\d+) records\); kinematic check: pass",
+          slow=True),
+    Entry(A, "time history: pass, E = {} (mean of {} records); kinematic check: FAIL",
+          ("assess", "--out", "strong.html", "--ag", "0.8", *ASSESS_SITE),
+          r"time history: pass, E = (\S+) \(mean of (\d+) records\); kinematic check: FAIL",
+          slow=True),
+]
 
 P = "docs/piers.md"
 OUTCOMES = (r"outcomes: (\d+) run to the end \(rest (\d+), collapsed (\d+), still moving "

@@ -28,9 +28,10 @@ TITLES = ["Geometry", "Governing answer", "Limit analysis (both directions)", "F
           "Collapse-acceleration curve and its band over irregular arches",
           "Defect map: which voussoir, if damaged, costs the most capacity",
           "Fragility curves", "Contact-engine check", "Code check: kinematic analysis (NTC 2018 / Circolare 2019)",
+          "Time-history verification (NTC 2018 par. 7.3.5, EN 1998-1 par. 4.3.3.4.3)",
           "Assumptions, conventions and references"]
 KEYS = ["geometry", "governing", "limit", "friction", "impact", "response", "curves", "defects", "fragility",
-        "contact", "codecheck", "assumptions"]
+        "contact", "codecheck", "timehistory", "assumptions"]
 
 
 @pytest.fixture(scope="module")

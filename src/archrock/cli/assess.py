@@ -8,6 +8,7 @@ import time
 from ._friction import add_friction_option, resolve_friction
 from ._parser import CLIError, _int, non_negative_int
 from .codecheck import add_codecheck_options, codecheck_config_from_args
+from .select import DEFAULT_SUITE, add_selection_options, selection_config_from_args
 from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
                       arch_from_args, impact_spec_from_args, spreads_for)
 
@@ -18,7 +19,8 @@ def add_assess_parser(subparsers):
         description="Geometry, limit analysis (both directions, Fig. 3), impact coefficients, "
                     "the response to the paper's pulse, the collapse-acceleration curve with its "
                     "band over irregular arches, fragility curves (with --records), the code "
-                    "check, and every assumption with references; written as one HTML file "
+                    "check, the time-history verification under records scaled to the site "
+                    "spectrum (with a spectrum and records), and every assumption with references; written as one HTML file "
                     "(figures embedded, no network needed) and the JSON behind it.")
     add_geometry_options(p)
     p.add_argument("--out", metavar="REPORT.html", default="assessment.html",
@@ -35,8 +37,10 @@ def add_assess_parser(subparsers):
                                  "the nominal arch only)")
     p.set_defaults(samples=12)
     p.add_argument("--records", nargs="+", metavar="FILE_OR_DIR", default=None,
-                   help="accelerograms (PEER .AT2 or two-column files, or folders of .AT2 "
-                        "files) for the fragility section")
+                   help="accelerograms (PEER .AT2 or two-column files, folders of .AT2 "
+                        "files, or a suite such as p695-far-field) for the time-history "
+                        "verification and the fragility section (default with a site "
+                        "spectrum: p695-far-field where the 'records' extra is installed)")
     p.add_argument("--record-units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of two-column records (default g)")
     p.add_argument("--scales", default="0.2:3:15", metavar="LO:HI:N|A,B,...",
@@ -47,6 +51,7 @@ def add_assess_parser(subparsers):
     add_friction_option(p, "the whole report: the friction analysis, the governing answer, the "
                            "routing of the dynamics and the contact engine")
     add_codecheck_options(p)
+    add_selection_options(p)  # the time-history verification's records, as `archrock select`
     p.add_argument("--no-progress", action="store_true", help="no progress lines on stderr")
     p.set_defaults(func=run_assess)
     return p
@@ -68,13 +73,15 @@ def run_assess(args) -> int:
     t0 = time.perf_counter()
     arch = arch_from_args(args)
     mu, stated = resolve_friction(args.friction)
+    codecheck = codecheck_config_from_args(args)
+    records = _records_or_default(args.records, codecheck.spectrum, say)
     cfg = AssessConfig(
         impact=impact_spec_from_args(args), durations=tuple(parse_range(args.durations, "durations")),
         n_scan=args.n_scan, samples=args.samples, seed=args.seed,
         spreads=spreads_for(args, arch),
-        records=record_paths(args.records), record_units=args.record_units,
+        records=record_paths(records), record_units=args.record_units,
         scales=tuple(parse_range(args.scales, "scales")), bootstrap=args.bootstrap,
-        codecheck=codecheck_config_from_args(args), friction=mu)
+        codecheck=codecheck, friction=mu, selection=selection_config_from_args(args))
     from ..geometry.blocks import describe_blocks
 
     say(f"archrock assess: {arch.name}, {describe_blocks(arch)}; friction {stated}")
@@ -85,8 +92,36 @@ def run_assess(args) -> int:
     html_path, json_path = write_report(result, args.out, progress=say)
     print(f"wrote {html_path}")
     print(f"wrote {json_path}")
+    line = _timehistory_line(result)
+    if line:
+        print(line)
     if args.pdf:
         pdf = write_pdf(html_path, html_path.with_suffix(".pdf"))
         print(f"wrote {pdf}")
     say(f"done in {time.perf_counter() - t0:.1f} s")
     return 0
+
+
+def _records_or_default(records, spectrum, say):
+    """The --records given, or with a site spectrum and none given the default suite where the
+    'records' extra is installed (without it the report's section says how to get it)."""
+    if records or spectrum is None:
+        return records
+    from ..groundmotion.p695 import extra_available
+
+    if not extra_available():
+        return records
+    say(f"records: {DEFAULT_SUITE} (the default with a site spectrum; --records to choose)")
+    return [DEFAULT_SUITE]
+
+
+def _timehistory_line(result) -> str:
+    """The time-history verification's verdict beside the kinematic check's, one line."""
+    sec = {s.key: s for s in result.sections}.get("timehistory")
+    if sec is None or "rule" not in sec.data:
+        return ""
+    rule, kin = sec.data["rule"], sec.data["kinematic"]
+    e = "inf" if rule["unbounded"] else f"{rule['value']:.3g}"
+    kc = "-" if kin["passed"] is None else ("pass" if kin["passed"] else "FAIL")
+    return (f"time history: {'pass' if rule['passed'] else 'FAIL'}, E = {e} ({rule['rule']} of "
+            f"{rule['n']} records); kinematic check: {kc}")

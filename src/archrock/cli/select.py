@@ -31,6 +31,18 @@ def add_select_parser(subparsers):
     p.add_argument("--units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of two-column records (default g)")
     add_spectrum_options(p)
+    add_selection_options(p)
+    p.add_argument("--out", metavar="DIR",
+                   help="write selection.json, selection.csv and spectra.png (the figure needs "
+                        "matplotlib) to DIR")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=run_select)
+    return p
+
+
+def add_selection_options(p):
+    """--count, --period-range, --scale-bounds, --both-components: the selection's options,
+    here and in ``archrock assess`` (read by :func:`selection_config_from_args`)."""
     g = p.add_argument_group("selection")
     g.add_argument("--count", type=_int, default=7, metavar="N",
                    help="records to choose (default 7, the codes' least for the mean rule)")
@@ -41,12 +53,6 @@ def add_select_parser(subparsers):
                    metavar=("LO", "HI"), help="least and largest scale factor (default 0.5 4)")
     g.add_argument("--both-components", action="store_true",
                    help="allow both components of one P695 event (default: one per event)")
-    p.add_argument("--out", metavar="DIR",
-                   help="write selection.json, selection.csv and spectra.png (the figure needs "
-                        "matplotlib) to DIR")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(func=run_select)
-    return p
 
 
 def _records(args):
@@ -75,7 +81,8 @@ def _as_option(exc):
     return exc
 
 
-def _config(args):
+def selection_config_from_args(args):
+    """The SelectionConfig of :func:`add_selection_options`' options."""
     from ..errors import ArchInputError
     from ..studies.selection import SelectionConfig
 
@@ -116,7 +123,7 @@ def run_select(args) -> int:
     if spectrum is None:
         raise CLIError("--ag or --spectrum: a site spectrum is needed (the target of the "
                        "selection)")
-    config = _config(args)
+    config = selection_config_from_args(args)
     out = folder_arg(args.out)
     records = _records(args)
     from ..errors import ArchInputError

@@ -147,9 +147,18 @@ def _fig_defects(res):
     return draw(res)
 
 
+def _fig_selection(payload):
+    """The records chosen for the site spectrum (reports.selection's figure): payload
+    (selection, the motions it was made from, the target spectrum)."""
+    from .selection import selection_figure
+
+    selection, motions, spectrum = payload
+    return selection_figure(selection, motions=motions, spectrum=spectrum)
+
+
 FIGURES = {"arch": _fig_arch, "limit": _fig_limit, "response": _fig_response,
            "curves": _fig_curves, "fragility": _fig_fragility, "codecheck": _fig_codecheck,
-           "defects": _fig_defects}
+           "defects": _fig_defects, "selection": _fig_selection}
 
 
 def _png_data_uri(fig, dpi: int = 110) -> str:

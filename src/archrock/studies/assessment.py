@@ -8,8 +8,8 @@ behind it, which go to the report's JSON.  ``None`` leaves the section out.  Blo
 data at this layer; :mod:`archrock.reports.html` (layer 7) renders them, and draws each
 :class:`Figure` with the figure function its ``kind`` names (``reports.html.FIGURES``).
 
-Adding a section: write one function (in assessment_statics.py or assessment_dynamics.py,
-by what it computes) and add it to :data:`SECTIONS`; a new kind of figure
+Adding a section: write one function (in assessment_statics.py, assessment_dynamics.py or
+assessment_timehistory.py, by what it computes) and add it to :data:`SECTIONS`; a new kind of figure
 also needs one function in ``reports.html.FIGURES``.  Sections that use an optional part of the
 package (:func:`section_defects`, :func:`section_friction`, :func:`section_contact`) import it
 inside, and say "not available in this installation" when it does not import.
@@ -27,7 +27,7 @@ from typing import Callable
 from .runner import RunSettings
 from ..errors import ArchInputError, ArchrockError
 from ..geometry import VoussoirArch
-# the sections live in three modules by layer of the answer; their names stay importable here
+# the sections live in their modules by layer of the answer; their names stay importable here
 from .assessment_blocks import (REFERENCES, Figure, Paragraph, Section, Table,  # noqa: F401
                                 _f, _optional_missing, titled)  # noqa: F401
 from .assessment_statics import (arch_extent, friction_caveat,  # noqa: F401
@@ -38,6 +38,7 @@ from .assessment_context import AssessConfig, Context  # noqa: F401
 from .assessment_dynamics import (section_assumptions, section_codecheck,  # noqa: F401
                                   section_contact, section_curves, section_defects,
                                   section_fragility, section_impact, section_response)
+from .assessment_timehistory import section_timehistory  # noqa: F401
 
 __all__ = ["AssessConfig", "Section", "Paragraph", "Table", "Figure", "Context", "Assessment",
            "SECTIONS", "assess", "REFERENCES", "arch_extent"]
@@ -51,6 +52,7 @@ SECTIONS: list[Callable[[Context], Section | None]] = [
     section_supports,  # left out on fixed supports (docs/supports.md)
     section_friction, section_impact, section_response,
     section_curves, section_defects, section_fragility, section_contact, section_codecheck,
+    section_timehistory,  # beside the code check: its verdict and the check's, side by side
     section_assumptions,
 ]
 
@@ -121,7 +123,8 @@ class Assessment:
         word = "passes" if passed else "FAILS"
         return {"status": "pass" if passed else "fail", "text": (
             f"The arch {word} the kinematic check of NTC 2018 / Circolare 2019 (both mechanisms, "
-            f"linear and nonlinear checks) for the given site spectrum." + caveat)}
+            f"linear and nonlinear checks) for the given site spectrum." + caveat
+            + _timehistory_sentence(secs.get("timehistory")))}
 
     def to_dict(self) -> dict:
         return {"arch": self.arch.name, "archrock_version": self.version,
@@ -130,6 +133,19 @@ class Assessment:
                 "headline": [list(h) for h in self.headline],
                 "sections": {s.key: {"title": s.title, "seconds": s.seconds, "data": s.data}
                              for s in self.sections}}
+
+
+def _timehistory_sentence(sec) -> str:
+    """The time-history verification's verdict as one more sentence beside the kinematic
+    check's (never merged into it: each rests on its own hypotheses), or "" where it did not
+    run."""
+    if sec is None or "rule" not in sec.data:
+        return ""
+    rule = sec.data["rule"]
+    e = "unbounded (a record collapses the arch)" if rule["unbounded"] else f"{rule['value']:.3g}"
+    return (f" By time history ({rule['n']} records scaled to the spectrum, "
+            f"{rule['rule']} of the effects E = {e}) the arch "
+            f"{'passes' if rule['passed'] else 'FAILS'} (section Time-history verification).")
 
 
 def _version() -> str:

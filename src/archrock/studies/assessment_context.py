@@ -17,6 +17,7 @@ from ..geometry import VoussoirArch
 from ..geometry.sampling import Spreads
 from ..statics.friction import DEFAULT_FRICTION, check_friction
 from .codecheck import CodeCheckConfig
+from .selection import SelectionConfig
 
 __all__ = ["AssessConfig", "Context"]
 
@@ -34,7 +35,9 @@ class AssessConfig:
     factors; bootstrap: fragility resamples; codecheck: the code check's configuration;
     friction: the joints' Coulomb coefficient, one for the whole report (the friction analysis,
     the governing decision, the routing of the dynamics and the contact engine); default the
-    package's DEFAULT_FRICTION; None: sliding excluded by the user (Heyman's hypothesis).
+    package's DEFAULT_FRICTION; None: sliding excluded by the user (Heyman's hypothesis);
+    selection: how the time-history verification chooses and scales the records for the code
+    check's site spectrum (:class:`~archrock.studies.selection.SelectionConfig`).
     """
 
     impact: ImpactSpec = field(default_factory=lambda: ImpactSpec.parse(PAPER_PRACTICE))
@@ -52,6 +55,7 @@ class AssessConfig:
     bootstrap: int = 0
     codecheck: CodeCheckConfig = field(default_factory=CodeCheckConfig)
     friction: float | None = DEFAULT_FRICTION
+    selection: SelectionConfig = field(default_factory=SelectionConfig)
 
     def __post_init__(self):
         if self.friction is not None:
@@ -81,6 +85,11 @@ class AssessConfig:
             raise ArchInputError("bootstrap: 1; allowed 0 or an integer >= 2")
         if isinstance(self.spreads, dict):
             object.__setattr__(self, "spreads", Spreads.from_dict(self.spreads))
+        if isinstance(self.selection, dict):
+            object.__setattr__(self, "selection", SelectionConfig.from_dict(self.selection))
+        if not isinstance(self.selection, SelectionConfig):
+            raise ArchInputError(f"selection: {type(self.selection).__name__}; allowed a "
+                                 f"SelectionConfig")
 
     def to_dict(self) -> dict:
         return {"impact": self.impact.to_dict(), "pulse_amplitude": self.pulse_amplitude,
@@ -89,7 +98,7 @@ class AssessConfig:
                 "seed": self.seed, "spreads": self.spreads.to_dict(), "records": list(self.records),
                 "record_units": self.record_units, "scales": list(self.scales),
                 "bootstrap": self.bootstrap, "codecheck": self.codecheck.to_dict(),
-                "friction": self.friction}
+                "friction": self.friction, "selection": self.selection.to_dict()}
 
     @classmethod
     def from_dict(cls, d: dict) -> "AssessConfig":
@@ -97,6 +106,8 @@ class AssessConfig:
         d["impact"] = ImpactSpec.from_dict(d["impact"])
         d["spreads"] = Spreads.from_dict(d["spreads"])
         d["codecheck"] = CodeCheckConfig.from_dict(d["codecheck"])
+        if "selection" in d:  # a 0.7 report's configuration has none: the default
+            d["selection"] = SelectionConfig.from_dict(d["selection"])
         for k in ("durations", "records", "scales"):
             d[k] = tuple(d[k])
         return cls(**d)

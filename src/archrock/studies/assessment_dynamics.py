@@ -240,8 +240,10 @@ def section_fragility(ctx: Context) -> Section:
     cfg = ctx.config
     if not cfg.records:
         why = ("no accelerograms were given: fragility curves are fitted to the collapses of "
-               "the arch under recorded ground motions (`archrock assess --records FILE|DIR`, "
-               "PEER .AT2 or two-column files)")
+               "the arch under recorded ground motions (`archrock assess --records "
+               "FILE|DIR|SUITE`, PEER .AT2 or two-column files, or a built-in suite such as "
+               "p695-far-field, the default with a site spectrum where the 'records' extra is "
+               "installed)")
         return Section("fragility", "Fragility curves", (Paragraph(f"Skipped: {why}."),),
                        {"skipped": True, "reason": why})
     choice = ctx.dynamics
