@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import ArchInputError
 from .fields import number, only
 from .uploads import RecordStore, trace
+from .uploads import record_motion as loaded_record_motion
 
 #: The fields of a suite record in a request.
 SUITE_RECORD_FIELDS = ("suite_ref", "scale")
@@ -89,3 +90,11 @@ def load_suite_record(params, store: RecordStore) -> dict:
     motion, info = suite_record_motion(params)
     store.put(info["id"], motion, info)
     return {**info, "trace": trace(motion.times, np.asarray(motion.accel, float) / G)}
+
+
+def record_motion(params, store: RecordStore | None) -> tuple:
+    """(GroundMotion, info) of a response's ``record``: a built-in suite's record
+    ``{suite_ref, scale?}``, or one loaded in ``store`` ``{id}``."""
+    if isinstance(params, dict) and "suite_ref" in params:
+        return suite_record_motion(params)
+    return loaded_record_motion(params, store)

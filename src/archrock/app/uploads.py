@@ -169,12 +169,7 @@ def load_record_upload(data: Upload, params: dict, store: RecordStore) -> dict:
 
 
 def record_motion(params, store: RecordStore | None):
-    """The loaded record named by ``{"id": ...}``, or a built-in suite's record
-    ``{"suite_ref": ..., "scale": ...}`` (:mod:`.suites`), and its info."""
-    if isinstance(params, dict) and "suite_ref" in params:
-        from .suites import suite_record_motion
-
-        return suite_record_motion(params)
+    """The loaded record named by ``{"id": ...}`` and its info."""
     if store is None:
         raise ArchInputError("record: no record can be loaded here")
     if not isinstance(params, dict):
