@@ -222,7 +222,7 @@ def test_a_suite_record_is_chosen_and_its_response_plays(page):
                f"window.__app.lastResponse.record")
     assert page.input_value("#motion") == "record" and page.input_value("#t-end") == "22"
     info = page.text_content("#record-info")
-    assert info.startswith("p695-far-field/2a (FEMA P695 p695-far-field/2a: Northridge 1994")
+    assert info.startswith("p695-far-field/2a (Northridge 1994, Canyon Country-WLC")
     assert "(scaled by 1.5)" in info
     res = page.evaluate("window.__app.lastResponse")
     assert res["record"]["name"] == "p695-far-field/2a" and res["pulse"] is None

@@ -52,6 +52,7 @@ def test_a_suite_record_plays_as_the_librarys(client, extra):
     info = r.json()
     spec = RecordSpec.from_file(REF, None, 1.5)
     assert info["name"] == REF and info["sha256"] == spec.sha256 == extra.record_sha256(REF)
+    assert info["title"].startswith("Northridge 1994, Canyon Country-WLC")
     assert info["pga_g"] == pytest.approx(1.5 * extra.suite_motion(REF).pga_g, rel=1e-12)
     assert info["duration_s"] == pytest.approx(19.98, abs=1e-9) and len(info["trace"]["time"])
     by_id = client.post("/api/respond", json={"arch": OPPENHEIM, "record": {"id": info["id"]},

@@ -77,7 +77,8 @@ def suite_record_motion(params) -> tuple:
     info = {"id": f"{spec.path}-{scale!r}", "name": spec.path, "suite_ref": spec.path,
             "units": "g", "scale": scale, "sha256": spec.sha256, "samples": int(len(t)),
             "dt_s": float(np.median(dt)) if len(dt) else None, "duration_s": float(t[-1]),
-            "pga_g": float(motion.pga / G), "title": str(motion.source)[:120],
+            "pga_g": float(motion.pga / G),
+            "title": str(motion.source).removeprefix(f"FEMA P695 {spec.path}: ")[:120],
             "warnings": [" ".join(str(w.message).split()) for w in said]}
     return motion, info
 
