@@ -24,6 +24,7 @@ from archrock.studies.codecheck import CodeCheckConfig, SiteSpectrum
 from archrock.studies.ensemble import EnsembleConfig
 from archrock.studies.enginestudy import EngineRun
 from archrock.studies.runner import RunSettings
+from archrock.studies.selection import SelectionConfig
 
 DATA = Path(__file__).parent / "data"
 
@@ -66,6 +67,8 @@ def configs(record):
                                  impact=ImpactSpec.fixed(0.7), early_stop=True,
                                  support=SupportMovement(0.05), support_draw="uniform"),
         EnsembleConfig.from_arch(nominal_arch(), samples=10),
+        SelectionConfig(), SelectionConfig(count=9, period_range=(0.2, 1.5), lower=0.95,
+                                           scale_bounds=(0.25, 5.0), one_per_event=False),
     ]
 
 

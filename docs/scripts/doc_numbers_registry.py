@@ -250,6 +250,15 @@ ENTRIES += [
           r"\ncollapse: mean (\S+),", scale=100, slow=True),
 ]
 
+SELECT_SITE = ("select", "--ag", "0.25", "--f0", "2.5", "--tc-star", "0.3", "--soil", "B")
+ENTRIES += [
+    # the FEMA P695 far-field set (the 'records' extra) scaled for an NTC 2018 site
+    Entry("docs/curves.md", "gives factors {}-{}, the least mean/target {} at {} s and a mean "
+                            "PGA of {} g.", SELECT_SITE,
+          r"\[pass\] mean spectrum .*?least mean/target (\S+) at (\S+) s\n.*?: factors "
+          r"(\S+)-(\S+)\n.*?: mean PGA (\S+) g\n", order=(2, 3, 0, 1, 4), slow=True),
+]
+
 C = "docs/codecheck.md"
 CODECHECK_SITE = ("codecheck", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3", "--soil", "B")
 
@@ -559,4 +568,100 @@ ENTRIES += [
     Entry(PERF, "the fast integrator is at least {}x the reference on the paper's case and at "
                 "least {}x on the 20 s record", "py:bench_response",
           "json:paper_ratio,record_ratio", at_least=True, slow=True),
+]
+
+
+# --- docs/records.md: the FEMA P695 suites and their fragility study (extra `records`) ---------
+
+def records_study() -> str:
+    """What ``docs/scripts/records_study.py`` prints (about 6 minutes on two cores), run in a
+    process of its own with ``--no-write``: the check leaves the committed figure alone."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    return subprocess.run([sys.executable, str(ROOT / "docs" / "scripts" / "records_study.py"),
+                           "--no-write"], capture_output=True, text=True, env=env,
+                          check=True).stdout
+
+
+FUNCTIONS[records_study.__name__] = records_study
+REC = "docs/records.md"
+#: a line of records_study.py's table: curves, never, PGA theta, beta, (p_max), PGV theta, beta
+_STUDY_ROW = r"{}\s+{}\s+(\d+)\s+(\d+)\s+(\S+)\s+(\S+)\s+\S+\s+(\S+)\s+(\S+)"
+_CURVES_4 = ("curves", "--durations", "0.2,0.5,1,2", "--no-progress")
+ENTRIES += [
+    Entry(REC, "p695-far-field: {} records", ("records", "p695-far-field"),
+          r"p695-far-field: (\d+) records"),
+    Entry(REC, "1a Northridge {} Beverly Hills - Mulhol {} {} {} {} {} {}",
+          ("records", "p695-far-field"),
+          r"1a Northridge\s+(\S+) Beverly Hills - Mulhol\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)"
+          r"\s+(\S+)"),
+] + [
+    Entry(REC, f"| {name} | {who} | {{}} | {{}} | {{}} | {{}} | {{}} | {{}} |", "py:records_study",
+          _STUDY_ROW.format(suite, key), slow=True)
+    for name, suite in (("far-field", "p695-far-field"),
+                        ("near-field pulse", "p695-near-field-pulse"))
+    for who, key in (("Oppenheim's", "nominal"), ("200 irregular", "population"))
+] + [
+    Entry(REC, "the near-field pulse median\n  is {}% below the far-field one by PGA",
+          "py:records_study", r"near-field pulse median is (\d+)% below the far-field one by PGA",
+          slow=True),
+    Entry(REC, "the near-field pulse median is {}% below the far-field\n  one by PGV",
+          "py:records_study", r"below the far-field one by PGA, (\d+)% by PGV", slow=True),
+    Entry(REC, "their median PGV/PGA is {} s against\n  {} s for the far-field set",
+          "py:records_study", r"p695-far-field: median PGV/PGA (\S+) s\s+"
+          r"p695-near-field-pulse: median PGV/PGA (\S+) s", order=(1, 0), slow=True),
+    Entry(REC, "dispersion about halves ({} to {} far-field, {} to {}\n  near-field)",
+          "py:records_study", r"p695-far-field\s+nominal\s+\d+\s+\d+\s+\S+\s+(\S+)\s+\S+\s+\S+\s+"
+          r"(\S+).*?p695-near-field-pulse\s+nominal\s+\d+\s+\d+\s+\S+\s+(\S+)\s+\S+\s+\S+\s+(\S+)",
+          slow=True),
+    Entry(REC, "irregular arches is {}% below the nominal's by PGA, {}% by PGV",
+          "py:records_study", r"the far-field median is (\d+)% below the nominal's by PGA, "
+                              r"(\d+)% by PGV", slow=True),
+    Entry(REC, "its collapse PGA is {}% below the far-field median, {}% above\nthe near-field "
+               "pulse one. By PGV it is not: the 0.2 s pulse needs its PGV {} times",
+          "py:records_study", r"collapse PGA is (\d+)% below the far-field median, (\d+)% above "
+                              r"the near-field pulse one; its PGV (\S+) times", slow=True),
+    Entry(REC, "| by PGA ({} g): P(collapse) of Oppenheim's arch | {} | {} |", "py:records_study",
+          r"first collapse at (\S+) g.*?p695-far-field: P\(collapse\) of the nominal arch at "
+          r"that PGA (\S+),.*?p695-near-field-pulse: P\(collapse\) of the nominal arch at that "
+          r"PGA (\S+),", slow=True),
+    Entry(REC, "| by PGV ({} m/s): P(collapse) of Oppenheim's arch | {} | {} |",
+          "py:records_study", r"PGV (\S+) m/s there.*?p695-far-field: .*?at that PGV (\S+)\n"
+                              r".*?p695-near-field-pulse: .*?at that PGV (\S+)", slow=True),
+    Entry(REC, "its PGV there, a t_p, is\n{} m/s", "py:records_study",
+          r"PGV (\S+) m/s there", slow=True),
+    Entry(REC, "gives first collapses at {} g for t_p = 0.2 s,\n{} g for 0.5 s, {} g for 1 s and "
+               "{} g for 2 s (k = {})", _CURVES_4,
+          r"k_l = (\S+),.*?\n\s+0\.200\s+(\S+).*?\n\s+0\.500\s+(\S+).*?\n\s+1\.000\s+(\S+)"
+          r".*?\n\s+2\.000\s+(\S+)", order=(1, 2, 3, 4, 0), slow=True),
+    Entry(REC, "amplitude of 1 g does not collapse the arch; at {} g it does", _CURVES_4,
+          r"\n\s+0\.200\s+(\S+)", slow=True),
+]
+
+
+def bench_p695() -> str:
+    """The JSON of ``benchmarks/bench_p695.py`` (extra ``records``; 10 minutes or more on two
+    cores: the 200 arches and 4 of them arch by arch), run in a process of its own."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "bench.json")
+        subprocess.run([sys.executable, str(ROOT / "benchmarks" / "bench_p695.py"), "--json",
+                        path], capture_output=True, text=True, env=env, check=True)
+        with open(path, encoding="utf-8") as fh:
+            return fh.read()
+
+
+FUNCTIONS[bench_p695.__name__] = bench_p695
+ENTRIES += [
+    Entry(PERF, "requires the batch path to be at\nleast {}x the arch-by-arch one on Oppenheim's "
+                "arch and at least {}x on the 200 arches", "py:bench_p695",
+          "json:nominal.speedup,population.speedup", at_least=True, slow=True),
 ]

@@ -12,6 +12,9 @@
   energy: :class:`EnergyGainError`; its equations are singular).
 * :class:`FitError` -- a fragility curve cannot be identified from the data.
 * :class:`LimitExceededError` -- a computation would exceed a limit (events, samples, memory).
+* :class:`NoSelectionError` -- valid records and a valid target spectrum of which no set meets
+  the codes' rules for time-history analysis within the scale bounds (an outcome, like a
+  :class:`GeometryOutcome`, but not the arch's: a study does not leave an arch out on it).
 
 Studies over random arches leave out an arch only on a :class:`GeometryOutcome` or an
 :class:`ImpactModelError` (both depend on the drawn geometry) and report it; any other error stops
@@ -20,7 +23,7 @@ the study.  Every class derives from :class:`ArchrockError`.
 
 __all__ = ["ArchrockError", "ArchInputError", "GeometryOutcome", "CannotStandError",
            "NoMechanismError", "NotFourHingeError", "InvalidSampleError", "ImpactModelError", "EnergyGainError",
-           "FitError", "LimitExceededError", "UNUSABLE_ARCH"]
+           "FitError", "LimitExceededError", "NoSelectionError", "OUTCOMES", "UNUSABLE_ARCH"]
 
 
 class ArchrockError(Exception):
@@ -70,6 +73,14 @@ class FitError(ArchrockError):
 class LimitExceededError(ArchrockError):
     """A computation would exceed a limit (events, samples, memory); the message gives it."""
 
+
+class NoSelectionError(ArchrockError):
+    """No set of the records given meets the codes' rules for a target spectrum within the
+    scale bounds; the message says by how much the best set fails."""
+
+
+#: Valid inputs with no answer of the kind asked: the command line says "outcome" (exit 3).
+OUTCOMES = (GeometryOutcome, NoSelectionError)
 
 #: What a study over random arches catches to leave one arch out (and report why).
 UNUSABLE_ARCH = (GeometryOutcome, ImpactModelError)

@@ -15,7 +15,7 @@ NaN/inf), sets ``parser.set_defaults(func=run_<name>)`` and returns the parser; 
 from __future__ import annotations
 
 from . import (app, arcade, assess, codecheck, curves, defects, dem, ensemble, fragility, importdxf,
-               limit, paper, records, respond, sensitivity, verify)
+               limit, paper, records, respond, select, sensitivity, verify)
 from ._parser import (SUBCOMMANDS, CLIError, emit_json, finite_float, new_parser,
                       non_negative_int, positive_float, run_command, subcommand)
 from .options import (GEOMETRY_DEFAULTS, add_geometry_options, add_impact_options,
@@ -42,6 +42,7 @@ SUBCOMMANDS.update({
     "paper": paper.add_paper_parser,
     "import-dxf": importdxf.add_import_dxf_parser,
     "codecheck": codecheck.add_codecheck_parser,
+    "select": select.add_select_parser,
     "assess": assess.add_assess_parser,
     "defects": defects.add_defects_parser,
     "sensitivity": sensitivity.add_sensitivity_parser,

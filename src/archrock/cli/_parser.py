@@ -11,7 +11,7 @@ import sys
 import warnings
 from typing import Callable
 
-from ..errors import ArchInputError, ArchrockError, GeometryOutcome
+from ..errors import OUTCOMES, ArchInputError, ArchrockError
 from ..options import OptionError, json_safe  # noqa: F401 (json_safe: re-exported)
 
 PROG = "archrock"
@@ -206,7 +206,7 @@ def run_command(parser: argparse.ArgumentParser, argv=None) -> int:
         # (on piers too narrow the library's message names them and the width that carries
         # the arch: archrock.statics.buttress.piers_cannot_stand)
         msg = " ".join(str(exc).split())
-        kind = "outcome" if isinstance(exc, GeometryOutcome) else "error"
+        kind = "outcome" if isinstance(exc, OUTCOMES) else "error"
         print(f"{PROG}: {kind}: {msg}", file=sys.stderr)
         return EXIT_OUTCOME
     except ImportError as exc:

@@ -13,7 +13,8 @@ Every measure is computed exactly for the piecewise-linear acceleration of a
   u'' + 2 zeta omega u' + omega^2 u = -xg'' of period T [s] and damping zeta = 0.05, starting at
   rest, integrated exactly interval by interval (the closed-form solution for a linear forcing,
   Nigam & Jennings 1969), each interval cut into pieces of at most T/100 where the peak is
-  sampled, and followed for two periods of free vibration after the record;
+  sampled, and followed for two periods of free vibration after the record
+  (:func:`archrock.groundmotion.spectra.response_spectrum`, which gives many periods at once);
 * ``arias``: Arias intensity I_A = pi / (2 g) int xg''^2 dt [m/s] (Arias 1970);
 * ``scale``: the scale factor itself (records normalised beforehand).
 
@@ -30,6 +31,7 @@ import numpy as np
 from ..errors import ArchInputError
 from ..units import G
 from .motion import GroundMotion
+from .spectra import response_spectrum
 
 __all__ = ["IM_NAMES", "parse_im", "im_units", "im_label", "im_power", "intensity", "im_at",
            "scale_for", "pga", "pgv", "arias_intensity", "spectral_acceleration"]
@@ -142,48 +144,7 @@ def spectral_acceleration(motion: GroundMotion, period: float,
     z = float(damping)
     if not (math.isfinite(z) and 0 <= z < 1):
         raise ArchInputError(f"damping: {damping!r}; allowed 0 <= damping < 1")
-    w = 2.0 * math.pi / T
-    wd = w * math.sqrt(1.0 - z * z)
-    t = np.asarray(motion.times, float)
-    p = -np.asarray(motion.accel, float)
-    # the forcing's pieces, then two periods of free vibration
-    knots, force = [t[0]], [p[0]]
-    for k in range(t.size - 1):
-        h = t[k + 1] - t[k]
-        if h <= 0:  # a step: the forcing jumps, the state does not
-            knots.append(t[k + 1])
-            force.append(p[k + 1])
-            continue
-        n = max(1, math.ceil(h / (T / 100.0)))
-        for j in range(1, n + 1):
-            knots.append(t[k] + h * j / n)
-            force.append(p[k] + (p[k + 1] - p[k]) * j / n)
-    end = knots[-1]
-    if force[-1] != 0.0:
-        knots.append(end)
-        force.append(0.0)
-    n_free = 200
-    for j in range(1, n_free + 1):
-        knots.append(end + 2.0 * T * j / n_free)
-        force.append(0.0)
-    u = v = 0.0
-    peak = 0.0
-    for k in range(len(knots) - 1):
-        h = knots[k + 1] - knots[k]
-        if h <= 0:
-            continue
-        p0, p1 = force[k], force[k + 1]
-        s = (p1 - p0) / h
-        B = s / (w * w)
-        A = (p0 - 2.0 * z * w * B) / (w * w)
-        C = u - A
-        D = (v - B + z * w * C) / wd
-        e = math.exp(-z * w * h)
-        c, sn = math.cos(wd * h), math.sin(wd * h)
-        u = e * (C * c + D * sn) + A + B * h
-        v = e * ((-z * w * C + wd * D) * c + (-z * w * D - wd * C) * sn) + B
-        peak = max(peak, abs(u))
-    return w * w * peak / G
+    return float(response_spectrum(motion, [T], z)[0])
 
 
 def intensity(motion: GroundMotion, im: str) -> float:
