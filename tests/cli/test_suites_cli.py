@@ -146,7 +146,7 @@ def test_assess_takes_a_suite_for_its_records(capsys, extra, monkeypatch, tmp_pa
 @pytest.mark.parametrize("command, flag", [
     ("respond", "--record"), ("dem", "--record"), ("arcade", "--record"),
     ("ensemble", "--record"), ("sensitivity", "--record"), ("fragility", "--records"),
-    ("assess", "--records")])
+    ("assess", "--records"), ("select", "--records")])
 def test_help_names_the_suites(capsys, command, flag):
     from archrock.cli.options import RECORD_HELP, RECORDS_HELP
 
@@ -163,7 +163,9 @@ def test_help_names_the_suites(capsys, command, flag):
     ("sensitivity", "--record", REF, "--no-progress"),
     ("fragility", "--records", "p695-far-field"),
     ("fragility", "--records", "p695-near-field-pulse-normalized/1a"),
-    ("assess", "--records", "p695-far-field", "--out", "never-written.html", "--no-progress")])
+    ("assess", "--records", "p695-far-field", "--out", "never-written.html", "--no-progress"),
+    ("select", "--records", "p695-far-field", "--ag", "0.25", "--f0", "2.5", "--tc-star", "0.3",
+     "--soil", "B")])
 def test_without_the_extra_one_line_says_how_to_get_it(capsys, without_records_extra, argv):
     code, out, err = _run(capsys, *argv)
     assert (code, out) == (2, "")
