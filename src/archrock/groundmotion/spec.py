@@ -168,6 +168,8 @@ def _shown(path: str) -> str:
 
 
 def _file_sha256(path) -> str:
+    if is_suite_ref(path):  # its own line ("records: ... not installed; pip install ...")
+        return file_sha256(path)
     try:
         digest = file_sha256(path)
     except ArchInputError as exc:  # missing, unreadable or past the size limit

@@ -98,7 +98,8 @@ const FIELD_CONTROLS = {shape: "shape", span: "span", rise: "rise", thickness: "
                         pier_courses: "pier-height", friction: "friction-mu", geometry: "upload",
                         defects: "arch-svg", kind: "pulse-kind", amplitude: "amplitude",
                         duration: "duration", t_end: "t-end", exaggerate: "exaggerate",
-                        dynamics: "dynamics-model", record: "record-file"};
+                        dynamics: "dynamics-model", record: "record-file",
+                        suite_ref: "suite-record", suite: "record-suite"};
 
 function fieldControl(msg) {
   const m = /^unknown field '(?:[a-z]+\.)?([a-z_]+)'/.exec(msg || "") || /^([a-z_]+):/.exec(msg || "");
@@ -404,7 +405,9 @@ function bindControls() {
     b.addEventListener("click", () => exportPng(b.dataset.svg, b.dataset.name));
   }
   $("record-file").addEventListener("change", loadRecord);
-  for (const id of ["record-units", "record-scale"]) $(id).addEventListener("change", loadRecord);
+  for (const id of ["record-units", "record-scale"]) $(id).addEventListener("change", reloadRecord);
+  $("record-suite").addEventListener("change", listSuite);
+  $("suite-record").addEventListener("change", loadSuiteRecord);
   $("upload-dxf").addEventListener("change", loadDxf);
   $("run-report").addEventListener("click", runReport);
   $("cancel-report").addEventListener("click", () => {
@@ -517,3 +520,4 @@ async function exportPng(id, name) {
 bindControls();
 showControls();
 requestStatics(performance.now());
+loadSuites();

@@ -11,7 +11,7 @@ function pulseParams() {
 function motionParams() {
   if ($("motion").value === "record") {
     if (!app.record) {
-      showError("record: open a record file first (PEER .AT2 or two columns 'time accel')");
+      showError("record: open a record file (PEER .AT2 or two columns 'time accel') or choose a suite's record first");
       const err = new Error("no record");
       err.handled = true;
       throw err;
@@ -55,6 +55,80 @@ async function loadRecord() {
   const r = await upload("/api/record", file, {units: $("record-units").value,
                                                scale: $("record-scale").value.trim()});
   if (!r) return;
+  app.recordSource = "file";
+  await showRecord(r, t0);
+}
+
+// units or scale changed: the record chosen last (a file or a suite's) is read again
+function reloadRecord() {
+  return app.recordSource === "suite" ? loadSuiteRecord() : loadRecord();
+}
+
+// ------------------------------------------------------------------ the built-in suites
+// the FEMA P695 sets (extra "records"): the menu lists them; a record chosen is read by the
+// server as an uploaded file is, and its id then stands for it (play)
+function option(value, text) {
+  const o = document.createElement("option");
+  o.value = value;
+  o.textContent = text;
+  return o;
+}
+
+async function loadSuites() {
+  let d;
+  try {
+    d = await (await api("/api/suites")).json();
+  } catch (e) {
+    return;  // the server is gone: the next request says so
+  }
+  for (const s of d.suites || []) {
+    const o = option(s.name, s.name);
+    o.title = s.description;
+    $("record-suite").appendChild(o);
+  }
+  if (!d.installed) {
+    $("record-suite").disabled = $("suite-record").disabled = true;
+    $("suite-info").textContent = d.install;
+  }
+}
+
+async function listSuite() {
+  const name = $("record-suite").value, menu = $("suite-record");
+  menu.replaceChildren(option("", "a record ..."));
+  if (!name) return;
+  const resp = await api(`/api/suites/${encodeURIComponent(name)}`);
+  const d = await resp.json().catch(() => ({error: `HTTP ${resp.status}`}));
+  if (!resp.ok) {
+    showError(d.error || `HTTP ${resp.status}`);
+    showRefusal("record-suite", `refused: ${d.error || `HTTP ${resp.status}`}`);
+    return;
+  }
+  clearRefusals(["record-suite"]);
+  for (const r of d.records) {
+    menu.appendChild(option(r.ref, `${r.record}${r.component} ${r.event} ${r.year}, ` +
+        `${r.station}: PGA ${fmt(r.pga_g)} g, ${fmt(r.duration, 1)} s`));
+  }
+  $("suite-info").textContent = `${d.count} records of ${name}`;
+}
+
+async function loadSuiteRecord() {
+  const ref = $("suite-record").value;
+  if (!ref) return;
+  const t0 = performance.now();
+  let r;
+  try {
+    r = await post("/api/suites/record", {suite_ref: ref, scale: $("record-scale").value.trim()});
+  } catch (e) {
+    showRefusal("suite-record", `refused: ${e.message}`);
+    return;
+  }
+  clearRefusals(["suite-record"]);
+  app.recordSource = "suite";
+  await showRecord(r, t0);
+}
+
+// a record loaded (a file or a suite's): the motion chosen, its line, and played
+async function showRecord(r, t0) {
   app.record = r;
   $("motion").value = "record";
   $("t-end").value = String(Math.min(120, Math.ceil(r.duration_s + 2)));
