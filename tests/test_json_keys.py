@@ -68,7 +68,7 @@ def configs(record):
                                  support=SupportMovement(0.05), support_draw="uniform"),
         EnsembleConfig.from_arch(nominal_arch(), samples=10),
         SelectionConfig(), SelectionConfig(count=9, period_range=(0.2, 1.5), lower=0.95,
-                                           scale_bounds=(0.25, 5.0), one_per_event=False),
+                                           scale_bounds=(0.25, 5.0), one_per_station=False),
     ]
 
 

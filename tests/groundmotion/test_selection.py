@@ -8,7 +8,7 @@ import pytest
 
 from archrock.errors import ArchInputError, NoSelectionError
 from archrock.groundmotion import band_limited_noise
-from archrock.groundmotion.selection import event_key, select_records
+from archrock.groundmotion.selection import station_key, select_records
 from archrock.groundmotion.spectra import response_spectrum
 from archrock.studies.codecheck import SiteSpectrum
 
@@ -50,7 +50,7 @@ def assert_meets_the_rules(sel, motions, lower=0.90, bounds=(0.5, 4.0), rng=(0.1
     assert ratio.min() == pytest.approx(sel.ratio_min, rel=1e-9)
     assert np.mean([m.pga_g for m in scaled]) >= SITE.pga
     assert sel.pga_mean_g == pytest.approx(np.mean([m.pga_g for m in scaled]), rel=1e-12)
-    assert len(set(sel.events)) == 7  # one component per event
+    assert len(set(sel.events)) == 7  # one component per station
     assert sel.rules_hold and sel.code_mean_rule
 
 
@@ -73,7 +73,7 @@ def test_the_same_input_gives_the_same_selection(noise, noise_selection):
 
 
 def test_both_components_when_asked(noise):
-    sel = select_records(noise, T, TARGET, pga_min_g=SITE.pga, one_per_event=False)
+    sel = select_records(noise, T, TARGET, pga_min_g=SITE.pga, one_per_station=False)
     assert sel.candidates == 16
     assert sel.rules_hold and sel.ratio_min >= 0.90
     assert not sel.rules[-1][0].startswith("one component")
@@ -105,15 +105,15 @@ def test_no_set_within_the_bounds_is_an_outcome(noise):
         select_records(weak, T, TARGET, scale_bounds=(0.5, 4.0))
 
 
-def test_event_key():
-    assert event_key("p695-far-field/12b") == "p695-far-field/12"
-    assert event_key("p695-near-field-pulse-normalized/3a") == "p695-near-field-pulse/3"
-    assert event_key("RSN6_IMPVALL.AT2") == "RSN6_IMPVALL.AT2"
+def test_station_key():
+    assert station_key("p695-far-field/12b") == "p695-far-field/12"
+    assert station_key("p695-near-field-pulse-normalized/3a") == "p695-near-field-pulse/3"
+    assert station_key("RSN6_IMPVALL.AT2") == "RSN6_IMPVALL.AT2"
 
 
 @pytest.mark.parametrize("kwargs, field", [
     (dict(count=0), "count"), (dict(count=2.5), "count"), (dict(count=9), "count"),
-    (dict(count=9, one_per_event=False, motions=8), "count"),
+    (dict(count=9, one_per_station=False, motions=8), "count"),
     (dict(period_range=(0.15, 5.0)), "period_range"), (dict(period_range=(0.5, 0.2)),
                                                         "period_range"),
     (dict(period_range=(1.0, 1.0)), "period_range"),

@@ -31,7 +31,7 @@ def test_text_csv_and_json(selection):
     text = format_selection(selection)
     lines = text.splitlines()
     assert lines[0].startswith("records scaled for: EN 1998-1 type 1 elastic spectrum")
-    assert lines[1].startswith("7 of 9 candidate records (one component per event)")
+    assert lines[1].startswith("7 of 9 candidate records (one component per station)")
     for k, (name, f) in enumerate(zip(selection.names, selection.factors)):
         row = lines[3 + k].split()
         assert row[1:3] == name.split() and float(row[-2]) == pytest.approx(f, abs=5e-4)

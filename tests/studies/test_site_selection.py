@@ -51,7 +51,7 @@ def test_scaled_motions_are_the_selection(records, selection):
 
 def test_config_round_trip_and_its_use(records):
     cfg = SelectionConfig(count=5, period_range=(0.2, 1.5), lower=0.95, scale_bounds=(0.25, 5),
-                          one_per_event=False)
+                          one_per_station=False)
     assert SelectionConfig.from_dict(cfg.to_dict()) == cfg
     assert cfg.to_dict()["period_range"] == [0.2, 1.5]
     ec8 = SiteSpectrum.ec8(0.2, "C", 1)
@@ -77,7 +77,7 @@ def test_a_table_spectrum(records, tmp_path):
 @pytest.mark.parametrize("kwargs, field", [
     (dict(count=0), "count"), (dict(period_range=(2.0, 1.0)), "period_range"),
     (dict(lower=1.2), "lower"), (dict(scale_bounds=(0.0, 1.0)), "scale_bounds"),
-    (dict(one_per_event="yes"), "one_per_event")])
+    (dict(one_per_station="yes"), "one_per_station")])
 def test_bad_config_names_the_field(kwargs, field):
     with pytest.raises(ArchInputError, match=f"^{field}: "):
         SelectionConfig(**kwargs)

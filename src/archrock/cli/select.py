@@ -51,7 +51,7 @@ def add_selection_options(p):
     g.add_argument("--scale-bounds", nargs=2, type=finite_float, default=(0.5, 4.0),
                    metavar=("LO", "HI"), help="least and largest scale factor (default 0.5 4)")
     g.add_argument("--both-components", action="store_true",
-                   help="allow both components of one P695 event (default: one per event)")
+                   help="allow both components of one P695 record, a station (default: one per station)")
 
 
 def _records(args):
@@ -88,7 +88,7 @@ def selection_config_from_args(args):
     try:
         return SelectionConfig(count=args.count, period_range=tuple(args.period_range),
                                scale_bounds=tuple(args.scale_bounds),
-                               one_per_event=not args.both_components)
+                               one_per_station=not args.both_components)
     except ArchInputError as exc:
         raise _as_option(exc) from None
 

@@ -17,7 +17,7 @@ How the records are chosen (pure and deterministic):
    there, when they are few: its corners are checked), and its own factor f_i: the geometric mean of
    target / Sa_i over the range, clipped to the bounds;
 2. its misfit: the rms of log(f_i Sa_i / target) over the range (spectral shape);
-3. at most one component per event when the names are FEMA P695 references ``SUITE/NNc``
+3. at most one component per station when the names are FEMA P695 references ``SUITE/NNc``
    (the better fitting of ``1a``/``1b``), so that 7 records are 7 stations; the event is P695's
    record number, a station of an earthquake (the far-field set has 22 stations of 14
    earthquakes: two stations of one earthquake may both be chosen);
@@ -40,7 +40,7 @@ from ..errors import ArchInputError, NoSelectionError
 from .motion import GroundMotion
 from .spectra import response_spectrum
 
-__all__ = ["RecordSelection", "select_records", "check_settings", "event_key", "CODE_MIN_RECORDS",
+__all__ = ["RecordSelection", "select_records", "check_settings", "station_key", "CODE_MIN_RECORDS",
            "GRID_POINTS", "MAX_SWAPS"]
 
 #: the codes' least number of records whose mean response is the design value
@@ -52,9 +52,9 @@ MAX_SWAPS = 50
 _P695 = re.compile(r"^(?P<suite>p695-[a-z-]+?)(?:-normalized)?/(?P<record>\d+)[ab]$")
 
 
-def event_key(name: str) -> str:
-    """The event a record stands for: ``SUITE/N`` for a FEMA P695 component ``SUITE/Nc``
-    (both components of record N are one event), else the name itself."""
+def station_key(name: str) -> str:
+    """The station a record stands for: ``SUITE/N`` for a FEMA P695 component ``SUITE/Nc``
+    (both components of record N are one station), else the name itself."""
     m = _P695.match(name) if isinstance(name, str) else None
     return f"{m.group('suite')}/{m.group('record')}" if m else str(name)
 
@@ -89,7 +89,7 @@ class RecordSelection:
     period_range: tuple
     lower: float
     scale_bounds: tuple
-    one_per_event: bool
+    one_per_station: bool
     damping: float
     rules: tuple
     adjustment: float
@@ -116,7 +116,7 @@ class RecordSelection:
         return {
             "description": self.description, "count": self.count,
             "period_range": list(self.period_range), "lower": self.lower,
-            "scale_bounds": list(self.scale_bounds), "one_per_event": self.one_per_event,
+            "scale_bounds": list(self.scale_bounds), "one_per_station": self.one_per_station,
             "damping": self.damping, "candidates": self.candidates,
             "records": [{"index": int(i), "name": n, "event": e, "factor": float(f),
                          "pga_g": float(p)}
@@ -223,14 +223,14 @@ def _own_factors(sa: np.ndarray, target: np.ndarray, bounds) -> tuple[np.ndarray
     return f, misfit
 
 
-def _eligible(names, misfit, one_per_event) -> list:
-    """Record indices in misfit order, only the best component of each event if asked."""
+def _eligible(names, misfit, one_per_station) -> list:
+    """Record indices in misfit order, only the best component of each station if asked."""
     order = sorted(range(len(names)), key=lambda i: (misfit[i], i))
-    if not one_per_event:
+    if not one_per_station:
         return order
     seen, out = set(), []
     for i in order:
-        key = event_key(names[i])
+        key = station_key(names[i])
         if key not in seen:
             seen.add(key)
             out.append(i)
@@ -294,20 +294,20 @@ def _failure(chosen, f, sa, pgas, target, lower, pga_min, bounds, count, rng) ->
 
 def select_records(motions, target_periods, target_sa_g, *, count: int = CODE_MIN_RECORDS,
                    period_range=(0.15, 2.0), lower: float = 0.90, scale_bounds=(0.5, 4.0),
-                   pga_min_g: float | None = None, one_per_event: bool = True, names=None,
+                   pga_min_g: float | None = None, one_per_station: bool = True, names=None,
                    damping: float = 0.05, description: str = "") -> RecordSelection:
     """``count`` of ``motions`` scaled so that their mean ``damping`` spectrum is nowhere below
     ``lower`` x the target (``target_sa_g`` [g] at ``target_periods`` [s], linear between) over
     ``period_range`` [s], every factor within ``scale_bounds`` and the mean PGA of the scaled set
     at least ``pga_min_g`` [g] (module doc).  ``names`` (default: the motions' names) name the
-    records and, as FEMA P695 references, their events (``one_per_event``)."""
+    records and, as FEMA P695 references, their events (``one_per_station``)."""
     tp, ts = _target(target_periods, target_sa_g)
     motions, names, count, rng, lower, bounds = _check(motions, count, period_range, lower,
                                                 scale_bounds, pga_min_g, names, tp)
-    events = len({event_key(n) for n in names}) if one_per_event else len(names)
+    events = len({station_key(n) for n in names}) if one_per_station else len(names)
     if events < count:
         raise ArchInputError(f"count: {count}; allowed at most the {events} records of "
-                             f"distinct events given (one_per_event)")
+                             f"distinct stations given (one_per_station)")
     grid = _grid(tp, *rng)
     target = np.interp(grid, tp, ts)
     if np.any(target <= 0):
@@ -316,7 +316,7 @@ def select_records(motions, target_periods, target_sa_g, *, count: int = CODE_MI
     sa = np.array([response_spectrum(m, grid, damping) for m in motions])
     pgas = np.array([m.pga_g for m in motions])
     f, misfit = _own_factors(sa, target, bounds)
-    pool = _eligible(names, misfit, bool(one_per_event))
+    pool = _eligible(names, misfit, bool(one_per_station))
     pga_min = float(pga_min_g) if pga_min_g else 0.0
     chosen, margin = _search(pool, count, f, sa, pgas, target, lower, pga_min, bounds)
     if margin < 1.0:
@@ -332,14 +332,14 @@ def select_records(motions, target_periods, target_sa_g, *, count: int = CODE_MI
     k = int(np.argmin(ratio))
     pga_scaled = factors * pgas[chosen]
     rules = _rules(count, lower, rng, float(ratio[k]), float(grid[k]), bounds, factors,
-                   pga_min_g, float(pga_scaled.mean()), bool(one_per_event))
+                   pga_min_g, float(pga_scaled.mean()), bool(one_per_station))
     return RecordSelection(
         indices=tuple(int(i) for i in chosen), names=tuple(names[i] for i in chosen),
-        events=tuple(event_key(names[i]) for i in chosen), factors=factors, periods=grid,
+        events=tuple(station_key(names[i]) for i in chosen), factors=factors, periods=grid,
         spectra=scaled, mean=mean, target=target, ratio_min=float(ratio[k]),
         ratio_period=float(grid[k]), pga_g=pga_scaled, pga_mean_g=float(pga_scaled.mean()),
         pga_min_g=None if pga_min_g is None else float(pga_min_g), count=int(count),
-        period_range=rng, lower=lower, scale_bounds=bounds, one_per_event=bool(one_per_event),
+        period_range=rng, lower=lower, scale_bounds=bounds, one_per_station=bool(one_per_station),
         damping=float(damping), rules=rules, adjustment=float(c), candidates=len(pool),
         description=str(description))
 
@@ -360,7 +360,7 @@ def _rules(count, lower, rng, ratio, at, bounds, factors, pga_min_g, pga_mean, o
     if pga_min_g is not None:
         rules.append((f"mean PGA of the scaled set >= the site's {pga_min_g:.3g} g (a_g S)",
                       pga_mean >= pga_min_g * (1 - 1e-12), f"mean PGA {pga_mean:.3g} g"))
-    rules.append(("one component per event (a P695 record number: one station of an "
-                  "earthquake)" if one else "components chosen freely (both of one event "
+    rules.append(("one component per station (a P695 record number: one station of an "
+                  "earthquake)" if one else "components chosen freely (both of one station "
                   "allowed)", True, ""))
     return tuple(rules)

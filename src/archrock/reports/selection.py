@@ -43,7 +43,7 @@ def format_selection(selection) -> str:
     s = selection
     lo, hi = s.period_range
     events = event_names(s)
-    per_event = "one component per event" if s.one_per_event else "components chosen freely"
+    per_event = "one component per station" if s.one_per_station else "components chosen freely"
     lines = [f"records scaled for: {s.description or 'the target spectrum given'}",
              f"{s.count} of {s.candidates} candidate records ({per_event}), "
              f"{100 * s.damping:g}%-damped spectra over {lo:g}-{hi:g} s, factors within "

@@ -25,19 +25,19 @@ class SelectionConfig:
     """What a selection asks (:func:`archrock.groundmotion.selection.select_records`): ``count``
     records (the codes: >= 7), ``period_range`` [s] where the mean spectrum must reach
     ``lower`` x the target (NTC 2018: 0.15-2.0 s, 90%), ``scale_bounds`` of every factor,
-    ``one_per_event``: at most one component of a FEMA P695 record."""
+    ``one_per_station``: at most one component of a FEMA P695 record."""
 
     count: int = CODE_MIN_RECORDS
     period_range: tuple = (0.15, 2.0)
     lower: float = 0.90
     scale_bounds: tuple = (0.5, 4.0)
-    one_per_event: bool = True
+    one_per_station: bool = True
 
     def __post_init__(self):
         count, rng, lower, bounds = check_settings(self.count, self.period_range, self.lower,
                                                    self.scale_bounds)
-        if not isinstance(self.one_per_event, bool):
-            raise ArchInputError(f"one_per_event: {self.one_per_event!r}; allowed true or false")
+        if not isinstance(self.one_per_station, bool):
+            raise ArchInputError(f"one_per_station: {self.one_per_station!r}; allowed true or false")
         for name, value in (("count", count), ("period_range", rng), ("lower", lower),
                             ("scale_bounds", bounds)):
             object.__setattr__(self, name, value)
@@ -106,7 +106,7 @@ def select_for_site(spectrum: SiteSpectrum, motions, config: SelectionConfig | N
     return select_records(motions, periods, se, count=cfg.count,
                           period_range=cfg.period_range, lower=cfg.lower,
                           scale_bounds=cfg.scale_bounds, pga_min_g=spectrum.pga,
-                          one_per_event=cfg.one_per_event, names=names,
+                          one_per_station=cfg.one_per_station, names=names,
                           description=spectrum_description(spectrum))
 
 
