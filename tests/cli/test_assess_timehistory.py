@@ -52,8 +52,8 @@ def test_the_report_prints_both_verdicts(tmp_path, capsys):
                  "--durations", "0.3,0.7", "--n-scan", "12", *SITE])
     text = capsys.readouterr().out
     assert code == 0
-    line = re.search(r"^time history: pass, E = (\S+) \(mean of 7 records\); kinematic check: "
-                     r"pass$", text, re.M)
+    line = re.search(r"^verdict: pass by time history, E = (\S+) \(mean of 7 records\); the "
+                     r"simplified kinematic check, not governing: pass$", text, re.M)
     assert line and 0.0 <= float(line.group(1)) < 0.01, text
     d = json.loads(out.with_suffix(".json").read_text())
     th = d["sections"]["timehistory"]["data"]

@@ -116,12 +116,18 @@ def _records_or_default(records, spectrum, say):
 
 
 def _timehistory_line(result) -> str:
-    """The time-history verification's verdict beside the kinematic check's, one line."""
+    """The report's verdict against the site spectrum in one line: the time history's where it
+    governs (its records meet the selection rules), the simplified kinematic check's named as
+    not governing; else the kinematic check's."""
     sec = {s.key: s for s in result.sections}.get("timehistory")
     if sec is None or "rule" not in sec.data:
         return ""
     rule, kin = sec.data["rule"], sec.data["kinematic"]
     e = "inf" if rule["unbounded"] else f"{rule['value']:.3g}"
+    th = f"E = {e} ({rule['rule']} of {rule['n']} records)"
     kc = "-" if kin["passed"] is None else ("pass" if kin["passed"] else "FAIL")
-    return (f"time history: {'pass' if rule['passed'] else 'FAIL'}, E = {e} ({rule['rule']} of "
-            f"{rule['n']} records); kinematic check: {kc}")
+    if sec.data.get("governs"):
+        return (f"verdict: {'pass' if rule['passed'] else 'FAIL'} by time history, {th}; the "
+                f"simplified kinematic check, not governing: {kc}")
+    return (f"verdict: {kc} by the kinematic check; the time history, not governing (its records "
+            f"break a selection rule): {'pass' if rule['passed'] else 'FAIL'}, {th}")
