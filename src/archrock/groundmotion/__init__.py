@@ -13,7 +13,9 @@ the last sample the acceleration is 0.  So a record whose last sample is nonzero
 pulse constructors end their histories with an explicit 0 where the drop matters.
 
 Modules: :mod:`.motion` (the model, :func:`from_samples`), :mod:`.pulses` (idealised pulses),
-:mod:`.records` (two-column and PEER NGA ``.AT2`` files), :mod:`.synthetic` (seeded
+:mod:`.records` (two-column and PEER NGA ``.AT2`` files), :mod:`.p695` (the FEMA P695
+record sets as built-in suites, extra ``records``), :mod:`.spectra` (5%-damped response
+spectra), :mod:`.selection` (records chosen and scaled for a target spectrum), :mod:`.synthetic` (seeded
 band-limited noise), :mod:`.spec` (serialisable
 specifications that rebuild a motion: :class:`PulseSpec`, :class:`RecordSpec`).  Every bad input
 raises :class:`archrock.errors.ArchInputError` with a one-line message naming the field; a PGA
@@ -26,7 +28,10 @@ from .motion import (MAX_PGA_G, MAX_RECORD_DT_S, UNITS, WARN_PGA_G, WARN_RECORD_
                      GroundMotion, check_pga, from_samples)
 from .pulses import (PULSE_KINDS, half_sine_pulse, one_sine_pulse, oppenheim_pulse, pulse,
                      pulse_kind, rectangular_pulse, ricker_pulse)
+from .p695 import SUITES, suite_motion, suite_motions, suite_records
 from .records import load_record, read_at2, read_two_column
+from .selection import RecordSelection, select_records
+from .spectra import response_spectrum
 from .spec import PulseSpec, RecordSpec, motion_spec_from_dict
 from .synthetic import band_limited_noise
 
@@ -52,6 +57,13 @@ __all__ = [
     "read_at2",
     "load_record",
     "band_limited_noise",
+    "SUITES",
+    "suite_records",
+    "suite_motion",
+    "suite_motions",
+    "response_spectrum",
+    "select_records",
+    "RecordSelection",
     "PulseSpec",
     "RecordSpec",
     "motion_spec_from_dict",
