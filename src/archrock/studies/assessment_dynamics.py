@@ -380,7 +380,8 @@ def section_codecheck(ctx: Context) -> Section:
     from ..units import G
 
     cfg = ctx.config.codecheck
-    res = code_check(ctx.arch, ctx.limit, cfg)
+    # once per report: the time-history verification reads the same check's capacity curves
+    res = ctx.once("codecheck", lambda: code_check(ctx.arch, ctx.limit, cfg))
     dirs = res.directions
     rows = [("activation multiplier alpha_0", *[f"{c.alpha_0:.6f}" for c in dirs]),
             ("participating mass M* [kg/m]", *[f"{c.m_star:.1f}" for c in dirs]),
