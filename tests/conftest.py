@@ -23,6 +23,20 @@ def heavy_piers_file() -> Path:
     return path
 
 
+@pytest.fixture(scope="session")
+def noise_records():
+    """``noise_records(n)``: n seeded band-limited noise records of 8 s at 0.01 s, their bands
+    and PGAs (0.1 g + 0.02 g k) all different: a pool of records to select from without the
+    FEMA P695 extra."""
+    from archrock.groundmotion import band_limited_noise
+
+    def make(n: int) -> list:
+        return [band_limited_noise(8.0, 0.01, (0.3 + 0.1 * (k % 5), 4.0 + k % 7), seed=k,
+                                   pga_g=0.1 + 0.02 * k) for k in range(n)]
+
+    return make
+
+
 @pytest.fixture
 def without_numba():
     """Run ``python <args>`` with ARCHROCK_NO_NUMBA=1 (the pure-Python kernels) on this checkout;

@@ -7,7 +7,6 @@ import io
 import numpy as np
 import pytest
 
-from archrock.groundmotion import band_limited_noise
 from archrock.reports.selection import (event_names, format_selection, selection_csv,
                                         selection_figure, selection_json)
 from archrock.studies.codecheck import SiteSpectrum
@@ -17,9 +16,8 @@ SITE = SiteSpectrum.ec8(0.2, "C", 1)
 
 
 @pytest.fixture(scope="module")
-def records():
-    return [band_limited_noise(8.0, 0.01, (0.3 + 0.1 * (k % 5), 4.0 + k % 7), seed=k,
-                               pga_g=0.1 + 0.02 * k) for k in range(9)]
+def records(noise_records):
+    return noise_records(9)
 
 
 @pytest.fixture(scope="module")

@@ -5,7 +5,6 @@ import numpy as np
 import pytest
 
 from archrock.errors import ArchInputError
-from archrock.groundmotion import band_limited_noise
 from archrock.groundmotion.spectra import response_spectrum
 from archrock.studies.codecheck import SiteSpectrum
 from archrock.studies.selection import (SelectionConfig, scaled_motions, select_for_site,
@@ -15,9 +14,8 @@ SITE = SiteSpectrum.ntc(0.25, 2.5, 0.3, "B")
 
 
 @pytest.fixture(scope="module")
-def records():
-    return [band_limited_noise(8.0, 0.01, (0.3 + 0.1 * (k % 5), 4.0 + k % 7), seed=k,
-                               pga_g=0.1 + 0.02 * k) for k in range(12)]
+def records(noise_records):
+    return noise_records(12)
 
 
 @pytest.fixture(scope="module")
