@@ -226,3 +226,27 @@ def test_displaced_arch_with_fc():
     assert 0.9 * heyman.k < weak.k < heyman.k
     g0, g5 = gap_closing(moved), gap_closing(moved.with_fc(5.0))
     assert g0.k_l == g5.k_l and g0.k_r == g5.k_r
+
+
+def test_flat_lintel_crushes_at_fc_h_over_w():
+    """Closed form: a flat lintel of three rectangular voussoirs (span S, depth h, vertical
+    joints) has no mechanism under Heyman's hypotheses; with f_c its springing joint crushes
+    through when the horizontal load lambda W reaches f_c h (the thrust at the joint's centre,
+    the whole depth compressed), provided W S <= f_c h^2 (the weight's bending then fits inside
+    the stress blocks at every joint): lambda = f_c h / W."""
+    from archrock.geometry import PolygonArch
+
+    span, h, n = 3.0, 0.5, 3
+    xs = [span * i / n for i in range(n + 1)]
+    lintel = PolygonArch(tuple([[xs[i], 0.0], [xs[i + 1], 0.0]] for i in range(n)),
+                         tuple([[xs[i], h], [xs[i + 1], h]] for i in range(n)), 2000.0, "lintel")
+    with pytest.raises(NoMechanismError):
+        limit_analysis(lintel)
+    weight = 2000.0 * G * span * h
+    for fc in FCS:
+        assert weight * span <= fc * 1e6 * h * h
+        r = limit_analysis(lintel.with_fc(fc))
+        expected = fc * 1e6 * h / weight
+        for d in "lr":
+            assert abs(getattr(r, f"k_{d}") - expected) <= 1e-9 * expected
+            assert r.mechanism(d).crushed
