@@ -250,3 +250,19 @@ def test_flat_lintel_crushes_at_fc_h_over_w():
         for d in "lr":
             assert abs(getattr(r, f"k_{d}") - expected) <= 1e-9 * expected
             assert r.mechanism(d).crushed
+
+
+def test_limit_command_with_fc(capsys):
+    """`archrock limit --fc 2 --json` carries f_c, both bounds and the zones; the friction-limited
+    minimum thickness (Heyman's) is refused beside --fc rather than answered without it."""
+    import json
+
+    from archrock.cli import main
+
+    assert main(["limit", "--fc", "2", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["fc"] == 2.0 and len(d["zones_l"]) == 8
+    lo, hi = d["k_bounds_l"]
+    assert lo - 1e-8 <= d["static_k_l"] <= hi + 1e-8 and abs(d["k_l"] - d["static_k_l"]) < 1e-9
+    assert main(["limit", "--min-thickness", "--friction", "0.6", "--fc", "2"]) == 2
+    assert "--min-thickness: with --friction and --fc" in capsys.readouterr().err
