@@ -174,7 +174,8 @@ def _no_sliding(lim, needed, mu) -> Capacity:
             what = "no finite friction" if need is None else f"mu >= {need:.4f}"
             holds[d], why[d] = False, (f"needs {what}, more than mu = {mu:g}: the joints slide "
                                        f"first")
-    hyp = ("no tension", "no crushing",
+    fc = getattr(lim.arch, "fc", None)
+    hyp = ("no tension", "no crushing" if fc is None else f"crushing at f_c = {fc:g} MPa",
            "no sliding" + ("" if mu is None else f" (checked against mu = {mu:g})"))
     m = {d: lim.mechanism(d) for d in DIRS}
     return Capacity(NO_SLIDING, hyp, float(lim.k_l), float(lim.k_r),
@@ -375,6 +376,12 @@ def _statics(arch, mu, limit):
     if mu is None:
         left_out.append((WITH_FRICTION, "sliding excluded by the user (friction None, "
                                         "--friction none): Heyman's no-sliding hypothesis"))
+    elif getattr(arch, "fc", None) is not None:
+        try:  # the friction analysis is Heyman's (no crushing): where it finds no mechanism,
+            # crushing's answer stands alone
+            analyses.append(_with_friction(arch, mu))
+        except NoMechanismError as exc:
+            left_out.append((WITH_FRICTION, _one_line(exc)))
     else:
         analyses.append(_with_friction(arch, mu))
     return lim, needed, analyses, left_out
