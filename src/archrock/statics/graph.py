@@ -217,10 +217,12 @@ class _Program:
             dt[e] = dv @ self.tangents[c]
         return dn, dt
 
-    def compat_rows(self, c: int, what: str, end: int = 0, slip_sign: float = 0.0):
+    def compat_rows(self, c: int, what: str, end: int = 0, slip_sign: float = 0.0,
+                    point=None):
         """Rows R (k, 3 nb) with R v = 0 for contact c: 'closed' (no relative motion at both
-        ends), 'hinge' (none at end ``end``), 'slide' (no relative normal velocity at both ends,
-        or the associated dilatancy dn = mu |dt| with friction)."""
+        ends), 'hinge' (none at end ``end``, or at ``point`` [m] where given), 'slide' (no
+        relative normal velocity at both ends, or the associated dilatancy dn = mu |dt| with
+        friction)."""
         ct = self.arc.contacts[c]
         n, t = self.normals[c], self.tangents[c]
         rows = []
@@ -239,7 +241,8 @@ class _Program:
             for e in (0, 1):
                 rows += [vel_row(ct.points[e], n), vel_row(ct.points[e], t)]
         elif what == "hinge":
-            rows += [vel_row(ct.points[end], n), vel_row(ct.points[end], t)]
+            p = ct.points[end] if point is None else np.asarray(point, float)
+            rows += [vel_row(p, n), vel_row(p, t)]
         elif what == "slide":
             mu = self.friction or 0.0
             for e in (0, 1):
@@ -331,12 +334,31 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
                                f"{direction!r}")
     tol = VELOCITY_TOL * scale
     hinges, lift, slide, closed, slip_sign = _classify(prog, v, tol)
+    mech = _rebuild(prog, direction, v, hinges, lift, slide, closed, slip_sign)
+    k_vw = mech.multiplier
+    W = float(np.sum(arc.masses)) * G
+    forces = res.x[:-1].reshape(prog.nc, 3) * W
+    how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
+           "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
+           f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
+    if mu is not None:
+        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+    return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
+
+
+def _rebuild(prog: _Program, direction: str, v: np.ndarray, hinges, lift, slide, closed,
+             slip_sign, points=None) -> GraphMechanism:
+    """The mechanism from its hinges alone (the null space of the compatibility conditions),
+    nearest the dual's velocities ``v``, scaled to unit horizontal work; its virtual-work k.
+    ``points``: {contact: (x, y) [m]} hinge points off the contact's ends (a stress block's
+    centre under finite strength)."""
+    points = points or {}
     # the mechanism from its hinges alone: the null space of the compatibility conditions
     rows = []
     for c in closed:
         rows += prog.compat_rows(c, "closed")
     for c, e in hinges:
-        rows += prog.compat_rows(c, "hinge", e)
+        rows += prog.compat_rows(c, "hinge", e, point=points.get(c))
     for c in slide:
         rows += prog.compat_rows(c, "slide", slip_sign=slip_sign[c])
     nv = 3 * prog.nb
@@ -364,17 +386,9 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     vel = np.column_stack([vm[:, 0], vm[:, 1], vm[:, 2] / prog.L])
     moving = tuple(int(i) for i in np.flatnonzero(
         np.abs(vm).max(axis=1) > VELOCITY_TOL * float(np.abs(vm).max())))
-    contacts = arc.contacts
+    contacts = prog.arc.contacts
     gh = tuple(GraphHinge(c, e, contacts[c].place(e)) for c, e in hinges)
-    mech = GraphMechanism(direction, gh, tuple(lift), tuple(slide), moving, vel, dof, k_vw)
-    W = float(np.sum(arc.masses)) * G
-    forces = res.x[:-1].reshape(prog.nc, 3) * W
-    how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
-           "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
-           f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
-    if mu is not None:
-        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
-    return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
+    return GraphMechanism(direction, gh, tuple(lift), tuple(slide), moving, vel, dof, k_vw)
 
 
 def _velocity_scale(prog: _Program, v: np.ndarray) -> float:
