@@ -119,6 +119,10 @@ class GraphLimit:
     forces: np.ndarray = field(repr=False)
     friction: float | None
     method: str
+    #: finite compressive strength (statics.graphcrush): (k_lower, k_upper) of the static
+    #: optimum's bracket (k is k_lower), and each contact's stress block depth N / f_c [m]
+    k_bounds: tuple | None = None
+    zones: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self):
         readonly_arrays(self)
@@ -128,12 +132,17 @@ class GraphLimit:
         return self.mechanism.hinges
 
     def to_dict(self) -> dict:
-        return {"direction": self.direction, "k": self.k,
-                "k_virtual_work": self.k_virtual_work,
-                "mechanism": self.mechanism.to_dict(), "forces": self.forces.tolist(),
-                "friction": self.friction, "method": self.method,
-                "units": {"k": "g", "forces": "N per m of depth",
-                          "velocities": "m/s and rad/s per unit work of the horizontal loads"}}
+        d = {"direction": self.direction, "k": self.k,
+             "k_virtual_work": self.k_virtual_work,
+             "mechanism": self.mechanism.to_dict(), "forces": self.forces.tolist(),
+             "friction": self.friction, "method": self.method,
+             "units": {"k": "g", "forces": "N per m of depth",
+                       "velocities": "m/s and rad/s per unit work of the horizontal loads"}}
+        if self.k_bounds is not None:  # only under finite strength: Heyman's output unchanged
+            d["k_bounds"] = list(self.k_bounds)
+            d["zones"] = self.zones.tolist()
+            d["units"]["zones"] = "m (depth of the stress block at each contact)"
+        return d
 
 
 class _Program:
@@ -257,8 +266,13 @@ def _solve(prog: _Program):
 
 
 def graph_multiplier(arc: Arcade, direction: str, friction: float | None = None) -> float:
-    """The LP's optimum k alone (module docstring)."""
+    """The LP's optimum k alone (module docstring); under finite strength the lower bound of
+    its bracket (:mod:`archrock.statics.graphcrush`)."""
     prog = _Program(arc, direction, None if friction is None else check_friction(friction))
+    if arc.finite_strength:
+        from .graphcrush import crushing_bracket
+
+        return crushing_bracket(prog, direction, _check_status)[1][0]
     res = _solve(prog)
     _check_status(res, direction, prog)
     return float(res.x[-1])
@@ -318,6 +332,8 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     ``friction``: Coulomb coefficient mu of every contact (None: no sliding)."""
     mu = None if friction is None else check_friction(friction)
     prog = _Program(arc, direction, mu)
+    if arc.finite_strength:
+        return _graph_limit_crushing(prog, direction, mu)
     res = _solve(prog)
     _check_status(res, direction, prog)
     k = float(res.x[-1])
@@ -344,6 +360,21 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     if mu is not None:
         how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
     return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
+
+
+def _graph_limit_crushing(prog: _Program, direction: str, mu) -> GraphLimit:
+    """:func:`graph_limit` under finite compressive strength (statics.graphcrush)."""
+    from .graphcrush import crushing_limit
+
+    k, k_vw, mech, forces, bounds, zones, rounds = crushing_limit(prog, direction)
+    how = (f"static LP on the graph of blocks with the stress block at every contact of finite "
+           f"f_c (a bracket of linear programs, scipy HiGHS: tangent planes above, chords below, "
+           f"{rounds} round{'s' if rounds != 1 else ''}, k in [{bounds[0]:.9g}, "
+           f"{bounds[1]:.9g}]); mechanism from the lower bound's dual, its hinges at the stress "
+           f"blocks' centres, confirmed by its virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
+    if mu is not None:
+        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+    return GraphLimit(direction, k, k_vw, mech, forces, mu, how, bounds, zones)
 
 
 def _rebuild(prog: _Program, direction: str, v: np.ndarray, hinges, lift, slide, closed,
