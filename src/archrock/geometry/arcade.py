@@ -68,7 +68,7 @@ def arcade_from_chain(arch: VoussoirArch, name: str | None = None) -> Arcade:
     # the right springing: the last block rests on the ground
     contacts += (Contact(GROUND, n - 1, jp[n], joint_place(arch, n), ("intrados", "extrados")),)
     density = getattr(arch, "density", DEFAULT_DENSITY)
-    fc = getattr(arch, "fc", None)
+    fc = arch.fc
     return Arcade(blocks, contacts, density, name or arch.name, (tuple(range(n)),), (),
                   None if fc is None else {k: fc for k in set(kinds)})
 
@@ -313,11 +313,11 @@ def _arcade_fc(arches, fc):
         return fc
     if isinstance(arches, VoussoirArch):
         arches = [arches]
-    values = {getattr(a, "fc", None) for a in arches}
+    values = {a.fc for a in arches if isinstance(a, VoussoirArch)}
     if len(values) > 1:
         raise ArchInputError(f"arches: compressive strengths {sorted(values, key=str)} MPa "
                              f"differ; allowed one fc for every arch (or give fc per kind)")
-    common = values.pop()
+    common = values.pop() if values else None
     return None if common is None else {"voussoir": common, "pier": common}
 
 

@@ -18,8 +18,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, MAX_LOAD_KG, _check_density, _check_point, _check_points,
-                   _check_scalar, polygon_properties)
+from .base import (DEFAULT_DENSITY, MAX_FC, MAX_LOAD_KG, MIN_FC, _check_density, _check_point,
+                   _check_points, _check_scalar, polygon_properties)
 from .polygon import FACE_TOLERANCE, _signed_area, _simple
 
 __all__ = ["Arcade", "Block", "Contact", "ARCADE_KINDS", "GROUND"]
@@ -28,8 +28,6 @@ __all__ = ["Arcade", "Block", "Contact", "ARCADE_KINDS", "GROUND"]
 ARCADE_KINDS = ("voussoir", "pier", "buttress", "beam")
 #: The index that stands for the ground in a contact.
 GROUND = -1
-#: Range of a compressive strength f_c [MPa] (the arches' own, geometry.base).
-MIN_FC, MAX_FC = 0.1, 1000.0
 
 
 def _check_kind_fc(fc) -> dict:

@@ -61,14 +61,19 @@ def graph_limit_cost_s(n_blocks: int, directions: int = 2) -> float:
 @dataclass(frozen=True)
 class GraphHinge:
     """A hinge: contact ``contact`` rotates about its end ``end`` (0 or 1); ``place`` in words
-    ("pier 2 foot, outer face")."""
+    ("pier 2 foot, outer face"); ``point`` (x, y) [m] where it is off that end (under finite
+    strength: the stress block's centre, nearer end ``end``), else None."""
 
     contact: int
     end: int
     place: str
+    point: tuple | None = None
 
     def to_dict(self) -> dict:
-        return {"contact": self.contact, "end": self.end, "place": self.place}
+        d = {"contact": self.contact, "end": self.end, "place": self.place}
+        if self.point is not None:
+            d["point"] = list(self.point)
+        return d
 
 
 @dataclass(frozen=True, eq=False)
@@ -418,7 +423,9 @@ def _rebuild(prog: _Program, direction: str, v: np.ndarray, hinges, lift, slide,
     moving = tuple(int(i) for i in np.flatnonzero(
         np.abs(vm).max(axis=1) > VELOCITY_TOL * float(np.abs(vm).max())))
     contacts = prog.arc.contacts
-    gh = tuple(GraphHinge(c, e, contacts[c].place(e)) for c, e in hinges)
+    gh = tuple(GraphHinge(c, e, contacts[c].place(e),
+                          None if c not in points else tuple(float(p) for p in points[c]))
+               for c, e in hinges)
     return GraphMechanism(direction, gh, tuple(lift), tuple(slide), moving, vel, dof, k_vw)
 
 
