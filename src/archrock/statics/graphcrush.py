@@ -146,9 +146,17 @@ def _chord(c: float, breaks, s: float) -> float:
     return float(np.interp(s, bk, c * bk * bk))
 
 
+def _crushed(direction: str) -> str:
+    return (f"arcade: no set of contact forces within the masonry's compressive strength holds "
+            f"the blocks in direction {direction!r} (with infinite strength they stand: their "
+            f"weight crushes a joint); it cannot stand")
+
+
 def _solve(prog, A, b):
     if prog.A_ub is not None:
         A, b = np.vstack([prog.A_ub, A]), np.concatenate([prog.b_ub, b])
+    if not len(b):
+        A = b = None
     return linprog(prog.c, A_ub=A, b_ub=b, A_eq=prog.A_eq, b_eq=prog.b_eq, bounds=prog.bounds,
                    method="highs")
 
@@ -162,6 +170,10 @@ def crushing_bracket(prog, direction: str, check_status):
     k_up = np.inf
     for rnd in range(1, MAX_ROUNDS + 1):
         up = _solve(prog, *rows.rows("upper"))
+        if up.status == 2:  # infeasible: by the strength, or already without it?
+            heyman = _solve(prog, np.zeros((0, rows.nv)), np.zeros(0))
+            check_status(heyman, direction, prog)
+            raise CannotStandError(_crushed(direction))
         check_status(up, direction, prog)
         k_up = min(k_up, float(up.x[-1]))  # every relaxation bounds k from above
         added = rows.refine(up.x)
@@ -174,9 +186,7 @@ def crushing_bracket(prog, direction: str, check_status):
         if not added:  # nothing left to refine: the bracket stays as it is
             break
     if lower is None:
-        raise CannotStandError(f"arcade: no set of contact forces within the masonry's "
-                               f"compressive strength holds the blocks in direction "
-                               f"{direction!r} (its weight crushes a joint); it cannot stand")
+        raise CannotStandError(_crushed(direction))
     return lower, (float(lower.x[-1]), max(k_up, float(lower.x[-1]))), rnd, rows
 
 
