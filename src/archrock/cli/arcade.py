@@ -235,14 +235,12 @@ def _check_fc_flag(value, flag: str = "--fc") -> float:
 
 
 def _with_strength(args, arc):
-    """``arc`` with --fc (every kind) and --pier-fc (the piers) over its own strengths."""
+    """``arc`` with --fc (every block) and --pier-fc (the piers) over its own strengths."""
     if args.fc is None and args.pier_fc is None:
         return arc
-    from ..geometry.blockgraph import ARCADE_KINDS
-
     fc = dict(arc.fc)
-    if args.fc is not None:
-        fc = {k: _check_fc_flag(args.fc) for k in ARCADE_KINDS}
+    if args.fc is not None:  # the kinds the arcade has (its document names no others)
+        fc = {k: _check_fc_flag(args.fc) for k in dict.fromkeys(arc.kinds)}
     if args.pier_fc is not None:
         fc["pier"] = _check_fc_flag(args.pier_fc, "--pier-fc")
     return arc.with_fc(fc)
@@ -345,8 +343,8 @@ def format_result(arc, results, ramp=None, response=None) -> str:
                      f"{len(m.moving)} blocks move)")
         lines.append(f"  hinges: {'; '.join(h.place for h in m.hinges) or '-'}")
         if g.k_bounds is not None:
-            lines.append(f"  bracket of the static optimum: [{g.k_bounds[0]:.6f}, "
-                         f"{g.k_bounds[1]:.6f}] (k is its lower bound)")
+            lines.append(f"  bracket of the static optimum: [{g.k_bounds[0]:.9f}, "
+                         f"{g.k_bounds[1]:.9f}] (k is its lower bound)")
             z = "; ".join(f"{arc.contacts[h.contact].label} {g.zones[h.contact] * 1e3:.1f} mm"
                           for h in m.hinges if g.zones[h.contact] > 0)
             lines.append(f"  stress blocks at the hinges (depth N / f_c): {z or '-'}")
