@@ -368,10 +368,35 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
 
 
 def _graph_limit_crushing(prog: _Program, direction: str, mu) -> GraphLimit:
-    """:func:`graph_limit` under finite compressive strength (statics.graphcrush)."""
-    from .graphcrush import crushing_limit
+    """:func:`graph_limit` under finite compressive strength: the bracket of
+    :mod:`archrock.statics.graphcrush`, the mechanism from its lower bound's dual with each
+    hinge at the thrust's crossing (the stress block's centre where f_c is finite, the edge
+    itself where it is not), so that the contact forces do no work on it."""
+    from .graphcrush import classify, crushing_bracket
 
-    k, k_vw, mech, forces, bounds, zones, rounds = crushing_limit(prog, direction)
+    res, bounds, rounds, rows = crushing_bracket(prog, direction, _check_status)
+    x = res.x
+    k = float(x[-1])
+    v = -np.asarray(res.eqlin.marginals, float).reshape(prog.nb, 3)
+    if np.sum(prog.d * prog.w * v[:, 0]) < 0:  # the sign under which the loads do work
+        v = -v
+    scale = _velocity_scale(prog, v)
+    if scale == 0.0:
+        raise NoMechanismError(f"arcade: the static program's dual gives no motion in direction "
+                               f"{direction!r}")
+    hinges, lift, slide, closed, slip_sign = classify(prog, v, VELOCITY_TOL * scale)
+    points, ends = {}, []
+    for c, e in hinges:
+        n0, n1 = float(x[3 * c]), float(x[3 * c + 1])
+        if np.isfinite(prog.arc.contact_fc[c]) and n0 + n1 > 0:
+            p0, p1 = prog.arc.contacts[c].points
+            t = n1 / (n0 + n1)
+            points[c] = p0 + t * (p1 - p0)
+            e = 0 if t < 0.5 else 1
+        ends.append((c, e))
+    mech = _rebuild(prog, direction, v, ends, lift, slide, closed, slip_sign, points)
+    k_vw = mech.multiplier
+    forces = x[:-1].reshape(prog.nc, 3) * rows.W
     how = (f"static LP on the graph of blocks with the stress block at every contact of finite "
            f"f_c (a bracket of linear programs, scipy HiGHS: tangent planes above, chords below, "
            f"{rounds} round{'s' if rounds != 1 else ''}, k in [{bounds[0]:.9g}, "
@@ -379,7 +404,7 @@ def _graph_limit_crushing(prog: _Program, direction: str, mu) -> GraphLimit:
            f"blocks' centres, confirmed by its virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
     if mu is not None:
         how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
-    return GraphLimit(direction, k, k_vw, mech, forces, mu, how, bounds, zones)
+    return GraphLimit(direction, k, k_vw, mech, forces, mu, how, bounds, rows.zones(x))
 
 
 def _rebuild(prog: _Program, direction: str, v: np.ndarray, hinges, lift, slide, closed,

@@ -27,7 +27,7 @@ lower bound (a state that meets the exact condition).  Each round adds, at every
 the relaxation's optimum breaks the exact condition, a tangent and a breakpoint at its s, until
 the bracket is narrower than :data:`BRACKET_RTOL` of k (at most :data:`MAX_ROUNDS` rounds).
 
-The mechanism.  The lower bound's state is in equilibrium at k_lower with its thrust inside every
+The mechanism (built by :func:`archrock.statics.graph.graph_limit`).  The lower bound's state is in equilibrium at k_lower with its thrust inside every
 joint; the dual of that program gives the contacts that move (a contact that turns about a point
 of itself is a hinge, one that opens everywhere lifts off).  The mechanism is rebuilt with each
 hinge at the thrust's crossing, the stress block's centre (N / (2 f_c) in from the edge where the
@@ -190,7 +190,7 @@ def crushing_bracket(prog, direction: str, check_status):
     return lower, (float(lower.x[-1]), max(k_up, float(lower.x[-1]))), rnd, rows
 
 
-def _classify(prog, v: np.ndarray, tol: float):
+def classify(prog, v: np.ndarray, tol: float):
     """Hinges (contact, nearer end), lift-off, sliding and closed contacts of the dual's block
     velocities v: under finite strength a hinge turns about a point inside its contact (the
     associated flow turns it about the stress block's inner edge), so one end may close."""
@@ -210,35 +210,3 @@ def _classify(prog, v: np.ndarray, tol: float):
         else:
             hinges.append((c, int(np.argmin(dn))))
     return hinges, lift, slide, closed, slip_sign
-
-
-def crushing_limit(prog, direction: str):
-    """(k, k_vw, mechanism, forces [N/m], (k_lower, k_upper), zones [m], rounds) of the
-    program ``prog`` with the stress-block condition (module docstring)."""
-    from .graph import NoMechanismError, VELOCITY_TOL, _check_status, _rebuild, _velocity_scale
-
-    res, bounds, rounds, rows = crushing_bracket(prog, direction, _check_status)
-    x = res.x
-    k = float(x[-1])
-    v = -np.asarray(res.eqlin.marginals, float).reshape(prog.nb, 3)
-    if np.sum(prog.d * prog.w * v[:, 0]) < 0:  # the sign under which the loads do work
-        v = -v
-    scale = _velocity_scale(prog, v)
-    if scale == 0.0:
-        raise NoMechanismError(f"arcade: the static program's dual gives no motion in direction "
-                               f"{direction!r}")
-    hinges, lift, slide, closed, slip_sign = _classify(prog, v, VELOCITY_TOL * scale)
-    # each hinge at the thrust's crossing: the stress block's centre where f_c is finite, the
-    # edge itself where it is not (there the force is all at that end)
-    points, ends = {}, []
-    for c, e in hinges:
-        n0, n1 = float(x[3 * c]), float(x[3 * c + 1])
-        if np.isfinite(prog.arc.contact_fc[c]) and n0 + n1 > 0:
-            p0, p1 = prog.arc.contacts[c].points
-            t = n1 / (n0 + n1)
-            points[c] = p0 + t * (p1 - p0)
-            e = 0 if t < 0.5 else 1
-        ends.append((c, e))
-    mech = _rebuild(prog, direction, v, ends, lift, slide, closed, slip_sign, points)
-    forces = x[:-1].reshape(prog.nc, 3) * rows.W
-    return k, mech.multiplier, mech, forces, bounds, rows.zones(x), rounds
