@@ -23,12 +23,13 @@ c s^2 at points s_i give linear rows c (2 s_i s - s_i^2) <= l n_e that every adm
 meets: a relaxation, its optimum an upper bound on k.  Chords of c s^2 between consecutive
 breakpoints 0 = b_0 < ... < b_m = s_max lie above the parabola on [0, s_max]: the rows
 c (b_j + b_j+1) s - c b_j b_j+1 <= l n_e with s <= s_max restrict the program, its optimum a
-lower bound (a state that meets the exact condition).  Each round adds, at every contact where
-the relaxation's optimum breaks the exact condition, a tangent and a breakpoint at its s, until
-the bracket is narrower than :data:`BRACKET_RTOL` of k (at most :data:`MAX_ROUNDS` rounds).
+lower bound (a state that meets the exact condition).  Each round adds a tangent at the
+relaxation's s where its state breaks the exact condition, and a breakpoint there where the
+chords refuse that state, until the bracket is narrower than :data:`BRACKET_RTOL` of k (at most
+:data:`MAX_ROUNDS` rounds).
 
-The mechanism (built by :func:`archrock.statics.graph.graph_limit`).  The lower bound's state is in equilibrium at k_lower with its thrust inside every
-joint; the dual of that program gives the contacts that move (a contact that turns about a point
+The mechanism (built by :func:`archrock.statics.graph.graph_limit`).  The lower bound's state is
+in equilibrium at k_lower with its thrust inside every joint; the dual of that program gives the contacts that move (a contact that turns about a point
 of itself is a hinge, one that opens everywhere lifts off).  The mechanism is rebuilt with each
 hinge at the thrust's crossing, the stress block's centre (N / (2 f_c) in from the edge where the
 condition holds with equality), so that the contact forces do no work on it and its own virtual
