@@ -139,3 +139,22 @@ def test_chain_strength_reaches_the_arcade(semicircle):
     with pytest.raises(ArchInputError, match="arches: compressive strengths"):
         arcade([semicircle.with_fc(3.0), semicircle], 4.0, 2.0)
     assert arcade([semicircle.with_fc(3.0), semicircle], 4.0, 2.0, fc=4.0).fc["pier"] == 4.0
+
+
+def test_friction_together_with_crushing(semicircle):
+    """Coulomb rows and stress blocks in one program: a pier slides at k = mu where mu is below
+    its crushing lambda and rocks at lambda above it; the two-span arcade at mu = 0.45 slides at
+    its right springing (contact 23) and carries less with f_c = 1 MPa than without, its
+    mechanism's virtual work k to 1e-9."""
+    lam = (B - W / 0.5e6) / H
+    slid = graph_limit(pier(2, 0.5), "l", friction=0.05)
+    assert slid.k == pytest.approx(0.05, abs=1e-9) and slid.mechanism.sliding
+    rocks = graph_limit(pier(2, 0.5), "l", friction=0.6)
+    assert rocks.k == pytest.approx(lam, abs=1e-9) and not rocks.mechanism.sliding
+    arc = arcade([semicircle, semicircle], 4.0, 2.0, courses=2)
+    heyman = graph_limit(arc, "l", friction=0.45)
+    g = graph_limit(arc.with_fc(1.0), "l", friction=0.45)
+    assert g.k < heyman.k - 0.01
+    assert g.mechanism.sliding == heyman.mechanism.sliding == (23,)
+    assert g.k_virtual_work == pytest.approx(g.k, abs=1e-9)
+    assert g.k_bounds[1] - g.k_bounds[0] <= BRACKET_RTOL * g.k_bounds[1]
