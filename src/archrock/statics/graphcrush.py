@@ -153,13 +153,18 @@ def _crushed(direction: str) -> str:
             f"weight crushes a joint); it cannot stand")
 
 
+#: HiGHS's tolerances, well below the bracket's 1e-6 (its defaults, 1e-7, are not; as
+#: statics.crushing)
+_HIGHS = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
+
+
 def _solve(prog, A, b):
     if prog.A_ub is not None:
         A, b = np.vstack([prog.A_ub, A]), np.concatenate([prog.b_ub, b])
     if not len(b):
         A = b = None
     return linprog(prog.c, A_ub=A, b_ub=b, A_eq=prog.A_eq, b_eq=prog.b_eq, bounds=prog.bounds,
-                   method="highs")
+                   method="highs", options=_HIGHS)
 
 
 def crushing_bracket(prog, direction: str, check_status):
