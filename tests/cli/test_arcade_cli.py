@@ -207,3 +207,20 @@ def test_strength_flags_and_document(capsys, tmp_path):
 def test_bad_strength_is_one_line(capsys, extra, line):
     code, out, err = run(capsys, *ONE, *extra)
     assert code == 2 and err.startswith(line) and len(err.strip().splitlines()) == 1
+
+
+def test_geometry_files_bring_their_strength(capsys, tmp_path):
+    """Arch files with "fc" make an arcade of that strength (voussoirs and piers); --fc
+    replaces it."""
+    from archrock.geometry.files import write_arch
+
+    f = write_arch(nominal_arch(radius=5, embrace_deg=180, thickness=0.8,
+                                voussoirs=9).with_fc(3.0), tmp_path / "g.json")
+    base = ("arcade", "--geometry", str(f), "--pier-height", "4", "--pier-width", "2")
+    code, out, err = run(capsys, *base)
+    assert code == 0, err
+    assert "compressive strength f_c: pier 3 MPa, voussoir 3 MPa" in out
+    k3 = float(out.split("k_l = ")[1].split()[0])
+    code, out, err = run(capsys, *base, "--fc", "1")
+    assert "pier 1 MPa, voussoir 1 MPa" in out
+    assert float(out.split("k_l = ")[1].split()[0]) < k3 < 0.168899

@@ -356,6 +356,9 @@ def format_result(arc, results, ramp=None, response=None) -> str:
     if neg:  # the signed loads that hold it form [-k_r, k_l]: 0 outside it
         lines.append(f"the arcade cannot stand under its own weight: k_{neg[0]} < 0 (it needs a "
                      f"horizontal load toward {'-x' if neg[0] == 'l' else '+x'} to stand)")
+    if arc.fc and (ramp is not None or response is not None):
+        lines.append("the contact engine's blocks do not crush (rigid corners, infinite f_c): "
+                     "its answers below are Heyman's, the LP's above the stress blocks'")
     if ramp is not None:
         lines.append("contact engine ramp (pymunk):")
         lines.append("  dir  LP k      engine k  [bracket]             engine/LP - 1  hinges")
