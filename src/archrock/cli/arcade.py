@@ -322,7 +322,9 @@ def _progress(msg):
     print(msg, file=sys.stderr, flush=True)
 
 
-def format_result(arc, results, ramp=None, response=None) -> str:
+def format_result(arc, results, ramp=None, response=None, engine_ref=None) -> str:
+    """The report; ``engine_ref``: the LP results the engine's ramp is compared with (Heyman's,
+    where the arcade has a finite strength the engine does not model), default ``results``."""
     from ..geometry.blocks import describe_arcade
 
     counts = describe_arcade(arc)  # piers counted as piers, not as their courses
@@ -358,11 +360,11 @@ def format_result(arc, results, ramp=None, response=None) -> str:
                      f"horizontal load toward {'-x' if neg[0] == 'l' else '+x'} to stand)")
     if arc.fc and (ramp is not None or response is not None):
         lines.append("the contact engine's blocks do not crush (rigid corners, infinite f_c): "
-                     "its answers below are Heyman's, the LP's above the stress blocks'")
+                     "its ramp is compared with the LP at infinite f_c")
     if ramp is not None:
         lines.append("contact engine ramp (pymunk):")
         lines.append("  dir  LP k      engine k  [bracket]             engine/LP - 1  hinges")
-        for d, g in results.items():
+        for d, g in (engine_ref or results).items():
             r = getattr(ramp, d)
             same = sorted(r.hinges) == sorted((h.contact, h.end) for h in g.hinges)
             lines.append(f"  {d}    {g.k:.6f}  {r.multiplier:.6f}  [{r.lower:.6f}, "
@@ -461,19 +463,23 @@ def run_arcade(args) -> int:
             _progress(f"arcade: static program in direction {d!r} ({arc.n_blocks} blocks) ...")
         results[d] = graph_limit(arc, d, friction=args.friction)
     ramp = response = None
+    engine_ref = results
     progress = None if args.json else _progress
     if args.ramp or spec is not None:
         from ..contact import EngineSettings
         from ..contact.settings import DEFAULT_FRICTION
 
         settings = EngineSettings(friction=args.friction or DEFAULT_FRICTION)
+        if arc.fc:  # the engine does not crush: its ramp's range and reference are Heyman's
+            plain = arc.with_fc(None)
+            engine_ref = {d: graph_limit(plain, d, friction=args.friction) for d in ("l", "r")}
         motion = None if spec is None else spec.build()
-        _check_engine_work(args, arc, settings, results, motion)
+        _check_engine_work(args, arc, settings, engine_ref, motion)
         if args.ramp:
             from ..contact.arcade import arcade_ramp
 
-            ramp = arcade_ramp(arc, settings, progress, k_l=results["l"].k,
-                               k_r=results["r"].k, tol=args.ramp_tol)
+            ramp = arcade_ramp(arc, settings, progress, k_l=engine_ref["l"].k,
+                               k_r=engine_ref["r"].k, tol=args.ramp_tol)
         else:
             from ..contact.arcade import arcade_respond
 
@@ -502,6 +508,6 @@ def run_arcade(args) -> int:
             out["engine_response"] = response.to_dict()
         emit_json(out)
         return 0
-    print(format_result(arc, results, ramp, response))
+    print(format_result(arc, results, ramp, response, engine_ref))
     say_written(written, plot)
     return 0
