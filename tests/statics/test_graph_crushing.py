@@ -31,6 +31,14 @@ def semicircle():
     return nominal_arch(radius=5, embrace_deg=180, thickness=0.8, voussoirs=9)
 
 
+@pytest.fixture(scope="module")
+def oppenheim_geometry():
+    """Oppenheim's arch alone (conftest's ``oppenheim`` also builds its dynamics)."""
+    from archrock.geometry import oppenheim_arch
+
+    return oppenheim_arch()
+
+
 @pytest.mark.parametrize("courses", [1, 4])
 @pytest.mark.parametrize("fc", [0.1, 0.2, 0.5, 2.0])
 def test_pier_closed_form(courses, fc):
@@ -121,10 +129,10 @@ def test_the_static_state_meets_the_stress_block_condition(semicircle):
         assert half <= length * min(n0, n1) + scale
 
 
-def test_strength_lowers_k_and_the_mirror_agrees(oppenheim):
+def test_strength_lowers_k_and_the_mirror_agrees(oppenheim_geometry):
     """Oppenheim's arch from the ground: k falls as f_c falls, and the mirror image's k_r is
     k_l; the multiplier alone (graph_multiplier) is the bracket's lower bound."""
-    base = arcade_from_chain(oppenheim.arch)
+    base = arcade_from_chain(oppenheim_geometry)
     ks = [graph_limit(base.with_fc(fc), "l").k for fc in (10.0, 5.0, 2.0, 1.0)]
     assert np.all(np.diff(ks) < 0) and ks[0] < 0.370010
     arc = base.with_fc(2.0)
@@ -170,7 +178,7 @@ EDGE = {"intrados": 0, "extrados": 1}
                                        ("oppenheim", 5.0), ("oppenheim", 10.0), ("flat", 1.0),
                                        ("flat", 2.0), ("flat", 5.0), ("flat", 10.0),
                                        ("piers", 1.0), ("piers", 10.0)])
-def test_graph_equals_the_chain_with_crushing(which, fc, oppenheim, semicircle):
+def test_graph_equals_the_chain_with_crushing(which, fc, oppenheim_geometry, semicircle):
     """The same arch as a chain (statics.crushing, joint-line redundants, Newton at the
     optimum) and as a graph (this bracket on contact end forces): Oppenheim's arch, the flat
     bridge arch (span 10, rise 1.5, t 0.5, 15 voussoirs) and the semicircle on 4 x 2 m piers
@@ -178,7 +186,7 @@ def test_graph_equals_the_chain_with_crushing(which, fc, oppenheim, semicircle):
     from archrock.geometry import family_arch, with_piers
     from archrock.statics.limit import limit_analysis
 
-    arch = {"oppenheim": lambda: oppenheim.arch,
+    arch = {"oppenheim": lambda: oppenheim_geometry,
             "flat": lambda: family_arch("circular", 10, 1.5, 0.5, 15),
             "piers": lambda: with_piers(semicircle, 4.0, 2.0)}[which]().with_fc(fc)
     lim = limit_analysis(arch)
