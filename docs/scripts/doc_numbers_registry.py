@@ -399,6 +399,17 @@ ENTRIES += [
     Entry(AR, f"| {n} | {{}} | {{}} | {{}} | {{}} |", arcade(n),
           r"(\d+) blocks .*?, (\d+) contacts.*?k_l = (\S+) .*?k_r = (\S+) ") for n in (1, 2, 3)
 ]
+#: docs/arcades.md's table of the three-span arcade against f_c (about 2 s each)
+ARCADE_FC = r"k_l = (\S+) .*?(\d+) blocks move.*?pier 4 foot (\S+) mm"
+ENTRIES += [
+    Entry(AR, "| infinite | {} | {} | - |", arcade(3), r"k_l = (\S+) .*?(\d+) blocks move"),
+] + [
+    Entry(AR, f"| {fc} MPa | {{}} | {{}} | {{}} |", arcade(3) + ("--fc", fc), ARCADE_FC, slow=True)
+    for fc in ("10", "5", "2", "1")
+] + [
+    Entry(AR, "| 10 MPa, piers 1 MPa (`--pier-fc 1`) | {} | {} | {} |",
+          arcade(3) + ("--fc", "10", "--pier-fc", "1"), ARCADE_FC, slow=True),
+]
 
 CAP = r"capacity of the right support: (\S+) m = (\S+)% of the span"
 ENTRIES += [

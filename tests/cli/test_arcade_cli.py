@@ -173,3 +173,54 @@ def test_frame_document_under_a_record(capsys, tmp_path):
     assert out.startswith("frame: 3 blocks (2 pier blocks, 1 beam), 4 contacts")
     assert "k_l = 0.250000" in out and "column 1 foot, right; column 2 foot, right" in out
     assert "contact engine under rec: at rest" in out
+
+
+ONE = ("arcade", "--spans", "10", "--thickness", "0.8", "--pier-height", "4", "--pier-width", "2")
+
+
+def test_strength_flags_and_document(capsys, tmp_path):
+    """--fc and --pier-fc: the report names the strengths, the bracket and the stress blocks
+    at the hinges; k falls below Heyman's 0.168899 (docs/piers.md) and further with weak
+    piers; --write keeps the strengths in the document, which gives the same k back."""
+    code, out, err = run(capsys, *ONE, "--fc", "10", "--pier-fc", "1", "--write",
+                         str(tmp_path / "a.json"))
+    assert code == 0, err
+    assert "compressive strength f_c: pier 1 MPa, voussoir 10 MPa" in out
+    assert "k_l = 0.133187" in out and "pier 2 foot 284.9 mm" in out
+    assert "bracket of the static optimum: [0.1331874" in out
+    code, out, err = run(capsys, "arcade", "--arcade", str(tmp_path / "a.json"), "--json")
+    d = json.loads(out)
+    assert d["arcade"]["fc"] == {"pier": 1.0, "voussoir": 10.0}
+    assert d["k_l"] == pytest.approx(0.133187470, abs=1e-8)
+    lo, hi = d["l"]["k_bounds"]
+    assert lo == d["k_l"] and hi - lo <= 1e-6 * hi
+    assert abs(d["l"]["k_virtual_work"] - d["k_l"]) < 1e-9
+    code, out, err = run(capsys, "arcade", "--arcade", str(tmp_path / "a.json"), "--fc", "10")
+    k_all = float(out.split("k_l = ")[1].split()[0])
+    assert 0.133187 < k_all < 0.168899  # --fc replaces the file's pier strength too
+
+
+@pytest.mark.parametrize("extra, line", [
+    (("--fc", "0.01"), "archrock: error: --fc: 0.01 is out of range; allowed 0.1 to 1000 MPa"),
+    (("--pier-fc", "5000"), "archrock: error: --pier-fc: 5000 is out of range; allowed 0.1"),
+])
+def test_bad_strength_is_one_line(capsys, extra, line):
+    code, out, err = run(capsys, *ONE, *extra)
+    assert code == 2 and err.startswith(line) and len(err.strip().splitlines()) == 1
+
+
+def test_geometry_files_bring_their_strength(capsys, tmp_path):
+    """Arch files with "fc" make an arcade of that strength (voussoirs and piers); --fc
+    replaces it."""
+    from archrock.geometry.files import write_arch
+
+    f = write_arch(nominal_arch(radius=5, embrace_deg=180, thickness=0.8,
+                                voussoirs=9).with_fc(3.0), tmp_path / "g.json")
+    base = ("arcade", "--geometry", str(f), "--pier-height", "4", "--pier-width", "2")
+    code, out, err = run(capsys, *base)
+    assert code == 0, err
+    assert "compressive strength f_c: pier 3 MPa, voussoir 3 MPa" in out
+    k3 = float(out.split("k_l = ")[1].split()[0])
+    code, out, err = run(capsys, *base, "--fc", "1")
+    assert "pier 1 MPa, voussoir 1 MPa" in out
+    assert float(out.split("k_l = ")[1].split()[0]) < k3 < 0.168899

@@ -168,3 +168,32 @@ def test_mirror_of_a_symmetric_arcade(semicircle):
     assert np.allclose(m.masses[order], arc.masses[orig], rtol=1e-12)
     assert np.allclose(mc[order], arc.centroids[orig], atol=1e-9)
     assert json.dumps(m.to_dict())  # serialisable
+
+
+def test_strength_per_kind_and_its_document(semicircle, tmp_path):
+    """fc per kind of block: a contact takes its weaker block's (a pier's foot the pier's),
+    the document holds it only when set (a Heyman arcade's file is what it was) and reads it
+    back; a bad one is one line naming the field."""
+    arc = arcade([semicircle], 4.0, 2.0)
+    strong = arc.with_fc({"voussoir": 5, "pier": 2, "beam": None})
+    assert strong.fc == {"voussoir": 5.0, "pier": 2.0}
+    cf = strong.contact_fc
+    kinds = strong.kinds
+    for c, ct in enumerate(strong.contacts):
+        sides = [kinds[i] for i in (ct.a, ct.b) if i != GROUND]
+        assert cf[c] == (2.0 if "pier" in sides else 5.0)
+    assert json.dumps(arc.to_dict()) == json.dumps(strong.with_fc(None).to_dict())
+    assert "fc" not in arc.to_dict()
+    back = read_arcade(write_arcade(strong, tmp_path / "a.json"))
+    assert back.fc == strong.fc and np.array_equal(back.contact_fc, cf)
+    assert strong.mirrored().fc == strong.fc
+    assert np.all(np.isinf(arc.contact_fc))
+    for bad, msg in (({"pier": 0.01}, "fc.pier: 0.01 is out of range; allowed 0.1 to 1000 MPa"),
+                     ({"wall": 3}, "fc: kind 'wall'; allowed voussoir, pier"),
+                     ("3", "fc: expected a number (MPa)")):
+        with pytest.raises(ArchInputError, match=msg.replace("(", r"\(").replace(")", r"\)")):
+            arc.with_fc(bad)
+    doc = strong.to_dict()
+    doc["fc"] = {"pier": -1}
+    with pytest.raises(ArchInputError, match="fc.pier: -1 is out of range"):
+        Arcade.from_dict(doc)

@@ -58,6 +58,14 @@ def add_arcade_parser(subparsers):
                         "springing, an inner pier's between the two intrados springings")
     q.add_argument("--pier-courses", type=_int, nargs="+", metavar="N",
                    help="courses of each pier, 1 to 200 (default 1: monolithic)")
+    s = p.add_argument_group("strength", "finite compressive strength (default: infinite, "
+                                         "Heyman's hypothesis)")
+    s.add_argument("--fc", type=finite_float, metavar="MPA",
+                   help="compressive strength f_c of every block [MPa], 0.1 to 1000 (default: "
+                        "the arches' own, a file's \"fc\"); a contact takes its weaker block's")
+    s.add_argument("--pier-fc", type=finite_float, metavar="MPA",
+                   help="compressive strength of the piers' courses [MPa], 0.1 to 1000 "
+                        "(default: --fc)")
     p.add_argument("--friction", type=positive_float, default=None, metavar="MU",
                    help="Coulomb friction at every contact in the LP (default: no sliding) "
                         "and in the engine (default 0.8)")
@@ -207,9 +215,35 @@ def _on_piers(args, arches, pier_flags):
     _check_work(args, sum(a.n for a in arches) + pier_blocks)
     try:
         return arcade(arches, list(args.pier_height), list(args.pier_width),
-                      courses=list(args.pier_courses or [1]))
+                      courses=list(args.pier_courses or [1]),
+                      fc=None if args.fc is None else _check_fc_flag(args.fc))
     except ArchInputError as exc:
+        if str(exc).startswith("arches: compressive strengths"):
+            raise ArchInputError(f"--geometry: {str(exc)[8:].split(';')[0]}; allowed files "
+                                 f"of one fc, or --fc for all") from None
         raise _renamed(exc) from None
+
+
+def _check_fc_flag(value, flag: str = "--fc") -> float:
+    from ..errors import ArchInputError
+    from ..geometry.base import _check_fc
+
+    try:
+        return _check_fc(value, flag)
+    except ArchInputError as exc:
+        raise ArchInputError(str(exc)) from None
+
+
+def _with_strength(args, arc):
+    """``arc`` with --fc (every block) and --pier-fc (the piers) over its own strengths."""
+    if args.fc is None and args.pier_fc is None:
+        return arc
+    fc = dict(arc.fc)
+    if args.fc is not None:  # the kinds the arcade has (its document names no others)
+        fc = {k: _check_fc_flag(args.fc) for k in dict.fromkeys(arc.kinds)}
+    if args.pier_fc is not None:
+        fc["pier"] = _check_fc_flag(args.pier_fc, "--pier-fc")
+    return arc.with_fc(fc)
 
 
 def arcade_from_args(args):
@@ -230,12 +264,13 @@ def arcade_from_args(args):
                            f"holds the whole arcade")
         from ..geometry.files import read_arcade
 
-        return read_arcade(args.arcade, on_size=lambda n: _check_work(args, n))
+        return _with_strength(args, read_arcade(args.arcade,
+                                                on_size=lambda n: _check_work(args, n)))
     if args.geometry:
         arches = _arches_from_files(args, arch_flags, MAX_SPANS)
     else:
         arches = _arches_from_spans(args, MAX_SPANS)
-    return _on_piers(args, arches, pier_flags)
+    return _with_strength(args, _on_piers(args, arches, pier_flags))
 
 
 def _check_work(args, n_blocks: int) -> float:
@@ -287,13 +322,21 @@ def _progress(msg):
     print(msg, file=sys.stderr, flush=True)
 
 
-def format_result(arc, results, ramp=None, response=None) -> str:
+def format_result(arc, results, ramp=None, response=None, engine_ref=None) -> str:
+    """The report; ``engine_ref``: the LP results the engine's ramp is compared with (Heyman's,
+    where the arcade has a finite strength the engine does not model), default ``results``."""
     from ..geometry.blocks import describe_arcade
 
     counts = describe_arcade(arc)  # piers counted as piers, not as their courses
     spans = f"{len(arc.spans)} span{'s' if len(arc.spans) != 1 else ''}, " if arc.spans else ""
     lines = [f"{arc.name}: {spans}{arc.n_blocks} blocks ({counts}), "
              f"{len(arc.contacts)} contacts, {arc.masses.sum():.6g} kg/m"]
+    present = [k for k in dict.fromkeys(arc.kinds)]
+    if any(k in arc.fc for k in present):
+        kinds = ", ".join(f"{k} {arc.fc[k]:g} MPa" if k in arc.fc else f"{k} infinite"
+                          for k in present)
+        lines.append(f"compressive strength f_c: {kinds} (a contact takes its weaker "
+                     f"block's)")
     for d, g in results.items():
         m = g.mechanism
         lines.append(f"k_{d} = {g.k:.6f} (static LP, HiGHS; the mechanism's virtual work "
@@ -301,6 +344,12 @@ def format_result(arc, results, ramp=None, response=None) -> str:
                      f"{m.dof} degree{'s' if m.dof != 1 else ''} of freedom, "
                      f"{len(m.moving)} blocks move)")
         lines.append(f"  hinges: {'; '.join(h.place for h in m.hinges) or '-'}")
+        if g.k_bounds is not None:
+            lines.append(f"  bracket of the static optimum: [{g.k_bounds[0]:.9f}, "
+                         f"{g.k_bounds[1]:.9f}] (k is its lower bound)")
+            z = "; ".join(f"{arc.contacts[h.contact].label} {g.zones[h.contact] * 1e3:.1f} mm"
+                          for h in m.hinges if g.zones[h.contact] > 0)
+            lines.append(f"  stress blocks at the hinges (depth N / f_c): {z or '-'}")
         if m.lift_off:
             lines.append(f"  lift off: {'; '.join(arc.contacts[c].label for c in m.lift_off)}")
         if m.sliding:
@@ -309,10 +358,13 @@ def format_result(arc, results, ramp=None, response=None) -> str:
     if neg:  # the signed loads that hold it form [-k_r, k_l]: 0 outside it
         lines.append(f"the arcade cannot stand under its own weight: k_{neg[0]} < 0 (it needs a "
                      f"horizontal load toward {'-x' if neg[0] == 'l' else '+x'} to stand)")
+    if arc.fc and (ramp is not None or response is not None):
+        lines.append("the contact engine's blocks do not crush (rigid corners, infinite f_c): "
+                     "its ramp is compared with the LP at infinite f_c")
     if ramp is not None:
         lines.append("contact engine ramp (pymunk):")
         lines.append("  dir  LP k      engine k  [bracket]             engine/LP - 1  hinges")
-        for d, g in results.items():
+        for d, g in (engine_ref or results).items():
             r = getattr(ramp, d)
             same = sorted(r.hinges) == sorted((h.contact, h.end) for h in g.hinges)
             lines.append(f"  {d}    {g.k:.6f}  {r.multiplier:.6f}  [{r.lower:.6f}, "
@@ -353,7 +405,10 @@ def plot_arcade(arc, results, path) -> str:
         ax.quiver(c[moving, 0], c[moving, 1], v[moving, 0] * scale, v[moving, 1] * scale,
                   angles="xy", scale_units="xy", scale=1.0, color=STYLE["thrust"], width=0.003,
                   label="block velocity (mass centre)")
-        hp = np.array([arc.contacts[h.contact].points[h.end] for h in g.hinges])
+        if g.zones is not None:  # each contact's stress block about the thrust's crossing
+            _draw_zones(ax, arc, g)
+        hp = np.array([arc.contacts[h.contact].points[h.end] if h.point is None else h.point
+                       for h in g.hinges])
         if len(hp):
             ax.plot(hp[:, 0], hp[:, 1], "o", color=STYLE["hinge"], markersize=6,
                     label="hinge")
@@ -373,6 +428,27 @@ def plot_arcade(arc, results, path) -> str:
     return str(save_figure(fig, path))
 
 
+def _draw_zones(ax, arc, g) -> None:
+    """The compressed zone of every contact of finite strength: a thick segment of the zone's
+    depth along the joint, centred where the thrust crosses it."""
+    import numpy as np
+
+    first = True
+    for c, ct in enumerate(arc.contacts):
+        depth = float(g.zones[c])
+        n0, n1 = g.forces[c, 0], g.forces[c, 1]
+        if depth <= 0 or n0 + n1 <= 0:
+            continue
+        p0, p1 = ct.points
+        u = (p1 - p0) / max(float(np.hypot(*(p1 - p0))), 1e-300)
+        mid = p0 + n1 / (n0 + n1) * (p1 - p0)
+        seg = np.array([mid - 0.5 * depth * u, mid + 0.5 * depth * u])
+        ax.plot(seg[:, 0], seg[:, 1], "-", color="tab:red", linewidth=3, solid_capstyle="butt",
+                zorder=5,
+                label="compressed zone (N / f_c)" if first else None)
+        first = False
+
+
 def run_arcade(args) -> int:
     plot = figure_arg(args.plot)
     spec = motion_spec_from_args(args)
@@ -387,19 +463,23 @@ def run_arcade(args) -> int:
             _progress(f"arcade: static program in direction {d!r} ({arc.n_blocks} blocks) ...")
         results[d] = graph_limit(arc, d, friction=args.friction)
     ramp = response = None
+    engine_ref = results
     progress = None if args.json else _progress
     if args.ramp or spec is not None:
         from ..contact import EngineSettings
         from ..contact.settings import DEFAULT_FRICTION
 
         settings = EngineSettings(friction=args.friction or DEFAULT_FRICTION)
+        if arc.fc:  # the engine does not crush: its ramp's range and reference are Heyman's
+            plain = arc.with_fc(None)
+            engine_ref = {d: graph_limit(plain, d, friction=args.friction) for d in ("l", "r")}
         motion = None if spec is None else spec.build()
-        _check_engine_work(args, arc, settings, results, motion)
+        _check_engine_work(args, arc, settings, engine_ref, motion)
         if args.ramp:
             from ..contact.arcade import arcade_ramp
 
-            ramp = arcade_ramp(arc, settings, progress, k_l=results["l"].k,
-                               k_r=results["r"].k, tol=args.ramp_tol)
+            ramp = arcade_ramp(arc, settings, progress, k_l=engine_ref["l"].k,
+                               k_r=engine_ref["r"].k, tol=args.ramp_tol)
         else:
             from ..contact.arcade import arcade_respond
 
@@ -418,7 +498,8 @@ def run_arcade(args) -> int:
                           "counts": arcade_counts(arc),
                           "contacts": len(arc.contacts), "spans": [list(s) for s in arc.spans],
                           "piers": [list(p) for p in arc.piers], "kinds": list(arc.kinds),
-                          "labels": [c.label for c in arc.contacts]},
+                          "labels": [c.label for c in arc.contacts],
+                          **({"fc": dict(arc.fc)} if arc.fc else {})},
                "k_l": results["l"].k, "k_r": results["r"].k,
                "l": results["l"].to_dict(), "r": results["r"].to_dict()}
         if ramp is not None:
@@ -427,6 +508,6 @@ def run_arcade(args) -> int:
             out["engine_response"] = response.to_dict()
         emit_json(out)
         return 0
-    print(format_result(arc, results, ramp, response))
+    print(format_result(arc, results, ramp, response, engine_ref))
     say_written(written, plot)
     return 0

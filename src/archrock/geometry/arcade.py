@@ -50,7 +50,8 @@ def arcade_from_chain(arch: VoussoirArch, name: str | None = None) -> Arcade:
     """Any archrock chain (an arch, an :class:`~archrock.geometry.ArchOnPiers`) as a graph:
     block i = voussoir i (its outline, and the chain's own mass properties: a circular arch's
     exact sectors, loads included), contact j = joint j (joints 0 and n on the ground), end 0
-    the intrados, end 1 the extrados."""
+    the intrados, end 1 the extrados.  The arch's compressive strength ``arch.fc`` [MPa] is
+    every block's (voussoirs and piers: one masonry)."""
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected an archrock arch, got {type(arch).__name__}")
     n = arch.n
@@ -67,7 +68,9 @@ def arcade_from_chain(arch: VoussoirArch, name: str | None = None) -> Arcade:
     # the right springing: the last block rests on the ground
     contacts += (Contact(GROUND, n - 1, jp[n], joint_place(arch, n), ("intrados", "extrados")),)
     density = getattr(arch, "density", DEFAULT_DENSITY)
-    return Arcade(blocks, contacts, density, name or arch.name, (tuple(range(n)),), ())
+    fc = arch.fc
+    return Arcade(blocks, contacts, density, name or arch.name, (tuple(range(n)),), (),
+                  None if fc is None else {k: fc for k in set(kinds)})
 
 
 def _per(name: str, values, count: int):
@@ -303,13 +306,31 @@ class _Assembly:
         return pidx[0]
 
 
-def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcade:
+def _arcade_fc(arches, fc):
+    """The arcade's strengths: ``fc`` where given (None: from the arches), else the arches'
+    common ``arch.fc`` for voussoirs and piers alike (as one arch on piers has)."""
+    if fc is not None:
+        return fc
+    if isinstance(arches, VoussoirArch):
+        arches = [arches]
+    values = {a.fc for a in arches if isinstance(a, VoussoirArch)}
+    if len(values) > 1:
+        raise ArchInputError(f"arches: compressive strengths {sorted(values, key=str)} MPa "
+                             f"differ; allowed one fc for every arch (or give fc per kind)")
+    common = values.pop() if values else None
+    return None if common is None else {"voussoir": common, "pier": common}
+
+
+def arcade(arches, heights, widths, *, courses=1, name: str = "arcade", fc=None) -> Arcade:
     """``arches`` (a list of n archrock arches, left to right) on n + 1 piers (module
     docstring): ``heights`` and ``widths`` [m] one value for all piers or n + 1 values;
     ``courses`` (1..200) one for all or n + 1.  Every arch is written as polygons (a circular
     one with arcs of 0.002 rad, as :func:`~archrock.geometry.with_piers`) and moved so that its
     left intrados springing stands a pier width right of the previous arch's right one, on the
-    same level; arch 1 stays where it is."""
+    same level; arch 1 stays where it is.  ``fc``: compressive strength [MPa] of every block,
+    or {kind: MPa} (:class:`Arcade`); None: the arches' own ``arch.fc`` for voussoirs and
+    piers."""
+    fc = _arcade_fc(arches, fc)
     polys = _arch_polygons(arches)
     n = len(polys)
     hs, ws, cs, tol = _pier_sizes(polys, heights, widths, courses)
@@ -324,4 +345,4 @@ def arcade(arches, heights, widths, *, courses=1, name: str = "arcade") -> Arcad
         else:
             below = out.inner_pier(s, jp, placed[s + 1], last, hs[s + 1], cs[s + 1])
     return Arcade(tuple(out.blocks), tuple(out.contacts), polys[0].density, name,
-                  tuple(out.spans), tuple(out.piers))
+                  tuple(out.spans), tuple(out.piers), fc)

@@ -3,6 +3,10 @@ with a kind: "voussoir", "pier", "buttress" or "beam"), :class:`Contact` (a stra
 between block ``a`` and block ``b``, ``a = -1``: the ground) and :class:`Arcade`, which checks
 them and gives what the statics and the dynamics read (masses, centroids, inertias, contact
 normals) and the file document.  The builders are in :mod:`~archrock.geometry.arcade`.
+
+The masonry may have a finite compressive strength per kind of block (``Arcade.fc``: kind ->
+MPa; a kind not named is infinitely strong, Heyman's hypothesis); a contact takes the weaker of
+its two blocks' strengths (the ground is never the weaker).
 """
 
 from __future__ import annotations
@@ -14,8 +18,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, MAX_LOAD_KG, _check_density, _check_point, _check_points,
-                   _check_scalar, polygon_properties)
+from .base import (DEFAULT_DENSITY, MAX_FC, MAX_LOAD_KG, MIN_FC, _check_density, _check_point,
+                   _check_points, _check_scalar, polygon_properties)
 from .polygon import FACE_TOLERANCE, _signed_area, _simple
 
 __all__ = ["Arcade", "Block", "Contact", "ARCADE_KINDS", "GROUND"]
@@ -24,6 +28,29 @@ __all__ = ["Arcade", "Block", "Contact", "ARCADE_KINDS", "GROUND"]
 ARCADE_KINDS = ("voussoir", "pier", "buttress", "beam")
 #: The index that stands for the ground in a contact.
 GROUND = -1
+
+
+def _check_kind_fc(fc) -> dict:
+    """An arcade's strengths: None (every kind infinitely strong), one number [MPa] for every
+    kind, or {kind: MPa or None}; returned as {kind: MPa} with only the finite ones."""
+    if fc is None:
+        return {}
+    if not isinstance(fc, dict):
+        return {k: _one_fc("fc", fc) for k in ARCADE_KINDS}
+    out = {}
+    for k, v in fc.items():
+        if k not in ARCADE_KINDS:
+            raise ArchInputError(f"fc: kind {k!r}; allowed {', '.join(ARCADE_KINDS)}")
+        if v is not None:
+            out[k] = _one_fc(f"fc.{k}", v)
+    return {k: out[k] for k in ARCADE_KINDS if k in out}  # one order: equal dicts, equal files
+
+
+def _one_fc(name: str, v) -> float:
+    if isinstance(v, (str, bool)) or not isinstance(v, (int, float, np.floating, np.integer)):
+        raise ArchInputError(f"{name}: expected a number (MPa), got {v!r}")
+    return _check_scalar(name, v, MIN_FC, MAX_FC, lo_open=False, hi_open=False,
+                         allowed=f"{MIN_FC:g} to {MAX_FC:g} MPa (or none: infinite strength)")
 
 
 @dataclass(frozen=True, eq=False)
@@ -237,7 +264,8 @@ class Arcade:
     of each pier's courses (empty for an arcade read from blocks alone).  Validated by field:
     each block a simple polygon of positive area, each contact's blocks known and distinct, its
     two ends distinct and on both blocks' boundaries, every block touched by a contact and
-    connected through contacts to the ground."""
+    connected through contacts to the ground.  ``fc``: compressive strength per kind of block
+    (module docstring; None, one number [MPa] for all, or {kind: MPa}), held as {kind: MPa}."""
 
     blocks: tuple
     contacts: tuple
@@ -245,6 +273,7 @@ class Arcade:
     name: str = field(default="arcade", compare=False)
     spans: tuple = ()
     piers: tuple = ()
+    fc: dict | None = None
 
     def __post_init__(self):
         if not isinstance(self.blocks, (list, tuple)) or not self.blocks:
@@ -262,6 +291,33 @@ class Arcade:
         _check_grounded(blocks, contacts)
         object.__setattr__(self, "spans", tuple(tuple(int(i) for i in s) for s in self.spans))
         object.__setattr__(self, "piers", tuple(tuple(int(i) for i in p) for p in self.piers))
+        object.__setattr__(self, "fc", _check_kind_fc(self.fc))
+
+    # ------------------------------------------------------------------ strength
+    def with_fc(self, fc) -> "Arcade":
+        """The same blocks and contacts with strengths ``fc`` (None, MPa for all kinds, or
+        {kind: MPa}); the blocks and contacts are not checked again."""
+        import copy
+
+        out = copy.copy(self)
+        out.__dict__.pop("contact_fc", None)  # the only cached value that reads fc
+        object.__setattr__(out, "fc", _check_kind_fc(fc))
+        return out
+
+    @property
+    def finite_strength(self) -> bool:
+        """Whether any block has a finite compressive strength."""
+        return bool(self.fc)
+
+    @cached_property
+    def contact_fc(self) -> np.ndarray:
+        """(m,): each contact's compressive strength [MPa], the weaker of its two blocks' (the
+        ground's is never less); inf where both are infinitely strong."""
+        def of(blk):
+            return np.inf if blk == GROUND else self.fc.get(self.blocks[blk].kind, np.inf)
+        arr = np.array([min(of(ct.a), of(ct.b)) for ct in self.contacts], float)
+        arr.setflags(write=False)
+        return arr
 
     # ------------------------------------------------------------------ mass properties
     @property
@@ -376,6 +432,8 @@ class Arcade:
             d["spans"] = [list(s) for s in self.spans]
         if self.piers:
             d["piers"] = [list(p) for p in self.piers]
+        if self.fc:  # only when set: a Heyman arcade's document is what it was
+            d["fc"] = dict(self.fc)
         return d
 
     @classmethod
@@ -387,10 +445,11 @@ class Arcade:
             raise ArchInputError(f"kind: {data.get('kind')!r}; allowed 'arcade' (an arcade "
                                  f"document)")
         unknown = set(data) - {"kind", "density", "blocks", "contacts", "spans", "piers",
-                               "metadata", "name"}
+                               "metadata", "name", "fc"}
         if unknown:
             raise ArchInputError(f"arcade: unknown fields {sorted(unknown)}; allowed kind, "
-                                 f"density, blocks, contacts, spans, piers, metadata, name")
+                                 f"density, blocks, contacts, spans, piers, fc, metadata, name")
+        fc = _check_kind_fc(data.get("fc"))  # checked before the (slower) blocks
         bl = data.get("blocks")
         if not isinstance(bl, list) or not bl:
             raise ArchInputError("blocks: expected a non-empty list of blocks")
@@ -437,7 +496,7 @@ class Arcade:
                                      f"{len(blocks) - 1}")
         arc = cls(tuple(blocks), tuple(contacts), data.get("density", DEFAULT_DENSITY),
                   str(data.get("name", name)), tuple(map(tuple, spans)),
-                  tuple(map(tuple, piers)))
+                  tuple(map(tuple, piers)), fc)
         from .overlap import find_overlap, overlap_message  # a document is not built by arcade()
 
         hit = find_overlap([b.outline for b in arc.blocks],
@@ -458,8 +517,9 @@ class Arcade:
         contacts = tuple(Contact(c.a, c.b, c.points * flip, c.label, c.ends)
                          for c in self.contacts)
         return Arcade(blocks, contacts, self.density, f"{self.name} mirrored", self.spans,
-                      self.piers)
+                      self.piers, self.fc)
 
     def __repr__(self) -> str:
+        strength = f", fc={self.fc}" if self.fc else ""
         return (f"Arcade(name={self.name!r}, {len(self.spans)} spans, {self.n_blocks} blocks, "
-                f"{len(self.contacts)} contacts)")
+                f"{len(self.contacts)} contacts{strength})")

@@ -61,14 +61,19 @@ def graph_limit_cost_s(n_blocks: int, directions: int = 2) -> float:
 @dataclass(frozen=True)
 class GraphHinge:
     """A hinge: contact ``contact`` rotates about its end ``end`` (0 or 1); ``place`` in words
-    ("pier 2 foot, outer face")."""
+    ("pier 2 foot, outer face"); ``point`` (x, y) [m] where it is off that end (under finite
+    strength: the stress block's centre, nearer end ``end``), else None."""
 
     contact: int
     end: int
     place: str
+    point: tuple | None = None
 
     def to_dict(self) -> dict:
-        return {"contact": self.contact, "end": self.end, "place": self.place}
+        d = {"contact": self.contact, "end": self.end, "place": self.place}
+        if self.point is not None:
+            d["point"] = list(self.point)
+        return d
 
 
 @dataclass(frozen=True, eq=False)
@@ -119,6 +124,10 @@ class GraphLimit:
     forces: np.ndarray = field(repr=False)
     friction: float | None
     method: str
+    #: finite compressive strength (statics.graphcrush): (k_lower, k_upper) of the static
+    #: optimum's bracket (k is k_lower), and each contact's stress block depth N / f_c [m]
+    k_bounds: tuple | None = None
+    zones: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self):
         readonly_arrays(self)
@@ -128,12 +137,17 @@ class GraphLimit:
         return self.mechanism.hinges
 
     def to_dict(self) -> dict:
-        return {"direction": self.direction, "k": self.k,
-                "k_virtual_work": self.k_virtual_work,
-                "mechanism": self.mechanism.to_dict(), "forces": self.forces.tolist(),
-                "friction": self.friction, "method": self.method,
-                "units": {"k": "g", "forces": "N per m of depth",
-                          "velocities": "m/s and rad/s per unit work of the horizontal loads"}}
+        d = {"direction": self.direction, "k": self.k,
+             "k_virtual_work": self.k_virtual_work,
+             "mechanism": self.mechanism.to_dict(), "forces": self.forces.tolist(),
+             "friction": self.friction, "method": self.method,
+             "units": {"k": "g", "forces": "N per m of depth",
+                       "velocities": "m/s and rad/s per unit work of the horizontal loads"}}
+        if self.k_bounds is not None:  # only under finite strength: Heyman's output unchanged
+            d["k_bounds"] = list(self.k_bounds)
+            d["zones"] = self.zones.tolist()
+            d["units"]["zones"] = "m (depth of the stress block at each contact)"
+        return d
 
 
 class _Program:
@@ -217,10 +231,12 @@ class _Program:
             dt[e] = dv @ self.tangents[c]
         return dn, dt
 
-    def compat_rows(self, c: int, what: str, end: int = 0, slip_sign: float = 0.0):
+    def compat_rows(self, c: int, what: str, end: int = 0, slip_sign: float = 0.0,
+                    point=None):
         """Rows R (k, 3 nb) with R v = 0 for contact c: 'closed' (no relative motion at both
-        ends), 'hinge' (none at end ``end``), 'slide' (no relative normal velocity at both ends,
-        or the associated dilatancy dn = mu |dt| with friction)."""
+        ends), 'hinge' (none at end ``end``, or at ``point`` [m] where given), 'slide' (no
+        relative normal velocity at both ends, or the associated dilatancy dn = mu |dt| with
+        friction)."""
         ct = self.arc.contacts[c]
         n, t = self.normals[c], self.tangents[c]
         rows = []
@@ -239,7 +255,8 @@ class _Program:
             for e in (0, 1):
                 rows += [vel_row(ct.points[e], n), vel_row(ct.points[e], t)]
         elif what == "hinge":
-            rows += [vel_row(ct.points[end], n), vel_row(ct.points[end], t)]
+            p = ct.points[end] if point is None else np.asarray(point, float)
+            rows += [vel_row(p, n), vel_row(p, t)]
         elif what == "slide":
             mu = self.friction or 0.0
             for e in (0, 1):
@@ -254,8 +271,13 @@ def _solve(prog: _Program):
 
 
 def graph_multiplier(arc: Arcade, direction: str, friction: float | None = None) -> float:
-    """The LP's optimum k alone (module docstring)."""
+    """The LP's optimum k alone (module docstring); under finite strength the lower bound of
+    its bracket (:mod:`archrock.statics.graphcrush`)."""
     prog = _Program(arc, direction, None if friction is None else check_friction(friction))
+    if arc.finite_strength:
+        from .graphcrush import crushing_bracket
+
+        return crushing_bracket(prog, direction, _check_status)[1][0]
     res = _solve(prog)
     _check_status(res, direction, prog)
     return float(res.x[-1])
@@ -315,6 +337,8 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     ``friction``: Coulomb coefficient mu of every contact (None: no sliding)."""
     mu = None if friction is None else check_friction(friction)
     prog = _Program(arc, direction, mu)
+    if arc.finite_strength:
+        return _graph_limit_crushing(prog, direction, mu)
     res = _solve(prog)
     _check_status(res, direction, prog)
     k = float(res.x[-1])
@@ -331,12 +355,71 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
                                f"{direction!r}")
     tol = VELOCITY_TOL * scale
     hinges, lift, slide, closed, slip_sign = _classify(prog, v, tol)
+    mech = _rebuild(prog, direction, v, hinges, lift, slide, closed, slip_sign)
+    k_vw = mech.multiplier
+    W = float(np.sum(arc.masses)) * G
+    forces = res.x[:-1].reshape(prog.nc, 3) * W
+    how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
+           "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
+           f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
+    if mu is not None:
+        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+    return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
+
+
+def _graph_limit_crushing(prog: _Program, direction: str, mu) -> GraphLimit:
+    """:func:`graph_limit` under finite compressive strength: the bracket of
+    :mod:`archrock.statics.graphcrush`, the mechanism from its lower bound's dual with each
+    hinge at the thrust's crossing (the stress block's centre where f_c is finite, the edge
+    itself where it is not), so that the contact forces do no work on it."""
+    from .graphcrush import classify, crushing_bracket
+
+    res, bounds, rounds, rows = crushing_bracket(prog, direction, _check_status)
+    x = res.x
+    k = float(x[-1])
+    v = -np.asarray(res.eqlin.marginals, float).reshape(prog.nb, 3)
+    if np.sum(prog.d * prog.w * v[:, 0]) < 0:  # the sign under which the loads do work
+        v = -v
+    scale = _velocity_scale(prog, v)
+    if scale == 0.0:
+        raise NoMechanismError(f"arcade: the static program's dual gives no motion in direction "
+                               f"{direction!r}")
+    hinges, lift, slide, closed, slip_sign = classify(prog, v, VELOCITY_TOL * scale)
+    points, ends = {}, []
+    for c, e in hinges:
+        n0, n1 = float(x[3 * c]), float(x[3 * c + 1])
+        if np.isfinite(prog.arc.contact_fc[c]) and n0 + n1 > 0:
+            p0, p1 = prog.arc.contacts[c].points
+            t = n1 / (n0 + n1)
+            points[c] = p0 + t * (p1 - p0)
+            e = 0 if t < 0.5 else 1
+        ends.append((c, e))
+    mech = _rebuild(prog, direction, v, ends, lift, slide, closed, slip_sign, points)
+    k_vw = mech.multiplier
+    forces = x[:-1].reshape(prog.nc, 3) * rows.W
+    how = (f"static LP on the graph of blocks with the stress block at every contact of finite "
+           f"f_c (a bracket of linear programs, scipy HiGHS: tangent planes above, chords below, "
+           f"{rounds} round{'s' if rounds != 1 else ''}, k in [{bounds[0]:.9g}, "
+           f"{bounds[1]:.9g}]); mechanism from the lower bound's dual, its hinges at the stress "
+           f"blocks' centres, confirmed by its virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
+    if mu is not None:
+        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+    return GraphLimit(direction, k, k_vw, mech, forces, mu, how, bounds, rows.zones(x))
+
+
+def _rebuild(prog: _Program, direction: str, v: np.ndarray, hinges, lift, slide, closed,
+             slip_sign, points=None) -> GraphMechanism:
+    """The mechanism from its hinges alone (the null space of the compatibility conditions),
+    nearest the dual's velocities ``v``, scaled to unit horizontal work; its virtual-work k.
+    ``points``: {contact: (x, y) [m]} hinge points off the contact's ends (a stress block's
+    centre under finite strength)."""
+    points = points or {}
     # the mechanism from its hinges alone: the null space of the compatibility conditions
     rows = []
     for c in closed:
         rows += prog.compat_rows(c, "closed")
     for c, e in hinges:
-        rows += prog.compat_rows(c, "hinge", e)
+        rows += prog.compat_rows(c, "hinge", e, point=points.get(c))
     for c in slide:
         rows += prog.compat_rows(c, "slide", slip_sign=slip_sign[c])
     nv = 3 * prog.nb
@@ -364,17 +447,11 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     vel = np.column_stack([vm[:, 0], vm[:, 1], vm[:, 2] / prog.L])
     moving = tuple(int(i) for i in np.flatnonzero(
         np.abs(vm).max(axis=1) > VELOCITY_TOL * float(np.abs(vm).max())))
-    contacts = arc.contacts
-    gh = tuple(GraphHinge(c, e, contacts[c].place(e)) for c, e in hinges)
-    mech = GraphMechanism(direction, gh, tuple(lift), tuple(slide), moving, vel, dof, k_vw)
-    W = float(np.sum(arc.masses)) * G
-    forces = res.x[:-1].reshape(prog.nc, 3) * W
-    how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
-           "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
-           f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
-    if mu is not None:
-        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
-    return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
+    contacts = prog.arc.contacts
+    gh = tuple(GraphHinge(c, e, contacts[c].place(e),
+                          None if c not in points else tuple(float(p) for p in points[c]))
+               for c, e in hinges)
+    return GraphMechanism(direction, gh, tuple(lift), tuple(slide), moving, vel, dof, k_vw)
 
 
 def _velocity_scale(prog: _Program, v: np.ndarray) -> float:
