@@ -183,15 +183,17 @@ class _Program:
         bounds.append((None, None))
         self.bounds = bounds
         self.friction = friction
-        if friction is not None:
-            rows = []
-            for c in range(nc):
-                for s in (1.0, -1.0):  # s V - mu (N0 + N1) <= 0
-                    row = np.zeros(nv)
-                    row[3 * c + 2] = s
-                    row[3 * c] = row[3 * c + 1] = -friction
-                    rows.append(row)
-            self.A_ub, self.b_ub = np.array(rows), np.zeros(len(rows))
+        self.mu, self.coh = _contact_strengths(arc, friction)
+        rows, rhs = [], []
+        for c in np.flatnonzero(np.isfinite(self.mu)):
+            for s in (1.0, -1.0):  # s V - mu (N0 + N1) <= c L (per W)
+                row = np.zeros(nv)
+                row[3 * c + 2] = s
+                row[3 * c] = row[3 * c + 1] = -self.mu[c]
+                rows.append(row)
+                rhs.append(self.coh[c])
+        if rows:
+            self.A_ub, self.b_ub = np.array(rows), np.array(rhs)
         else:
             self.A_ub = self.b_ub = None
         self.c = np.zeros(nv)
@@ -241,10 +243,23 @@ class _Program:
         elif what == "hinge":
             rows += [vel_row(ct.points[end], n), vel_row(ct.points[end], t)]
         elif what == "slide":
-            mu = self.friction or 0.0
+            mu = float(self.mu[c]) if np.isfinite(self.mu[c]) else 0.0
             for e in (0, 1):
                 rows.append(vel_row(ct.points[e], n) - mu * slip_sign * vel_row(ct.points[e], t))
         return rows
+
+
+def _contact_strengths(arc: Arcade, friction: float | None):
+    """(mu, c) per contact: its own Coulomb coefficient, else ``friction`` (nan: no sliding),
+    and its cohesion times its length per total weight (the Coulomb row's right-hand side)."""
+    W = float(np.sum(arc.masses)) * G
+    mu = np.full(len(arc.contacts), np.nan if friction is None else float(friction))
+    coh = np.zeros(len(arc.contacts))
+    for c, ct in enumerate(arc.contacts):
+        if ct.friction is not None:
+            mu[c] = ct.friction
+            coh[c] = ct.cohesion * float(np.hypot(*(ct.points[1] - ct.points[0]))) / W
+    return mu, coh
 
 
 def _solve(prog: _Program):
@@ -293,7 +308,7 @@ def _classify(prog: _Program, v: np.ndarray, tol: float):
         dn, dt = prog.relative(v, c)
         opened = dn > tol
         slid = np.abs(dt) > tol
-        mu = prog.friction
+        mu = float(prog.mu[c]) if np.isfinite(prog.mu[c]) else None
         # sliding: with friction the associated flow (dn = mu |dt| at both ends), without it
         # a tangential motion of a closed joint (which the dual excludes: kept for safety)
         if slid.any() and ((mu is not None and np.all(np.abs(dn - mu * np.abs(dt)) <= tol))
@@ -359,7 +374,9 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
         raise NoMechanismError(f"arcade: the mechanism in direction {direction!r} does no work "
                                f"against the horizontal loads")
     vm = vm / work_h
-    k_vw = float(np.sum(prog.w * vm[:, 1]))
+    # the weights' rise, plus what cohesion dissipates on the sliding contacts (c L |slip|)
+    k_vw = float(np.sum(prog.w * vm[:, 1])) + sum(
+        prog.coh[c] * float(np.max(np.abs(prog.relative(vm, c)[1]))) for c in slide)
     # the velocities in SI: v of the mass centres [m/s], omega [rad/s] (per unit work rate)
     vel = np.column_stack([vm[:, 0], vm[:, 1], vm[:, 2] / prog.L])
     moving = tuple(int(i) for i in np.flatnonzero(
@@ -372,8 +389,17 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
            "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
            f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
+    own = [c for c, ct in enumerate(arc.contacts) if ct.friction is not None]
     if mu is not None:
-        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+        how += (f"; Coulomb friction mu = {mu:g} at every contact"
+                + (" without its own" if own else "") + " (associated flow)")
+    if own:
+        mus = sorted({arc.contacts[c].friction for c in own})
+        cmax = max(arc.contacts[c].cohesion for c in own)
+        how += (f"; {len(own)} contacts with their own friction (mu {mus[0]:g}"
+                + (f" to {mus[-1]:g}" if len(mus) > 1 else "")
+                + (f", cohesion up to {cmax / 1e3:g} kPa" if cmax > 0 else "")
+                + ", associated flow)")
     return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
 
 
