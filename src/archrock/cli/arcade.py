@@ -76,6 +76,9 @@ def add_arcade_parser(subparsers):
                    help="with a ground motion: output window [s] (default 3); the run goes on "
                         "to rest or collapse")
     add_motion_options(p)
+    from .rings import add_ring_options
+
+    add_ring_options(p)
     p.set_defaults(func=run_arcade)
     return p
 
@@ -221,6 +224,10 @@ def arcade_from_args(args):
                   ("--density", args.density)]
     pier_flags = [("--pier-height", args.pier_height), ("--pier-width", args.pier_width),
                   ("--pier-courses", args.pier_courses)]
+    from .rings import ringed_from_args, wants_rings
+
+    if wants_rings(args):
+        return ringed_from_args(args)
     if args.arcade:
         given = [f for f, v in arch_flags + pier_flags + [("--geometry", args.geometry),
                                                           ("--repeat", args.repeat)]
@@ -294,12 +301,18 @@ def format_result(arc, results, ramp=None, response=None) -> str:
     spans = f"{len(arc.spans)} span{'s' if len(arc.spans) != 1 else ''}, " if arc.spans else ""
     lines = [f"{arc.name}: {spans}{arc.n_blocks} blocks ({counts}), "
              f"{len(arc.contacts)} contacts, {arc.masses.sum():.6g} kg/m"]
+    from .rings import ring_lines
+
     for d, g in results.items():
         m = g.mechanism
         lines.append(f"k_{d} = {g.k:.6f} (static LP, HiGHS; the mechanism's virtual work "
                      f"{g.k_virtual_work:.6f}, |diff| {abs(g.k_virtual_work - g.k):.1e}; "
                      f"{m.dof} degree{'s' if m.dof != 1 else ''} of freedom, "
                      f"{len(m.moving)} blocks move)")
+        rings = ring_lines(arc, m)
+        if rings:  # a brick arch: hundreds of joints, summed by ring
+            lines += rings
+            continue
         lines.append(f"  hinges: {'; '.join(h.place for h in m.hinges) or '-'}")
         if m.lift_off:
             lines.append(f"  lift off: {'; '.join(arc.contacts[c].label for c in m.lift_off)}")
@@ -410,7 +423,10 @@ def run_arcade(args) -> int:
 
         written = write_arcade(arc, args.write)
     if plot:
-        plot = plot_arcade(arc, results, plot)
+        from .rings import plot_rings
+        from ..geometry.rings import interface_contacts
+
+        plot = (plot_rings if interface_contacts(arc) else plot_arcade)(arc, results, plot)
     if args.json:
         from ..geometry.blocks import arcade_counts
 

@@ -50,7 +50,12 @@ from .base import (DEFAULT_DENSITY, MAX_VOUSSOIRS, _check_density, _check_length
 from .blockgraph import GROUND, Arcade, Block, Contact
 from .circular import sector_properties
 
-__all__ = ["ringed_arch", "ring_of", "interface_contacts", "MAX_RINGS", "MAX_RING_BLOCKS"]
+__all__ = ["ringed_arch", "ring_of", "interface_contacts", "MAX_RINGS", "MAX_RING_BLOCKS",
+           "DEFAULT_RING_FRICTION"]
+
+#: The ring interfaces' Coulomb friction unless stated: the package's masonry friction
+#: (:data:`archrock.statics.friction.DEFAULT_FRICTION`, which this layer may not import).
+DEFAULT_RING_FRICTION = 0.8
 
 #: Most rings of a brick arch (bridges have up to about 8).
 MAX_RINGS = 20
@@ -122,13 +127,16 @@ def _arc(psi_a: float, psi_b: float, r: float) -> np.ndarray:
 
 def ringed_arch(radius: float, thickness: float, rings: int = 2, ring_thicknesses=None,
                 brick: float = 0.1025, embrace_deg: float = 180.0,
-                density: float = DEFAULT_DENSITY, friction: float | None = None,
+                density: float = DEFAULT_DENSITY,
+                friction: float | None = DEFAULT_RING_FRICTION,
                 cohesion: float = 0.0, stagger: bool = True, name: str | None = None) -> Arcade:
     """A circular brick arch of ``rings`` rings (module docstring) as an Arcade: centreline
     radius [m], total ``thickness`` [m], ``ring_thicknesses`` [m] (intrados first; default
     equal), ``brick`` the bricks' length along the centreline [m], ``embrace_deg`` [deg],
     ``density`` [kg/m^3]; the ring interfaces' Coulomb ``friction`` (None: no sliding) and
-    ``cohesion`` [Pa] (with a friction only); ``stagger`` the bond (False: joints run through)."""
+    ``cohesion`` [Pa] (with a friction only); ``stagger`` the bond (False: joints run through).
+    ``friction=None`` (no sliding at all) lets an open interface carry shear, which locks
+    staggered bricks together: a bound, not masonry (docs/rings.md)."""
     radius = _check_length("radius", _check_scalar("radius", radius, 0.0, None,
                                                    allowed="> 0 m"))
     thickness = _check_length("thickness", _check_scalar(

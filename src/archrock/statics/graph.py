@@ -374,9 +374,11 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
         raise NoMechanismError(f"arcade: the mechanism in direction {direction!r} does no work "
                                f"against the horizontal loads")
     vm = vm / work_h
-    # the weights' rise, plus what cohesion dissipates on the sliding contacts (c L |slip|)
+    # the weights' rise, plus what cohesion dissipates wherever a contact slips, open or
+    # closed (c L |slip|: the tangential relative velocity is the same all along a joint)
     k_vw = float(np.sum(prog.w * vm[:, 1])) + sum(
-        prog.coh[c] * float(np.max(np.abs(prog.relative(vm, c)[1]))) for c in slide)
+        prog.coh[c] * float(np.abs(prog.relative(vm, c)[1][0]))
+        for c in np.flatnonzero(prog.coh > 0))
     # the velocities in SI: v of the mass centres [m/s], omega [rad/s] (per unit work rate)
     vel = np.column_stack([vm[:, 0], vm[:, 1], vm[:, 2] / prog.L])
     moving = tuple(int(i) for i in np.flatnonzero(
