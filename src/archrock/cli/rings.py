@@ -189,7 +189,8 @@ def plot_rings(arc, results, path) -> str:
         for what, colour in (("open", STYLE["thrust"]), ("slide", STYLE["hinge"])):
             for k, cc in enumerate(sorted(shown[what])):
                 p = arc.contacts[cc].points
-                ax.plot(p[:, 0], p[:, 1], "-", color=colour, linewidth=2.2,
+                ax.plot(p[:, 0], p[:, 1], "-", color=colour,
+                        linewidth=0.9 if what == "open" else 2.5,
                         label=(f"ring interface that {'opens' if what == 'open' else 'slides'}"
                                if k == 0 else None))
         hp = np.array([arc.contacts[h.contact].points[h.end] for h in m.hinges
