@@ -719,3 +719,7 @@ def rings_coarse() -> str:
         ks.append(re.search(K_L, out.getvalue()).group(1))
     return "k " + " ".join(ks)
 FUNCTIONS[rings_coarse.__name__] = rings_coarse
+ENTRIES += [
+    Entry(RG, "With 20 kPa it is {}, within", RINGS + ("--ring-cohesion", "20"), K_L, slow=True),
+    Entry(RG, "With 50 kPa it is {}, above", RINGS + ("--ring-cohesion", "50"), K_L, slow=True),
+]

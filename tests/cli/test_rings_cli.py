@@ -63,3 +63,11 @@ def test_bad_flags_one_line(capsys, extra, msg):
     code, out, err = run(capsys, *TWO, *extra)
     assert code == 2
     assert err.startswith("archrock: error: ") and msg in err and "Traceback" not in err
+
+
+def test_segmental_of_half_span_rise_is_the_semicircle(capsys):
+    _, semi, _ = run(capsys, *TWO)
+    code, seg, err = run(capsys, *TWO, "--shape", "circular", "--rises", "2.5")
+    assert code == 0, err
+    k = semi.split("k_l = ")[1].split()[0]
+    assert f"k_l = {k}" in seg
