@@ -11,7 +11,7 @@ from ._parser import CLIError, _int, finite_float, positive_float
 _RING_FLAGS = (("ring_thicknesses", "--ring-thickness"), ("rings", "--rings"),
                ("brick", "--brick"), ("friction", "--ring-friction"),
                ("thickness", "--thickness"), ("radius", "--spans"), ("density", "--density"),
-               ("embrace", "--rises"))
+               ("embrace", "--rises"), ("headers", "--headers"))
 
 
 def add_ring_options(p) -> None:
@@ -33,6 +33,9 @@ def add_ring_options(p) -> None:
                         f"{DEFAULT_RING_FRICTION:g})")
     g.add_argument("--ring-cohesion", type=finite_float, metavar="KPA",
                    help="cohesion of the ring interfaces [kPa], >= 0 (default 0)")
+    g.add_argument("--headers", type=_int, metavar="M",
+                   help="a header course through every ring every M bricks from each "
+                        "springing toward the crown, 2 or more (default: none)")
     g.add_argument("--aligned-joints", action="store_true",
                    help="every ring's radial joints on the same radial lines (default: "
                         "bonded, every other ring's joints half a brick along)")
@@ -41,7 +44,7 @@ def add_ring_options(p) -> None:
 def wants_rings(args) -> bool:
     return args.aligned_joints or any(
         getattr(args, k) is not None for k in ("rings", "ring_thickness", "brick",
-                                              "ring_friction", "ring_cohesion"))
+                                              "ring_friction", "ring_cohesion", "headers"))
 
 
 def _renamed(exc):
@@ -125,7 +128,7 @@ def ringed_from_args(args):
         return ringed_arch(R, t, rings, ts, 0.1025 if args.brick is None else args.brick,
                            embrace, 2000.0 if args.density is None else args.density,
                            args.ring_friction or DEFAULT_RING_FRICTION,
-                           1e3 * (coh or 0.0), not args.aligned_joints,
+                           1e3 * (coh or 0.0), not args.aligned_joints, args.headers or 0,
                            name=f"{rings}-ring brick arch")
     except ArchInputError as exc:
         raise _renamed(exc) from None
@@ -147,9 +150,9 @@ def ring_lines(arc, mech) -> list:
     for h in mech.hinges:
         if h.contact in fs:
             continue
-        ct = arc.contacts[h.contact]
-        r = ring_of(arc.blocks[ct.b].label)
-        by_ring[r] = by_ring.get(r, 0) + 1
+        r = ring_of(arc.contacts[h.contact].label)  # "ring 2 joint 5": a header's side too
+        if r is not None:
+            by_ring[r] = by_ring.get(r, 0) + 1
     hinge_words = ", ".join(f"ring {r}: {k}" for r, k in sorted(by_ring.items()))
     sep = (f"the rings separate: {len(opened)} of {len(faces)} interface contacts open, "
            f"{len(slid)} slide" if opened or slid else "the rings do not separate")

@@ -129,12 +129,14 @@ def ringed_arch(radius: float, thickness: float, rings: int = 2, ring_thicknesse
                 brick: float = 0.1025, embrace_deg: float = 180.0,
                 density: float = DEFAULT_DENSITY,
                 friction: float | None = DEFAULT_RING_FRICTION,
-                cohesion: float = 0.0, stagger: bool = True, name: str | None = None) -> Arcade:
+                cohesion: float = 0.0, stagger: bool = True, headers: int = 0,
+                name: str | None = None) -> Arcade:
     """A circular brick arch of ``rings`` rings (module docstring) as an Arcade: centreline
     radius [m], total ``thickness`` [m], ``ring_thicknesses`` [m] (intrados first; default
     equal), ``brick`` the bricks' length along the centreline [m], ``embrace_deg`` [deg],
     ``density`` [kg/m^3]; the ring interfaces' Coulomb ``friction`` (None: no sliding) and
-    ``cohesion`` [Pa] (with a friction only); ``stagger`` the bond (False: joints run through).
+    ``cohesion`` [Pa] (with a friction only); ``stagger`` the bond (False: joints run through);
+    ``headers`` a header course through every ring every that many bricks (0: none).
     ``friction=None`` (no sliding at all) lets an open interface carry shear, which locks
     staggered bricks together: a bound, not masonry (docs/rings.md)."""
     radius = _check_length("radius", _check_scalar("radius", radius, 0.0, None,
@@ -165,6 +167,7 @@ def ringed_arch(radius: float, thickness: float, rings: int = 2, ring_thicknesse
                              f"and {MAX_RING_BLOCKS} in all (a longer brick)")
     edges = radius - thickness / 2 + np.concatenate([[0.0], np.cumsum(ts)])
     edges[-1] = radius + thickness / 2
+    tol = 1e-9 * embrace / n
     grids = []
     for k in range(nr):
         psi, props = _grid(n, embrace, stagger and k % 2 == 1, 0.5 * (edges[k] + edges[k + 1]),
@@ -172,42 +175,108 @@ def ringed_arch(radius: float, thickness: float, rings: int = 2, ring_thicknesse
         if grids:  # one springing angle for every ring (the sums differ in the last bit)
             psi[0], psi[-1] = grids[0][0][0], grids[0][0][-1]
         grids.append((psi, props))
-    tol = 1e-9 * embrace / n
-    blocks, contacts, index = [], [], []
-    for k, (psi, props) in enumerate(grids):
-        below = grids[k - 1][0] if k > 0 else None
-        above = grids[k + 1][0] if k + 1 < nr else None
-        first = len(blocks)
+    base = grids[0][0]
+    spans_h = [(base[i], base[i + 1]) for i in _header_positions(headers, n)]
+    rings_ = [_cut(psi, props, spans_h, tol, 0.5 * (edges[k] + edges[k + 1]), ts[k])
+              for k, (psi, props) in enumerate(grids)]
+    blocks, index = [], []
+    for k, (psi, props, cells) in enumerate(rings_):
+        below = rings_[k - 1][0] if k > 0 else None
+        above = rings_[k + 1][0] if k + 1 < nr else None
+        index.append([])
         for i in range(psi.size - 1):
+            if cells[i] >= 0:  # a header's place: one block through every ring, below
+                index[-1].append(None)
+                continue
             a, b = psi[i], psi[i + 1]
             inner = _arc(a, b, edges[k]) if below is None else _face(a, b, edges[k], below, tol)
             outer = (_arc(b, a, edges[k + 1]) if above is None
                      else _face(b, a, edges[k + 1], above, tol))
             mp = (density * float(props["area"][i]), props["centroid"][i],
                   density * float(props["polar"][i]))
+            index[-1].append(len(blocks))
             blocks.append(Block(np.vstack([inner, outer]), "voussoir",
-                                f"ring {k + 1} brick {i + 1}", (), mp, _checked=True))
-        index.append(list(range(first, len(blocks))))
+                                f"ring {k + 1} brick {sum(c < 0 for c in cells[:i + 1])}", (),
+                                mp, _checked=True))
+    first_header = len(blocks)
+    blocks += [_header_block(h, a, b, edges, radius, thickness, density)
+               for h, (a, b) in enumerate(spans_h)]
+
+    def block_of(k, i):  # the block of cell i of ring k
+        c = rings_[k][2][i]
+        return index[k][i] if c < 0 else first_header + c
+
+    contacts = []
+    for k, (psi, _, _) in enumerate(rings_):
         m = psi.size - 1
         for j in range(m + 1):
             pts = np.array([[edges[k] * math.cos(psi[j]), edges[k] * math.sin(psi[j])],
                             [edges[k + 1] * math.cos(psi[j]), edges[k + 1] * math.sin(psi[j])]])
-            a = GROUND if j in (0, m) else first + j - 1  # both springings on the ground
-            b = first + j if j < m else first + m - 1
+            a = GROUND if j in (0, m) else block_of(k, j - 1)  # both springings on the ground
+            b = block_of(k, j) if j < m else block_of(k, m - 1)
             what = ("left springing" if j == 0 else "right springing" if j == m
                     else f"joint {j}")
             contacts.append(Contact(a, b, pts, f"ring {k + 1} {what}", ("intrados", "extrados")))
     for k in range(nr - 1):
-        contacts += _interface(k, grids[k][0], grids[k + 1][0], edges[k + 1], index, friction,
-                               cohesion, tol)
+        contacts += _interface(k, rings_[k][0], rings_[k + 1][0], edges[k + 1],
+                               lambda kk, i: block_of(kk, i), friction, cohesion, tol)
     label = name or (f"{nr}-ring brick arch" if nr > 1 else "brick arch")
     return Arcade(tuple(blocks), tuple(contacts), density, label,
-                  (tuple(i for ring in index for i in ring),), ())
+                  (tuple(range(len(blocks))),), ())
 
 
-def _interface(k: int, lower, upper, r: float, index, friction, cohesion, tol) -> list:
+def _header_positions(headers, n: int) -> list:
+    """The brick places (0-based, of the intrados ring) of the header courses: every
+    ``headers``-th brick from each springing toward the crown (mirror-symmetric, so that a
+    symmetric arch stays symmetric), never a springing one."""
+    if headers is None or headers == 0:
+        return []
+    if isinstance(headers, bool) or not isinstance(headers, (int, np.integer)) or \
+            not 2 <= int(headers) <= n - 1:
+        raise ArchInputError(f"headers: {headers!r}; allowed 0 (none) or a header every 2 to "
+                             f"{n - 1} bricks")
+    m = int(headers)
+    left = [i for i in range(m - 1, n - 1, m) if 2 * i <= n - 1]
+    return sorted(set(left) | {n - 1 - i for i in left})
+
+
+def _cut(psi, props, spans_h, tol, R, t):
+    """(angles, sector properties, cells) of one ring with the header places cut in: its
+    joints inside a header's place removed, the header's two sides added; ``cells[i]`` the
+    header at cell i, or -1 for a brick of this ring."""
+    if not spans_h:
+        return psi, props, [-1] * (psi.size - 1)
+    ang = [a for a in psi if not any(lo + tol < a < hi - tol for hi, lo in spans_h)]
+    ang = np.array(sorted(set(ang) | {a for h in spans_h for a in h}, reverse=True))
+    ang = ang[np.concatenate([[True], np.abs(np.diff(ang)) > tol])]
+    props = sector_properties(-np.diff(ang), np.full(ang.size - 1, R),
+                              np.full(ang.size - 1, t))
+    cells = []
+    for i in range(ang.size - 1):
+        mid = 0.5 * (ang[i] + ang[i + 1])
+        cells.append(next((h for h, (hi, lo) in enumerate(spans_h) if lo < mid < hi), -1))
+    return ang, props, cells
+
+
+def _header_block(h: int, a: float, b: float, edges, radius: float, thickness: float,
+                  density: float) -> Block:
+    """Header ``h`` (0-based): one block through every ring between angles a > b, its sides
+    with a corner at every ring's edge (so that each ring's joint meets it)."""
+    inner, outer = _arc(a, b, edges[0]), _arc(b, a, edges[-1])
+
+    def side(psi, rs):
+        return np.column_stack([rs * math.cos(psi), rs * math.sin(psi)])
+    out = np.vstack([inner, side(b, edges[1:-1]), outer, side(a, edges[1:-1][::-1])])
+    props = sector_properties([a - b], [radius], [thickness])  # a sector about the crown:
+    rg, mid = float(np.hypot(*props["centroid"][0])), 0.5 * (a + b)  # turned to its place
+    mp = (density * float(props["area"][0]), np.array([rg * math.cos(mid), rg * math.sin(mid)]),
+          density * float(props["polar"][0]))
+    return Block(out, "voussoir", f"header {h + 1}", (), mp, _checked=True)
+
+
+def _interface(k: int, lower, upper, r: float, block_of, friction, cohesion, tol) -> list:
     """The contacts between ring k + 1 and ring k + 2 (1-based) at radius r: one per pair of
-    overlapping bricks, from the left springing."""
+    overlapping bricks, from the left springing (none inside a header, one block there)."""
     ang = np.sort(np.concatenate([lower, upper]))[::-1]
     keep = np.concatenate([[True], np.abs(np.diff(ang)) > tol])
     ang = ang[keep]
@@ -218,7 +287,10 @@ def _interface(k: int, lower, upper, r: float, index, friction, cohesion, tol) -
         j = int(np.searchsorted(-upper, -mid)) - 1
         pts = np.array([[r * math.cos(ang[s]), r * math.sin(ang[s])],
                         [r * math.cos(ang[s + 1]), r * math.sin(ang[s + 1])]])
-        out.append(Contact(index[k][i], index[k + 1][j], pts,
+        lo_b, up_b = block_of(k, i), block_of(k + 1, j)
+        if lo_b == up_b:
+            continue
+        out.append(Contact(lo_b, up_b, pts,
                            f"rings {k + 1}-{k + 2} interface {s + 1}", ("left end", "right end"),
                            friction, cohesion))
     return out
