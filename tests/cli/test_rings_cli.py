@@ -57,6 +57,7 @@ def test_cohesion_and_file(capsys, tmp_path):
     (("--ring-cohesion", "-1"), "--ring-cohesion: -1 kPa is out of range"),
     (("--pier-height", "2"), "--rings: cannot be combined with --pier-height"),
     (("--ramp",), "--rings: the contact engine"),
+    (("--headers", "1"), "--headers: 1; allowed 0 (none) or a header every 2 to 15 bricks"),
     (("--shape", "pointed", "--rises", "3"), "--shape: 'pointed' with --rings"),
 ])
 def test_bad_flags_one_line(capsys, extra, msg):

@@ -106,3 +106,23 @@ def test_contact_friction_is_checked():
     cts[3] = Contact(cts[3].a, cts[3].b, cts[3].points, cts[3].label, cts[3].ends, None, 10.0)
     with pytest.raises(ArchInputError, match=r"^contacts\[3\]\.cohesion"):
         Arcade(a.blocks, tuple(cts))
+
+
+def test_headers_tie_the_rings_symmetrically():
+    a = ringed_arch(R, T, rings=2, brick=BRICK, headers=4)
+    heads = [i for i, b in enumerate(a.blocks) if b.label.startswith("header")]
+    assert len(heads) == 4  # places 3 and 7 from the left, 8 and 12 their mirrors
+    # a header takes one brick of each ring (the staggered ring's two halves stay beside it);
+    # the two side by side at the crown take the staggered brick between them too
+    assert a.n_blocks == ringed_arch(R, T, rings=2, brick=BRICK).n_blocks - 1
+    mono = nominal_arch(radius=R, embrace_deg=180.0, thickness=T, voussoirs=N).masses.sum()
+    assert a.masses.sum() == pytest.approx(mono, rel=1e-12)
+    xs = sorted(round(float(a.centroids[i][0]), 9) for i in heads)
+    assert xs == sorted(-x for x in xs)  # mirror-symmetric about the crown
+    # no interface inside a header; each header meets each ring's bricks on both sides
+    for h in heads:
+        touching = [ct for ct in a.contacts if h in (ct.a, ct.b)]
+        assert all(not ct.label.startswith("rings ") for ct in touching)
+        assert len(touching) >= 2 * 2 - 1  # 2 rings x 2 sides (a side may meet a header)
+    with pytest.raises(ArchInputError, match="^headers"):
+        ringed_arch(R, T, rings=2, brick=BRICK, headers=1)

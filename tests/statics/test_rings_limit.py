@@ -47,6 +47,19 @@ def test_bonded_rings_near_the_monolithic_arch(monolithic):
     assert abs(bonded.k / monolithic - 1) < 0.04
 
 
+def test_headers_every_two_bricks_are_the_monolithic_arch(monolithic):
+    # every joint of the one-ring arch then runs through the depth, each pair of rings' bricks
+    # between two of them tied by a header: the one-ring arch, to rounding
+    g = graph_limit(ringed_arch(R, T, rings=2, brick=BRICK, headers=2), "l")
+    assert abs(g.k - monolithic) < 1e-12
+    # fewer headers: within 0.4 % (every 4 bricks), then the rings part between them
+    ks = [graph_limit(ringed_arch(R, T, rings=2, brick=BRICK, headers=h), "l").k
+          for h in (4, 8)]
+    assert abs(ks[0] / monolithic - 1) < 0.005
+    assert ks[1] < ks[0]
+    assert ks[1] > graph_limit(ringed_arch(R, T, rings=2, brick=BRICK), "l").k
+
+
 def test_lower_friction_lower_k_and_the_rings_separate(monolithic):
     ks = []
     for mu in (2.0, 0.8, 0.5):
