@@ -723,3 +723,12 @@ ENTRIES += [
     Entry(RG, "With 20 kPa it is {}, within", RINGS + ("--ring-cohesion", "20"), K_L, slow=True),
     Entry(RG, "With 50 kPa it is {}, above", RINGS + ("--ring-cohesion", "50"), K_L, slow=True),
 ]
+ENTRIES += [
+    Entry(RG, f"| {what} | {{}} |", RINGS + ("--headers", m), K_L, slow=True)
+    for what, m in (("every 2 bricks (`--headers 2`)", "2"), ("every 4 bricks", "4"),
+                    ("every 8 bricks", "8"), ("every 16 bricks", "16"))
+] + [
+    Entry(RG, "| none | {} |", RINGS, K_L, slow=True),
+    Entry(RG, "with a header every 8 bricks, {} of 138 interface", RINGS + ("--headers", "8"),
+          r"the rings separate: (\d+) of 138 interface contacts open", slow=True),
+]

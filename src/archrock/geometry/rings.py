@@ -21,6 +21,9 @@ Livesley 1978 and Gilbert, Casapulla & Ahmed 2006):
 * bonded brickwork: the radial joints of every other ring sit half a brick along (that ring has
   n + 1 bricks, a half brick at each springing), so no joint runs through the whole depth
   (``stagger=False``: every ring's joints on the same radial lines);
+* header courses (``headers=M``): every M-th brick place of the intrados ring, counted from
+  each springing toward the crown, is one block through every ring, its two sides joints
+  through the whole depth (the staggered rings get a closer beside it);
 * each brick an annular sector with its exact area, centroid and polar inertia (as the circular
   arch's voussoirs: one ring is, block for block, :func:`~archrock.geometry.arcade.
   arcade_from_chain` of :func:`~archrock.geometry.nominal_arch`); its faces on a ring interface
@@ -33,8 +36,8 @@ Livesley 1978 and Gilbert, Casapulla & Ahmed 2006):
   given, or any shear (no sliding: the rings are bonded in shear, but may still separate) where
   it is None.
 
-Blocks are labelled "ring 2 brick 14" (kind "voussoir"), contacts "ring 1 joint 3", "ring 1 left
-springing", "rings 1-2 interface 5".  The arcade document (:func:`archrock.geometry.files.
+Blocks are labelled "ring 2 brick 14" or "header 3" (kind "voussoir"), contacts "ring 1 joint
+3", "ring 1 left springing", "rings 1-2 interface 5".  The arcade document (:func:`archrock.geometry.files.
 write_arcade`) keeps each interface's friction and cohesion, so a file gives the same answer.
 """
 
