@@ -72,3 +72,10 @@ def test_segmental_of_half_span_rise_is_the_semicircle(capsys):
     assert code == 0, err
     k = semi.split("k_l = ")[1].split()[0]
     assert f"k_l = {k}" in seg
+
+
+def test_a_ringed_file_refuses_the_engine(capsys, tmp_path):
+    f = tmp_path / "rings.json"
+    assert run(capsys, *TWO, "--write", str(f))[0] == 0
+    code, _, err = run(capsys, "arcade", "--arcade", str(f), "--ramp")
+    assert code == 2 and "the contact engine does not model" in err

@@ -392,6 +392,10 @@ def run_arcade(args) -> int:
     if args.ramp and spec is not None:
         raise CLIError("--ramp: cannot be combined with a ground motion; give one")
     arc = arcade_from_args(args)
+    if (args.ramp or spec is not None) and any(c.friction is not None for c in arc.contacts):
+        raise CLIError("--arcade: its contacts carry their own friction (a brick arch's ring "
+                       "interfaces), which the contact engine does not model; leave out --ramp "
+                       "and the ground motion")
     from ..statics.graph import graph_limit
 
     results = {}
