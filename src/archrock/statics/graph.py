@@ -262,6 +262,23 @@ def _contact_strengths(arc: Arcade, friction: float | None):
     return mu, coh
 
 
+def _friction_words(arc: Arcade, mu: float | None) -> str:
+    """The method's words on friction: the analysis's, and the contacts' own."""
+    own = [c for c, ct in enumerate(arc.contacts) if ct.friction is not None]
+    out = ""
+    if mu is not None:
+        out += (f"; Coulomb friction mu = {mu:g} at every contact"
+                + (" without its own" if own else "") + " (associated flow)")
+    if own:
+        mus = sorted({arc.contacts[c].friction for c in own})
+        cmax = max(arc.contacts[c].cohesion for c in own)
+        out += (f"; {len(own)} contacts with their own friction (mu {mus[0]:g}"
+                + (f" to {mus[-1]:g}" if len(mus) > 1 else "")
+                + (f", cohesion up to {cmax / 1e3:g} kPa" if cmax > 0 else "")
+                + ", associated flow)")
+    return out
+
+
 def _solve(prog: _Program):
     res = linprog(prog.c, A_ub=prog.A_ub, b_ub=prog.b_ub, A_eq=prog.A_eq, b_eq=prog.b_eq,
                   bounds=prog.bounds, method="highs")
@@ -391,17 +408,7 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
            "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
            f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
-    own = [c for c, ct in enumerate(arc.contacts) if ct.friction is not None]
-    if mu is not None:
-        how += (f"; Coulomb friction mu = {mu:g} at every contact"
-                + (" without its own" if own else "") + " (associated flow)")
-    if own:
-        mus = sorted({arc.contacts[c].friction for c in own})
-        cmax = max(arc.contacts[c].cohesion for c in own)
-        how += (f"; {len(own)} contacts with their own friction (mu {mus[0]:g}"
-                + (f" to {mus[-1]:g}" if len(mus) > 1 else "")
-                + (f", cohesion up to {cmax / 1e3:g} kPa" if cmax > 0 else "")
-                + ", associated flow)")
+    how += _friction_words(arc, mu)
     return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
 
 
