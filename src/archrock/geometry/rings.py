@@ -37,8 +37,9 @@ Livesley 1978 and Gilbert, Casapulla & Ahmed 2006):
   it is None.
 
 Blocks are labelled "ring 2 brick 14" or "header 3" (kind "voussoir"), contacts "ring 1 joint
-3", "ring 1 left springing", "rings 1-2 interface 5".  The arcade document (:func:`archrock.geometry.files.
-write_arcade`) keeps each interface's friction and cohesion, so a file gives the same answer.
+3", "ring 1 left springing", "rings 1-2 interface 5".  The arcade document
+(:func:`archrock.geometry.files.write_arcade`) keeps each interface's friction and cohesion, so
+a file gives the same answer.
 """
 
 from __future__ import annotations
