@@ -28,6 +28,9 @@ def test_two_rings_separate(capsys):
     d = json.loads(out)
     assert d["k_l"] == pytest.approx(0.147291, abs=1e-6)
     assert d["l"]["mechanism"]["sliding"]
+    rings = d["rings"]["l"]
+    assert rings["interfaces"] == 32 and rings["sliding"] and rings["open"]
+    assert set(rings["sliding"]) <= set(d["l"]["mechanism"]["sliding"])
 
 
 def test_one_ring_lists_its_four_hinges(capsys):

@@ -441,6 +441,12 @@ def run_arcade(args) -> int:
                           "labels": [c.label for c in arc.contacts]},
                "k_l": results["l"].k, "k_r": results["r"].k,
                "l": results["l"].to_dict(), "r": results["r"].to_dict()}
+        from ..geometry.rings import interface_contacts
+
+        if interface_contacts(arc):  # a brick arch: how its rings separate
+            from .rings import ring_summary
+
+            out["rings"] = {d: ring_summary(arc, g.mechanism) for d, g in results.items()}
         if ramp is not None:
             out["ramp"] = ramp.to_dict()
         if response is not None:

@@ -134,6 +134,24 @@ def ringed_from_args(args):
         raise _renamed(exc) from None
 
 
+def ring_summary(arc, mech) -> dict:
+    """The rings' separation in a mechanism, for the JSON: the interface contacts, those that
+    open and those that slide (contact indices), and the hinges by ring."""
+    from ..geometry.rings import interface_contacts, ring_of
+
+    faces = interface_contacts(arc)
+    fs = set(faces)
+    opened = sorted({c for c in mech.lift_off if c in fs} | {h.contact for h in mech.hinges
+                                                            if h.contact in fs})
+    hinges = {}
+    for h in mech.hinges:
+        r = ring_of(arc.contacts[h.contact].label)
+        if h.contact not in fs and r is not None:
+            hinges[str(r)] = hinges.get(str(r), 0) + 1
+    return {"interfaces": len(faces), "open": opened,
+            "sliding": sorted(c for c in mech.sliding if c in fs), "hinges_by_ring": hinges}
+
+
 def ring_lines(arc, mech) -> list:
     """The lines that say how the rings separate in a mechanism: the interfaces that open or
     slide, and the hinges by ring."""
