@@ -727,3 +727,54 @@ ENTRIES += [
     Entry(CR, "| t / R | {} | {} | {} | {} | {} |", "py:crushing_thickness_table",
           r"t/R (\S+) (\S+) (\S+) (\S+) (\S+)", slow=True),
 ]
+
+RG = "docs/rings.md"
+RINGS = ("arcade", "--spans", "5", "--ring-thickness", "0.215", "0.215")
+COARSE = ("arcade", "--spans", "5", "--ring-thickness", "0.215", "0.215", "--brick", "0.5")
+K_L = r"k_l = (\S+) "
+ENTRIES += [
+    Entry(RG, "| one ring (`--rings 1 --thickness 0.43`: 77 voussoirs, four hinges) | {} |",
+          ("arcade", "--spans", "5", "--rings", "1", "--thickness", "0.43"), K_L, slow=True),
+    Entry(RG, "| two rings, interface friction 2 | {} |", RINGS + ("--ring-friction", "2"), K_L,
+          slow=True),
+    Entry(RG, "| two rings, interface friction 0.8 (the default) | {} |", RINGS, K_L, slow=True),
+    Entry(RG, "| two rings, interface friction 0.5 | {} |", RINGS + ("--ring-friction", "0.5"),
+          K_L, slow=True),
+    Entry(RG, "| two rings, friction 0.8 and cohesion 10 kPa | {} |",
+          RINGS + ("--ring-cohesion", "10"), K_L, slow=True),
+    Entry(RG, "The rings separate: {} of 154 interface contacts open and {} slide", RINGS,
+          r"the rings separate: (\d+) of 154 interface contacts open, (\d+) slide", slow=True),
+    Entry(RG, "16-voussoir arch to 1e-12 (k = {})", ("arcade", "--spans", "5", "--rings", "1",
+                                                     "--thickness", "0.43", "--brick", "0.5"),
+          K_L),
+    Entry(RG, "interface friction 2: k = {}, 3.7 %", COARSE + ("--ring-friction", "2"), K_L),
+    Entry(RG, "lower k ({}, {}, {} at mu = 2, 0.8, 0.5)", "py:rings_coarse",
+          r"k (\S+) (\S+) (\S+)"),
+]
+
+
+def rings_coarse() -> str:
+    """k_l of the coarse two-ring arch (16 bricks a ring) at interface friction 2, 0.8, 0.5."""
+    from archrock.cli import main
+
+    ks = []
+    for mu in ("2", "0.8", "0.5"):
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            main(list(COARSE + ("--ring-friction", mu)))
+        ks.append(re.search(K_L, out.getvalue()).group(1))
+    return "k " + " ".join(ks)
+FUNCTIONS[rings_coarse.__name__] = rings_coarse
+ENTRIES += [
+    Entry(RG, "With 20 kPa it is {}, within", RINGS + ("--ring-cohesion", "20"), K_L, slow=True),
+    Entry(RG, "With 50 kPa it is {}, above", RINGS + ("--ring-cohesion", "50"), K_L, slow=True),
+]
+ENTRIES += [
+    Entry(RG, f"| {what} | {{}} |", RINGS + ("--headers", m), K_L, slow=True)
+    for what, m in (("every 2 bricks (`--headers 2`)", "2"), ("every 4 bricks", "4"),
+                    ("every 8 bricks", "8"), ("every 16 bricks", "16"))
+] + [
+    Entry(RG, "| none | {} |", RINGS, K_L, slow=True),
+    Entry(RG, "with a header every 8 bricks, {} of 138 interface", RINGS + ("--headers", "8"),
+          r"the rings separate: (\d+) of 138 interface contacts open", slow=True),
+]

@@ -84,6 +84,9 @@ def add_arcade_parser(subparsers):
                    help="with a ground motion: output window [s] (default 3); the run goes on "
                         "to rest or collapse")
     add_motion_options(p)
+    from .rings import add_ring_options
+
+    add_ring_options(p)
     p.set_defaults(func=run_arcade)
     return p
 
@@ -255,6 +258,10 @@ def arcade_from_args(args):
                   ("--density", args.density)]
     pier_flags = [("--pier-height", args.pier_height), ("--pier-width", args.pier_width),
                   ("--pier-courses", args.pier_courses)]
+    from .rings import ringed_from_args, wants_rings
+
+    if wants_rings(args):
+        return ringed_from_args(args)
     if args.arcade:
         given = [f for f, v in arch_flags + pier_flags + [("--geometry", args.geometry),
                                                           ("--repeat", args.repeat)]
@@ -337,12 +344,18 @@ def format_result(arc, results, ramp=None, response=None, engine_ref=None) -> st
                           for k in present)
         lines.append(f"compressive strength f_c: {kinds} (a contact takes its weaker "
                      f"block's)")
+    from .rings import ring_lines
+
     for d, g in results.items():
         m = g.mechanism
         lines.append(f"k_{d} = {g.k:.6f} (static LP, HiGHS; the mechanism's virtual work "
                      f"{g.k_virtual_work:.6f}, |diff| {abs(g.k_virtual_work - g.k):.1e}; "
                      f"{m.dof} degree{'s' if m.dof != 1 else ''} of freedom, "
                      f"{len(m.moving)} blocks move)")
+        rings = ring_lines(arc, m)
+        if rings:  # a brick arch: hundreds of joints, summed by ring
+            lines += rings
+            continue
         lines.append(f"  hinges: {'; '.join(h.place for h in m.hinges) or '-'}")
         if g.k_bounds is not None:
             lines.append(f"  bracket of the static optimum: [{g.k_bounds[0]:.9f}, "
@@ -455,6 +468,10 @@ def run_arcade(args) -> int:
     if args.ramp and spec is not None:
         raise CLIError("--ramp: cannot be combined with a ground motion; give one")
     arc = arcade_from_args(args)
+    if (args.ramp or spec is not None) and any(c.friction is not None for c in arc.contacts):
+        raise CLIError("--arcade: its contacts carry their own friction (a brick arch's ring "
+                       "interfaces), which the contact engine does not model; leave out --ramp "
+                       "and the ground motion")
     from ..statics.graph import graph_limit
 
     results = {}
@@ -490,7 +507,10 @@ def run_arcade(args) -> int:
 
         written = write_arcade(arc, args.write)
     if plot:
-        plot = plot_arcade(arc, results, plot)
+        from .rings import plot_rings
+        from ..geometry.rings import interface_contacts
+
+        plot = (plot_rings if interface_contacts(arc) else plot_arcade)(arc, results, plot)
     if args.json:
         from ..geometry.blocks import arcade_counts
 
@@ -502,6 +522,12 @@ def run_arcade(args) -> int:
                           **({"fc": dict(arc.fc)} if arc.fc else {})},
                "k_l": results["l"].k, "k_r": results["r"].k,
                "l": results["l"].to_dict(), "r": results["r"].to_dict()}
+        from ..geometry.rings import interface_contacts
+
+        if interface_contacts(arc):  # a brick arch: how its rings separate
+            from .rings import ring_summary
+
+            out["rings"] = {d: ring_summary(arc, g.mechanism) for d, g in results.items()}
         if ramp is not None:
             out["ramp"] = ramp.to_dict()
         if response is not None:

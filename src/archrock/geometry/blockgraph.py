@@ -89,13 +89,17 @@ class Contact:
     """A joint between block ``a`` (-1: the ground) and block ``b``: the straight segment
     ``points`` ((2, 2) [m], end 0 then end 1); ``label`` where it is ("pier 2 foot", "span 1
     joint 3"); ``ends`` the names of its two ends ("intrados"/"extrados", "inner face"/"outer
-    face", "left face"/"right face")."""
+    face", "left face"/"right face"); ``friction`` this contact's own Coulomb coefficient (None:
+    the analysis's, by default no sliding) and ``cohesion`` [Pa] its own (|V| <= mu N + c L, with
+    ``friction`` only): a brick arch's ring interfaces (:mod:`~archrock.geometry.rings`)."""
 
     a: int
     b: int
     points: np.ndarray
     label: str = ""
     ends: tuple = ("end 0", "end 1")
+    friction: float | None = None
+    cohesion: float = 0.0
 
     def to_dict(self) -> dict:
         d = {"a": int(self.a), "b": int(self.b),
@@ -104,6 +108,11 @@ class Contact:
             d["label"] = self.label
         if tuple(self.ends) != ("end 0", "end 1"):
             d["ends"] = list(self.ends)
+        # written only where set: every existing document stays as it was
+        if self.friction is not None:
+            d["friction"] = float(self.friction)
+        if self.cohesion:
+            d["cohesion"] = float(self.cohesion)
         return d
 
     def place(self, end: int) -> str:
@@ -227,7 +236,16 @@ def _checked_contact(c: int, ct, blocks, extent: float, tol: float) -> Contact:
     if len(ends) != 2 or not all(isinstance(e, str) for e in ends):
         raise ArchInputError(f"contacts[{c}].ends: {ct.ends!r}; allowed two names")
     pts.setflags(write=False)
-    return Contact(a, b_, pts, str(ct.label), ends)
+    mu = ct.friction
+    if mu is not None:
+        mu = _check_scalar(f"contacts[{c}].friction", mu, 0.0, None,
+                           allowed="a finite friction coefficient > 0 (or none: no sliding)")
+    coh = _check_scalar(f"contacts[{c}].cohesion", ct.cohesion, 0.0, None, lo_open=False,
+                        allowed="a finite cohesion >= 0 Pa")
+    if coh > 0 and mu is None:
+        raise ArchInputError(f"contacts[{c}].cohesion: {coh:g} Pa without a friction; allowed "
+                             f"cohesion only on a contact with its own friction")
+    return Contact(a, b_, pts, str(ct.label), ends, mu, coh)
 
 
 def _check_grounded(blocks, contacts) -> None:
@@ -485,7 +503,8 @@ class Arcade:
             if not isinstance(ct, dict) or not {"a", "b", "points"} <= set(ct):
                 raise ArchInputError(f"contacts[{c}]: expected an object with a, b and points")
             contacts.append(Contact(ct["a"], ct["b"], ct["points"], str(ct.get("label", "")),
-                                    tuple(ct.get("ends", ("end 0", "end 1")))))
+                                    tuple(ct.get("ends", ("end 0", "end 1"))),
+                                    ct.get("friction"), ct.get("cohesion", 0.0)))
         spans, piers = data.get("spans", []), data.get("piers", [])
         for key, groups in (("spans", spans), ("piers", piers)):
             if not isinstance(groups, list) or not all(
@@ -514,8 +533,8 @@ class Arcade:
                              None if b.mass_properties is None else
                              (b.mass_properties[0], b.mass_properties[1] * flip,
                               b.mass_properties[2]), b._checked) for b in self.blocks)
-        contacts = tuple(Contact(c.a, c.b, c.points * flip, c.label, c.ends)
-                         for c in self.contacts)
+        contacts = tuple(Contact(c.a, c.b, c.points * flip, c.label, c.ends, c.friction,
+                                 c.cohesion) for c in self.contacts)
         return Arcade(blocks, contacts, self.density, f"{self.name} mirrored", self.spans,
                       self.piers, self.fc)
 

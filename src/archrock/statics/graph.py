@@ -197,15 +197,17 @@ class _Program:
         bounds.append((None, None))
         self.bounds = bounds
         self.friction = friction
-        if friction is not None:
-            rows = []
-            for c in range(nc):
-                for s in (1.0, -1.0):  # s V - mu (N0 + N1) <= 0
-                    row = np.zeros(nv)
-                    row[3 * c + 2] = s
-                    row[3 * c] = row[3 * c + 1] = -friction
-                    rows.append(row)
-            self.A_ub, self.b_ub = np.array(rows), np.zeros(len(rows))
+        self.mu, self.coh = _contact_strengths(arc, friction)
+        rows, rhs = [], []
+        for c in np.flatnonzero(np.isfinite(self.mu)):
+            for s in (1.0, -1.0):  # s V - mu (N0 + N1) <= c L (per W)
+                row = np.zeros(nv)
+                row[3 * c + 2] = s
+                row[3 * c] = row[3 * c + 1] = -self.mu[c]
+                rows.append(row)
+                rhs.append(self.coh[c])
+        if rows:
+            self.A_ub, self.b_ub = np.array(rows), np.array(rhs)
         else:
             self.A_ub = self.b_ub = None
         self.c = np.zeros(nv)
@@ -258,10 +260,40 @@ class _Program:
             p = ct.points[end] if point is None else np.asarray(point, float)
             rows += [vel_row(p, n), vel_row(p, t)]
         elif what == "slide":
-            mu = self.friction or 0.0
+            mu = float(self.mu[c]) if np.isfinite(self.mu[c]) else 0.0
             for e in (0, 1):
                 rows.append(vel_row(ct.points[e], n) - mu * slip_sign * vel_row(ct.points[e], t))
         return rows
+
+
+def _contact_strengths(arc: Arcade, friction: float | None):
+    """(mu, c) per contact: its own Coulomb coefficient, else ``friction`` (nan: no sliding),
+    and its cohesion times its length per total weight (the Coulomb row's right-hand side)."""
+    W = float(np.sum(arc.masses)) * G
+    mu = np.full(len(arc.contacts), np.nan if friction is None else float(friction))
+    coh = np.zeros(len(arc.contacts))
+    for c, ct in enumerate(arc.contacts):
+        if ct.friction is not None:
+            mu[c] = ct.friction
+            coh[c] = ct.cohesion * float(np.hypot(*(ct.points[1] - ct.points[0]))) / W
+    return mu, coh
+
+
+def _friction_words(arc: Arcade, mu: float | None) -> str:
+    """The method's words on friction: the analysis's, and the contacts' own."""
+    own = [c for c, ct in enumerate(arc.contacts) if ct.friction is not None]
+    out = ""
+    if mu is not None:
+        out += (f"; Coulomb friction mu = {mu:g} at every contact"
+                + (" without its own" if own else "") + " (associated flow)")
+    if own:
+        mus = sorted({arc.contacts[c].friction for c in own})
+        cmax = max(arc.contacts[c].cohesion for c in own)
+        out += (f"; {len(own)} contacts with their own friction (mu {mus[0]:g}"
+                + (f" to {mus[-1]:g}" if len(mus) > 1 else "")
+                + (f", cohesion up to {cmax / 1e3:g} kPa" if cmax > 0 else "")
+                + ", associated flow)")
+    return out
 
 
 def _solve(prog: _Program):
@@ -315,7 +347,7 @@ def _classify(prog: _Program, v: np.ndarray, tol: float):
         dn, dt = prog.relative(v, c)
         opened = dn > tol
         slid = np.abs(dt) > tol
-        mu = prog.friction
+        mu = float(prog.mu[c]) if np.isfinite(prog.mu[c]) else None
         # sliding: with friction the associated flow (dn = mu |dt| at both ends), without it
         # a tangential motion of a closed joint (which the dual excludes: kept for safety)
         if slid.any() and ((mu is not None and np.all(np.abs(dn - mu * np.abs(dt)) <= tol))
@@ -362,8 +394,7 @@ def graph_limit(arc: Arcade, direction: str, friction: float | None = None) -> G
     how = ("static LP on the graph of blocks (scipy HiGHS); mechanism from its dual (hinges "
            "where a contact opens at one end), rebuilt from its hinges and confirmed by its "
            f"virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
-    if mu is not None:
-        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+    how += _friction_words(prog.arc, mu)
     return GraphLimit(direction, k, k_vw, mech, forces, mu, how)
 
 
@@ -402,8 +433,7 @@ def _graph_limit_crushing(prog: _Program, direction: str, mu) -> GraphLimit:
            f"{rounds} round{'s' if rounds != 1 else ''}, k in [{bounds[0]:.9g}, "
            f"{bounds[1]:.9g}]); mechanism from the lower bound's dual, its hinges at the stress "
            f"blocks' centres, confirmed by its virtual work (|k_vw - k| = {abs(k_vw - k):.1e})")
-    if mu is not None:
-        how += f"; Coulomb friction mu = {mu:g} at every contact (associated flow)"
+    how += _friction_words(prog.arc, mu)
     return GraphLimit(direction, k, k_vw, mech, forces, mu, how, bounds, rows.zones(x))
 
 
@@ -442,7 +472,11 @@ def _rebuild(prog: _Program, direction: str, v: np.ndarray, hinges, lift, slide,
         raise NoMechanismError(f"arcade: the mechanism in direction {direction!r} does no work "
                                f"against the horizontal loads")
     vm = vm / work_h
-    k_vw = float(np.sum(prog.w * vm[:, 1]))
+    # the weights' rise, plus what cohesion dissipates wherever a contact slips, open or
+    # closed (c L |slip|: the tangential relative velocity is the same all along a joint)
+    k_vw = float(np.sum(prog.w * vm[:, 1])) + sum(
+        prog.coh[c] * float(np.abs(prog.relative(vm, c)[1][0]))
+        for c in np.flatnonzero(prog.coh > 0))
     # the velocities in SI: v of the mass centres [m/s], omega [rad/s] (per unit work rate)
     vel = np.column_stack([vm[:, 0], vm[:, 1], vm[:, 2] / prog.L])
     moving = tuple(int(i) for i in np.flatnonzero(

@@ -63,15 +63,18 @@ def _k_range(prog, k: int, contacts: list[int]):
     b = prog.b_eq[3 * k:3 * k + 3]
     bounds = [prog.bounds[j] for j in cols]
     A_ub = b_ub = None
-    if prog.friction is not None:
-        rows = []
-        for i in range(len(contacts)):
-            for s in (1.0, -1.0):
-                row = np.zeros(len(cols))
-                row[3 * i + 2] = s
-                row[3 * i] = row[3 * i + 1] = -prog.friction
-                rows.append(row)
-        A_ub, b_ub = np.array(rows), np.zeros(len(rows))
+    rows, rhs = [], []
+    for i, c in enumerate(contacts):
+        if not np.isfinite(prog.mu[c]):  # no sliding there
+            continue
+        for s in (1.0, -1.0):
+            row = np.zeros(len(cols))
+            row[3 * i + 2] = s
+            row[3 * i] = row[3 * i + 1] = -prog.mu[c]
+            rows.append(row)
+            rhs.append(prog.coh[c])
+    if rows:
+        A_ub, b_ub = np.array(rows), np.array(rhs)
     out = []
     for sign in (1.0, -1.0):  # least, then greatest k
         c = np.zeros(len(cols))
