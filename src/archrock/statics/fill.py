@@ -124,7 +124,7 @@ def _faces(arch: VoussoirArch, fp: FillPressure):
         z0, z1 = fp.level - y0, fp.level - y1
         # int (level - y) dy and int (level - y) y dy over each segment (signed by dy)
         f = (z0 * z0 - z1 * z1) / 2.0
-        m = fp.level * f - (fp.level * (y1 ** 2 - y0 ** 2) / 2.0 - (y1 ** 3 - y0 ** 3) / 3.0)
+        m = fp.level * (y1 ** 2 - y0 ** 2) / 2.0 - (y1 ** 3 - y0 ** 3) / 3.0
         for sign in (1.0, -1.0):
             on = sign * dy > 0.0
             force = sign * float(np.sum(f[on]))
