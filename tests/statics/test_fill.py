@@ -81,6 +81,30 @@ def test_mechanism_virtual_work_equals_the_program(pressed):
         assert fd.loaded  # the pressure acts somewhere
 
 
+def test_the_optimum_as_fixed_forces_is_its_own_fixed_point(bridge, pressed):
+    """The soil's forces of the optimum, applied as fixed forces (not load-proportional) in the
+    plain joint-line program, give the same multiplier: the loaded side is stable."""
+    from scipy.optimize import linprog
+
+    from archrock.statics.fill import _Pressed
+    from archrock.statics.sums import _origin
+
+    for fd in (pressed.left, pressed.right):
+        W = float(np.sum(bridge.masses)) * 9.80665
+        r = fd.sign * fd.resultant * 1e3 / W * fd.fraction
+        st0 = _Pressed(bridge, fd.direction, np.zeros(bridge.n + 1), 0.0, 0.0)
+        y = (fd.height - _origin(bridge)[1]) / bridge.reference_length
+        n1 = bridge.n + 1
+        left = (fd.voussoir[None, :] < np.arange(n1)[:, None]).astype(float)
+        py = -st0.A_m[:, 0]                      # the joints' intrados ends
+        st = _Pressed(bridge, fd.direction, left @ r, st0.A_N[:, 0] * (left @ r),
+                      left @ (r * y) - py * (left @ r))
+        res = linprog([0, 0, 0, -1.0], A_ub=st.A_ub, b_ub=st.b_ub, bounds=[(None, None)] * 4,
+                      method="highs")
+        assert res.status == 0
+        assert res.x[3] == pytest.approx(fd.k, rel=1e-9)
+
+
 def _rot(w, c, p):
     """Velocity of points p (k, 2) of a body turning at w about c."""
     d = np.asarray(p, float) - c

@@ -72,6 +72,9 @@ def _check_fill_flags(args, arch):
         if args.fill_friction_angle is not None:
             raise CLIError("--fill-friction-angle: needs --fill-pressure KAPPA")
         return
+    if getattr(arch, "fc", None) is not None:
+        raise CLIError("--fill-pressure: computed under Heyman's hypotheses (infinite "
+                       "compressive strength); leave out --fc (or the geometry file's \"fc\")")
     if not (getattr(arch, "recipe", None) or {}).get("fill"):
         raise CLIError("--fill-pressure: the arch has no fill; give one with --fill-level Y "
                        "[--fill-density RHO] and --shape/--span/--rise, or a geometry file whose "

@@ -48,7 +48,7 @@ from ..geometry import VoussoirArch
 from .hinges import DIRECTIONS, Mechanism
 from .liftoff import _DUAL_TOL, _kinematic_frame, _mechanism_of_rows, _row_terms
 from .lp import ThrustLine, _JointLineStatics, _thrust_from_x
-from .sums import _origin, _weights_centroids
+from .sums import _origin
 
 __all__ = ["FillPressure", "FillDirection", "FillResult", "fill_pressure_analysis",
            "passive_coefficient", "DEFAULT_FILL_FRICTION_DEG"]
@@ -146,6 +146,16 @@ class _Pressed(_JointLineStatics):
         self.fx = fx
         self.b_N = self.b_N + dN
         self.b_m = self.b_m + dm
+        self.b_ub = _rhs(self)
+
+
+def _rhs(st) -> np.ndarray:
+    """The right-hand sides of the joint-line rows (:class:`_JointLineStatics`'s order) from
+    ``st``'s constant terms b_N and b_m."""
+    b = np.concatenate([st.b_m, st.L * st.b_N - st.b_m])
+    if st.point.any():
+        b = np.concatenate([b, st.b_N[st.point]])
+    return b
 
     def forces(self, x):
         out = super().forces(x)
@@ -234,7 +244,7 @@ def _solve(arch: VoussoirArch, direction: str, faces, W: float) -> FillDirection
     origin, ref = _origin(arch), arch.reference_length
     r = sg * R / W                       # signed horizontal force per unit weight, f = 1
     y = (yh - origin[1]) / ref
-    px, py = st.A_m[:, 1], -st.A_m[:, 0]
+    py = -st.A_m[:, 0]                   # the joints' intrados ends
     nux = st.A_N[:, 0]
     n1 = arch.n + 1
     left = (vi[None, :] < np.arange(n1)[:, None]).astype(float)   # face left of joint j
@@ -248,7 +258,7 @@ def _solve(arch: VoussoirArch, direction: str, faces, W: float) -> FillDirection
     P = r.size
     c = np.zeros(4 + P)
     c[3] = -1.0
-    res = linprog(c, A_ub=A, b_ub=st.b_ub, bounds=[(None, None)] * 4 + [(0.0, 1.0)] * P,
+    res = linprog(c, A_ub=A, b_ub=_rhs(st), bounds=[(None, None)] * 4 + [(0.0, 1.0)] * P,
                   method="highs")
     if res.status == 3:
         raise NoMechanismError(f"arch: no mechanism opens under horizontal forces toward "
@@ -293,6 +303,10 @@ def fill_pressure_analysis(arch: VoussoirArch, kappa: float,
     without the pressure).  kappa = 0 returns that answer, bit for bit."""
     from .limit import limit_analysis
 
+    if getattr(arch, "fc", None) is not None:
+        raise ArchInputError(f"fc: {arch.fc!r} MPa; the fill's passive pressure is computed "
+                             f"under Heyman's hypotheses (infinite compressive strength): "
+                             f"allowed fc None")
     fp = pressure if pressure is not None else FillPressure.of(arch, kappa, phi_deg)
     base = limit_analysis(arch, verify=True) if base is None else base
     if fp.kappa == 0.0:
