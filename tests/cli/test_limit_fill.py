@@ -61,6 +61,8 @@ def test_fill_pressure_line_and_json(capsys):
     (("--fill-level", "3.6", "--fill-pressure", "0.3", "--fill-friction-angle", "90"),
      "archrock: error: --fill-friction-angle: 90.0; allowed 0 <= phi <= 89 deg"),
     (("--fill-density", "1800"), "archrock: error: --fill-density: needs --fill-level"),
+    (("--fill-level", "3.6", "--fill-pressure", "0.3", "--fc", "5"),
+     "archrock: error: --fill-pressure: computed under Heyman's hypotheses"),
     (("--fill-level", "3.6", "--fill-density", "0"), "archrock: error: --fill-density:"),
 ])
 def test_fill_flags_refused_by_name(capsys, extra, start):

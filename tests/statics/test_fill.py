@@ -173,7 +173,9 @@ def test_mirror_symmetry():
     assert mir.k_r == pytest.approx(r.k_l, rel=1e-9)
 
 
-def test_errors_name_the_field():
+def test_errors_name_the_field(bridge):
+    with pytest.raises(ArchInputError, match="^fc: 5.0 MPa; the fill's passive pressure"):
+        fill_pressure_analysis(bridge.with_fc(5.0), 0.3)
     with pytest.raises(ArchInputError, match="^fill: the arch has no fill"):
         fill_pressure_analysis(family_arch("circular", 10.0, 3.0, 0.5, 9, exact=False), 0.3)
     for kw, field in (({"kappa": -0.1}, "kappa"), ({"kappa": math.nan}, "kappa"),
