@@ -699,7 +699,7 @@ def fill_table() -> str:
     lines = []
     for kappa in FILL_KAPPAS:
         ks = []
-        for rise, level in (("1.5", "2.25"), ("3", "4")):
+        for rise, level in (("1.5", "2.5"), ("3", "4")):
             out = run_archrock(["limit", *FILL_ARCH, "--rise", rise, "--fill-level", level,
                                 "--fill-pressure", kappa, "--json"])
             d = _json.loads(out[:out.rindex("}") + 1])["fill_pressure"]
@@ -717,6 +717,6 @@ ENTRIES += [
     Entry(FILL, "k = {} with the fill's passive pressure ({} without)",
           ("limit", *FILL_ARCH, "--rise", "3", "--fill-level", "4", "--fill-pressure", "0.33"),
           r"k = (\S+) with the fill's passive pressure \((\S+) without\)"),
-    Entry(FILL, "a fill to y = 2.25 m takes k from {} down to", ("limit", *FILL_ARCH, "--rise",
+    Entry(FILL, "a fill to y = 2.5 m takes k from {} down to", ("limit", *FILL_ARCH, "--rise",
                                                                  "1.5"), K_MIN),
 ]
