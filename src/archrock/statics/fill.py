@@ -271,24 +271,33 @@ def _solve(arch: VoussoirArch, direction: str, faces, W: float) -> FillDirection
     lam = float(x[3])
     fx = left @ (r * f)
     thrust = _thrust_from_x(_Pressed(arch, direction, fx, C @ f, D @ f), x)
-    # the mechanism: each row's dual value is the rate of its relative rotation
+    # each joint-end row's dual value is the rate of its relative rotation (liftoff.py)
     mu = -np.asarray(res.ineqlin.marginals, float)[:2 * n1]
     mu = np.where(mu > _DUAL_TOL * max(np.max(mu), 1e-300), mu, 0.0)
-    w, g, Pj = _kinematic_frame(arch)
-    T, joint, _, _ = _row_terms(w, g, Pj)
-    # twist of voussoir i (about the statics' origin): the rows of joints 0..i
-    tw = np.stack([np.cumsum(np.bincount(joint, mu * T[k], minlength=n1))[:-1]
-                   for k in range(3)], axis=1)                   # (n, 3): vx, vy, omega
-    vx_g = tw[:, 0] - tw[:, 2] * g[:, 1]
-    vy_g = tw[:, 1] + tw[:, 2] * g[:, 0]
-    work_face = r * (tw[vi, 0] - tw[vi, 2] * y)                  # per unit fraction
-    horizontal = st.d * float(w @ vx_g)
-    wk = (-(-float(w @ vy_g)) - float(work_face @ f)) / horizontal if horizontal > 0 else \
-        math.nan
-    rows = np.flatnonzero(mu)
-    mech = _mechanism_of_rows(arch, rows, direction, lam)
+    wk, work_face = _virtual_work(arch, st.d, mu, vi, r, y, f)
+    mech = _mechanism_of_rows(arch, np.flatnonzero(mu), direction, lam)
     return FillDirection(direction, lam, wk, mech, thrust, vi, sg, R / 1e3, yh, f,
                          work_face * W)
+
+
+def _virtual_work(arch, d, mu, vi, r, y, f):
+    """(multiplier, work of each face per unit fraction) of the mechanism whose rows turn at
+    rates ``mu``: every voussoir's twist from the joints left of it, then the work of the
+    weights, of the horizontal loads (d = +1 toward +x) and of the soil's forces, per unit
+    weight."""
+    w, g, Pj = _kinematic_frame(arch)
+    T, joint, _, _ = _row_terms(w, g, Pj)
+    n1 = arch.n + 1
+    # twist of voussoir i about the statics' origin (vx, vy, omega): the rows of joints 0..i
+    tw = np.stack([np.cumsum(np.bincount(joint, mu * T[k], minlength=n1))[:-1]
+                   for k in range(3)], axis=1)
+    vx_g = tw[:, 0] - tw[:, 2] * g[:, 1]
+    vy_g = tw[:, 1] + tw[:, 2] * g[:, 0]
+    work_face = r * (tw[vi, 0] - tw[vi, 2] * y)
+    horizontal = d * float(w @ vx_g)
+    # lambda * horizontal - sum w vy (the weights) + sum f work (the soil) = 0
+    lam = (float(w @ vy_g) - float(work_face @ f)) / horizontal if horizontal > 0 else math.nan
+    return lam, work_face
 
 
 def fill_pressure_analysis(arch: VoussoirArch, kappa: float,
