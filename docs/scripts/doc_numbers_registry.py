@@ -778,3 +778,41 @@ ENTRIES += [
     Entry(RG, "with a header every 8 bricks, {} of 138 interface", RINGS + ("--headers", "8"),
           r"the rings separate: (\d+) of 138 interface contacts open", slow=True),
 ]
+
+FILL = "docs/fill.md"
+FILL_ARCH = ("--shape", "circular", "--span", "10", "--thickness", "0.5", "--voussoirs", "15")
+#: docs/fill.md's table: kappa -> k of the flat bridge arch and of the 3 m rise one
+FILL_KAPPAS = ("0", "0.1", "0.2", "0.33", "0.5", "1")
+
+
+def fill_table() -> str:
+    """``kappa K: k_flat k_segmental`` per row of docs/fill.md's table, from ``archrock limit
+    --fill-pressure K --json`` on both arches."""
+    import json as _json
+
+    from doc_numbers import run_archrock
+
+    lines = []
+    for kappa in FILL_KAPPAS:
+        ks = []
+        for rise, level in (("1.5", "2.5"), ("3", "4")):
+            out = run_archrock(["limit", *FILL_ARCH, "--rise", rise, "--fill-level", level,
+                                "--fill-pressure", kappa, "--json"])
+            d = _json.loads(out[:out.rindex("}") + 1])["fill_pressure"]
+            ks.append(min(d["k_l"], d["k_r"]))
+        lines.append(f"kappa {kappa}: {ks[0]!r} {ks[1]!r}")
+    return "\n".join(lines)
+
+
+FUNCTIONS[fill_table.__name__] = fill_table
+ENTRIES += [
+    Entry(FILL, f"| {kappa} | {{}} | {{}} |", "py:fill_table",
+          rf"kappa {re.escape(kappa)}: (\S+) (\S+)")
+    for kappa in FILL_KAPPAS
+] + [
+    Entry(FILL, "k = {} with the fill's passive pressure ({} without)",
+          ("limit", *FILL_ARCH, "--rise", "3", "--fill-level", "4", "--fill-pressure", "0.33"),
+          r"k = (\S+) with the fill's passive pressure \((\S+) without\)"),
+    Entry(FILL, "a fill to y = 2.5 m takes k from {} down to", ("limit", *FILL_ARCH, "--rise",
+                                                                 "1.5"), K_MIN),
+]

@@ -6,7 +6,8 @@ import sys
 from pathlib import Path
 
 from ._friction import NOT_GIVEN, friction_or_none, resolve_friction
-from ._parser import CLIError, emit_json, non_negative_int, positive_float
+from ._parser import (CLIError, emit_json, finite_float, non_negative_int, out_of_range,
+                      positive_float)
 from ..statics.friction import DEFAULT_FRICTION
 from .options import (add_geometry_options, add_spread_options, arch_from_args, figure_arg,
                       folder_arg)
@@ -44,8 +45,60 @@ def add_limit_parser(subparsers):
     p.add_argument("--supports-plot", metavar="FILE.png", default=None,
                    help="with --spread/--settlement and/or --capacity: figure of the displaced "
                         "arch with its line of thrust and/or of the capacity curve")
+    p.add_argument("--fill-pressure", type=_kappa, metavar="KAPPA", default=None,
+                   help="also compute k with the fill's mobilised passive pressure on the "
+                        "extrados where the arch sways into it: KAPPA (0 to 1000) times "
+                        "Rankine's full passive pressure K_p gamma z; needs a fill "
+                        "(--fill-level, or a geometry file whose family has one; docs/fill.md)")
+    p.add_argument("--fill-friction-angle", type=finite_float, metavar="DEG", default=None,
+                   help="with --fill-pressure: the fill's friction angle [deg], 0 to 89, for "
+                        "K_p = (1 + sin phi) / (1 - sin phi) (default 30: K_p = 3)")
     p.set_defaults(func=run_limit)
     return p
+
+
+def _kappa(text):
+    """argparse type of --fill-pressure: a finite number >= 0."""
+    v = finite_float(text)
+    if v < 0:
+        raise out_of_range(text, ">= 0 (a fraction of the full passive pressure)")
+    return v
+
+
+def _check_fill_flags(args, arch):
+    """--fill-pressure and --fill-friction-angle checked before any work: refused, naming the
+    flags, where the arch has no fill of its own (docs/fill.md)."""
+    if args.fill_pressure is None:
+        if args.fill_friction_angle is not None:
+            raise CLIError("--fill-friction-angle: needs --fill-pressure KAPPA")
+        return
+    if getattr(arch, "fc", None) is not None:
+        raise CLIError("--fill-pressure: computed under Heyman's hypotheses (infinite "
+                       "compressive strength); leave out --fc (or the geometry file's \"fc\")")
+    if not (getattr(arch, "recipe", None) or {}).get("fill"):
+        raise CLIError("--fill-pressure: the arch has no fill; give one with --fill-level Y "
+                       "[--fill-density RHO] and --shape/--span/--rise, or a geometry file whose "
+                       "family has a fill (on the arch alone: no piers, defects or support "
+                       "movement)")
+
+
+def _fill_pressure(args, arch, result):
+    """The FillResult of --fill-pressure (None without it; docs/fill.md)."""
+    phi, kappa = args.fill_friction_angle, args.fill_pressure
+    if kappa is None:
+        return None
+    from ..errors import ArchInputError
+    from ..statics.fill import DEFAULT_FILL_FRICTION_DEG, fill_pressure_analysis
+
+    try:
+        return fill_pressure_analysis(arch, kappa, DEFAULT_FILL_FRICTION_DEG if phi is None
+                                      else phi, base=result)
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("kappa:", "--fill-pressure:"), ("phi:", "--fill-friction-angle:")):
+            if msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
 
 
 def _min_pier_width(args, arch):
@@ -122,6 +175,7 @@ def run_limit(args) -> int:
         raise CLIError("--capacity: computed on the arch as built; leave out --spread and "
                        "--settlement (the capacity's curve gives every movement up to it)")
     arch = arch_from_args(args)
+    _check_fill_flags(args, arch)
     # the governing answer's friction (stated); the friction table only where --friction MU
     gov_mu, gov_stated = resolve_friction(args.friction)
     if args.friction is NOT_GIVEN:
@@ -181,16 +235,25 @@ def run_limit(args) -> int:
                 print(line)
             if gov is not None:
                 print(format_governing(gov, gov_stated))
+            if args.fill_pressure is not None:  # the soil only resists
+                print("Fill's passive pressure: no frictionless mechanism opens without it, "
+                      "nor with it (a resistance only)")
         return 0
     gov = _governing(arch, result, gov_mu)
+    fp = _fill_pressure(args, arch, result)
     if args.json:
         emit_json({**limit_summary(result, mt, **extra), **sup_json,
-                   "governing": {**gov.to_dict(), "friction_stated": gov_stated}})
+                   "governing": {**gov.to_dict(), "friction_stated": gov_stated},
+                   **({} if fp is None else {"fill_pressure": fp.to_dict()})})
     else:
         print(format_limit_table(result, mt, **extra))
         for line in sup_lines:
             print(line)
         print(format_governing(gov, gov_stated))
+        if fp is not None:
+            from ..reports.limit import format_fill_pressure
+
+            print(format_fill_pressure(fp))
     return 0
 
 

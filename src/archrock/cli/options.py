@@ -88,6 +88,12 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                         "the springings; default: constant)")
     g.add_argument("--joints", choices=JOINTS,
                    help="with --shape: joints normal to the centreline (default) or vertical")
+    g.add_argument("--fill-level", type=finite_float, metavar="Y",
+                   help="with --shape: a fill over the extrados up to y = Y [m] above the "
+                        "centreline's springings, carried as weight and horizontal inertia by "
+                        "the voussoir beneath (docs/fill.md)")
+    g.add_argument("--fill-density", type=finite_float, metavar="RHO",
+                   help="with --fill-level: the fill's density [kg/m^3] (default 1800)")
     g.add_argument("--voussoirs", type=_int, metavar="N",
                    help=f"number of voussoirs, 3 to 2000 (default {d['voussoirs']})")
     g.add_argument("--density", type=finite_float, metavar="RHO",

@@ -12,6 +12,8 @@ from .fields import FLAGS, flag_message, values
 #: Spelled out rather than taken from archrock.geometry so that --help needs no numpy.
 GEOMETRY_DEFAULTS = {"radius": 10.0, "embrace": 157.5, "thickness": 1.5, "voussoirs": 7,
                      "density": 2000.0}
+#: Default density of a fill given by --fill-level [kg/m^3]: a granular fill of about 18 kN/m^3.
+FILL_DENSITY = 1800.0
 #: The arch families and joint kinds (archrock.geometry.SHAPES / JOINTS, spelled out for --help
 #: without numpy; tests/test_cli.py checks they agree).
 SHAPES = ("circular", "pointed", "elliptical", "three-centred", "parabolic", "catenary")
@@ -114,7 +116,7 @@ def undamaged_arch_from_args(args):
     from ..geometry import nominal_arch
 
     circ = ("radius", "embrace")
-    fam = ("shape", "span", "rise", "thickness_crown", "joints")
+    fam = ("shape", "span", "rise", "thickness_crown", "joints", "fill_level", "fill_density")
     common = ("thickness", "voussoirs", "density")
     flags = circ + fam + common
     given = [f for f in flags if getattr(args, f, None) is not None]
@@ -141,15 +143,38 @@ def undamaged_arch_from_args(args):
 
         val = {f: getattr(args, f) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f]
                for f in common}
-        return family_arch(shape, args.span, args.rise, val["thickness"], val["voussoirs"],
-                           thickness_crown=args.thickness_crown, joints=args.joints or "normal",
-                           density=val["density"], name=shape)
+        return _with_fill_flags(lambda fill: family_arch(
+            shape, args.span, args.rise, val["thickness"], val["voussoirs"],
+            thickness_crown=args.thickness_crown, joints=args.joints or "normal",
+            density=val["density"], fill=fill, name=shape), args)
     vals = {f: (getattr(args, f, None) if getattr(args, f, None) is not None else GEOMETRY_DEFAULTS[f])
             for f in circ + common}
     is_oppenheim = not given or all(vals[f] == GEOMETRY_DEFAULTS[f] for f in circ + common)
     return nominal_arch(radius=vals["radius"], embrace_deg=vals["embrace"], thickness=vals["thickness"],
                         voussoirs=vals["voussoirs"], density=vals["density"],
                         name="Oppenheim" if is_oppenheim else "nominal")
+
+
+def _with_fill_flags(build, args):
+    """``build(fill)`` with the fill of --fill-level/--fill-density (None without them); the
+    library's messages about the fill worded with the flags."""
+    level, density = getattr(args, "fill_level", None), getattr(args, "fill_density", None)
+    if level is None and density is not None:
+        raise OptionError("--fill-density: needs --fill-level (the height y [m] of the fill's "
+                          "surface above the springings of the centreline)")
+    fill = None if level is None else {"level": level,
+                                       "density": FILL_DENSITY if density is None else density}
+    from ..errors import ArchInputError
+
+    try:
+        return build(fill)
+    except ArchInputError as exc:
+        msg = str(exc)
+        for field, flag in (("fill level:", "--fill-level:"), ("fill density:", "--fill-density:"),
+                            ("fill:", "--fill-level:")):
+            if fill is not None and msg.startswith(field):
+                raise ArchInputError(flag + msg[len(field):]) from None
+        raise
 
 
 def supports_from_args(args, arch):

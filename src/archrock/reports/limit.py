@@ -410,3 +410,17 @@ def crushing_lines(result) -> list[str]:
     else:
         lines.append(f"  method: {result.method}")
     return lines
+def format_fill_pressure(fp) -> str:
+    """Lines of a :class:`~archrock.statics.fill.FillResult`: k of each direction with the
+    fill's mobilised passive pressure and without it, the mechanism, the voussoirs it loads."""
+    p = fp.pressure
+    lines = ["", f"Fill's passive pressure: kappa = {p.kappa:g} x K_p = {p.K_p:.4g} (phi = "
+                 f"{p.phi_deg:g} deg), fill to y = {p.level:g} m at {p.density:g} kg/m^3 "
+                 f"(docs/fill.md)"]
+    for d, fd, k, k0 in (("l", fp.left, fp.k_l, fp.k0_l), ("r", fp.right, fp.k_r, fp.k0_r)):
+        more = "" if fd is None else (
+            f"; hinges {fd.mechanism.label}; pressure on voussoirs "
+            f"{', '.join(map(str, fd.loaded)) or 'none'}")
+        lines.append(f"  M_{d}: k = {k:.4f} with the pressure, {k0:.4f} without{more}")
+    lines.append(f"  k = {fp.k:.4f} with the fill's passive pressure ({fp.k0:.4f} without)")
+    return "\n".join(lines)
