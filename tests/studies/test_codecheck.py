@@ -183,6 +183,6 @@ def test_cli_codecheck(capsys, tmp_path):
     f = tmp_path / "bad.txt"
     f.write_text("0.1 0.3\n1 0.2\n")
     assert main(["codecheck", "--spectrum", str(f)]) == 2
-    assert main(["codecheck", "--fc", "1.0"]) == 0
+    assert main(["codecheck", "--confidence-factor", "1.0"]) == 0
     out = capsys.readouterr().out
     assert "0.370010" in out and "no check" in out

@@ -77,7 +77,8 @@ def arch_from_params(params: dict):
 
     ``{"geometry": {...}}`` an uploaded geometry file's JSON (either format), or
     ``{"shape", "span", "rise", "thickness", "thickness_crown", "joints", "voussoirs",
-    "density"}`` an arch of a family, or ``{"radius", "embrace", ...}`` a circular arch; with
+    "density"}`` an arch of a family, or ``{"radius", "embrace", ...}`` a circular arch, each
+    with an optional ``"fc"`` (compressive strength [MPa], as --fc; null: infinite); with
     ``"defects": ["3:thickness=0.5", ...]`` and ``"pier_height"``/``"pier_width"``/
     ``"pier_courses"`` as the CLI's --defect and --pier-* options.  Built by the CLI's own
     :func:`~archrock.options.arch_from_args`."""
@@ -108,6 +109,9 @@ def arch_from_params(params: dict):
         arch = _uploaded_arch(geometry, ns, params.get("name"))
     else:
         arch = arch_from_args(ns)
+    fc = number(params, "fc")
+    if fc is not None:  # as --fc: last, on whatever the other fields built
+        arch = arch.with_fc(fc)
     if arch.n > MAX_VOUSSOIRS:
         v, p = block_counts(arch)
         field = "pier_courses" if p else "voussoirs"

@@ -21,7 +21,7 @@ __all__ = ["number", "choice", "object_field", "request_object", "only", "fricti
 #: The fields of an arch (the JSON form of the CLI's geometry options).
 ARCH_FIELDS = ("shape", "span", "rise", "thickness", "thickness_crown", "joints", "voussoirs",
                "density", "radius", "embrace", "defects", "pier_height", "pier_width",
-               "pier_courses", "geometry", "name")
+               "pier_courses", "geometry", "name", "fc")
 
 #: Most voussoirs of an arch the page may ask for (the CLI allows more; an interactive page
 #: should answer in about a second).

@@ -51,7 +51,9 @@ def spectrum_from_args(args):
 
 def add_codecheck_options(p):
     g = p.add_argument_group("code check")
-    g.add_argument("--fc", type=finite_float, default=1.35, metavar="FC",
+    # --fc is the masonry's compressive strength (the arch options); the code's confidence
+    # factor FC takes its full name
+    g.add_argument("--confidence-factor", type=finite_float, default=1.35, metavar="FC",
                    help="confidence factor FC (default 1.35, knowledge level LC1)")
     g.add_argument("--q", type=finite_float, default=2.0, metavar="Q",
                    help="behaviour factor of the linear check (default 2.0)")
@@ -70,7 +72,7 @@ def codecheck_config_from_args(args):
             control = non_negative_int(control)
         except Exception:
             raise CLIError(f"--control: {args.control!r}; allowed 'centre' or a voussoir index >= 0") from None
-    return CodeCheckConfig(fc=args.fc, q=args.q, control=control, spectrum=spectrum_from_args(args))
+    return CodeCheckConfig(fc=args.confidence_factor, q=args.q, control=control, spectrum=spectrum_from_args(args))
 
 
 def add_codecheck_parser(subparsers):

@@ -92,9 +92,13 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
                    help=f"number of voussoirs, 3 to 2000 (default {d['voussoirs']})")
     g.add_argument("--density", type=finite_float, metavar="RHO",
                    help=f"density [kg/m^3], 1e-8 to 1e8 (default {d['density']:g}; cancels from k)")
+    g.add_argument("--fc", type=finite_float, metavar="MPA",
+                   help="the masonry's compressive strength f_c [MPa], 0.1 to 1000 (default: "
+                        "infinite, Heyman's no-crushing hypothesis); with --geometry it "
+                        "replaces the file's \"fc\" (docs/crushing.md)")
     g.add_argument("--geometry", metavar="FILE",
                    help="JSON geometry file, circular or polygon voussoirs (from the left "
-                        "springing); excludes the flags above")
+                        "springing); excludes the flags above but --fc")
     g.add_argument("--defect", action="append", metavar="SPEC",
                    help="a defect applied to the arch, repeatable: VOUSSOIR:thickness=F"
                         "[,side=intrados|extrados] (keeps F of its thickness, 0 < F < 1), "

@@ -42,7 +42,9 @@ def arch_from_dict(data, name: str = "arch") -> VoussoirArch:
     from ..errors import ArchInputError
 
     if isinstance(data, dict) and data.get("family") is not None:
-        return FamilyArch.from_recipe(data["family"], name=name)
+        from .base import _file_fc
+
+        return FamilyArch.from_recipe(data["family"], name=name).with_fc(_file_fc(data))
 
     vs = data.get("voussoirs") if isinstance(data, dict) else None
     if isinstance(vs, list) and vs and all(isinstance(v, dict) and "intrados" in v for v in vs):

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -105,6 +105,28 @@ def _check_density(value, name: str = "density") -> float:
     return _check_scalar(name, _check_scalar(name, value, 0.0, None, allowed=f"> 0 kg/m^3, "
                                              f"{allowed}"),
                          MIN_DENSITY, MAX_DENSITY, lo_open=False, hi_open=False, allowed=allowed)
+
+
+#: Range of the masonry's compressive strength f_c [MPa] (weak brickwork is 2-5 MPa, granite
+#: 100-200; below 0.1 MPa no arch stands, above 1000 MPa the answer is Heyman's to 1e-3).
+MIN_FC, MAX_FC = 0.1, 1000.0
+
+
+def _check_fc(value, name: str = "fc") -> float | None:
+    """A compressive strength f_c [MPa] in [MIN_FC, MAX_FC], or None (infinite strength)."""
+    if value is None:
+        return None
+    allowed = f"{MIN_FC:g} to {MAX_FC:g} MPa (or none: infinite strength)"
+    return _check_scalar(name, value, MIN_FC, MAX_FC, lo_open=False, hi_open=False,
+                         allowed=allowed)
+
+
+def _file_fc(data) -> float | None:
+    """The optional ``"fc"`` [MPa] of a geometry file's object, checked."""
+    fc = data.get("fc") if isinstance(data, dict) else None
+    if fc is not None and (isinstance(fc, bool) or not isinstance(fc, (int, float))):
+        raise ArchInputError(f"fc: expected a number (MPa), got {fc!r}")
+    return _check_fc(fc)
 
 
 def _check_points(name: str, values,
@@ -277,7 +299,26 @@ def _check_load_reach(loads, outlines) -> None:
 
 class VoussoirArch(ABC):
     """The interface of every arch (module docstring).  Subclasses are frozen dataclasses with
-    ``density``, ``name`` and ``loads`` fields and provide the masonry's geometry."""
+    ``density``, ``name``, ``loads`` and ``fc`` fields and provide the masonry's geometry.
+
+    ``fc``: the masonry's compressive strength [MPa], or None for infinite strength (Heyman's
+    no-crushing hypothesis, the default); the depth out of plane is 1 m, so a joint under a
+    normal force N [N/m] has a compressed zone N / (f_c * 1 m) deep."""
+
+    #: compressive strength [MPa]; None: infinite (the subclasses' dataclass field)
+    fc = None
+
+    def with_fc(self, fc) -> "VoussoirArch":
+        """The same arch with compressive strength ``fc`` [MPa] (None: infinite), checked."""
+        fc = _check_fc(fc)
+        if fc == self.fc:
+            return self
+        return replace(self, fc=fc)
+
+    def _fc_dict(self) -> dict:
+        """{"fc": f_c} for :meth:`to_dict` when the strength is finite, else {} (so that the
+        files of arches without it stay as they were, bit for bit)."""
+        return {} if self.fc is None else {"fc": self.fc}
 
     # ------------------------------------------------------------------ provided by the shape
     @property

@@ -18,8 +18,8 @@ import numpy as np
 
 from ..errors import ArchInputError
 from .base import (DEFAULT_DENSITY, MAX_VOUSSOIRS, Load, VoussoirArch, _check_length,
-                   _check_density, _check_load_reach, _check_scalar, _check_size,
-                   _check_voussoir_count,
+                   _check_density, _check_fc, _check_load_reach, _check_scalar, _check_size,
+                   _check_voussoir_count, _file_fc,
                    _finite_array, _loads)
 from .polygon import PolygonArch, as_polygon
 
@@ -71,7 +71,8 @@ class Arch(VoussoirArch):
 
     spans: angular span of each voussoir [rad]; radii: mean radius [m]; thicknesses [m];
     density [kg/m^3] (mass per metre of depth = density * area); loads: :class:`Load` objects
-    (or their dicts), masses attached to voussoirs.
+    (or their dicts), masses attached to voussoirs; fc: compressive strength [MPa] or None
+    (infinite).
     """
 
     spans: np.ndarray
@@ -80,6 +81,7 @@ class Arch(VoussoirArch):
     density: float = DEFAULT_DENSITY
     name: str = field(default="arch", compare=False)
     loads: tuple = ()
+    fc: float | None = None
 
     def __post_init__(self):
         spans = _finite_array("spans", self.spans)
@@ -115,6 +117,7 @@ class Arch(VoussoirArch):
         object.__setattr__(self, "radii", radii)
         object.__setattr__(self, "thicknesses", thick)
         object.__setattr__(self, "density", density)
+        object.__setattr__(self, "fc", _check_fc(self.fc))
         object.__setattr__(self, "loads", _loads(self.loads, n))
         inner, outer = self.contact_inner, self.contact_outer
         if np.any(outer <= inner):
@@ -212,7 +215,7 @@ class Arch(VoussoirArch):
         n = self.n
         loads = tuple(Load(n - 1 - ld.voussoir, ld.mass, ld.mirrored()) for ld in self.loads)
         return Arch(self.spans[::-1].copy(), self.radii[::-1].copy(), self.thicknesses[::-1].copy(),
-                    self.density, name=f"{self.name} (mirrored)", loads=loads)
+                    self.density, name=f"{self.name} (mirrored)", loads=loads, fc=self.fc)
 
     def scaled(self, factor: float) -> "Arch":
         """The same proportions, every length multiplied by ``factor`` (loads: masses by
@@ -221,12 +224,12 @@ class Arch(VoussoirArch):
         loads = tuple(Load(ld.voussoir, ld.mass * f * f, (ld.at[0] * f, ld.at[1] * f))
                       for ld in self.loads)
         return Arch(self.spans.copy(), self.radii * f, self.thicknesses * f, self.density,
-                    self.name, loads)
+                    self.name, loads, self.fc)
 
     def with_thickness_factor(self, factor: float) -> "Arch":
         """Every voussoir thickness multiplied by ``factor`` (radii, spans and loads unchanged)."""
         return Arch(self.spans.copy(), self.radii.copy(), self.thicknesses * factor, self.density,
-                    self.name, self.loads)
+                    self.name, self.loads, self.fc)
 
     def is_symmetric(self, tol: float = 1e-12) -> bool:
         """Whether the arch is its own mirror image: spans to ``tol`` rad, radii and thicknesses
@@ -248,6 +251,7 @@ class Arch(VoussoirArch):
             ],
             "density": self.density,
             **({"loads": [ld.to_dict() for ld in self.loads]} if self.loads else {}),
+            **self._fc_dict(),
         }
 
     @classmethod
@@ -286,7 +290,8 @@ class Arch(VoussoirArch):
         if not isinstance(loads, (list, tuple)):
             raise ArchInputError("loads: expected a list of {voussoir, mass, at} objects")
         return cls(np.radians(spans), np.array(radii), np.array(thick), float(density), name=name,
-                   loads=tuple(Load.from_dict(ld, i) for i, ld in enumerate(loads)))
+                   loads=tuple(Load.from_dict(ld, i) for i, ld in enumerate(loads)),
+                   fc=_file_fc(data))
 
     def __repr__(self) -> str:
         return (f"Arch(name={self.name!r}, n={self.n}, embrace={math.degrees(self.embrace):.4g} deg, "

@@ -19,7 +19,7 @@ kinematics that build it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -222,6 +222,17 @@ class DisplacedArch(VoussoirArch):
     @property
     def density(self) -> float:
         return self.base.density
+
+    @property
+    def fc(self) -> float | None:
+        """The base arch's compressive strength [MPa] (None: infinite)."""
+        return self.base.fc
+
+    def with_fc(self, fc) -> "DisplacedArch":
+        """The same moves of the base arch with compressive strength ``fc`` [MPa]."""
+        if fc == self.fc:
+            return self
+        return replace(self, base=self.base.with_fc(fc))
 
     @cached_property
     def loads(self) -> tuple:

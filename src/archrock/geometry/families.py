@@ -41,8 +41,8 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, Load, _check_density, _check_length, _check_scalar,
-                   _check_voussoir_count)
+from .base import (DEFAULT_DENSITY, Load, _check_density, _check_fc, _check_length,
+                   _check_scalar, _check_voussoir_count)
 from .centreline import SHAPES, centreline, circular_radius
 from .circular import nominal_arch
 from .faces import (_check_curvature, _fill, _vertical_joints_that_cut, _voussoir_lines,
@@ -87,7 +87,7 @@ class FamilyArch(PolygonArch):
         r["thickness"] = r["thickness"] * f
         if r["thickness_crown"] is not None:
             r["thickness_crown"] = r["thickness_crown"] * f
-        return family_arch(**r, exact=False)
+        return family_arch(**r, exact=False, fc=self.fc)
 
     def scaled(self, factor: float) -> "FamilyArch":
         """Every length multiplied by ``factor`` (loads by factor^2; the fill level by factor)."""
@@ -101,7 +101,7 @@ class FamilyArch(PolygonArch):
             r["fill"] = {**r["fill"], "level": r["fill"]["level"] * f}
         r["loads"] = tuple(Load(ld.voussoir, ld.mass * f * f, (ld.at[0] * f, ld.at[1] * f))
                            for ld in r["loads"])
-        return family_arch(**r, exact=False)
+        return family_arch(**r, exact=False, fc=self.fc)
 
     def to_dict(self) -> dict:
         """The polygon geometry format with the family's recipe under ``"family"`` (shape,
@@ -190,7 +190,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
                 thickness_crown: float | None = None, joints: str = "normal",
                 density: float = DEFAULT_DENSITY, loads=(), fill: dict | None = None,
                 name: str | None = None, points_per_rad: float = POINTS_PER_RAD,
-                exact: bool = True):
+                exact: bool = True, fc: float | None = None):
     """An arch of a common family (module docstring): span S [m] between the centreline's
     springings, rise F [m] of the centreline, thickness t [m] normal to the centreline at the
     springings (``thickness_crown`` at the crown, linear in arc length between; default t),
@@ -208,6 +208,9 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
     joints, is carried as a :class:`Load` of that voussoir (mass rho x area at the area's
     centroid).  Assumption: the fill moves rigidly with its voussoir (no thrust of its own, no
     friction between neighbouring columns): it adds weight and inertia only.
+
+    ``fc``: the masonry's compressive strength [MPa] (None: infinite); a property of the
+    arch, not of the family, so it stays out of the recipe (files write it beside it).
 
     ``points_per_rad``: segments of the intrados/extrados polylines per radian of turning of
     the centreline (default: < 1e-5 relative area error on a semicircle).
@@ -233,6 +236,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
     n = _check_voussoir_count(_positive_int("voussoirs", voussoirs, 3))
     ppr = _check_scalar("points_per_rad", points_per_rad, 0.0, None, allowed="> 0")
     density = _check_density(density)
+    fc = _check_fc(fc)
     user_loads = tuple(ld if isinstance(ld, Load) else Load.from_dict(ld, i)
                        for i, ld in enumerate(loads or ()))
     fill = _checked_fill(fill)
@@ -243,7 +247,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
                   name=name, points_per_rad=ppr)
 
     if exact and shape == "circular" and joints == "normal" and t_crown == thickness and fill is None:
-        return _exact_circular(span, rise, thickness, n, density, name, user_loads)
+        return _exact_circular(span, rise, thickness, n, density, name, user_loads).with_fc(fc)
 
     line = centreline(shape, span, rise)
     big_l = line.length
@@ -258,7 +262,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
     regions, fill_loads = ((), ())
     if fill is not None:
         regions, fill_loads = _fill(extr, fill)
-    return FamilyArch(tuple(intr), tuple(extr), density, name, user_loads + fill_loads,
+    return FamilyArch(tuple(intr), tuple(extr), density, name, user_loads + fill_loads, fc,
                       recipe=recipe, fill_regions=regions)
 
 

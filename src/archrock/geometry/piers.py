@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import Load, VoussoirArch, _check_scalar
+from .base import Load, VoussoirArch, _check_scalar, _file_fc
 from .circular import polygon_form
 from .polygon import PolygonArch, _signed_area, _simple
 
@@ -85,17 +85,17 @@ class ArchOnPiers(PolygonArch, reads_block_kinds=True):
                 raise ArchInputError(f"voussoirs[{i}].kind: {k!r}; allowed "
                                      f"{', '.join(BLOCK_KINDS)}")
             kinds.append(k)
-        return cls(intr, extr, density, name, loads, block_kinds=tuple(kinds))
+        return cls(intr, extr, density, name, loads, _file_fc(data), block_kinds=tuple(kinds))
 
     def mirrored(self) -> "ArchOnPiers":
         """The mirror image about x = 0, block kinds in the new order."""
         m = super().mirrored()
-        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads,
+        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads, m.fc,
                            block_kinds=self.block_kinds[::-1])
 
     def scaled(self, factor: float) -> "ArchOnPiers":
         m = super().scaled(factor)
-        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads,
+        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads, m.fc,
                            block_kinds=self.block_kinds)
 
     @property
@@ -321,11 +321,11 @@ def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int 
     loads = tuple(Load(ld.voussoir + cl, ld.mass, ld.at) for ld in poly.loads)
     name = name or f"{arch.name} on piers"
     if _trusted and isinstance(arch, PolygonArch):
-        return _unchecked(intr, extr, poly.density, name, loads, kinds)
-    return ArchOnPiers(intr, extr, poly.density, name, loads, block_kinds=kinds)
+        return _unchecked(intr, extr, poly.density, name, loads, kinds, poly.fc)
+    return ArchOnPiers(intr, extr, poly.density, name, loads, poly.fc, block_kinds=kinds)
 
 
-def _unchecked(intr, extr, density, name, loads, kinds) -> ArchOnPiers:
+def _unchecked(intr, extr, density, name, loads, kinds, fc=None) -> ArchOnPiers:
     """An ArchOnPiers without the polygon checks of PolygonArch (each block a simple polygon of
     positive area, ...), for searches that rebuild the piers many times under voussoirs already
     checked (a validated PolygonArch): the pier blocks are rectangles or trapezoids by
@@ -341,7 +341,7 @@ def _unchecked(intr, extr, density, name, loads, kinds) -> ArchOnPiers:
     n = len(intr)
     for key, value in (("intrados", tuple(ro[:n])), ("extrados", tuple(ro[n:])),
                        ("density", float(density)), ("name", name), ("loads", tuple(loads)),
-                       ("block_kinds", tuple(kinds))):
+                       ("block_kinds", tuple(kinds)), ("fc", fc)):
         object.__setattr__(a, key, value)
     return a
 
@@ -536,9 +536,9 @@ def reshape_piers(arch, kinds, left: dict | None = None, right: dict | None = No
             if not _simple(poly) or _signed_area(poly) <= 1e-12 * arch.size ** 2:
                 raise ArchInputError(f"voussoirs[{i}]: the changed pier block is not a simple "
                                      f"polygon of positive area")
-        return _unchecked(intr, extr, arch.density, name or arch.name, loads, kinds)
+        return _unchecked(intr, extr, arch.density, name or arch.name, loads, kinds, arch.fc)
     return ArchOnPiers(tuple(intr), tuple(extr), arch.density, name or arch.name, tuple(loads),
-                       block_kinds=tuple(kinds))
+                       arch.fc, block_kinds=tuple(kinds))
 
 
 def _check_change(side: str, change, run) -> dict:
@@ -649,4 +649,4 @@ def arch_without_piers(arch: ArchOnPiers) -> PolygonArch:
                   if ld.voussoir in vous)
     return PolygonArch(tuple(arch.intrados[i] for i in vous),
                        tuple(arch.extrados[i] for i in vous), arch.density,
-                       f"{arch.name} (voussoirs)", loads)
+                       f"{arch.name} (voussoirs)", loads, arch.fc)

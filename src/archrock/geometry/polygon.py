@@ -18,9 +18,9 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ArchInputError
-from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_density, _check_load_reach,
-                   _check_points, _check_scalar, _check_size, _check_voussoir_count, _loads,
-                   polygon_properties)
+from .base import (DEFAULT_DENSITY, Load, VoussoirArch, _check_density, _check_fc,
+                   _check_load_reach, _check_points, _check_scalar, _check_size,
+                   _check_voussoir_count, _file_fc, _loads, polygon_properties)
 
 __all__ = ["PolygonArch", "FACE_TOLERANCE", "as_polygon"]
 
@@ -77,13 +77,15 @@ def _simple(poly: np.ndarray) -> bool:
 class PolygonArch(VoussoirArch):
     """An arch of any shape (module docstring).  intrados, extrados: one polyline per voussoir
     from the left springing, each a sequence of [x, y] points [m] ordered from left to right;
-    density [kg/m^3]; loads: :class:`Load` objects (or their dicts)."""
+    density [kg/m^3]; loads: :class:`Load` objects (or their dicts); fc: compressive strength
+    [MPa] or None (infinite)."""
 
     intrados: tuple
     extrados: tuple
     density: float = DEFAULT_DENSITY
     name: str = field(default="arch", compare=False)
     loads: tuple = ()
+    fc: float | None = None
 
     #: The subclass that reads blocks with a ``"kind"`` (:class:`~archrock.geometry.ArchOnPiers`,
     #: which names itself with ``reads_block_kinds=True``: piers sit above this module).
@@ -111,6 +113,7 @@ class PolygonArch(VoussoirArch):
         pts = np.vstack(intr + extr)
         _check_size("voussoirs: the arch's extent", float(np.max(np.ptp(pts, axis=0))))
         object.__setattr__(self, "density", _check_density(self.density))
+        object.__setattr__(self, "fc", _check_fc(self.fc))
         object.__setattr__(self, "loads", _loads(self.loads, n))
         self._check_order()
         for i in range(n):
@@ -235,14 +238,14 @@ class PolygonArch(VoussoirArch):
         extr = tuple((p * flip)[::-1] for p in self.extrados[::-1])
         n = self.n
         loads = tuple(Load(n - 1 - ld.voussoir, ld.mass, ld.mirrored()) for ld in self.loads)
-        return PolygonArch(intr, extr, self.density, f"{self.name} (mirrored)", loads)
+        return PolygonArch(intr, extr, self.density, f"{self.name} (mirrored)", loads, self.fc)
 
     def scaled(self, factor: float) -> "PolygonArch":
         f = _check_scalar("factor", factor, 0.0, None, allowed="> 0")
         loads = tuple(Load(ld.voussoir, ld.mass * f * f, (ld.at[0] * f, ld.at[1] * f))
                       for ld in self.loads)
         return PolygonArch(tuple(p * f for p in self.intrados), tuple(p * f for p in self.extrados),
-                           self.density, self.name, loads)
+                           self.density, self.name, loads, self.fc)
 
     # ------------------------------------------------------------------ serialisation
     def to_dict(self) -> dict:
@@ -252,6 +255,7 @@ class PolygonArch(VoussoirArch):
                           for p, q in zip(self.intrados, self.extrados)],
             "density": self.density,
             **({"loads": [ld.to_dict() for ld in self.loads]} if self.loads else {}),
+            **self._fc_dict(),
         }
 
     @classmethod
@@ -263,7 +267,7 @@ class PolygonArch(VoussoirArch):
                 and PolygonArch._block_kinds_reader is not None:
             return PolygonArch._block_kinds_reader.from_dict(data, name=name)
         intr, extr, density, loads = cls._parse_dict(data)
-        return cls(intr, extr, density, name, loads)
+        return cls(intr, extr, density, name, loads, _file_fc(data))
 
     @staticmethod
     def _parse_dict(data):
@@ -301,4 +305,5 @@ def as_polygon(arch, points_per_arc: int = 40) -> PolygonArch:
         ri, ro = arch.intrados_radii[i], arch.extrados_radii[i]
         intr.append(np.column_stack([ri * np.cos(ang), ri * np.sin(ang)]))
         extr.append(np.column_stack([ro * np.cos(ang), ro * np.sin(ang)]))
-    return PolygonArch(tuple(intr), tuple(extr), arch.density, f"{arch.name} (polygon)", arch.loads)
+    return PolygonArch(tuple(intr), tuple(extr), arch.density, f"{arch.name} (polygon)", arch.loads,
+                       arch.fc)

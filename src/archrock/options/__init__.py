@@ -8,8 +8,8 @@ numpy to import: the library is imported inside the builders.
 
 from __future__ import annotations
 
-from .arch import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args, piers_from_args,
-                   supports_from_args, undamaged_arch_from_args)
+from .arch import (GEOMETRY_DEFAULTS, JOINTS, SHAPES, arch_from_args, fc_from_args,
+                   piers_from_args, supports_from_args, undamaged_arch_from_args)
 from .errors import OptionError
 from .jsonsafe import json_safe
 from .specs import (impact_spec_from_args, model_from_args, motion_from_args,
@@ -17,6 +17,6 @@ from .specs import (impact_spec_from_args, model_from_args, motion_from_args,
 
 __all__ = [
     "OptionError", "json_safe", "GEOMETRY_DEFAULTS", "SHAPES", "JOINTS", "arch_from_args",
-    "undamaged_arch_from_args", "piers_from_args", "supports_from_args", "spreads",
+    "fc_from_args", "undamaged_arch_from_args", "piers_from_args", "supports_from_args", "spreads",
     "motion_spec_from_args", "motion_from_args", "impact_spec_from_args", "model_from_args",
 ]

@@ -23,7 +23,9 @@ def arch_from_args(args):
     :class:`~archrock.geometry.Arch`, or a family's (the exact Arch for a circular one with
     normal joints and constant thickness, else a FamilyArch), with the --defect defects applied
     (archrock.geometry.apply_defect), on the piers of --pier-height/--pier-width (an
-    ArchOnPiers, archrock.geometry.with_piers); raises ArchInputError / OptionError on bad input."""
+    ArchOnPiers, archrock.geometry.with_piers), with the compressive strength of --fc (applied
+    last, on whatever the other options built; None keeps the arch's own, a file's "fc");
+    raises ArchInputError / OptionError on bad input."""
     arch = undamaged_arch_from_args(args)
     specs = list(getattr(args, "defect", None) or ())
     # a pier tilt turns a pier: applied once the arch stands on its piers; the others number
@@ -36,7 +38,22 @@ def arch_from_args(args):
     arch = piers_from_args(args, arch)
     if tilts:
         arch = apply_defects(arch, tilts)
-    return supports_from_args(args, arch)
+    return fc_from_args(args, supports_from_args(args, arch))
+
+
+def fc_from_args(args, arch):
+    """``arch`` with the compressive strength of --fc [MPa] (``args.fc``), or ``arch`` itself
+    when it is not given; a value out of range is refused naming --fc."""
+    fc = getattr(args, "fc", None)
+    if fc is None:
+        return arch
+    from ..errors import ArchInputError
+
+    try:
+        return arch.with_fc(fc)
+    except ArchInputError as exc:
+        msg = str(exc)
+        raise ArchInputError("--fc" + msg[2:] if msg.startswith("fc:") else msg) from None
 
 
 def piers_from_args(args, arch):
