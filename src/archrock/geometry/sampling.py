@@ -264,7 +264,10 @@ class ArchSampler:
         if self.spreads.fc:
             u = self.strength_uniforms(start, count)[0] if u is None else u
             fc *= 1.0 + self.spreads.fc * float(u)
-        return arch.with_fc(fc)
+        try:
+            return arch.with_fc(fc)
+        except ArchInputError as exc:  # a draw below the strengths allowed
+            return InvalidSampleError(f"not a valid arch: {exc}")
 
     def _no_piers(self) -> str:
         given = ", ".join(f"{n} {getattr(self.spreads, n):g}" for n, *_ in PIER_SPREADS
@@ -386,9 +389,9 @@ class ArchSampler:
                              name=f"sample {int(index)}")
             except ArchInputError as exc:
                 raise InvalidSampleError(f"not a valid arch: {exc}") from None
-            return self._with_strength(drawn, int(index))
-        return self._with_strength(self._family(self.uniforms(index, 1)[0], int(index)),
-                                   int(index))
+            return _raised(self._with_strength(drawn, int(index)))
+        return _raised(self._with_strength(self._family(self.uniforms(index, 1)[0], int(index)),
+                                           int(index)))
 
     def _family(self, u, index: int):
         s = self.spreads
@@ -453,3 +456,10 @@ class ArchSampler:
         """What draws its arches, by attribute name (nominal, spreads, seed) and the block size."""
         return {"nominal": self.nominal.to_dict(), "spreads": self.spreads.to_dict(),
                 "seed": self.seed, "block": BLOCK}
+
+
+def _raised(drawn):
+    """``drawn`` itself, or raised where it is the reason why the draw is no arch."""
+    if isinstance(drawn, Exception):
+        raise drawn
+    return drawn
