@@ -174,7 +174,8 @@ def _no_sliding(lim, needed, mu) -> Capacity:
             what = "no finite friction" if need is None else f"mu >= {need:.4f}"
             holds[d], why[d] = False, (f"needs {what}, more than mu = {mu:g}: the joints slide "
                                        f"first")
-    hyp = ("no tension", "no crushing",
+    fc = getattr(lim.arch, "fc", None)
+    hyp = ("no tension", "no crushing" if fc is None else f"crushing at f_c = {fc:g} MPa",
            "no sliding" + ("" if mu is None else f" (checked against mu = {mu:g})"))
     m = {d: lim.mechanism(d) for d in DIRS}
     return Capacity(NO_SLIDING, hyp, float(lim.k_l), float(lim.k_r),
@@ -297,7 +298,19 @@ def _engine(arch, lim, mu, needed, ref, progress):
     res = ramp(arch, settings, progress, limit=lim)
     eng = {d: getattr(res, d) for d in DIRS}
     holds, why, findings, refined = {}, {}, [], {}
+    fc = getattr(arch, "fc", None)
     for d in DIRS:
+        k_fc = getattr(lim, f"k_{d}")
+        if fc is not None and eng[d].multiplier > k_fc:
+            # rigid blocks cannot crush: above the finite-strength limit the engine's value is
+            # not this arch's (docs/crushing-dynamics.md)
+            holds[d], why[d] = False, (f"rigid blocks of infinite strength: {eng[d].multiplier:.4f}"
+                                       f" is above the limit analysis with f_c = {fc:g} MPa "
+                                       f"({k_fc:.4f}); crushing governs")
+            findings.append(f"M_{d}: the contact engine's blocks do not crush; with f_c = "
+                            f"{fc:g} MPa the limit analysis {k_fc:.4f} governs, not the "
+                            f"engine's {eng[d].multiplier:.4f}.")
+            continue
         holds[d], why[d], found, refined_d = _engine_direction(
             arch, d, ref[d], eng[d], settings, run_mu, progress)
         findings.extend(found)
