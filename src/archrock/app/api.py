@@ -180,8 +180,9 @@ def limit(params: dict) -> dict:
     hinges = {}
     for d in ("l", "r"):
         m = result.mechanism(d)
+        pts = _hinge_points(arch, result, d)
         hinges[d] = [{"label": lab, "joint": int(h.joint), "edge": h.edge,
-                      "point": xy(arch.joint_point(h.joint, h.edge))}
+                      "point": xy(pts[h.joint, 0 if h.edge == "intrados" else 1])}
                      for lab, h in m.labelled()]
     lines = {d: xy((result.thrust_l if d == "l" else result.thrust_r).polyline)
              for d in ("l", "r")}
@@ -189,7 +190,18 @@ def limit(params: dict) -> dict:
         tr = extra["thrust"]
         lines["min"], lines["max"] = xy(tr.line_min.polyline), xy(tr.line_max.polyline)
     return {"summary": summary, "drawing": arch_drawing(arch), "thrust_lines": lines,
-            "hinges": hinges, "elapsed_ms": 1e3 * (time.perf_counter() - t0)}
+            "hinges": hinges, "fc": arch.fc, "elapsed_ms": 1e3 * (time.perf_counter() - t0)}
+
+
+def _hinge_points(arch, result, d: str) -> np.ndarray:
+    """The joints' end points (n+1, 2, 2) [m] with the hinges of M_d where the statics put
+    them: at the edges, or with a finite f_c half a stress block in from them."""
+    from ..dynamics.finite import collapse_zones, inset_joint_points
+
+    zones = collapse_zones(result, d)
+    if zones is None:
+        return np.asarray(arch.joint_points, float)
+    return inset_joint_points(arch, result.mechanism(d), zones)
 
 
 # ---------------------------------------------------------------------------- dynamics
@@ -349,6 +361,7 @@ def four_link_response(req: dict) -> dict:
         "record": req["record"],
         "exaggerate": ex,
         "model": "fourlink", "valid": four_link_valid(chosen), "dynamics": chosen.to_dict(),
+        "fc": arch.fc,  # None: infinite strength; else the hinges are inset (chain_links)
         "label": ("four-link model: " if four_link_valid(chosen)
                   else "four-link model, not valid here: ") + chosen.reason,
         "elapsed_ms": 1e3 * (time.perf_counter() - t0),
