@@ -72,11 +72,17 @@ class Mechanism:
     hinges: tuple[Hinge, ...]
     multiplier: float
     lift_off: tuple[int, ...] = ()
+    #: joints crushed through at collapse (finite f_c: the stress block fills the joint, which
+    #: shortens as it turns); empty under Heyman's hypotheses
+    crushed: tuple[int, ...] = ()
 
     @property
     def kind(self) -> str:
-        """'four-hinge' (a rocking chain of three links), 'lift-off', or 'three-hinge' (three
-        hinges on one line: a degenerate chain the dual can give, no four-link model either)."""
+        """'four-hinge' (a rocking chain of three links), 'lift-off', 'crushing' (a joint
+        crushed through), or 'three-hinge' (three hinges on one line: a degenerate chain the
+        dual can give, no four-link model either)."""
+        if self.crushed:
+            return "crushing"
         if self.lift_off:
             return "lift-off"
         return "four-hinge" if len(self.hinges) == 4 else f"{len(self.hinges)}-hinge".replace(
@@ -84,7 +90,7 @@ class Mechanism:
 
     @property
     def is_four_hinge(self) -> bool:
-        return not self.lift_off and len(self.hinges) == 4
+        return not self.lift_off and not self.crushed and len(self.hinges) == 4
 
     @property
     def joints(self) -> tuple[int, ...]:
@@ -96,10 +102,15 @@ class Mechanism:
         e = extrados, s = separates: lift-off), e.g. '0i-3e-5i-7e' or '0s-4i-7e'."""
         parts = [(h.joint, f"{h.joint}{h.edge[0]}") for h in self.hinges]
         parts += [(j, f"{j}s") for j in self.lift_off]
+        parts += [(j, f"{j}c") for j in self.crushed]
         return "-".join(p for _, p in sorted(parts))
 
     def describe(self) -> str:
         """One line for people: the kind, the hinges and the joints that lift off."""
+        if self.crushed:
+            joints = ", ".join(str(j) for j in self.crushed)
+            return (f"mechanism with joint{'s' if len(self.crushed) > 1 else ''} {joints} "
+                    f"crushed through ({self.label})")
         if not self.lift_off:
             return f"{self.kind} mechanism {self.label}"
         lifts = ", ".join(str(j) for j in self.lift_off)
@@ -118,12 +129,16 @@ class Mechanism:
         """The same mechanism on the mirror image of an n-voussoir arch."""
         hinges = tuple(Hinge(n - h.joint, h.edge) for h in reversed(self.hinges))
         return Mechanism("r" if self.direction == "l" else "l", hinges, self.multiplier,
-                         tuple(sorted(n - j for j in self.lift_off)))
+                         tuple(sorted(n - j for j in self.lift_off)),
+                         tuple(sorted(n - j for j in self.crushed)))
 
     def to_dict(self) -> dict:
-        return {"direction": self.direction, "multiplier": self.multiplier,
-                "hinges": [h.to_dict() for h in self.hinges], "kind": self.kind,
-                "lift_off": [int(j) for j in self.lift_off], "label": self.label}
+        out = {"direction": self.direction, "multiplier": self.multiplier,
+               "hinges": [h.to_dict() for h in self.hinges], "kind": self.kind,
+               "lift_off": [int(j) for j in self.lift_off], "label": self.label}
+        if self.crushed:  # only with finite f_c: Heyman's dicts stay as they were
+            out["crushed"] = [int(j) for j in self.crushed]
+        return out
 
 
 def quadruples(items) -> np.ndarray:

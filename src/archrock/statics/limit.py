@@ -33,6 +33,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from ..errors import ArchInputError, NotFourHingeError
 from ..geometry import VoussoirArch
 # re-exported (the same objects) for ``from archrock.statics.limit import ...`` and old pickles;
@@ -88,6 +90,12 @@ class LimitResult:
     method: str = "kinematic enumeration (vectorised), checked by static LP (HiGHS)"
     four_hinge_l: Mechanism | None = None
     four_hinge_r: Mechanism | None = None
+    #: finite f_c only (None under Heyman's hypotheses): (lower, upper) of each static optimum
+    #: and the compressed zones' depths [m] at each joint at collapse (0 where it is open)
+    k_bounds_l: tuple | None = None
+    k_bounds_r: tuple | None = None
+    zones_l: np.ndarray | None = field(default=None, repr=False)
+    zones_r: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def four_hinge(self) -> bool:
@@ -125,7 +133,16 @@ class LimitResult:
             "thrust_l": _thrust_dict(self.thrust_l),
             "thrust_r": _thrust_dict(self.thrust_r),
             "arch": self.arch.to_dict(),
+            **self._crushing_dict(),
         }
+
+    def _crushing_dict(self) -> dict:
+        """The crushing fields, only with finite f_c (Heyman's dict stays as it was)."""
+        if self.k_bounds_l is None:
+            return {}
+        return {"fc": self.arch.fc, "k_bounds_l": list(self.k_bounds_l),
+                "k_bounds_r": list(self.k_bounds_r), "zones_l": self.zones_l.tolist(),
+                "zones_r": self.zones_r.tolist()}
 
 
 def _thrust_dict(th: ThrustLine) -> dict:
@@ -166,6 +183,8 @@ def limit_analysis(arch: VoussoirArch, verify: bool = True, method: str = "auto"
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch (Arch, PolygonArch), got "
                              f"{type(arch).__name__}")
+    if arch.fc is not None:
+        return _crushing_limit(arch, method, max_seconds)
     gov = _governing(arch, method, max_seconds, static=verify)
     m_l, m_r = gov["l"].mechanism, gov["r"].mechanism
     th = {}
@@ -188,3 +207,41 @@ def limit_analysis(arch: VoussoirArch, verify: bool = True, method: str = "auto"
     f_l, f_r = gov["l"].four_hinge, gov["r"].four_hinge
     return LimitResult(arch, m_l.multiplier, m_r.multiplier, m_l, m_r, th["l"], th["r"], s_l, s_r,
                        disc, method=how, four_hinge_l=f_l, four_hinge_r=f_r)
+
+
+_CRUSH_HOW = {
+    "four-hinge": "finite f_c: LP bracket of tangent and secant planes, its optimum solved "
+                  "exactly; four hinges at the stress blocks' centres, confirmed by virtual "
+                  "work and by the four-hinge enumeration on the inset arch",
+    "crushing-static": "finite f_c: LP bracket of tangent and secant planes; the static "
+                       "optimum, its hinges where the thrust meets the stress blocks' centres "
+                       "(no rigid-block mechanism: the blocks' depth changes as they turn)"}
+
+
+def _crushing_limit(arch: VoussoirArch, method: str, max_seconds) -> LimitResult:
+    """:func:`limit_analysis` with the arch's finite ``fc`` (:mod:`.crushing`)."""
+    from .crushing import crushing_analysis
+
+    ans = {d: crushing_analysis(arch, d, method, max_seconds) for d in DIRECTIONS}
+    for d in DIRECTIONS:
+        if ans[d].static <= 0:
+            from ..errors import CannotStandError
+            from .overload import cannot_stand_message
+
+            raise CannotStandError(cannot_stand_message(
+                arch, f"(with f_c = {arch.fc:g} MPa: k_{d} = {ans[d].static:.4g})"))
+    k = {d: ans[d].kinematic if ans[d].kinematic is not None else ans[d].static
+         for d in DIRECTIONS}
+    gaps = [abs(k[d] - ans[d].static) for d in DIRECTIONS]
+    gaps += [abs(k[d] - ans[d].enumeration) for d in DIRECTIONS
+             if ans[d].enumeration is not None]
+    hows = [_CRUSH_HOW[ans[d].how] for d in DIRECTIONS]
+    how = hows[0] if hows[0] == hows[1] else f"l: {hows[0]}; r: {hows[1]}"
+    how += f"; kinematic = static to {max(gaps):.1e}"
+    m = {d: ans[d].mechanism for d in DIRECTIONS}
+    four = {d: m[d] if m[d].is_four_hinge else None for d in DIRECTIONS}
+    return LimitResult(arch, k["l"], k["r"], m["l"], m["r"], ans["l"].thrust, ans["r"].thrust,
+                       ans["l"].static, ans["r"].static, max(gaps), method=how,
+                       four_hinge_l=four["l"], four_hinge_r=four["r"],
+                       k_bounds_l=ans["l"].bounds, k_bounds_r=ans["r"].bounds,
+                       zones_l=ans["l"].zones, zones_r=ans["r"].zones)
