@@ -40,3 +40,18 @@ def test_a_fixed_strength_is_kept_and_infinite_strength_is_unchanged():
 def test_strength_spread_without_strength_is_refused():
     with pytest.raises(ArchInputError, match=r"^spread fc: 0\.3 .*allowed 0"):
         input_layout(oppenheim_arch(), Spreads(fc=0.3))
+
+
+@pytest.mark.slow  # 96 arches through the finite-strength statics: about 13 s
+def test_sobol_indices_with_fc_as_a_factor():
+    pytest.importorskip("SALib")
+    from archrock.studies.sensitivity import sobol_indices
+
+    res = sobol_indices(oppenheim_arch().with_fc(2.0), Spreads(0.0, 0.0, 0.0, fc=0.5),
+                        samples=16, motion=None, num_resamples=20)
+    assert res.groups[-1] == "fc" and res.unusable == 0
+    # only the strength is spread: all of k's variance is the fc input's
+    k = res.outputs.index("k")
+    assert res.variance[k] > 0
+    assert res.index("k", "fc", "ST") == pytest.approx(1.0, abs=0.1)
+    assert res.index("k", "span", "ST") == pytest.approx(0.0, abs=1e-9)
