@@ -255,7 +255,9 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
               else f"voussoir {ld.voussoir}")  # on piers the index is the chain's
         lines.append(f"  load: {ld.mass:g} kg/m on {on} at "
                      f"({ld.at[0]:g}, {ld.at[1]:g}) m")
-    lines += ["", "Limit analysis (horizontal forces = multiplier x weight; Heyman's hypotheses)",
+    fc = getattr(arch, "fc", None)
+    hyp = "Heyman's hypotheses" if fc is None else f"compressive strength f_c = {fc:g} MPa"
+    lines += ["", f"Limit analysis (horizontal forces = multiplier x weight; {hyp})",
               "  mechanism  k (kinematic)  k (static LP)  hinges A-D (joint edge)"]
     for dirn in ("l", "r"):
         mech = result.mechanism(dirn)
@@ -266,6 +268,9 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
         if mech.lift_off:
             hinges = (f"hinges {', '.join(f'{h.joint} {h.edge}' for h in mech.hinges)}; "
                       f"lifts off at joint {', '.join(map(str, mech.lift_off))}")
+        if mech.crushed:
+            hinges = (f"hinges {', '.join(f'{h.joint} {h.edge}' for h in mech.hinges)}; "
+                      f"crushed through at joint {', '.join(map(str, mech.crushed))}")
         lines.append(f"  M_{dirn}        {k:13.4f}  {kss}  {hinges}")
     if _on_piers(arch):
         # where each hinge is on the drawing (joints numbered along the chain: docs/piers.md)
@@ -274,8 +279,11 @@ def format_limit_table(result, min_thickness=None, needed=None, friction=None,
             lines.append(f"  M_{dirn} hinges: " + "; ".join(
                 f"{lab} = {h.joint}{h.edge[0]} ({hinge_place(arch, h.joint, h.edge)})"
                 for lab, h in mech.labelled()))
-    lines.append(f"  k = min(k_l, k_r) = {result.k:.4f} (Heyman's collapse multiplier)")
-    if result.discrepancy is not None:
+    if fc is not None:
+        lines += crushing_lines(result)
+    else:
+        lines.append(f"  k = min(k_l, k_r) = {result.k:.4f} (Heyman's collapse multiplier)")
+    if result.discrepancy is not None and fc is None:
         # the kinematic value is that of the mechanism attaining the LP's optimum: they agree by
         # construction (limit_analysis refuses to report a multiplier otherwise)
         lines.append(f"  LP check: max |kinematic - static| = {result.discrepancy:.2e} (agree)")
@@ -381,3 +389,24 @@ def format_governing(gov, stated: str) -> str:
     for name, why in gov.left_out:
         lines.append(f"  left out: {name}: {why}")
     return "\n".join(lines)
+
+
+def crushing_lines(result) -> list[str]:
+    """The lines of a finite-strength result (:mod:`archrock.statics.crushing`): k, each
+    direction's static bracket, the compressed zones at the hinges and how it was found."""
+    fc = result.arch.fc
+    lines = [f"  k = min(k_l, k_r) = {result.k:.4f} (collapse multiplier with f_c = {fc:g} MPa)"]
+    for dirn in ("l", "r"):
+        lo, hi = getattr(result, f"k_bounds_{dirn}")
+        zones = getattr(result, f"zones_{dirn}")
+        mech = result.mechanism(dirn)
+        at = ", ".join(f"{lab} {zones[h.joint]:.4g} m" for lab, h in mech.labelled())
+        at += "".join(f", joint {j} {zones[j]:.4g} m (crushed through)" for j in mech.crushed)
+        lines.append(f"  M_{dirn}: static bracket [{lo:.7f}, {hi:.7f}]; compressed zones "
+                     f"(depth N / f_c) at the hinges: {at}")
+    if result.discrepancy is not None:
+        lines.append(f"  check: max |kinematic - static| = {result.discrepancy:.2e} "
+                     f"({result.method})")
+    else:
+        lines.append(f"  method: {result.method}")
+    return lines

@@ -38,7 +38,8 @@ from .lp import ThrustLine, _JointLineStatics, _statics, _thrust_from_x
 
 __all__ = ["CrushingBracket", "CrushingOptimum", "CrushingAnswer", "InsetArch",
            "crushing_bracket", "crushing_optimum", "crushing_analysis", "crushing_constant",
-           "inset_arch", "virtual_work_multiplier", "BRACKET_RTOL", "MAX_ROUNDS"]
+           "inset_arch", "virtual_work_multiplier", "crushing_stands", "crushing_thrust",
+           "BRACKET_RTOL", "MAX_ROUNDS"]
 
 #: Relative width of the bracket [lower, upper] at which the refinement stops.
 BRACKET_RTOL = 1e-6
@@ -87,12 +88,6 @@ def _line_rows(st: _JointLineStatics, joints, alpha, beta):
 _HIGHS = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
 
 
-def _solve(A, b):
-    res = linprog(c=[0, 0, 0, -1.0], A_ub=A, b_ub=b, bounds=[(None, None)] * 4, method="highs",
-                  options=_HIGHS)
-    return res.status, (res.x if res.status == 0 else None)
-
-
 def _programs(st, c, points, nmax, crushes):
     """(A, b) of the relaxation (tangents at every point) and of the restriction (chords
     between consecutive points, N within [0, N_max]); joints that are point contacts keep
@@ -131,6 +126,51 @@ def _add_points(points, forces, nmax, crushes):
             points[j] = np.sort(np.append(p, f))
 
 
+def _bracket(st, c, objective, lam_bounds=(None, None), rtol: float = BRACKET_RTOL,
+             max_rounds: int = MAX_ROUNDS, sign_only: bool = False):
+    """(lower, upper, x_lower, x_upper, rounds): the bracket of max -objective . x over the
+    crushing conditions of statics ``st`` (lambda within ``lam_bounds``), refined until it
+    closes to ``rtol`` or, with ``sign_only``, until the sign of the maximum is known.
+    Status 'infeasible' or 'unbounded' (of the relaxation) as the first item instead."""
+    crushes = st.L > 0.0
+    nmax = np.where(crushes, st.L / (2.0 * c), 0.0)
+    # breakpoints from 0 to N_max, denser toward 0 where the forces of a strong masonry lie
+    init = np.concatenate([[0.0], 2.0 ** -np.arange(12.0, -1.0, -1.0)])
+    points = [init * nmax[j] for j in range(st.L.size)]
+    bounds = [(None, None)] * 3 + [lam_bounds]
+    lower, upper, x_lo, x_hi = -math.inf, math.inf, None, None
+
+    def solve(A, b):
+        res = linprog(c=objective, A_ub=A, b_ub=b, bounds=bounds, method="highs", options=_HIGHS)
+        return res.status, (np.asarray(res.x, float) if res.status == 0 else None)
+
+    for rounds in range(1, max_rounds + 1):
+        (A_t, b_t), (A_s, b_s) = _programs(st, c, points, nmax, crushes)
+        status, x = solve(A_t, b_t)
+        if status in (2, 3):
+            return ("infeasible" if status == 2 else "unbounded"), None, None, None, rounds
+        if status != 0:
+            raise LimitExceededError(f"crushing analysis: the relaxed linear program did not "
+                                     f"finish (status {status})")
+        value = -float(np.dot(objective, x))
+        if value <= upper:
+            upper, x_hi = value, x
+        _add_points(points, st.A_N @ x + st.b_N, nmax, crushes)
+        status, xs = solve(A_s, b_s)
+        if status == 0 and -float(np.dot(objective, xs)) >= lower:
+            lower, x_lo = -float(np.dot(objective, xs)), xs
+            _add_points(points, st.A_N @ xs + st.b_N, nmax, crushes)
+        if sign_only and (lower >= 0.0 or upper < 0.0):
+            return lower, upper, x_lo, x_hi, rounds
+        if x_lo is not None and upper - lower <= rtol * max(abs(upper), 1e-300):
+            return lower, upper, x_lo, x_hi, rounds
+    if sign_only:  # the maximum is 0 to within the bracket: on the edge, counted as standing
+        return max(lower, 0.0), upper, x_lo, x_hi, max_rounds
+    raise LimitExceededError(
+        f"crushing analysis: the bracket did not close to {rtol:g} in {max_rounds} rounds "
+        f"({lower:.9g} to {upper:.9g})")
+
+
 def crushing_bracket(arch: VoussoirArch, direction: str, rtol: float = BRACKET_RTOL,
                      max_rounds: int = MAX_ROUNDS) -> CrushingBracket:
     """The static multiplier of ``arch`` with its finite ``fc``, bracketed to ``rtol`` (module
@@ -138,37 +178,45 @@ def crushing_bracket(arch: VoussoirArch, direction: str, rtol: float = BRACKET_R
     NoMechanismError where it is unbounded, LimitExceededError where ``max_rounds`` rounds do
     not close the bracket."""
     st = _statics(arch, direction, "joint-line")
+    lower, upper, x_lo, x_hi, rounds = _bracket(st, crushing_constant(arch), [0, 0, 0, -1.0],
+                                                rtol=rtol, max_rounds=max_rounds)
+    if lower == "unbounded":
+        raise NoMechanismError(
+            f"arch: no mechanism opens under horizontal forces toward "
+            f"{'+x' if st.d > 0 else '-x'} even with f_c = {arch.fc:g} MPa (the relaxed "
+            f"program is unbounded); sliding governs")
+    if lower == "infeasible":
+        raise CannotStandError(
+            f"arch: no line of thrust fits inside the arch with f_c = {arch.fc:g} MPa "
+            f"(direction {direction!r}); the arch cannot stand: it crushes under its own "
+            f"weight or cannot carry it")
+    return CrushingBracket(direction, lower, upper, x_lo, x_hi, rounds)
+
+
+def crushing_stands(arch: VoussoirArch) -> bool:
+    """Whether a line of thrust fits inside ``arch`` under its own weight with its finite
+    ``fc``: the multipliers that fit form an interval [-k_r, k_l], which holds 0 when both
+    are >= 0 (each bracket refined until its sign is known)."""
     c = crushing_constant(arch)
-    crushes = st.L > 0.0
-    nmax = np.where(crushes, st.L / (2.0 * c), 0.0)
-    # breakpoints from 0 to N_max, denser toward 0 where the forces of a strong masonry lie
-    init = np.concatenate([[0.0], 2.0 ** -np.arange(12.0, -1.0, -1.0)])
-    points = [init * nmax[j] for j in range(st.L.size)]
-    lower, upper, x_lo, x_hi = -math.inf, math.inf, None, None
-    for rounds in range(1, max_rounds + 1):
-        (A_t, b_t), (A_s, b_s) = _programs(st, c, points, nmax, crushes)
-        status, x = _solve(A_t, b_t)
-        if status == 3:
-            raise NoMechanismError(
-                f"arch: no mechanism opens under horizontal forces toward "
-                f"{'+x' if st.d > 0 else '-x'} even with f_c = {arch.fc:g} MPa (the relaxed "
-                f"program is unbounded); sliding governs")
-        if status != 0:
-            raise CannotStandError(
-                f"arch: no line of thrust fits inside the arch with f_c = {arch.fc:g} MPa "
-                f"(direction {direction!r}); the arch cannot stand: it crushes under its own "
-                f"weight or cannot carry it")
-        upper, x_hi = min(upper, float(x[3])), (x if float(x[3]) <= upper else x_hi)
-        _add_points(points, st.A_N @ x + st.b_N, nmax, crushes)
-        status, xs = _solve(A_s, b_s)
-        if status == 0 and float(xs[3]) >= lower:
-            lower, x_lo = float(xs[3]), xs
-            _add_points(points, st.A_N @ xs + st.b_N, nmax, crushes)
-        if x_lo is not None and upper - lower <= rtol * max(abs(upper), 1e-300):
-            return CrushingBracket(direction, lower, upper, x_lo, x_hi, rounds)
-    raise LimitExceededError(
-        f"crushing analysis: the bracket of the multiplier did not close to {rtol:g} in "
-        f"{max_rounds} rounds (direction {direction!r}: {lower:.9g} to {upper:.9g})")
+    for d in ("l", "r"):
+        lower = _bracket(_statics(arch, d, "joint-line"), c, [0, 0, 0, -1.0],
+                         sign_only=True)[0]
+        if lower in ("infeasible",) or (lower != "unbounded" and lower < 0.0):
+            return False
+    return True
+
+
+def crushing_thrust(arch: VoussoirArch, sign: float):
+    """(H per total weight, x) at the least (``sign`` +1) or greatest (-1) horizontal thrust
+    with lambda = 0 under the crushing conditions (the static optimum, bracketed to
+    :data:`BRACKET_RTOL`; x the restriction's point, which satisfies them); ('infeasible' |
+    'unbounded', None) where it has none."""
+    st = _statics(arch, "l", "joint-line")
+    lower, upper, x_lo, _, _ = _bracket(st, crushing_constant(arch), [sign, 0, 0, 0.0],
+                                        lam_bounds=(0.0, 0.0))
+    if isinstance(lower, str):
+        return lower, None
+    return float(x_lo[0]), x_lo
 
 
 # ---------------------------------------------------------------------------- the optimum

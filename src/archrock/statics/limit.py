@@ -237,11 +237,14 @@ def _crushing_limit(arch: VoussoirArch, method: str, max_seconds) -> LimitResult
              if ans[d].enumeration is not None]
     hows = [_CRUSH_HOW[ans[d].how] for d in DIRECTIONS]
     how = hows[0] if hows[0] == hows[1] else f"l: {hows[0]}; r: {hows[1]}"
-    how += f"; kinematic = static to {max(gaps):.1e}"
+    checked = all(ans[d].kinematic is not None for d in DIRECTIONS)
+    if checked:
+        how += f"; kinematic = static to {max(gaps):.1e}"
     m = {d: ans[d].mechanism for d in DIRECTIONS}
     four = {d: m[d] if m[d].is_four_hinge else None for d in DIRECTIONS}
     return LimitResult(arch, k["l"], k["r"], m["l"], m["r"], ans["l"].thrust, ans["r"].thrust,
-                       ans["l"].static, ans["r"].static, max(gaps), method=how,
+                       ans["l"].static, ans["r"].static, max(gaps) if checked else None,
+                       method=how,
                        four_hinge_l=four["l"], four_hinge_r=four["r"],
                        k_bounds_l=ans["l"].bounds, k_bounds_r=ans["r"].bounds,
                        zones_l=ans["l"].zones, zones_r=ans["r"].zones)

@@ -47,7 +47,13 @@ def minimum_thickness(arch: VoussoirArch, tol: float = 1e-7) -> MinimumThickness
     """Minimum thickness under self-weight alone (multiplier = 0), by bisection on a common
     thickness factor with the static feasibility LP (lambda = 0).  Needs an arch that can vary
     its thickness (``with_thickness_factor``: circular arches, families); a surveyed
-    :class:`~archrock.geometry.PolygonArch` cannot (ArchInputError)."""
+    :class:`~archrock.geometry.PolygonArch` cannot (ArchInputError).  With a finite ``fc``
+    the arch must also stand without crushing (:func:`archrock.statics.crushing.
+    crushing_stands`): the answer then depends on the arch's size and density."""
+    if getattr(arch, "fc", None) is not None:
+        from .crushing import crushing_stands
+
+        return thickness_bisection(arch, crushing_stands, tol)
     return thickness_bisection(arch, _stands, tol)
 
 

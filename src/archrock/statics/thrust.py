@@ -123,6 +123,8 @@ def thrust_range(arch: VoussoirArch) -> ThrustRange:
     cannot stand under its own weight)."""
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch, got {type(arch).__name__}")
+    if arch.fc is not None:
+        return _crushing_range(arch)
     st = _statics(arch, "l")
     weight = G * float(np.sum(arch.masses))
     out = {}
@@ -146,6 +148,42 @@ def thrust_range(arch: VoussoirArch) -> ThrustRange:
         out[key] = (weight * float(x[0]), line, hinges, points)
     (hmin, lmin, gmin, pmin), (hmax, lmax, gmax, pmax) = out["min"], out["max"]
     if lmin is None:  # H unbounded below: tension between the supports, never for masonry
+        raise ArchInputError("arch: any tension between the springings fits a line of thrust "
+                             "(no least thrust): no joint crosses the span, not an arch")
+    return ThrustRange(hmin, hmax, lmin, lmax, gmin, gmax, pmin, pmax, weight)
+
+
+def _crushing_range(arch: VoussoirArch) -> ThrustRange:
+    """:func:`thrust_range` with the arch's finite ``fc`` (:mod:`.crushing`): the extremes of
+    the convex program, bracketed to 1e-6; an extreme line of thrust touches the centres of the
+    stress blocks (N / (2 f_c) from an edge) where the hinges open."""
+    from .crushing import crushing_constant, crushing_thrust
+
+    st = _statics(arch, "l", "joint-line")
+    c = crushing_constant(arch)
+    weight = G * float(np.sum(arch.masses))
+    out = {}
+    for key, sign in (("min", 1.0), ("max", -1.0)):
+        h, x = crushing_thrust(arch, sign)
+        if h == "infeasible":
+            raise CannotStandError(
+                f"arch: no line of thrust fits inside the arch under its own weight with f_c = "
+                f"{arch.fc:g} MPa; the arch cannot stand")
+        if h == "unbounded":
+            out[key] = (-sign * math.inf, None, (), np.zeros((0, 2)))
+            continue
+        x = np.array(x, float)
+        x[3] = 0.0
+        line = _thrust_from_x(st, x)
+        N = st.A_N @ x + st.b_N
+        inset = np.where(st.L > 0, c * N / np.where(st.L > 0, st.L, 1.0), 0.0)
+        shifted = (line.fractions - inset) / np.maximum(1.0 - 2.0 * inset, 1e-300)
+        touch = ThrustLine(line.direction, line.multiplier, line.radii, line.points,
+                           line.forces, line.polyline, shifted)
+        hinges, points = _touching(touch, 1e-6)
+        out[key] = (weight * float(x[0]), line, hinges, points)
+    (hmin, lmin, gmin, pmin), (hmax, lmax, gmax, pmax) = out["min"], out["max"]
+    if lmin is None:
         raise ArchInputError("arch: any tension between the springings fits a line of thrust "
                              "(no least thrust): no joint crosses the span, not an arch")
     return ThrustRange(hmin, hmax, lmin, lmax, gmin, gmax, pmin, pmax, weight)

@@ -388,6 +388,12 @@ def _statics(arch, mu, limit):
     if mu is None:
         left_out.append((WITH_FRICTION, "sliding excluded by the user (friction None, "
                                         "--friction none): Heyman's no-sliding hypothesis"))
+    elif getattr(arch, "fc", None) is not None:
+        try:  # the friction analysis is Heyman's (no crushing): where it finds no mechanism,
+            # crushing's answer stands alone
+            analyses.append(_with_friction(arch, mu))
+        except NoMechanismError as exc:
+            left_out.append((WITH_FRICTION, _one_line(exc)))
     else:
         analyses.append(_with_friction(arch, mu))
     return lim, needed, analyses, left_out
