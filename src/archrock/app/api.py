@@ -400,7 +400,7 @@ def ensemble_config(params: dict):
     (:mod:`archrock.studies.work`)."""
     from .._jit import HAVE_NUMBA
     from ..studies.ensemble import EnsembleConfig
-    from ..studies.work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
+    from ..studies.work import SAMPLE_FINITE_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
 
     params = only(request_object(params), ENSEMBLE_FIELDS)
     nominal = arch_from_params(object_field(params, "arch"))
@@ -408,6 +408,8 @@ def ensemble_config(params: dict):
                                             "in the app (archrock ensemble for more)")
     motion = pulse_spec(params["pulse"]) if params.get("pulse") is not None else None
     each = (SAMPLE_RESPONSE_S if motion is not None else SAMPLE_LIMIT_S) * (1 if HAVE_NUMBA else 50)
+    if nominal.fc is not None:  # each arch through the crushing statics, one at a time
+        each += SAMPLE_FINITE_S
     est = samples * each
     if est > MAX_ENSEMBLE_WORK_S:
         raise ArchInputError(f"samples: {samples} arches, estimated {format_duration(est)} here; "

@@ -297,7 +297,7 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
     :data:`MAX_BOOTSTRAP_BYTES` (ArchInputError naming --samples); warns above a minute."""
     import os
 
-    from .work import RECORD_RESPONSE_S_PER_S, SAMPLE_RESPONSE_S, check_work
+    from .work import RECORD_RESPONSE_S_PER_S, SAMPLE_FINITE_S, SAMPLE_RESPONSE_S, check_work
 
     need = _BOOTSTRAP_ARRAYS * 8.0 * samples * num_resamples
     if need > MAX_BOOTSTRAP_BYTES:
@@ -310,13 +310,15 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
     runs = samples * (groups + 2)
     family = not isinstance(nominal, Arch)
     each = SAMPLE_FAMILY_S if family else SAMPLE_ARCH_S
+    if getattr(nominal, "fc", None) is not None:  # the crushing statics, one arch at a time
+        each += SAMPLE_FINITE_S
     if motion is not None:
         each += SAMPLE_RESPONSE_S
         if motion.to_dict()["type"] == "record":
             each += RECORD_RESPONSE_S_PER_S * motion.build().duration
     outputs = 3 + (motion is not None)
     each += ANALYSE_S * groups * num_resamples * outputs / (groups + 2)
-    cores = 1 if family else (os.cpu_count() or 1)
+    cores = 1 if family or getattr(nominal, "fc", None) is not None else (os.cpu_count() or 1)
     return check_work("sensitivity", runs, "arches", each,
                       "reduce --samples (1024 give the indices to a few hundredths), or group "
                       "by kind (--by kind)", cores, kernel=not family)

@@ -10,7 +10,8 @@ import time
 
 from ...errors import ArchInputError
 from ...geometry import Arch
-from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
+from ..work import (RECORD_RESPONSE_S_PER_S, SAMPLE_FINITE_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S,
+                    check_work)
 from .config import EnsembleConfig
 from ..._progress import Progress
 from ..enginestudy import UNSET_FRICTION
@@ -78,9 +79,12 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
     if config.motion is not None:
         each = SAMPLE_RESPONSE_S + (RECORD_RESPONSE_S_PER_S * config.motion.build().duration
                                     if config.motion.to_dict()["type"] == "record" else 0.0)
+    if config.sampler.finite:  # each arch through the crushing statics, one at a time
+        each += SAMPLE_FINITE_S
     import os
 
-    cores = workers if workers > 1 else (os.cpu_count() or 1)  # in-process: numba threads
+    # in-process: numba threads (the finite-strength arches run one at a time)
+    cores = workers if workers > 1 else 1 if config.sampler.finite else (os.cpu_count() or 1)
     return check_work("ensemble", config.samples, "arches", each,
                       "reduce --samples (10,000 give P(collapse) to about 1%), or run on a Dask "
                       "cluster (--scheduler)", cores)
