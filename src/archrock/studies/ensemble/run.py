@@ -48,6 +48,12 @@ def _nominal_multipliers(config: EnsembleConfig) -> dict:
     from ...statics.sums import arch_sums
 
     arch = config.analysed_nominal  # on its moved supports, if any
+    if getattr(arch, "fc", None) is not None:  # finite strength: the statics that honour it
+        from ...statics.limit import limit_analysis
+
+        lim = limit_analysis(arch, verify=False)
+        return {"k_l": float(lim.k_l), "k_r": float(lim.k_r), "mech_l": lim.mechanism_l.label,
+                "mech_r": lim.mechanism_r.label, "fc": float(arch.fc)}
     if not isinstance(arch, Arch):
         m_l, m_r = kinematic_mechanisms(arch)
         return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
