@@ -78,3 +78,13 @@ def test_the_batch_of_arches_of_finite_strength_is_prepares():
         assert np.array_equal(pb.geo_l[b], model.mech_l.geo)
         assert pb.c_l_to_r[b] == pytest.approx(model.impact.l_to_r, rel=0, abs=0)
     assert pb.ok.all()
+
+
+def test_a_finite_strength_without_zones_is_refused():
+    arch = oppenheim_arch().with_fc(5.0)
+    lim = limit_analysis(arch, verify=False)
+    bare = type(lim)(**{**{f: getattr(lim, f) for f in lim.__dataclass_fields__},
+                        "zones_l": None})
+    with pytest.raises(ArchInputError, match=r"^limit: .*f_c = 5 MPa gives no compressed zones "
+                                             r"for M_l"):
+        collapse_zones(bare, "l")

@@ -45,12 +45,17 @@ def any_finite(arches) -> bool:
 
 def collapse_zones(limit, direction: str):
     """Depths [m] (n+1,) of the compressed zones at the joints at collapse in ``direction``
-    ('l' or 'r') of a limit analysis, or None where the arch's strength is infinite (or the
-    statics gave no zones)."""
+    ('l' or 'r') of a limit analysis, or None where the arch's strength is infinite.  A finite
+    strength whose statics gave no zones is refused: edge hinges would start rocking at a
+    multiplier that is not the statics' (a silent wrong answer)."""
     if arch_fc(limit.arch) is None:
         return None
     zones = getattr(limit, "zones_l" if direction == "l" else "zones_r", None)
-    return None if zones is None else np.asarray(zones, float)
+    if zones is None:
+        raise ArchInputError(f"limit: the analysis of an arch of f_c = {arch_fc(limit.arch):g} "
+                             f"MPa gives no compressed zones for M_{direction}; allowed the "
+                             f"finite-strength limit analysis (limit_analysis(arch))")
+    return np.asarray(zones, float)
 
 
 def inset_joint_points(arch, mechanism, zones) -> np.ndarray:
