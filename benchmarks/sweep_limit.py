@@ -1,13 +1,15 @@
 """Limit analysis over a random sweep of arches of every family: counts by outcome, the worst
 time per arch and the worst |kinematic - static| (the figures of issue 17's closing note).
 
-    python benchmarks/sweep_limit.py [--arches 400] [--seed 0] [--max-n 200] [--friction]
+    python benchmarks/sweep_limit.py [--arches 400] [--seed 0] [--max-n 200] [--friction] [--fc MPA]
 
 Families with rise/span 0.05-1, t/span 0.02-0.3, 3 to max-n voussoirs, normal and vertical
 joints, half of them with a point load of half the arch's weight above a voussoir.  Up to 10
 voussoirs the kinematic enumeration of every mechanism with lift-off
 (:func:`archrock.statics.limit.general_mechanisms`) is compared with the LP as well.  ``--friction``
 also times :func:`archrock.statics.friction.friction_analysis` at mu = 0.5 on every arch that stands.
+``--fc MPA`` analyses every arch that has no mechanism under Heyman's hypotheses again with
+that compressive strength (docs/crushing.md) and counts those that get a finite k.
 """
 
 from __future__ import annotations
@@ -44,15 +46,26 @@ def build(shape, rise, thick, n, joints, loaded):
     return arch
 
 
+def _with_fc(arch, fc) -> str:
+    """The outcome of an arch without a mechanism, analysed again with compressive strength fc."""
+    try:
+        k = limit.limit_analysis(arch.with_fc(fc)).k
+    except GeometryOutcome as exc:
+        return type(exc).__name__
+    return "finite k" if np.isfinite(k) and k > 0 else "k not finite"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--arches", type=int, default=400)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--max-n", type=int, default=200)
     ap.add_argument("--friction", action="store_true")
+    ap.add_argument("--fc", type=float, default=None)
     args = ap.parse_args(argv)
     rng = np.random.default_rng(args.seed)
     outcomes, worst_t, worst_d, worst_gen = Counter(), (0.0, None), 0.0, 0.0
+    with_fc = Counter()
     worst_f = (0.0, None)
     for _ in range(args.arches):
         case = draw(rng, args.max_n)
@@ -70,6 +83,8 @@ def main(argv=None):
         except GeometryOutcome:
             outcomes["no mechanism (LP unbounded)"] += 1
             res = None
+            if args.fc is not None:
+                with_fc[_with_fc(arch, args.fc)] += 1
         dt = time.perf_counter() - t0
         if dt > worst_t[0]:
             worst_t = (dt, case)
@@ -93,6 +108,8 @@ def main(argv=None):
     print(f"arches tried: {total} (seed {args.seed}, 3-{args.max_n} voussoirs)")
     for k, v in sorted(outcomes.items(), key=lambda kv: -kv[1]):
         print(f"  {k:30s} {v:5d}")
+    for k, v in sorted(with_fc.items(), key=lambda kv: -kv[1]):
+        print(f"    with f_c = {args.fc:g} MPa: {k:19s} {v:5d}")
     print(f"worst limit-analysis time: {worst_t[0]:.3f} s ({worst_t[1]})")
     print(f"worst |kinematic - static| / max(1, k): {worst_d:.2e}")
     print(f"worst |general enumeration - governing| / max(1, k) (n <= 10): {worst_gen:.2e}")

@@ -109,8 +109,30 @@ def readme_noise() -> str:
     return _printed(run)
 
 
+def crushing_k_table() -> str:
+    """docs/crushing.md's table of k against f_c (1, 2, 5, 10 MPa, infinite)."""
+    def run():
+        from archrock.geometry import family_arch, oppenheim_arch
+        from archrock.statics.limit import limit_analysis
+        flat = family_arch("circular", 10.0, 1.5, 0.5, 15)
+        for name, arch in (("oppenheim", oppenheim_arch()), ("flat", flat)):
+            print(name, *(limit_analysis(arch.with_fc(fc)).k for fc in (1, 2, 5, 10, None)))
+    return _printed(run)
+
+
+def crushing_thickness_table() -> str:
+    """docs/crushing.md's minimum t / R of a semicircle (R = 10 m, 18 voussoirs) against f_c."""
+    def run():
+        from archrock.geometry import nominal_arch
+        from archrock.statics.thickness import minimum_thickness
+        arch = nominal_arch(10.0, 180.0, 1.5, 18)
+        print("t/R", *(minimum_thickness(arch.with_fc(fc)).ratio for fc in (None, 10, 5, 2, 1)))
+    return _printed(run)
+
+
 FUNCTIONS = {f.__name__: f for f in (readme_statics, readme_dynamics, readme_namespace,
-                                     readme_shapes, readme_three_voussoirs, readme_noise)}
+                                     readme_shapes, readme_three_voussoirs, readme_noise,
+                                     crushing_k_table, crushing_thickness_table)}
 
 R = "README.md"
 CLI = "docs/cli.md"      # the command line, moved out of the README in 0.7
@@ -721,4 +743,16 @@ ENTRIES += [
     Entry(CD, f"| {label} | {{}} | {{}} | {{}} | {{}} |", "py:crushing_dynamics",
           rf"flat {key}: (\S+) (\S+) (\S+) (\S+)", slow=True)
     for label, key in (("infinite", "inf"), ("10", "10.0"), ("5", "5.0"), ("2", "2.0"))
+]
+CR = "docs/crushing.md"
+ENTRIES += [
+    Entry(CR, "k = min(k_l, k_r) = {} (collapse multiplier with f_c = 10 MPa)",
+          ("limit", "--radius", "10", "--embrace", "60", "--voussoirs", "7", "--fc", "10"),
+          K_MIN),
+    Entry(CR, "| Oppenheim's arch | {} | {} | {} | {} | {} |", "py:crushing_k_table",
+          r"oppenheim (\S+) (\S+) (\S+) (\S+) (\S+)"),
+    Entry(CR, "| flat bridge arch | {} | {} | {} | {} | {} |", "py:crushing_k_table",
+          r"flat (\S+) (\S+) (\S+) (\S+) (\S+)"),
+    Entry(CR, "| t / R | {} | {} | {} | {} | {} |", "py:crushing_thickness_table",
+          r"t/R (\S+) (\S+) (\S+) (\S+) (\S+)", slow=True),
 ]

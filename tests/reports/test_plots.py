@@ -172,3 +172,25 @@ def test_fragility_figure_shows_the_plateau_through_the_stripes(levelling_ida):
     ecdf = next(ln for ln in ax.get_lines() if ln.get_label().startswith("IDA first collapses"))
     assert ecdf.get_data()[0][-1] == pytest.approx(1.0) and ecdf.get_data()[1][-1] == pytest.approx(top)
     plt.close(fig)
+
+
+def test_plot_limit_draws_the_compressed_zones():
+    """With f_c the figure draws a band of the zone's depth N / f_c along each compressed
+    joint, centred on the thrust, and the hinges at the stress blocks' centres."""
+    arch = oppenheim_arch().with_fc(2.0)
+    res = limit_analysis(arch)
+    fig, axes = new_figure(1, 1)
+    ax = plot_limit(res, "l", ax=axes[0][0])
+    bands = [ln for ln in ax.get_lines() if ln.get_label().startswith("compressed zone")]
+    assert len(bands) == 1
+    lengths = []
+    for ln in ax.get_lines():
+        if ln.get_color() == "#e07b00":
+            xy = np.column_stack(ln.get_data())
+            lengths.append(float(np.hypot(*(xy[1] - xy[0]))))
+    zones = res.zones_l[res.zones_l > 0]
+    np.testing.assert_allclose(sorted(lengths), sorted(zones), rtol=1e-9)
+    assert "$f_c$ = 2 MPa" in ax.get_title()
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)

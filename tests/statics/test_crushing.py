@@ -212,3 +212,17 @@ def test_thrust_range_narrows_as_fc_falls():
     assert inf.thrust_min < weak.thrust_min < weak.thrust_max < inf.thrust_max
     assert [(h.joint, h.edge) for h in weak.hinges_min] == [(h.joint, h.edge)
                                                           for h in inf.hinges_min]
+
+
+def test_displaced_arch_with_fc():
+    """A spread of 5 cm: the re-closed arch's k takes f_c; the gaps' closing (point contacts,
+    nothing to crush) stays Heyman's."""
+    from archrock.geometry.displaced import SupportMovement
+    from archrock.statics.reclosing import gap_closing
+    from archrock.statics.supports import on_moved_supports
+
+    moved = on_moved_supports(oppenheim_arch(), SupportMovement(0.05, 0.0, "right"))
+    heyman, weak = limit_analysis(moved), limit_analysis(moved.with_fc(5.0))
+    assert 0.9 * heyman.k < weak.k < heyman.k
+    g0, g5 = gap_closing(moved), gap_closing(moved.with_fc(5.0))
+    assert g0.k_l == g5.k_l and g0.k_r == g5.k_r

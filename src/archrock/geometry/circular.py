@@ -81,7 +81,7 @@ class Arch(VoussoirArch):
     density: float = DEFAULT_DENSITY
     name: str = field(default="arch", compare=False)
     loads: tuple = ()
-    fc: float | None = None
+    fc: float | None = field(default=None, kw_only=True)
 
     def __post_init__(self):
         spans = _finite_array("spans", self.spans)
@@ -224,12 +224,12 @@ class Arch(VoussoirArch):
         loads = tuple(Load(ld.voussoir, ld.mass * f * f, (ld.at[0] * f, ld.at[1] * f))
                       for ld in self.loads)
         return Arch(self.spans.copy(), self.radii * f, self.thicknesses * f, self.density,
-                    self.name, loads, self.fc)
+                    self.name, loads, fc=self.fc)
 
     def with_thickness_factor(self, factor: float) -> "Arch":
         """Every voussoir thickness multiplied by ``factor`` (radii, spans and loads unchanged)."""
         return Arch(self.spans.copy(), self.radii.copy(), self.thicknesses * factor, self.density,
-                    self.name, self.loads, self.fc)
+                    self.name, self.loads, fc=self.fc)
 
     def is_symmetric(self, tol: float = 1e-12) -> bool:
         """Whether the arch is its own mirror image: spans to ``tol`` rad, radii and thicknesses

@@ -308,7 +308,7 @@ def _thinner(arch: VoussoirArch, d: Defect) -> VoussoirArch:
         r_in = r[i] - t[i] / 2
         r[i] = r_in + 0.5 * (a + b) * t[i]
         t[i] = (b - a) * t[i]
-        return Arch(arch.spans.copy(), r, t, arch.density, arch.name, arch.loads, arch.fc)
+        return Arch(arch.spans.copy(), r, t, arch.density, arch.name, arch.loads, fc=arch.fc)
     poly = _as_polygon(arch)
     p, q = poly.intrados[i], poly.extrados[i]
     # both lines at the union of their vertices' arc-length fractions: each new point lies on
@@ -320,7 +320,7 @@ def _thinner(arch: VoussoirArch, d: Defect) -> VoussoirArch:
     intr[i] = _dedupe(pp + a * (qq - pp), tol)
     extr[i] = _dedupe(pp + b * (qq - pp), tol)
     return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads,
-                           poly.fc)
+                           fc=poly.fc)
 
 
 def _circle_through(p0, p1, p2):
@@ -431,7 +431,7 @@ def _tilted(arch: VoussoirArch, d: Defect) -> PolygonArch:
             lines[j - 1], lines[j] = left, right
     try:
         return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads,
-                           poly.fc)
+                           fc=poly.fc)
     except ArchInputError as exc:
         raise ArchInputError(f"defect tilt: {d.value:g} deg at joint {j} does not give a valid "
                              f"arch ({exc}); allowed a smaller tilt") from None
@@ -452,14 +452,14 @@ def _unmortared(arch: VoussoirArch, d: Defect) -> PolygonArch:
     else:
         lines[n - 1] = np.vstack([lines[n - 1], x])
     return PolygonArch(tuple(intr), tuple(extr), poly.density, poly.name, poly.loads,
-                           poly.fc)
+                           fc=poly.fc)
 
 
 def _pier_tilted(arch, d: Defect):
     out = lean_pier(arch, d.side, d.value)
     if out is arch:  # 0 deg: the same arch, under its own name
         out = ArchOnPiers(arch.intrados, arch.extrados, arch.density, arch.name, arch.loads,
-                          arch.fc, block_kinds=arch.block_kinds)
+                          fc=arch.fc, block_kinds=arch.block_kinds)
     return out
 
 
@@ -480,7 +480,7 @@ def apply_defect(arch: VoussoirArch, defect: Defect | str) -> VoussoirArch:
     if kinds and "voussoir" in kinds and len(set(kinds)) > 1 and not hasattr(out, "block_kinds"):
         # an arch on piers stays one: its piers are still piers, counted and named apart
         out = ArchOnPiers(out.intrados, out.extrados, out.density, out.name, out.loads,
-                          out.fc, block_kinds=kinds)
+                          fc=out.fc, block_kinds=kinds)
     object.__setattr__(out, "name", f"{arch.name} [{d.spec()}]")
     return out
 

@@ -262,7 +262,7 @@ def family_arch(shape: str, span: float, rise: float, thickness: float, voussoir
     regions, fill_loads = ((), ())
     if fill is not None:
         regions, fill_loads = _fill(extr, fill)
-    return FamilyArch(tuple(intr), tuple(extr), density, name, user_loads + fill_loads, fc,
+    return FamilyArch(tuple(intr), tuple(extr), density, name, user_loads + fill_loads, fc=fc,
                       recipe=recipe, fill_regions=regions)
 
 

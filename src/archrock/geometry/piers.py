@@ -85,17 +85,17 @@ class ArchOnPiers(PolygonArch, reads_block_kinds=True):
                 raise ArchInputError(f"voussoirs[{i}].kind: {k!r}; allowed "
                                      f"{', '.join(BLOCK_KINDS)}")
             kinds.append(k)
-        return cls(intr, extr, density, name, loads, _file_fc(data), block_kinds=tuple(kinds))
+        return cls(intr, extr, density, name, loads, fc=_file_fc(data), block_kinds=tuple(kinds))
 
     def mirrored(self) -> "ArchOnPiers":
         """The mirror image about x = 0, block kinds in the new order."""
         m = super().mirrored()
-        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads, m.fc,
+        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads, fc=m.fc,
                            block_kinds=self.block_kinds[::-1])
 
     def scaled(self, factor: float) -> "ArchOnPiers":
         m = super().scaled(factor)
-        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads, m.fc,
+        return ArchOnPiers(m.intrados, m.extrados, m.density, m.name, m.loads, fc=m.fc,
                            block_kinds=self.block_kinds)
 
     @property
@@ -322,7 +322,7 @@ def with_piers(arch: VoussoirArch, height: float, width: float, *, courses: int 
     name = name or f"{arch.name} on piers"
     if _trusted and isinstance(arch, PolygonArch):
         return _unchecked(intr, extr, poly.density, name, loads, kinds, poly.fc)
-    return ArchOnPiers(intr, extr, poly.density, name, loads, poly.fc, block_kinds=kinds)
+    return ArchOnPiers(intr, extr, poly.density, name, loads, fc=poly.fc, block_kinds=kinds)
 
 
 def _unchecked(intr, extr, density, name, loads, kinds, fc=None) -> ArchOnPiers:
@@ -538,7 +538,7 @@ def reshape_piers(arch, kinds, left: dict | None = None, right: dict | None = No
                                      f"polygon of positive area")
         return _unchecked(intr, extr, arch.density, name or arch.name, loads, kinds, arch.fc)
     return ArchOnPiers(tuple(intr), tuple(extr), arch.density, name or arch.name, tuple(loads),
-                       arch.fc, block_kinds=tuple(kinds))
+                       fc=arch.fc, block_kinds=tuple(kinds))
 
 
 def _check_change(side: str, change, run) -> dict:
@@ -649,4 +649,4 @@ def arch_without_piers(arch: ArchOnPiers) -> PolygonArch:
                   if ld.voussoir in vous)
     return PolygonArch(tuple(arch.intrados[i] for i in vous),
                        tuple(arch.extrados[i] for i in vous), arch.density,
-                       f"{arch.name} (voussoirs)", loads, arch.fc)
+                       f"{arch.name} (voussoirs)", loads, fc=arch.fc)

@@ -85,7 +85,7 @@ class PolygonArch(VoussoirArch):
     density: float = DEFAULT_DENSITY
     name: str = field(default="arch", compare=False)
     loads: tuple = ()
-    fc: float | None = None
+    fc: float | None = field(default=None, kw_only=True)
 
     #: The subclass that reads blocks with a ``"kind"`` (:class:`~archrock.geometry.ArchOnPiers`,
     #: which names itself with ``reads_block_kinds=True``: piers sit above this module).
@@ -238,14 +238,15 @@ class PolygonArch(VoussoirArch):
         extr = tuple((p * flip)[::-1] for p in self.extrados[::-1])
         n = self.n
         loads = tuple(Load(n - 1 - ld.voussoir, ld.mass, ld.mirrored()) for ld in self.loads)
-        return PolygonArch(intr, extr, self.density, f"{self.name} (mirrored)", loads, self.fc)
+        return PolygonArch(intr, extr, self.density, f"{self.name} (mirrored)", loads,
+                           fc=self.fc)
 
     def scaled(self, factor: float) -> "PolygonArch":
         f = _check_scalar("factor", factor, 0.0, None, allowed="> 0")
         loads = tuple(Load(ld.voussoir, ld.mass * f * f, (ld.at[0] * f, ld.at[1] * f))
                       for ld in self.loads)
         return PolygonArch(tuple(p * f for p in self.intrados), tuple(p * f for p in self.extrados),
-                           self.density, self.name, loads, self.fc)
+                           self.density, self.name, loads, fc=self.fc)
 
     # ------------------------------------------------------------------ serialisation
     def to_dict(self) -> dict:
@@ -267,7 +268,7 @@ class PolygonArch(VoussoirArch):
                 and PolygonArch._block_kinds_reader is not None:
             return PolygonArch._block_kinds_reader.from_dict(data, name=name)
         intr, extr, density, loads = cls._parse_dict(data)
-        return cls(intr, extr, density, name, loads, _file_fc(data))
+        return cls(intr, extr, density, name, loads, fc=_file_fc(data))
 
     @staticmethod
     def _parse_dict(data):
@@ -306,4 +307,4 @@ def as_polygon(arch, points_per_arc: int = 40) -> PolygonArch:
         intr.append(np.column_stack([ri * np.cos(ang), ri * np.sin(ang)]))
         extr.append(np.column_stack([ro * np.cos(ang), ro * np.sin(ang)]))
     return PolygonArch(tuple(intr), tuple(extr), arch.density, f"{arch.name} (polygon)", arch.loads,
-                       arch.fc)
+                       fc=arch.fc)

@@ -44,7 +44,8 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
     ax.plot(poly[:, 0], poly[:, 1], "-", color=STYLE["thrust"], lw=1.6, zorder=4,
             label="line of thrust at collapse")
     ax.plot(pts[:, 0], pts[:, 1], ".", color=STYLE["thrust"], ms=4, zorder=4)
-    draw_hinges(ax, arch, mech)
+    zones = getattr(result, f"zones_{direction}", None)
+    draw_hinges(ax, arch if zones is None else _zones(ax, arch, pts, zones), mech)
     jp = np.asarray(arch.joint_points, float)
     for i, j in enumerate(getattr(mech, "lift_off", ())):
         # the joint opens at both ends: drawn as a thick dashed line across it
@@ -69,6 +70,10 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
                     for lab, h in mech.labelled())
     if getattr(mech, "lift_off", ()):
         seq += f"; lifts off at joint {', '.join(map(str, mech.lift_off))}"
+    if getattr(mech, "crushed", ()):
+        seq += f"; crushed through at joint {', '.join(map(str, mech.crushed))}"
+    if zones is not None:
+        seq += f"; $f_c$ = {arch.fc:g} MPa"
     title = (f"{arch.name}: mechanism $M_{direction}$, $k_{direction}$ = {k:.4f}\n"
              f"hinges (joint, i = intrados / e = extrados): {seq}")
     if getattr(arch, "pier_blocks", ()):
@@ -88,6 +93,26 @@ def plot_limit(result, direction: str = "l", ax=None, *, show_loads: bool = True
     ax.set_ylim(ymin - 0.45 * size, ymax + 0.2 * size)
     ax.grid(True, lw=0.3, alpha=0.4)
     return ax
+
+
+def _zones(ax, arch, pts, zones):
+    """Draw each joint's compressed zone at collapse (finite f_c): a band of the zone's depth
+    N / f_c along the joint, centred on the thrust's crossing.  Returns the arch whose contact
+    segments end at the stress blocks' centres, where the hinges are drawn."""
+    from ..statics.crushing import InsetArch
+
+    jp = np.asarray(arch.joint_points, float)
+    e = jp[:, 1] - jp[:, 0]
+    length = np.hypot(e[:, 0], e[:, 1])
+    u = e / np.where(length > 0, length, 1.0)[:, None]
+    first = True
+    for j in np.flatnonzero((zones > 0) & np.all(np.isfinite(pts), axis=1)):
+        ends = np.array([pts[j] - 0.5 * zones[j] * u[j], pts[j] + 0.5 * zones[j] * u[j]])
+        ax.plot(ends[:, 0], ends[:, 1], "-", color="#e07b00", lw=5, alpha=0.8,
+                solid_capstyle="butt", zorder=6,
+                label="compressed zone (depth N / $f_c$)" if first else None)
+        first = False
+    return InsetArch(arch, np.minimum(0.5 * zones, 0.4999 * length))
 
 
 def save_limit_figure(result, path: str | os.PathLike, directions=("l", "r"), dpi: int = 150) -> Path:

@@ -162,7 +162,9 @@ def _bracket(st, c, objective, lam_bounds=(None, None), rtol: float = BRACKET_RT
             _add_points(points, st.A_N @ xs + st.b_N, nmax, crushes)
         if sign_only and (lower >= 0.0 or upper < 0.0):
             return lower, upper, x_lo, x_hi, rounds
-        if x_lo is not None and upper - lower <= rtol * max(abs(upper), 1e-300):
+        # relative, but not below 1e-3 in absolute terms: near 0 the LPs' tolerance (1e-10)
+        # is what limits the bracket
+        if x_lo is not None and upper - lower <= rtol * max(abs(upper), 1e-3):
             return lower, upper, x_lo, x_hi, rounds
     if sign_only:  # the maximum is 0 to within the bracket: on the edge, counted as standing
         return max(lower, 0.0), upper, x_lo, x_hi, max_rounds
@@ -276,7 +278,8 @@ def crushing_optimum(arch: VoussoirArch, bracket: CrushingBracket) -> CrushingOp
     c = crushing_constant(arch)
     n1 = st.L.size
     x_lo = np.asarray(bracket.x_lower, float)
-    scale = st.L * np.maximum(st.A_N @ x_lo + st.b_N, 1e-300)
+    # a point contact (L = 0) keeps Heyman's rows: its slack counts on the scale of 1
+    scale = np.where(st.L > 0, st.L * np.maximum(st.A_N @ x_lo + st.b_N, 1e-300), 1.0)
     best = None
     for x_start in (bracket.x_upper, bracket.x_lower):
         g, _ = _conditions(st, c, np.asarray(x_start, float))

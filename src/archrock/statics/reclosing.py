@@ -91,7 +91,9 @@ def gap_closing(arch: DisplacedArch) -> GapClosing | None:
     pc = point_contacts(arch)
     if not pc.point_joints:
         return None
-    r = limit_analysis(pc, verify=False)
+    # a point contact has no segment to spread a stress block on: the gaps' closing is
+    # Heyman's (the re-closed arch's own analysis takes the finite f_c)
+    r = limit_analysis(pc.with_fc(None), verify=False)
     shut_l, shut_r = closing_hinges(pc, r.mechanism_l), closing_hinges(pc, r.mechanism_r)
     if not (shut_l or shut_r):
         return None
