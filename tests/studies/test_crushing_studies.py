@@ -73,3 +73,17 @@ def test_assess_report_has_the_crushing_section_with_fc():
                                   sections=[section_crushing]).sections]
     assert keys == ["crushing"]
     assert [s.key for s in assess(oppenheim_arch(), sections=[section_crushing]).sections] == []
+
+
+def test_curves_and_fragility_arches_carry_fc():
+    """The arches of curves, fragility and the IDA (dynamics.population.prepare_many) are the
+    sampler's, each with its f_c, rocking about the inset hinges."""
+    from archrock.dynamics.population import prepare_many
+    from archrock.geometry.sampling import ArchSampler
+
+    plain = prepare_many(ArchSampler(oppenheim_arch(), seed=2), 3)
+    weak = prepare_many(ArchSampler(oppenheim_arch().with_fc(3.0), seed=2), 3)
+    for p, w in zip(plain, weak):
+        assert w.arch.fc == pytest.approx(3.0, rel=0, abs=0) and p.arch.fc is None
+        assert w.k_l < p.k_l - 1e-3
+        assert -w.mech_l.static_multiplier() == pytest.approx(w.k_l, rel=1e-9)
