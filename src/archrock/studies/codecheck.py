@@ -466,9 +466,8 @@ def mechanism_kinematics(arch, mechanism, points: int = 201, zones=None) -> Kine
     """The mechanism's four-link kinematics on ``arch``: virtual displacements of the voussoirs'
     mass centres at rest and, on rotations from 0 to the unstable one (F = 0), the exact
     multiplier alpha = -s F / P and the voussoirs' horizontal displacements (s = +1 for M_l,
-    -1 for M_r: displacements are measured in the direction of the loads).  zones: the
-    compressed zones [m] at collapse of an arch of finite strength (the hinges half a zone in
-    from the edges, as the statics put them); None: edge hinges."""
+    -1 for M_r: displacements are measured in the direction of the loads).  zones: with f_c,
+    the compressed zones [m] at collapse (hinges half a zone in from the edges)."""
     from ..dynamics.fourlink import configuration, four_link
 
     fl = four_link(arch, mechanism, zones)
@@ -680,9 +679,8 @@ def code_check(arch, limit=None, config: CodeCheckConfig | None = None,
         raise ArchInputError("above_ground: expected an AboveGround or None")
     cfg = CodeCheckConfig() if config is None else config
     lim = limit_analysis(arch, verify=True) if limit is None else limit
-    # finite strength: the mechanism on the statics' inset hinges, so alpha_0 is their k
     kins = {d: mechanism_kinematics(arch, lim.mechanism(d), cfg.points, collapse_zones(lim, d))
-            for d in ("l", "r")}
+            for d in ("l", "r")}  # with f_c on the statics' inset hinges: alpha_0 is their k
     out = tuple(kinematic_check(kins[d], cfg, d) for d in ("l", "r"))
     if not (getattr(arch, "pier_blocks", ()) or above_ground is not None):
         return CodeCheckResult(cfg, out, getattr(arch, "name", ""))
