@@ -708,9 +708,9 @@ ENTRIES += [
 # --- docs/crushing-dynamics.md: the four-link model with a finite compressive strength ----------
 
 def crushing_dynamics() -> str:
-    """One line per arch and f_c: k_l [g], phi_u [rad], the paper's pulse's peak [rad] and
-    outcome (Oppenheim's arch), first collapse amplitudes [g] at t_p = 0.2 s (and 0.5 s for the
-    flat bridge arch); the table of docs/crushing-dynamics.md."""
+    """One line per arch and f_c: k_l [g], phi_u [rad], a pulse's peak [rad] and outcome (the
+    paper's on Oppenheim's arch, -2 g and 0.5 s on the flat bridge arch), first collapse
+    amplitudes [g] at t_p = 0.2 s (and 0.5 s for the flat arch); docs/crushing-dynamics.md."""
     def run():
         from archrock.dynamics.response import prepare, respond
         from archrock.geometry import family_arch, oppenheim_arch
@@ -722,9 +722,10 @@ def crushing_dynamics() -> str:
             for fc in (None, 10.0, 5.0, 2.0):
                 m = prepare(arch.with_fc(fc))
                 row = f"{name} {fc or 'inf'}: {m.k_l:.4f} {m.phi_unstable_l:.4f}"
-                if name == "opp":
-                    r = respond(m, oppenheim_pulse(-1.0, 0.2))
-                    row += f" {r.peak:.4f} {r.status}"
+                # the paper's pulse on Oppenheim's arch; on the flat arch one of -2 g, 0.5 s
+                r = respond(m, oppenheim_pulse(-1.0, 0.2) if name == "opp"
+                            else oppenheim_pulse(-2.0, 0.5))
+                row += f" {r.peak:.4f} {r.status}"
                 for tp in ((0.2,) if name == "opp" else (0.2, 0.5)):
                     a = collapse_amplitude(m, tp, "oppenheim", -1, a_max=20.0).amplitude
                     row += f" {a:.3f}"
@@ -740,9 +741,10 @@ ENTRIES += [
     for label, key, end in (("infinite", "inf", "rest"), ("10", "10.0", "rest"),
                             ("5", "5.0", "rest"), ("2", "2.0", "collapsed"))
 ] + [
-    Entry(CD, f"| {label} | {{}} | {{}} | {{}} | {{}} |", "py:crushing_dynamics",
-          rf"flat {key}: (\S+) (\S+) (\S+) (\S+)", slow=True)
-    for label, key in (("infinite", "inf"), ("10", "10.0"), ("5", "5.0"), ("2", "2.0"))
+    Entry(CD, f"| {label} | {{}} | {{}} | {{}} | {end} | {{}} | {{}} |", "py:crushing_dynamics",
+          rf"flat {key}: (\S+) (\S+) (\S+) {end} (\S+) (\S+)", slow=True)
+    for label, key, end in (("none (Heyman)", "inf", "rest"), ("10 MPa", "10.0", "rest"),
+                            ("5 MPa", "5.0", "rest"), ("2 MPa", "2.0", "collapsed"))
 ]
 CR = "docs/crushing.md"
 ENTRIES += [
