@@ -87,3 +87,13 @@ def test_curves_and_fragility_arches_carry_fc():
         assert w.arch.fc == pytest.approx(3.0, rel=0, abs=0) and p.arch.fc is None
         assert w.k_l < p.k_l - 1e-3
         assert -w.mech_l.static_multiplier() == pytest.approx(w.k_l, rel=1e-9)
+
+
+def test_the_engine_chosen_for_an_arch_of_finite_strength_says_it_does_not_crush():
+    from archrock.studies.enginestudy import choose_dynamics
+
+    weak = choose_dynamics(oppenheim_arch().with_fc(3.0), "engine")
+    plain = choose_dynamics(oppenheim_arch(), "engine")
+    assert "f_c = 3 MPa is not in its answer" in weak.reason
+    assert "crush" not in plain.reason
+    assert "crush" not in choose_dynamics(oppenheim_arch().with_fc(3.0)).reason  # four-link
