@@ -226,3 +226,43 @@ def test_displaced_arch_with_fc():
     assert 0.9 * heyman.k < weak.k < heyman.k
     g0, g5 = gap_closing(moved), gap_closing(moved.with_fc(5.0))
     assert g0.k_l == g5.k_l and g0.k_r == g5.k_r
+
+
+def test_flat_lintel_crushes_at_fc_h_over_w():
+    """Closed form: a flat lintel of three rectangular voussoirs (span S, depth h, vertical
+    joints) has no mechanism under Heyman's hypotheses; with f_c its springing joint crushes
+    through when the horizontal load lambda W reaches f_c h (the thrust at the joint's centre,
+    the whole depth compressed), provided W S <= f_c h^2 (the weight's bending then fits inside
+    the stress blocks at every joint): lambda = f_c h / W."""
+    from archrock.geometry import PolygonArch
+
+    span, h, n = 3.0, 0.5, 3
+    xs = [span * i / n for i in range(n + 1)]
+    lintel = PolygonArch(tuple([[xs[i], 0.0], [xs[i + 1], 0.0]] for i in range(n)),
+                         tuple([[xs[i], h], [xs[i + 1], h]] for i in range(n)), 2000.0, "lintel")
+    with pytest.raises(NoMechanismError):
+        limit_analysis(lintel)
+    weight = 2000.0 * G * span * h
+    for fc in FCS:
+        assert weight * span <= fc * 1e6 * h * h
+        r = limit_analysis(lintel.with_fc(fc))
+        expected = fc * 1e6 * h / weight
+        for d in "lr":
+            assert abs(getattr(r, f"k_{d}") - expected) <= 1e-9 * expected
+            assert r.mechanism(d).crushed
+
+
+def test_limit_command_with_fc(capsys):
+    """`archrock limit --fc 2 --json` carries f_c, both bounds and the zones; the friction-limited
+    minimum thickness (Heyman's) is refused beside --fc rather than answered without it."""
+    import json
+
+    from archrock.cli import main
+
+    assert main(["limit", "--fc", "2", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["fc"] == 2.0 and len(d["zones_l"]) == 8
+    lo, hi = d["k_bounds_l"]
+    assert lo - 1e-8 <= d["static_k_l"] <= hi + 1e-8 and abs(d["k_l"] - d["static_k_l"]) < 1e-9
+    assert main(["limit", "--min-thickness", "--friction", "0.6", "--fc", "2"]) == 2
+    assert "--min-thickness: with --friction and --fc" in capsys.readouterr().err

@@ -186,3 +186,14 @@ def test_cli_codecheck(capsys, tmp_path):
     assert main(["codecheck", "--confidence-factor", "1.0"]) == 0
     out = capsys.readouterr().out
     assert "0.370010" in out and "no check" in out
+
+
+def test_fc_is_the_strength_and_says_so(capsys):
+    """--fc, the confidence factor until 0.7, is the masonry's strength now: the command says
+    so on stderr, and the confidence factor is --confidence-factor."""
+    from archrock.cli import main
+
+    assert main(["codecheck", "--fc", "1.35"]) == 0
+    err = capsys.readouterr().err
+    assert "--fc 1.35 is the masonry's compressive strength [MPa]" in err
+    assert "--confidence-factor (now 1.35)" in err

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 from ._parser import CLIError, _int, emit_json, finite_float, non_negative_int
 from .options import add_geometry_options, arch_from_args
 
@@ -72,6 +74,12 @@ def codecheck_config_from_args(args):
             control = non_negative_int(control)
         except Exception:
             raise CLIError(f"--control: {args.control!r}; allowed 'centre' or a voussoir index >= 0") from None
+    if getattr(args, "fc", None) is not None:
+        # until 0.7 --fc was this command's confidence factor: say what it is now, so that an
+        # old script's --fc 1.35 does not pass unnoticed as a strength of 1.35 MPa
+        print(f"archrock: note: --fc {args.fc:g} is the masonry's compressive strength [MPa]; "
+              f"the confidence factor is --confidence-factor (now {args.confidence_factor:g})",
+              file=sys.stderr)
     return CodeCheckConfig(fc=args.confidence_factor, q=args.q, control=control, spectrum=spectrum_from_args(args))
 
 

@@ -131,6 +131,11 @@ def run_limit(args) -> int:
     sup_lines, sup_json, cap = _supports_extra(args, arch, result)
     mu = args.friction
     mt = None
+    if args.min_thickness and mu is not None and arch.fc is not None:
+        # the friction-limited minimum thickness is Heyman's (no crushing): with both it would
+        # answer a question that was not asked
+        raise CLIError("--min-thickness: with --friction and --fc together is not computed "
+                       "(friction and crushing at once); give one of them")
     if args.min_thickness:
         # first: where no thickness stands with this friction, that is the answer
         mt = minimum_thickness(arch) if mu is None else friction_minimum_thickness(arch, mu)
