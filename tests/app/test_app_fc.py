@@ -49,3 +49,15 @@ def test_respond_carries_fc_and_is_the_librarys(client):
     assert np.allclose(d["chain_links"][0]["points"], model.mech_l.points, rtol=0, atol=1e-6)
     plain = client.post("/api/respond", json={"arch": OPPENHEIM, "pulse": PULSE, "t_end": 3})
     assert plain.json()["fc"] is None and plain.json()["status"] == "rest"
+
+
+def test_ensemble_request_takes_the_strength_spread():
+    from archrock.app import api
+
+    cfg = api.ensemble_config({"arch": {**OPPENHEIM, "fc": 3.0}, "samples": 20,
+                               "spreads": {"fc": 0.3}})
+    assert cfg.sampler.finite and cfg.spreads.fc == pytest.approx(0.3, rel=0, abs=0)
+    drawn = [a.fc for a in cfg.sampler.arches(0, 5)]
+    assert min(drawn) >= 2.1 - 1e-12 and max(drawn) <= 3.9 + 1e-12 and np.ptp(drawn) > 0
+    with pytest.raises(archrock.errors.ArchInputError, match=r"^spread fc: 0\.3"):
+        api.ensemble_config({"arch": OPPENHEIM, "samples": 20, "spreads": {"fc": 0.3}})

@@ -46,7 +46,7 @@ MAX_UPLOAD_CHARS = 2_000_000
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 #: The fields each request may hold (any other key is refused, naming it: fields.only).
 PULSE_FIELDS = ("kind", "amplitude", "duration")
-SPREAD_FIELDS = ("span", "thickness", "radius", "tilt")
+SPREAD_FIELDS = ("span", "thickness", "radius", "tilt", "fc")
 LIMIT_FIELDS = ("arch", "friction", "thrust_range")
 ENSEMBLE_FIELDS = ("arch", "samples", "seed", "spreads", "pulse", "friction")
 CURVE_FIELDS = ("arch", "samples", "seed", "spreads", "durations", "kind", "friction")
@@ -68,7 +68,8 @@ def _random_arches(params: dict, default: int, lo: int, hi: int, where: str):
         raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
     sp = only(object_field(params, "spreads"), SPREAD_FIELDS, "spreads")
     return samples, seed, Spreads(*(number(sp, k, d) for k, d in (
-        ("span", 0.1), ("thickness", 0.1), ("radius", 0.05), ("tilt", 0.0))))
+        ("span", 0.1), ("thickness", 0.1), ("radius", 0.05), ("tilt", 0.0))),
+        fc=number(sp, "fc", 0.0))  # each arch's f_c spread (the CLI's --spread-fc)
 
 
 # ---------------------------------------------------------------------------- the arch
