@@ -715,6 +715,48 @@ ENTRIES += [
           "json:nominal.speedup,population.speedup", at_least=True, slow=True),
 ]
 
+
+# --- docs/crushing-dynamics.md: the four-link model with a finite compressive strength ----------
+
+def crushing_dynamics() -> str:
+    """One line per arch and f_c: k_l [g], phi_u [rad], a pulse's peak [rad] and outcome (the
+    paper's on Oppenheim's arch, -2 g and 0.5 s on the flat bridge arch), first collapse
+    amplitudes [g] at t_p = 0.2 s (and 0.5 s for the flat arch); docs/crushing-dynamics.md."""
+    def run():
+        from archrock.dynamics.response import prepare, respond
+        from archrock.geometry import family_arch, oppenheim_arch
+        from archrock.groundmotion import oppenheim_pulse
+        from archrock.studies.amplitude import collapse_amplitude
+
+        flat = family_arch("circular", 10.0, 1.5, 0.5, 15, exact=False)
+        for name, arch in (("opp", oppenheim_arch()), ("flat", flat)):
+            for fc in (None, 10.0, 5.0, 2.0):
+                m = prepare(arch.with_fc(fc))
+                row = f"{name} {fc or 'inf'}: {m.k_l:.4f} {m.phi_unstable_l:.4f}"
+                # the paper's pulse on Oppenheim's arch; on the flat arch one of -2 g, 0.5 s
+                r = respond(m, oppenheim_pulse(-1.0, 0.2) if name == "opp"
+                            else oppenheim_pulse(-2.0, 0.5))
+                row += f" {r.peak:.4f} {r.status}"
+                for tp in ((0.2,) if name == "opp" else (0.2, 0.5)):
+                    a = collapse_amplitude(m, tp, "oppenheim", -1, a_max=20.0).amplitude
+                    row += f" {a:.3f}"
+                print(row)
+    return _printed(run)
+
+
+FUNCTIONS[crushing_dynamics.__name__] = crushing_dynamics
+CD = "docs/crushing-dynamics.md"
+ENTRIES += [
+    Entry(CD, f"| {label} | {{}} | {{}} | {{}} | {end} | {{}} |", "py:crushing_dynamics",
+          rf"opp {key}: (\S+) (\S+) (\S+) {end} (\S+)", slow=True)
+    for label, key, end in (("infinite", "inf", "rest"), ("10", "10.0", "rest"),
+                            ("5", "5.0", "rest"), ("2", "2.0", "collapsed"))
+] + [
+    Entry(CD, f"| {label} | {{}} | {{}} | {{}} | {end} | {{}} | {{}} |", "py:crushing_dynamics",
+          rf"flat {key}: (\S+) (\S+) (\S+) {end} (\S+) (\S+)", slow=True)
+    for label, key, end in (("none (Heyman)", "inf", "rest"), ("10 MPa", "10.0", "rest"),
+                            ("5 MPa", "5.0", "rest"), ("2 MPa", "2.0", "collapsed"))
+]
 CR = "docs/crushing.md"
 ENTRIES += [
     Entry(CR, "k = min(k_l, k_r) = {} (collapse multiplier with f_c = 10 MPa)",

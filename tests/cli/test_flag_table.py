@@ -34,7 +34,7 @@ def _fields(name):
 def _parser():
     p = argparse.ArgumentParser()
     add_geometry_options(p)  # with the piers' and the support movement's flags
-    add_spread_options(p, tilt=True, piers=True)
+    add_spread_options(p, tilt=True, piers=True, strength=True)
     add_motion_options(p)
     add_impact_options(p)
     return p

@@ -46,7 +46,7 @@ MAX_UPLOAD_CHARS = 2_000_000
 PULSE_KINDS = ("oppenheim", "rectangular", "half-sine", "one-sine", "ricker")
 #: The fields each request may hold (any other key is refused, naming it: fields.only).
 PULSE_FIELDS = ("kind", "amplitude", "duration")
-SPREAD_FIELDS = ("span", "thickness", "radius", "tilt")
+SPREAD_FIELDS = ("span", "thickness", "radius", "tilt", "fc")
 LIMIT_FIELDS = ("arch", "friction", "thrust_range")
 ENSEMBLE_FIELDS = ("arch", "samples", "seed", "spreads", "pulse", "friction")
 CURVE_FIELDS = ("arch", "samples", "seed", "spreads", "durations", "kind", "friction")
@@ -68,7 +68,8 @@ def _random_arches(params: dict, default: int, lo: int, hi: int, where: str):
         raise ArchInputError(f"seed: {seed}; allowed an integer >= 0")
     sp = only(object_field(params, "spreads"), SPREAD_FIELDS, "spreads")
     return samples, seed, Spreads(*(number(sp, k, d) for k, d in (
-        ("span", 0.1), ("thickness", 0.1), ("radius", 0.05), ("tilt", 0.0))))
+        ("span", 0.1), ("thickness", 0.1), ("radius", 0.05), ("tilt", 0.0))),
+        fc=number(sp, "fc", 0.0))  # each arch's f_c spread (the CLI's --spread-fc)
 
 
 # ---------------------------------------------------------------------------- the arch
@@ -180,8 +181,9 @@ def limit(params: dict) -> dict:
     hinges = {}
     for d in ("l", "r"):
         m = result.mechanism(d)
+        pts = _hinge_points(arch, result, d)
         hinges[d] = [{"label": lab, "joint": int(h.joint), "edge": h.edge,
-                      "point": xy(arch.joint_point(h.joint, h.edge))}
+                      "point": xy(pts[h.joint, 0 if h.edge == "intrados" else 1])}
                      for lab, h in m.labelled()]
     lines = {d: xy((result.thrust_l if d == "l" else result.thrust_r).polyline)
              for d in ("l", "r")}
@@ -189,7 +191,18 @@ def limit(params: dict) -> dict:
         tr = extra["thrust"]
         lines["min"], lines["max"] = xy(tr.line_min.polyline), xy(tr.line_max.polyline)
     return {"summary": summary, "drawing": arch_drawing(arch), "thrust_lines": lines,
-            "hinges": hinges, "elapsed_ms": 1e3 * (time.perf_counter() - t0)}
+            "hinges": hinges, "fc": arch.fc, "elapsed_ms": 1e3 * (time.perf_counter() - t0)}
+
+
+def _hinge_points(arch, result, d: str) -> np.ndarray:
+    """The joints' end points (n+1, 2, 2) [m] with the hinges of M_d where the statics put
+    them: at the edges, or with a finite f_c half a stress block in from them."""
+    from ..dynamics.finite import collapse_zones, inset_joint_points
+
+    zones = collapse_zones(result, d)
+    if zones is None:
+        return np.asarray(arch.joint_points, float)
+    return inset_joint_points(arch, result.mechanism(d), zones)
 
 
 # ---------------------------------------------------------------------------- dynamics
@@ -349,6 +362,7 @@ def four_link_response(req: dict) -> dict:
         "record": req["record"],
         "exaggerate": ex,
         "model": "fourlink", "valid": four_link_valid(chosen), "dynamics": chosen.to_dict(),
+        "fc": arch.fc,  # None: infinite strength; else the hinges are inset (chain_links)
         "label": ("four-link model: " if four_link_valid(chosen)
                   else "four-link model, not valid here: ") + chosen.reason,
         "elapsed_ms": 1e3 * (time.perf_counter() - t0),
@@ -387,7 +401,7 @@ def ensemble_config(params: dict):
     (:mod:`archrock.studies.work`)."""
     from .._jit import HAVE_NUMBA
     from ..studies.ensemble import EnsembleConfig
-    from ..studies.work import SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
+    from ..studies.work import SAMPLE_FINITE_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, format_duration
 
     params = only(request_object(params), ENSEMBLE_FIELDS)
     nominal = arch_from_params(object_field(params, "arch"))
@@ -395,6 +409,8 @@ def ensemble_config(params: dict):
                                             "in the app (archrock ensemble for more)")
     motion = pulse_spec(params["pulse"]) if params.get("pulse") is not None else None
     each = (SAMPLE_RESPONSE_S if motion is not None else SAMPLE_LIMIT_S) * (1 if HAVE_NUMBA else 50)
+    if nominal.fc is not None:  # each arch through the crushing statics, one at a time
+        each += SAMPLE_FINITE_S
     est = samples * each
     if est > MAX_ENSEMBLE_WORK_S:
         raise ArchInputError(f"samples: {samples} arches, estimated {format_duration(est)} here; "

@@ -174,6 +174,11 @@ def run_dem(args) -> int:
     settings = engine_settings_from_args(args)
     arch = arch_from_args(args)
     require_engine(settings)
+    if arch.fc is not None:  # never a silent answer without the strength asked for
+        print(f"archrock: note: the contact engine's blocks are rigid and do not crush: "
+              f"f_c = {arch.fc:g} MPa is not in its answer; the limit analysis and the "
+              f"four-link model with f_c are (archrock limit --fc, archrock respond --fc; "
+              f"docs/crushing-dynamics.md)", file=sys.stderr)
     quiet = args.json or args.no_progress
     progress = None if quiet else _progress
     if args.ramp:

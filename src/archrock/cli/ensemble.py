@@ -27,7 +27,7 @@ def add_ensemble_parser(subparsers):
     p.add_argument("--samples", type=_int, default=1000, metavar="N",
                    help="number of random arches, >= 1 (default 1000)")
     p.add_argument("--seed", type=_int, default=0, help="random seed, integer >= 0 (default 0)")
-    add_spread_options(p, tilt=True, piers=True)
+    add_spread_options(p, tilt=True, piers=True, strength=True)
     p.add_argument("--batch-size", type=_int, default=500, metavar="B",
                    help="samples per batch: the unit of work and of resumption, >= 1 "
                         "(default 500)")

@@ -141,10 +141,11 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> argparse.ArgumentPa
 
 # ---------------------------------------------------------------------------- random arches
 def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
-                       piers: bool = False) -> argparse.ArgumentParser:
+                       piers: bool = False, strength: bool = False) -> argparse.ArgumentParser:
     """Add --spread-span, --spread-thickness, --spread-radius (docs/method.md, Geometry widths),
     with ``tilt`` --spread-tilt (joint tilt of family arches, degrees), with ``piers`` the
-    pier spreads --spread-pier-lean/-width/-height/-course (docs/piers.md, Irregular piers)."""
+    pier spreads --spread-pier-lean/-width/-height/-course (docs/piers.md, Irregular piers),
+    with ``strength`` --spread-fc (each arch's f_c, docs/crushing-dynamics.md)."""
     p.add_argument("--spread-span", type=finite_float, default=None, metavar="S_A",
                    help="relative half-width of the spans, 0 <= s_a < 1 (default 0.1; 0 for an "
                         "arch whose joints stay where drawn: on piers, or a polygon without a "
@@ -165,6 +166,10 @@ def add_spread_options(p: argparse.ArgumentParser, tilt: bool = False,
             p.add_argument("--spread-" + name.replace("_", "-"), type=finite_float, default=0.0,
                            metavar="S", help=f"on piers: {what}, 0 <= s {'<=' if closed else '<'}"
                                              f" {hi:g} (default 0)")
+    if strength:
+        p.add_argument("--spread-fc", type=finite_float, default=0.0, metavar="S",
+                       help="with --fc: each arch's compressive strength is f_c (1 + U s), U "
+                            "uniform on [-1, 1], 0 <= s < 1 (default 0)")
     return p
 
 
@@ -198,7 +203,7 @@ def add_random_arches_options(p: argparse.ArgumentParser,
     of a study (curves, fragility)."""
     p.add_argument("--samples", type=non_negative_int, default=0, metavar="N", help=samples_help)
     p.add_argument("--seed", type=non_negative_int, default=0, help="random seed (default 0)")
-    return add_spread_options(p, tilt=True, piers=True)
+    return add_spread_options(p, tilt=True, piers=True, strength=True)
 
 
 # ---------------------------------------------------------------------------- ground motion

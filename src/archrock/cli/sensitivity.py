@@ -21,7 +21,7 @@ def add_sensitivity_parser(subparsers):
                     "with bootstrap intervals (docs/ensemble.md). Needs the extra "
                     "'sensitivity' (SALib).")
     add_geometry_options(p)
-    add_spread_options(p, tilt=True)
+    add_spread_options(p, tilt=True, strength=True)
     p.add_argument("--samples", type=_int, default=1024, metavar="N",
                    help="base samples, a power of two >= 16 (N x (groups + 2) arches; default "
                         "1024)")

@@ -42,6 +42,7 @@ from ..statics.liftoff import LIFT_OFF_REASON, certify_candidates
 from ..statics.lp import static_multiplier
 from ..statics.sums import _batch_sums, arch_sums
 from .chain import pack_chains
+from .finite import any_finite
 # the batch's response loop is a module of its own; its names stay importable from here
 from .batchsim import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, simulate_batch
 from .fourbar import (GEO_ERRORS, GEO_SIZE, coefficients, dead_point, mechanism_geo,
@@ -382,6 +383,8 @@ def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedB
 
     items = [arches] if isinstance(arches, VoussoirArch) else list(arches)
     spec = _spec(impact, cv, nominal)
+    if any_finite(items):  # finite strength: the conic statics, arch by arch (dynamics.finite)
+        return _prepare_finite(items, spec, t0)
     B = len(items)
     good = [b for b, a in enumerate(items) if isinstance(a, VoussoirArch)]
     if not good:
@@ -609,3 +612,77 @@ def _least_loss_per_arch(arch_of, B, ok, c_lr, c_rl, v_rest, error) -> dict:
             # the range of FourLink.tabulated(lim), which the one-arch fast integrator reads
             arr["chain_table"][b, j] = table_range(fl.geo, lim, fl.phi_dead)
     return arr
+
+
+def _prepare_finite(arches, spec, t0: float):
+    """A :class:`~archrock.dynamics.batch.PreparedBatch` of ``arches`` (entries may be
+    errors) through :func:`~archrock.dynamics.response.prepare`, one arch at a time, with the
+    resolved impact ``spec``: the path for arches of finite strength (module docstring).  An
+    arch without an answer keeps its reason in ``error``, as the compiled path words it."""
+    import warnings
+
+    from ..errors import GeometryOutcome, ImpactModelError
+    from .response import prepare
+
+    B = len(arches)
+    error = np.full(B, "", dtype=object)
+    nan = lambda: np.full(B, np.nan)  # noqa: E731 - a fresh column each call
+    k_l, k_r, phu_l, phu_r, lim_l, lim_r, c_lr, c_rl, v_rest = (nan() for _ in range(9))
+    mech_l = np.full(B, "", dtype=object)
+    mech_r = np.full(B, "", dtype=object)
+    fallback = np.full(B, spec.note or "", dtype=object)
+    chains = {}
+    for b, arch in enumerate(arches):
+        if isinstance(arch, Exception):
+            why = " ".join(str(arch).split())
+            error[b] = LeftOut.read(why if why.startswith("geometry:") else "geometry: " + why)
+            continue
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                model = prepare(arch, spec)
+        except (GeometryOutcome, ImpactModelError) as exc:
+            error[b] = _finite_reason(exc)
+            continue
+        except (ArchrockError, ZeroDivisionError, FloatingPointError) as exc:
+            error[b] = LeftOut("four_link_not_applicable",
+                               "four-link model: " + " ".join(str(exc).split()))
+            continue
+        chains[b] = model.chain
+        k_l[b], k_r[b] = model.k_l, model.k_r
+        mech_l[b], mech_r[b] = model.mech_l.mechanism.label, model.mech_r.mechanism.label
+        phu_l[b], phu_r[b] = model.phi_unstable_l, model.phi_unstable_r
+        lim_l[b], lim_r[b] = model.phi_limit_l, model.phi_limit_r
+        c_lr[b], c_rl[b] = model.impact.l_to_r, model.impact.r_to_l
+        v_rest[b] = model.v_rest
+        if getattr(model.impact, "fallback", None):
+            fallback[b] = model.impact.fallback
+    c = pack_chains(chains, size=B, fill=np.nan, width=GEO_SIZE)
+    R = c["rows"].shape[1]
+    table = np.full((B, R, 2), np.nan)
+    for b, (mechs, lims, _) in chains.items():
+        for j, (fl, lim) in enumerate(zip(mechs, lims)):
+            table[b, j] = table_range(fl.geo, lim, fl.phi_dead)
+    fallback[error != ""] = ""
+    return PreparedBatch(k_l, k_r, mech_l, mech_r, c["rows"][:, 0].copy(),
+                         c["rows"][:, 1].copy(), phu_l, phu_r, lim_l, lim_r, c_lr, c_rl, v_rest,
+                         error, table[:, 0].copy(), table[:, 1].copy(),
+                         {"limit": time.perf_counter() - t0, "four_link": 0.0, "impact": 0.0},
+                         chain_geo=c["rows"], chain_limit=c["limit"],
+                         chain_unstable=c["unstable"], chain_direction=c["direction"],
+                         chain_next=c["next"], chain_ratio=c["ratio"], chain_table=table,
+                         n_mechanisms=c["n_rows"], impact_fallback=fallback)
+
+
+def _finite_reason(exc) -> str:
+    """An outcome as a LeftOut: its reason by its type, its message as it was raised."""
+    from ..errors import (CannotStandError, ImpactModelError, InvalidSampleError,
+                          NoMechanismError, NotFourHingeError)
+
+    msg = " ".join(str(exc).split()) or type(exc).__name__
+    for kind, reason in ((InvalidSampleError, "invalid_draw"), (CannotStandError, "cannot_stand"),
+                         (NoMechanismError, "no_mechanism"), (NotFourHingeError, "lift_off"),
+                         (ImpactModelError, "impact_not_applicable")):
+        if isinstance(exc, kind):
+            return LeftOut(reason, msg)
+    return LeftOut.read(msg)

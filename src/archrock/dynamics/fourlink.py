@@ -134,11 +134,14 @@ class FourLink:
         return tab
 
 
-def four_link(arch: VoussoirArch, mechanism: Mechanism) -> FourLink:
+def four_link(arch: VoussoirArch, mechanism: Mechanism, zones=None) -> FourLink:
     """The four-link model of ``mechanism`` on ``arch``, an arch of any shape: links are rigid
     unions of voussoirs, hinges the ends of the joints' contact segments
     (``arch.joint_points``), link masses, centroids and inertias those of the voussoirs with
-    their loads (``arch.masses``, ``centroids``, ``inertias``)."""
+    their loads (``arch.masses``, ``centroids``, ``inertias``).  zones: the compressed zones'
+    depths [m] (n+1,) at collapse of an arch of finite strength: each hinge then sits half a
+    zone in from its edge (:func:`archrock.dynamics.finite.inset_joint_points`); None: at the
+    edges."""
     if not isinstance(arch, VoussoirArch):
         raise ArchInputError(f"arch: expected a VoussoirArch (Arch, PolygonArch), got "
                              f"{type(arch).__name__}")
@@ -153,7 +156,12 @@ def four_link(arch: VoussoirArch, mechanism: Mechanism) -> FourLink:
         raise ArchInputError(f"mechanism.hinges: need 4 distinct joints in 0..{arch.n}, got {joints}")
     # (n+1, 2) per coordinate: [joint, edge]; for a circular arch the very numbers r cos(psi),
     # r sin(psi) it always used, so its models are unchanged to the bit
-    pts = arch.joint_points
+    if zones is None:
+        pts = arch.joint_points
+    else:
+        from .finite import inset_joint_points
+
+        pts = inset_joint_points(arch, mechanism, zones)
     px = np.ascontiguousarray(pts[:, :, 0])
     py = np.ascontiguousarray(pts[:, :, 1])
     edges = np.array([EDGES.index(h.edge) for h in hinges], dtype=np.int64)

@@ -38,6 +38,7 @@ from ..geometry import VoussoirArch
 from ..groundmotion import G, GroundMotion
 from .impact import ImpactLaw, ImpactSpec, impact_law
 from ..statics.limit import LimitResult, limit_analysis, require_four_hinge
+from .finite import collapse_zones
 from .chain import least_loss_chain, pack_chains, rotation_limit
 from .fourlink import FourLink, exact_acceleration, four_link, rest_rate
 from .piers import SingleDofCheck, single_dof_check
@@ -236,7 +237,9 @@ def prepare(arch: VoussoirArch, impact=None, *, cv: float | None = None,
         spec = spec.resolved(nominal)
     lim = limit_analysis(arch, verify=False) if limit is None else limit
     require_four_hinge(lim)
-    m_l, m_r = four_link(arch, lim.mechanism_l), four_link(arch, lim.mechanism_r)
+    # finite strength: the hinges at the centres of the stress blocks at collapse (None: edges)
+    m_l = four_link(arch, lim.mechanism_l, collapse_zones(lim, "l"))
+    m_r = four_link(arch, lim.mechanism_r, collapse_zones(lim, "r"))
     if spec is not None and spec.model == "least-loss":
         return _prepare_least_loss(arch, lim, m_l, m_r, limit_factor)
     # the default spec falls back to the momentum law where the paper model cannot be used

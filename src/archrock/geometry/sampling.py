@@ -75,7 +75,13 @@ class Spreads:
     ``pier_width`` and ``pier_height``, 0 <= s < 1: its width and height times (1 + U s);
     ``pier_course``, 0 <= s < 0.5: each interior bed joint moved up or down by U s x the
     pier's mean course height.  Written (keys: the field names) only when not 0, so that the
-    hash of a configuration without them is unchanged."""
+    hash of a configuration without them is unchanged.
+
+    Strength (an arch of finite compressive strength only, ``nominal.fc`` set; docs/crushing-
+    dynamics.md): ``fc``, 0 <= s < 1: each arch's f_c is the nominal's times (1 + U s), one U per
+    arch from its own child stream ``SeedSequence(seed, spawn_key=(k, 3))``
+    (:meth:`ArchSampler.strength_uniforms`), so the blocks' draws do not change.  Written only
+    when not 0."""
 
     span: float = 0.1
     thickness: float = 0.1
@@ -85,6 +91,7 @@ class Spreads:
     pier_width: float = 0.0
     pier_height: float = 0.0
     pier_course: float = 0.0
+    fc: float = 0.0
 
     def __post_init__(self):
         for name, hi, closed, what in PIER_SPREADS:
@@ -101,7 +108,7 @@ class Spreads:
                 not (math.isfinite(float(v)) and 0.0 <= float(v) < 45.0):
             raise ArchInputError(f"spread tilt: {v!r}; allowed 0 <= tilt < 45 degrees")
         object.__setattr__(self, "tilt", float(v))
-        for name in ("span", "thickness", "radius"):
+        for name in ("span", "thickness", "radius", "fc"):
             v = getattr(self, name)
             label = f"spread {name}"
             if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
@@ -116,7 +123,7 @@ class Spreads:
         that are not 0."""
         d = {"span": self.span, "thickness": self.thickness, "radius": self.radius,
              "tilt": self.tilt}
-        for name, *_ in PIER_SPREADS:
+        for name in _OPTIONAL:
             if getattr(self, name):
                 d[name] = getattr(self, name)
         return d
@@ -129,7 +136,7 @@ class Spreads:
              "spread_radius": self.radius}
         if self.tilt:
             d["spread_tilt_deg"] = self.tilt
-        for name, *_ in PIER_SPREADS:
+        for name in _OPTIONAL:
             if getattr(self, name):
                 d[name] = getattr(self, name)
         return d
@@ -150,7 +157,7 @@ class Spreads:
         if not isinstance(data, dict):
             raise ArchInputError(f"spreads: {data!r}; allowed an object with span, thickness, "
                                  f"radius, tilt")
-        fields = ("span", "thickness", "radius", "tilt") + tuple(n for n, *_ in PIER_SPREADS)
+        fields = ("span", "thickness", "radius", "tilt") + _OPTIONAL
         unknown = set(data) - set(fields) - set(LEGACY_KEYS)
         if unknown:
             raise ArchInputError(f"spreads: unknown key(s) {sorted(unknown)}; allowed "
@@ -166,6 +173,9 @@ class Spreads:
             kw[name] = v
         return cls(**kw)
 
+
+#: The spreads written only when not 0 (the hash of a configuration without them is unchanged).
+_OPTIONAL = tuple(n for n, *_ in PIER_SPREADS) + ("fc",)
 
 #: archrock 0.1-0.6's keys of a Spreads dict -> the field they name (read as aliases).
 LEGACY_KEYS = {"spread_span": "span", "spread_thickness": "thickness", "spread_radius": "radius",
@@ -228,6 +238,36 @@ class ArchSampler:
 
         if self.spreads.piers and not getattr(a, "pier_blocks", ()):
             raise ArchInputError(self._no_piers())
+        if self.spreads.fc and getattr(a, "fc", None) is None:
+            raise ArchInputError(f"spread fc: {self.spreads.fc:g} for {a.name!r}, whose "
+                                 f"compressive strength is infinite; allowed 0 (a strength "
+                                 f"spread needs a nominal f_c: --fc MPA)")
+
+    @property
+    def finite(self) -> bool:
+        """Whether the arches have a finite compressive strength (the nominal's ``fc`` set):
+        they are then drawn as objects, never as the circular arrays of :meth:`draw`."""
+        return getattr(self.nominal, "fc", None) is not None
+
+    def strength_uniforms(self, start: int, count: int) -> np.ndarray:
+        """U on [-1, 1] of samples start .. start + count - 1, shape (count,): each arch's
+        strength draw (``Spreads.fc``), block k from the child ``SeedSequence(seed,
+        spawn_key=(k, 3))``: the blocks' and the piers' draws do not change."""
+        return self._stream(start, count, (), -1.0, (3,))
+
+    def _with_strength(self, arch, start: int, count: int = 1, u=None):
+        """``arch`` with sample ``start``'s strength: the nominal's f_c times (1 + U s_fc)
+        (module docstring); the arch itself where the strength is infinite."""
+        if not self.finite or isinstance(arch, Exception):
+            return arch
+        fc = float(self.nominal.fc)
+        if self.spreads.fc:
+            u = self.strength_uniforms(start, count)[0] if u is None else u
+            fc *= 1.0 + self.spreads.fc * float(u)
+        try:
+            return arch.with_fc(fc)
+        except ArchInputError as exc:  # a draw below the strengths allowed
+            return InvalidSampleError(f"not a valid arch: {exc}")
 
     def _no_piers(self) -> str:
         given = ", ".join(f"{n} {getattr(self.spreads, n):g}" for n, *_ in PIER_SPREADS
@@ -345,11 +385,13 @@ class ArchSampler:
         if self.circular:
             spans, thick, radii = self.draw(index, 1)
             try:
-                return Arch(spans[0], radii[0], thick[0], self.nominal.density,
-                            name=f"sample {int(index)}")
+                drawn = Arch(spans[0], radii[0], thick[0], self.nominal.density,
+                             name=f"sample {int(index)}")
             except ArchInputError as exc:
                 raise InvalidSampleError(f"not a valid arch: {exc}") from None
-        return self._family(self.uniforms(index, 1)[0], int(index))
+            return _raised(self._with_strength(drawn, int(index)))
+        return _raised(self._with_strength(self._family(self.uniforms(index, 1)[0], int(index)),
+                                           int(index)))
 
     def _family(self, u, index: int):
         s = self.spreads
@@ -405,9 +447,19 @@ class ArchSampler:
                     out.append(self._family(u[j], start + j))
             except InvalidSampleError as exc:
                 out.append(exc)
+        if self.finite:
+            us = self.strength_uniforms(start, count) if self.spreads.fc else [None] * count
+            out = [self._with_strength(a, start + j, u=us[j]) for j, a in enumerate(out)]
         return out
 
     def to_dict(self) -> dict:
         """What draws its arches, by attribute name (nominal, spreads, seed) and the block size."""
         return {"nominal": self.nominal.to_dict(), "spreads": self.spreads.to_dict(),
                 "seed": self.seed, "block": BLOCK}
+
+
+def _raised(drawn):
+    """``drawn`` itself, or raised where it is the reason why the draw is no arch."""
+    if isinstance(drawn, Exception):
+        raise drawn
+    return drawn

@@ -46,7 +46,10 @@ def format_ensemble(summary: dict, arch_name: str) -> str:
              f"spreads {sp['span']:g}/{sp['thickness']:g}/{sp['radius']:g}"
              + (f", joint tilt {sp['tilt_deg']:g} deg" if sp.get("tilt_deg") else "") + ")",
              f"nominal: k_l = {summary['nominal']['k_l']:.4f}, "
-             f"k_r = {summary['nominal']['k_r']:.4f}"]
+             f"k_r = {summary['nominal']['k_r']:.4f}"
+             + (f" at f_c = {summary['nominal']['fc']:g} MPa"
+                + (f" (each arch's f_c spread by {sp['fc']:g})" if sp.get("fc") else "")
+                if summary["nominal"].get("fc") is not None else "")]
     sd = summary["nominal"].get("single_dof")
     if sd is not None and not sd["valid"] and summary.get("p_collapse") is not None:
         lines.append(f"WARNING single degree of freedom not valid on the nominal arch: "

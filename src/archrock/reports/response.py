@@ -69,4 +69,22 @@ def format_response(result, model, motion) -> str:
                  f"{lab} ({model.mechanism(row).direction})" for row, lab in first]
         lines.append(f"mechanisms opened ({len(opened)} times, {len(first)} distinct): {names[0]}"
                      + (", then " + ", ".join(names[1:]) if len(names) > 1 else ""))
+    fc = getattr(model.arch, "fc", None)
+    if fc is not None:  # the four-link model rocks about the statics' inset hinges
+        lines.append(f"strength: f_c = {fc:g} MPa; M_l and M_r rock about hinges half a stress "
+                     f"block in from the edges (the blocks at collapse: "
+                     f"{_zone_words(model.limit)})")
     return "\n".join(lines)
+
+
+def _zone_words(lim) -> str:
+    """The compressed zones [mm] at the hinges of M_l and M_r at collapse, in words."""
+    parts = []
+    for d in ("l", "r"):
+        zones = getattr(lim, f"zones_{d}", None)
+        if zones is None:
+            continue
+        hs = sorted(lim.mechanism(d).hinges, key=lambda h: h.joint)
+        parts.append(f"M_{d} " + ", ".join(f"{1e3 * float(zones[h.joint]):.3g}" for h in hs)
+                     + " mm")
+    return "; ".join(parts) or "not given"

@@ -39,6 +39,7 @@ from .assessment_dynamics import (section_assumptions, section_codecheck,  # noq
                                   section_contact, section_curves, section_defects,
                                   section_fragility, section_impact, section_response)
 from .assessment_timehistory import section_timehistory  # noqa: F401
+from .assessment_crushing import section_crushing  # noqa: F401
 
 __all__ = ["AssessConfig", "Section", "Paragraph", "Table", "Figure", "Context", "Assessment",
            "SECTIONS", "assess", "REFERENCES", "arch_extent"]
@@ -48,6 +49,7 @@ SECTIONS: list[Callable[[Context], Section | None]] = [
     section_geometry,
     section_governing,  # the decision: which capacity and which dynamic model govern
     section_limit,
+    section_crushing,  # left out where f_c is infinite (docs/crushing-dynamics.md)
     section_piers,  # left out on rigid ground (docs/piers.md)
     section_supports,  # left out on fixed supports (docs/supports.md)
     section_friction, section_impact, section_response,

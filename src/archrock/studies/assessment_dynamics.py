@@ -422,6 +422,7 @@ def section_codecheck(ctx: Context) -> Section:
 def section_assumptions(ctx: Context) -> Section:
     cfg = ctx.config
     mu = cfg.friction
+    fc = getattr(ctx.arch, "fc", None)
     fr_txt = ("sliding excluded by the user (--friction none): Heyman's no-sliding hypothesis, "
               "stated as such" if mu is None else f"Coulomb mu = {mu:g} at every joint, used by "
               "the friction analysis, the governing answer, the routing of the dynamics and the "
@@ -446,9 +447,14 @@ def section_assumptions(ctx: Context) -> Section:
         "lambda times it, at its mass centre. M_l: forces toward +x, activated by a ground "
         "acceleration toward -x of k_l g; M_r the mirror case.",
         f"Friction: one coefficient for the whole report, {fr_txt}.",
-        "Limit analysis (no sliding): Heyman's masonry: rigid voussoirs, no tensile strength, "
-        "no crushing (unlimited compressive strength), no sliding; hinges form at the ends of "
-        "each joint's contact segment.",
+        ("Limit analysis (no sliding): Heyman's masonry: rigid voussoirs, no tensile strength, "
+         "no crushing (unlimited compressive strength), no sliding; hinges form at the ends of "
+         "each joint's contact segment." if fc is None else
+         f"Limit analysis (no sliding): rigid voussoirs, no tensile strength, compressive "
+         f"strength f_c = {fc:g} MPa on a rectangular stress block (1 m deep), no sliding; "
+         f"hinges form at the centres of the stress blocks, half a block in from the joints' "
+         f"edges; the four-link model rocks about those hinges, frozen at the collapse forces "
+         f"(docs/crushing-dynamics.md)."),
         ("Limit analysis with friction: as above, with associative Coulomb friction at "
          f"mu = {mu:g} at every joint instead of no sliding (not a guaranteed lower bound where "
          "the real friction is non-associative: docs/friction.md)." if mu is not None else
@@ -467,8 +473,11 @@ def section_assumptions(ctx: Context) -> Section:
         "straight-line capacity curve is replaced by the exact curve of the four-link model "
         "(both reported); FC divides accelerations only; EN 1998-3 has no such procedure, so only "
         "its spectrum (EN 1998-1) can be used with it.",
-        "Not modelled in any section: crushing, the fill and spandrels (unless given as loads), the "
-        "deformability of the piers, vertical ground motion, damping other than impacts.",
+        "Not modelled in any section: "
+        + ("crushing, " if fc is None else "crushing in the contact engine and the friction "
+           "analysis, ")
+        + "the fill and spandrels (unless given as loads), the deformability of the piers, "
+        "vertical ground motion, damping other than impacts.",
     ]
     refs = [f"[{k}] {v}" for k, v in REFERENCES.items()]
     blocks = tuple(Paragraph(t) for t in items) + (Table(("reference",), tuple((r,) for r in refs),

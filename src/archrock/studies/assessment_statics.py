@@ -124,7 +124,11 @@ def section_limit(ctx: Context) -> Section:
         rows.append((f"M_{d}", _f(m.multiplier, ".6f"), _f(st, ".6f"), m.label, hinges))
     blocks = (
         Paragraph("Horizontal forces proportional to the weight, toward +x (M_l) or -x (M_r), "
-                  "with Heyman's hypotheses; k is the smallest multiplier of the weight that "
+                  + ("with Heyman's hypotheses" if ctx.arch.fc is None else
+                     f"with no tension, no sliding and a compressive strength f_c = "
+                     f"{ctx.arch.fc:g} MPa (hinges at the stress blocks' centres; section "
+                     f"Crushing)")
+                  + "; k is the smallest multiplier of the weight that "
                   "opens a four-hinge mechanism (kinematic enumeration), checked by the static "
                   f"theorem (a linear program): they differ by {_f(lim.discrepancy, '.1e')}. "
                   "The arch rocks when the ground acceleration reaches -k_l g (M_l) or +k_r g (M_r)."),

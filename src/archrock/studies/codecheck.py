@@ -462,14 +462,15 @@ def block_kinematics(width: float, height: float, mass: float = 1.0, points: int
                       "rigid block")
 
 
-def mechanism_kinematics(arch, mechanism, points: int = 201) -> Kinematics:
+def mechanism_kinematics(arch, mechanism, points: int = 201, zones=None) -> Kinematics:
     """The mechanism's four-link kinematics on ``arch``: virtual displacements of the voussoirs'
     mass centres at rest and, on rotations from 0 to the unstable one (F = 0), the exact
     multiplier alpha = -s F / P and the voussoirs' horizontal displacements (s = +1 for M_l,
-    -1 for M_r: displacements are measured in the direction of the loads)."""
+    -1 for M_r: displacements are measured in the direction of the loads).  zones: with f_c,
+    the compressed zones [m] at collapse (hinges half a zone in from the edges)."""
     from ..dynamics.fourlink import configuration, four_link
 
-    fl = four_link(arch, mechanism)
+    fl = four_link(arch, mechanism, zones)
     s = 1.0 if mechanism.direction == "l" else -1.0
     v, _ = fl.voussoir_field()
     phi_u = fl.phi_unstable
@@ -671,13 +672,15 @@ def code_check(arch, limit=None, config: CodeCheckConfig | None = None,
     moving mass and the height Z of its centroid above the foundation); with ``above_ground``
     (the structure it stands in) and a spectrum, the checks of a mechanism above ground
     (:func:`above_ground_checks`) join the ground-level ones."""
+    from ..dynamics.finite import collapse_zones
     from ..statics.limit import limit_analysis
 
     if above_ground is not None and not isinstance(above_ground, AboveGround):
         raise ArchInputError("above_ground: expected an AboveGround or None")
     cfg = CodeCheckConfig() if config is None else config
     lim = limit_analysis(arch, verify=True) if limit is None else limit
-    kins = {d: mechanism_kinematics(arch, lim.mechanism(d), cfg.points) for d in ("l", "r")}
+    kins = {d: mechanism_kinematics(arch, lim.mechanism(d), cfg.points, collapse_zones(lim, d))
+            for d in ("l", "r")}  # with f_c on the statics' inset hinges: alpha_0 is their k
     out = tuple(kinematic_check(kins[d], cfg, d) for d in ("l", "r"))
     if not (getattr(arch, "pier_blocks", ()) or above_ground is not None):
         return CodeCheckResult(cfg, out, getattr(arch, "name", ""))

@@ -262,7 +262,13 @@ class DefectMap:
 
 
 def _labels(arch):
-    m_l, m_r = kinematic_mechanisms(arch)
+    if getattr(arch, "fc", None) is not None:  # finite strength: the statics that honour it
+        from ..statics.limit import limit_analysis
+
+        lim = limit_analysis(arch, verify=False)
+        m_l, m_r = lim.mechanism_l, lim.mechanism_r
+    else:
+        m_l, m_r = kinematic_mechanisms(arch)
     if m_l.multiplier <= 0 or m_r.multiplier <= 0:
         raise CannotStandError("cannot stand under its own weight")
     return m_l.multiplier, m_r.multiplier, m_l.label, m_r.label

@@ -130,8 +130,11 @@ def choose_dynamics(arch, dynamics: str = "auto", friction=UNSET_FRICTION) -> Dy
     need, slides = _sliding(arch, friction)
     mu = None if friction is None else float(friction)
     choice = _choose(arch, dynamics, slides)
-    return DynamicsChoice(choice.requested, choice.used, choice.reason, choice.single_dof, mu,
-                          need)
+    reason = choice.reason
+    if choice.used == "engine" and getattr(arch, "fc", None) is not None:
+        reason += (f"; the engine's rigid blocks do not crush: f_c = {arch.fc:g} MPa is not in "
+                   f"its answer (docs/crushing-dynamics.md)")
+    return DynamicsChoice(choice.requested, choice.used, reason, choice.single_dof, mu, need)
 
 
 def _choose(arch, dynamics: str, slides: str) -> DynamicsChoice:

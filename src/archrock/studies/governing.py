@@ -298,7 +298,19 @@ def _engine(arch, lim, mu, needed, ref, progress):
     res = ramp(arch, settings, progress, limit=lim)
     eng = {d: getattr(res, d) for d in DIRS}
     holds, why, findings, refined = {}, {}, [], {}
+    fc = getattr(arch, "fc", None)
     for d in DIRS:
+        k_fc = getattr(lim, f"k_{d}")
+        if fc is not None and eng[d].multiplier > k_fc:
+            # rigid blocks cannot crush: above the finite-strength limit the engine's value is
+            # not this arch's (docs/crushing-dynamics.md)
+            holds[d], why[d] = False, (f"rigid blocks of infinite strength: {eng[d].multiplier:.4f}"
+                                       f" is above the limit analysis with f_c = {fc:g} MPa "
+                                       f"({k_fc:.4f}); crushing governs")
+            findings.append(f"M_{d}: the contact engine's blocks do not crush; with f_c = "
+                            f"{fc:g} MPa the limit analysis {k_fc:.4f} governs, not the "
+                            f"engine's {eng[d].multiplier:.4f}.")
+            continue
         holds[d], why[d], found, refined_d = _engine_direction(
             arch, d, ref[d], eng[d], settings, run_mu, progress)
         findings.extend(found)

@@ -96,7 +96,9 @@ def _check_nominal(nominal, spreads: Spreads):
 def input_layout(nominal: VoussoirArch, spreads: Spreads | dict | None = None):
     """The inputs of the map from draws to arches: a list of (name, kind, index, row, column)
     (row, column: where the draw sits in a sample's (rows, n) uniforms); kinds span, thickness,
-    radius (index: the voussoir) and, with a tilt spread, tilt (index: the interior joint)."""
+    radius (index: the voussoir) and, with a tilt spread, tilt (index: the interior joint); with
+    a strength spread (``spreads.fc``, a nominal of finite f_c) one more, ``fc`` (row -1: not a
+    voussoir's draw; the arch's f_c is the nominal's times 1 + x s_fc)."""
     spreads = Spreads.from_dict(spreads)
     _check_nominal(nominal, spreads)
     n = nominal.n
@@ -105,6 +107,12 @@ def input_layout(nominal: VoussoirArch, spreads: Spreads | dict | None = None):
         out += [(f"{kind}_{i}", kind, i, row, i) for i in range(n)]
     if spreads.tilt:
         out += [(f"tilt_{j}", "tilt", j, 3, j - 1) for j in range(1, n)]
+    if spreads.fc:
+        if getattr(nominal, "fc", None) is None:
+            raise ArchInputError(f"spread fc: {spreads.fc:g} for {nominal.name!r}, whose "
+                                 f"compressive strength is infinite; allowed 0 (a strength "
+                                 f"spread needs a nominal f_c: --fc MPA)")
+        out.append(("fc", "fc", 0, -1, -1))
     return out
 
 
@@ -112,14 +120,16 @@ def _uniforms(layout, x: np.ndarray, n: int) -> np.ndarray:
     rows = 4 if any(r == 3 for _, _, _, r, _ in layout) else 3
     u = np.zeros((x.shape[0], rows, n))
     for k, (_, _, _, r, c) in enumerate(layout):
-        u[:, r, c] = x[:, k]
+        if r >= 0:  # the strength's input is no voussoir draw
+            u[:, r, c] = x[:, k]
     return u
 
 
 def arches_from_inputs(nominal: VoussoirArch, spreads: Spreads | dict | None, x):
     """The arches of input rows ``x`` (B, D) on [-1, 1] (:func:`input_layout`'s order): for a
     circular nominal the arrays (spans [rad], thicknesses [m], radii [m]), each (B, n); for a
-    family a list of B arches (an :class:`InvalidSampleError` where a row is no valid arch)."""
+    family, or a nominal of finite strength, a list of B arches (an :class:`InvalidSampleError`
+    where a row is no valid arch), each with its f_c."""
     spreads = Spreads.from_dict(spreads)
     layout = input_layout(nominal, spreads)
     x = np.asarray(x, float)
@@ -128,16 +138,38 @@ def arches_from_inputs(nominal: VoussoirArch, spreads: Spreads | dict | None, x)
     if np.any(np.abs(x) > 1.0):
         raise ArchInputError("x: every input must be in [-1, 1]")
     u = _uniforms(layout, x, nominal.n)
+    fc = getattr(nominal, "fc", None)
     if isinstance(nominal, Arch):
-        return perturb_voussoirs(nominal.spans, nominal.thicknesses, nominal.radii, u,
-                                 spreads.span, spreads.thickness, spreads.radius)
-    from ..geometry.irregular import perturb_family
+        drawn = perturb_voussoirs(nominal.spans, nominal.thicknesses, nominal.radii, u,
+                                  spreads.span, spreads.thickness, spreads.radius)
+        if fc is None:
+            return drawn
+        out = _circular_arches(nominal, *drawn)
+    else:
+        from ..geometry.irregular import perturb_family
 
+        out = []
+        for b in range(len(u)):
+            try:
+                out.append(perturb_family(nominal, u[b], spreads.span, spreads.thickness,
+                                          spreads.radius, spreads.tilt, name=f"run {b}"))
+            except ArchInputError as exc:
+                out.append(InvalidSampleError(f"not a valid arch: {exc}"))
+    if fc is None:
+        return out
+    # each arch's strength: the nominal's, times 1 + x s_fc with the fc input (when spread)
+    col = [k for k, lay in enumerate(layout) if lay[1] == "fc"]
+    scale = 1.0 + spreads.fc * x[:, col[0]] if col else np.ones(len(x))
+    return [a if isinstance(a, Exception) else a.with_fc(float(fc) * float(f))
+            for a, f in zip(out, scale)]
+
+
+def _circular_arches(nominal, spans, thick, radii) -> list:
+    """The circular arches of drawn arrays (B, n), an InvalidSampleError where a row is none."""
     out = []
-    for b in range(len(u)):
+    for b in range(len(spans)):
         try:
-            out.append(perturb_family(nominal, u[b], spreads.span, spreads.thickness,
-                                      spreads.radius, spreads.tilt, name=f"run {b}"))
+            out.append(Arch(spans[b], radii[b], thick[b], nominal.density, name=f"run {b}"))
         except ArchInputError as exc:
             out.append(InvalidSampleError(f"not a valid arch: {exc}"))
     return out
@@ -222,7 +254,7 @@ def _groups(layout, by: str):
     if by == "kind":
         return [kind for _, kind, _, _, _ in layout]
     if by == "voussoir":
-        return ["support" if kind == "support" else f"voussoir {i}" if kind != "tilt"
+        return [kind if kind in ("support", "fc") else f"voussoir {i}" if kind != "tilt"
                 else f"joint {i}" for _, kind, i, _, _ in layout]
     return [name for name, _, _, _, _ in layout]
 
@@ -249,14 +281,8 @@ def _moved_arches(base, spreads, movement, x) -> list:
     from ..statics.supports import _moved_sample
 
     drawn = arches_from_inputs(base, spreads, x[:, :-1])
-    if isinstance(base, Arch):
-        spans, thick, radii = drawn
-        drawn = []
-        for b in range(len(x)):
-            try:
-                drawn.append(Arch(spans[b], radii[b], thick[b], base.density, name=f"run {b}"))
-            except ArchInputError as exc:
-                drawn.append(InvalidSampleError(f"not a valid arch: {exc}"))
+    if isinstance(drawn, tuple):  # a circular arch's arrays
+        drawn = _circular_arches(base, *drawn)
     frac = 0.5 * (np.asarray(x, float)[:, -1] + 1.0)
     return [a if isinstance(a, Exception) else
             _moved_sample(a, movement.scaled(float(f)), raise_=False)
@@ -271,7 +297,7 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
     :data:`MAX_BOOTSTRAP_BYTES` (ArchInputError naming --samples); warns above a minute."""
     import os
 
-    from .work import RECORD_RESPONSE_S_PER_S, SAMPLE_RESPONSE_S, check_work
+    from .work import RECORD_RESPONSE_S_PER_S, SAMPLE_FINITE_S, SAMPLE_RESPONSE_S, check_work
 
     need = _BOOTSTRAP_ARRAYS * 8.0 * samples * num_resamples
     if need > MAX_BOOTSTRAP_BYTES:
@@ -284,13 +310,15 @@ def check_sensitivity_work(nominal, samples: int, groups: int, motion, num_resam
     runs = samples * (groups + 2)
     family = not isinstance(nominal, Arch)
     each = SAMPLE_FAMILY_S if family else SAMPLE_ARCH_S
+    if getattr(nominal, "fc", None) is not None:  # the crushing statics, one arch at a time
+        each += SAMPLE_FINITE_S
     if motion is not None:
         each += SAMPLE_RESPONSE_S
         if motion.to_dict()["type"] == "record":
             each += RECORD_RESPONSE_S_PER_S * motion.build().duration
     outputs = 3 + (motion is not None)
     each += ANALYSE_S * groups * num_resamples * outputs / (groups + 2)
-    cores = 1 if family else (os.cpu_count() or 1)
+    cores = 1 if family or getattr(nominal, "fc", None) is not None else (os.cpu_count() or 1)
     return check_work("sensitivity", runs, "arches", each,
                       "reduce --samples (1024 give the indices to a few hundredths), or group "
                       "by kind (--by kind)", cores, kernel=not family)
@@ -364,7 +392,8 @@ def _configure_sobol(nominal, spreads, samples, by, motion, impact, seed, conf_l
     # on moved supports: the random arches are drawn around the base arch, and the movement is
     # one more input, the fraction (x + 1) / 2 of it that each arch takes (_moved_arches)
     base, movement = moved_parts(nominal)
-    if not (spreads.span or spreads.thickness or spreads.radius or spreads.tilt or movement):
+    if not (spreads.span or spreads.thickness or spreads.radius or spreads.tilt or spreads.fc
+            or movement):
         raise ArchInputError("spreads: all 0 (span, thickness, radius, tilt); allowed at least one "
                              "spread > 0 (--spread-span, --spread-thickness, --spread-radius or "
                              "--spread-tilt): with none every arch is the nominal one and there "
@@ -434,7 +463,7 @@ def _run_arches(job: _SobolJob, x, resolved, built, steps, progress, t0) -> tupl
         if job.movement is not None:
             pb = prepare_batch(_moved_arches(job.base, job.spreads, job.movement, x[sl]),
                                impact=resolved)
-        elif isinstance(nominal, Arch):
+        elif isinstance(nominal, Arch) and getattr(nominal, "fc", None) is None:
             spans, thick, radii = arches_from_inputs(nominal, job.spreads, x[sl])
             pb = prepare_batch(spans, radii, thick, nominal.density, impact=resolved)
         else:

@@ -26,6 +26,10 @@ RECORD_RESPONSE_S_PER_S = 1.5e-4
 SAMPLE_LIMIT_S = 2e-5
 #: ... and with its response to a pulse (bench_ensemble: 10,000 arches in 5.6 s on one core).
 SAMPLE_RESPONSE_S = 6e-4
+#: One random arch of finite compressive strength prepared (the crushing statics and the four-link
+#: models, one arch at a time in Python: 40 arches of 7 and of 15 voussoirs in 0.10-0.16 s each on
+#: the loaded 2-core development machine).
+SAMPLE_FINITE_S = 0.15
 #: One bootstrap fit: moments (~70 us) or the stripes' maximum likelihood (~2 ms).
 FIT_MOMENTS_S, FIT_MLE_S = 7e-5, 2e-3
 #: Slow-down of the pure-Python kernels (ARCHROCK_NO_NUMBA=1 or numba missing).

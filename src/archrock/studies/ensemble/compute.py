@@ -116,6 +116,9 @@ def _prepare_group(cfg: EnsembleConfig, start: int, nb: int, parallel: bool):
         return prepare_batch([_on_moved_supports(a, mv) for a, mv in
                               zip(sampler.arches(start, nb), cfg.movements(start, nb))],
                              impact=cfg.impact.resolved(cfg.analysed_nominal), parallel=parallel)
+    if sampler.finite:  # finite strength: the arches as objects, each with its f_c
+        return prepare_batch(sampler.arches(start, nb),
+                             impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
     if sampler.circular:
         spans, thick, radii = sampler.draw(start, nb)
         return prepare_batch(spans, radii, thick, sampler.nominal.density,

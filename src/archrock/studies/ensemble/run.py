@@ -10,7 +10,8 @@ import time
 
 from ...errors import ArchInputError
 from ...geometry import Arch
-from ..work import RECORD_RESPONSE_S_PER_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S, check_work
+from ..work import (RECORD_RESPONSE_S_PER_S, SAMPLE_FINITE_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S,
+                    check_work)
 from .config import EnsembleConfig
 from ..._progress import Progress
 from ..enginestudy import UNSET_FRICTION
@@ -47,6 +48,12 @@ def _nominal_multipliers(config: EnsembleConfig) -> dict:
     from ...statics.sums import arch_sums
 
     arch = config.analysed_nominal  # on its moved supports, if any
+    if getattr(arch, "fc", None) is not None:  # finite strength: the statics that honour it
+        from ...statics.limit import limit_analysis
+
+        lim = limit_analysis(arch, verify=False)
+        return {"k_l": float(lim.k_l), "k_r": float(lim.k_r), "mech_l": lim.mechanism_l.label,
+                "mech_r": lim.mechanism_r.label, "fc": float(arch.fc)}
     if not isinstance(arch, Arch):
         m_l, m_r = kinematic_mechanisms(arch)
         return {"k_l": float(m_l.multiplier), "k_r": float(m_r.multiplier), "mech_l": m_l.label,
@@ -78,9 +85,12 @@ def _check_ensemble_work(config: EnsembleConfig, workers: int) -> float:
     if config.motion is not None:
         each = SAMPLE_RESPONSE_S + (RECORD_RESPONSE_S_PER_S * config.motion.build().duration
                                     if config.motion.to_dict()["type"] == "record" else 0.0)
+    if config.sampler.finite:  # each arch through the crushing statics, one at a time
+        each += SAMPLE_FINITE_S
     import os
 
-    cores = workers if workers > 1 else (os.cpu_count() or 1)  # in-process: numba threads
+    # in-process: numba threads (the finite-strength arches run one at a time)
+    cores = workers if workers > 1 else 1 if config.sampler.finite else (os.cpu_count() or 1)
     return check_work("ensemble", config.samples, "arches", each,
                       "reduce --samples (10,000 give P(collapse) to about 1%), or run on a Dask "
                       "cluster (--scheduler)", cores)

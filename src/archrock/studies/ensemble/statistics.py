@@ -88,7 +88,7 @@ def summary_dict(config: EnsembleConfig, nominal: dict, impact: dict, timing: di
     return {
         "samples": samples, "seed": config.seed,
         "spreads": {"span": sp.span, "thickness": sp.thickness, "radius": sp.radius,
-                    "tilt_deg": sp.tilt},
+                    "tilt_deg": sp.tilt, **({"fc": sp.fc} if sp.fc else {})},
         "nominal": nominal, **k_stats,
         "hinge_patterns": hinges,
         "as_far_as": far,
