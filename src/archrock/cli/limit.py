@@ -193,14 +193,18 @@ def run_limit(args) -> int:
     if args.min_thickness:
         # first: where no thickness stands with this friction, that is the answer
         mt = minimum_thickness(arch) if mu is None else friction_minimum_thickness(arch, mu)
+    # Heyman's friction table and the friction his collapse needs assume no crushing: with a
+    # finite f_c friction is in the governing capacity alone (both on the graph of blocks)
+    heyman = arch.fc is None
     try:
-        fr = friction_analysis(arch, mu) if mu is not None else None
+        fr = friction_analysis(arch, mu) if mu is not None and heyman else None
     except CannotStandError as exc:
         if mt is None:
             raise
         raise CannotStandError(f"{exc}; with friction {mu:g} the minimum thickness is "
                                f"{_thickness_words(arch, mt)}") from None
-    needed = None if fr is not None or no_mech is not None else friction_needed(arch)
+    needed = (None if fr is not None or no_mech is not None or not heyman
+              else friction_needed(arch))
     extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
     if mpw is not None:
         extra["min_pier_width"] = mpw

@@ -5,15 +5,17 @@ which hypotheses, and whether they hold in each direction):
 
 * "limit analysis (no sliding)" -- Heyman's hypotheses (statics.limit): always;
 * "limit analysis with friction mu" -- associative Coulomb friction at every joint
-  (statics.friction.friction_analysis): left out, with the reason, where the user excluded
-  sliding (friction None);
+  (statics.friction.friction_analysis; with a finite compressive strength, friction and the
+  stress blocks together on the graph of blocks, statics.graph): left out, with the reason,
+  where the user excluded sliding (friction None);
 * "contact engine ramp at mu" -- rigid blocks with non-associative Coulomb contacts
   (contact.ramp, archrock's own engine): only with ``engine=True``.
 
 The decision, one place for every command and report:
 
 * the no-sliding multiplier holds in a direction where mu >= the friction its collapse needs
-  (statics.friction.friction_needed); elsewhere the joints slide first and the friction
+  (statics.friction.friction_needed; with a finite strength: where friction together with
+  crushing carries the same multiplier); elsewhere the joints slide first and the friction
   analysis gives that direction;
 * an engine value within :data:`AGREEMENT` (2%) of the limit analysis at the same friction is
   the same answer within the engine's discretisation: the exact limit value is quoted;
@@ -212,6 +214,57 @@ def _with_friction(arch, mu) -> Capacity:
                      "method": fa.method})
 
 
+def _with_friction_crushing(arch, mu) -> Capacity:
+    """Coulomb friction ``mu`` together with the finite strength ``arch.fc``: the chain as a
+    graph of blocks (statics.graph: its friction rows and the stress-block bracket in one
+    program), so that neither hypothesis is assumed away."""
+    from ..errors import CannotStandError
+    from ..geometry.arcade import arcade_from_chain
+    from ..statics.graph import graph_limit
+
+    fc = arch.fc
+    name = f"{WITH_FRICTION} mu = {mu:g}"
+    hyp = ("no tension", f"crushing at f_c = {fc:g} MPa",
+           f"associative Coulomb friction mu = {mu:g}")
+    arc = arcade_from_chain(arch)
+    res, mech, why = {}, {}, {}
+    for d in DIRS:
+        try:
+            g = graph_limit(arc, d, friction=mu)
+        except CannotStandError as exc:  # slides or crushes under self-weight: capacity 0
+            msg = _one_line(exc)
+            return Capacity(name, hyp, 0.0, 0.0, "sliding under self-weight",
+                            "sliding under self-weight", {"l": True, "r": True},
+                            {"l": msg, "r": msg}, {"error": msg})
+        m = g.mechanism
+        res[d] = float(g.k)
+        slides = " ".join(map(str, m.sliding))
+        mech[d] = (f"sliding at joint(s) {slides}" if m.sliding else
+                   "hinges " + "-".join(str(h.contact) for h in m.hinges))
+        why[d] = "sliding governs" if m.sliding else "friction enough: no joint slides"
+    return Capacity(name, hyp, res["l"], res["r"], mech["l"], mech["r"],
+                    {"l": True, "r": True}, why,
+                    {"method": "graph of blocks: friction rows and the stress-block bracket "
+                               "in one static program (statics.graph)"})
+
+
+def _crushing_slides(no_sliding: Capacity, friction: Capacity) -> Capacity:
+    """The finite-strength no-sliding analysis, holding in a direction only where friction
+    together with crushing carries the same multiplier (no joint slides first): the friction
+    Heyman's collapse needs is not the one of the crushing collapse."""
+    holds, why = {}, {}
+    for d in DIRS:
+        k0, kf = no_sliding.k(d), friction.k(d)
+        same = kf is not None and k0 is not None and kf >= k0 - 1e-6 * max(1.0, abs(k0))
+        holds[d] = same
+        why[d] = (f"friction together with crushing carries it ({kf:.4f})" if same else
+                  f"friction together with crushing gives {kf:.4f} < {k0:.4f}: the joints "
+                  f"slide first")
+    return Capacity(no_sliding.name, no_sliding.hypotheses, no_sliding.k_l, no_sliding.k_r,
+                    no_sliding.mechanism_l, no_sliding.mechanism_r, holds, why,
+                    {**no_sliding.details, "friction_needed": None})
+
+
 def engine_friction(mu, needed) -> tuple[float, str]:
     """(friction the engine runs at, note): mu, or with sliding excluded a friction high enough
     not to slide: max(DEFAULT_FRICTION, 2 x the largest friction needed)."""
@@ -389,11 +442,14 @@ def _statics(arch, mu, limit):
         left_out.append((WITH_FRICTION, "sliding excluded by the user (friction None, "
                                         "--friction none): Heyman's no-sliding hypothesis"))
     elif getattr(arch, "fc", None) is not None:
-        try:  # the friction analysis is Heyman's (no crushing): where it finds no mechanism,
-            # crushing's answer stands alone
-            analyses.append(_with_friction(arch, mu))
+        try:  # Heyman's friction analysis assumes no crushing: the graph holds both
+            fric = _with_friction_crushing(arch, mu)
         except NoMechanismError as exc:
             left_out.append((WITH_FRICTION, _one_line(exc)))
+        else:
+            if lim is not None:
+                analyses[-1] = _crushing_slides(analyses[-1], fric)
+            analyses.append(fric)
     else:
         analyses.append(_with_friction(arch, mu))
     return lim, needed, analyses, left_out
