@@ -770,6 +770,15 @@ ENTRIES += [
           r"t/R (\S+) (\S+) (\S+) (\S+) (\S+)", slow=True),
 ]
 
+FLAT_ARCH = ("limit", "--shape", "circular", "--span", "10", "--rise", "1.5", "--thickness", "0.5", "--voussoirs", "15")
+ENTRIES += [
+    Entry(CR, "governing: k = {} g (limit analysis with friction mu = 0.3, both directions",
+          FLAT_ARCH + ("--fc", "2", "--friction", "0.3"), r"governing: k = (\S+) g"),
+    Entry(CR, "below sliding alone (k with friction = {} without", FLAT_ARCH + ("--friction",
+                                                                              "0.3"),
+          r"k with friction = (\S+)"),
+]
+
 RG = "docs/rings.md"
 RINGS = ("arcade", "--spans", "5", "--ring-thickness", "0.215", "0.215")
 COARSE = ("arcade", "--spans", "5", "--ring-thickness", "0.215", "0.215", "--brick", "0.5")
