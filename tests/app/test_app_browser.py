@@ -329,3 +329,25 @@ def test_the_engine_answers_where_the_joints_slide_and_four_link_is_labelled(pag
     assert page.text_content("#outcome").startswith("not valid here: collapsed")
     assert "invalid" in page.get_attribute("#dynamics-label", "class")
     assert page.errors == []
+
+
+def test_the_strength_field_gives_the_finite_strength_answer(page):
+    """f_c typed in the page reaches the statics: Oppenheim's arch at 2 MPa carries 0.306 g
+    (docs/crushing.md), and friction is then solved together with crushing."""
+    page.fill("#fc", "2")
+    page.locator("#fc").blur()
+    wait(page, "document.getElementById('k').textContent !== 'k = 0.370'")
+    assert page.text_content("#k") == "k = 0.306"
+    assert "crushing at f_c = 2" in page.text_content("#k-detail")
+    page.fill("#friction-mu", "0.3")
+    page.locator("#friction-mu").blur()
+    got = wait(page, "document.getElementById('friction-k').textContent.includes('mu = 0.300') && "
+                     "document.getElementById('friction-k').textContent")
+    assert got.endswith("with crushing"), got
+    page.fill("#fc", "0.01")
+    page.locator("#fc").blur()
+    msg = wait(page, "document.getElementById('refusal-fc') && "
+                     "document.getElementById('refusal-fc').textContent")
+    assert "fc" in msg and "0.1 to 1000 MPa" in msg
+    # only the refused request itself is logged by the browser (HTTP 400), no script error
+    assert all("400" in e for e in page.errors), page.errors

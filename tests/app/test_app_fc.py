@@ -61,3 +61,20 @@ def test_ensemble_request_takes_the_strength_spread():
     assert min(drawn) >= 2.1 - 1e-12 and max(drawn) <= 3.9 + 1e-12 and np.ptp(drawn) > 0
     with pytest.raises(archrock.errors.ArchInputError, match=r"^spread fc: 0\.3"):
         api.ensemble_config({"arch": OPPENHEIM, "samples": 20, "spreads": {"fc": 0.3}})
+
+
+def test_limit_with_friction_and_fc_solves_both_together(client):
+    """Heyman's friction analysis assumes no crushing: with fc the page's friction numbers are
+    the graph program's (friction and stress blocks together), below the crushing-only k."""
+    from archrock.studies.governing import governing_capacity
+
+    r = client.post("/api/limit", json={"arch": {**OPPENHEIM, "fc": 2.0}, "friction": 0.3})
+    assert r.status_code == 200, r.text
+    s = r.json()["summary"]
+    assert s["friction_with_crushing"] is True
+    assert "friction_needed_l" not in s
+    cap = governing_capacity(archrock.oppenheim_arch().with_fc(2.0), 0.3)
+    both = cap.analyses[-1]
+    assert both.hypotheses[1] == "crushing at f_c = 2 MPa"
+    assert s["friction_k_l"] == pytest.approx(both.k_l, rel=1e-12)
+    assert s["friction_k_l"] <= s["k_l"] * (1 + 1e-9)

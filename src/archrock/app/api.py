@@ -169,13 +169,24 @@ def limit(params: dict) -> dict:
     want_thrust = bool(params.get("thrust_range", False))
     with COMPUTE_LOCK:
         result = limit_analysis(arch, verify=True)
-        extra = {"friction": friction_analysis(arch, mu) if mu is not None else None}
-        extra["needed"] = friction_needed(arch) if mu is None else None
+        heyman = arch.fc is None  # Heyman's friction analyses assume no crushing
+        extra = {"friction": friction_analysis(arch, mu) if mu is not None and heyman else None}
+        extra["needed"] = friction_needed(arch) if mu is None and heyman else None
+        both = None
+        if mu is not None and not heyman:  # friction and crushing in one program
+            from ..studies.governing import _with_friction_crushing
+
+            both = _with_friction_crushing(arch, mu)
         if want_thrust:
             from ..statics.thrust import thrust_range
 
             extra["thrust"] = thrust_range(arch)
         summary = limit_summary(result, None, **extra)
+    if both is not None:
+        summary.update(friction_mu=mu, friction_k_l=both.k_l, friction_k_r=both.k_r,
+                       sliding_governs_l=both.why["l"] == "sliding governs",
+                       sliding_governs_r=both.why["r"] == "sliding governs",
+                       friction_with_crushing=True)
     for key in ("geometry", "voussoirs"):
         summary.pop(key, None)  # the drawing below says it at the page's precision
     hinges = {}

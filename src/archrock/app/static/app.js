@@ -96,6 +96,7 @@ const FIELD_CONTROLS = {shape: "shape", span: "span", rise: "rise", thickness: "
                         thickness_crown: "thickness", voussoirs: "voussoirs", joints: "joints",
                         pier_height: "pier-height", pier_width: "pier-width",
                         pier_courses: "pier-height", friction: "friction-mu", geometry: "upload",
+                        fc: "fc",
                         defects: "arch-svg", kind: "pulse-kind", amplitude: "amplitude",
                         duration: "duration", t_end: "t-end", exaggerate: "exaggerate",
                         dynamics: "dynamics-model", record: "record-file",
@@ -112,6 +113,8 @@ function archParams(withDefects = true) {
   const piers = {};
   const h = $("pier-height").value.trim(), w = $("pier-width").value.trim();
   if (h !== "" || w !== "") Object.assign(piers, {pier_height: h || null, pier_width: w || null});
+  const fc = $("fc").value.trim();
+  if (fc !== "") piers.fc = fc;  // the masonry's strength [MPa]; empty: infinite (Heyman)
   if (state.geometry) return {geometry: state.geometry, name: state.geometryName, defects, ...piers};
   return {shape: state.shape, span: state.span, rise: state.rise, thickness: state.thickness,
           voussoirs: state.voussoirs, joints: state.joints, defects, ...piers};
@@ -203,7 +206,7 @@ let inFlight = false, pending = null;
 // the inputs of the arch drawn (the last the server accepted): restored when a change is refused
 let lastValid = null;
 const STATICS_CONTROLS = ["shape", "span", "rise", "thickness", "voussoirs", "joints", "typed-value",
-                          "pier-height", "friction-mu", "upload", "upload-dxf", "arch-svg"];
+                          "pier-height", "friction-mu", "fc", "upload", "upload-dxf", "arch-svg"];
 
 function archInputs() {
   return {state: {shape: state.shape, span: state.span, rise: state.rise, thickness: state.thickness,
@@ -211,6 +214,7 @@ function archInputs() {
                   geometryName: state.geometryName, defects: new Set(state.defects),
                   showRange: state.showRange},
           dom: {"pier-height": $("pier-height").value, "pier-width": $("pier-width").value,
+                "fc": $("fc").value,
                 "friction-mu": $("friction-mu").value}};
 }
 
@@ -298,6 +302,7 @@ function drawStatics(res, base) {
     (d.pier_courses ? `, ${d.pier_courses} pier courses)` : ")");
   $("k").textContent = `k = ${fmt(s.k)}`;
   $("k-detail").textContent = `k_l = ${fmt(s.k_l, 4)} g, k_r = ${fmt(s.k_r, 4)} g` +
+      (res.fc ? ` (crushing at f_c = ${fmt(res.fc)} MPa)` : "") +
       (s.four_link_holds ? "" : " (four-link model does not hold)");
   const ml = s.mechanism_l, mr = s.mechanism_r;
   $("mechanisms").textContent = `M_l: ${ml.kind} ${ml.label}; M_r: ${mr.kind} ${mr.label}`;
@@ -309,7 +314,8 @@ function drawStatics(res, base) {
   $("friction-k").textContent = s.friction_mu !== undefined ?
       `with friction mu = ${fmt(s.friction_mu)}: k_l = ${fmt(s.friction_k_l, 4)} g, ` +
       `k_r = ${fmt(s.friction_k_r, 4)} g` +
-      (s.sliding_governs_l || s.sliding_governs_r ? " (sliding governs)" : "") : "";
+      (s.sliding_governs_l || s.sliding_governs_r ? " (sliding governs)" : "") +
+      (s.friction_with_crushing ? " with crushing" : "") : "";
   if (base && state.defects.size) {
     const b = base.summary.k;
     $("defect-loss").textContent = `defects: k ${fmt(b)} → ${fmt(s.k)} ` +
@@ -374,7 +380,7 @@ function bindControls() {
     showControls();
     requestStatics(performance.now());
   });
-  for (const id of ["pier-height", "pier-width", "friction-mu"]) {
+  for (const id of ["pier-height", "pier-width", "friction-mu", "fc"]) {
     $(id).addEventListener("change", () => requestStatics(performance.now(),
                                                           id === "pier-width" ? "pier-height" : id));
   }
