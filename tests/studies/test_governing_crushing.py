@@ -49,3 +49,37 @@ def test_enough_friction_leaves_the_crushing_answer_governing(flat):
     gov = governing_capacity(arch, 0.8).governing
     assert gov.analysis == NO_SLIDING
     assert gov.value == pytest.approx(limit_analysis(arch).k, rel=1e-9)
+
+
+@pytest.mark.parametrize("which", ["flat", "oppenheim"])
+def test_friction_needed_on_the_crushing_thrust_is_the_graph_programs_threshold(flat, which):
+    """Two methods, one threshold: the largest |T|/N on the finite-strength collapse's thrust
+    line (what assess reports as the friction needed) is where the graph program with friction
+    and crushing starts to carry less than crushing alone."""
+    import numpy as np
+
+    from archrock.geometry import oppenheim_arch
+    from archrock.statics.friction import joint_shear_normal
+    from archrock.studies.governing import _with_friction_crushing
+
+    arch = (flat if which == "flat" else oppenheim_arch()).with_fc(2.0)
+    lim = limit_analysis(arch)
+    T, N = joint_shear_normal(arch, lim.thrust_l)
+    need = float(np.max(np.abs(T) / N))
+    assert 0.3 < need < 0.8  # 0.5931 flat, 0.4536 Oppenheim's
+    below = _with_friction_crushing(arch, 0.98 * need).k_l
+    above = _with_friction_crushing(arch, 1.02 * need).k_l
+    assert below < lim.k_l * (1 - 1e-3)
+    assert above == pytest.approx(lim.k_l, rel=1e-6)
+
+
+def test_assess_friction_section_with_fc_is_friction_and_crushing_together(flat):
+    from archrock.studies.assessment import AssessConfig
+    from archrock.studies.assessment_context import Context
+    from archrock.studies.assessment_statics import section_friction
+
+    arch = flat.with_fc(2.0)
+    sec = section_friction(Context(arch, AssessConfig(friction=0.3), engine=False))
+    assert sec.data["k_with_mu"]["l"] == pytest.approx(1.4224, abs=1e-3)
+    assert sec.data["sliding_governs"] == {"l": True, "r": True}
+    assert sec.data["friction_needed_l"] == pytest.approx(0.5931, abs=1e-3)

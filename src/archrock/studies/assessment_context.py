@@ -180,6 +180,8 @@ class Context:
         except ImportError:
             return None
         mu = self.config.friction
+        if getattr(self.arch, "fc", None) is not None:
+            return self._friction_with_crushing(mu)
         out = {"needed": friction_needed(self.arch), "mu": mu, "with_mu": None,
                "with_mu_error": None, "sliding_governs": None}
         if mu is None:  # sliding excluded by the user: no friction analysis
@@ -191,6 +193,34 @@ class Context:
         else:
             out["with_mu"] = {d: fa.direction(d).multiplier for d in ("l", "r")}
             out["sliding_governs"] = {d: fa.direction(d).sliding_governs for d in ("l", "r")}
+        return out
+
+    def _friction_with_crushing(self, mu):
+        """:meth:`_friction` with a finite f_c: Heyman's friction analyses assume no crushing,
+        so the friction needed is read on the finite-strength collapse's own thrust line (its
+        static state is unique where four hinges form) and the multipliers at mu are friction
+        and crushing in one program (studies.governing, on the graph of blocks)."""
+        import numpy as np
+
+        from ..statics.friction import joint_shear_normal
+        from .governing import _with_friction_crushing
+
+        lim = self.limit
+        needed = {}
+        for d in ("l", "r"):
+            T, N = joint_shear_normal(self.arch, lim.thrust_l if d == "l" else lim.thrust_r)
+            pressed = N > 1e-12 * max(1.0, float(np.abs(N).max()))
+            needed[d] = float(np.max(np.abs(T[pressed]) / N[pressed]))
+        out = {"needed": needed, "mu": mu, "with_mu": None, "with_mu_error": None,
+               "sliding_governs": None, "with_crushing": self.arch.fc}
+        if mu is None:
+            return out
+        cap = _with_friction_crushing(self.arch, mu)
+        if "error" in cap.details:
+            out["with_mu_error"] = cap.details["error"]
+        else:
+            out["with_mu"] = {d: cap.k(d) for d in ("l", "r")}
+            out["sliding_governs"] = {d: cap.why[d] == "sliding governs" for d in ("l", "r")}
         return out
 
     @property

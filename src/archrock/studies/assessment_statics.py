@@ -423,6 +423,10 @@ def section_friction(ctx: Context) -> Section:
     intro = ("The smallest Coulomb friction coefficient at the joints with which the thrust at "
              "collapse needs no sliding (Heyman's no-sliding hypothesis made explicit; static "
              "LP, docs/friction.md). ")
+    if fr.get("with_crushing") is not None:
+        intro += (f"With the masonry's f_c = {fr['with_crushing']:g} MPa it is read on the "
+                  "finite-strength collapse's thrust line, and the multipliers with friction "
+                  "solve friction and crushing together (docs/crushing.md). ")
     data = {"available": True, "friction_needed_l": need["l"], "friction_needed_r": need["r"],
             "no_finite_friction": {d: need[d] is None for d in ("l", "r")}, "mu": mu,
             "k_with_mu": fr["with_mu"], "sliding_governs": fr["sliding_governs"],
