@@ -56,16 +56,13 @@ def test_friction_needed_on_the_crushing_thrust_is_the_graph_programs_threshold(
     """Two methods, one threshold: the largest |T|/N on the finite-strength collapse's thrust
     line (what assess reports as the friction needed) is where the graph program with friction
     and crushing starts to carry less than crushing alone."""
-    import numpy as np
-
     from archrock.geometry import oppenheim_arch
-    from archrock.statics.friction import joint_shear_normal
+    from archrock.statics.friction import thrust_friction
     from archrock.studies.governing import _with_friction_crushing
 
     arch = (flat if which == "flat" else oppenheim_arch()).with_fc(2.0)
     lim = limit_analysis(arch)
-    T, N = joint_shear_normal(arch, lim.thrust_l)
-    need = float(np.max(np.abs(T) / N))
+    need = thrust_friction(arch, {"l": lim.thrust_l, "r": lim.thrust_r})["l"]
     assert 0.3 < need < 0.8  # 0.5931 flat, 0.4536 Oppenheim's
     below = _with_friction_crushing(arch, 0.98 * need).k_l
     above = _with_friction_crushing(arch, 1.02 * need).k_l

@@ -54,7 +54,7 @@ from .lp import ThrustLine, _statics, _Statics, _thrust_from_x
 from .thickness import MinimumThickness, thickness_bisection
 
 __all__ = ["DEFAULT_FRICTION", "FrictionDirection", "FrictionResult", "FrictionNeeded", "friction_analysis",
-           "friction_needed", "friction_minimum_thickness", "joint_shear_normal",
+           "friction_needed", "friction_minimum_thickness", "joint_shear_normal", "thrust_friction",
            "check_friction", "MU_CAP", "NO_FINITE_FRICTION", "NO_MECHANISM"]
 
 #: The Coulomb friction coefficient of masonry joints that every archrock analysis uses unless
@@ -465,3 +465,18 @@ def joint_shear_normal(arch: VoussoirArch, thrust: ThrustLine) -> tuple[np.ndarr
     u, nu = _frames(arch)
     f = np.asarray(thrust.forces, float)
     return np.einsum("ij,ij->i", f, u), np.einsum("ij,ij->i", f, nu)
+
+
+def thrust_friction(arch: VoussoirArch, thrusts) -> dict:
+    """{"l": mu, "r": mu}: the largest |T|/N over the pressed joints of each direction's line
+    of thrust (``thrusts``: {"l": ThrustLine, "r": ThrustLine}).  Where the collapse state is
+    unique (four hinges: one degree of freedom) this is the friction the collapse needs; the
+    finite-strength collapse (statics.crushing) takes it from its own thrust line, which
+    Heyman's :func:`friction_needed` (no crushing) does not see."""
+    out = {}
+    for d in DIRECTIONS:
+        T, N = joint_shear_normal(arch, thrusts[d])
+        pressed = N > 1e-12 * max(1.0, float(np.abs(N).max()))
+        out[d] = float(np.max(np.abs(T[pressed]) / N[pressed]))
+    return out
+

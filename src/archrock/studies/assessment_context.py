@@ -200,17 +200,11 @@ class Context:
         so the friction needed is read on the finite-strength collapse's own thrust line (its
         static state is unique where four hinges form) and the multipliers at mu are friction
         and crushing in one program (studies.governing, on the graph of blocks)."""
-        import numpy as np
-
-        from ..statics.friction import joint_shear_normal
+        from ..statics.friction import thrust_friction
         from .governing import _with_friction_crushing
 
         lim = self.limit
-        needed = {}
-        for d in ("l", "r"):
-            T, N = joint_shear_normal(self.arch, lim.thrust_l if d == "l" else lim.thrust_r)
-            pressed = N > 1e-12 * max(1.0, float(np.abs(N).max()))
-            needed[d] = float(np.max(np.abs(T[pressed]) / N[pressed]))
+        needed = thrust_friction(self.arch, {"l": lim.thrust_l, "r": lim.thrust_r})
         out = {"needed": needed, "mu": mu, "with_mu": None, "with_mu_error": None,
                "sliding_governs": None, "with_crushing": self.arch.fc}
         if mu is None:

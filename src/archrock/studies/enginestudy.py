@@ -93,10 +93,16 @@ def _sliding(arch, friction) -> tuple[dict | None, str]:
     or where ``friction`` is None: sliding excluded by the user, Heyman's hypothesis)."""
     if friction is None:
         return None, ""
-    from ..statics.friction import friction_needed
+    from ..statics.friction import friction_needed, thrust_friction
 
     try:
-        need = friction_needed(arch)
+        if getattr(arch, "fc", None) is not None:  # on the finite-strength collapse's thrust
+            from ..statics.limit import limit_analysis
+
+            lim = limit_analysis(arch)
+            need = thrust_friction(arch, {"l": lim.thrust_l, "r": lim.thrust_r})
+        else:
+            need = friction_needed(arch)
     except ArchrockError as exc:
         return None, f"the friction the rocking needs could not be found ({' '.join(str(exc).split())})"
     need = {d: need[d] for d in ("l", "r")}
