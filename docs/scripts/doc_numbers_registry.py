@@ -830,6 +830,29 @@ ENTRIES += [
           r"the rings separate: (\d+) of 138 interface contacts open", slow=True),
 ]
 
+ENTRIES += [
+    Entry(RG, "k_l falls from {} without it to {} at\n5 MPa", "py:rings_fc",
+          r"k (\S+) (\S+)"),
+    Entry(RG, "not confirm it by virtual work ({} here)", COARSE + ("--fc", "5"),
+          r"the mechanism's virtual work (\S+),"),
+]
+
+
+def rings_fc() -> str:
+    """k_l of the coarse two-ring arch without f_c and at 5 MPa."""
+    from archrock.cli import main
+
+    ks = []
+    for extra in ((), ("--fc", "5")):
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            main(list(COARSE + extra))
+        ks.append(re.search(K_L, out.getvalue()).group(1))
+    return "k " + " ".join(ks)
+
+
+FUNCTIONS[rings_fc.__name__] = rings_fc
+
 FILL = "docs/fill.md"
 FILL_ARCH = ("--shape", "circular", "--span", "10", "--thickness", "0.5", "--voussoirs", "15")
 #: docs/fill.md's table: kappa -> k of the flat bridge arch and of the 3 m rise one

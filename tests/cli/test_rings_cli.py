@@ -82,3 +82,19 @@ def test_a_ringed_file_refuses_the_engine(capsys, tmp_path):
     assert run(capsys, *TWO, "--write", str(f))[0] == 0
     code, _, err = run(capsys, "arcade", "--arcade", str(f), "--ramp")
     assert code == 2 and "the contact engine does not model" in err
+
+
+def test_rings_take_the_strength(capsys):
+    """--fc reaches a ringed arch (it was silently dropped): weaker masonry carries less, the
+    interfaces keep their own friction, and the answer states the static bracket."""
+    code, out, err = run(capsys, *TWO, "--fc", "5", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["arcade"]["fc"] == {"voussoir": 5.0}
+    lo, hi = d["l"]["k_bounds"]
+    assert hi - lo <= 1e-6 * hi
+    assert d["k_l"] < 0.174130 - 1e-3  # the same arch without f_c
+    code, out1, _ = run(capsys, *TWO, "--fc", "1", "--json")
+    assert json.loads(out1)["k_l"] < d["k_l"]
+    code, text, _ = run(capsys, *TWO, "--fc", "5")
+    assert "compressive strength f_c: voussoir 5 MPa" in text

@@ -261,7 +261,7 @@ def arcade_from_args(args):
     from .rings import ringed_from_args, wants_rings
 
     if wants_rings(args):
-        return ringed_from_args(args)
+        return _with_strength(args, ringed_from_args(args))
     if args.arcade:
         given = [f for f, v in arch_flags + pier_flags + [("--geometry", args.geometry),
                                                           ("--repeat", args.repeat)]
@@ -352,9 +352,19 @@ def format_result(arc, results, ramp=None, response=None, engine_ref=None) -> st
                      f"{g.k_virtual_work:.6f}, |diff| {abs(g.k_virtual_work - g.k):.1e}; "
                      f"{m.dof} degree{'s' if m.dof != 1 else ''} of freedom, "
                      f"{len(m.moving)} blocks move)")
+        if abs(g.k_virtual_work - g.k) > 1e-6 * max(1.0, abs(g.k)):
+            # k stands on the static program (its bracket); the motion read from its dual
+            # does not confirm it (crushing with sliding and many degrees of freedom)
+            lines.append(f"  note: the mechanism read from the dual is approximate (its "
+                         f"virtual work {g.k_virtual_work:.6f} is not k): k is the static "
+                         f"program's, a multiplier the structure carries; the motion drawn "
+                         f"is indicative only")
         rings = ring_lines(arc, m)
         if rings:  # a brick arch: hundreds of joints, summed by ring
             lines += rings
+            if g.k_bounds is not None:
+                lines.append(f"  bracket of the static optimum: [{g.k_bounds[0]:.9f}, "
+                             f"{g.k_bounds[1]:.9f}] (k is its lower bound)")
             continue
         lines.append(f"  hinges: {'; '.join(h.place for h in m.hinges) or '-'}")
         if g.k_bounds is not None:

@@ -201,8 +201,9 @@ def classify(prog, v: np.ndarray, tol: float):
     velocities v: under finite strength a hinge turns about a point inside its contact (the
     associated flow turns it about the stress block's inner edge), so one end may close."""
     hinges, lift, slide, closed, slip_sign = [], [], [], [], {}
-    mu = prog.friction
     for c in range(prog.nc):
+        # the contact's own friction (a ring interface's), else the analysis's (nan: none)
+        mu = float(prog.mu[c]) if np.isfinite(prog.mu[c]) else None
         dn, dt = prog.relative(v, c)
         slid = np.abs(dt) > tol
         if slid.any() and ((mu is not None and np.all(np.abs(dn - mu * np.abs(dt)) <= tol))
