@@ -35,8 +35,9 @@ IMPLIED = {ImpactSpec: {"fallback", "note"},
            # zero turn written by omission, so that the hash of a 0.6 ensemble on moved
            # supports keeps its form
            SupportMovement: {"rotation", "pivot_depth"},
-           # the piers' spreads likewise: a configuration without them hashes as before
-           Spreads: {"pier_lean", "pier_width", "pier_height", "pier_course"}}
+           # the piers' spreads and f_c's (0.8) likewise: a configuration without them hashes
+           # as before
+           Spreads: {"pier_lean", "pier_width", "pier_height", "pier_course", "fc"}}
 #: Geometry files have their own documented format (docs/geometry.md), not a config's.
 FILE_FORMATS = {"Arch", "PolygonArch", "FamilyArch", "ArchOnPiers", "Arcade"}
 
@@ -118,9 +119,10 @@ def test_spreads_read_the_old_keys_as_aliases():
            "spread_tilt_deg": 3.0}
     assert Spreads.from_dict(old) == Spreads(0.2, 0.15, 0.05, 3.0)
     assert Spreads.from_dict({"spread_span": 0.3, "tilt": 1.0}) == Spreads(span=0.3, tilt=1.0)
-    # every field of 0.6 has its old key; the piers' spreads (0.7) never had another
+    # every field of 0.6 has its old key; the piers' spreads (0.7) and f_c's (0.8) never had
+    # another
     assert set(LEGACY_KEYS.values()) == {f.name for f in dataclasses.fields(Spreads)
-                                         if not f.name.startswith("pier_")}
+                                         if not f.name.startswith("pier_") and f.name != "fc"}
     assert Spreads(0.2, 0.15, 0.05, 3.0).legacy_dict() == old
     assert "spread_tilt_deg" not in Spreads().legacy_dict()  # 0.1.0's dict without a tilt
     with pytest.raises(ArchInputError, match="span given twice"):

@@ -58,14 +58,14 @@ def test_friction_needed_on_the_crushing_thrust_is_the_graph_programs_threshold(
     and crushing starts to carry less than crushing alone."""
     from archrock.geometry import oppenheim_arch
     from archrock.statics.friction import thrust_friction
-    from archrock.studies.governing import _with_friction_crushing
+    from archrock.studies.governing import friction_with_crushing
 
     arch = (flat if which == "flat" else oppenheim_arch()).with_fc(2.0)
     lim = limit_analysis(arch)
     need = thrust_friction(arch, {"l": lim.thrust_l, "r": lim.thrust_r})["l"]
     assert 0.3 < need < 0.8  # 0.5931 flat, 0.4536 Oppenheim's
-    below = _with_friction_crushing(arch, 0.98 * need).k_l
-    above = _with_friction_crushing(arch, 1.02 * need).k_l
+    below = friction_with_crushing(arch, 0.98 * need).k_l
+    above = friction_with_crushing(arch, 1.02 * need).k_l
     assert below < lim.k_l * (1 - 1e-3)
     assert above == pytest.approx(lim.k_l, rel=1e-6)
 

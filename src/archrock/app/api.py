@@ -160,6 +160,7 @@ def limit(params: dict) -> dict:
     hinge points [m].  ``elapsed_ms``: the server's time."""
     from ..statics.friction import friction_analysis, friction_needed
     from ..statics.limit import limit_analysis
+    from ..studies.governing import friction_with_crushing
     from ..reports.limit import limit_summary
 
     params = only(request_object(params), LIMIT_FIELDS)
@@ -172,11 +173,8 @@ def limit(params: dict) -> dict:
         heyman = arch.fc is None  # Heyman's friction analyses assume no crushing
         extra = {"friction": friction_analysis(arch, mu) if mu is not None and heyman else None}
         extra["needed"] = friction_needed(arch) if mu is None and heyman else None
-        both = None
-        if mu is not None and not heyman:  # friction and crushing in one program
-            from ..studies.governing import _with_friction_crushing
-
-            both = _with_friction_crushing(arch, mu)
+        # with f_c: friction and crushing in one program (the governing capacity's)
+        both = None if mu is None or heyman else friction_with_crushing(arch, mu)
         if want_thrust:
             from ..statics.thrust import thrust_range
 

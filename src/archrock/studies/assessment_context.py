@@ -201,7 +201,7 @@ class Context:
         static state is unique where four hinges form) and the multipliers at mu are friction
         and crushing in one program (studies.governing, on the graph of blocks)."""
         from ..statics.friction import thrust_friction
-        from .governing import _with_friction_crushing
+        from .governing import friction_with_crushing
 
         lim = self.limit
         needed = thrust_friction(self.arch, {"l": lim.thrust_l, "r": lim.thrust_r})
@@ -209,7 +209,7 @@ class Context:
                "sliding_governs": None, "with_crushing": self.arch.fc}
         if mu is None:
             return out
-        cap = _with_friction_crushing(self.arch, mu)
+        cap = friction_with_crushing(self.arch, mu)
         if "error" in cap.details:
             out["with_mu_error"] = cap.details["error"]
         else:

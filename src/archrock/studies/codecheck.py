@@ -466,8 +466,8 @@ def mechanism_kinematics(arch, mechanism, points: int = 201, zones=None) -> Kine
     """The mechanism's four-link kinematics on ``arch``: virtual displacements of the voussoirs'
     mass centres at rest and, on rotations from 0 to the unstable one (F = 0), the exact
     multiplier alpha = -s F / P and the voussoirs' horizontal displacements (s = +1 for M_l,
-    -1 for M_r: displacements are measured in the direction of the loads).  zones: with f_c,
-    the compressed zones [m] at collapse (hinges half a zone in from the edges)."""
+    -1 for M_r: displacements in the loads' direction); zones: with f_c, the compressed zones
+    [m] at collapse (hinges half a zone in from the edges)."""
     from ..dynamics.fourlink import configuration, four_link
 
     fl = four_link(arch, mechanism, zones)
@@ -667,11 +667,9 @@ def kinematic_check(kin: Kinematics, config: CodeCheckConfig | None = None,
 def code_check(arch, limit=None, config: CodeCheckConfig | None = None,
                above_ground: AboveGround | None = None) -> CodeCheckResult:
     """The code check of ``arch`` in both directions, from the mechanisms of ``limit`` (a
-    :class:`~archrock.statics.limit.LimitResult`; computed when None).  On an arch on piers
-    the result also says where each mechanism's masses are (:func:`mechanism_height`: the
-    moving mass and the height Z of its centroid above the foundation); with ``above_ground``
-    (the structure it stands in) and a spectrum, the checks of a mechanism above ground
-    (:func:`above_ground_checks`) join the ground-level ones."""
+    LimitResult; computed when None; with f_c on its inset hinges).  On piers: where each
+    mechanism's masses are (:func:`mechanism_height`); with ``above_ground`` and a spectrum,
+    the checks above ground (:func:`above_ground_checks`) join the ground-level ones."""
     from ..dynamics.finite import collapse_zones
     from ..statics.limit import limit_analysis
 
@@ -680,7 +678,7 @@ def code_check(arch, limit=None, config: CodeCheckConfig | None = None,
     cfg = CodeCheckConfig() if config is None else config
     lim = limit_analysis(arch, verify=True) if limit is None else limit
     kins = {d: mechanism_kinematics(arch, lim.mechanism(d), cfg.points, collapse_zones(lim, d))
-            for d in ("l", "r")}  # with f_c on the statics' inset hinges: alpha_0 is their k
+            for d in ("l", "r")}
     out = tuple(kinematic_check(kins[d], cfg, d) for d in ("l", "r"))
     if not (getattr(arch, "pier_blocks", ()) or above_ground is not None):
         return CodeCheckResult(cfg, out, getattr(arch, "name", ""))

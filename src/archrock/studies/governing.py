@@ -37,7 +37,7 @@ from ..errors import ArchrockError
 from ..statics.friction import DEFAULT_FRICTION, check_friction
 
 __all__ = ["Capacity", "Governing", "GoverningCapacity", "governing_capacity", "AGREEMENT",
-           "engine_friction",
+           "engine_friction", "friction_with_crushing",
            "NO_SLIDING", "WITH_FRICTION", "ENGINE", "ENGINE_NOT_ASKED"]
 
 #: Relative difference [-] below which the engine and the limit analysis agree (the engine's
@@ -214,7 +214,7 @@ def _with_friction(arch, mu) -> Capacity:
                      "method": fa.method})
 
 
-def _with_friction_crushing(arch, mu) -> Capacity:
+def friction_with_crushing(arch, mu) -> Capacity:
     """Coulomb friction ``mu`` together with the finite strength ``arch.fc``: the chain as a
     graph of blocks (statics.graph: its friction rows and the stress-block bracket in one
     program), so that neither hypothesis is assumed away."""
@@ -443,7 +443,7 @@ def _statics(arch, mu, limit):
                                         "--friction none): Heyman's no-sliding hypothesis"))
     elif getattr(arch, "fc", None) is not None:
         try:  # Heyman's friction analysis assumes no crushing: the graph holds both
-            fric = _with_friction_crushing(arch, mu)
+            fric = friction_with_crushing(arch, mu)
         except NoMechanismError as exc:
             left_out.append((WITH_FRICTION, _one_line(exc)))
         else:
