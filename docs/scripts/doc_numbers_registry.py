@@ -779,6 +779,25 @@ ENTRIES += [
           r"k with friction = (\S+)"),
 ]
 
+ENTRIES += [
+    Entry("README.md", "f_c = 5 MPa carries k = {} g, not Heyman's\n{}:", "py:readme_flat",
+          r"k (\S+) (\S+)"),
+]
+
+
+def readme_flat() -> str:
+    """k of the README's flat bridge arch at 5 MPa and without f_c (4 decimals)."""
+    from doc_numbers import run_archrock
+
+    out = []
+    for extra in (("--fc", "5"), ()):
+        text = run_archrock(["limit", *FLAT_ARCH[1:], *extra])
+        out.append(re.search(r"k = min\(k_l, k_r\) = (\S+)", text).group(1))
+    return "k " + " ".join(out)
+
+
+FUNCTIONS[readme_flat.__name__] = readme_flat
+
 RG = "docs/rings.md"
 RINGS = ("arcade", "--spans", "5", "--ring-thickness", "0.215", "0.215")
 COARSE = ("arcade", "--spans", "5", "--ring-thickness", "0.215", "0.215", "--brick", "0.5")
