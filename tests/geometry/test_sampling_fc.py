@@ -22,7 +22,7 @@ def test_drawn_arches_keep_the_nominal_strength_and_the_blocks():
 
 
 def test_strength_spread_draws_fc_on_its_own_stream():
-    fam = family_arch("circular", 10.0, 1.5, 0.5, 15, exact=False, fc=5.0)
+    fam = oppenheim_arch().with_fc(5.0)  # exact sectors: no compiled family draws
     plain = ArchSampler(fam, Spreads(0.1, 0.1, 0.05), seed=2)
     spread = ArchSampler(fam, Spreads(0.1, 0.1, 0.05, fc=0.4), seed=2)
     drawn = spread.arches(0, 8)
@@ -55,3 +55,12 @@ def test_without_strength_the_spreads_dict_is_unchanged():
     assert "fc" not in s.to_dict() and "fc" not in s.legacy_dict()
     assert Spreads.from_dict({**s.to_dict(), "fc": 0.25}).fc == pytest.approx(0.25, rel=0, abs=0)
     assert Spreads(fc=0.25).to_dict()["fc"] == pytest.approx(0.25, rel=0, abs=0)
+
+
+@pytest.mark.slow
+def test_family_draws_keep_the_strength():
+    """The compiled family draws (exact=False) carry f_c too (slow: their first compile)."""
+    fam = family_arch("circular", 10.0, 1.5, 0.5, 15, exact=False, fc=5.0)
+    drawn = ArchSampler(fam, Spreads(0.1, 0.1, 0.05, fc=0.4), seed=2).arches(0, 8)
+    fcs = np.array([a.fc for a in drawn])
+    assert fcs.min() >= 3.0 - 1e-12 and fcs.max() <= 7.0 + 1e-12 and np.ptp(fcs) > 0.5
