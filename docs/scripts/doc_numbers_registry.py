@@ -774,6 +774,8 @@ FLAT_ARCH = ("limit", "--shape", "circular", "--span", "10", "--rise", "1.5", "-
 ENTRIES += [
     Entry(CR, "governing: k = {} g (limit analysis with friction mu = 0.3, both directions",
           FLAT_ARCH + ("--fc", "2", "--friction", "0.3"), r"governing: k = (\S+) g"),
+    Entry(CR, "thrust line ({} for the flat arch", FLAT_ARCH + ("--fc", "2"),
+          r"needs \(largest \|T\|/N on its thrust line\): M_l (\S+)"),
     Entry(CR, "below sliding alone (k with friction = {} without", FLAT_ARCH + ("--friction",
                                                                               "0.3"),
           r"k with friction = (\S+)"),

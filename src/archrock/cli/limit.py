@@ -162,6 +162,17 @@ def _frictionless(arch, args):
         return None, str(exc)
 
 
+def _crushing_friction(arch, result):
+    """The friction the finite-strength collapse needs, on its own thrust line (its state is
+    unique where four hinges form), where no friction coefficient was given; else None."""
+    from ..statics.friction import FrictionNeeded, thrust_friction
+
+    if result is None:
+        return None
+    return FrictionNeeded(thrust_friction(arch, {"l": result.thrust_l, "r": result.thrust_r}),
+                          {})
+
+
 def run_limit(args) -> int:
     from ..errors import CannotStandError
     from ..statics.friction import friction_analysis, friction_minimum_thickness, friction_needed
@@ -203,8 +214,8 @@ def run_limit(args) -> int:
             raise
         raise CannotStandError(f"{exc}; with friction {mu:g} the minimum thickness is "
                                f"{_thickness_words(arch, mt)}") from None
-    needed = (None if fr is not None or no_mech is not None or not heyman
-              else friction_needed(arch))
+    needed = (None if fr is not None or no_mech is not None
+              else friction_needed(arch) if heyman else _crushing_friction(arch, result))
     extra = {"needed": needed, "friction": fr, "min_thickness_friction": mu}
     if mpw is not None:
         extra["min_pier_width"] = mpw
