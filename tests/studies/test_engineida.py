@@ -89,6 +89,7 @@ def test_result_to_json_and_as_ida(result):
     assert not res.collapsed.flags.writeable
 
 
+@pytest.mark.slow  # a process pool on a shared 2-core runner: ~30-60 s
 def test_two_workers_give_the_same_matrix(heavy_arch, records, coarse, result):
     res1, _ = result
     lines = []

@@ -100,6 +100,7 @@ def test_summary_numbers(base):
     json.dumps(s, allow_nan=False)
 
 
+@pytest.mark.slow  # a process pool on a shared 2-core runner: ~30-60 s
 def test_same_seed_same_results_with_two_workers(base):
     res2 = run_ensemble(config(), settings=RunSettings(workers=2))
     pd.testing.assert_frame_equal(base.frame, res2.frame)
