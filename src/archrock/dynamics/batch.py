@@ -18,8 +18,8 @@ parallel loop of the single-response kernel :func:`archrock.dynamics.kernel.simu
   ``n_out = 1``), returning per-arch summaries: status, peak, t_collapse (the last upward
   passage of phi_u before the rotation limit), t_limit (when the limit, a numerical stop, was
   reached), t_unstable (the first passage of phi_u), number of impacts and of activations, and
-  whether the event table overflowed (``events_truncated``: the outcome is still complete, only the impact
-  and activation counts are then lower bounds).  Without numba the same loop runs in Python.
+  whether the event table overflowed (``events_truncated``: the outcome and the counts of impacts
+  and activations are still complete).  Without numba the same loop runs in Python.
 """
 
 from __future__ import annotations

@@ -15,6 +15,8 @@ from . import kernel as K
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError
 from ..groundmotion import G, GroundMotion
+from .kernel import ST_COLLAPSED as K_ST_COLLAPSED
+from .kernel import run_chain as K_run_chain
 from .tables import check_table_intervals, init_table, table_size
 
 __all__ = ["simulate_batch", "STATUS_NAMES", "ST_NOT_RUN", "MAX_EVENTS"]
@@ -24,46 +26,60 @@ STATUS_NAMES = {K.ST_REST: "rest", K.ST_COLLAPSED: "collapsed", K.ST_MOVING: "mo
                 K.ST_STOPPED: "stopped"}
 ST_NOT_RUN = -1
 #: event-table size per response in the batch kernel (the paper's pulse needs about 100).  The
-#: kernel keeps integrating past it (status, peak and times stay exact); only the counts of
-#: impacts and activations then miss the events beyond the table.
+#: kernel keeps integrating past it (status, peak, times and the counts of impacts and
+#: activations stay exact); ``events_truncated`` says the table itself was cut.
 MAX_EVENTS = 4096
 
 
 @maybe_njit
-def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
-                  v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns,
-                  t_lim, n_imp, n_act, n_ev, early_stop):
-    """Integrate arch b over its chain and write its summary into the output arrays (shared by
-    both loops)."""
-    R = n_rows[b]
-    if n_tab > 0:
-        # built interval by interval as the motion reaches them (mechanism.init_table)
-        rows = np.empty((R, table_size(n_tab)))
-        for j in range(R):
+def chain_rows(b, rows, geos, tabs, n_rows, n_tab):
+    """Write arch b's chain into ``rows`` (at least n_rows[b] rows): empty tables of
+    ``n_tab`` intervals, built interval by interval as the motion reaches them
+    (mechanism.init_table), or with ``n_tab`` 0 the four-link vectors themselves."""
+    for j in range(n_rows[b]):
+        if n_tab > 0:
             init_table(rows[j], geos[b, j], tabs[b, j, 0], tabs[b, j, 1], n_tab)
-    else:
-        rows = geos[b, :R].copy()
-    # kernel modes are rows + 1 (0 = rest)
-    _, ev, ne, st, tf, pk, tc, tu = K.simulate_chain_stop(
-        rows, lims[b, :R].copy(), phus[b, :R].copy(), dirs[b, :R].copy(), nexts[b, :R] + 1,
-        ratios[b, :R].copy(), k_l[b], k_r[b], v_rest[b], times, accel, g, 1, 1.0, dt, t_free,
+        else:
+            for q in range(geos.shape[2]):
+                rows[j, q] = geos[b, j, q]
+
+
+@maybe_njit
+def summary_one(b, rows, out, ev, n_rows, k_l, k_r, lims, phus, dirs, modes, ratios, v_rest, times,
+                accel, g, dt, t_free, max_events, status, peak, t_col, t_uns, t_lim, n_imp,
+                n_act, n_ev, early_stop):
+    """Integrate arch b over its chain ``rows`` (:func:`chain_rows`) and write its summary into
+    the output arrays; ``out`` (1,) and ``ev`` (k, 6) are its scratch buffers.  The one
+    per-arch body of both builds: the CPU loops and the GPU kernel
+    (:mod:`archrock.dynamics.gpubatch`).  ``modes``: the chain's next rows + 1 (kernel modes,
+    0 = rest)."""
+    R = n_rows[b]
+    _, ne, st, tf, pk, tc, tu, ni, na = K_run_chain(
+        out, ev, rows[:R], lims[b, :R], phus[b, :R], dirs[b, :R], modes[b, :R],
+        ratios[b, :R], k_l[b], k_r[b], v_rest[b], times, accel, g, 1.0, dt, t_free,
         max_events, early_stop)
-    m = min(ne, max_events)
-    ni = 0
-    na = 0
-    for e in range(m):
-        if ev[e, 0] == K.EV_IMPACT:
-            ni += 1
-        elif ev[e, 0] == K.EV_ACTIVATION:
-            na += 1
     status[b] = st  # complete even when the event table overflowed (ne > max_events)
     peak[b] = pk
     t_col[b] = tc
     t_uns[b] = tu
-    t_lim[b] = tf if st == K.ST_COLLAPSED else -1.0
+    t_lim[b] = tf if st == K_ST_COLLAPSED else -1.0
     n_imp[b] = ni
     n_act[b] = na
     n_ev[b] = ne
+
+
+@maybe_njit
+def _simulate_one(b, geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, modes, ratios,
+                  v_rest, times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns,
+                  t_lim, n_imp, n_act, n_ev, early_stop):
+    """:func:`summary_one` of arch b with buffers of its own (the CPU loops)."""
+    R = n_rows[b]
+    rows = np.empty((R, table_size(n_tab) if n_tab > 0 else geos.shape[2]))
+    chain_rows(b, rows, geos, tabs, n_rows, n_tab)
+    ev = np.zeros((min(max_events, K.EVENT_ROWS), 6))
+    summary_one(b, rows, np.zeros(1), ev, n_rows, k_l, k_r, lims, phus,
+                dirs, modes, ratios, v_rest, times, accel, g, dt, t_free, max_events, status,
+                peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev, early_stop)
 
 
 def _simulate_loop_py(geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, nexts, ratios,
@@ -104,7 +120,7 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
     before the rotation limit, independent of the limit), t_limit [s] (when the limit, a
     numerical stop, was reached), t_unstable [s] (its first passage) (each NaN if never), n_impacts,
     n_activations, events_truncated (more than ``max_events`` events: status, peak and times are
-    still exact, n_impacts and n_activations are lower bounds); plus 'seconds'.
+    still exact, and so are n_impacts and n_activations, counted as they happen); plus 'seconds'.
     ``tabulate``: the kernel reads phi'' from tables of ``table_intervals`` intervals (as
     ``respond(..., tabulate=True)``, relative error ~2e-9), each interval built inside the loop
     when the arch's motion first reaches it; otherwise the exact loop closure.
@@ -137,7 +153,7 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
             np.ascontiguousarray(p.chain_limit, dtype=float),
             np.ascontiguousarray(p.chain_unstable, dtype=float),
             np.ascontiguousarray(p.chain_direction, dtype=float),
-            np.ascontiguousarray(p.chain_next, dtype=np.int64),
+            np.ascontiguousarray(p.chain_next + 1, dtype=np.int64),
             np.ascontiguousarray(p.chain_ratio, dtype=float), p.v_rest, run, times, accel, G,
             float(dt), float(t_free), int(max_events), res["status"], res["peak"],
             res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_impacts"],

@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from .._device import device_override
 from .._jit import maybe_njit
 from .fourbar import potential
 from .tables import fast_coefficients, filling_acceleration, table_acceleration
@@ -309,7 +310,40 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
     out = np.zeros(n_out)
     # a table of max_events rows zeroed up front cost as much as a short response
     ev = np.zeros((min(max_events, EVENT_ROWS), 6))
+    ev, n_ev, status, t, peak, t_collapse, t_unstable, _, _ = run_chain(
+        out, ev, geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times, accel, g,
+        dt_out, dt, t_free, max_events, early_stop)
+    return out, ev, n_ev, status, t, peak, t_collapse, t_unstable
+
+
+@device_override(_add_event)
+def _add_event_fixed(ev, n_ev, max_events, kind, t, mode_before, mode_after, rate_before,
+                     rate_after):
+    """:func:`_add_event` into a table that never grows (a GPU thread cannot allocate): rows
+    past its size are only counted."""
+    if n_ev < ev.shape[0]:
+        ev[n_ev, 0] = kind
+        ev[n_ev, 1] = t
+        ev[n_ev, 2] = mode_before
+        ev[n_ev, 3] = mode_after
+        ev[n_ev, 4] = rate_before
+        ev[n_ev, 5] = rate_after
+    return ev, n_ev + 1
+
+
+@maybe_njit
+def run_chain(out, ev, geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times, accel,
+              g, dt_out, dt, t_free, max_events, early_stop):
+    """The state machine of :func:`simulate_chain_stop` writing into buffers it is given: the
+    signed response samples ``out`` (n_out,) and the event table ``ev`` (rows, 6), grown on the
+    CPU up to ``max_events`` rows and fixed on a GPU.  No allocation of its own, so that the
+    same source runs in a GPU thread (:mod:`archrock._device`).
+
+    Returns (ev, n_events, status, t_final, peak, t_collapse, t_unstable, n_impacts,
+    n_activations); the two counts are complete whatever the table's size."""
     n_ev = 0
+    n_imp = 0
+    n_act = 0
     nseg = times.size - 1
     t_motion = times[-1]
     t_stop = t_motion + t_free
@@ -370,6 +404,7 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
             phi = 0.0
             w = 0.0
             ev, n_ev = _add_event(ev, n_ev, max_events, EV_ACTIVATION, t, 0, mode, 0.0, 0.0)
+            n_act += 1
             continue
         geo = geos[mode - 1]
         lim = lims[mode - 1]
@@ -418,6 +453,7 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
             t = t + hc
             w_minus = w1 if w1 < 0 else 0.0
             w_plus = -ratios[mode - 1] * w_minus
+            n_imp += 1
             if w_plus < v_rest:
                 ev, n_ev = _add_event(ev, n_ev, max_events, EV_IMPACT, t, mode, 0, w_minus, 0.0)
                 ev, n_ev = _add_event(ev, n_ev, max_events, EV_REST, t, mode, 0, 0.0, 0.0)
@@ -444,4 +480,4 @@ def simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
         phi, w = p1, w1
         if phi > peak:
             peak = phi
-    return out, ev, n_ev, status, t, peak, t_collapse, t_unstable
+    return ev, n_ev, status, t, peak, t_collapse, t_unstable, n_imp, n_act
