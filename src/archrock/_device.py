@@ -124,7 +124,7 @@ def _python(func):
 def _is_kernel_function(value) -> bool:
     """A numba dispatcher, a registered device replacement, or (numba switched off) a plain
     function of the package: the callees that get a device build."""
-    if hasattr(value, "py_func") or value in _OVERRIDES.values():
+    if hasattr(value, "py_func") or any(value is f for f in _OVERRIDES.values()):
         return True
     return (isinstance(value, types.FunctionType)
             and getattr(value, "__module__", "").startswith("archrock."))
@@ -179,13 +179,17 @@ def device_function(func):
     return _BUILT[key]
 
 
-def device_kernel(func):
+def device_kernel(func, **callees):
     """A CUDA kernel (``numba.cuda.jit``) from the Python function ``func``, its compiled callees
-    swapped for their device builds; built once per process."""
+    swapped for their device builds; ``callees`` name functions its source reads that its
+    module does not import at load time (the CPU kernels exist only where numba does).  Built
+    once per process."""
     key = ("kernel", func)
     if key not in _BUILT:
         cuda = cuda_module()
         fn = _rebuild(func)
         fn.__globals__["cuda"] = cuda  # the kernel's own module never imports numba.cuda
+        for name, value in callees.items():
+            fn.__globals__[name] = device_function(value)
         _BUILT[key] = cuda.jit(fn)
     return _BUILT[key]

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._device import check_device, resolve_device
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError, ArchrockError
 from ..leftout import LeftOut
@@ -241,7 +242,8 @@ def _is_arch_sequence(values) -> bool:
 
 
 def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, impact=None,
-                  cv: float | None = None, *, nominal=None, parallel: bool = True) -> PreparedBatch:
+                  cv: float | None = None, *, nominal=None, parallel: bool = True,
+                  device: str = "cpu") -> PreparedBatch:
     """Limit analysis, four-link models, rotation limits and impact law of a batch of arches.
 
     Either spans [rad], radii [m], thicknesses [m]: arrays (B, n) with the same n (circular
@@ -265,23 +267,30 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
     ``parallel``: the limit analysis, the four-link loop and the impact laws spread the arches
     over the numba threads (the results do not depend on it); False for process-pool or Dask
     workers, which run one batch each.
+    ``device``: 'cpu', 'gpu' or 'auto' (:func:`archrock._device.resolve_device`): on 'gpu' the
+    four-hinge search and the four-link loop run one arch per GPU thread
+    (:mod:`archrock.dynamics.gpubatch`); the lift-off check, the impact laws and the rows with
+    an error stay on the CPU.  Arches of finite strength are prepared on the CPU.
     Arch objects together with radii/thicknesses arrays, or polylines as arrays, are refused with
     an :class:`~archrock.errors.ArchInputError`.
     """
     t0 = time.perf_counter()
+    check_device(device)
     if radii is None and thicknesses is None and _is_arch_sequence(spans):
-        return _prepare_arches(spans, impact, cv, nominal, t0, parallel)
+        return _prepare_arches(spans, impact, cv, nominal, t0, parallel, device)
     if radii is None or thicknesses is None:
         raise ArchInputError(f"radii, thicknesses: needed with arrays of spans; {_NOT_CIRCULAR}")
     spans, radii, thick = (_circular_rows(name, v) for name, v in (
         ("spans", spans), ("radii", radii), ("thicknesses", thicknesses)))
     spec = _spec(impact, cv, nominal)
     B, n = spans.shape
+    device = resolve_device(device, B)
     error = check_geometries(spans, radii, thick)
     ok = error == ""
     k_l, k_r, cand_l, cand_r = _multipliers(
         B, ok, lambda: kinematic_multipliers_batch(spans[ok], radii[ok], thick[ok],
-                                                   parallel=parallel, fallback=False))
+                                                   parallel=parallel, fallback=False,
+                                                   device=device))
     _limit_errors(k_l, k_r, ok, error, lambda b: Arch(spans[b], radii[b], thick[b], density))
     _lift_off_errors(n, lambda rows: _batch_sums(spans[rows], radii[rows], thick[rows])[:5],
                      lambda b: Arch(spans[b], radii[b], thick[b], density), k_l, k_r, cand_l,
@@ -305,7 +314,8 @@ def prepare_batch(spans, radii=None, thicknesses=None, density: float = 2000.0, 
     # Arch.reference_length of each row: the power of two nearest its mean radius
     ref = np.asarray(power_of_two_near(np.mean(r_, axis=1)), float).reshape(B)
     return _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, spec,
-                   lambda b: Arch(spans[b], radii[b], thick[b], density), t0, t1, parallel)
+                   lambda b: Arch(spans[b], radii[b], thick[b], density), t0, t1, parallel,
+                   device)
 
 
 def _spec(impact, cv, nominal):
@@ -377,7 +387,8 @@ def _lift_off_errors(n: int, sums_of, arch_of, k_l, k_r, cand_l, cand_r, error) 
                     k[b] = np.nan
 
 
-def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedBatch:
+def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True,
+                    device="cpu") -> PreparedBatch:
     """prepare_batch of a sequence of arches of any shape (see there)."""
     from ..geometry import VoussoirArch
 
@@ -386,6 +397,7 @@ def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedB
     if any_finite(items):  # finite strength: the conic statics, arch by arch (dynamics.finite)
         return _prepare_finite(items, spec, t0)
     B = len(items)
+    device = resolve_device(device, B)
     good = [b for b, a in enumerate(items) if isinstance(a, VoussoirArch)]
     if not good:
         n = 3
@@ -403,7 +415,7 @@ def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedB
     ok = error == ""
     k_l, k_r, cand_l, cand_r = _multipliers(
         B, ok, lambda: kinematic_multipliers_arches([items[b] for b in good], parallel=parallel,
-                                                    fallback=False))
+                                                    fallback=False, device=device))
     _limit_errors(k_l, k_r, ok, error, lambda b: items[b])
     _lift_off_errors(n, lambda rows: tuple(np.concatenate(parts) for parts in zip(
         *(arch_sums(items[b]) for b in rows))), lambda b: items[b], k_l, k_r, cand_l, cand_r,
@@ -426,7 +438,7 @@ def _prepare_arches(arches, impact, cv, nominal, t0, parallel=True) -> PreparedB
     inert = np.ascontiguousarray(np.stack([np.asarray(a.inertias, float) for a in rows]))
     ref = np.array([a.reference_length for a in rows], dtype=float)
     return _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, spec,
-                   lambda b: items[b], t0, t1, parallel)
+                   lambda b: items[b], t0, t1, parallel, device)
 
 
 def _hinge_arrays(n, cand):
@@ -444,7 +456,7 @@ def _hinge_arrays(n, cand):
 
 
 def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, spec, arch_of, t0,
-            t1, parallel=True) -> PreparedBatch:
+            t1, parallel=True, device="cpu") -> PreparedBatch:
     """The four-link models, rotation limits, tables and impact law of a batch whose limit
     analysis is done (both paths); ``arch_of(b)`` the arch object of row b (least-loss only),
     ``ref`` (B,) each arch's reference length [m]."""
@@ -467,15 +479,21 @@ def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, s
     outs = (geo_l, geo_r, out["phu_l"], out["phu_r"], out["lim_l"], out["lim_r"], out["m0_l"],
             out["m0_r"], out["v_rest"], err_l, err_r, tab_l, tab_r)
     try:
-        if parallel and _prepare_loop_nb is not None:
+        if device == "gpu" or (parallel and _prepare_loop_nb is not None):
             try:
-                _prepare_loop_nb(*loop_args, ok, *outs)
+                if device == "gpu":
+                    from .gpubatch import prepare_gpu
+
+                    prepare_gpu(loop_args, ok, outs)
+                else:
+                    _prepare_loop_nb(*loop_args, ok, *outs)
             except (ZeroDivisionError, FloatingPointError, SystemError):
                 # an exception inside prange may surface as SystemError ("returned a result
                 # with an exception set"): the serial per-arch pass below finds the culprits
                 # (and re-raises anything else)
                 raise ZeroDivisionError from None
-            # inside prange a division by zero gives inf/nan instead of ZeroDivisionError: the
+            # inside prange (or a GPU thread) a division by zero gives inf/nan instead of
+            # ZeroDivisionError: the
             # rows with a non-finite result are redone by the serial loop, which raises as the
             # one-arch path does (and is the reference for every row anyway)
             done = ok & (err_l == 0) & (err_r == 0)

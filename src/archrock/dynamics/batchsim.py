@@ -12,6 +12,7 @@ import time
 import numpy as np
 
 from . import kernel as K
+from .._device import resolve_device
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError
 from ..groundmotion import G, GroundMotion
@@ -111,7 +112,7 @@ else:  # pragma: no cover - without numba
 def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
                    t_free: float = 60.0, max_events: int = MAX_EVENTS, parallel: bool = True,
                    tabulate: bool = True, table_intervals: int = 600,
-                   early_stop: bool = False) -> dict:
+                   early_stop: bool = False, device: str = "cpu") -> dict:
     """Response of every usable arch of ``prepared`` (a ``PreparedBatch``) to ``motion`` (RK4
     kernel, step ``dt`` [s], free motion after the record at most ``t_free`` [s]).
 
@@ -132,6 +133,9 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
     status is then 3 ("stopped", ``early_stopped`` True): not collapsed, peak and t_unstable
     final, n_impacts / n_activations only those before the stop, no time of rest.  Status,
     collapse and peak of every arch are those of the full run.
+    ``device``: 'cpu', 'gpu' or 'auto' (:func:`archrock._device.resolve_device`): on 'gpu' one
+    arch per GPU thread (:mod:`archrock.dynamics.gpubatch`), the same source; outcomes equal,
+    rotations and times to the tolerance of docs/gpu.md.
     """
     if not isinstance(motion, GroundMotion):
         raise ArchInputError(f"motion: expected a GroundMotion, got {type(motion).__name__}")
@@ -158,7 +162,11 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
             float(dt), float(t_free), int(max_events), res["status"], res["peak"],
             res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_impacts"],
             res["n_activations"], res["n_events"], bool(early_stop))
-    if HAVE_NUMBA:
+    if resolve_device(device, int(run.sum())) == "gpu":
+        from .gpubatch import simulate_gpu
+
+        simulate_gpu(args)
+    elif HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:
         _simulate_loop_py(*args)

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 
 from .._jit import maybe_njit
 
@@ -197,28 +196,35 @@ GEO_ERRORS = {
 
 
 @maybe_njit
+def _edge_sign(edge):
+    """-1 for a hinge at the intrados (edge 0), +1 at the extrados."""
+    return -1.0 if edge == 0 else 1.0
+
+
+@maybe_njit
 def mechanism_geo(px, py, mass, cen, inert, joints, edges, is_r, geo):
     """Fill ``geo`` (GEO_SIZE) for one mechanism of one arch (the compiled core of four_link).
 
     px, py (n+1, 2): joint points (intrados, extrados); mass, inert (n,), cen (n, 2);
     joints, edges (4,): hinges from the left springing.  Returns an error code (0 = ok).
     """
-    ptx = np.empty(4)
-    pty = np.empty(4)
-    sg = np.empty(4)
-    for k in range(4):
-        ptx[k] = px[joints[k], edges[k]]
-        pty[k] = py[joints[k], edges[k]]
-        sg[k] = -1.0 if edges[k] == 0 else 1.0
-    u2x, u2y = ptx[2] - ptx[1], pty[2] - pty[1]
-    u3x, u3y = ptx[3] - ptx[2], pty[3] - pty[2]
-    rx, ry = ptx[0] - ptx[1], pty[0] - pty[1]
+    # the hinge points by name, not in an array: a GPU thread cannot allocate one
+    x0, y0 = px[joints[0], edges[0]], py[joints[0], edges[0]]
+    x1, y1 = px[joints[1], edges[1]], py[joints[1], edges[1]]
+    x2, y2 = px[joints[2], edges[2]], py[joints[2], edges[2]]
+    x3, y3 = px[joints[3], edges[3]], py[joints[3], edges[3]]
+    u2x, u2y = x2 - x1, y2 - y1
+    u3x, u3y = x3 - x2, y3 - y2
+    rx, ry = x0 - x1, y0 - y1
     det = _cross(u2x, u2y, u3x, u3y)
     if abs(det) < 1e-12 * math.hypot(u2x, u2y) * math.hypot(u3x, u3y):
         return GEO_SINGULAR
     w2 = _cross(rx, ry, u3x, u3y) / det
     w3 = _cross(u2x, u2y, rx, ry) / det
-    q0, q1, q2, q3 = sg[0], sg[1] * (w2 - 1.0), sg[2] * (w3 - w2), sg[3] * (-w3)
+    q0 = _edge_sign(edges[0])
+    q1 = _edge_sign(edges[1]) * (w2 - 1.0)
+    q2 = _edge_sign(edges[2]) * (w3 - w2)
+    q3 = _edge_sign(edges[3]) * (-w3)
     tol = 1e-9 * max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
     if q0 > tol and q1 > tol and q2 > tol and q3 > tol:
         sigma = 1.0
@@ -230,8 +236,8 @@ def mechanism_geo(px, py, mass, cen, inert, joints, edges, is_r, geo):
     geo[8] = 1.0 if lead > 0 else -1.0
     for k in range(4):
         kk = 3 - k if is_r else k
-        geo[2 * k] = ptx[kk]
-        geo[2 * k + 1] = pty[kk]
+        geo[2 * k] = px[joints[kk], edges[kk]]
+        geo[2 * k + 1] = py[joints[kk], edges[kk]]
     for link in range(3):
         src = 2 - link if is_r else link
         j0, j1 = joints[src], joints[src + 1]

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._device import resolve_device
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from .._progress import check_progress
 from ..errors import ArchInputError, CannotStandError, LimitExceededError, NoMechanismError
@@ -270,7 +271,7 @@ def _say(msg: str) -> None:
         sink(f"archrock limit analysis: {msg}")
 
 
-def _full_enumeration(sums_of, B, n, chunk, max_seconds, why="", parallel=False):
+def _full_enumeration(sums_of, B, n, chunk, max_seconds, why="", parallel=False, device="cpu"):
     """Every candidate of B arches of n voussoirs, after estimating the work: refused beyond
     ``max_seconds``, with progress lines on stderr when it will take a while.  ``sums_of(s, e)``
     gives the prefix sums and joint points (cw, cwx, cwy, px, py) of arches s..e-1: from the
@@ -293,6 +294,11 @@ def _full_enumeration(sums_of, B, n, chunk, max_seconds, why="", parallel=False)
     if progress:
         _say(f"{why}full enumeration of {what}, about {_seconds(est['seconds'])} s with {est['backend']}")
     t0 = time.perf_counter()
+    if device == "gpu":  # one arch per GPU thread; its errors are the caller's, never hidden
+        from .gpusearch import four_hinge_gpu
+
+        cw, cwx, cwy, px, py = sums_of(0, B)
+        return four_hinge_gpu(cw, cwx, cwy, px.reshape(B, -1), py.reshape(B, -1))
     if _NUMBA_ENABLED:
         try:
             out = _enumerate_numba(sums_of, B, n, progress, t0, parallel)
@@ -385,7 +391,8 @@ def _enumerate_numpy(sums_of, B, n, chunk, progress, t0):
 
 def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = None,
                                 method: str = "auto", max_seconds: float | None = None, *,
-                                parallel: bool = False, fallback: bool = True):
+                                parallel: bool = False, fallback: bool = True,
+                                device: str = "cpu"):
     """Collapse multipliers of a batch of arches with the same number of voussoirs.
 
     spans [rad], radii [m], thicknesses [m]: arrays (B, n). Returns (k_l, k_r, cand_l, cand_r)
@@ -402,13 +409,15 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
     which leaves such arches out anyway: a full enumeration of 200 voussoirs takes minutes).
     A multiplier is inf where no mechanism loads that direction, and -inf (both directions)
     where the guided search finds no line of thrust at any horizontal load (cannot stand).
+    ``device``: 'cpu', 'gpu' or 'auto' (:func:`archrock._device.resolve_device`) for the full
+    enumeration (:mod:`archrock.statics.gpusearch`); the guided search runs on the CPU.
     """
     spans, radii, thick = _validate_batch(spans, radii, thicknesses)
     max_seconds = _check_method(method, max_seconds)
     B, n = spans.shape
     if method == "enumeration" or (method == "auto" and n <= ENUMERATION_MAX_VOUSSOIRS):
         return _full_enumeration(_circular_sums_of(spans, radii, thick), B, n, chunk, max_seconds,
-                                 parallel=parallel)
+                                 parallel=parallel, device=resolve_device(device, B))
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)
@@ -428,7 +437,8 @@ def kinematic_multipliers_batch(spans, radii, thicknesses, chunk: int | None = N
 
 
 def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: float | None = None,
-                                 *, parallel: bool = False, fallback: bool = True):
+                                 *, parallel: bool = False, fallback: bool = True,
+                                 device: str = "cpu"):
     """:func:`kinematic_multipliers_batch` for arches of any shape with the same number of
     voussoirs (a sequence of :class:`VoussoirArch`): their :func:`arch_sums` stacked into one
     enumeration (n <= :data:`ENUMERATION_MAX_VOUSSOIRS` with "auto"), or arch by arch the
@@ -447,7 +457,8 @@ def kinematic_multipliers_arches(arches, method: str = "auto", max_seconds: floa
         stacked = tuple(np.ascontiguousarray(np.concatenate([sm[k] for sm in sums]))
                         for k in range(5))
         return _full_enumeration(lambda s, e: tuple(a[s:e] for a in stacked), B, n, None,
-                                 max_seconds, parallel=parallel)
+                                 max_seconds, parallel=parallel,
+                                 device=resolve_device(device, B))
     k_l = np.empty(B)
     k_r = np.empty(B)
     i_l = np.empty(B, dtype=np.int64)
