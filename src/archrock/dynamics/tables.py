@@ -60,8 +60,9 @@ def init_table(out, geo, start, phi_max, n_intervals):
     :func:`build_interval`).  In place, so that a batch loop fills its own rows."""
     n = n_intervals
     h = (phi_max - start) / n
-    out[:] = np.nan
-    out[:GEO_SIZE] = geo[:GEO_SIZE]
+    # element by element: a slice assignment needs numba's runtime, which a GPU thread lacks
+    for q in range(out.size):
+        out[q] = geo[q] if q < GEO_SIZE else np.nan
     out[GEO_SIZE] = start
     out[GEO_SIZE + 1] = h
     out[GEO_SIZE + 2] = n
