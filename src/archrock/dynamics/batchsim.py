@@ -121,7 +121,9 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
     before the rotation limit, independent of the limit), t_limit [s] (when the limit, a
     numerical stop, was reached), t_unstable [s] (its first passage) (each NaN if never), n_impacts,
     n_activations, events_truncated (more than ``max_events`` events: status, peak and times are
-    still exact, and so are n_impacts and n_activations, counted as they happen); plus 'seconds'.
+    still exact, and so are n_impacts and n_activations, counted as they happen); plus 'seconds',
+    'device' (where it ran) and, on a GPU, 'gpu' (:func:`archrock.dynamics.gpubatch.simulate_gpu`'s
+    split of the time).
     ``tabulate``: the kernel reads phi'' from tables of ``table_intervals`` intervals (as
     ``respond(..., tabulate=True)``, relative error ~2e-9), each interval built inside the loop
     when the arch's motion first reaches it; otherwise the exact loop closure.
@@ -162,10 +164,11 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
             float(dt), float(t_free), int(max_events), res["status"], res["peak"],
             res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_impacts"],
             res["n_activations"], res["n_events"], bool(early_stop))
-    if resolve_device(device, int(run.sum())) == "gpu":
+    ran_on = resolve_device(device, int(run.sum()))
+    if ran_on == "gpu":
         from .gpubatch import simulate_gpu
 
-        simulate_gpu(args)
+        res["gpu"] = simulate_gpu(args)
     elif HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:
@@ -174,5 +177,6 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
         res[key][res[key] < 0] = np.nan
     res["events_truncated"] = res.pop("n_events") > int(max_events)
     res["early_stopped"] = res["status"] == K.ST_STOPPED
+    res["device"] = ran_on
     res["seconds"] = time.perf_counter() - t0
     return res

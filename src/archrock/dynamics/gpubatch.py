@@ -17,6 +17,8 @@ difference measured); outcomes are the CPU's.
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from .._device import cuda_module, device_kernel, simulator
@@ -83,10 +85,12 @@ def chunk_arches(B: int, row_floats: int, rows: int, free_bytes: int | None = No
     return max(THREADS_PER_BLOCK, min(B, fit))
 
 
-def simulate_gpu(args, chunk: int | None = None) -> None:
+def simulate_gpu(args, chunk: int | None = None) -> dict:
     """The response loop of :func:`archrock.dynamics.batchsim.simulate_batch` on the GPU: the
     same arguments as its CPU loops, the outputs written in place.  ``chunk``: arches per
-    launch (default: :func:`chunk_arches`, or :data:`SIMULATOR_CHUNK` under the simulator)."""
+    launch (default: :func:`chunk_arches`, or :data:`SIMULATOR_CHUNK` under the simulator).
+    Returns where the time went: {"chunk", "launches", "scratch_bytes", "to_device_s",
+    "kernel_s", "to_host_s"}."""
     from .batchsim import chain_rows, summary_one
 
     cuda = cuda_module()
@@ -99,6 +103,7 @@ def simulate_gpu(args, chunk: int | None = None) -> None:
         chunk = min(B, SIMULATOR_CHUNK) if simulator() else chunk_arches(B, width, R)
     chunk = max(1, min(int(chunk), B))
     kernel = device_kernel(_simulate_kernel, chain_rows=chain_rows, summary_one=summary_one)
+    t0 = time.perf_counter()
     d_in = [cuda.to_device(np.ascontiguousarray(a)) for a in
             (geos, tabs, n_rows)] + [n_tab] + [
         cuda.to_device(np.ascontiguousarray(a)) for a in
@@ -109,8 +114,17 @@ def simulate_gpu(args, chunk: int | None = None) -> None:
     outs = cuda.device_array((chunk, 1))
     evs = cuda.device_array((chunk, EVENT_ROWS_GPU, 6))
     blocks = (chunk + THREADS_PER_BLOCK - 1) // THREADS_PER_BLOCK
+    cuda.synchronize()
+    t1 = time.perf_counter()
+    launches = 0
     for base in range(0, B, chunk):
         kernel[blocks, THREADS_PER_BLOCK](work, outs, evs, base, *d_in, g, dt, t_free,
                                           max_events, *d_out, early_stop)
+        launches += 1
+    cuda.synchronize()
+    t2 = time.perf_counter()
     for host, dev in zip(outputs, d_out):
         dev.copy_to_host(host)
+    return {"chunk": chunk, "launches": launches,
+            "scratch_bytes": int(work.nbytes + outs.nbytes + evs.nbytes),
+            "to_device_s": t1 - t0, "kernel_s": t2 - t1, "to_host_s": time.perf_counter() - t2}
