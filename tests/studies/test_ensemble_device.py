@@ -90,6 +90,7 @@ def test_a_store_made_on_the_gpu_resumes_on_the_cpu(simulated_gpu_store):
     cfg, out, _ = simulated_gpu_store
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["runs"][0]["device"] == "gpu" and manifest["batches"]["0"]["device"] == "gpu"
+    assert manifest["runs"][0]["gpu"].startswith("numba CUDA simulator")
     assert "device" not in json.dumps(manifest["config"])  # a run setting, not the study's
     res = run_ensemble(cfg, settings=RunSettings(out=out, device="cpu"))
     assert res.timing["computed_batches"] == [] and res.timing["loaded_batches"] == [0]

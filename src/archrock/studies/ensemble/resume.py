@@ -81,8 +81,16 @@ class EnsembleBatches:
                 self._verify_foreign(digest, bs)
             self.todo.sort()
             self.device = run_device(self.config, self.todo, self.settings)
+            gpu = None
+            if self.device == "gpu" and self.todo:  # which GPU, for the log and provenance
+                from ..._device import gpu_note
+
+                gpu = gpu_note()
+                self.bar.note(f"ensemble: batch kernels on the GPU: {gpu}")
             if self.manifest is not None:
                 self.manifest.run["device"] = self.device  # a run setting: not in the config
+                if gpu is not None:
+                    self.manifest.run["gpu"] = gpu
                 self.manifest.save()
             self.executor, _ = execute(self.config, self.todo, self.finished, self.settings,
                                        self.device)
