@@ -6,7 +6,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import emit_json, interrupted_study
-from .runsettings import run_settings
+from .runsettings import cpu_only, run_settings
 from ._friction import add_friction_option
 from .options import (PROGRESS_ESTIMATED, add_dynamics_option, add_geometry_options,
                       add_impact_options, add_output_options, add_random_arches_options,
@@ -38,7 +38,9 @@ def add_curves_parser(subparsers):
                    "batch engine's items, or of --engine respond's arches)",
         scheduler="batch engine: run on an existing Dask cluster (needs archrock[dask])",
         out="batch engine: keep every finished response in DIR (Parquet + manifest.json); the "
-            "same command after an interruption resumes")
+            "same command after an interruption resumes",
+        device="cpu (default) or auto, the CPU here: the curves' sweeps have no GPU build "
+               "yet (gpu is refused; docs/gpu.md)")
     add_impact_options(p)
     add_dynamics_option(p, "each response")
     add_friction_option(p, "the routing of the dynamics and, where it runs, the contact "
@@ -54,6 +56,7 @@ def run_curves(args) -> int:
     from ..reports.curves import curves_summary, format_curves
     from ..dynamics.response import prepare
 
+    cpu_only(args, "curves")  # before any work
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
     durations = parse_range(args.durations, "durations")

@@ -8,7 +8,7 @@ from pathlib import Path
 from ._parser import EXIT_INTERRUPTED, PROG, CLIError, _int, emit_json
 from .runsettings import run_settings
 from ._friction import add_friction_option
-from .options import (add_dynamics_option, add_geometry_options, add_impact_options,
+from .options import (DEVICE_HELP, add_dynamics_option, add_geometry_options, add_impact_options,
                       add_motion_options, add_output_options, add_run_options, add_spread_options,
                       arch_from_args, figure_arg, folder_arg, friction_mu, friction_words,
                       impact_spec_from_args, motion_spec_from_args, spreads_for)
@@ -33,7 +33,9 @@ def add_ensemble_parser(subparsers):
                         "(default 500)")
     add_run_options(p, workers="1: in-process (numba threads, default); N > 1: local process pool",
                     scheduler="run the batches on an existing Dask cluster (needs archrock[dask])",
-                    out="folder for batches/*.parquet and manifest.json; resumes if it exists")
+                    out="folder for batches/*.parquet and manifest.json; resumes if it exists "
+                        "(on either device)",
+                    device=DEVICE_HELP)
     add_motion_options(p)
     add_impact_options(p)
     p.add_argument("--support-draw", choices=("fixed", "uniform"), default="fixed",

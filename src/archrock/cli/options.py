@@ -301,13 +301,26 @@ def add_window_options(parser, after: str):
     return parser
 
 
-def add_run_options(parser, *, workers: str, scheduler: str, out: str | None = None):
+#: --device's help where the command's kernels have a GPU build (the ensemble's)
+DEVICE_HELP = ("where the batch kernels run: cpu (default), gpu (an NVIDIA GPU through numba's "
+               "CUDA target, in-process only: not with --workers > 1 or --scheduler) or auto "
+               "(the GPU where one is present and the run has enough arches, else the CPU); "
+               "results agree to rounding (docs/gpu.md)")
+
+
+def add_run_options(parser, *, workers: str, scheduler: str, out: str | None = None,
+                    device: str | None = None):
     """--workers N, --scheduler ADDRESS and (where ``out`` is given) --out DIR: where a study
-    runs and keeps its finished work, with each command's own help."""
+    runs and keeps its finished work, with each command's own help; with ``device`` also
+    --device cpu|gpu|auto (a run setting, never part of a study's configuration)."""
+    from .._device import DEVICES
+
     parser.add_argument("--workers", type=_int, default=1, metavar="N", help=workers)
     parser.add_argument("--scheduler", metavar="ADDRESS", help=scheduler)
     if out:
         parser.add_argument("--out", metavar="DIR", help=out)
+    if device:
+        parser.add_argument("--device", choices=DEVICES, default="cpu", help=device)
     return parser
 
 

@@ -1,5 +1,5 @@
-"""The run options of the study commands: ``--workers``, ``--scheduler``, ``--out`` and
-``--no-progress`` turned into one :class:`~archrock.studies.runner.RunSettings`, and the
+"""The run options of the study commands: ``--workers``, ``--scheduler``, ``--out``,
+``--device`` and ``--no-progress`` turned into one :class:`~archrock.studies.runner.RunSettings`, and the
 renderer of the progress protocol (:mod:`archrock._progress`) on stderr."""
 
 from __future__ import annotations
@@ -62,8 +62,9 @@ def run_settings(args, *, out=None, workers=True, scheduler=True, progress=True,
                  sink=STDERR_PROGRESS):
     """The :class:`RunSettings` of a study command's flags: ``--workers`` (1: in-process),
     ``--scheduler``, ``out`` (the checked ``--out`` folder, or None) and ``--no-progress``
-    (progress to ``sink``, stderr by default, unless given).  workers/scheduler/progress False:
-    the command has no such flag (or does not run on it), the field stays at its default."""
+    (progress to ``sink``, stderr by default, unless given) and ``--device`` (cpu where the
+    command has none).  workers/scheduler/progress False: the command has no such flag (or
+    does not run on it), the field stays at its default."""
     from ..studies.runner import RunSettings
 
     w = getattr(args, "workers", None) if workers else None
@@ -71,4 +72,14 @@ def run_settings(args, *, out=None, workers=True, scheduler=True, progress=True,
         workers=None if w is None or w == 1 else w,
         scheduler=getattr(args, "scheduler", None) if scheduler else None,
         out=out,
-        progress=(sink if progress and not getattr(args, "no_progress", False) else None))
+        progress=(sink if progress and not getattr(args, "no_progress", False) else None),
+        device=getattr(args, "device", None) or "cpu")
+
+
+def cpu_only(args, command: str) -> None:
+    """Refuse ``--device gpu`` before any work where ``command``'s kernels run on the CPU only
+    (its sweeps, or the contact engine); ``auto`` is then the CPU."""
+    if getattr(args, "device", "cpu") == "gpu":
+        from ..studies.runner import RunSettings
+
+        RunSettings(device="gpu").on_cpu(command)

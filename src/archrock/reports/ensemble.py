@@ -90,6 +90,7 @@ def format_ensemble(summary: dict, arch_name: str) -> str:
         lines.append(f"failed samples: {summary['failed']['count']} "
                      + "; ".join(f"{k}: {v}" for k, v in summary["failed"]["reasons"].items()))
     t = summary["timing"]
-    lines.append(f"time: {t['wall_s']:.1f} s ({t['executor']}; {len(t['computed_batches'])} "
+    on = f", {t['device']}" if t.get("device") else ""  # the device that ran (0.8)
+    lines.append(f"time: {t['wall_s']:.1f} s ({t['executor']}{on}; {len(t['computed_batches'])} "
                  f"batches computed, {len(t['loaded_batches'])} loaded)")
     return "\n".join(lines)

@@ -339,7 +339,9 @@ def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *,
 
 
 def _check_batch_run(engine, settings) -> None:
-    """``scheduler`` and ``out`` of the run settings only with the batch engine."""
+    """``scheduler`` and ``out`` of the run settings only with the batch engine; device 'gpu'
+    refused (the curves' kernels run on the CPU only)."""
+    settings.on_cpu("curves")
     if engine != "batch":
         for name, v in (("scheduler", settings.scheduler), ("out", settings.out)):
             if v is not None:

@@ -183,7 +183,9 @@ def _inputs(records, models, im, settings):
     :func:`ida` and :func:`msa`, checked."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
-    return recs, ms, ids, failed, _im(im), RunSettings.from_dict(settings)
+    # device 'gpu' refused before any response: the sweep has no GPU build
+    return (recs, ms, ids, failed, _im(im),
+            RunSettings.from_dict(settings).on_cpu("IDA and multiple stripes"))
 
 
 ENGINES = ("batch", "respond")

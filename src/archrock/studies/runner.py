@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._device import check_device
 from .._progress import check_progress
 from ..errors import ArchInputError
 from ..dynamics.sweep import SweepArches, SweepMotions, sweep
@@ -71,15 +72,22 @@ class RunSettings:
     ``distributed.Client``), which takes precedence over ``workers``.  out: None, or the folder
     that keeps the finished work (a rerun with the same folder recomputes nothing it had
     finished).  progress: None (silent), True (lines to the ``archrock.progress`` logger) or a
-    callable given one line of text (:mod:`archrock._progress`; the CLI renders on stderr)."""
+    callable given one line of text (:mod:`archrock._progress`; the CLI renders on stderr).
+    device: where the compiled batch kernels run, 'cpu' (default), 'gpu' or 'auto' (the GPU
+    where one is present and the work is large enough, :func:`archrock._device.resolve_device`);
+    'gpu' runs in this process only (a GPU serves one process, not a pool's workers), and
+    'auto' with a pool or Dask is the CPU.  Studies whose kernels have no GPU build refuse
+    'gpu' (:meth:`on_cpu`)."""
 
     workers: int | None = None
     scheduler: object = None
     out: Path | None = None
     progress: object = None
+    device: str = "cpu"
 
     def __post_init__(self):
         object.__setattr__(self, "workers", check_workers(self.workers))
+        object.__setattr__(self, "device", check_device(self.device))
         sch = self.scheduler
         if sch is not None and not (isinstance(sch, str) and sch.strip()) and not _is_client(sch):
             raise ArchInputError(f"scheduler: {sch!r}; allowed None, a Dask scheduler's "
@@ -91,6 +99,12 @@ class RunSettings:
         if self.progress is False:
             object.__setattr__(self, "progress", None)
         check_progress(self.progress)
+        if self.device == "gpu" and self.executor != "in-process":
+            raise ArchInputError(
+                f"device: 'gpu' runs in this process (a GPU serves one process, not a "
+                f"{self.executor}'s workers); allowed device 'gpu' with workers 1 and no "
+                f"scheduler (in-process), or device 'cpu' or 'auto' ('auto' on a "
+                f"{self.executor} is the CPU)")
 
     @property
     def executor(self) -> str:
@@ -104,14 +118,30 @@ class RunSettings:
         """The progress callable (None: silent)."""
         return check_progress(self.progress)
 
+    @property
+    def run_device(self) -> str:
+        """The device a run on these settings asks its batch kernels for: ``device``, except
+        'auto' on a process pool or Dask, which is the CPU (one GPU, many workers)."""
+        return "cpu" if self.executor != "in-process" else self.device
+
     def only(self, study: str, *used: str) -> "RunSettings":
         """These settings, refused by field when ``study`` does not use it (``used``: the
-        fields of workers, scheduler and out it does use; progress every study uses)."""
+        fields of workers, scheduler, out and device it does use; progress every study
+        uses; device 'auto' is the CPU where it is not used)."""
         for name in ("workers", "scheduler", "out"):
             if name not in used and getattr(self, name) is not None:
                 raise ArchInputError(f"{name}: {getattr(self, name)!r}; {study} runs in this "
                                      f"process and keeps no folder of finished work; allowed "
                                      f"None")
+        return self if "device" in used else self.on_cpu(study)
+
+    def on_cpu(self, study: str) -> "RunSettings":
+        """These settings for ``study``, whose kernels run on the CPU only: device 'gpu' is
+        refused by name ('auto' is then the CPU)."""
+        if self.device == "gpu":
+            raise ArchInputError(f"device: 'gpu'; {study} runs on the CPU only (the GPU builds "
+                                 f"are the ensemble's batch kernels, docs/gpu.md); allowed "
+                                 f"'cpu' or 'auto'")
         return self
 
     def replace(self, **changes) -> "RunSettings":
@@ -127,7 +157,8 @@ class RunSettings:
             raise ArchInputError("progress: a callable cannot be written to JSON; allowed "
                                  "None or true")
         return {"workers": self.workers, "scheduler": self.scheduler,
-                "out": None if self.out is None else str(self.out), "progress": self.progress}
+                "out": None if self.out is None else str(self.out), "progress": self.progress,
+                "device": self.device}
 
     @classmethod
     def from_dict(cls, data) -> "RunSettings":
@@ -190,7 +221,8 @@ class SweepRunner:
         self.arches, self.motions = arches, motions
         self.pulses = None if pulses is None else (
             str(pulses[0]), int(pulses[1]), tuple(float(x) for x in pulses[2]))
-        self.settings = RunSettings.from_dict(settings)
+        # the sweep kernel has no GPU build: device 'gpu' refused, 'auto' the CPU
+        self.settings = RunSettings.from_dict(settings).on_cpu("the sweep (curves, IDA, stripes)")
         self.max_events = max_events
         self.early_stop = bool(early_stop)
         self.bar = bar

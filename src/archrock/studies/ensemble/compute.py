@@ -18,6 +18,7 @@ import time
 
 import numpy as np
 
+from ..._device import resolve_device
 from ...dynamics.batch import MAX_EVENTS, ST_NOT_RUN, STATUS_NAMES, prepare_batch, simulate_batch
 from ...errors import ArchInputError
 from ..store import COLUMNS
@@ -56,32 +57,40 @@ def sample_arch(config: EnsembleConfig, index: int):
     return moved
 
 
-def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True):
+def run_batch(config: EnsembleConfig | dict, b: int, parallel: bool = True,
+              device: str = "cpu"):
     """Compute batch ``b`` of an ensemble (self-contained: only the config and b are needed).
 
     Returns (DataFrame with the columns of :data:`COLUMNS`, timings dict).  ``parallel`` uses
-    the numba parallel loop; process-pool and Dask workers run it serially.
+    the numba parallel loop; process-pool and Dask workers run it serially.  ``device``:
+    'cpu', 'gpu' or 'auto', where the preparation and the responses run
+    (:func:`archrock._device.resolve_device`; a run setting, never part of the results' key).
     """
     cfg = config if isinstance(config, EnsembleConfig) else EnsembleConfig.from_dict(config)
     if not 0 <= b < cfg.n_batches:
         raise ArchInputError(f"batch: {b}; allowed 0..{cfg.n_batches - 1}")
-    return run_batches(cfg, [b], parallel)[0][1:]
+    return run_batches(cfg, [b], parallel, device)[0][1:]
 
 
-def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
+def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True,
+                device: str = "cpu") -> list:
     """:func:`run_batch` of consecutive batches (b, b + 1, ...) computed together: one
     preparation and one response call for all their arches, then one table per batch.  The
     rows are those of :func:`run_batch` batch by batch (every arch is computed on its own);
     only the Python around the compiled loops is paid once.  Timings are shared out in
-    proportion to the batches' sizes.  Returns [(b, DataFrame, timings), ...]."""
+    proportion to the batches' sizes; they name the ``device`` that ran ('cpu' or 'gpu',
+    ``device`` resolved once for the group).  Returns [(b, DataFrame, timings), ...]."""
     t0 = time.perf_counter()
     bs = _consecutive(cfg, batches)
     start = cfg.batch_range(bs[0])[0]
     last, n_last = cfg.batch_range(bs[-1])
     nb = last + n_last - start
-    pb = _prepare_group(cfg, start, nb, parallel)
+    # one device for the whole group: 'auto' decides on the group's size, once, so that the
+    # preparation and the responses of an arch run on the same device
+    device = resolve_device(device, nb)
+    pb = _prepare_group(cfg, start, nb, parallel, device)
     error = pb.error.copy()  # as prepared, before the responses
-    res, status, sim_seconds = _responses(cfg, pb, error, nb, parallel)
+    res, status, sim_seconds = _responses(cfg, pb, error, nb, parallel, device)
     table = _group_table(cfg, bs, start, pb, res, status, error)
     prepare_s = float(sum(pb.seconds.values()))
     total_s = time.perf_counter() - t0
@@ -94,7 +103,8 @@ def run_batches(cfg: EnsembleConfig, batches, parallel: bool = True) -> list:
         df = table.iloc[lo:lo + count].reset_index(drop=True)
         share = count / nb
         out.append((b, df, {"prepare_s": prepare_s * share, "response_s": float(sim_seconds) * share,
-                            "total_s": total_s * share, "pid": os.getpid()}))
+                            "total_s": total_s * share, "device": device,
+                            "pid": os.getpid()}))
     return out
 
 
@@ -108,30 +118,35 @@ def _consecutive(cfg: EnsembleConfig, batches) -> list[int]:
     return bs
 
 
-def _prepare_group(cfg: EnsembleConfig, start: int, nb: int, parallel: bool):
+def _prepare_group(cfg: EnsembleConfig, start: int, nb: int, parallel: bool,
+                   device: str = "cpu"):
     """The prepared batch (:func:`~archrock.dynamics.batch.prepare_batch`) of samples start ..
-    start + nb - 1."""
+    start + nb - 1, on ``device``."""
     sampler = cfg.sampler
     if cfg.support is not None:  # each arch on its moved supports, as an object
         return prepare_batch([_on_moved_supports(a, mv) for a, mv in
                               zip(sampler.arches(start, nb), cfg.movements(start, nb))],
-                             impact=cfg.impact.resolved(cfg.analysed_nominal), parallel=parallel)
+                             impact=cfg.impact.resolved(cfg.analysed_nominal), parallel=parallel,
+                             device=device)
     if sampler.finite:  # finite strength: the arches as objects, each with its f_c
         return prepare_batch(sampler.arches(start, nb),
-                             impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
+                             impact=cfg.impact.resolved(sampler.nominal), parallel=parallel,
+                             device=device)
     if sampler.circular:
         spans, thick, radii = sampler.draw(start, nb)
         return prepare_batch(spans, radii, thick, sampler.nominal.density,
-                             impact=cfg.impact.resolved(sampler.nominal), parallel=parallel)
+                             impact=cfg.impact.resolved(sampler.nominal), parallel=parallel,
+                             device=device)
     # any other family: drawn as arrays, row for row the arches' (invalid draws carry their
     # reason)
     from .familybatch import prepare_family_batch
 
     return prepare_family_batch(sampler, start, nb, impact=cfg.impact.resolved(sampler.nominal),
-                                parallel=parallel)
+                                parallel=parallel, device=device)
 
 
-def _responses(cfg: EnsembleConfig, pb, error, nb: int, parallel: bool) -> tuple:
+def _responses(cfg: EnsembleConfig, pb, error, nb: int, parallel: bool,
+               device: str = "cpu") -> tuple:
     """(response columns, status names, seconds of the responses) of the prepared arches; on
     rigid ground without a motion: NaN and zero columns, status "limit-only" or "failed"."""
     if cfg.motion is None:
@@ -143,7 +158,8 @@ def _responses(cfg: EnsembleConfig, pb, error, nb: int, parallel: bool) -> tuple
                "early_stopped": np.zeros(nb, dtype=bool)}
         return res, np.where(error == "", "limit-only", "failed").astype(object), 0.0
     res = simulate_batch(pb, cfg.motion.build(), dt=cfg.dt, t_free=cfg.t_free, parallel=parallel,
-                         tabulate=cfg.tabulate, max_events=MAX_EVENTS, early_stop=cfg.early_stop)
+                         tabulate=cfg.tabulate, max_events=MAX_EVENTS, early_stop=cfg.early_stop,
+                         device=device)
     # status names by table look-up (codes -1 .. 3), not arch by arch
     names = np.array(["failed"] + [STATUS_NAMES.get(c, "failed") for c in range(4)],
                      dtype=object)

@@ -27,6 +27,7 @@ from ...dynamics.batch import (PreparedBatch, _finish, _lift_off_errors, _limit_
                                _multipliers, _spec, prepare_batch)
 from ...errors import InvalidSampleError
 from ...geometry import power_of_two_near
+from ..._device import resolve_device
 from ..._jit import HAVE_NUMBA
 from ...geometry.batchdraw import OK, REFUSED, batch_properties, compiled_drawing, family_plan, \
     refusal_message
@@ -48,18 +49,21 @@ def _row_error(exc) -> str:
 
 
 def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, *,
-                         nominal=None, parallel: bool = True) -> PreparedBatch:
-    """``prepare_batch(sampler.arches(start, count), impact, cv, nominal=..., parallel=...)``
-    for a sampler around a family arch, computed as arrays (module docstring): the same
-    PreparedBatch, row for row."""
+                         nominal=None, parallel: bool = True,
+                         device: str = "cpu") -> PreparedBatch:
+    """``prepare_batch(sampler.arches(start, count), impact, cv, nominal=..., parallel=...,
+    device=...)`` for a sampler around a family arch, computed as arrays (module docstring):
+    the same PreparedBatch, row for row.  ``device``: where the four-hinge search and the
+    four-link loop run ('cpu', 'gpu' or 'auto'; the drawing stays on the CPU)."""
     n = sampler.nominal.n
     survey = HAVE_NUMBA and survey_supported(sampler.nominal)
     if not (compiled_drawing(sampler) or survey) or n > ENUMERATION_MAX_VOUSSOIRS:
         return prepare_batch(sampler.arches(start, count), impact=impact, cv=cv,
-                             nominal=nominal, parallel=parallel)
+                             nominal=nominal, parallel=parallel, device=device)
     t0 = time.perf_counter()
     spec = _spec(impact, cv, nominal)
     B = int(count)
+    device = resolve_device(device, B)
     plan, bp = _draw(sampler, start, B, survey, parallel)
     areas, cen, polar, jp = bp["areas"], bp["centroids"], bp["polar"], bp["joint_points"]
     size = bp["size"].copy()
@@ -84,14 +88,14 @@ def prepare_family_batch(sampler, start: int, count: int, impact=None, cv=None, 
     def arch_of(b):
         return objects[b] if b in objects else sampler.arch(int(start + b))
 
-    k_l, k_r, cand_l, cand_r = _limit_rows(n, B, sums, error, arch_of, parallel)
+    k_l, k_r, cand_l, cand_r = _limit_rows(n, B, sums, error, arch_of, parallel, device)
     t1 = time.perf_counter()
     _fill_unusable(error == "", n, jp, mass, cen, inert, ref)
     px = np.ascontiguousarray(jp[..., 0])
     py = np.ascontiguousarray(jp[..., 1])
     return _finish(n, px, py, np.ascontiguousarray(mass), np.ascontiguousarray(cen),
                    np.ascontiguousarray(inert), ref, k_l, k_r, cand_l, cand_r, error, spec,
-                   arch_of, t0, t1, parallel)
+                   arch_of, t0, t1, parallel, device)
 
 
 def _draw(sampler, start: int, B: int, survey: bool, parallel: bool) -> tuple:
@@ -138,16 +142,18 @@ def _stacked_sums(bp: dict, certified, ref) -> list:
                 jp[..., 0] / ref[:, None, None], jp[..., 1] / ref[:, None, None]]
 
 
-def _limit_rows(n: int, B: int, sums: list, error, arch_of, parallel: bool) -> tuple:
-    """(k_l, k_r, cand_l, cand_r) of the rows without an error, by full enumeration; the rows
-    whose limit analysis or lift-off check fails get their reason in ``error``."""
+def _limit_rows(n: int, B: int, sums: list, error, arch_of, parallel: bool,
+                device: str = "cpu") -> tuple:
+    """(k_l, k_r, cand_l, cand_r) of the rows without an error, by full enumeration (on
+    ``device``, 'cpu' or 'gpu'); the rows whose limit analysis or lift-off check fails get
+    their reason in ``error``."""
     ok = error == ""
     rows = np.flatnonzero(ok)
     max_seconds = _check_method("auto", None)
     k_l, k_r, cand_l, cand_r = _multipliers(
         B, ok, lambda: _full_enumeration(
             lambda s, e: tuple(np.ascontiguousarray(a[rows[s:e]]) for a in sums), rows.size, n,
-            None, max_seconds, parallel=parallel))
+            None, max_seconds, parallel=parallel, device=device))
     _limit_errors(k_l, k_r, ok, error, arch_of)
     _lift_off_errors(n, lambda r: tuple(np.ascontiguousarray(a[r]) for a in sums), arch_of,
                      k_l, k_r, cand_l, cand_r, error)

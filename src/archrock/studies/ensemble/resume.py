@@ -15,7 +15,7 @@ from ..store import (OTHER_CODE, Manifest, batch_path, code_digest, is_damage, r
                      same_bits, say_damage, write_batch, written_by)
 from .compute import run_batches
 from .config import EnsembleConfig
-from .executors import execute
+from .executors import execute, run_device
 
 __all__ = ["EnsembleBatches"]
 
@@ -37,6 +37,7 @@ class EnsembleBatches:
         self.todo: list[int] = []
         self.recomputed: dict[int, str] = {}
         self.executor = None
+        self.device = None  # where the batches computed ran: 'cpu' or 'gpu'
         self.bar = Progress(config.samples, settings.progress)
 
     # ------------------------------------------------------------------ one batch's fate
@@ -79,9 +80,20 @@ class EnsembleBatches:
             for digest, bs in foreign.items():
                 self._verify_foreign(digest, bs)
             self.todo.sort()
+            self.device = run_device(self.config, self.todo, self.settings)
+            gpu = None
+            if self.device == "gpu" and self.todo:  # which GPU, for the log and provenance
+                from ..._device import gpu_note
+
+                gpu = gpu_note()
+                self.bar.note(f"ensemble: batch kernels on the GPU: {gpu}")
             if self.manifest is not None:
+                self.manifest.run["device"] = self.device  # a run setting: not in the config
+                if gpu is not None:
+                    self.manifest.run["gpu"] = gpu
                 self.manifest.save()
-            self.executor = execute(self.config, self.todo, self.finished, self.settings)
+            self.executor, _ = execute(self.config, self.todo, self.finished, self.settings,
+                                       self.device)
         finally:
             self.bar.close()
             if self.manifest is not None:
@@ -113,7 +125,8 @@ class EnsembleBatches:
         old, _ = read_batch(out, bs[0], config, any_code=True)
         self.recomputed[bs[0]] = self.manifest.run["recomputed"][str(bs[0])] = (
             f"{OTHER_CODE} ({str(digest)[:12]}): recomputed to verify its other batches")
-        (_, new, timings), = run_batches(config, [bs[0]], self.settings.executor == "in-process")
+        (_, new, timings), = run_batches(config, [bs[0]], self.settings.executor == "in-process",
+                                         self._verifying_device(bs[0]))
         self.finished(bs[0], new, timings)
         differs = same_bits(old, read_batch(out, bs[0], config)[0])
         del old, new
@@ -132,6 +145,19 @@ class EnsembleBatches:
             self.loaded(b, df)
             del df
 
+    def _verifying_device(self, b: int) -> str:
+        """The device that recomputes the other code's batch b: the one that wrote it (the
+        manifest says; 'cpu' before 0.8), where this run may use it.  The GPU's last bits
+        differ from the CPU's (docs/gpu.md): compared across devices, a batch would differ
+        and every other batch of that code be recomputed for nothing."""
+        from ..._device import gpu_present
+
+        wrote = self.manifest.data["batches"].get(str(b), {}).get("device", "cpu")
+        mine = self.settings.run_device
+        if wrote != "gpu" or mine == "cpu":
+            return "cpu"
+        return "gpu" if mine == "gpu" or gpu_present() else "cpu"
+
     # ------------------------------------------------------------------ what came of it
     def frame(self):
         """The per-sample table in sample order (None without ``keep_frame``)."""
@@ -148,6 +174,7 @@ class EnsembleBatches:
         n_computed = int(sum(self.config.batch_range(b)[1] for b in computed))
         spent = self.batch_timings.values()
         return {"wall_s": wall, "executor": self.executor, "workers": workers,
+                "device": self.device,
                 "computed_batches": computed,
                 "loaded_batches": sorted(self.done - set(computed)),
                 "recomputed_batches": {str(b): why for b, why in sorted(self.recomputed.items())},

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import time
 
+from ..._device import resolve_device
 from ...errors import ArchInputError
 from ...geometry import Arch
 from ..work import (RECORD_RESPONSE_S_PER_S, SAMPLE_FINITE_S, SAMPLE_LIMIT_S, SAMPLE_RESPONSE_S,
@@ -105,6 +106,8 @@ def run_ensemble(config: EnsembleConfig, *, keep_frame: bool = True, settings=No
     nothing written, silent): ``out`` the folder of the batches and manifest, resumed if it
     exists; ``workers`` > 1 a local process pool over batches (None or 1: in-process, the numba
     parallel loop); ``scheduler`` a Dask cluster, which takes precedence over ``workers``;
+    ``device`` where the batch kernels run ('cpu', 'gpu' in-process only, 'auto'; the
+    summary's timing names the one that ran; a folder resumes on either);
     ``progress`` the progress protocol of :mod:`archrock._progress` (0.7 removed the 0.6
     keywords ``out``, ``out_dir``, ``workers``, ``scheduler``, ``progress``).
     keep_frame: False keeps no per-sample table in memory (needs ``out``): each batch is written and dropped, the result's ``frame`` is None
@@ -140,6 +143,8 @@ def configure(config: EnsembleConfig, keep_frame, settings) -> RunSettings:
     if not isinstance(config, EnsembleConfig):
         raise ArchInputError(f"config: expected an EnsembleConfig, got {type(config).__name__}")
     settings = RunSettings.from_dict(settings)
+    if settings.device == "gpu":  # before any work: a GPU asked for and none usable here
+        resolve_device("gpu")
     if not isinstance(keep_frame, bool):
         raise ArchInputError(f"keep_frame: {keep_frame!r}; allowed true or false")
     if not keep_frame and settings.out is None:
@@ -160,6 +165,7 @@ def _engine_ensemble(config: EnsembleConfig, engine, choice, settings):
     """The ensemble run in the contact engine (nothing stored), arch by arch on the bar."""
     from .engine import engine_ensemble
 
+    settings.on_cpu("the contact engine's ensemble")
     bar = Progress(config.samples, settings.progress, desc="engine ensemble")
     try:
         return engine_ensemble(config, engine, dynamics=choice,
