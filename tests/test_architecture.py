@@ -10,7 +10,7 @@ ROOT = Path(archrock.__file__).parent
 #: top-level module or folder -> layer (docs/architecture.md): one folder, one layer
 LAYER = {
     "errors": 0, "units": 0, "published": 0, "_jit": 0, "_records": 0, "_progress": 0,
-    "_pairwise": 0, "leftout": 0,
+    "_pairwise": 0, "leftout": 0, "_device": 0,
     "geometry": 1,
     "statics": 2,
     "groundmotion": 3,

@@ -377,9 +377,10 @@ def test_event_table_overflow_is_flagged_not_failed(base, monkeypatch):
     over = df["events_truncated"].to_numpy()
     assert over.any() and not ref["events_truncated"].any()
     assert (df["error"] == "").all()
-    for col in ("status", "collapsed", "peak", "t_collapse", "t_unstable"):
+    # the counts too: impacts and activations are counted as they happen, past the table
+    for col in ("status", "collapsed", "peak", "t_collapse", "t_unstable", "n_impacts",
+                "n_activations"):
         pd.testing.assert_series_equal(df[col], ref[col])
-    assert (df.loc[over, "n_impacts"] < ref.loc[over, "n_impacts"]).all()
     s = res.summary()
     assert s["failed"]["count"] == 0 and s["p_collapse"] == base.summary()["p_collapse"]
     assert s["response"]["events_truncated"] == int(over.sum())

@@ -484,7 +484,7 @@ def _finish(n, px, py, mass, cen, inert, ref, k_l, k_r, cand_l, cand_r, error, s
                 if device == "gpu":
                     from .gpubatch import prepare_gpu
 
-                    prepare_gpu(loop_args, ok, outs)
+                    prepare_gpu(_prepare_one, loop_args, ok, outs)
                 else:
                     _prepare_loop_nb(*loop_args, ok, *outs)
             except (ZeroDivisionError, FloatingPointError, SystemError):

@@ -168,7 +168,7 @@ def simulate_batch(prepared, motion: GroundMotion, *, dt: float = 2e-3,
     if ran_on == "gpu":
         from .gpubatch import simulate_gpu
 
-        res["gpu"] = simulate_gpu(args)
+        res["gpu"] = simulate_gpu(args, chain_rows, summary_one)
     elif HAVE_NUMBA:
         (_simulate_loop_nb if parallel else _simulate_loop_serial)(*args)
     else:

@@ -43,15 +43,14 @@ def _prepare_kernel(px, py, mass, cen, inert, jl, el, jr, er, ok, geo_l, geo_r, 
                      phu_l, phu_r, lim_l, lim_r, m0_l, m0_r, v_rest, err_l, err_r, tab_l, tab_r)
 
 
-def prepare_gpu(loop_args, ok, outs) -> None:
+def prepare_gpu(prepare_one, loop_args, ok, outs) -> None:
     """The four-link loop of :func:`archrock.dynamics.batch.prepare_batch` on the GPU: the same
     arguments as its CPU loops (inputs ``loop_args``, rows ``ok``, outputs ``outs`` written in
     place).  A division by zero gives inf or NaN there, as in numba's parallel loop: the caller
-    redoes such rows on the CPU, which says why."""
-    from .batch import _prepare_one
-
+    redoes such rows on the CPU, which says why.  ``prepare_one``: the CPU's per-arch body
+    (batch._prepare_one), whose source the GPU build compiles."""
     cuda = cuda_module()
-    kernel = device_kernel(_prepare_kernel, _prepare_one=_prepare_one)
+    kernel = device_kernel(_prepare_kernel, _prepare_one=prepare_one)
     B = ok.shape[0]
     d_in = [cuda.to_device(np.ascontiguousarray(a)) for a in (*loop_args, ok)]
     d_out = [cuda.to_device(a) for a in outs]
@@ -85,14 +84,14 @@ def chunk_arches(B: int, row_floats: int, rows: int, free_bytes: int | None = No
     return max(THREADS_PER_BLOCK, min(B, fit))
 
 
-def simulate_gpu(args, chunk: int | None = None) -> dict:
+def simulate_gpu(args, chain_rows, summary_one, chunk: int | None = None) -> dict:
     """The response loop of :func:`archrock.dynamics.batchsim.simulate_batch` on the GPU: the
     same arguments as its CPU loops, the outputs written in place.  ``chunk``: arches per
     launch (default: :func:`chunk_arches`, or :data:`SIMULATOR_CHUNK` under the simulator).
+    ``chain_rows``, ``summary_one``: the CPU's per-arch bodies (:mod:`.batchsim`), whose
+    source the GPU build compiles.
     Returns where the time went: {"chunk", "launches", "scratch_bytes", "to_device_s",
     "kernel_s", "to_host_s"}."""
-    from .batchsim import chain_rows, summary_one
-
     cuda = cuda_module()
     (geos, tabs, n_rows, n_tab, k_l, k_r, lims, phus, dirs, modes, ratios, v_rest, run, times,
      accel, g, dt, t_free, max_events, status, peak, t_col, t_uns, t_lim, n_imp, n_act, n_ev,

@@ -24,14 +24,14 @@ def _four_hinge_kernel(cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, m):
         _numba_arch(b, cw, cwx, cwy, pxf, pyf, k_l, k_r, i_l, i_r, 0, m, 0)  # noqa: F821
 
 
-def four_hinge_gpu(cw, cwx, cwy, pxf, pyf):
+def four_hinge_gpu(cw, cwx, cwy, pxf, pyf, arch_search):
     """(k_l, k_r, cand_l, cand_r) of the arches whose prefix sums (B, n+1) and flattened joint
-    points (B, 2(n+1)) are given, each arch one GPU thread (see the module docstring)."""
-    from .kinematic import _numba_arch
-
+    points (B, 2(n+1)) are given, each arch one GPU thread (see the module docstring);
+    ``arch_search``: the CPU's per-arch enumeration (kinematic._numba_arch), whose source the
+    GPU build compiles."""
     cuda = cuda_module()
     B, m = cw.shape
-    kernel = device_kernel(_four_hinge_kernel, _numba_arch=_numba_arch)
+    kernel = device_kernel(_four_hinge_kernel, _numba_arch=arch_search)
     arrays = [cuda.to_device(np.ascontiguousarray(a, dtype=float))
               for a in (cw, cwx, cwy, pxf, pyf)]
     k_l = cuda.to_device(np.full(B, np.inf))

@@ -298,7 +298,7 @@ def _full_enumeration(sums_of, B, n, chunk, max_seconds, why="", parallel=False,
         from .gpusearch import four_hinge_gpu
 
         cw, cwx, cwy, px, py = sums_of(0, B)
-        return four_hinge_gpu(cw, cwx, cwy, px.reshape(B, -1), py.reshape(B, -1))
+        return four_hinge_gpu(cw, cwx, cwy, px.reshape(B, -1), py.reshape(B, -1), _numba_arch)
     if _NUMBA_ENABLED:
         try:
             out = _enumerate_numba(sums_of, B, n, progress, t0, parallel)
