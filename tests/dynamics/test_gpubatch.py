@@ -71,18 +71,23 @@ def test_without_a_gpu_auto_is_the_cpu_and_gpu_says_why():
             simulate_batch(pb, oppenheim_pulse(-1.0, 0.25), device="gpu")
 
 
+#: the simulator runs the device source as Python: the CPU's arithmetic but CPython's libm and
+#: x**2 for LLVM's (measured on 1000 arches: 2.9e-11 kg on four-link masses of 1e4 kg, 3.6e-15 s
+#: on times, peaks equal)
+SIM_TOL = 1e-13
+
+
 def test_simulator_equals_cpu_on_three_kinds_of_arches():
-    # the simulator runs the device source as Python: the CPU's arithmetic, so the same bits
     rows = _run("gpu_sim_compare.py", "6", "3", "3", simulator=True)
     assert [r["set"] for r in rows] == ["circular", "family", "surveyed"]
-    _agree(rows, 0.0)
+    _agree(rows, SIM_TOL)
     assert sum(r["collapsed"] for r in rows) > 0
 
 
 @pytest.mark.slow
 def test_simulator_equals_cpu_on_a_thousand_arches():
     rows = _run("gpu_sim_compare.py", "1000", "60", "60", simulator=True)
-    _agree(rows, 0.0)
+    _agree(rows, SIM_TOL)
     circ = rows[0]
     assert circ["arches"] == 1000 and circ["usable"] > 900
     assert 0 < circ["collapsed"] < circ["usable"]
