@@ -112,8 +112,9 @@ def _why_no_gpu(cuda) -> str:
     try:
         cuda.detect()
         return "numba found no device"
-    except Exception as exc:  # noqa: BLE001 - the driver's own words
-        return " ".join(str(exc).split())[:200] or type(exc).__name__
+    except Exception as exc:  # noqa: BLE001 - the driver's own words, first sentence
+        words = " ".join(str(exc).split()).split(". ")[0].strip(" :.")
+        return words[:160] or type(exc).__name__
 
 
 # ------------------------------------------------------------------------- one source, two builds

@@ -106,3 +106,24 @@ def test_kernels_compile_for_sm90():
     rows = _run("gpu_compile_check.py", simulator=False, timeout=900)
     assert set(rows[0]) == {"_four_hinge_kernel", "_prepare_kernel", "_simulate_kernel"}
     assert all(v["ptx_bytes"] > 10_000 for v in rows[0].values())
+
+
+@pytest.mark.slow
+def test_fused_multiply_adds_keep_the_outcomes_within_the_stated_tolerance(tmp_path):
+    """The kernels rebuilt for the CPU with FMA contraction (a GPU's rounding) against the plain
+    build, through benchmarks/gpu_rounding.py: docs/gpu.md's tolerance (on a CPU without FMA
+    both builds are the same bits)."""
+    out = tmp_path / "rounding.json"
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).parents[2] / "src"))
+    proc = subprocess.run([sys.executable, str(Path(__file__).parents[2] / "benchmarks"
+                                               / "gpu_rounding.py"), "--samples", "3000",
+                           "--json", str(out)], env=env, capture_output=True, text=True,
+                          timeout=1200)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    r = json.loads(out.read_text())
+    assert r["outcomes_differ"] == 0 and r["impact_counts_differ"] == 0
+    assert 0 < r["collapsed"] < r["samples"]
+    for k in ("k_l", "k_r", "geo_l", "geo_r"):
+        assert r[k] <= 1e-13 and r[k + "_nan_differ"] == 0, k
+    assert r["peak"] <= 1e-10
+    assert r["t_collapse"] <= 1e-9 and r["t_unstable"] <= 1e-9
