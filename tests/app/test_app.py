@@ -197,20 +197,21 @@ def test_a_collapse_is_reported(client):
 
 # ---------------------------------------------------------------------------- ensemble
 def test_ensemble_job_finishes_with_the_clis_summary(client, wait_job):
-    body = {"arch": OPPENHEIM, "samples": 200, "seed": 3, "pulse": {**PULSE, "amplitude": -0.6}}
+    # 80 arches: the job and the library each integrate them (the default suite's time)
+    body = {"arch": OPPENHEIM, "samples": 80, "seed": 3, "pulse": {**PULSE, "amplitude": -0.6}}
     r = client.post("/api/ensemble", json=body)
     assert r.status_code == 200, r.text
     s = wait_job(client, r.json()["id"])
-    assert s["state"] == "done" and s["done"] == s["total"] == 200
+    assert s["state"] == "done" and s["done"] == s["total"] == 80
     res = s["result"]
     counts = res["histogram"]["counts"]
-    assert len(counts) == 30 and sum(counts) == res["summary"]["k_min"]["count"] > 190
+    assert len(counts) == 30 and sum(counts) == res["summary"]["k_min"]["count"] > 75
     # the same configuration through the library's run_ensemble (archrock ensemble)
     cfg = api.ensemble_config(body)
     lib = archrock.run_ensemble(cfg).summary()
     assert res["summary"]["k_min"]["mean"] == pytest.approx(lib["k_min"]["mean"], rel=1e-12)
     pc, lpc = res["summary"]["p_collapse"], lib["p_collapse"]
-    assert pc["collapses"] == lpc["collapses"] and pc["trials"] == lpc["trials"] == 200
+    assert pc["collapses"] == lpc["collapses"] and pc["trials"] == lpc["trials"] == 80
     assert 0 <= pc["low"] <= pc["p"] <= pc["high"] <= 1
 
 

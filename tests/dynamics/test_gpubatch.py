@@ -78,7 +78,7 @@ SIM_TOL = 1e-13
 
 
 def test_simulator_equals_cpu_on_three_kinds_of_arches():
-    rows = _run("gpu_sim_compare.py", "6", "3", "3", simulator=True)
+    rows = _run("gpu_sim_compare.py", "5", "2", "2", simulator=True)
     assert [r["set"] for r in rows] == ["circular", "family", "surveyed"]
     _agree(rows, SIM_TOL)
     assert sum(r["collapsed"] for r in rows) > 0
