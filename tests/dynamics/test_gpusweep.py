@@ -1,0 +1,51 @@
+"""The sweep's GPU build (archrock.dynamics.gpusweep) against the CPU's sweep: under numba's CUDA
+simulator, in a subprocess (the simulator is chosen when numba is first imported), the same
+source run as Python gives the CPU's bits."""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from archrock.dynamics.gpusweep import SIMULATOR_CHUNK, chunk_items
+from archrock.statics.gpusearch import THREADS_PER_BLOCK
+
+HERE = Path(__file__).parent
+pytest.importorskip("numba")
+
+
+def _simulated(script: str) -> list:
+    env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1")
+    src = str(Path(__file__).parents[2] / "src")
+    env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
+    proc = subprocess.run([sys.executable, str(HERE / script)], env=env, capture_output=True,
+                          text=True, timeout=900)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    return [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
+
+
+def test_simulated_gpu_sweep_equals_the_cpus_bit_for_bit():
+    rows = _simulated("gpu_sweep_compare.py")
+    assert [r["early_stop"] for r in rows] == [False, True]
+    for r in rows:
+        assert (r["cpu_device"], r["gpu_device"]) == ("cpu", "gpu")
+        assert r["items"] == 8 and r["launches"] == -(-8 // SIMULATOR_CHUNK)  # chunked
+        assert r["status_differ"] == 0 and r["n_events_differ"] == 0
+        for key in ("peak", "t_collapse", "t_unstable", "t_limit"):
+            assert r[key] == 0.0, (r["early_stop"], key, r[key])  # exact: same arithmetic
+    full, stop = (np.array(r["status"]) for r in rows)
+    # both outcomes exercised (the paper's pulse at 2.5 x 0.5 g collapses the small arches)
+    assert set(full) == {0, 1}
+    # early stop ends only items that do not collapse, and does end some
+    assert np.array_equal(full == 1, stop == 1) and (stop == 3).sum() >= 1
+
+
+def test_chunks_fit_the_scratch_budget():
+    # 8 bytes x (6000 samples + 7) per item: 1 GiB free, half of it for scratch
+    assert chunk_items(10**6, 6000, free_bytes=2**30) == (2**29) // (8 * 6007)
+    assert chunk_items(10, 6000, free_bytes=2**30) == THREADS_PER_BLOCK  # at least a block
+    assert chunk_items(10**6, 6000, free_bytes=10) == THREADS_PER_BLOCK
