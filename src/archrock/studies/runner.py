@@ -281,6 +281,9 @@ class SweepRunner:
             # in-process, every chunk is one parallel call that waits for its slowest item:
             # small chunks leave threads idle (items differ in cost by orders of magnitude)
             n_chunks = max(1, min(n_chunks, N // IN_PROCESS_CHUNK))
+            if self.settings.run_device == "gpu":
+                # a GPU wants every item of the round in one launch (and one copy of the arches)
+                n_chunks = 1
         if self.pulses is not None:  # each item's pulse in memory: bounded chunks
             n_chunks = max(n_chunks, -(-N // PULSE_CHUNK))
         edges = np.linspace(0, N, n_chunks + 1).astype(int)
