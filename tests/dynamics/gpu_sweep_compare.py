@@ -4,7 +4,8 @@
 small irregular arches x two motions (the paper's pulse and a short band-limited noise record)
 x two scale factors both ways, early stop off and on, and prints one JSON line per early-stop
 setting: the items whose status or event count differ, the largest absolute differences of the
-rotations and times, the outcomes seen, where each ran and the GPU's launches.
+rotations and times, the outcomes seen, where each ran and the GPU's launches; then one line
+of multiple stripes run through the studies' runner on either device.
 """
 
 import json
@@ -51,7 +52,37 @@ def compare(early_stop: bool) -> dict:
     return out
 
 
+def stripes() -> dict:
+    """Multiple stripes (the studies' SweepRunner) with the run settings' device: the outcomes
+    of the CPU's and of the GPU's, which ran where."""
+    from archrock.geometry import nominal_arch
+    from archrock.groundmotion import oppenheim_pulse
+    from archrock.studies.ida import msa, random_models
+
+    models = random_models(nominal_arch(radius=2.0, thickness=0.3), N_ARCHES, 0)
+    recs = [oppenheim_pulse(-0.5, 0.25)]
+    from archrock.dynamics import gpusweep
+
+    launches = []
+    real = gpusweep.sweep_gpu
+
+    def counted(*args, **kw):  # what ran on the (simulated) GPU
+        out = real(*args, **kw)
+        launches.append(out["launches"])
+        return out
+
+    gpusweep.sweep_gpu = counted
+    cpu = msa(recs, models, [0.3, 1.25])
+    cpu_launches = len(launches)
+    gpu = msa(recs, models, [0.3, 1.25], settings={"device": "gpu"})
+    return {"stripes": cpu.outcomes.astype(int).ravel().tolist(),
+            "stripes_gpu": gpu.outcomes.astype(int).ravel().tolist(),
+            "same_dict": cpu.to_dict() == gpu.to_dict(), "cpu_gpu_calls": cpu_launches,
+            "gpu_launches": sum(launches)}
+
+
 if __name__ == "__main__":
     for stop in (False, True):
         print(json.dumps(compare(stop)), flush=True)
+    print(json.dumps(stripes()), flush=True)
     sys.exit(0)

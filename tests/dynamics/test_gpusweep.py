@@ -28,8 +28,14 @@ def _simulated(script: str) -> list:
     return [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
 
 
-def test_simulated_gpu_sweep_equals_the_cpus_bit_for_bit():
-    rows = _simulated("gpu_sweep_compare.py")
+@pytest.fixture(scope="module")
+def compared() -> list:
+    """The compare script's lines: two sweeps (early stop off, on), then the stripes."""
+    return _simulated("gpu_sweep_compare.py")
+
+
+def test_simulated_gpu_sweep_equals_the_cpus_bit_for_bit(compared):
+    rows = compared[:2]
     assert [r["early_stop"] for r in rows] == [False, True]
     for r in rows:
         assert (r["cpu_device"], r["gpu_device"]) == ("cpu", "gpu")
@@ -44,8 +50,15 @@ def test_simulated_gpu_sweep_equals_the_cpus_bit_for_bit():
     assert np.array_equal(full == 1, stop == 1) and (stop == 3).sum() >= 1
 
 
+def test_stripes_with_device_gpu_run_on_the_gpu_and_equal_the_cpus(compared):
+    r = compared[2]
+    assert r["cpu_gpu_calls"] == 0 and r["gpu_launches"] >= 1  # the settings' device is used
+    assert r["stripes"] == r["stripes_gpu"] == [0, 0, 1, 1] and r["same_dict"]
+
+
 def test_chunks_fit_the_scratch_budget():
     # 8 bytes x (6000 samples + 7) per item: 1 GiB free, half of it for scratch
     assert chunk_items(10**6, 6000, free_bytes=2**30) == (2**29) // (8 * 6007)
     assert chunk_items(10, 6000, free_bytes=2**30) == THREADS_PER_BLOCK  # at least a block
     assert chunk_items(10**6, 6000, free_bytes=10) == THREADS_PER_BLOCK
+
