@@ -911,3 +911,34 @@ ENTRIES += [
     Entry(FILL, "a fill to y = 2.5 m takes k from {} down to", ("limit", *FILL_ARCH, "--rise",
                                                                  "1.5"), K_MIN),
 ]
+
+
+# --- docs/gpu.md: the GPU's rounding on the CPU (benchmarks/gpu_rounding.py) --------------------
+
+def gpu_rounding() -> str:
+    """The JSON that ``benchmarks/gpu_rounding.py --samples 20000`` writes (about 90 s on two
+    cores), run in a process of its own."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "rounding.json")
+        subprocess.run([sys.executable, str(ROOT / "benchmarks" / "gpu_rounding.py"), "--samples",
+                        "20000", "--json", path], capture_output=True, text=True, env=env,
+                       check=True)
+        with open(path, encoding="utf-8") as fh:
+            return fh.read()
+
+
+FUNCTIONS[gpu_rounding.__name__] = gpu_rounding
+ENTRIES += [
+    # the differences themselves depend on the CPU's FMA unit (none on a CPU without): read, not
+    # compared; the outcomes are compared
+    Entry("docs/gpu.md", "under the paper's pulse (c_v 0.8754, early stop, {} collapse)",
+          "py:gpu_rounding", "json:collapsed", slow=True),
+    Entry("docs/gpu.md", "The largest differences are {} relative on k and {} on the four-link "
+                         "vectors", "py:gpu_rounding", "json:k_r,geo_l", slow=True, skip=(0, 1)),
+]

@@ -23,7 +23,8 @@ from ._jit import HAVE_NUMBA
 from .errors import ArchInputError
 
 __all__ = ["DEVICES", "AUTO_MIN_ARCHES", "check_device", "resolve_device", "gpu_present",
-           "simulator", "cuda_module", "device_function", "device_override", "gpu_note"]
+           "simulator", "cuda_module", "device_function", "device_kernel", "device_override",
+           "builder", "gpu_note"]
 
 #: allowed values of every ``device`` option
 DEVICES = ("cpu", "gpu", "auto")
@@ -111,8 +112,9 @@ def _why_no_gpu(cuda) -> str:
     try:
         cuda.detect()
         return "numba found no device"
-    except Exception as exc:  # noqa: BLE001 - the driver's own words
-        return " ".join(str(exc).split())[:200] or type(exc).__name__
+    except Exception as exc:  # noqa: BLE001 - the driver's own words, first sentence
+        words = " ".join(str(exc).split()).split(". ")[0].strip(" :.")
+        return words[:160] or type(exc).__name__
 
 
 # ------------------------------------------------------------------------- one source, two builds
@@ -149,17 +151,19 @@ def device_override(cpu_function):
     return register
 
 
-def _rebuild(fn):
-    """``fn`` with its compiled callees (globals and closure cells) swapped for device builds."""
+def _rebuild(fn, build=None):
+    """``fn`` with its compiled callees (globals and closure cells) swapped for their builds by
+    ``build`` (default: the CUDA device build)."""
+    build = device_function if build is None else build
     glb = dict(fn.__globals__)
     for name in _names(fn.__code__):
         value = glb.get(name)
         if value is not None and _is_kernel_function(value):
-            glb[name] = device_function(value)
+            glb[name] = build(value)
     closure = None
     if fn.__closure__:
         closure = tuple(
-            types.CellType(device_function(c.cell_contents))
+            types.CellType(build(c.cell_contents))
             if _is_kernel_function(c.cell_contents) else c for c in fn.__closure__)
     new = types.FunctionType(fn.__code__, glb, fn.__name__, fn.__defaults__, closure)
     new.__qualname__ = fn.__qualname__
@@ -168,14 +172,29 @@ def _rebuild(fn):
     return new
 
 
+def builder(jit, built: dict | None = None):
+    """A function that builds any kernel function with ``jit`` from its own source, its callees
+    built the same way (device replacements included), each once in ``built``.  The CUDA
+    device build is ``builder(numba.cuda.jit(device=True))``; ``builder(numba.njit(
+    fastmath={"contract"}))`` gives a CPU build that rounds as a GPU does (fused multiply-adds),
+    which benchmarks/gpu_rounding.py compares with the plain CPU build."""
+    built = {} if built is None else built
+
+    def build(func):
+        key = _python(func)
+        if key not in built:
+            built[key] = None  # a recursive reference gets the placeholder, never a loop
+            built[key] = jit(_rebuild(_OVERRIDES.get(key, key), build))
+        return built[key]
+    return build
+
+
 def device_function(func):
     """The CUDA device build of ``func`` (a :func:`maybe_njit` function), compiled from the same
     Python source on first use; built once per process."""
     key = _python(func)
     if key not in _BUILT:
-        cuda = cuda_module()
-        _BUILT[key] = None  # a recursive reference gets the placeholder, never a loop
-        _BUILT[key] = cuda.jit(device=True)(_rebuild(_OVERRIDES.get(key, key)))
+        _BUILT[key] = builder(cuda_module().jit(device=True), _BUILT)(func)
     return _BUILT[key]
 
 

@@ -46,9 +46,9 @@ def chain_rows(b, rows, geos, tabs, n_rows, n_tab):
 
 
 @maybe_njit
-def summary_one(b, rows, out, ev, n_rows, k_l, k_r, lims, phus, dirs, modes, ratios, v_rest, times,
-                accel, g, dt, t_free, max_events, status, peak, t_col, t_uns, t_lim, n_imp,
-                n_act, n_ev, early_stop):
+def summary_one(b, rows, out, ev, n_rows, k_l, k_r, lims, phus, dirs, modes, ratios, v_rest,
+                times, accel, g, dt, t_free, max_events, status, peak, t_col, t_uns, t_lim,
+                n_imp, n_act, n_ev, early_stop):
     """Integrate arch b over its chain ``rows`` (:func:`chain_rows`) and write its summary into
     the output arrays; ``out`` (1,) and ``ev`` (k, 6) are its scratch buffers.  The one
     per-arch body of both builds: the CPU loops and the GPU kernel
