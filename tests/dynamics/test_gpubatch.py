@@ -95,8 +95,8 @@ def test_simulator_equals_cpu_on_a_thousand_arches():
 
 @pytest.mark.slow
 def test_kernels_compile_for_sm90():
-    """The three kernels through NVVM for an H100/H200 (no GPU needed; skipped without the
-    ``gpu`` extra's compiler)."""
+    """The four kernels (the batch's three and the sweep's) through NVVM for an H100/H200 (no
+    GPU needed; skipped without the ``gpu`` extra's compiler)."""
     try:
         from numba.cuda.cudadrv import nvvm
 
@@ -104,7 +104,8 @@ def test_kernels_compile_for_sm90():
     except Exception as exc:  # noqa: BLE001 - no NVVM here: the check cannot run
         pytest.skip(f"numba's CUDA target or NVVM is missing: {str(exc).splitlines()[0][:80]}")
     rows = _run("gpu_compile_check.py", simulator=False, timeout=900)
-    assert set(rows[0]) == {"_four_hinge_kernel", "_prepare_kernel", "_simulate_kernel"}
+    assert set(rows[0]) == {"_four_hinge_kernel", "_prepare_kernel", "_simulate_kernel",
+                            "_sweep_kernel"}
     assert all(v["ptx_bytes"] > 10_000 for v in rows[0].values())
 
 

@@ -133,6 +133,26 @@ def test_bad_items_and_engine(models, records):
         ida(records, models, [1.0, 2.0], settings={"workers": 0})
 
 
+def test_sweep_device_auto_is_the_cpu_and_respond_refuses_gpu(models, records, monkeypatch):
+    """'auto' on a few items is the CPU's sweep; the arch-by-arch engine has no GPU build and
+    says so; without a GPU the batch engine's 'gpu' is refused before any response."""
+    from archrock._device import gpu_present
+
+    A, M = SweepArches.from_models(models.models), SweepMotions.of(records)
+    cpu = sweep(A, M, [0, 1, 2], [0, 1, 0], [1.4, 2.0, 3.1])
+    auto = sweep(A, M, [0, 1, 2], [0, 1, 0], [1.4, 2.0, 3.1], device="auto")
+    assert cpu["device"] == auto["device"] == "cpu" and "gpu" not in auto
+    for key in ("status", "peak", "n_events"):
+        np.testing.assert_array_equal(cpu[key], auto[key])
+    with pytest.raises(ArchInputError, match=r"^device: 'gpu'; IDA and multiple stripes by "
+                                             r"engine 'respond' runs on the CPU only"):
+        ida(records, models, [1.0, 2.0], engine="respond", settings={"device": "gpu"})
+    monkeypatch.delenv("NUMBA_ENABLE_CUDASIM", raising=False)
+    if not gpu_present():
+        with pytest.raises(ArchInputError, match=r"^device: 'gpu' but no CUDA GPU"):
+            msa(records, models, [0.3, 0.5], settings={"device": "gpu"})
+
+
 def test_curves_batch_equal_response_by_response():
     from archrock.studies.curves import collapse_curve, ensemble_curve
     from archrock.dynamics.response import prepare

@@ -117,9 +117,9 @@ def test_device_is_a_run_setting_checked_by_name():
 def test_studies_without_a_gpu_build_refuse_gpu_and_take_auto_on_the_cpu():
     from archrock.studies.sensitivity import sobol_indices
 
-    with pytest.raises(ArchInputError, match=r"^device: 'gpu'; curves runs on the CPU only"):
-        RunSettings(device="gpu").on_cpu("curves")
-    assert RunSettings(device="auto").on_cpu("curves").device == "auto"
+    with pytest.raises(ArchInputError, match=r"^device: 'gpu'; defect maps runs on the CPU "):
+        RunSettings(device="gpu").on_cpu("defect maps")
+    assert RunSettings(device="auto").on_cpu("defect maps").device == "auto"
     with pytest.raises(ArchInputError, match=r"^device: 'gpu'; sobol_indices runs on the CPU"):
         sobol_indices(oppenheim_arch(), Spreads(0.05, 0.05, 0.0), 16, motion=None,
                       settings=RunSettings(device="gpu"))

@@ -6,7 +6,7 @@ import sys
 
 from ..errors import ArchInputError
 from ._parser import emit_json, interrupted_study
-from .runsettings import cpu_only, run_settings
+from .runsettings import cpu_only, gpu_ready, run_settings
 from ._friction import add_friction_option
 from .options import (PROGRESS_ESTIMATED, add_dynamics_option, add_geometry_options,
                       add_impact_options, add_output_options, add_random_arches_options,
@@ -39,8 +39,9 @@ def add_curves_parser(subparsers):
         scheduler="batch engine: run on an existing Dask cluster (needs archrock[dask])",
         out="batch engine: keep every finished response in DIR (Parquet + manifest.json); the "
             "same command after an interruption resumes",
-        device="cpu (default) or auto, the CPU here: the curves' sweeps have no GPU build "
-               "yet (gpu is refused; docs/gpu.md)")
+        device="cpu (default), gpu (the batch engine's sweeps, one response per GPU thread, "
+               "in this process) or auto (the GPU where one is present and a round is large "
+               "enough); docs/gpu.md")
     add_impact_options(p)
     add_dynamics_option(p, "each response")
     add_friction_option(p, "the routing of the dynamics and, where it runs, the contact "
@@ -56,7 +57,7 @@ def run_curves(args) -> int:
     from ..reports.curves import curves_summary, format_curves
     from ..dynamics.response import prepare
 
-    cpu_only(args, "curves")  # before any work
+    gpu_ready(args)  # before any work
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
     durations = parse_range(args.durations, "durations")
@@ -68,6 +69,7 @@ def run_curves(args) -> int:
     # the routing of respond, ensemble and assess at the command's one friction
     choice = choose_dynamics(nominal, args.dynamics, friction=friction_mu(args))
     if choice.engine:  # issue 19: one degree of freedom cannot follow this arch
+        cpu_only(args, "curves by the contact engine")
         from .enginecurves import run_engine_curves
 
         return run_engine_curves(args, nominal, durations, choice, plot)

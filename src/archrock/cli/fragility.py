@@ -8,7 +8,7 @@ from ..errors import ArchInputError
 from ._parser import emit_json, interrupted_study, non_negative_int
 from .fragilityfigure import fragility_figure
 from .fourlinkonly import add_fourlink_dynamics_option, check_fourlink
-from .runsettings import cpu_only, run_settings
+from .runsettings import cpu_only, gpu_ready, run_settings
 from .options import (PROGRESS_ESTIMATED, RECORDS_HELP, RECORDS_METAVAR, add_geometry_options,
                       add_impact_options, add_output_options, add_random_arches_options,
                       add_run_options, arch_from_args, figure_arg, folder_arg,
@@ -46,8 +46,9 @@ def add_fragility_parser(subparsers):
                         "results are identical")
     add_run_options(p, workers="1: in-process (numba threads, default); N > 1: local process pool",
                     scheduler="run on an existing Dask cluster (needs archrock[dask])",
-                    device="cpu (default) or auto, the CPU here: the IDA and stripe sweeps "
-                           "have no GPU build yet (gpu is refused; docs/gpu.md)")
+                    device="cpu (default), gpu (the batch engine's IDA and stripe sweeps, one "
+                           "response per GPU thread, in this process) or auto (the GPU where "
+                           "one is present and a round is large enough); docs/gpu.md")
     p.add_argument("--early-stop", action="store_true",
                    help="batch engine: end a response once the record is over and the arch's "
                         "energy is below every mechanism it can open (same collapse decisions "
@@ -77,11 +78,12 @@ def run_fragility(args) -> int:
 
     if args.bootstrap == 1:
         raise ArchInputError("bootstrap: 1; allowed 0 (no confidence bands) or an integer >= 2")
-    cpu_only(args, "fragility")  # before any work
+    gpu_ready(args)  # before any work
     plot = figure_arg(args.plot)
     nominal = arch_from_args(args)
     choice = check_fourlink(nominal, args, "fragility", engine_runs=True)
     if choice.engine:  # one degree of freedom cannot follow it: the IDA by the contact engine
+        cpu_only(args, "fragility by the contact engine")
         from .enginefragility import run_engine_fragility
 
         return run_engine_fragility(args, nominal, choice, plot)

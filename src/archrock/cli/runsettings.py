@@ -83,3 +83,12 @@ def cpu_only(args, command: str) -> None:
         from ..studies.runner import RunSettings
 
         RunSettings(device="gpu").on_cpu(command)
+
+
+def gpu_ready(args) -> None:
+    """With ``--device gpu``, refuse before any work where no GPU (nor numba's simulator) is
+    usable here: the one line of :func:`archrock._device.resolve_device`."""
+    if getattr(args, "device", "cpu") == "gpu":
+        from .._device import resolve_device
+
+        resolve_device("gpu")

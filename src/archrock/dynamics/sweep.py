@@ -16,9 +16,15 @@ once per arch instead of once per item), ``v_rest``, k_l, k_r, and per arch the 
 free-motion cap ``t_free`` of :func:`archrock.dynamics.response.default_steps`.  The scaled acceleration is
 ``accel * scale`` as :meth:`GroundMotion.scaled` computes it, and the output sampling does not
 enter the dynamics.  An item therefore has bit for bit the outcome, peak and times of
-``respond(model, motion.scaled(scale))``; tests/test_sweep.py checks this.  (An arch prepared by
+``respond(model, motion.scaled(scale))``; tests/dynamics/test_sweep.py checks this.  (An arch prepared by
 :func:`archrock.dynamics.batch.prepare_batch` agrees with ``prepare`` only to about 1e-13, so
 :meth:`SweepArches.from_batch` is offered for speed, not for identity.)
+
+On a GPU (``device="gpu"``) the items run one per GPU thread (:mod:`archrock.dynamics.gpusweep`)
+through the same per-item body, :func:`sweep_item`, which allocates nothing: the CPU loops give
+it buffers of their own per item, the GPU kernel per-thread scratch.  The outcomes are the
+CPU's; rotations and times may differ in their last bits where the GPU fuses a multiply and
+an add (docs/gpu.md).
 """
 
 from __future__ import annotations
@@ -29,13 +35,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import kernel as K
+from .._device import resolve_device
 from .._jit import HAVE_NUMBA, maybe_njit, numba
 from ..errors import ArchInputError, LimitExceededError
 from ..groundmotion import G, GroundMotion
 from .chain import pack_chains
 from .fourlink import build_table, check_table_intervals, init_table, table_size
+from .kernel import ST_COLLAPSED as K_ST_COLLAPSED
+from .kernel import run_chain as K_run_chain
 
-__all__ = ["SweepArches", "SweepMotions", "sweep", "SWEEP_EVENTS"]
+__all__ = ["SweepArches", "SweepMotions", "sweep", "sweep_item", "SWEEP_EVENTS"]
 
 #: rows of the event table of each item: the sweep needs the outcome only (the kernel keeps
 #: integrating past the table and still counts the events, so a run beyond ``max_events`` of
@@ -166,62 +175,73 @@ class SweepMotions:
 
 # ---------------------------------------------------------------------------- kernel
 #: whether the kernel offers the early stop of a run that can no longer collapse
-#: (``kernel.simulate_chain_stop``: after the ground motion, at an impact from which the energy
-#: is below every mechanism's barrier under an impact law that never adds energy)
-HAVE_EARLY_STOP = hasattr(K, "simulate_chain_stop")
-
-if HAVE_EARLY_STOP:
-    @maybe_njit
-    def _chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times, accel, g, dt,
-               t_free, max_events, early_stop):
-        return K.simulate_chain_stop(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest,
-                                     times, accel, g, 1, 1.0, dt, t_free, max_events,
-                                     early_stop)
-else:
-    @maybe_njit
-    def _chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times, accel, g, dt,
-               t_free, max_events, early_stop):
-        return K.simulate_chain(geos, lims, phus, dirs, nexts, ratios, k_l, k_r, v_rest, times,
-                                accel, g, 1, 1.0, dt, t_free, max_events)
+#: (``kernel.run_chain``: after the ground motion, at an impact from which the energy is below
+#: every mechanism's barrier under an impact law that never adds energy); always, since 0.5
+HAVE_EARLY_STOP = True
 
 
 @maybe_njit
-def _sweep_one(k, arch, motion, scale, rows, n_rows, lims, phus, dirs, nexts, ratios, k_l, k_r,
-               v_rest, dts, t_frees, m_times, m_accel, m_off, g, max_events, early_stop, status,
-               peak, t_col, t_uns, t_lim, n_ev):
+def sweep_item(k, accel_buf, out, ev, arch, motion, scale, rows, n_rows, lims, phus, dirs,
+               modes, ratios, k_l, k_r, v_rest, dts, t_frees, m_times, m_accel, m_off, g,
+               max_events, early_stop, status, peak, t_col, t_uns, t_lim, n_ev):
+    """Integrate item k and write its summary into the output arrays, allocating nothing: the
+    one per-item body of the CPU loops and of the GPU kernel (:mod:`.gpusweep`).  Scratch:
+    ``accel_buf`` (at least the item's motion's length) receives the scaled acceleration,
+    ``out`` (1,) and ``ev`` (rows, 6) are run_chain's.  ``modes``: the chain's next rows + 1
+    (kernel modes, 0 = rest), computed once by the host.  ``rows`` are shared by every item of
+    an arch and only read (their tables are built by the host; an interval the kernel lacked
+    would be built in place with the same numbers by whichever item reaches it)."""
     b = arch[k]
     m = motion[k]
     R = n_rows[b]
-    times = m_times[m_off[m]:m_off[m + 1]]
-    # exactly GroundMotion.scaled: accel * factor, elementwise
-    accel = m_accel[m_off[m]:m_off[m + 1]] * scale[k]
-    _, _, ne, st, tf, pk, tc, tu = _chain(
-        rows[b, :R], lims[b, :R], phus[b, :R], dirs[b, :R], nexts[b, :R] + 1, ratios[b, :R],
-        k_l[b], k_r[b], v_rest[b], times, accel, g, dts[b], t_frees[b], max_events, early_stop)
+    lo = m_off[m]
+    n = m_off[m + 1] - lo
+    s = scale[k]
+    # exactly GroundMotion.scaled (accel * factor), element by element: no array is made
+    for q in range(n):
+        accel_buf[q] = m_accel[lo + q] * s
+    _, ne, st, tf, pk, tc, tu, _, _ = K_run_chain(
+        out, ev, rows[b, :R], lims[b, :R], phus[b, :R], dirs[b, :R], modes[b, :R],
+        ratios[b, :R], k_l[b], k_r[b], v_rest[b], m_times[lo:lo + n], accel_buf[:n], g, 1.0,
+        dts[b], t_frees[b], max_events, early_stop)
     status[k] = st
     peak[k] = pk
     t_col[k] = tc
     t_uns[k] = tu
-    t_lim[k] = tf if st == K.ST_COLLAPSED else -1.0
+    t_lim[k] = tf if st == K_ST_COLLAPSED else -1.0
     n_ev[k] = ne
 
 
-def _sweep_loop_py(arch, motion, scale, rows, n_rows, lims, phus, dirs, nexts, ratios, k_l, k_r,
+@maybe_njit
+def _sweep_one(k, arch, motion, scale, rows, n_rows, lims, phus, dirs, modes, ratios, k_l, k_r,
+               v_rest, dts, t_frees, m_times, m_accel, m_off, g, max_events, early_stop, status,
+               peak, t_col, t_uns, t_lim, n_ev):
+    """:func:`sweep_item` with buffers of its own (the CPU loops): those
+    ``kernel.simulate_chain_stop`` gave it before, so the same bits."""
+    m = motion[k]
+    sweep_item(k, np.empty(m_off[m + 1] - m_off[m]), np.zeros(1),
+               np.zeros((min(max_events, K.EVENT_ROWS), 6)), arch, motion, scale, rows, n_rows,
+               lims, phus, dirs, modes, ratios, k_l, k_r, v_rest, dts, t_frees, m_times,
+               m_accel, m_off, g, max_events, early_stop, status, peak, t_col, t_uns, t_lim,
+               n_ev)
+
+
+def _sweep_loop_py(arch, motion, scale, rows, n_rows, lims, phus, dirs, modes, ratios, k_l, k_r,
                    v_rest, dts, t_frees, m_times, m_accel, m_off, g, max_events, early_stop,
                    status, peak, t_col, t_uns, t_lim, n_ev):
     for k in range(arch.size):
-        _sweep_one(k, arch, motion, scale, rows, n_rows, lims, phus, dirs, nexts, ratios, k_l,
+        _sweep_one(k, arch, motion, scale, rows, n_rows, lims, phus, dirs, modes, ratios, k_l,
                    k_r, v_rest, dts, t_frees, m_times, m_accel, m_off, g, max_events, early_stop,
                    status, peak, t_col, t_uns, t_lim, n_ev)
 
 
 if HAVE_NUMBA:
     @maybe_njit(parallel=True)
-    def _sweep_loop_nb(arch, motion, scale, rows, n_rows, lims, phus, dirs, nexts, ratios, k_l,
+    def _sweep_loop_nb(arch, motion, scale, rows, n_rows, lims, phus, dirs, modes, ratios, k_l,
                        k_r, v_rest, dts, t_frees, m_times, m_accel, m_off, g, max_events, early_stop,
                        status, peak, t_col, t_uns, t_lim, n_ev):
         for k in numba.prange(arch.size):
-            _sweep_one(k, arch, motion, scale, rows, n_rows, lims, phus, dirs, nexts, ratios,
+            _sweep_one(k, arch, motion, scale, rows, n_rows, lims, phus, dirs, modes, ratios,
                        k_l, k_r, v_rest, dts, t_frees, m_times, m_accel, m_off, g, max_events,
                        early_stop, status, peak, t_col, t_uns, t_lim, n_ev)
 
@@ -231,18 +251,24 @@ else:  # pragma: no cover - without numba
 
 
 def sweep(arches: SweepArches, motions: SweepMotions, arch_index, motion_index, scales, *,
-          parallel: bool = True, max_events: int | None = None, early_stop: bool = False) -> dict:
+          parallel: bool = True, max_events: int | None = None, early_stop: bool = False,
+          device: str = "cpu") -> dict:
     """Responses of the items (arch_index[k], motion_index[k], scales[k]) (module doc).
 
     Returns a dict of arrays (N,): status (0 rest, 1 collapsed, 2 still moving, 3 stopped
     early), peak [rad],
-    t_collapse, t_unstable, t_limit [s] (NaN if never), n_events; plus 'seconds'.
+    t_collapse, t_unstable, t_limit [s] (NaN if never), n_events; plus 'seconds', 'device'
+    (where it ran) and, on a GPU, 'gpu' (:func:`archrock.dynamics.gpusweep.sweep_gpu`'s split
+    of the time).
     max_events: as ``respond``'s: an item with more events raises LimitExceededError, as
     ``respond`` does (None: no bound; an early-stopped item has counted fewer events than the
     full run would).  early_stop: end an item once it can no longer collapse (status 3, see
     :data:`HAVE_EARLY_STOP`; ignored where the kernel lacks it): its outcome is final, its
     peak, times to rest and event count are not.  parallel: the numba prange loop (all numba threads);
     otherwise a serial compiled loop (one worker process = one core); Python without numba.
+    device: 'cpu', 'gpu' or 'auto' (:func:`archrock._device.resolve_device`, on the number of
+    items): on 'gpu' one item per GPU thread (:mod:`archrock.dynamics.gpusweep`), the same
+    per-item source (:func:`sweep_item`).
     """
     t0 = time.perf_counter()
     a = np.ascontiguousarray(arch_index, dtype=np.int64).ravel()
@@ -265,12 +291,19 @@ def sweep(arches: SweepArches, motions: SweepMotions, arch_index, motion_index, 
     # the kernel builds table intervals it lacks in place (none are lacking in packed tables,
     # but a compiled writer needs a writable array: Dask hands read-only buffers)
     rows = p.rows if p.rows.flags.writeable else p.rows.copy()
-    args = (a, m, s, rows, p.n_rows, p.limits, p.unstable, p.directions, p.nexts, p.ratios,
+    ran_on = resolve_device(device, N)
+    # kernel modes (next row + 1, 0 = rest): once per call, not once per item
+    modes = np.ascontiguousarray(p.nexts + 1, dtype=np.int64)
+    args = (a, m, s, rows, p.n_rows, p.limits, p.unstable, p.directions, modes, p.ratios,
             p.k_l, p.k_r, p.v_rest, p.dt, p.t_free, motions.times, motions.accel,
-            motions.offsets, G, SWEEP_EVENTS, bool(early_stop), res["status"], res["peak"], res["t_collapse"],
-            res["t_unstable"], res["t_limit"], res["n_events"])
+            motions.offsets, G, SWEEP_EVENTS, bool(early_stop), res["status"], res["peak"],
+            res["t_collapse"], res["t_unstable"], res["t_limit"], res["n_events"])
     if N:
-        if HAVE_NUMBA:
+        if ran_on == "gpu":
+            from .gpusweep import sweep_gpu
+
+            res["gpu"] = sweep_gpu(args, sweep_item)
+        elif HAVE_NUMBA:
             (_sweep_loop_nb if parallel else _sweep_loop_serial)(*args)
         else:
             _sweep_loop_py(*args)
@@ -278,5 +311,6 @@ def sweep(arches: SweepArches, motions: SweepMotions, arch_index, motion_index, 
         raise LimitExceededError(f"max_events: more than {max_events} events; raise max_events")
     for key in ("t_collapse", "t_limit", "t_unstable"):
         res[key][res[key] < 0] = np.nan
+    res["device"] = ran_on
     res["seconds"] = time.perf_counter() - t0
     return res

@@ -340,9 +340,9 @@ def collapse_curve(model, durations, kind: str = "oppenheim", sign: int = -1, *,
 
 def _check_batch_run(engine, settings) -> None:
     """``scheduler`` and ``out`` of the run settings only with the batch engine; device 'gpu'
-    refused (the curves' kernels run on the CPU only)."""
-    settings.on_cpu("curves")
+    only with it too (its sweep has a GPU build; 'respond' runs on the CPU only)."""
     if engine != "batch":
+        settings.on_cpu(f"curves by engine {engine!r}")
         for name, v in (("scheduler", settings.scheduler), ("out", settings.out)):
             if v is not None:
                 raise ArchInputError(f"{name}: run by the batch engine; allowed with "

@@ -183,17 +183,19 @@ def _inputs(records, models, im, settings):
     :func:`ida` and :func:`msa`, checked."""
     recs, ms = _records(records), _models(models)
     ids, failed = _ids_failed(models, ms)
-    # device 'gpu' refused before any response: the sweep has no GPU build
-    return (recs, ms, ids, failed, _im(im),
-            RunSettings.from_dict(settings).on_cpu("IDA and multiple stripes"))
+    return recs, ms, ids, failed, _im(im), RunSettings.from_dict(settings)
 
 
 ENGINES = ("batch", "respond")
 
 
-def _engine(engine: str) -> str:
+def _engine(engine: str, settings=None) -> str:
+    """``engine`` checked; with ``settings``, device 'gpu' refused (before any response) unless
+    the engine is the batch one, whose sweep has a GPU build."""
     if engine not in ENGINES:
         raise ArchInputError(f"engine: {engine!r}; allowed one of {', '.join(ENGINES)}")
+    if settings is not None and engine != "batch":
+        settings.on_cpu(f"IDA and multiple stripes by engine {engine!r}")
     return engine
 
 
@@ -555,7 +557,7 @@ def ida(records, models, scales, *, im: str = "pga", tol: float = 1e-3, n_boot: 
     finished."""
     recs, ms, ids, failed, im, settings = _inputs(records, models, im, settings)
     s = _grid("scales", scales)
-    engine = _engine(engine)
+    engine = _engine(engine, settings)
     top = max(recs, key=lambda r: r.pga)
     check_pga(float(s[-1]) * top.pga_g, f"scales: {s[-1]:g} x record {top.name!r}",
               "reduce the largest scale factor", warn=False)
@@ -625,7 +627,7 @@ def msa(records, models, levels, *, im: str = "pga", n_boot: int = 0, seed=0,
     sweep)."""
     recs, ms, ids, failed, im, settings = _inputs(records, models, im, settings)
     lv = _grid("levels", levels)
-    engine = _engine(engine)
+    engine = _engine(engine, settings)
     factors = [_im_factor(r, im) for r in recs]
     for r, f in zip(recs, factors):
         if not f > 0:

@@ -15,7 +15,9 @@ IDA, multiple stripes and the collapse-acceleration curves search collapse bound
 (a scan, then bisection steps); every round is one list of items (arch, motion, scale) for
 :func:`archrock.dynamics.sweep.sweep`.  A :class:`SweepRunner` holds the packed arches and
 motions and runs round after round on one executor (in-process: the numba ``prange`` loop over
-the items; a pool or Dask: the arches and motions sent to each worker once).  The items of a
+the items, or with the settings' device 'gpu' one item per GPU thread; a pool or Dask: the
+arches and motions sent to each worker once).  The arches are packed (and their tables
+built) on the CPU whatever the device: that is done once per study, the rounds many times.  The items of a
 round are cut into chunks so that progress can be shown; results never depend on the executor
 or the chunks (each item is independent).
 
@@ -34,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._device import check_device
+from .._device import check_device, resolve_device
 from .._progress import check_progress
 from ..errors import ArchInputError
 from ..dynamics.sweep import SweepArches, SweepMotions, sweep
@@ -76,8 +78,8 @@ class RunSettings:
     device: where the compiled batch kernels run, 'cpu' (default), 'gpu' or 'auto' (the GPU
     where one is present and the work is large enough, :func:`archrock._device.resolve_device`);
     'gpu' runs in this process only (a GPU serves one process, not a pool's workers), and
-    'auto' with a pool or Dask is the CPU.  Studies whose kernels have no GPU build refuse
-    'gpu' (:meth:`on_cpu`)."""
+    'auto' with a pool or Dask is the CPU.  Studies whose kernels have no GPU build (the
+    contact engine, the arch-by-arch 'respond' engine) refuse 'gpu' (:meth:`on_cpu`)."""
 
     workers: int | None = None
     scheduler: object = None
@@ -140,7 +142,7 @@ class RunSettings:
         refused by name ('auto' is then the CPU)."""
         if self.device == "gpu":
             raise ArchInputError(f"device: 'gpu'; {study} runs on the CPU only (the GPU builds "
-                                 f"are the ensemble's batch kernels, docs/gpu.md); allowed "
+                                 f"are the batch kernels and the sweep, docs/gpu.md); allowed "
                                  f"'cpu' or 'auto'")
         return self
 
@@ -221,8 +223,10 @@ class SweepRunner:
         self.arches, self.motions = arches, motions
         self.pulses = None if pulses is None else (
             str(pulses[0]), int(pulses[1]), tuple(float(x) for x in pulses[2]))
-        # the sweep kernel has no GPU build: device 'gpu' refused, 'auto' the CPU
-        self.settings = RunSettings.from_dict(settings).on_cpu("the sweep (curves, IDA, stripes)")
+        self.settings = RunSettings.from_dict(settings)
+        if self.settings.run_device == "gpu":
+            # no GPU here: say so before the first round, not after the arches' preparation
+            resolve_device("gpu")
         self.max_events = max_events
         self.early_stop = bool(early_stop)
         self.bar = bar
@@ -277,12 +281,16 @@ class SweepRunner:
             # in-process, every chunk is one parallel call that waits for its slowest item:
             # small chunks leave threads idle (items differ in cost by orders of magnitude)
             n_chunks = max(1, min(n_chunks, N // IN_PROCESS_CHUNK))
+            if self.settings.run_device == "gpu":
+                # a GPU wants every item of the round in one launch (and one copy of the arches)
+                n_chunks = 1
         if self.pulses is not None:  # each item's pulse in memory: bounded chunks
             n_chunks = max(n_chunks, -(-N // PULSE_CHUNK))
         edges = np.linspace(0, N, n_chunks + 1).astype(int)
         chunks = [(edges[i], edges[i + 1]) for i in range(n_chunks) if edges[i + 1] > edges[i]]
-        # a worker's loop is serial (one worker, one core); in-process sweep's own default
-        kw = {} if self.ex.in_process else {"parallel": False}
+        # a worker's loop is serial (one worker, one core); in-process sweep's own default, on
+        # the settings' device (a pool or Dask runs on the CPU: the settings refuse 'gpu' there)
+        kw = {"device": self.settings.run_device} if self.ex.in_process else {"parallel": False}
         tasks = [(a[i:j], m[i:j], s[i:j], self.max_events, self.early_stop, self.pulses, kw)
                  for i, j in chunks]
         out = [None] * len(chunks)
@@ -294,4 +302,6 @@ class SweepRunner:
             self.responses += j - i
             if self.bar is not None:
                 self.bar.update(j - i)
-        return {k: np.concatenate([o[k] for o in out]) for k in out[0] if k != "seconds"}
+        # the per-item arrays; a call's seconds, device and GPU timing stay with the call
+        return {k: np.concatenate([o[k] for o in out]) for k in out[0]
+                if isinstance(out[0][k], np.ndarray)}
