@@ -16,7 +16,9 @@ after batch, keeping the counts only, so the host's memory stays that of one bat
 
 Without a GPU the GPU part says so and the rest runs; ``--simulator`` (with
 NUMBA_ENABLE_CUDASIM=1 set before the run) runs the GPU part on numba's simulator, for a
-check of the script itself on a few hundred arches.
+check of the script itself on a few arches (the simulator takes seconds per arch):
+``NUMBA_ENABLE_CUDASIM=1 python benchmarks/bench_gpu.py --simulator --arches 8 --batch 4
+--cpu-arches 8 --threads 1``.
 
 Usage: python benchmarks/bench_gpu.py [--arches 10000000] [--batch 1048576]
        [--cpu-arches 200000] [--threads 1,2,4,16] [--json FILE]
@@ -144,10 +146,12 @@ def main() -> dict:
           f"{os.cpu_count()} CPUs, numba {numba.__version__}; GPU: {gpu_note()}")
     out = {"gpu_note": gpu_note(), "cpus": os.cpu_count()}
     cpu_n = min(args.cpu_arches, args.arches)
-    # compile both builds on a few arches before timing anything
-    run(sampler, nom, motion, impact, 0, 64, 64, "cpu")
+    # compile both builds on a few arches before timing anything (the simulator runs Python
+    # thread by thread: seconds per arch)
+    warm = 4 if simulator() else 64
+    run(sampler, nom, motion, impact, 0, warm, warm, "cpu")
     if have_gpu:
-        run(sampler, nom, motion, impact, 0, 64, 64, "gpu")
+        run(sampler, nom, motion, impact, 0, warm, warm, "gpu")
         print(f"GPU, {args.arches:,} arches:")
         gpu = run(sampler, nom, motion, impact, 0, args.arches, args.batch, "gpu")
         _show(gpu)

@@ -141,12 +141,16 @@ def _names(code) -> set:
     return out
 
 
-def device_override(cpu_function):
+def device_override(cpu_function, simulator_only: bool = False):
     """Register the decorated Python function as the device build of ``cpu_function`` (same
-    arguments, same results; for a function that allocates, which a GPU thread cannot)."""
+    arguments, same results; for a function that allocates, which a GPU thread cannot).
+    ``simulator_only``: used under numba's simulator alone, where a device array is read and
+    written element by element through Python (a whole-array assignment there costs one call
+    where a loop costs thousands)."""
     def register(device_impl):
-        _OVERRIDES[_python(cpu_function)] = device_impl
-        _BUILT.pop(_python(cpu_function), None)
+        if not simulator_only or simulator():
+            _OVERRIDES[_python(cpu_function)] = device_impl
+            _BUILT.pop(_python(cpu_function), None)
         return device_impl
     return register
 
