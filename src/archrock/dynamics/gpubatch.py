@@ -25,7 +25,7 @@ from .._device import cuda_module, device_kernel, simulator
 from ..statics.gpusearch import THREADS_PER_BLOCK
 from .tables import table_size
 
-__all__ = ["prepare_gpu", "simulate_gpu", "chunk_arches", "SCRATCH_FRACTION"]
+__all__ = ["prepare_gpu", "simulate_gpu", "chunk_arches", "run_launches", "SCRATCH_FRACTION"]
 
 #: fraction of the GPU's free memory the response's scratch (tables, buffers) may take
 SCRATCH_FRACTION = 0.5
@@ -113,17 +113,29 @@ def simulate_gpu(args, chain_rows, summary_one, chunk: int | None = None) -> dic
     outs = cuda.device_array((chunk, 1))
     evs = cuda.device_array((chunk, EVENT_ROWS_GPU, 6))
     blocks = (chunk + THREADS_PER_BLOCK - 1) // THREADS_PER_BLOCK
+
+    def launch(base):
+        kernel[blocks, THREADS_PER_BLOCK](work, outs, evs, base, *d_in, g, dt, t_free,
+                                          max_events, *d_out, early_stop)
+    return run_launches(launch, B, chunk, outputs, d_out, (work, outs, evs), t0)
+
+
+def run_launches(launch, total: int, chunk: int, outputs, d_out, scratch, t0: float) -> dict:
+    """``launch(base)`` for base = 0, chunk, ... below ``total``, then the device outputs
+    ``d_out`` copied into the host arrays ``outputs``.  Returns where the time went since
+    ``t0`` (copies to the device before, the kernels, the copies back) with the chunk, the
+    number of launches and the bytes of the ``scratch`` arrays."""
+    cuda = cuda_module()
     cuda.synchronize()
     t1 = time.perf_counter()
     launches = 0
-    for base in range(0, B, chunk):
-        kernel[blocks, THREADS_PER_BLOCK](work, outs, evs, base, *d_in, g, dt, t_free,
-                                          max_events, *d_out, early_stop)
+    for base in range(0, total, chunk):
+        launch(base)
         launches += 1
     cuda.synchronize()
     t2 = time.perf_counter()
     for host, dev in zip(outputs, d_out):
         dev.copy_to_host(host)
     return {"chunk": chunk, "launches": launches,
-            "scratch_bytes": int(work.nbytes + outs.nbytes + evs.nbytes),
+            "scratch_bytes": int(sum(a.nbytes for a in scratch)),
             "to_device_s": t1 - t0, "kernel_s": t2 - t1, "to_host_s": time.perf_counter() - t2}

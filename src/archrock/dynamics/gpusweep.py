@@ -22,7 +22,7 @@ import numpy as np
 
 from .._device import cuda_module, device_kernel, simulator
 from ..statics.gpusearch import THREADS_PER_BLOCK
-from .gpubatch import SCRATCH_FRACTION
+from .gpubatch import SCRATCH_FRACTION, run_launches
 
 __all__ = ["sweep_gpu", "chunk_items", "SIMULATOR_CHUNK"]
 
@@ -85,17 +85,8 @@ def sweep_gpu(args, sweep_item, chunk: int | None = None) -> dict:
     evs = cuda.device_array((chunk, EVENT_ROWS_GPU, 6))
     threads = min(THREADS_PER_BLOCK, chunk)
     blocks = (chunk + threads - 1) // threads
-    cuda.synchronize()
-    t1 = time.perf_counter()
-    launches = 0
-    for base in range(0, N, chunk):
+
+    def launch(base):
         kernel[blocks, threads](accels, outs, evs, base, *d_in, g, max_events, early_stop,
                                 *d_out)
-        launches += 1
-    cuda.synchronize()
-    t2 = time.perf_counter()
-    for host, dev in zip(outputs, d_out):
-        dev.copy_to_host(host)
-    return {"chunk": chunk, "launches": launches,
-            "scratch_bytes": int(accels.nbytes + outs.nbytes + evs.nbytes),
-            "to_device_s": t1 - t0, "kernel_s": t2 - t1, "to_host_s": time.perf_counter() - t2}
+    return run_launches(launch, N, chunk, outputs, d_out, (accels, outs, evs), t0)

@@ -226,6 +226,14 @@ def _add_event(ev, n_ev, max_events, kind, t, mode_before, mode_after, rate_befo
         bigger = np.zeros((min(2 * ev.shape[0], max_events), 6))
         bigger[:n_ev] = ev[:n_ev]
         ev = bigger
+    _write_event(ev, n_ev, kind, t, mode_before, mode_after, rate_before, rate_after)
+    return ev, n_ev + 1
+
+
+@maybe_njit
+def _write_event(ev, n_ev, kind, t, mode_before, mode_after, rate_before, rate_after):
+    """Row ``n_ev`` of the event table, where the table has it (an event past it is only
+    counted by the caller)."""
     if n_ev < ev.shape[0]:
         ev[n_ev, 0] = kind
         ev[n_ev, 1] = t
@@ -233,7 +241,6 @@ def _add_event(ev, n_ev, max_events, kind, t, mode_before, mode_after, rate_befo
         ev[n_ev, 3] = mode_after
         ev[n_ev, 4] = rate_before
         ev[n_ev, 5] = rate_after
-    return ev, n_ev + 1
 
 
 @maybe_njit
@@ -321,13 +328,7 @@ def _add_event_fixed(ev, n_ev, max_events, kind, t, mode_before, mode_after, rat
                      rate_after):
     """:func:`_add_event` into a table that never grows (a GPU thread cannot allocate): rows
     past its size are only counted."""
-    if n_ev < ev.shape[0]:
-        ev[n_ev, 0] = kind
-        ev[n_ev, 1] = t
-        ev[n_ev, 2] = mode_before
-        ev[n_ev, 3] = mode_after
-        ev[n_ev, 4] = rate_before
-        ev[n_ev, 5] = rate_after
+    _write_event(ev, n_ev, kind, t, mode_before, mode_after, rate_before, rate_after)
     return ev, n_ev + 1
 
 
