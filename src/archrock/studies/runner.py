@@ -17,9 +17,9 @@ IDA, multiple stripes and the collapse-acceleration curves search collapse bound
 motions and runs round after round on one executor (in-process: the numba ``prange`` loop over
 the items, or with the settings' device 'gpu' one item per GPU thread; a pool or Dask: the
 arches and motions sent to each worker once).  The arches are packed (and their tables
-built) on the CPU whatever the device: that is done once per study, the rounds many times.  The items of a
-round are cut into chunks so that progress can be shown; results never depend on the executor
-or the chunks (each item is independent).
+built) on the CPU whatever the device: that is done once per study, the rounds many times.
+The items of a round are cut into chunks so that progress can be shown; results never depend
+on the executor or the chunks (each item is independent).
 
 With ``pulses=(kind, sign, durations)`` (the collapse-acceleration curves) an item carries its own
 motion: item (arch, j, a) is arch under ``pulse(kind, sign * a, durations[j])``, scale 1, the very
