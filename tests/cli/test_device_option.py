@@ -93,6 +93,7 @@ def _close(a, b, path="") -> None:
         assert a == b, path
 
 
+@pytest.mark.slow  # numba's simulator in a child process (the default suite's time)
 def test_curves_on_the_simulated_gpu_give_the_cpus_json(capsys):
     import os
     import subprocess

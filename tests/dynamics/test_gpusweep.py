@@ -39,6 +39,7 @@ def compared() -> list:
     return _simulated("gpu_sweep_compare.py")
 
 
+@pytest.mark.slow  # numba's simulator in a child process (the default suite's time)
 def test_simulated_gpu_sweep_equals_the_cpus(compared):
     rows = compared[:2]
     assert [r["early_stop"] for r in rows] == [False, True]
@@ -55,6 +56,7 @@ def test_simulated_gpu_sweep_equals_the_cpus(compared):
     assert np.array_equal(full == 1, stop == 1) and (stop == 3).sum() >= 1
 
 
+@pytest.mark.slow  # numba's simulator in a child process (the default suite's time)
 def test_stripes_with_device_gpu_run_on_the_gpu_and_equal_the_cpus(compared):
     r = compared[2]
     assert r["cpu_gpu_calls"] == 0 and r["gpu_launches"] >= 1  # the settings' device is used

@@ -63,6 +63,7 @@ def simulated_gpu_store(tmp_path_factory):
     return cfg, out, json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+@pytest.mark.slow  # numba's simulator in a child process (the default suite's time)
 def test_the_simulated_gpu_gives_the_cpus_table(simulated_gpu_store):
     cfg, out, timing = simulated_gpu_store
     assert timing["device"] == "gpu" and timing["executor"] == "in-process"
@@ -86,6 +87,7 @@ def test_the_simulated_gpu_gives_the_cpus_table(simulated_gpu_store):
     assert np.all(cpu["peak"] > 0)
 
 
+@pytest.mark.slow  # numba's simulator in a child process (the default suite's time)
 def test_a_store_made_on_the_gpu_resumes_on_the_cpu(simulated_gpu_store):
     cfg, out, _ = simulated_gpu_store
     manifest = json.loads((out / "manifest.json").read_text())
