@@ -22,12 +22,10 @@ import numpy as np
 
 from .._device import cuda_module, device_kernel, simulator
 from ..statics.gpusearch import THREADS_PER_BLOCK
-from .gpubatch import SCRATCH_FRACTION, run_launches
+from .gpubatch import EVENT_ROWS_GPU, SCRATCH_FRACTION, run_launches
 
 __all__ = ["sweep_gpu", "chunk_items", "SIMULATOR_CHUNK"]
 
-#: rows of each GPU thread's event table: the sweep reads the count only, kept whatever its size
-EVENT_ROWS_GPU = 1
 #: items per launch under numba's simulator (pure Python, ~0.5 s per response): small, so that a
 #: test's few items go through several launches
 SIMULATOR_CHUNK = 4
